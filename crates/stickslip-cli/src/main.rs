@@ -1,0 +1,2 @@
+//! The `stickslip` command-line tool.
+fn main() {}

@@ -1,0 +1,35 @@
+//! # stickslip
+//!
+//! The forced harmonic oscillator damped by dry (Coulomb) friction, and its electrical twin,
+//! a series RLC circuit damped by two anti-parallel diodes, after Xu, Fan, Wang and Jiang,
+//! *Nonlinear effect of forced harmonic oscillator subject to sliding friction and simulation
+//! by a simple nonlinear circuit* ("the paper").
+//!
+//! In dimensionless time τ = ω0·t ([`Params`]):
+//!
+//! ```text
+//! y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)      while sliding
+//! y' = 0 and |β cos(w τ + φ) − y| ≤ μs            while stuck
+//! ```
+//!
+//! - [`physical`]: circuits and mechanical oscillators in SI units, and their exact
+//!   conversion to [`Params`] (the paper's Table 1).
+//! - [`ExactSolver`]: exact event-driven solution; every segment in closed form, only event
+//!   times found numerically, with a step rule that cannot miss a velocity zero.
+//! - [`Solver`]: the trait every solver implements; [`solver::run_until`] and
+//!   [`solver::sample_at`] drive any of them.
+//!
+//! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
+
+pub mod error;
+pub mod exact;
+mod linear;
+pub mod params;
+pub mod physical;
+pub mod solver;
+
+pub use error::{Error, Result};
+pub use exact::ExactSolver;
+pub use params::{Params, State};
+pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
+pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};

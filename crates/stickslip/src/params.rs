@@ -1,0 +1,149 @@
+//! The dimensionless model and its state.
+//!
+//! In dimensionless time τ = ω0·t the oscillator obeys
+//!
+//! ```text
+//! y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)          while sliding,
+//! y' = 0  and  |β cos(w τ + φ) − y| ≤ μs              while stuck,
+//! ```
+//!
+//! which is eq. (6) of the paper with α = 2ζω0 and y = ω0²x, time measured in units of 1/ω0.
+//! The kinetic friction force has magnitude 1 (it sets the unit of y); μs ≥ 1 is the ratio of
+//! static to kinetic friction (the paper takes μs = 1).
+
+use crate::error::{check, Result};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of the dimensionless model. Build with [`Params::new`] (validated) and the
+/// `with_*` setters; fields are public for reading.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Params {
+    /// Damping ratio ζ = α/(2ω0) ≥ 0 (viscous part only; the diodes' R_D included).
+    pub zeta: f64,
+    /// Drive frequency w = Ω/ω0 > 0.
+    pub w: f64,
+    /// Drive amplitude β = F/F0 = U/U_t ≥ 0, in units of the kinetic friction force.
+    pub beta: f64,
+    /// Drive phase φ (radians) at τ = 0.
+    pub phi: f64,
+    /// Static-to-kinetic friction ratio μs ≥ 1 (1 in the paper).
+    pub mu_s: f64,
+}
+
+impl Params {
+    /// Validated parameters with φ = 0 and μs = 1.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when ζ < 0, w ≤ 0, β < 0 or any value is not finite.
+    pub fn new(zeta: f64, w: f64, beta: f64) -> Result<Self> {
+        Ok(Self {
+            zeta: check("zeta", zeta, zeta >= 0.0, "must be finite and >= 0")?,
+            w: check("w", w, w > 0.0, "must be finite and > 0")?,
+            beta: check("beta", beta, beta >= 0.0, "must be finite and >= 0")?,
+            phi: 0.0,
+            mu_s: 1.0,
+        })
+    }
+
+    /// Set the drive phase φ (radians).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when φ is not finite.
+    pub fn with_phi(mut self, phi: f64) -> Result<Self> {
+        self.phi = check("phi", phi, true, "must be finite")?;
+        Ok(self)
+    }
+
+    /// Set the static-to-kinetic friction ratio μs.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when μs < 1 or not finite.
+    pub fn with_mu_s(mut self, mu_s: f64) -> Result<Self> {
+        self.mu_s = check("mu_s", mu_s, mu_s >= 1.0, "must be finite and >= 1")?;
+        Ok(self)
+    }
+
+    /// Re-check all fields (for values built by struct literal or deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field, as in [`Params::new`].
+    pub fn validate(&self) -> Result<Self> {
+        Params::new(self.zeta, self.w, self.beta)?
+            .with_phi(self.phi)?
+            .with_mu_s(self.mu_s)
+    }
+
+    /// The drive β cos(w τ + φ) at time τ.
+    pub fn drive(&self, tau: f64) -> f64 {
+        self.beta * (self.w * tau + self.phi).cos()
+    }
+
+    /// The drive period 2π/w in units of τ.
+    pub fn drive_period(&self) -> f64 {
+        std::f64::consts::TAU / self.w
+    }
+
+    /// Quality factor Q = 1/(2ζ) of the linear circuit (infinite for ζ = 0).
+    pub fn quality_factor(&self) -> f64 {
+        1.0 / (2.0 * self.zeta)
+    }
+}
+
+/// Position and velocity (y, y') at one instant, dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct State {
+    /// Position y (capacitor voltage over U_t, or k·r/F0).
+    pub y: f64,
+    /// Velocity y' = dy/dτ (current over U_t/√(L/C)).
+    pub v: f64,
+}
+
+impl State {
+    /// A state from position and velocity.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when either value is not finite.
+    pub fn new(y: f64, v: f64) -> Result<Self> {
+        Ok(Self {
+            y: check("y0", y, true, "must be finite")?,
+            v: check("v0", v, true, "must be finite")?,
+        })
+    }
+
+    /// Mechanical energy v²/2 + y²/2 (spring plus kinetic, in units of F0²/k).
+    pub fn energy(&self) -> f64 {
+        0.5 * (self.y * self.y + self.v * self.v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Error;
+
+    #[test]
+    fn rejects_bad_values_naming_the_field() {
+        let cases = [
+            (Params::new(-0.1, 1.0, 1.0), "zeta"),
+            (Params::new(f64::NAN, 1.0, 1.0), "zeta"),
+            (Params::new(0.1, 0.0, 1.0), "w"),
+            (Params::new(0.1, f64::INFINITY, 1.0), "w"),
+            (Params::new(0.1, 1.0, -1.0), "beta"),
+            (Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_mu_s(0.5)), "mu_s"),
+            (Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_phi(f64::NAN)), "phi"),
+        ];
+        for (result, field) in cases {
+            match result {
+                Err(Error::InvalidParameter { name, .. }) => assert_eq!(name, field),
+                other => panic!("expected an error for {field}, got {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn accepts_edge_values() {
+        let p = Params::new(0.0, 1e-3, 0.0).unwrap().with_mu_s(1.0).unwrap();
+        assert_eq!(p.mu_s, 1.0);
+        assert!(p.validate().is_ok());
+    }
+}

@@ -1,0 +1,207 @@
+//! The solver trait shared by the exact piecewise-linear solver and the stiff Shockley solver,
+//! and generic drivers (run to a time, sample on a grid) written once against it.
+
+use crate::error::{Error, Result};
+use crate::params::State;
+use serde::{Deserialize, Serialize};
+
+/// How the oscillator moves at an instant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Phase {
+    /// Sliding with y' > 0.
+    SlipPositive,
+    /// Sliding with y' < 0.
+    SlipNegative,
+    /// Stuck: y' = 0 held by static friction (for a smooth diode: |y'| below the stop threshold).
+    Stick,
+}
+
+impl Phase {
+    /// The label used in CSV files: `slip+`, `slip-` or `stick`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phase::SlipPositive => "slip+",
+            Phase::SlipNegative => "slip-",
+            Phase::Stick => "stick",
+        }
+    }
+
+    /// The sliding direction: +1, −1, or 0 when stuck.
+    pub fn sign(self) -> f64 {
+        match self {
+            Phase::SlipPositive => 1.0,
+            Phase::SlipNegative => -1.0,
+            Phase::Stick => 0.0,
+        }
+    }
+}
+
+/// What happened at an event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum EventKind {
+    /// The velocity reverses without stopping (a turning point of the motion).
+    Turn,
+    /// The motion stops: static friction holds the oscillator.
+    Stick,
+    /// The motion resumes after a stop.
+    Slip,
+}
+
+impl EventKind {
+    /// The label used in CSV files: `turn`, `stick` or `slip`.
+    pub fn label(self) -> &'static str {
+        match self {
+            EventKind::Turn => "turn",
+            EventKind::Stick => "stick",
+            EventKind::Slip => "slip",
+        }
+    }
+}
+
+/// A switching event of the motion.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Event {
+    /// Dimensionless time τ of the event.
+    pub tau: f64,
+    /// Position y at the event.
+    pub y: f64,
+    /// What happened.
+    pub kind: EventKind,
+}
+
+/// The state of the oscillator at a requested time (dense output).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Sample {
+    /// Dimensionless time τ.
+    pub tau: f64,
+    /// Position y.
+    pub y: f64,
+    /// Velocity y'.
+    pub v: f64,
+    /// Phase of the motion at τ.
+    pub phase: Phase,
+}
+
+/// Work counters of a solver, for benchmarks and regression tests.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct Stats {
+    /// Events (turn, stick, slip) reported.
+    pub events: u64,
+    /// Evaluations of the closed form (exact solver) or of the right-hand side (stiff solver).
+    pub evaluations: u64,
+    /// Accepted steps: search steps (exact solver) or integration steps (stiff solver).
+    pub steps: u64,
+    /// Rejected steps (stiff solver) or failed bracketing attempts (exact solver).
+    pub rejected: u64,
+}
+
+/// A solver that advances the oscillator in time, reporting switching events and offering
+/// dense output over the interval it last advanced through.
+///
+/// All times are dimensionless (τ = ω0·t) and absolute (the solver starts at τ = 0).
+pub trait Solver {
+    /// Current time τ.
+    fn time(&self) -> f64;
+
+    /// State at the current time.
+    fn state(&self) -> State;
+
+    /// Phase of the motion at the current time.
+    fn phase(&self) -> Phase;
+
+    /// The drive β cos(w τ + φ) at time τ, in the same units as y.
+    fn drive(&self, tau: f64) -> f64;
+
+    /// Advance to the next event or to `t_end`, whichever comes first, and return the event
+    /// if one was reached. After the call, [`Solver::dense`] is valid on [`Solver::interval`].
+    ///
+    /// # Errors
+    /// [`Error::TimeBeforeCurrent`] when `t_end` lies before [`Solver::time`]; numerical
+    /// failures of the solver.
+    fn advance(&mut self, t_end: f64) -> Result<Option<Event>>;
+
+    /// The interval `(from, to)` covered by the last call of [`Solver::advance`]
+    /// (`to` equals [`Solver::time`]).
+    fn interval(&self) -> (f64, f64);
+
+    /// Dense output at `tau` inside [`Solver::interval`].
+    fn dense(&self, tau: f64) -> Sample;
+
+    /// Work counters so far.
+    fn stats(&self) -> Stats;
+}
+
+/// Advance `solver` to `t_end`, handing every event to `on_event`.
+///
+/// # Errors
+/// Whatever [`Solver::advance`] reports.
+pub fn run_until<S: Solver + ?Sized>(
+    solver: &mut S,
+    t_end: f64,
+    mut on_event: impl FnMut(&Event),
+) -> Result<()> {
+    if t_end < solver.time() {
+        return Err(Error::TimeBeforeCurrent {
+            requested: t_end,
+            current: solver.time(),
+        });
+    }
+    while solver.time() < t_end {
+        if let Some(event) = solver.advance(t_end)? {
+            on_event(&event);
+        }
+    }
+    Ok(())
+}
+
+/// Sample the motion at the sorted times `times` (each ≥ the solver's current time), handing
+/// every event on the way to `on_event`. The solver ends at the last requested time.
+///
+/// # Errors
+/// [`Error::TimeBeforeCurrent`] when `times` is not sorted or starts before the solver's time;
+/// whatever [`Solver::advance`] reports.
+pub fn sample_at<S: Solver + ?Sized>(
+    solver: &mut S,
+    times: &[f64],
+    mut on_event: impl FnMut(&Event),
+) -> Result<Vec<Sample>> {
+    let mut out = Vec::with_capacity(times.len());
+    let mut previous = solver.time();
+    for &tau in times {
+        if tau < previous || tau.is_nan() {
+            return Err(Error::TimeBeforeCurrent {
+                requested: tau,
+                current: previous,
+            });
+        }
+        previous = tau;
+        if tau == solver.time() {
+            let s = solver.state();
+            out.push(Sample {
+                tau,
+                y: s.y,
+                v: s.v,
+                phase: solver.phase(),
+            });
+            continue;
+        }
+        while solver.time() < tau {
+            if let Some(event) = solver.advance(tau)? {
+                on_event(&event);
+            }
+        }
+        out.push(solver.dense(tau));
+    }
+    Ok(out)
+}
+
+/// `count + 1` evenly spaced times from `from` to `to` inclusive, computed without
+/// accumulating rounding.
+pub fn grid(from: f64, to: f64, count: usize) -> Vec<f64> {
+    if count == 0 {
+        return vec![from];
+    }
+    (0..=count)
+        .map(|k| from + (to - from) * (k as f64 / count as f64))
+        .collect()
+}
