@@ -1,2 +1,76 @@
-//! The `stickslip` command-line tool.
-fn main() {}
+//! `stickslip`: the forced oscillator with dry friction and its diode-RLC twin, from the
+//! command line. Every subcommand is glue over the `stickslip` library.
+
+// Shared plotting and output helpers serve several commands, not all of them yet.
+#![allow(dead_code)]
+
+use clap::Parser;
+use std::process::ExitCode;
+
+mod commands;
+mod model;
+mod output;
+mod plot;
+mod solvers;
+
+/// Forced oscillator with dry (Coulomb) friction, and its twin: a series RLC circuit damped by
+/// two anti-parallel diodes. Exact stick-slip trajectories, spectra, resonance curves with
+/// hysteresis, stick-slip maps, and every figure of the paper.
+///
+/// Inside, everything is dimensionless: τ = ω0·t and
+///   y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)   while sliding,
+///   y' = 0 and |β cos(w τ + φ) − y| ≤ μs          while stuck.
+/// For the circuit y = u_C/U_t, 2ζ = (R+R_D)√(C/L), β = U/U_t, w = Ω/ω0.
+/// Give either dimensionless flags (--zeta --w --beta) or a physical description
+/// (--preset paper, --config FILE.toml, or --L --C --R ...); every command says which it used.
+#[derive(Debug, Parser)]
+#[command(name = "stickslip", version, about, long_about, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: commands::Command,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => {
+            use clap::error::ErrorKind;
+            return match err.kind() {
+                ErrorKind::DisplayHelp
+                | ErrorKind::DisplayVersion
+                | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+                    let _ = err.print();
+                    ExitCode::SUCCESS
+                }
+                _ => {
+                    let text = err.render().to_string();
+                    let first = text.lines().next().unwrap_or("error: invalid arguments");
+                    eprintln!("{first} (see --help)");
+                    ExitCode::from(2)
+                }
+            };
+        }
+    };
+    output::install_interrupt_handler();
+    match commands::run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            let usage = err.downcast_ref::<output::UsageError>().is_some()
+                || err
+                    .downcast_ref::<stickslip::Error>()
+                    .is_some_and(|e| matches!(e, stickslip::Error::InvalidParameter { .. }));
+            // One line: the chain of causes joined.
+            let message = err
+                .chain()
+                .map(|c| c.to_string())
+                .collect::<Vec<_>>()
+                .join(": ");
+            eprintln!("error: {message}");
+            if usage {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}

@@ -182,7 +182,12 @@ impl ExactSolver {
 
     /// First velocity zero of the current sliding segment in local times (searched, limit],
     /// or None. Advances `self.searched`.
-    fn find_velocity_zero(&mut self, sign: f64, linear: &LinearSegment, limit: f64) -> Result<Option<f64>> {
+    fn find_velocity_zero(
+        &mut self,
+        sign: f64,
+        linear: &LinearSegment,
+        limit: f64,
+    ) -> Result<Option<f64>> {
         let mut a = self.searched;
         let mut steps = 0u64;
         loop {

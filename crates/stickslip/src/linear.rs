@@ -256,7 +256,10 @@ mod tests {
                     let residual =
                         d[2] + 2.0 * zeta * d[1] + d[0] - beta * (w * t + theta).cos() + c;
                     let scale = 1.0 + d.iter().map(|x| x.abs()).sum::<f64>();
-                    assert!(residual.abs() < 1e-12 * scale, "zeta {zeta} w {w} t {t}: {residual}");
+                    assert!(
+                        residual.abs() < 1e-12 * scale,
+                        "zeta {zeta} w {w} t {t}: {residual}"
+                    );
                     // Higher derivatives are consistent with differentiating the equation.
                     let r3 = d[3] + 2.0 * zeta * d[2] + d[1] + beta * w * (w * t + theta).sin();
                     assert!(r3.abs() < 1e-11 * scale, "zeta {zeta} w {w} t {t}: {r3}");

@@ -129,8 +129,14 @@ mod tests {
             (Params::new(0.1, 0.0, 1.0), "w"),
             (Params::new(0.1, f64::INFINITY, 1.0), "w"),
             (Params::new(0.1, 1.0, -1.0), "beta"),
-            (Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_mu_s(0.5)), "mu_s"),
-            (Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_phi(f64::NAN)), "phi"),
+            (
+                Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_mu_s(0.5)),
+                "mu_s",
+            ),
+            (
+                Params::new(0.1, 1.0, 1.0).and_then(|p| p.with_phi(f64::NAN)),
+                "phi",
+            ),
         ];
         for (result, field) in cases {
             match result {

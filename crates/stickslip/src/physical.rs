@@ -32,7 +32,12 @@ impl PwlDiode {
     /// When U_t ≤ 0 or R_D < 0 or either is not finite.
     pub fn new(turn_on: f64, resistance: f64) -> Result<Self> {
         Ok(Self {
-            turn_on: check("U_t", turn_on, turn_on > 0.0, "must be finite and > 0 (volts)")?,
+            turn_on: check(
+                "U_t",
+                turn_on,
+                turn_on > 0.0,
+                "must be finite and > 0 (volts)",
+            )?,
             resistance: check(
                 "R_D",
                 resistance,
@@ -71,16 +76,31 @@ impl Circuit {
     ///
     /// # Errors
     /// When L ≤ 0, C ≤ 0, R < 0 or any value is not finite.
-    pub fn new(inductance: f64, capacitance: f64, resistance: f64, diode: PwlDiode) -> Result<Self> {
+    pub fn new(
+        inductance: f64,
+        capacitance: f64,
+        resistance: f64,
+        diode: PwlDiode,
+    ) -> Result<Self> {
         Ok(Self {
-            inductance: check("L", inductance, inductance > 0.0, "must be finite and > 0 (henry)")?,
+            inductance: check(
+                "L",
+                inductance,
+                inductance > 0.0,
+                "must be finite and > 0 (henry)",
+            )?,
             capacitance: check(
                 "C",
                 capacitance,
                 capacitance > 0.0,
                 "must be finite and > 0 (farad)",
             )?,
-            resistance: check("R", resistance, resistance >= 0.0, "must be finite and >= 0 (ohms)")?,
+            resistance: check(
+                "R",
+                resistance,
+                resistance >= 0.0,
+                "must be finite and >= 0 (ohms)",
+            )?,
             diode: PwlDiode::new(diode.turn_on, diode.resistance)?,
         })
     }
@@ -143,8 +163,18 @@ impl Mechanics {
     pub fn new(mass: f64, stiffness: f64, damping: f64, friction: f64) -> Result<Self> {
         Ok(Self {
             mass: check("m", mass, mass > 0.0, "must be finite and > 0 (kg)")?,
-            stiffness: check("k", stiffness, stiffness > 0.0, "must be finite and > 0 (N/m)")?,
-            damping: check("gamma", damping, damping >= 0.0, "must be finite and >= 0 (N s/m)")?,
+            stiffness: check(
+                "k",
+                stiffness,
+                stiffness > 0.0,
+                "must be finite and > 0 (N/m)",
+            )?,
+            damping: check(
+                "gamma",
+                damping,
+                damping >= 0.0,
+                "must be finite and >= 0 (N s/m)",
+            )?,
             friction: check("F0", friction, friction > 0.0, "must be finite and > 0 (N)")?,
         })
     }
@@ -221,8 +251,18 @@ impl Scales {
     /// # Errors
     /// When the resulting w or β is out of range (e.g. Ω ≤ 0, U < 0).
     pub fn params(&self, amplitude: f64, omega: f64, phase: f64) -> Result<Params> {
-        check("U", amplitude, amplitude >= 0.0, "must be finite and >= 0 (V or N)")?;
-        check("Omega", omega, omega > 0.0, "must be finite and > 0 (rad/s)")?;
+        check(
+            "U",
+            amplitude,
+            amplitude >= 0.0,
+            "must be finite and >= 0 (V or N)",
+        )?;
+        check(
+            "Omega",
+            omega,
+            omega > 0.0,
+            "must be finite and > 0 (rad/s)",
+        )?;
         Params::new(self.zeta(), omega / self.omega0, amplitude / self.force)?.with_phi(phase)
     }
 

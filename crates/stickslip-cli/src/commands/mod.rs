@@ -1,0 +1,47 @@
+//! One file per subcommand: each has its `Args` (flags as typed) and `run`.
+
+use clap::Subcommand;
+
+pub mod convert;
+pub mod netlist;
+pub mod phase_diagram;
+pub mod reproduce;
+pub mod simulate;
+pub mod steady;
+pub mod sweep;
+pub mod theory;
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Integrate the motion exactly and write the trajectory (CSV), events and a plot.
+    Simulate(simulate::Args),
+    /// Print the dimensionless parameters (ω0, ζ, Q, w, β, ...) of a physical description.
+    Convert(convert::Args),
+    /// The paper's series solution, the exact periodic solution, and stick-slip boundaries.
+    Theory(theory::Args),
+    /// Run to the steady state and report its class, period, spectrum and gain.
+    Steady(steady::Args),
+    /// Sweep w or β up and/or down, each step starting where the last ended (hysteresis).
+    Sweep(sweep::Args),
+    /// Classify the motion on a (w, β) grid: sliding, periodic or non-periodic stick, static.
+    PhaseDiagram(phase_diagram::Args),
+    /// Write the circuit as a SPICE netlist (Shockley diodes) for ngspice or any SPICE.
+    Netlist(netlist::Args),
+    /// Regenerate every figure and table of the paper with an HTML report.
+    Reproduce(reproduce::Args),
+}
+
+/// Run one subcommand.
+pub fn run(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Convert(a) => convert::run(a),
+        Command::Theory(a) => theory::run(a),
+        Command::Steady(a) => steady::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::PhaseDiagram(a) => phase_diagram::run(a),
+        Command::Netlist(a) => netlist::run(a),
+        Command::Reproduce(a) => reproduce::run(a),
+    }
+}

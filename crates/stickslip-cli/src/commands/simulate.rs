@@ -1,0 +1,178 @@
+//! `stickslip simulate`: one trajectory, written as CSV, with its events and a plot.
+
+use crate::model::ModelArgs;
+use crate::output::{check_plot_path, usage, AtomicFile, Sink};
+use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use anyhow::Result;
+use std::io::Write;
+use std::path::PathBuf;
+use stickslip::solver::{grid, sample_at};
+use stickslip::{Event, System};
+
+/// Integrate the motion exactly from the initial state and write the trajectory.
+///
+/// Output CSV columns: `tau,y,v,drive,phase` (dimensionless, phase = slip+|slip-|stick); with a
+/// circuit also `t_s,uc_V,i_A,u_V`, with a mechanical oscillator `t_s,r_m,rdot_m_s,F_N`.
+///
+/// Example: stickslip simulate --preset paper --w 0.7 --beta 1.2 --periods 30 --plot trace.png
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Number of drive periods to simulate (> 0).
+    #[arg(long, default_value_t = 20.0, value_parser = crate::model::finite)]
+    periods: f64,
+    /// Samples per drive period in the CSV (≥ 1).
+    #[arg(long = "samples-per-period", default_value_t = 200)]
+    samples_per_period: u64,
+    /// Trajectory CSV file [default: standard output].
+    #[arg(long, short)]
+    out: Option<PathBuf>,
+    /// Event log CSV `tau,y,kind` (kind = turn|stick|slip).
+    #[arg(long, value_name = "FILE")]
+    events: Option<PathBuf>,
+    /// Plot of the trace (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
+
+/// Run `stickslip simulate`.
+pub fn run(args: Args) -> Result<()> {
+    if !(args.periods > 0.0) || args.periods > 1e7 {
+        usage!(
+            "invalid --periods {}: must be > 0 and at most 1e7",
+            args.periods
+        );
+    }
+    if args.samples_per_period == 0 || args.samples_per_period > 100_000 {
+        usage!(
+            "invalid --samples-per-period {}: must be from 1 to 100000",
+            args.samples_per_period
+        );
+    }
+    let total = (args.periods * args.samples_per_period as f64).ceil();
+    if total > 5e7 {
+        usage!("--periods × --samples-per-period = {total} samples: at most 5e7 allowed");
+    }
+    if let Some(p) = &args.plot {
+        check_plot_path(p)?;
+    }
+    let model = args.model.build()?;
+    eprintln!("simulate: {}", model.summary);
+
+    let mut solver = crate::solvers::solver_for(&model)?;
+    let period = model.params.drive_period();
+    let t_end = args.periods * period;
+    let times = grid(0.0, t_end, total as usize);
+    let mut events: Vec<Event> = Vec::new();
+    let samples = sample_at(solver.as_mut(), &times, |e| events.push(*e))?;
+    crate::output::check_interrupt()?;
+
+    let scales = model.system.map(|s| s.scales());
+    let mut sink = Sink::open(args.out.as_deref())?;
+    let mut w = csv::Writer::from_writer(&mut sink);
+    let mut header = vec!["tau", "y", "v", "drive", "phase"];
+    match model.system {
+        Some(System::Circuit(_)) => header.extend(["t_s", "uc_V", "i_A", "u_V"]),
+        Some(System::Mechanics(_)) => header.extend(["t_s", "r_m", "rdot_m_s", "F_N"]),
+        None => {}
+    }
+    w.write_record(&header)?;
+    for s in &samples {
+        let drive = solver.drive(s.tau);
+        let mut row = vec![
+            fmt(s.tau),
+            fmt(s.y),
+            fmt(s.v),
+            fmt(drive),
+            s.phase.label().to_string(),
+        ];
+        if let Some(sc) = scales {
+            row.extend([
+                fmt(sc.time(s.tau)),
+                fmt(s.y * sc.position),
+                fmt(s.v * sc.velocity),
+                fmt(drive * sc.force),
+            ]);
+        }
+        w.write_record(&row)?;
+    }
+    w.flush()?;
+    drop(w);
+    sink.finish()?;
+
+    if let Some(path) = &args.events {
+        let mut file = AtomicFile::create(path)?;
+        writeln!(file, "tau,y,kind")?;
+        for e in &events {
+            writeln!(file, "{},{},{}", fmt(e.tau), fmt(e.y), e.kind.label())?;
+        }
+        file.commit()?;
+    }
+
+    if let Some(path) = &args.plot {
+        let (tx, yx, x_label, y_label) = match (model.system, scales) {
+            (Some(System::Circuit(_)), Some(sc)) => {
+                (1e3 / sc.omega0, sc.position, "t (ms)", "voltage (V)")
+            }
+            (Some(System::Mechanics(_)), Some(sc)) => {
+                (1.0 / sc.omega0, sc.position, "t (s)", "r (m), F·k/F0 (m)")
+            }
+            _ => (1.0, 1.0, "τ = ω0 t", "y, drive"),
+        };
+        let trace: Vec<(f64, f64)> = samples.iter().map(|s| (s.tau * tx, s.y * yx)).collect();
+        let drive: Vec<(f64, f64)> = samples
+            .iter()
+            .map(|s| (s.tau * tx, solver.drive(s.tau) * yx))
+            .collect();
+        let stops: Vec<(f64, f64)> = events
+            .iter()
+            .filter(|e| e.kind == stickslip::EventKind::Stick)
+            .map(|e| (e.tau * tx, e.y * yx))
+            .collect();
+        let circuit = matches!(model.system, Some(System::Circuit(_)));
+        let panel = Panel {
+            title: format!(
+                "w = {:.3}, β = {:.3}, ζ = {:.4}",
+                model.params.w, model.params.beta, model.params.zeta
+            ),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series: vec![
+                Series::new(
+                    if circuit { "drive U" } else { "drive" },
+                    drive,
+                    PALETTE[1],
+                    Style::Line(3),
+                ),
+                Series::new(
+                    if circuit { "u_C" } else { "y" },
+                    trace,
+                    PALETTE[0],
+                    Style::Line(1),
+                ),
+                Series::new("stops", stops, PALETTE[6], Style::Markers(3)),
+            ],
+            legend: Some(Legend::UpperRight),
+            ..Default::default()
+        };
+        Figure::single(panel, (1000, 480)).render(path)?;
+    }
+    eprintln!(
+        "simulate: {} samples over {} drive periods, {} events{}",
+        samples.len(),
+        args.periods,
+        events.len(),
+        args.out
+            .as_ref()
+            .map(|p| format!(", trajectory in {}", p.display()))
+            .unwrap_or_default()
+    );
+    Ok(())
+}
+
+/// Shortest text that reads back as the same f64.
+pub fn fmt(x: f64) -> String {
+    format!("{x}")
+}

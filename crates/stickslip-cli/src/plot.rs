@@ -1,0 +1,379 @@
+//! Figures: panels of line, marker, bar and cell series, rendered to PNG or SVG (chosen by the
+//! file's extension) with a bundled font, so rendering needs no system fonts.
+
+use crate::output::AtomicFile;
+use anyhow::{Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// The bundled font (DejaVu Sans; licence in `assets/DejaVuSans-LICENSE.txt`).
+static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+const FAMILY: &str = "sans-serif";
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        for style in [
+            FontStyle::Normal,
+            FontStyle::Bold,
+            FontStyle::Italic,
+            FontStyle::Oblique,
+        ] {
+            if plotters::style::register_font(FAMILY, style, FONT).is_err() {
+                panic!("the bundled font is not a valid TrueType font");
+            }
+        }
+    });
+}
+
+/// A colour-blind-friendly palette (Okabe–Ito), one colour per series or per β.
+pub const PALETTE: [RGBColor; 8] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(240, 228, 66),
+];
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Style {
+    /// A polyline of this stroke width.
+    Line(u32),
+    /// A dashed polyline of this stroke width.
+    Dashed(u32),
+    /// Filled circles of this radius.
+    Markers(u32),
+    /// Hollow squares of this half-size.
+    Squares(u32),
+    /// Vertical bars from y = 0, of this width in data units.
+    Bars(f64),
+}
+
+/// One data series.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend entry (empty: not in the legend).
+    pub label: String,
+    /// The points (x, y); non-finite points break a line.
+    pub points: Vec<(f64, f64)>,
+    /// Colour.
+    pub color: RGBColor,
+    /// Drawing style.
+    pub style: Style,
+}
+
+impl Series {
+    /// A series with a label, points, colour and style.
+    pub fn new(
+        label: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        color: RGBColor,
+        style: Style,
+    ) -> Self {
+        Self {
+            label: label.into(),
+            points,
+            color,
+            style,
+        }
+    }
+}
+
+/// A filled rectangle in data coordinates (for maps).
+#[derive(Debug, Clone, Copy)]
+pub struct Cell {
+    /// Lower-left and upper-right corners.
+    pub x: (f64, f64),
+    /// Lower and upper y.
+    pub y: (f64, f64),
+    /// Fill colour.
+    pub color: RGBColor,
+}
+
+/// One chart.
+#[derive(Debug, Clone, Default)]
+pub struct Panel {
+    /// Title over the chart.
+    pub title: String,
+    /// x-axis label, with units.
+    pub x_label: String,
+    /// y-axis label, with units.
+    pub y_label: String,
+    /// Series, drawn in order.
+    pub series: Vec<Series>,
+    /// Filled cells, drawn under the series.
+    pub cells: Vec<Cell>,
+    /// Legend entries for cells: (label, colour).
+    pub cell_legend: Vec<(String, RGBColor)>,
+    /// x range; from the data when None.
+    pub x_range: Option<(f64, f64)>,
+    /// y range; from the data when None.
+    pub y_range: Option<(f64, f64)>,
+    /// Where the legend goes (None: no legend).
+    pub legend: Option<Legend>,
+}
+
+/// Corner of a panel that holds its legend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Legend {
+    /// Upper left.
+    UpperLeft,
+    /// Upper right.
+    UpperRight,
+    /// Lower left.
+    LowerLeft,
+    /// Lower right.
+    LowerRight,
+}
+
+/// Panels on a grid.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// Panels, filled row by row.
+    pub panels: Vec<Panel>,
+    /// Panels per row.
+    pub columns: usize,
+    /// Size of one panel in pixels.
+    pub panel_size: (u32, u32),
+}
+
+impl Figure {
+    /// A figure of one panel of the given size.
+    pub fn single(panel: Panel, size: (u32, u32)) -> Self {
+        Self {
+            panels: vec![panel],
+            columns: 1,
+            panel_size: size,
+        }
+    }
+
+    /// Render to `path` (`.png` or `.svg`), atomically.
+    pub fn render(&self, path: &Path) -> Result<()> {
+        register_font();
+        let rows = self.panels.len().div_ceil(self.columns.max(1)) as u32;
+        let size = (
+            self.panel_size.0 * self.columns as u32,
+            self.panel_size.1 * rows.max(1),
+        );
+        let file = AtomicFile::create(path)?;
+        let temp = file.temp_path().to_path_buf();
+        let svg = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        if svg {
+            let root = SVGBackend::new(&temp, size).into_drawing_area();
+            self.draw(&root, rows)?;
+            root.present().context("cannot write SVG")?;
+        } else {
+            let root = BitMapBackend::new(&temp, size).into_drawing_area();
+            self.draw(&root, rows)?;
+            root.present().context("cannot write PNG")?;
+        }
+        file.commit()
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, rows: u32) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let areas = root.split_evenly((rows as usize, self.columns.max(1)));
+        for (panel, area) in self.panels.iter().zip(areas.iter()) {
+            draw_panel(panel, area)
+                .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?;
+        }
+        Ok(())
+    }
+}
+
+/// Data range of the panel's series and cells, padded.
+fn ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
+    let mut xs = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut ys = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut take = |x: f64, y: f64| {
+        if x.is_finite() && y.is_finite() {
+            xs = (xs.0.min(x), xs.1.max(x));
+            ys = (ys.0.min(y), ys.1.max(y));
+        }
+    };
+    for s in &panel.series {
+        for &(x, y) in &s.points {
+            take(x, y);
+            if let Style::Bars(_) = s.style {
+                take(x, 0.0);
+            }
+        }
+    }
+    for c in &panel.cells {
+        take(c.x.0, c.y.0);
+        take(c.x.1, c.y.1);
+    }
+    let pad = |(lo, hi): (f64, f64), frac: f64| {
+        if !lo.is_finite() {
+            (0.0, 1.0)
+        } else if hi - lo <= f64::EPSILON * (lo.abs() + hi.abs()).max(1e-300) {
+            let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+            (lo - d, hi + d)
+        } else {
+            let d = (hi - lo) * frac;
+            (lo - d, hi + d)
+        }
+    };
+    let x = panel.x_range.unwrap_or_else(|| pad(xs, 0.0));
+    let y = panel.y_range.unwrap_or_else(|| pad(ys, 0.06));
+    (x, y)
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let (xr, yr) = ranges(panel);
+    let (w, h) = area.dim_in_pixel();
+    let font = (w.min(h) / 22).clamp(11, 20);
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, (FAMILY, font + 2))
+        .margin(8)
+        .x_label_area_size(font * 3)
+        .y_label_area_size(font * 4)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(&panel.x_label)
+        .y_desc(&panel.y_label)
+        .label_style((FAMILY, font))
+        .axis_desc_style((FAMILY, font))
+        .light_line_style(RGBColor(235, 235, 235))
+        .x_labels(6)
+        .y_labels(6)
+        .draw()
+        .map_err(|e| e.to_string())?;
+
+    for c in &panel.cells {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(c.x.0, c.y.0), (c.x.1, c.y.1)],
+                c.color.filled(),
+            )))
+            .map_err(|e| e.to_string())?;
+    }
+    for (label, color) in &panel.cell_legend {
+        let color = *color;
+        chart
+            .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())
+            .map_err(|e| e.to_string())?
+            .label(label.clone())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color.filled()));
+    }
+
+    for s in &panel.series {
+        let color = s.color;
+        let anno = match s.style {
+            Style::Line(width) | Style::Dashed(width) => {
+                let style = color.stroke_width(width);
+                // Break the polyline at non-finite points.
+                let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+                for &(x, y) in &s.points {
+                    if x.is_finite() && y.is_finite() {
+                        pieces.last_mut().expect("non-empty").push((x, y));
+                    } else if !pieces.last().expect("non-empty").is_empty() {
+                        pieces.push(Vec::new());
+                    }
+                }
+                for (i, piece) in pieces.into_iter().filter(|p| !p.is_empty()).enumerate() {
+                    let a = if matches!(s.style, Style::Dashed(_)) {
+                        chart.draw_series(DashedLineSeries::new(piece, 6, 4, style))
+                    } else {
+                        chart.draw_series(LineSeries::new(piece, style))
+                    }
+                    .map_err(|e| e.to_string())?;
+                    if i == 0 && !s.label.is_empty() {
+                        a.label(s.label.clone()).legend(move |(x, y)| {
+                            PathElement::new(
+                                vec![(x, y), (x + 16, y)],
+                                color.stroke_width(width.max(2)),
+                            )
+                        });
+                    }
+                }
+                continue;
+            }
+            Style::Markers(r) => chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .filter(|p| p.0.is_finite() && p.1.is_finite())
+                        .map(|&p| Circle::new(p, r, color.filled())),
+                )
+                .map_err(|e| e.to_string())?,
+            Style::Squares(r) => {
+                let r = r as i32;
+                chart
+                    .draw_series(
+                        s.points
+                            .iter()
+                            .filter(|p| p.0.is_finite() && p.1.is_finite())
+                            .map(|&p| {
+                                EmptyElement::at(p)
+                                    + Rectangle::new([(-r, -r), (r, r)], color.stroke_width(1))
+                            }),
+                    )
+                    .map_err(|e| e.to_string())?
+            }
+            Style::Bars(width) => chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .filter(|p| p.0.is_finite() && p.1.is_finite())
+                        .map(|&(x, y)| {
+                            Rectangle::new(
+                                [(x - width / 2.0, 0.0), (x + width / 2.0, y)],
+                                color.filled(),
+                            )
+                        }),
+                )
+                .map_err(|e| e.to_string())?,
+        };
+        if !s.label.is_empty() {
+            let style = s.style;
+            anno.label(s.label.clone())
+                .legend(move |(x, y)| match style {
+                    Style::Squares(_) => {
+                        EmptyElement::at((x + 6, y))
+                            + Rectangle::new([(-4, -4), (4, 4)], color.stroke_width(1))
+                    }
+                    _ => {
+                        EmptyElement::at((x + 6, y))
+                            + Rectangle::new([(-4, -4), (4, 4)], color.filled())
+                    }
+                });
+        }
+    }
+    if let Some(position) = panel.legend {
+        chart
+            .configure_series_labels()
+            .position(match position {
+                Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+                Legend::UpperRight => SeriesLabelPosition::UpperRight,
+                Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+                Legend::LowerRight => SeriesLabelPosition::LowerRight,
+            })
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .label_font((FAMILY, font))
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
