@@ -3,7 +3,7 @@
 //! stages: the flags as typed ([`ModelArgs`]) and the validated [`Model`] they build.
 
 use crate::output::{usage, UsageError};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::PathBuf;
 use stickslip::{Circuit, Mechanics, Params, PwlDiode, State, System};
 
@@ -100,40 +100,40 @@ pub struct ModelArgs {
     #[arg(long, value_name = "FILE", help_heading = "Model (physical)")]
     pub config: Option<PathBuf>,
     /// Inductance L in henry (SI prefixes allowed: 11.5m).
-    #[arg(long, alias = "L", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, alias = "L", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub inductance: Option<f64>,
     /// Capacitance C in farad (0.02u).
-    #[arg(long, alias = "C", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, alias = "C", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub capacitance: Option<f64>,
     /// Series resistance R in ohms, without the diodes.
-    #[arg(long, alias = "R", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, alias = "R", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub resistance: Option<f64>,
     /// Diode turn-on voltage U_t in volts (PWL model).
-    #[arg(long = "ut", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long = "ut", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub turn_on: Option<f64>,
     /// Diode forward resistance R_D in ohms (PWL model).
-    #[arg(long = "rd", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long = "rd", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub diode_resistance: Option<f64>,
     /// Mass m in kg (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub mass: Option<f64>,
     /// Spring constant k in N/m (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub stiffness: Option<f64>,
     /// Viscous damping γ in N·s/m (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub damping: Option<f64>,
     /// Kinetic friction force F0 in N (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub friction: Option<f64>,
     /// Drive amplitude: U in volts (circuit) or F in newtons (mechanics).
-    #[arg(long, alias = "U", value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, alias = "U", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub amplitude: Option<f64>,
     /// Drive frequency f in Hz.
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub freq: Option<f64>,
     /// Drive angular frequency Ω in rad/s.
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)")]
+    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
     pub omega: Option<f64>,
     /// Initial capacitor voltage u_C(0) in volts (circuit; instead of --y0).
     #[arg(long, value_parser = si_value, allow_hyphen_values = true, help_heading = "Model (physical)")]
@@ -146,13 +146,13 @@ pub struct ModelArgs {
     #[arg(long, value_enum, help_heading = "Diode model")]
     pub model: Option<DiodeModel>,
     /// Shockley saturation current I_s in amperes [default: 4.352n, 1N4148].
-    #[arg(long = "diode-is", value_parser = si_value, help_heading = "Diode model")]
+    #[arg(long = "diode-is", value_parser = si_value, help_heading = "Diode model", allow_hyphen_values = true)]
     pub diode_is: Option<f64>,
     /// Shockley emission coefficient n [default: 1.906, 1N4148].
-    #[arg(long = "diode-n", value_parser = finite, help_heading = "Diode model")]
+    #[arg(long = "diode-n", value_parser = finite, help_heading = "Diode model", allow_hyphen_values = true)]
     pub diode_n: Option<f64>,
     /// Shockley series resistance R_s in ohms [default: 0.6458, 1N4148].
-    #[arg(long = "diode-rs", value_parser = si_value, help_heading = "Diode model")]
+    #[arg(long = "diode-rs", value_parser = si_value, help_heading = "Diode model", allow_hyphen_values = true)]
     pub diode_rs: Option<f64>,
     /// Diode temperature in °C [default: 27, as SPICE].
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Diode model")]
@@ -228,7 +228,7 @@ struct FileValues {
 
 fn read_config(path: &PathBuf) -> Result<FileValues> {
     let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read config file {}", path.display()))?;
+        .map_err(|e| UsageError(format!("cannot read config file {}: {e}", path.display())))?;
     let table: toml::Table = text
         .parse()
         .map_err(|e: toml::de::Error| UsageError(format!("{}: {}", path.display(), e.message())))?;

@@ -68,13 +68,7 @@ impl AtomicFile {
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        if !dir.is_dir() {
-            anyhow::bail!(
-                "cannot write {}: directory {} does not exist",
-                path.display(),
-                dir.display()
-            );
-        }
+        check_output_path(path)?;
         let name = path
             .file_name()
             .with_context(|| format!("{} is not a file name", path.display()))?;
@@ -173,15 +167,34 @@ impl Write for Sink {
     }
 }
 
+/// Check that an output file can be created: its directory exists (a usage error otherwise).
+pub fn check_output_path(path: &Path) -> Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        usage!(
+            "cannot write {}: directory {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
 /// Check that an output path has an extension we can write (`png` or `svg`).
 pub fn check_plot_path(path: &Path) -> Result<()> {
     match path.extension().and_then(|e| e.to_str()) {
-        Some(e) if e.eq_ignore_ascii_case("png") || e.eq_ignore_ascii_case("svg") => Ok(()),
+        Some(e) if e.eq_ignore_ascii_case("png") || e.eq_ignore_ascii_case("svg") => {
+            Ok::<(), anyhow::Error>(())
+        }
         _ => usage!(
             "invalid plot file {}: the name must end in .png or .svg",
             path.display()
         ),
-    }
+    }?;
+    check_output_path(path)
 }
 
 /// A progress bar on standard error when it is a terminal, hidden otherwise.

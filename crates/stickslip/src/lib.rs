@@ -26,7 +26,10 @@ pub mod exact;
 mod linear;
 pub mod params;
 pub mod physical;
+pub mod shockley;
 pub mod solver;
+pub mod steady;
+pub mod theory;
 
 pub use error::{Error, Result};
 pub use exact::ExactSolver;

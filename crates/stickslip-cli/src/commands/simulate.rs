@@ -21,10 +21,14 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// Number of drive periods to simulate (> 0).
-    #[arg(long, default_value_t = 20.0, value_parser = crate::model::finite)]
+    #[arg(long, default_value_t = 20.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
     /// Samples per drive period in the CSV (≥ 1).
-    #[arg(long = "samples-per-period", default_value_t = 200)]
+    #[arg(
+        long = "samples-per-period",
+        default_value_t = 200,
+        allow_hyphen_values = true
+    )]
     samples_per_period: u64,
     /// Trajectory CSV file [default: standard output].
     #[arg(long, short)]
@@ -57,6 +61,11 @@ pub fn run(args: Args) -> Result<()> {
     }
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
+    }
+    for path in [&args.out, &args.events].into_iter().flatten() {
+        if path.as_os_str() != "-" {
+            crate::output::check_output_path(path)?;
+        }
     }
     let model = args.model.build()?;
     eprintln!("simulate: {}", model.summary);

@@ -1,0 +1,1 @@
+//! The Shockley diode-pair model and its stiff solver.

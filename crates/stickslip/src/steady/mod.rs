@@ -1,0 +1,1 @@
+//! Steady-state analysis: convergence to a cycle, spectra, motion classes, sweeps and maps.

@@ -1,0 +1,1 @@
+//! Theory: the paper's series solution, exact periodic solutions and stick-slip boundaries.
