@@ -61,6 +61,12 @@ pub struct ExactSolver {
     damping: Damping,
     /// Absolute start time of the current segment.
     tau0: f64,
+    /// Drive phase w τ0 + φ (mod 2π) at the segment start, carried from segment to segment so
+    /// that the force checks at events and the stick exits all see one and the same phase.
+    theta0: f64,
+    /// Consecutive events at one and the same instant (zero-length segments), to break loops
+    /// that rounding could otherwise cause at a tangential stick boundary.
+    repeats: u32,
     segment: Segment,
     /// Current absolute time.
     time: f64,
@@ -80,6 +86,8 @@ impl ExactSolver {
             params,
             damping,
             tau0: 0.0,
+            theta0: params.phi.rem_euclid(TAU),
+            repeats: 0,
             segment: Segment::Stick {
                 y: initial.y,
                 exit: f64::INFINITY,
@@ -99,14 +107,15 @@ impl ExactSolver {
             ),
             stats: Stats::default(),
         };
+        let theta = solver.theta0;
         if initial.v != 0.0 {
-            solver.start_slide(0.0, initial.y, initial.v, initial.v.signum());
+            solver.start_slide(0.0, theta, initial.y, initial.v, initial.v.signum());
         } else {
-            let force = params.drive(0.0) - initial.y;
+            let force = params.beta * theta.cos() - initial.y;
             if force.abs() <= params.mu_s {
-                solver.start_stick(0.0, initial.y);
+                solver.start_stick(0.0, theta, initial.y);
             } else {
-                solver.start_slide(0.0, initial.y, 0.0, force.signum());
+                solver.start_slide(0.0, theta, initial.y, 0.0, force.signum());
             }
         }
         solver.last = (solver.segment, solver.tau0, 0.0, 0.0);
@@ -118,41 +127,40 @@ impl ExactSolver {
         &self.params
     }
 
-    /// Drive phase w τ + φ reduced to [0, 2π).
-    fn drive_phase(&self, tau: f64) -> f64 {
-        (self.params.w * tau + self.params.phi).rem_euclid(TAU)
+    /// Drive phase at local time t of the current segment, reduced to [0, 2π).
+    fn phase_at(&self, t: f64) -> f64 {
+        (self.theta0 + self.params.w * t).rem_euclid(TAU)
     }
 
-    fn start_slide(&mut self, tau0: f64, y: f64, v: f64, sign: f64) {
+    fn start_slide(&mut self, tau0: f64, theta: f64, y: f64, v: f64, sign: f64) {
         let p = &self.params;
-        let theta = self.drive_phase(tau0);
         let linear = LinearSegment::new(self.damping, p.w, p.beta, theta, sign, y, v);
         self.tau0 = tau0;
+        self.theta0 = theta;
         self.time = tau0;
         self.searched = 0.0;
         self.segment = Segment::Slide { sign, linear };
     }
 
-    fn start_stick(&mut self, tau0: f64, y: f64) {
-        let (exit, exit_sign) = self.stick_exit(tau0, y);
+    fn start_stick(&mut self, tau0: f64, theta: f64, y: f64) {
+        let (exit, exit_sign) = self.stick_exit(theta, y, self.repeats < 4);
         self.tau0 = tau0;
+        self.theta0 = theta;
         self.time = tau0;
         self.segment = Segment::Stick { y, exit, exit_sign };
     }
 
-    /// Local time and direction at which a stop at y (starting at absolute time τ0) ends: the
-    /// first outward crossing of β cos(ψ) − y = ±μs, ψ = w τ + φ.
-    fn stick_exit(&self, tau0: f64, y: f64) -> (f64, f64) {
+    /// Local time and direction at which a stop at y, starting at drive phase θ, ends: the
+    /// first outward crossing of β cos(ψ) − y = ±μs. With `allow_now`, a crossing a rounding
+    /// error behind θ means "now" (a stop of zero duration).
+    fn stick_exit(&self, theta: f64, y: f64, allow_now: bool) -> (f64, f64) {
         let p = &self.params;
-        let theta = self.drive_phase(tau0);
         if p.beta == 0.0 {
             return (f64::INFINITY, 0.0);
         }
-        // Phase still to go from θ to ψ (mod 2π); a crossing just behind θ through rounding
-        // means "now".
         let ahead = |psi: f64| {
             let d = (psi - theta).rem_euclid(TAU);
-            if d > TAU - 1e-12 {
+            if allow_now && d > TAU - 1e-12 {
                 0.0
             } else {
                 d
@@ -194,8 +202,14 @@ impl ExactSolver {
             let e = linear.eval(a);
             self.stats.evaluations += 1;
             let g = sign * e.d[1];
-            let g1 = sign * e.d[2];
+            let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
+            if a == 0.0 {
+                // A slide starts with an acceleration ≥ 0 along its direction (the force has
+                // crossed ±μs outward, or exceeds it after a turn); a negative value here is
+                // rounding.
+                g1 = g1.max(0.0);
+            }
             if a > 0.0 {
                 // Converged onto a zero from the left, or crossed it (possible only through
                 // rounding noise in g).
@@ -236,6 +250,15 @@ impl ExactSolver {
                     reason: "velocity-zero search did not converge",
                 });
             }
+        }
+    }
+
+    /// Track consecutive zero-length segments.
+    fn count_repeat(&mut self, local_time: f64) {
+        if local_time == 0.0 {
+            self.repeats += 1;
+        } else {
+            self.repeats = 0;
         }
     }
 
@@ -361,8 +384,10 @@ impl Solver for ExactSolver {
                     return Ok(None);
                 }
                 let tau = self.tau0 + exit;
+                let theta = self.phase_at(exit);
                 self.close(from, tau);
-                self.start_slide(tau, y, 0.0, exit_sign);
+                self.count_repeat(exit);
+                self.start_slide(tau, theta, y, 0.0, exit_sign);
                 self.stats.events += 1;
                 Ok(Some(Event {
                     tau,
@@ -376,10 +401,14 @@ impl Solver for ExactSolver {
                     return Ok(None);
                 };
                 let tau = self.tau0 + t;
+                let theta = self.phase_at(t);
                 let y = self.close(from, tau).y;
-                let force = self.params.drive(tau) - y;
-                if force.abs() <= self.params.mu_s {
-                    self.start_stick(tau, y);
+                let force = self.params.beta * theta.cos() - y;
+                self.count_repeat(t);
+                if force.abs() <= self.params.mu_s || (t == 0.0 && force.signum() == sign) {
+                    // (At t = 0 a slide that cannot start is a stop, even when rounding puts
+                    // the force a hair beyond μs.)
+                    self.start_stick(tau, theta, y);
                     self.stats.events += 1;
                     Ok(Some(Event {
                         tau,
@@ -387,7 +416,7 @@ impl Solver for ExactSolver {
                         kind: EventKind::Stick,
                     }))
                 } else if force.signum() != sign {
-                    self.start_slide(tau, y, 0.0, force.signum());
+                    self.start_slide(tau, theta, y, 0.0, force.signum());
                     self.stats.events += 1;
                     Ok(Some(Event {
                         tau,
@@ -397,7 +426,7 @@ impl Solver for ExactSolver {
                 } else {
                     // The velocity touched zero while the force still pushes onward: the motion
                     // goes on in the same direction (a tangency within rounding), no event.
-                    self.start_slide(tau, y, 0.0, sign);
+                    self.start_slide(tau, theta, y, 0.0, sign);
                     self.advance(t_end)
                 }
             }
