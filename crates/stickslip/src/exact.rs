@@ -204,10 +204,10 @@ impl ExactSolver {
             let g = sign * e.d[1];
             let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
-            if a == 0.0 {
-                // A slide starts with an acceleration ≥ 0 along its direction (the force has
-                // crossed ±μs outward, or exceeds it after a turn); a negative value here is
-                // rounding.
+            if a == 0.0 && g == 0.0 {
+                // A slide that starts from rest has an acceleration ≥ 0 along its direction
+                // (the force has crossed ±μs outward, or exceeds it after a turn); a negative
+                // value here is rounding.
                 g1 = g1.max(0.0);
             }
             if a > 0.0 {
