@@ -13,10 +13,13 @@
 //! g(a + h) ≥ g + g'h − M₂h²/2      and      g(a + h) ≥ g + g'h + g''h²/2 − M₃h³/6,
 //! ```
 //!
-//! so g has no zero before the first positive root of either right-hand side. The search steps
-//! by the larger of those two roots (capped by H), which can never pass a zero, however
-//! tangential, and converges quadratically onto a simple zero from the left. The step is thus
-//! derived from the segment's own frequencies and amplitudes, not from a fixed dt.
+//! so g has no zero before the first positive root of either right-hand side. Second, while
+//! |g''(a)| > M₃·h the curvature keeps its sign on [a, a + h]: where g is convex it lies above
+//! its tangent (no zero before the Newton point), and where it is concave it is at least
+//! min(g(a), g(a + h)), so a positive value at a + h proves the stretch free of zeros and a
+//! sign change brackets exactly one zero, which a safeguarded Newton iteration then locates to
+//! rounding. Every step is thus derived from the segment's own frequencies, amplitudes and
+//! curvature (not from a fixed dt) and can never pass a zero, however tangential.
 //!
 //! **Stick exit** is solved in closed form: while stuck at y_s the net force
 //! β cos(wτ + φ) − y_s is a shifted cosine, and its first outward crossing of ±μs is an arccos.
@@ -188,19 +191,19 @@ impl ExactSolver {
         (best.0 / p.w, best.1)
     }
 
-    /// First velocity zero of the current sliding segment in local times (searched, limit],
-    /// or None. Advances `self.searched`.
+    /// First velocity zero of the current sliding segment in local times (searched, limit]:
+    /// `Some((t, y(t)))`, or None. Advances `self.searched`.
     fn find_velocity_zero(
         &mut self,
         sign: f64,
         linear: &LinearSegment,
         limit: f64,
-    ) -> Result<Option<f64>> {
+    ) -> Result<Option<(f64, f64)>> {
         let mut a = self.searched;
+        let mut e = linear.eval(a);
+        self.stats.evaluations += 1;
         let mut steps = 0u64;
         loop {
-            let e = linear.eval(a);
-            self.stats.evaluations += 1;
             let g = sign * e.d[1];
             let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
@@ -210,31 +213,72 @@ impl ExactSolver {
                 // value here is rounding.
                 g1 = g1.max(0.0);
             }
-            if a > 0.0 {
-                // Converged onto a zero from the left, or crossed it (possible only through
-                // rounding noise in g).
-                if (g <= e.velocity_noise && g1 < 0.0) || g < -e.velocity_noise {
-                    self.searched = a;
-                    let newton = if g1 < 0.0 { (g / -g1).max(0.0) } else { 0.0 };
-                    return Ok(Some(a + newton.min(1e-6)));
-                }
+            if a > 0.0 && ((g <= e.velocity_noise && g1 < 0.0) || g < -e.velocity_noise) {
+                // Converged onto a zero from the left (or crossed it within rounding noise).
+                self.searched = a;
+                let newton = if g1 < 0.0 {
+                    (g / -g1).clamp(0.0, 1e-6)
+                } else {
+                    0.0
+                };
+                return Ok(Some((a + newton, e.d[0])));
             }
-            let span = a.max(1.0);
-            let m2 = linear.derivative_bound(3, a, span, e.envelope);
-            let m3 = linear.derivative_bound(4, a, span, e.envelope);
+            let span = a.max(4.0);
+            let (m2, m3) = linear.derivative_bounds(a, span, e.envelope);
             let g = g.max(0.0);
+            // Taylor steps: rigorous lower bounds of the first zero.
             let mut h = quadratic_safe_step(g, g1, m2);
             if g1 >= 0.0 {
                 h = h.max(cubic_safe_step(g, g1, g2, m3));
+            }
+            // Curvature-certified length: g'' keeps the sign of g2 on [a, a + hc].
+            let hc = if m3 > 0.0 {
+                (g2.abs() / m3).min(span)
+            } else {
+                span
+            };
+            if g2 > 0.0 {
+                // Convex: g lies above its tangent, which stays positive up to the Newton
+                // point (everywhere when g1 ≥ 0).
+                let reach = if g1 < 0.0 { hc.min(g / -g1) } else { hc };
+                h = h.max(reach);
+            } else if g2 < 0.0 {
+                // Concave: on [a, b] g is at least min(g(a), g(b)); aim just past the Newton
+                // point, where the zero is expected.
+                let target = if g1 < 0.0 {
+                    // Root of the local quadratic model g + g1 h + g2 h²/2 (g2 < 0), a little
+                    // beyond it so that the zero is bracketed.
+                    let model = 2.0 * g / (-g1 + (g1 * g1 - 2.0 * g2 * g).sqrt());
+                    hc.min(1.02 * model + 1e-9 * a.max(1.0))
+                } else {
+                    hc
+                };
+                if target > h {
+                    let b = (a + target).min(limit);
+                    let eb = linear.eval(b);
+                    self.stats.evaluations += 1;
+                    steps += 1;
+                    self.stats.steps += 1;
+                    if sign * eb.d[1] > 0.0 {
+                        if b >= limit {
+                            self.searched = limit;
+                            return Ok(None);
+                        }
+                        a = b;
+                        e = eb;
+                        continue;
+                    }
+                    // Exactly one zero in (a, b]: g is concave there.
+                    return Ok(Some(self.polish_zero(sign, linear, a, b, eb)));
+                }
             }
             h = h.min(span);
             if !(h > 0.0) || a + h == a {
                 // Stalled on a double zero (g and g' both at rounding level): that is the event.
                 if a > 0.0 {
                     self.searched = a;
-                    return Ok(Some(a));
+                    return Ok(Some((a, e.d[0])));
                 }
-                // At the very start with g = g' = 0: resume from a tiny offset.
                 h = 1e-12;
             }
             steps += 1;
@@ -244,6 +288,8 @@ impl ExactSolver {
                 return Ok(None);
             }
             a += h;
+            e = linear.eval(a);
+            self.stats.evaluations += 1;
             if steps > MAX_SEARCH_STEPS {
                 return Err(Error::EventSearch {
                     tau: self.tau0 + a,
@@ -251,6 +297,47 @@ impl ExactSolver {
                 });
             }
         }
+    }
+
+    /// The single velocity zero in (a, b], where s·v(a) > 0 ≥ s·v(b): Newton's method kept
+    /// inside the shrinking bracket (bisection when a step leaves it).
+    fn polish_zero(
+        &mut self,
+        sign: f64,
+        linear: &LinearSegment,
+        mut a: f64,
+        mut b: f64,
+        eb: crate::linear::Derivatives,
+    ) -> (f64, f64) {
+        let mut t = b;
+        let mut e = eb;
+        for _ in 0..100 {
+            let g = sign * e.d[1];
+            if g > 0.0 {
+                a = t;
+            } else {
+                b = t;
+            }
+            let g1 = sign * e.d[2];
+            let newton = if g1 != 0.0 { t - g / g1 } else { f64::NAN };
+            // Newton converges quadratically: after a step below 1e-10 the next iterate is
+            // exact to rounding, and y moves by v·Δt.
+            if (newton - t).abs() <= 1e-10 * t.abs().max(1.0) || g == 0.0 {
+                let next = if g == 0.0 { t } else { newton.clamp(a, b) };
+                self.searched = a;
+                return (next, e.d[0] + e.d[1] * (next - t));
+            }
+            let next = if newton > a && newton < b {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
+            t = next;
+            e = linear.eval(t);
+            self.stats.evaluations += 1;
+        }
+        self.searched = a;
+        (t, e.d[0])
     }
 
     /// Track consecutive zero-length segments.
@@ -396,13 +483,14 @@ impl Solver for ExactSolver {
                 }))
             }
             Segment::Slide { sign, linear } => {
-                let Some(t) = self.find_velocity_zero(sign, &linear, limit)? else {
+                let Some((t, y)) = self.find_velocity_zero(sign, &linear, limit)? else {
                     self.close(from, t_end);
                     return Ok(None);
                 };
                 let tau = self.tau0 + t;
                 let theta = self.phase_at(t);
-                let y = self.close(from, tau).y;
+                self.last = (self.segment, self.tau0, from, tau);
+                self.time = tau;
                 let force = self.params.beta * theta.cos() - y;
                 self.count_repeat(t);
                 if force.abs() <= self.params.mu_s || (t == 0.0 && force.signum() == sign) {

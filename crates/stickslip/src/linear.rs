@@ -119,6 +119,13 @@ pub(crate) struct LinearSegment {
     hom: [(f64, f64); ORDERS],
     /// √(P² + Q²), amplitude of the drive's particular solution.
     drive_amplitude: f64,
+    /// Amplitude √(p² + (q/ω_d)²) of the underdamped homogeneous mode (the same for every
+    /// derivative), infinite when not underdamped.
+    mode_amplitude: f64,
+    /// |p_k| and |q_k| of the homogeneous coefficients for the bounds of orders 3 and 4.
+    hom_abs: [(f64, f64); 2],
+    /// Drive amplitude times w³ and w⁴.
+    drive_bound: [f64; 2],
 }
 
 impl LinearSegment {
@@ -151,6 +158,9 @@ impl LinearSegment {
             offset: -c,
             hom: [(0.0, 0.0); ORDERS],
             drive_amplitude: drive_p.hypot(drive_q),
+            mode_amplitude: f64::INFINITY,
+            hom_abs: [(0.0, 0.0); 2],
+            drive_bound: [0.0; 2],
         };
         let (sin0, cos0) = theta.sin_cos();
         let yp0 = seg.offset + drive_p * cos0 + drive_q * sin0;
@@ -160,6 +170,14 @@ impl LinearSegment {
         seg.hom[0] = (u0, u1 + zeta * u0);
         for k in 1..ORDERS {
             seg.hom[k] = damping.derive(seg.hom[k - 1]);
+        }
+        if zeta < 1.0 {
+            let (p, q) = seg.hom[0];
+            seg.mode_amplitude = p.hypot(q / damping.omega);
+        }
+        for (i, k) in [3usize, 4].into_iter().enumerate() {
+            seg.hom_abs[i] = (seg.hom[k].0.abs(), seg.hom[k].1.abs());
+            seg.drive_bound[i] = seg.drive_amplitude * w.powi(k as i32);
         }
         seg
     }
@@ -218,21 +236,21 @@ impl LinearSegment {
         (y, v)
     }
 
-    /// Upper bound of |y^(k)(t)| over local times t in [a, a + span], given e^{−ρa}.
+    /// Upper bounds of |y⁽³⁾(t)| and |y⁽⁴⁾(t)| over local times t in [a, a + span], given
+    /// e^{−ρa} (from [`LinearSegment::eval`] at a).
     #[inline]
-    pub(crate) fn derivative_bound(&self, k: usize, a: f64, span: f64, envelope: f64) -> f64 {
-        let (p, q) = self.hom[k];
+    pub(crate) fn derivative_bounds(&self, a: f64, span: f64, envelope: f64) -> (f64, f64) {
         let reach = (a + span).min(self.damping.s_cap);
-        let mut hom = p.abs() + q.abs() * reach;
-        if self.damping.zeta < 1.0 {
-            // The underdamped mode has constant amplitude √(p² + (q/ω_d)²) under e^{−ζt}.
-            hom = hom.min(p.hypot(q / self.damping.omega));
+        let mut out = [0.0; 2];
+        for (i, o) in out.iter_mut().enumerate() {
+            let (p, q) = self.hom_abs[i];
+            let hom = (p + q * reach).min(self.mode_amplitude);
+            *o = hom * envelope + self.drive_bound[i];
+            if self.secular != 0.0 {
+                *o += self.secular * (a + span + (i + 3) as f64);
+            }
         }
-        let mut bound = hom * envelope + self.drive_amplitude * self.w.powi(k as i32);
-        if self.secular != 0.0 {
-            bound += self.secular * (a + span + k as f64);
-        }
-        bound
+        (out[0], out[1])
     }
 }
 
@@ -277,13 +295,12 @@ mod tests {
                 let seg = LinearSegment::new(Damping::new(zeta), w, 2.0, 1.1, 1.0, -0.5, 0.2);
                 for &a in &[0.0, 0.5, 3.0] {
                     let env = seg.eval(a).envelope;
-                    for k in 2..ORDERS {
-                        let bound = seg.derivative_bound(k, a, 1.0, env);
-                        for i in 0..=200 {
-                            let t = a + i as f64 / 200.0;
-                            let x = seg.eval(t).d[k].abs();
-                            assert!(x <= bound * (1.0 + 1e-12), "zeta {zeta} w {w} k {k} t {t}");
-                        }
+                    let (b3, b4) = seg.derivative_bounds(a, 1.0, env);
+                    for i in 0..=200 {
+                        let t = a + i as f64 / 200.0;
+                        let d = seg.eval(t).d;
+                        assert!(d[3].abs() <= b3 * (1.0 + 1e-12), "zeta {zeta} w {w} t {t}");
+                        assert!(d[4].abs() <= b4 * (1.0 + 1e-12), "zeta {zeta} w {w} t {t}");
                     }
                 }
             }
