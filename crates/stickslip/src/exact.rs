@@ -33,8 +33,10 @@ use std::f64::consts::TAU;
 /// Largest number of search steps on one segment before the search reports failure.
 const MAX_SEARCH_STEPS: u64 = 1_000_000;
 
-/// Motion during one segment.
+/// Motion during one segment. (Kept unboxed: a new segment starts at every event, and a heap
+/// allocation there would cost more than the copy.)
 #[derive(Debug, Clone, Copy)]
+#[allow(clippy::large_enum_variant)]
 enum Segment {
     /// Sliding in direction `sign` (±1).
     Slide { sign: f64, linear: LinearSegment },
