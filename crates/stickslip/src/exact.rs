@@ -225,12 +225,13 @@ impl ExactSolver {
                 };
                 return Ok(Some((a + newton, e.d[0])));
             }
-            let span = a.max(4.0);
-            let (m2, m3) = linear.derivative_bounds(a, span, e.envelope);
+            let span = 2.0;
+            let (m2, m3) = linear.derivative_bounds(a, span, &e);
             let g = g.max(0.0);
             // Taylor steps: rigorous lower bounds of the first zero.
             let mut h = quadratic_safe_step(g, g1, m2);
-            if g1 >= 0.0 {
+            if g1 >= 0.0 && g2 > 0.0 {
+                // (Where g2 ≤ 0 the curvature step below does better.)
                 h = h.max(cubic_safe_step(g, g1, g2, m3));
             }
             // Curvature-certified length: g'' keeps the sign of g2 on [a, a + hc].
@@ -397,7 +398,8 @@ fn quadratic_safe_step(g: f64, g1: f64, m2: f64) -> f64 {
     }
 }
 
-/// First positive root of L(h) = g + g1·h + g2·h²/2 − m3·h³/6 for g, g1 ≥ 0, rounded down.
+/// A lower bound (within 1e-4 relative) of the positive root of
+/// L(h) = g + g1·h + g2·h²/2 − m3·h³/6 for g, g1 ≥ 0.
 /// L rises (or is flat) and then falls, so it has exactly one positive root; Newton's method
 /// from a point past the root where L is concave and decreasing converges monotonically from
 /// the right.
@@ -417,22 +419,25 @@ fn cubic_safe_step(g: f64, g1: f64, g2: f64, m3: f64) -> f64 {
             return 0.0;
         }
     }
+    // Newton from the right stays right of the root and converges quadratically, so once a
+    // correction is below 1e-4 of h the root lies within one correction of h: step back two.
     for _ in 0..60 {
         let slope = dl(h);
+        let value = l(h);
+        if value >= 0.0 {
+            return h;
+        }
         if slope >= 0.0 {
-            break;
+            return 0.0;
         }
-        let next = h - l(h) / slope;
-        if !(next < h) {
-            break;
-        }
-        let done = h - next <= 1e-12 * h;
+        let next = h - value / slope;
+        let step = h - next;
         h = next;
-        if done {
-            break;
+        if step <= 1e-4 * h {
+            return (h - 2.0 * step).max(0.0);
         }
     }
-    h * (1.0 - 1e-9)
+    0.0
 }
 
 impl Solver for ExactSolver {

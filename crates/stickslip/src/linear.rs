@@ -53,26 +53,26 @@ impl Damping {
         }
     }
 
-    /// `(EC(t), ES(t), e^{−ρt})`.
+    /// `(EC(t), ES(t), e^{−ρt}, e^{−ζt} sin ω_d t)` (the last is 0 unless underdamped).
     #[inline]
-    fn basis(&self, t: f64) -> (f64, f64, f64) {
+    fn basis(&self, t: f64) -> (f64, f64, f64, f64) {
         let z = self.zeta;
         if z < 1.0 {
             let e = (-z * t).exp();
             let (s, c) = (self.omega * t).sin_cos();
-            (e * c, e * s / self.omega, e)
+            (e * c, e * s / self.omega, e, e * s)
         } else if z == 1.0 {
             let e = (-t).exp();
-            (e, e * t, e)
+            (e, e * t, e, 0.0)
         } else {
             let k = self.omega;
             let slow = (-self.decay * t).exp();
             if k * t <= 1.0 {
                 let e = (-z * t).exp();
-                (e * (k * t).cosh(), e * (k * t).sinh() / k, slow)
+                (e * (k * t).cosh(), e * (k * t).sinh() / k, slow, 0.0)
             } else {
                 let fast = ((-z - k) * t).exp();
-                (0.5 * (slow + fast), 0.5 * (slow - fast) / k, slow)
+                (0.5 * (slow + fast), 0.5 * (slow - fast) / k, slow, 0.0)
             }
         }
     }
@@ -98,6 +98,8 @@ pub(crate) struct Derivatives {
     pub envelope: f64,
     /// Estimate of the absolute rounding error of y'.
     pub velocity_noise: f64,
+    /// e^{−ζt} cos ω_d t, e^{−ζt} sin ω_d t, cos(wt + θ), sin(wt + θ), for the phasor bounds.
+    trig: [f64; 4],
 }
 
 /// One linear segment in closed form.
@@ -126,6 +128,9 @@ pub(crate) struct LinearSegment {
     hom_abs: [(f64, f64); 2],
     /// Drive amplitude times w³ and w⁴.
     drive_bound: [f64; 2],
+    /// Complex amplitudes of the homogeneous mode (p_k − i q_k/ω_d) and of the drive
+    /// (P_k − i Q_k) in orders 3 and 4 (underdamped, non-secular segments only).
+    phasors: [((f64, f64), (f64, f64)); 2],
 }
 
 impl LinearSegment {
@@ -161,6 +166,7 @@ impl LinearSegment {
             mode_amplitude: f64::INFINITY,
             hom_abs: [(0.0, 0.0); 2],
             drive_bound: [0.0; 2],
+            phasors: [((0.0, 0.0), (0.0, 0.0)); 2],
         };
         let (sin0, cos0) = theta.sin_cos();
         let yp0 = seg.offset + drive_p * cos0 + drive_q * sin0;
@@ -175,9 +181,19 @@ impl LinearSegment {
             let (p, q) = seg.hom[0];
             seg.mode_amplitude = p.hypot(q / damping.omega);
         }
-        for (i, k) in [3usize, 4].into_iter().enumerate() {
-            seg.hom_abs[i] = (seg.hom[k].0.abs(), seg.hom[k].1.abs());
-            seg.drive_bound[i] = seg.drive_amplitude * w.powi(k as i32);
+        // Drive coefficients of order k: (P, Q) rotated k times by (P, Q) → (wQ, −wP).
+        let (mut dp, mut dq) = (drive_p, drive_q);
+        for k in 0..ORDERS {
+            if k >= 3 {
+                let i = k - 3;
+                seg.hom_abs[i] = (seg.hom[k].0.abs(), seg.hom[k].1.abs());
+                seg.drive_bound[i] = seg.drive_amplitude * w.powi(k as i32);
+                if zeta < 1.0 {
+                    let (p, q) = seg.hom[k];
+                    seg.phasors[i] = ((p, -q / damping.omega), (dp, -dq));
+                }
+            }
+            (dp, dq) = (w * dq, -w * dp);
         }
         seg
     }
@@ -185,7 +201,7 @@ impl LinearSegment {
     /// y, y', …, y'''' at local time t.
     #[inline]
     pub(crate) fn eval(&self, t: f64) -> Derivatives {
-        let (ec, es, envelope) = self.damping.basis(t);
+        let (ec, es, envelope, e_sin) = self.damping.basis(t);
         let (s, c) = (self.w * t + self.theta).sin_cos();
         // Drive: derivatives of P c + Q s rotate (P, Q) → (wQ, −wP).
         let (mut p, mut q) = (self.drive_p, self.drive_q);
@@ -217,13 +233,14 @@ impl LinearSegment {
             d,
             envelope,
             velocity_noise: 8.0 * f64::EPSILON * (hom_v + drive_v + d[1].abs()),
+            trig: [ec, e_sin, c, s],
         }
     }
 
     /// (y, y') at local time t.
     #[inline]
     pub(crate) fn state(&self, t: f64) -> (f64, f64) {
-        let (ec, es, _) = self.damping.basis(t);
+        let (ec, es, _, _) = self.damping.basis(t);
         let (s, c) = (self.w * t + self.theta).sin_cos();
         let (p, q) = (self.drive_p, self.drive_q);
         let (h0, h1) = (self.hom[0], self.hom[1]);
@@ -236,18 +253,37 @@ impl LinearSegment {
         (y, v)
     }
 
-    /// Upper bounds of |y⁽³⁾(t)| and |y⁽⁴⁾(t)| over local times t in [a, a + span], given
-    /// e^{−ρa} (from [`LinearSegment::eval`] at a).
+    /// Upper bounds of |y⁽³⁾(t)| and |y⁽⁴⁾(t)| over local times t in [a, a + span], from the
+    /// derivatives `at` a.
+    ///
+    /// Generic bound: each term's amplitude times its frequency to the power of the order.
+    /// Underdamped segments also have the phasor bound: y⁽ᵏ⁾ = Re(H e^{(−ζ+iω_d)τ} + D e^{iwτ})
+    /// with τ = t − a, so |y⁽ᵏ⁾(t)| ≤ |H + D| + (ζ|H| + |w − ω_d| |D|)·τ, tight near resonance
+    /// where the two terms nearly cancel.
     #[inline]
-    pub(crate) fn derivative_bounds(&self, a: f64, span: f64, envelope: f64) -> (f64, f64) {
+    pub(crate) fn derivative_bounds(&self, a: f64, span: f64, at: &Derivatives) -> (f64, f64) {
         let reach = (a + span).min(self.damping.s_cap);
+        let [ec, e_sin, c, s] = at.trig;
+        let underdamped = self.damping.zeta < 1.0 && self.secular == 0.0;
+        let detune = (self.w - self.damping.omega).abs();
         let mut out = [0.0; 2];
         for (i, o) in out.iter_mut().enumerate() {
             let (p, q) = self.hom_abs[i];
             let hom = (p + q * reach).min(self.mode_amplitude);
-            *o = hom * envelope + self.drive_bound[i];
+            *o = hom * at.envelope + self.drive_bound[i];
             if self.secular != 0.0 {
                 *o += self.secular * (a + span + (i + 3) as f64);
+            }
+            if underdamped {
+                let ((hr, hi), (dr, di)) = self.phasors[i];
+                let (h_re, h_im) = (hr * ec - hi * e_sin, hr * e_sin + hi * ec);
+                let (d_re, d_im) = (dr * c - di * s, dr * s + di * c);
+                // Plain square roots: these moduli are far from overflow, and hypot is slow.
+                let (s_re, s_im) = (h_re + d_re, h_im + d_im);
+                let sum = (s_re * s_re + s_im * s_im).sqrt();
+                let drift = self.damping.zeta * (h_re * h_re + h_im * h_im).sqrt()
+                    + detune * (d_re * d_re + d_im * d_im).sqrt();
+                *o = o.min(sum + drift * span);
             }
         }
         (out[0], out[1])
@@ -294,8 +330,7 @@ mod tests {
             for &w in &[0.5, 1.0, 1.9] {
                 let seg = LinearSegment::new(Damping::new(zeta), w, 2.0, 1.1, 1.0, -0.5, 0.2);
                 for &a in &[0.0, 0.5, 3.0] {
-                    let env = seg.eval(a).envelope;
-                    let (b3, b4) = seg.derivative_bounds(a, 1.0, env);
+                    let (b3, b4) = seg.derivative_bounds(a, 1.0, &seg.eval(a));
                     for i in 0..=200 {
                         let t = a + i as f64 / 200.0;
                         let d = seg.eval(t).d;
