@@ -24,7 +24,14 @@ mod solvers;
 /// Give either dimensionless flags (--zeta --w --beta) or a physical description
 /// (--preset paper, --config FILE.toml, or --L --C --R ...); every command says which it used.
 #[derive(Debug, Parser)]
-#[command(name = "stickslip", version, about, long_about, max_term_width = 100)]
+#[command(
+    name = "stickslip",
+    version,
+    about,
+    long_about,
+    max_term_width = 100,
+    verbatim_doc_comment
+)]
 struct Cli {
     #[command(subcommand)]
     command: commands::Command,

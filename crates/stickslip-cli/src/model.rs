@@ -67,28 +67,27 @@ pub enum DiodeModel {
 /// Model flags, as typed. Dimensionless flags override values derived from a physical
 /// description; physical flags override the preset or the config file.
 #[derive(Debug, Clone, Default, clap::Args)]
-#[command(next_help_heading = "Model (dimensionless)")]
 pub struct ModelArgs {
     /// Damping ratio ζ = α/(2ω0) ≥ 0 [default: the paper's circuit, 0.0468].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub zeta: Option<f64>,
     /// Drive frequency w = Ω/ω0 > 0.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub w: Option<f64>,
     /// Drive amplitude β = U/U_t (circuit) or F/F0 (mechanics), ≥ 0.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub beta: Option<f64>,
     /// Drive phase φ in radians at τ = 0 [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub phi: Option<f64>,
     /// Static-to-kinetic friction ratio μs ≥ 1 [default: 1, as in the paper].
-    #[arg(long = "mu-s", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = "mu-s", value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub mu_s: Option<f64>,
     /// Initial position y0 = u_C/U_t [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub y0: Option<f64>,
     /// Initial velocity v0 = y'(0) [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
     pub v0: Option<f64>,
 
     /// A built-in physical description: `paper` (L = 11.5 mH, C = 0.02 µF, R = 68 Ω,

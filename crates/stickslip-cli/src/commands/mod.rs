@@ -11,12 +11,11 @@ pub mod steady;
 pub mod sweep;
 pub mod theory;
 
-/// The subcommands.
+/// The subcommands. A variant without a doc comment takes its help from its `Args` struct,
+/// which carries the command's examples.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Integrate the motion exactly and write the trajectory (CSV), events and a plot.
     Simulate(simulate::Args),
-    /// Print the dimensionless parameters (ω0, ζ, Q, w, β, ...) of a physical description.
     Convert(convert::Args),
     /// The paper's series solution, the exact periodic solution, and stick-slip boundaries.
     Theory(theory::Args),
