@@ -571,7 +571,7 @@ fn near_tangential_double_zeros_are_not_missed() {
                         // Staying above zero: v + δ cos t > 0 near t*, so the first event is the
                         // first zero of the analytic velocity after the grazing point.
                         let lifted = |t: f64| velocity(t) + d * t.cos();
-                        let expected = first_zero(&lifted, t_star + 1e-3, t_star + 1.0, 1e-4);
+                        let expected = first_zero(lifted, t_star + 1e-3, t_star + 1.0, 1e-4);
                         let above = events(
                             params,
                             State {
