@@ -66,6 +66,8 @@ pub struct ExactSolver {
     time: f64,
     /// Local time up to which the current sliding segment is known to have no velocity zero.
     searched: f64,
+    /// Whether the current sliding segment started from rest (y' = 0).
+    from_rest: bool,
     /// The segment, its start, and the interval covered by the last advance (for dense output).
     last: (Segment, f64, f64, f64),
     stats: Stats,
@@ -87,6 +89,7 @@ impl ExactSolver {
             },
             time: 0.0,
             searched: 0.0,
+            from_rest: false,
             last: (
                 Segment::Stick {
                     y: initial.y,
@@ -130,6 +133,7 @@ impl ExactSolver {
         self.tau0 = tau0;
         self.time = tau0;
         self.searched = 0.0;
+        self.from_rest = v == 0.0;
         self.segment = Segment::Slide { sign, linear };
     }
 
@@ -194,8 +198,16 @@ impl ExactSolver {
             let e = linear.eval(a);
             self.stats.evaluations += 1;
             let g = sign * e.d[1];
-            let g1 = sign * e.d[2];
+            let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
+            if a == 0.0 && self.from_rest {
+                // A slide from rest starts only where the net force onward has reached
+                // μs ≥ 1, so g' = s·(drive − y) − 1 ≥ 0 exactly. Rounding of the drive phase
+                // at large τ can make it −ε; the search would then find a zero closer than
+                // the resolution of τ and stop the motion again at the same instant, for ever
+                // (a slip–stick loop at one τ).
+                g1 = g1.max(0.0);
+            }
             if a > 0.0 {
                 // Converged onto a zero from the left, or crossed it (possible only through
                 // rounding noise in g).
