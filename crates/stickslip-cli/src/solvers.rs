@@ -17,8 +17,7 @@ pub fn solver_for(model: &Model) -> Result<Box<dyn Solver + Send>> {
 /// Something that starts solvers of `model`'s diode law for any parameters and initial state,
 /// for commands that run many (sweeps, phase diagrams).
 pub type Factory = Box<
-    dyn Fn(stickslip::Params, stickslip::State) -> stickslip::Result<Box<dyn Solver + Send>>
-        + Sync,
+    dyn Fn(stickslip::Params, stickslip::State) -> stickslip::Result<Box<dyn Solver + Send>> + Sync,
 >;
 
 /// The solver factory for `model`'s diode law.

@@ -2,8 +2,8 @@
 
 use stickslip::solver::{run_until, sample_at, EventKind};
 use stickslip::steady::{
-    exact_solver, phase_diagram, steady_state, sweep, MotionClass, ParameterRange, SteadyOptions,
-    SteadyState, SweepDirection, SweepLeg, SweepParameter,
+    exact_solver, phase_diagram, steady_state, steady_state_from, sweep, MotionClass,
+    ParameterRange, SteadyOptions, SteadyState, SweepDirection, SweepLeg, SweepParameter,
 };
 use stickslip::{Circuit, Error, ExactSolver, Params, Solver, State};
 
@@ -85,8 +85,16 @@ fn multi_stop_motion_at_low_frequency() {
     assert_eq!(s.stops_per_period, 4.0);
     assert!(s.symmetric);
     // Every stop is followed by a slip inside the cycle or across its end.
-    let sticks = s.events.iter().filter(|e| e.kind == EventKind::Stick).count();
-    let slips = s.events.iter().filter(|e| e.kind == EventKind::Slip).count();
+    let sticks = s
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Stick)
+        .count();
+    let slips = s
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Slip)
+        .count();
     assert_eq!(sticks, 4);
     assert_eq!(slips, 4);
 }
@@ -163,9 +171,7 @@ fn sweep_steps_continue_from_the_previous_final_state() {
     )
     .unwrap();
     let first_end = points[0].steady.final_state();
-    let params = paper(0.9, 2.0);
-    let mut solver = ExactSolver::new(params, first_end);
-    let again = steady_state(&mut solver, &params, &options).unwrap();
+    let again = steady_state_from(&exact_solver, &paper(0.9, 2.0), first_end, &options).unwrap();
     assert_eq!(again, points[1].steady);
 }
 
@@ -181,13 +187,15 @@ fn parseval_holds_on_the_sampled_cycle() {
         assert!((direct - sp.mean_square).abs() < 1e-13 * direct);
         // The reported harmonics hold almost all the power (the rest is the tail k > 16).
         let reported = sp.mean.powi(2)
-            + sp
-                .harmonics
+            + sp.harmonics
                 .iter()
                 .map(|h| h.amplitude.powi(2) / 2.0)
                 .sum::<f64>();
         assert!(reported <= sp.mean_square * (1.0 + 1e-12));
-        assert!(reported >= sp.mean_square * (1.0 - 1e-4), "w {w} beta {beta}");
+        assert!(
+            reported >= sp.mean_square * (1.0 - 1e-4),
+            "w {w} beta {beta}"
+        );
     }
 }
 
@@ -220,7 +228,12 @@ fn symmetric_motions_have_no_even_harmonics() {
         let sp = s.spectrum.as_ref().unwrap();
         assert!(sp.mean.abs() < 1e-9 * s.peak);
         for h in sp.harmonics.iter().filter(|h| h.order % 2 == 0) {
-            assert!(h.amplitude < 1e-9 * s.peak, "k {}: {:e}", h.order, h.amplitude);
+            assert!(
+                h.amplitude < 1e-9 * s.peak,
+                "k {}: {:e}",
+                h.order,
+                h.amplitude
+            );
         }
         assert_eq!(sp.subharmonic, 0.0);
     }
@@ -236,7 +249,9 @@ fn fundamental_phase_matches_a_direct_projection() {
     let mut solver = ExactSolver::new(params, State::default());
     run_until(&mut solver, s.start, |_| {}).unwrap();
     let n = 3000;
-    let times: Vec<f64> = (0..n).map(|j| s.start + period * j as f64 / n as f64).collect();
+    let times: Vec<f64> = (0..n)
+        .map(|j| s.start + period * j as f64 / n as f64)
+        .collect();
     let samples = sample_at(&mut solver, &times, |_| {}).unwrap();
     let (mut c, mut d) = (0.0, 0.0);
     for x in &samples {
@@ -246,7 +261,12 @@ fn fundamental_phase_matches_a_direct_projection() {
     }
     let (c, d) = (2.0 * c / n as f64, 2.0 * d / n as f64);
     let h = s.spectrum.as_ref().unwrap().harmonics[0];
-    assert!((h.amplitude - c.hypot(d)).abs() < 1e-7, "{} {}", h.amplitude, c.hypot(d));
+    assert!(
+        (h.amplitude - c.hypot(d)).abs() < 1e-7,
+        "{} {}",
+        h.amplitude,
+        c.hypot(d)
+    );
     // y ≈ c cos ψ + d sin ψ = A cos(ψ + θ) with θ = atan2(−d, c).
     assert!((h.phase - (-d).atan2(c)).abs() < 1e-7);
     let lag = s.phase_lag().unwrap();
@@ -320,17 +340,35 @@ fn phase_diagram_matches_single_runs_and_is_deterministic() {
     let w = ParameterRange::new("w", 0.3, 1.5, 4).unwrap();
     let beta = ParameterRange::new("beta", 0.8, 2.6, 3).unwrap();
     let options = SteadyOptions::default();
-    let run = || phase_diagram(&exact_solver, base, State::default(), &w, &beta, &options, &|| true);
+    let run = || {
+        phase_diagram(
+            &exact_solver,
+            base,
+            State::default(),
+            &w,
+            &beta,
+            &options,
+            &|| true,
+        )
+    };
     let points = run().unwrap();
     assert_eq!(points.len(), 12);
     assert_eq!(points, run().unwrap());
     for (i, p) in points.iter().enumerate() {
         assert_eq!(p.w, w.value(i / 3));
         assert_eq!(p.beta, beta.value(i % 3));
-        let s = steady_with(paper(p.w, p.beta), &options.with_spectrum(false));
+        let params = paper(p.w, p.beta);
+        let s = steady_state_from(&exact_solver, &params, State::default(), &options).unwrap();
         assert_eq!(p.class, s.class);
         assert_eq!(p.period, s.period);
         assert_eq!(p.gain, s.gain);
+        // Without extrapolation: the same motion, found later.
+        let plain = steady_with(params, &options.with_accelerate(false));
+        assert_eq!(p.class, plain.class);
+        assert_eq!(p.period, plain.period);
+        assert_eq!(p.stops_per_period, plain.stops_per_period);
+        assert!((p.gain - plain.gain).abs() < 1e-8 * plain.gain.max(1.0));
+        assert!(p.periods_to_settle <= plain.periods_to_settle);
     }
     let classes: Vec<_> = points.iter().map(|p| p.class).collect();
     assert!(classes.contains(&MotionClass::Static));
@@ -365,7 +403,10 @@ fn bad_ranges_and_options_are_rejected_with_the_value() {
     assert_eq!(name(ParameterRange::new("w", 0.5, 1.0, 0)), "steps");
     assert_eq!(name(ParameterRange::new("w", 0.5, 1.0, 1)), "steps");
     assert_eq!(name(ParameterRange::new("beta", f64::NAN, 1.0, 5)), "beta");
-    assert_eq!(name(ParameterRange::new("beta", 0.5, f64::INFINITY, 5)), "beta");
+    assert_eq!(
+        name(ParameterRange::new("beta", 0.5, f64::INFINITY, 5)),
+        "beta"
+    );
     let single = ParameterRange::new("w", 0.7, 0.7, 1).unwrap();
     assert_eq!(single.values(), vec![0.7]);
     let r = ParameterRange::new("w", 0.1, 2.5, 400).unwrap();
@@ -393,7 +434,10 @@ fn bad_ranges_and_options_are_rejected_with_the_value() {
         &o,
         &mut |_, _, _| panic!("no step may run"),
     );
-    assert!(matches!(result, Err(Error::InvalidParameter { name: "w", .. })));
+    assert!(matches!(
+        result,
+        Err(Error::InvalidParameter { name: "w", .. })
+    ));
 }
 
 #[test]
@@ -432,8 +476,57 @@ fn analysis_is_generic_over_the_solver_trait() {
     let w = ParameterRange::new("w", 0.6, 0.9, 2).unwrap();
     let beta = ParameterRange::new("beta", 1.2, 1.6, 2).unwrap();
     let o = SteadyOptions::default();
-    let wrapped = phase_diagram(&factory, paper(1.0, 1.0), State::default(), &w, &beta, &o, &|| true);
-    let direct =
-        phase_diagram(&exact_solver, paper(1.0, 1.0), State::default(), &w, &beta, &o, &|| true);
+    let wrapped = phase_diagram(
+        &factory,
+        paper(1.0, 1.0),
+        State::default(),
+        &w,
+        &beta,
+        &o,
+        &|| true,
+    );
+    let direct = phase_diagram(
+        &exact_solver,
+        paper(1.0, 1.0),
+        State::default(),
+        &w,
+        &beta,
+        &o,
+        &|| true,
+    );
     assert_eq!(wrapped.unwrap(), direct.unwrap());
+}
+
+#[test]
+fn extrapolation_finds_the_same_cycle_sooner() {
+    for (w, beta) in [
+        (0.9, 1.6),
+        (0.6, 1.2),
+        (0.7, 1.2),
+        (1.2, 1.5),
+        (2.4, 3.9),
+        (0.15, 2.0),
+    ] {
+        let params = paper(w, beta);
+        let plain = steady_with(params, &SteadyOptions::default().with_accelerate(false));
+        let fast = steady_state_from(
+            &exact_solver,
+            &params,
+            State::default(),
+            &SteadyOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(fast.class, plain.class, "w {w} beta {beta}");
+        assert_eq!(fast.period, plain.period);
+        assert_eq!(fast.stops, plain.stops);
+        assert_eq!(fast.symmetric, plain.symmetric);
+        assert!(fast.periods_to_settle <= plain.periods_to_settle);
+        for k in 1..=9 {
+            let (a, b) = (fast.harmonic(k).unwrap(), plain.harmonic(k).unwrap());
+            assert!(
+                (a - b).abs() < 1e-8 * plain.peak,
+                "w {w} beta {beta} k {k}: {a:e} {b:e}"
+            );
+        }
+    }
 }

@@ -7,7 +7,7 @@ use anyhow::Result;
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::steady::{steady_state, SteadyOptions, SteadyState};
+use stickslip::steady::{steady_state_from, SteadyOptions, SteadyState};
 use stickslip::Params;
 
 /// Flags of the steady-state search, shared by `steady`, `sweep` and `phase-diagram`.
@@ -18,11 +18,18 @@ pub struct SteadyFlags {
     #[arg(long, default_value_t = 1e-10, value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub tolerance: f64,
     /// Drive periods run at most before calling the motion non-periodic.
-    #[arg(long = "max-periods", default_value_t = 5000, allow_hyphen_values = true)]
+    #[arg(
+        long = "max-periods",
+        default_value_t = 5000,
+        allow_hyphen_values = true
+    )]
     pub max_periods: i64,
     /// Longest period looked for, in drive periods (1 to 64).
     #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
     pub max_period: i64,
+    /// Never extrapolate the stroboscopic map to its fixed point (slower; finds the same cycle).
+    #[arg(long = "no-extrapolation")]
+    pub no_extrapolation: bool,
 }
 
 impl SteadyFlags {
@@ -49,7 +56,8 @@ impl SteadyFlags {
         Ok(SteadyOptions::default()
             .with_tolerance(self.tolerance)?
             .with_max_periods(self.max_periods as usize)?
-            .with_max_period(self.max_period as usize)?)
+            .with_max_period(self.max_period as usize)?
+            .with_accelerate(!self.no_extrapolation))
     }
 }
 
@@ -106,8 +114,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     let model = args.model.build()?;
     eprintln!("steady: {}", model.summary);
-    let mut solver = crate::solvers::solver_for(&model)?;
-    let steady = steady_state(solver.as_mut(), &model.params, &options)?;
+    let factory = crate::solvers::factory_for(&model)?;
+    let steady = steady_state_from(&factory, &model.params, model.initial, &options)?;
     crate::output::check_interrupt()?;
 
     let report = report_json(&steady, &model.params);
@@ -120,7 +128,14 @@ pub fn run(args: Args) -> Result<()> {
         let mut file = AtomicFile::create(path)?;
         writeln!(file, "tau,drive,y,v")?;
         for s in &steady.trace {
-            writeln!(file, "{},{},{},{}", s.tau, model.params.drive(s.tau), s.y, s.v)?;
+            writeln!(
+                file,
+                "{},{},{},{}",
+                s.tau,
+                model.params.drive(s.tau),
+                s.y,
+                s.v
+            )?;
         }
         file.commit()?;
     }

@@ -104,15 +104,18 @@ pub fn run(args: Args) -> Result<()> {
     let mut model_args = args.model.clone();
     match parameter {
         SweepParameter::W => {
-            if model_args.w.is_some() || model_args.freq.is_some() || model_args.omega.is_some()
-            {
-                usage!("--over w sweeps the frequency: give --from/--to, not --w, --freq or --omega");
+            if model_args.w.is_some() || model_args.freq.is_some() || model_args.omega.is_some() {
+                usage!(
+                    "--over w sweeps the frequency: give --from/--to, not --w, --freq or --omega"
+                );
             }
             model_args.w = Some(range.from().max(f64::MIN_POSITIVE));
         }
         SweepParameter::Beta => {
             if model_args.beta.is_some() || model_args.amplitude.is_some() {
-                usage!("--over beta sweeps the amplitude: give --from/--to, not --beta or --amplitude");
+                usage!(
+                    "--over beta sweeps the amplitude: give --from/--to, not --beta or --amplitude"
+                );
             }
             model_args.beta = Some(range.from().max(0.0));
         }

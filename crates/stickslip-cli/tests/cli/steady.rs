@@ -76,7 +76,10 @@ fn text_report_xy_data_and_plot() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
-    assert!(text.contains("periodic-stick") && text.contains("phase lag"), "{text}");
+    assert!(
+        text.contains("periodic-stick") && text.contains("phase lag"),
+        "{text}"
+    );
     let xy = std::fs::read_to_string(dir.path().join("xy.csv")).unwrap();
     let mut lines = xy.lines();
     assert_eq!(lines.next(), Some("tau,drive,y,v"));
@@ -88,16 +91,37 @@ fn text_report_xy_data_and_plot() {
 #[test]
 fn bad_input_gives_one_line_and_exit_code_2() {
     let cases: &[(&[&str], &str)] = &[
-        (&["--w", "1", "--beta", "2", "--tolerance", "0"], "--tolerance"),
-        (&["--w", "1", "--beta", "2", "--tolerance", "nan"], "--tolerance"),
-        (&["--w", "1", "--beta", "2", "--max-periods", "0"], "--max-periods"),
-        (&["--w", "1", "--beta", "2", "--max-periods", "-4"], "--max-periods"),
-        (&["--w", "1", "--beta", "2", "--max-period", "65"], "--max-period"),
-        (&["--w", "1", "--beta", "2", "--harmonics", "3"], "--harmonics"),
+        (
+            &["--w", "1", "--beta", "2", "--tolerance", "0"],
+            "--tolerance",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--tolerance", "nan"],
+            "--tolerance",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-periods", "0"],
+            "--max-periods",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-periods", "-4"],
+            "--max-periods",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-period", "65"],
+            "--max-period",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--harmonics", "3"],
+            "--harmonics",
+        ),
         (&["--w", "0", "--beta", "2"], "w"),
         (&["--w", "1"], "--beta"),
         (&["--w", "1", "--beta", "2", "--plot", "p.gif"], "p.gif"),
-        (&["--w", "1", "--beta", "2", "--xy", "no/such/xy.csv"], "no/such"),
+        (
+            &["--w", "1", "--beta", "2", "--xy", "no/such/xy.csv"],
+            "no/such",
+        ),
     ];
     for (args, needle) in cases {
         let dir = tempfile::tempdir().unwrap();

@@ -11,7 +11,10 @@ fn csv_columns_and_both_legs() {
     assert!(out.status.success(), "{}", stderr(&out));
     let csv = std::fs::read_to_string(dir.path().join("s.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
-    assert_eq!(lines[0], "w,beta,direction,gain,A1,A3,class,stops_per_cycle");
+    assert_eq!(
+        lines[0],
+        "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+    );
     assert_eq!(lines.len(), 7);
     assert!(lines[1].starts_with("0.8,1.6,up,"));
     assert!(lines[3].starts_with("1,1.6,up,"));
@@ -26,8 +29,21 @@ fn csv_columns_and_both_legs() {
 #[test]
 fn hysteresis_shows_two_branches() {
     let (_dir, out) = run(&[
-        "sweep", "--over", "beta", "--w", "0.9", "--mu-s", "1.5", "--from", "1.0", "--to", "2.0",
-        "--steps", "11", "--direction", "both",
+        "sweep",
+        "--over",
+        "beta",
+        "--w",
+        "0.9",
+        "--mu-s",
+        "1.5",
+        "--from",
+        "1.0",
+        "--to",
+        "2.0",
+        "--steps",
+        "11",
+        "--direction",
+        "both",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
@@ -59,9 +75,36 @@ fn bad_ranges_give_one_line_and_exit_code_2() {
         (&["--from", "1", "--to", "inf", "--steps", "5"], "--to"),
         (&["--from", "0", "--to", "2", "--steps", "5"], "w"),
         (&["--from", "1", "--to", "2"], "required"),
-        (&["--from", "1", "--to", "2", "--steps", "3", "--w", "1"], "--w"),
-        (&["--from", "1", "--to", "2", "--steps", "3", "--direction", "sideways"], "--direction"),
-        (&["--from", "1", "--to", "2", "--steps", "3", "--out", "nope/s.csv"], "nope"),
+        (
+            &["--from", "1", "--to", "2", "--steps", "3", "--w", "1"],
+            "--w",
+        ),
+        (
+            &[
+                "--from",
+                "1",
+                "--to",
+                "2",
+                "--steps",
+                "3",
+                "--direction",
+                "sideways",
+            ],
+            "--direction",
+        ),
+        (
+            &[
+                "--from",
+                "1",
+                "--to",
+                "2",
+                "--steps",
+                "3",
+                "--out",
+                "nope/s.csv",
+            ],
+            "nope",
+        ),
     ];
     for (args, needle) in cases {
         let dir = tempfile::tempdir().unwrap();
@@ -73,7 +116,9 @@ fn bad_ranges_give_one_line_and_exit_code_2() {
     let dir = tempfile::tempdir().unwrap();
     let out = run_in(
         dir.path(),
-        &["sweep", "--over", "beta", "--from", "1", "--to", "2", "--steps", "3"],
+        &[
+            "sweep", "--over", "beta", "--from", "1", "--to", "2", "--steps", "3",
+        ],
     );
     assert_usage_error(dir.path(), &out, "--w");
 }

@@ -5,7 +5,9 @@
 //! period p when |x_k − x_{k−p}| ≤ tol·scale (max norm over y and y') for p + 1 consecutive k,
 //! i.e. over a whole cycle and once more; p is the smallest such period up to
 //! [`SteadyOptions::max_period`], `scale` is the largest |y| or |y'| of the last strobes, at
-//! least 1 (the kinetic friction force). An oscillator stuck for a whole period without an
+//! least 1 (the kinetic friction force). A period p > 1 also needs the strobes p/d apart to
+//! differ by more than √tol·scale for every divisor d: otherwise the motion is still
+//! converging, alternately, to a cycle of the shorter period. An oscillator stuck for a whole period without an
 //! event has x_k = x_{k−1} exactly, so "stuck for ever" (β + |y| ≤ μs) is found after two
 //! periods without a special case. Without a period within [`SteadyOptions::max_periods`]
 //! the motion is called non-periodic.
@@ -27,9 +29,10 @@
 
 use super::classify::{classify, MotionClass};
 use super::spectrum::Spectrum;
+use super::SolverFactory;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::solver::{run_until, sample_at, Event, Phase, Sample, Solver};
+use crate::solver::{run_until, sample_at, Event, EventKind, Phase, Sample, Solver};
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
@@ -52,6 +55,10 @@ pub struct SteadyOptions {
     pub samples_per_period: Option<usize>,
     /// Number of drive harmonics reported. Default 16.
     pub harmonics: usize,
+    /// Whether [`steady_state_from`] (and so sweeps and phase diagrams) may extrapolate the
+    /// stroboscopic map to its fixed point and restart there when it converges linearly.
+    /// Default true. The cycle is always confirmed by the plain repetition test afterwards.
+    pub accelerate: bool,
 }
 
 impl Default for SteadyOptions {
@@ -64,6 +71,7 @@ impl Default for SteadyOptions {
             spectrum: true,
             samples_per_period: None,
             harmonics: 16,
+            accelerate: true,
         }
     }
 }
@@ -111,6 +119,12 @@ impl SteadyOptions {
     pub fn with_min_stop_fraction(mut self, fraction: f64) -> Result<Self> {
         self.min_stop_fraction = fraction;
         self.validate()
+    }
+
+    /// Allow extrapolation of the stroboscopic map or not.
+    pub fn with_accelerate(mut self, accelerate: bool) -> Self {
+        self.accelerate = accelerate;
+        self
     }
 
     /// Compute the spectrum or not.
@@ -234,7 +248,10 @@ impl SteadyState {
     /// State at the end of the record (a whole number of drive periods after τ = 0, so the
     /// drive phase there is φ).
     pub fn final_state(&self) -> State {
-        *self.strobes.last().expect("a record has at least its first strobe")
+        *self
+            .strobes
+            .last()
+            .expect("a record has at least its first strobe")
     }
 
     /// Lag of the fundamental behind the drive (radians, in (−π, π]), from the spectrum.
@@ -276,12 +293,255 @@ fn auto_samples(events_per_period: f64, params: &Params, harmonics: usize, scale
         .clamp(512, 1 << 16)
 }
 
+/// How far the stroboscopic map got: the period found (if any), where the solver stands.
+struct Settled {
+    /// Period p, or None at the cap.
+    found: Option<usize>,
+    /// Drive periods simulated in all (over restarts).
+    periods_run: usize,
+    /// Index k of the strobe τ = kT at which the current solver stands.
+    strobe_index: u64,
+    /// Scale of the state for the tolerances.
+    scale: f64,
+    /// Events per period over the last cycle (for the automatic sample count).
+    events_per_period: f64,
+}
+
+/// Where to restart after an extrapolation of the stroboscopic map, if the last strobes
+/// (oldest first) show linear convergence to a fixed point (see [`SteadyOptions::accelerate`]).
+fn extrapolate(history: &VecDeque<State>, tolerance: f64, scale: f64) -> Option<State> {
+    let n = history.len();
+    if n < 5 {
+        return None;
+    }
+    let x: Vec<[f64; 2]> = history.iter().skip(n - 5).map(|s| [s.y, s.v]).collect();
+    let d: Vec<[f64; 2]> = (1..5)
+        .map(|i| [x[i][0] - x[i - 1][0], x[i][1] - x[i - 1][1]])
+        .collect();
+    let norm = |a: [f64; 2]| a[0].abs().max(a[1].abs());
+    let last = d[3];
+    // Nearly converged already: plain iteration finishes in a few periods.
+    if norm(last) <= 1e3 * tolerance * scale {
+        return None;
+    }
+    // Fit d_{i+1} = J d_i on (d0 → d1, d1 → d2); check it predicts d3 from d2.
+    let det0 = d[0][0] * d[1][1] - d[0][1] * d[1][0];
+    let step = if det0.abs() > 1e-6 * norm(d[0]) * norm(d[1]) {
+        // J = [d1 d2] [d0 d1]^{-1}
+        let inv = [
+            [d[1][1] / det0, -d[1][0] / det0],
+            [-d[0][1] / det0, d[0][0] / det0],
+        ];
+        let j = [
+            [
+                d[1][0] * inv[0][0] + d[2][0] * inv[1][0],
+                d[1][0] * inv[0][1] + d[2][0] * inv[1][1],
+            ],
+            [
+                d[1][1] * inv[0][0] + d[2][1] * inv[1][0],
+                d[1][1] * inv[0][1] + d[2][1] * inv[1][1],
+            ],
+        ];
+        let apply = |m: [[f64; 2]; 2], a: [f64; 2]| {
+            [
+                m[0][0] * a[0] + m[0][1] * a[1],
+                m[1][0] * a[0] + m[1][1] * a[1],
+            ]
+        };
+        let predicted = apply(j, d[2]);
+        if norm([predicted[0] - last[0], predicted[1] - last[1]]) > 0.02 * norm(last) {
+            return None;
+        }
+        // Both eigenvalues of J well inside the unit circle.
+        let (tr, det) = (j[0][0] + j[1][1], j[0][0] * j[1][1] - j[0][1] * j[1][0]);
+        let disc = tr * tr - 4.0 * det;
+        let radius = if disc >= 0.0 {
+            0.5 * (tr.abs() + disc.sqrt())
+        } else {
+            det.sqrt()
+        };
+        if !(radius < 0.98) {
+            return None;
+        }
+        // x* = x + (I − J)^{-1} J d3.
+        let jd = apply(j, last);
+        let (a, b, c, e) = (1.0 - j[0][0], -j[0][1], -j[1][0], 1.0 - j[1][1]);
+        let det_ij = a * e - b * c;
+        [
+            (e * jd[0] - b * jd[1]) / det_ij,
+            (a * jd[1] - c * jd[0]) / det_ij,
+        ]
+    } else {
+        // The differences are parallel (one real mode dominates): scalar ratio along them.
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let r = dot(d[2], d[1]) / dot(d[1], d[1]);
+        let predicted = [r * d[2][0], r * d[2][1]];
+        if !(r.abs() < 0.98)
+            || norm([predicted[0] - last[0], predicted[1] - last[1]]) > 0.02 * norm(last)
+        {
+            return None;
+        }
+        let f = r / (1.0 - r);
+        [f * last[0], f * last[1]]
+    };
+    // Only small corrections: far from the fixed point the linear model is not to be trusted.
+    if !(norm(step) <= 1e-2 * scale) {
+        return None;
+    }
+    Some(State {
+        y: x[4][0] + step[0],
+        v: x[4][1] + step[1],
+    })
+}
+
+/// A solver, and possibly the means to replace it by one started from another state.
+trait Holder {
+    /// The solver type.
+    type S: Solver + ?Sized;
+    /// The current solver.
+    fn solver(&mut self) -> &mut Self::S;
+    /// Replace the solver by one starting from `state` at τ = 0; false if not possible.
+    fn restart(&mut self, state: State) -> Result<bool>;
+}
+
+/// A solver that cannot be restarted.
+struct Plain<'a, S: Solver + ?Sized>(&'a mut S);
+
+impl<S: Solver + ?Sized> Holder for Plain<'_, S> {
+    type S = S;
+    fn solver(&mut self) -> &mut S {
+        self.0
+    }
+    fn restart(&mut self, _: State) -> Result<bool> {
+        Ok(false)
+    }
+}
+
+/// Solvers from a factory.
+struct FromFactory<'a, F: SolverFactory + ?Sized> {
+    factory: &'a F,
+    params: Params,
+    solver: Box<dyn Solver + Send>,
+}
+
+impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
+    type S = dyn Solver + Send + 'static;
+    fn solver(&mut self) -> &mut (dyn Solver + Send + 'static) {
+        self.solver.as_mut()
+    }
+    fn restart(&mut self, state: State) -> Result<bool> {
+        self.solver = self.factory.make(self.params, state)?;
+        Ok(true)
+    }
+}
+
+/// Iterate the stroboscopic map until it repeats (see the module documentation). With
+/// `accelerate`, extrapolate when the convergence is linear and restart the solver there.
+fn run_to_cycle<H: Holder>(
+    holder: &mut H,
+    params: &Params,
+    options: &SteadyOptions,
+    accelerate: bool,
+) -> Result<Settled> {
+    let period = params.drive_period();
+    let max_period = options.max_period;
+
+    // First strobe at or after the solver's time.
+    let now = holder.solver().time();
+    let mut base = (now / period).ceil().max(0.0) as u64;
+    if strobe(base, period) < now {
+        base += 1;
+    }
+    run_until(holder.solver(), strobe(base, period), |_| {})?;
+
+    let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
+    history.push_back(holder.solver().state());
+    // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
+    let mut passes = vec![0usize; max_period + 1];
+    // Events of the last `max_period` periods, with the index of the period they fell in.
+    let mut recent: VecDeque<(usize, EventKind)> = VecDeque::new();
+    let mut found = None;
+    let mut scale = 1.0f64;
+    let mut local = 0usize;
+    let mut restarts = 0usize;
+    let mut periods_run = 0;
+    while periods_run < options.max_periods {
+        periods_run += 1;
+        local += 1;
+        run_until(holder.solver(), strobe(base + local as u64, period), |e| {
+            recent.push_back((local, e.kind))
+        })?;
+        while recent
+            .front()
+            .is_some_and(|(m, _)| *m + max_period <= local)
+        {
+            recent.pop_front();
+        }
+        let x = holder.solver().state();
+        scale = history
+            .iter()
+            .fold(1.0f64, |s, h| s.max(h.y.abs()).max(h.v.abs()))
+            .max(x.y.abs())
+            .max(x.v.abs());
+        let limit = options.tolerance * scale;
+        // A cycle of p > 1 periods must not be close to one of a divisor of p: a slow
+        // alternating transient towards a 1-cycle (eigenvalue near −1) repeats after two
+        // periods long before it repeats after one.
+        let distinct = options.tolerance.sqrt() * scale;
+        let lags = history.len().min(max_period);
+        let gaps: Vec<f64> = (1..=lags)
+            .map(|lag| distance(x, history[history.len() - lag]))
+            .collect();
+        for lag in 1..=lags {
+            let repeats = gaps[lag - 1] <= limit
+                && (1..lag)
+                    .filter(|d| lag % d == 0)
+                    .all(|d| gaps[d - 1] > distinct);
+            passes[lag] = if repeats { passes[lag] + 1 } else { 0 };
+        }
+        history.push_back(x);
+        if history.len() > max_period.max(5) {
+            history.pop_front();
+        }
+        if let Some(p) = (1..=max_period).find(|&p| passes[p] > p) {
+            found = Some(p);
+            break;
+        }
+        if accelerate && restarts < MAX_RESTARTS {
+            if let Some(target) = extrapolate(&history, options.tolerance, scale) {
+                if holder.restart(target)? {
+                    restarts += 1;
+                    base = 0;
+                    local = 0;
+                    history.clear();
+                    history.push_back(holder.solver().state());
+                    passes.iter_mut().for_each(|p| *p = 0);
+                    recent.clear();
+                }
+            }
+        }
+    }
+    let cycle = found.unwrap_or(max_period);
+    let events = recent.iter().filter(|(m, _)| *m + cycle > local).count();
+    Ok(Settled {
+        found,
+        periods_run,
+        strobe_index: base + local as u64,
+        scale,
+        events_per_period: events as f64 / cycle as f64,
+    })
+}
+
+/// Most extrapolations of the stroboscopic map in one run.
+const MAX_RESTARTS: usize = 6;
+
 /// Run `solver` to its steady state and record one cycle.
 ///
 /// `params` must be the parameters the solver was built with (the drive frequency and phase
 /// define the strobes; β the static threshold). The solver may start at any time; strobes are
 /// at whole multiples of the drive period. Afterwards the solver stands at the end of the
-/// record.
+/// record. This form never extrapolates ([`SteadyOptions::accelerate`] needs
+/// [`steady_state_from`], which can start new solvers).
 ///
 /// ```
 /// use stickslip::steady::{steady_state, MotionClass, SteadyOptions};
@@ -302,61 +562,50 @@ pub fn steady_state<S: Solver + ?Sized>(
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
     let options = options.validate()?;
+    let mut holder = Plain(solver);
+    let settled = run_to_cycle(&mut holder, params, &options, false)?;
+    record(holder.0, params, &options, &settled)
+}
+
+/// The steady state reached from `initial` (at τ = 0) by solvers from `factory`.
+///
+/// With [`SteadyOptions::accelerate`] (the default), once the stroboscopic map converges
+/// linearly to a fixed point, the fixed point is extrapolated from the last strobes and a new
+/// solver is started there; the cycle is then recognised by the same test as without
+/// extrapolation, on the new solver's strobes, so the result satisfies the same tolerance.
+/// `periods_to_settle` counts every period simulated.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid options or parameters; whatever the solvers
+/// report.
+pub fn steady_state_from<F: SolverFactory + ?Sized>(
+    factory: &F,
+    params: &Params,
+    initial: State,
+    options: &SteadyOptions,
+) -> Result<SteadyState> {
+    let options = options.validate()?;
+    let mut holder = FromFactory {
+        factory,
+        params: *params,
+        solver: factory.make(*params, initial)?,
+    };
+    let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
+    record(holder.solver.as_mut(), params, &options, &settled)
+}
+
+/// Record one cycle (or `max_period` periods) from the strobe the solver stands at.
+fn record<S: Solver + ?Sized>(
+    solver: &mut S,
+    params: &Params,
+    options: &SteadyOptions,
+    settled: &Settled,
+) -> Result<SteadyState> {
     let period = params.drive_period();
-    let max_period = options.max_period;
-
-    // First strobe at or after the solver's time.
-    let mut k = (solver.time() / period).ceil().max(0.0) as u64;
-    if strobe(k, period) < solver.time() {
-        k += 1;
-    }
-    run_until(solver, strobe(k, period), |_| {})?;
-
-    let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
-    history.push_back(solver.state());
-    // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
-    let mut passes = vec![0usize; max_period + 1];
-    // Events of the last `max_period` periods, with the index of the period they fell in.
-    let mut recent: VecDeque<(usize, Event)> = VecDeque::new();
-    let mut found = None;
-    let mut periods_run = 0;
-    let mut scale = 1.0f64;
-    for n in 1..=options.max_periods {
-        run_until(solver, strobe(k + n as u64, period), |e| {
-            recent.push_back((n, *e))
-        })?;
-        while recent.front().is_some_and(|(m, _)| *m + max_period <= n) {
-            recent.pop_front();
-        }
-        periods_run = n;
-        let x = solver.state();
-        scale = history
-            .iter()
-            .fold(1.0f64, |s, h| s.max(h.y.abs()).max(h.v.abs()))
-            .max(x.y.abs())
-            .max(x.v.abs());
-        let limit = options.tolerance * scale;
-        for (lag, pass) in passes.iter_mut().enumerate().skip(1) {
-            if lag > history.len() {
-                break;
-            }
-            if distance(x, history[history.len() - lag]) <= limit {
-                *pass += 1;
-            } else {
-                *pass = 0;
-            }
-        }
-        history.push_back(x);
-        if history.len() > max_period {
-            history.pop_front();
-        }
-        if let Some(p) = (1..=max_period).find(|&p| passes[p] > p) {
-            found = Some(p);
-            break;
-        }
-    }
-    let start_index = k + periods_run as u64;
-    let recorded = found.unwrap_or(max_period);
+    let found = settled.found;
+    let scale = settled.scale;
+    let start_index = settled.strobe_index;
+    let recorded = found.unwrap_or(options.max_period);
     let start = strobe(start_index, period);
     let stuck_at_start = solver.phase() == Phase::Stick;
 
@@ -367,16 +616,7 @@ pub fn steady_state<S: Solver + ?Sized>(
     let mut spectrum = None;
     if options.spectrum {
         let n = options.samples_per_period.unwrap_or_else(|| {
-            let last = recent
-                .iter()
-                .filter(|(m, _)| *m + recorded > periods_run)
-                .count();
-            auto_samples(
-                last as f64 / recorded as f64,
-                params,
-                options.harmonics,
-                scale,
-            )
+            auto_samples(settled.events_per_period, params, options.harmonics, scale)
         });
         let base = start_index * n as u64;
         let times: Vec<f64> = (0..(recorded * n) as u64)
@@ -462,7 +702,7 @@ pub fn steady_state<S: Solver + ?Sized>(
     Ok(SteadyState {
         class: c.class,
         period: found,
-        periods_to_settle: periods_run,
+        periods_to_settle: settled.periods_run,
         recorded_periods: recorded,
         stops: c.stops,
         stops_per_period: c.stops_per_period,

@@ -27,7 +27,7 @@ mod spectrum;
 mod sweep;
 
 pub use classify::{classify, Classification, MotionClass};
-pub use cycle::{steady_state, SteadyOptions, SteadyState};
+pub use cycle::{steady_state, steady_state_from, SteadyOptions, SteadyState};
 pub use phase_diagram::{phase_diagram, PhaseDiagramPoint};
 pub use range::ParameterRange;
 pub use spectrum::{Harmonic, Spectrum};

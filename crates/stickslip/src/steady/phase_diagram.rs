@@ -2,7 +2,7 @@
 //! initial state (rest, as in the paper's Fig. 7).
 
 use super::classify::MotionClass;
-use super::cycle::{steady_state, SteadyOptions};
+use super::cycle::{steady_state_from, SteadyOptions};
 use super::range::ParameterRange;
 use super::SolverFactory;
 use crate::error::{Error, Result};
@@ -76,8 +76,7 @@ pub fn phase_diagram<F: SolverFactory + ?Sized>(
                 });
             }
             let params = params_at(i)?;
-            let mut solver = factory.make(params, initial)?;
-            let s = steady_state(solver.as_mut(), &params, &options)?;
+            let s = steady_state_from(factory, &params, initial, &options)?;
             let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
             if !on_point() {
                 stop.store(true, Ordering::Relaxed);

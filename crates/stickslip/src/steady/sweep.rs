@@ -6,7 +6,7 @@
 //! amplitude changes). Where two steady motions coexist, the up and the down sweeps follow
 //! different branches: hysteresis.
 
-use super::cycle::{steady_state, SteadyOptions, SteadyState};
+use super::cycle::{steady_state_from, SteadyOptions, SteadyState};
 use super::range::ParameterRange;
 use super::SolverFactory;
 use crate::error::{Error, Result};
@@ -126,11 +126,14 @@ pub fn sweep<F: SolverFactory + ?Sized>(
     let mut out = Vec::with_capacity(total);
     for (i, (value, leg)) in plan.into_iter().enumerate() {
         let params = parameter.set(base, value)?;
-        let mut solver = factory.make(params, state)?;
-        let mut steady = steady_state(solver.as_mut(), &params, &options)?;
+        let mut steady = steady_state_from(factory, &params, state, &options)?;
         state = steady.final_state();
         steady.trace = Vec::new();
-        let point = SweepPoint { params, leg, steady };
+        let point = SweepPoint {
+            params,
+            leg,
+            steady,
+        };
         if !on_step(&point, i, total) {
             return Err(Error::Cancelled { done: i + 1, total });
         }
