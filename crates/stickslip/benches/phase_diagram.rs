@@ -46,9 +46,8 @@ fn bench_grid(c: &mut Criterion) {
 
 fn class(w: f64, beta: f64) -> MotionClass {
     let params = Params::new(zeta(), w, beta).expect("valid");
-    let mut solver = ExactSolver::new(params, State::default());
     let options = SteadyOptions::default().with_spectrum(false);
-    steady_state(&mut solver, &params, &options)
+    steady_state_from(&exact_solver, &params, State::default(), &options)
         .expect("runs")
         .class
 }
