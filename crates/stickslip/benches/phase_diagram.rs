@@ -54,7 +54,7 @@ fn class(w: f64, beta: f64) -> MotionClass {
 
 /// β on the stick-slip boundary at w, by bisection between a sticking and a sliding β.
 fn boundary(w: f64) -> f64 {
-    let (mut stick, mut slide) = (1.05, 4.0);
+    let (mut stick, mut slide) = (1.3, 4.0);
     assert_eq!(class(w, slide), MotionClass::Sliding);
     assert_eq!(class(w, stick), MotionClass::PeriodicStick);
     for _ in 0..45 {
