@@ -49,3 +49,34 @@ pub fn steady_pwl(ctx: &Context, w: f64, beta: f64) -> Result<(Params, SteadySta
 pub fn num(x: f64) -> String {
     format!("{x}")
 }
+
+/// Sweep `parameter` of the paper's circuit up then down (each step from the last), the other
+/// parameter fixed at `fixed`, from rest.
+pub fn sweep_pwl(
+    ctx: &Context,
+    parameter: stickslip::steady::SweepParameter,
+    fixed: f64,
+    from: f64,
+    to: f64,
+    steps: usize,
+    spectrum: bool,
+) -> Result<Vec<stickslip::steady::SweepPoint>> {
+    use stickslip::steady::{sweep, ParameterRange, SweepDirection, SweepParameter};
+    let (w, beta, name) = match parameter {
+        SweepParameter::W => (from, fixed, "w"),
+        SweepParameter::Beta => (fixed, from, "beta"),
+    };
+    let base = paper_params(ctx, w, beta)?;
+    let range = ParameterRange::new(name, from, to, steps)?;
+    let options = SteadyOptions::default().with_spectrum(spectrum);
+    Ok(sweep(
+        &exact_solver,
+        base,
+        State::default(),
+        parameter,
+        &range,
+        SweepDirection::Both,
+        &options,
+        &mut |_, _, _| !crate::output::interrupted(),
+    )?)
+}
