@@ -35,5 +35,5 @@ pub use error::{Error, Result};
 pub use exact::ExactSolver;
 pub use params::{Params, State};
 pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
-pub use shockley::{DiodePair, ShockleyCircuit, ShockleyOptions};
+pub use shockley::{DiodePair, ShockleyCircuit, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
