@@ -38,9 +38,12 @@
 //! The phase is `Stick` during a stop, otherwise the sign of y' (within a short dip the phase
 //! changes once, at the turn). From rest at τ = 0 a stop is the initial phase, not an event,
 //! as for the exact solver.
+//!
+//! [`netlist`] writes the same circuit for SPICE, for cross-checks in ngspice or any SPICE.
 
 pub mod circuit;
 pub mod diode;
+pub mod netlist;
 pub mod options;
 mod radau;
 pub mod solver;
@@ -51,5 +54,6 @@ mod tests;
 
 pub use circuit::{ShockleyCircuit, ShockleyModel};
 pub use diode::{DiodeLaw, DiodePair};
+pub use netlist::{netlist, NetlistOptions};
 pub use options::ShockleyOptions;
 pub use solver::ShockleySolver;
