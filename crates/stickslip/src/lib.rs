@@ -36,3 +36,4 @@ pub use exact::ExactSolver;
 pub use params::{Params, State};
 pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
+pub use theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};
