@@ -746,6 +746,41 @@ fn boundary_is_sharp() {
     }
 }
 
+/// The search for β_c assumes nothing about monotonicity, but checks it here: on fine grids
+/// nothing below β_c is a valid non-sticking motion and nothing up to 20·β_c is invalid.
+#[test]
+fn validity_changes_once_in_beta() {
+    let mut frequencies = 0;
+    for &zeta in &[0.0, 0.0468, 0.3] {
+        for j in 0..24 {
+            let w = 0.05 * (200.0f64).powf((j as f64 + 0.37) / 24.0);
+            let Ok(b) = stick_slip_boundary(zeta, w, 1.0) else {
+                continue;
+            };
+            let valid =
+                |beta: f64| PeriodicSolution::new(&Params::new(zeta, w, beta).unwrap()).is_ok();
+            for i in 1..400 {
+                let beta = b.beta_c * i as f64 / 400.0;
+                assert!(
+                    !valid(beta),
+                    "ζ {zeta} w {w}: valid at β = {beta} < β_c = {}",
+                    b.beta_c
+                );
+            }
+            for i in 0..=100 {
+                let beta = b.beta_c * (1.0 + 19.0 * i as f64 / 100.0);
+                assert!(
+                    valid(beta),
+                    "ζ {zeta} w {w}: invalid at β = {beta} > β_c = {}",
+                    b.beta_c
+                );
+            }
+            frequencies += 1;
+        }
+    }
+    assert_eq!(frequencies, 72);
+}
+
 /// At the paper's circuit damping the boundary curve is finite and continuous from w = 0.05
 /// to 10: neighbouring frequencies give neighbouring β_c.
 #[test]

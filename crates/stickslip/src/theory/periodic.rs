@@ -113,7 +113,8 @@ impl std::fmt::Display for Obstruction {
             ),
             Obstruction::NoMotion { peak } => write!(
                 f,
-                "no symmetric periodic motion: the matching root has peak {peak:.3e} <= 0"
+                "no symmetric periodic motion: the matching gives the amplitude {peak:.6}, \
+                 not a positive one"
             ),
             Obstruction::StopsAtTurn { force } => write!(
                 f,
