@@ -291,19 +291,22 @@ impl Radau5 {
             b[i] = p.drive(self.t + C[i] * h) - y0 + (w[i][0] + w[i][1] + w[i][2]) * v0 / h;
         }
         let mut v = [v0 + start[0], v0 + start[1], v0 + start[2]];
+        // D and D' at the current iterate, evaluated once per iterate.
+        let mut d = [(0.0, 0.0); 3];
+        for i in 0..3 {
+            d[i] = law.value_and_slope(v[i]);
+        }
         let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
         let mut previous = 0.0;
         for iteration in 0..MAX_NEWTON {
             self.counters.newton += 1;
             self.counters.rhs += 3;
-            let mut d = [0.0; 3];
             let mut jac = l;
             let mut residual = [0.0; 3];
             // dV/du of each stage's chart: 1 (current) or √(ε² + V²)/a (junction voltage).
             let mut dv_du = [1.0; 3];
             for i in 0..3 {
-                let (value, slope) = law.value_and_slope(v[i]);
-                d[i] = value;
+                let (value, slope) = d[i];
                 jac[i][i] += slope;
                 residual[i] = l[i][0] * v[0] + l[i][1] * v[1] + l[i][2] * v[2] + value - b[i];
                 let junction_slope = slope - law.resistance;
@@ -334,7 +337,9 @@ impl Radau5 {
                     junction_step(&law, old, delta[i], l[i][i])
                 };
                 moved[i] = v[i] - old;
-                let dd = law.value(v[i]) - d[i];
+                let next = law.value_and_slope(v[i]);
+                let dd = next.0 - d[i].0;
+                d[i] = next;
                 norm += (moved[i] / scale[1]).powi(2) + (h * dd / scale[1]).powi(2);
             }
             for i in 0..3 {
