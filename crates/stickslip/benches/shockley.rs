@@ -28,16 +28,24 @@ fn model() -> ShockleyModel {
         .expect("valid")
 }
 
-fn options(rtol: f64) -> ShockleyOptions {
+/// Our configurations: rtol = atol, and the largest step in τ.
+const OURS: [(f64, f64); 2] = [(1e-2, 0.5), (3e-4, 0.25)];
+
+fn options((rtol, max_step): (f64, f64)) -> ShockleyOptions {
     ShockleyOptions::default()
         .with_rtol(rtol)
         .and_then(|o| o.with_atol(rtol))
+        .and_then(|o| o.with_max_step(max_step))
         .expect("valid")
 }
 
+fn name((rtol, max_step): (f64, f64)) -> String {
+    format!("rtol_{rtol:e}_max_step_{max_step}")
+}
+
 /// u_C in volts at the dimensionless times `times` (sorted, within the last period).
-fn ours(rtol: f64, times: &[f64]) -> Vec<f64> {
-    let mut solver = ShockleySolver::new(model(), State::default(), options(rtol)).expect("ok");
+fn ours(config: (f64, f64), times: &[f64]) -> Vec<f64> {
+    let mut solver = ShockleySolver::new(model(), State::default(), options(config)).expect("ok");
     let u_t = ShockleyCircuit::paper().reference_voltage;
     sample_at(&mut solver, times, |_| {})
         .expect("solver runs")
@@ -47,9 +55,9 @@ fn ours(rtol: f64, times: &[f64]) -> Vec<f64> {
 }
 
 /// The time of the whole run: 300 periods from rest.
-fn run_ours(rtol: f64) -> f64 {
+fn run_ours(config: (f64, f64)) -> f64 {
     let m = model();
-    let mut solver = ShockleySolver::new(m, State::default(), options(rtol)).expect("ok");
+    let mut solver = ShockleySolver::new(m, State::default(), options(config)).expect("ok");
     run_until(&mut solver, PERIODS * m.params.drive_period(), |_| {}).expect("solver runs");
     solver.state().y
 }
@@ -62,7 +70,12 @@ struct Spice {
     max_step_fraction: f64,
 }
 
-const SPICE: [Spice; 2] = [
+const SPICE: [Spice; 3] = [
+    Spice {
+        name: "ngspice_default_tol_tmax_T/50",
+        reltol: None,
+        max_step_fraction: 1.0 / 50.0,
+    },
     Spice {
         name: "ngspice_default_tol_tmax_T/200",
         reltol: None,
@@ -126,12 +139,13 @@ fn bench_shockley(c: &mut Criterion) {
     let period = m.params.drive_period();
     let omega0 = ShockleyCircuit::paper().scales().omega0;
     let last = grid((PERIODS - 1.0) * period, PERIODS * period, 2000);
-    let reference = ours(1e-11, &last);
-    let rtols = [3e-3, 3e-4];
-    for rtol in rtols {
+    let tight = (1e-11, 0.25);
+    let reference = ours(tight, &last);
+    for config in OURS {
         eprintln!(
-            "accuracy stickslip_radau_rtol_{rtol:e}: {:.2e} of the peak",
-            deviation(&ours(rtol, &last), &reference)
+            "accuracy stickslip_radau/{}: {:.2e} of the peak",
+            name(config),
+            deviation(&ours(config, &last), &reference)
         );
     }
     let spice = ngspice_available();
@@ -159,7 +173,7 @@ fn bench_shockley(c: &mut Criterion) {
             eprintln!(
                 "accuracy {}: {:.2e} of the peak",
                 s.name,
-                deviation(&values, &ours(1e-11, &times))
+                deviation(&values, &ours(tight, &times))
             );
             std::fs::write(dir.join(format!("run{k}.cir")), spice_netlist(s, None)).expect("write");
         }
@@ -170,11 +184,11 @@ fn bench_shockley(c: &mut Criterion) {
     let mut group = c.benchmark_group("shockley_300_periods_w0.95_b2.14");
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(10));
-    for rtol in rtols {
+    for config in OURS {
         group.bench_with_input(
-            BenchmarkId::new("stickslip_radau", format!("rtol_{rtol:e}")),
-            &rtol,
-            |b, &r| b.iter(|| run_ours(r)),
+            BenchmarkId::new("stickslip_radau", name(config)),
+            &config,
+            |b, &c| b.iter(|| run_ours(c)),
         );
     }
     if spice {

@@ -325,29 +325,43 @@ pub(crate) fn crossings(p: &[f64; 4], level: f64, mut found: impl FnMut(f64)) {
         if above(hi) == side {
             continue;
         }
-        // Invariant: above(lo) == side != above(hi). Newton's method on the monotone piece,
-        // falling back to bisection whenever it would leave the bracket; stops when a step
-        // is below 1e-16 in θ (the rounding of the step's own time).
-        let slope = |theta: f64| p[1] + theta * (2.0 * p[2] + theta * 3.0 * p[3]);
+        // Invariant: above(lo) == side != above(hi). Regula falsi with the Illinois
+        // modification (superlinear, never leaves the bracket), down to 1e-16 in θ (the
+        // rounding of the step's own time).
+        let (mut f_lo, mut f_hi) = (horner(p, lo) - level, horner(p, hi) - level);
+        let mut kept = 0i8;
         let mut x = 0.5 * (lo + hi);
-        for _ in 0..100 {
+        for _ in 0..200 {
+            if hi - lo <= 1e-16 {
+                break;
+            }
+            x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+            if !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+                if !(x > lo && x < hi) {
+                    // lo and hi are adjacent doubles.
+                    break;
+                }
+            }
             let f = horner(p, x) - level;
+            if f == 0.0 {
+                break;
+            }
             if (f > 0.0) == side {
                 lo = x;
+                f_lo = f;
+                // The same end kept twice: halve the other end's weight (Illinois).
+                if kept == 1 {
+                    f_hi *= 0.5;
+                }
+                kept = 1;
             } else {
                 hi = x;
-            }
-            let d = slope(x);
-            let newton = x - f / d;
-            let next = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            let done = (next - x).abs() <= 1e-16 || next <= lo || next >= hi;
-            x = next.clamp(lo, hi);
-            if done {
-                break;
+                f_hi = f;
+                if kept == -1 {
+                    f_lo *= 0.5;
+                }
+                kept = -1;
             }
         }
         if x < 1.0 {
