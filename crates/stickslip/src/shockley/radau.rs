@@ -227,7 +227,19 @@ pub(crate) struct Radau5 {
     /// Newton's contraction memory η from the last step.
     eta: f64,
     last: Option<Step>,
+    /// The drive and (D, D') at the current state, when the last Newton solve left them.
+    start: Option<(f64, (f64, f64))>,
     pub counters: Counters,
+}
+
+/// A converged Newton solve.
+struct Converged {
+    /// Stage increments Z_i = (Y_i − y0, V_i − v0).
+    z: [Vector; 3],
+    /// Newton iterations used.
+    iterations: usize,
+    /// The drive and (D, D') at the last stage, which is the step's end.
+    end: (f64, (f64, f64)),
 }
 
 impl Radau5 {
@@ -246,6 +258,7 @@ impl Radau5 {
             err_acc: 1e-2,
             eta: 1.0,
             last: None,
+            start: None,
             counters: Counters::default(),
         }
     }
@@ -274,10 +287,8 @@ impl Radau5 {
     }
 
     /// Solve F(V) = L V + D(V) − b = 0 for step size h by Newton's method in per-stage
-    /// charts (see the module documentation). Returns the stage increments
-    /// Z_i = (Y_i − y0, V_i − v0) and the number of iterations, or None when Newton does not
-    /// converge.
-    fn newton(&mut self, h: f64, start: [f64; 3]) -> Option<([Vector; 3], usize)> {
+    /// charts (see the module documentation), or None when Newton does not converge.
+    fn newton(&mut self, h: f64, start: [f64; 3]) -> Option<Converged> {
         let scale = self.scale(&self.x, &self.x);
         let kappa = self.settings.rtol.sqrt().min(0.03);
         let law = self.model.law;
@@ -285,6 +296,11 @@ impl Radau5 {
         let [y0, v0] = self.x;
         let damping = 2.0 * p.zeta;
         let w = &self.w;
+        let drive = [
+            p.drive(self.t + C[0] * h),
+            p.drive(self.t + C[1] * h),
+            p.drive(self.t + h),
+        ];
         let mut l = [[0.0; 3]; 3];
         let mut b = [0.0; 3];
         for i in 0..3 {
@@ -292,7 +308,7 @@ impl Radau5 {
                 l[i][j] = w[i][j] / h + h * A[i][j];
             }
             l[i][i] += damping;
-            b[i] = p.drive(self.t + C[i] * h) - y0 + (w[i][0] + w[i][1] + w[i][2]) * v0 / h;
+            b[i] = drive[i] - y0 + (w[i][0] + w[i][1] + w[i][2]) * v0 / h;
         }
         let mut v = [v0 + start[0], v0 + start[1], v0 + start[2]];
         // D and D' at the current iterate, evaluated once per iterate.
@@ -377,7 +393,11 @@ impl Radau5 {
                         v[i] - v0,
                     ];
                 }
-                return Some((z, iteration + 1));
+                return Some(Converged {
+                    z,
+                    iterations: iteration + 1,
+                    end: (drive[2], d[2]),
+                });
             }
         }
         None
@@ -400,8 +420,20 @@ impl Radau5 {
     /// # Errors
     /// [`Error::Integrator`] when the step size underflows or the solution is not finite.
     pub fn step(&mut self) -> Result<Step> {
-        let (f0, av0) = self.rhs(self.t, &self.x);
-        self.counters.rhs += 1;
+        let (f0, av0) = match self.start.take() {
+            // The last Newton iterate of the previous step ends exactly here.
+            Some((drive, (d, slope))) => {
+                let c = 2.0 * self.model.params.zeta;
+                (
+                    [self.x[1], drive - self.x[0] - c * self.x[1] - d],
+                    -c - slope,
+                )
+            }
+            None => {
+                self.counters.rhs += 1;
+                self.rhs(self.t, &self.x)
+            }
+        };
         loop {
             let h = self.h.min(self.settings.max_step);
             if !(h > 16.0 * f64::EPSILON * self.t.abs().max(1.0)) {
@@ -410,7 +442,8 @@ impl Radau5 {
                     reason: format!("step size underflow (h = {h:e})"),
                 });
             }
-            let Some((z, iterations)) = self.newton(h, self.start_values(h)) else {
+            let Some(Converged { z, iterations, end }) = self.newton(h, self.start_values(h))
+            else {
                 self.counters.rejected += 1;
                 self.h = h * 0.5;
                 self.reject = true;
@@ -457,6 +490,7 @@ impl Radau5 {
                 self.first = false;
                 self.reject = false;
                 self.last = Some(step);
+                self.start = Some(end);
                 self.counters.accepted += 1;
                 return Ok(step);
             }
@@ -484,7 +518,7 @@ impl Radau5 {
     /// One step of exactly size `h`, without error control (for convergence-order tests).
     #[cfg(test)]
     pub fn fixed_step(&mut self, h: f64) -> Option<Step> {
-        let (z, _) = self.newton(h, [0.0; 3])?;
+        let z = self.newton(h, [0.0; 3])?.z;
         let step = Step::new(self.t, h, self.x, &z);
         self.t += h;
         self.x = step.x1;

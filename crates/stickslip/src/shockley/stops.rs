@@ -312,7 +312,7 @@ fn range(p: &[f64; 4]) -> (f64, f64) {
 
 /// Hand `found` every θ ∈ (0, 1) where the cubic `p` crosses `level` (changes from ≤ level
 /// to > level or back). The cubic is split at its critical points into monotone pieces, so no
-/// crossing is missed, and each crossing is located to 1e-16 in θ.
+/// crossing is missed, and each crossing is located to rounding level in θ.
 pub(crate) fn crossings(p: &[f64; 4], level: f64, mut found: impl FnMut(f64)) {
     let above = |theta: f64| horner(p, theta) > level;
     let (points, count) = critical_points(p);
@@ -326,13 +326,21 @@ pub(crate) fn crossings(p: &[f64; 4], level: f64, mut found: impl FnMut(f64)) {
             continue;
         }
         // Invariant: above(lo) == side != above(hi). Regula falsi with the Illinois
-        // modification (superlinear, never leaves the bracket), down to 1e-16 in θ (the
-        // rounding of the step's own time).
+        // modification (superlinear, never leaves the bracket) down to 1e-9 in θ, then one
+        // Newton step from the middle of the bracket, which squares that error.
         let (mut f_lo, mut f_hi) = (horner(p, lo) - level, horner(p, hi) - level);
         let mut kept = 0i8;
         let mut x = 0.5 * (lo + hi);
         for _ in 0..200 {
-            if hi - lo <= 1e-16 {
+            if hi - lo <= 1e-9 {
+                let mid = 0.5 * (lo + hi);
+                let slope = p[1] + mid * (2.0 * p[2] + mid * 3.0 * p[3]);
+                let newton = mid - (horner(p, mid) - level) / slope;
+                x = if newton >= lo && newton <= hi {
+                    newton
+                } else {
+                    mid
+                };
                 break;
             }
             x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
