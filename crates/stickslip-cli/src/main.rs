@@ -10,6 +10,7 @@ use std::process::ExitCode;
 mod commands;
 mod model;
 mod output;
+mod overlay;
 mod plot;
 mod solvers;
 

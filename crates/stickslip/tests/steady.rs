@@ -5,6 +5,7 @@ use stickslip::steady::{
     exact_solver, phase_diagram, steady_state, steady_state_from, sweep, MotionClass,
     ParameterRange, SteadyOptions, SteadyState, SweepDirection, SweepLeg, SweepParameter,
 };
+use stickslip::theory::{stick_slip_boundary, PeriodicSolution};
 use stickslip::{Circuit, Error, ExactSolver, Params, Solver, State};
 
 fn zeta() -> f64 {
@@ -534,6 +535,80 @@ fn extrapolation_finds_the_same_cycle_sooner() {
                 (a - b).abs() < 1e-8 * plain.peak,
                 "w {w} beta {beta} k {k}: {a:e} {b:e}"
             );
+        }
+    }
+}
+
+/// Sliding points comfortably above the exact stick-slip boundary (β ≥ 1.15·β_c, checked).
+const SLIDING_POINTS: [(f64, f64, f64); 9] = [
+    (0.0468, 0.9, 1.6),
+    (0.0468, 0.95, 2.14),
+    (0.0468, 1.43, 2.14),
+    (0.0468, 0.5, 5.0),
+    (0.0468, 2.0, 3.0),
+    (0.1, 0.9, 2.5),
+    (0.1, 1.5, 3.0),
+    (0.2, 0.8, 3.0),
+    (0.2, 1.2, 4.0),
+];
+
+/// Largest deviation, relative to the exact fundamental A1, of the simulated harmonics
+/// 1…`top` (as complex amplitudes A_k e^{iθ_k}, so amplitude and phase both count) from the
+/// exact Fourier coefficients of [`PeriodicSolution`].
+fn harmonic_deviation(s: &SteadyState, exact: &PeriodicSolution, top: u32) -> (f64, u32) {
+    let sp = s.spectrum.as_ref().expect("spectrum on");
+    let a1 = exact.a1();
+    let mut worst = (0.0, 0);
+    for k in 1..=top {
+        let sim = sp.harmonics[k as usize - 1];
+        let ex = exact.harmonic(k);
+        assert_eq!(sim.order, k as usize);
+        let (sr, si) = (
+            sim.amplitude * sim.phase.cos(),
+            sim.amplitude * sim.phase.sin(),
+        );
+        let (er, ei) = (ex.amplitude * ex.phase.cos(), ex.amplitude * ex.phase.sin());
+        let d = (sr - er).hypot(si - ei) / a1;
+        if d > worst.0 {
+            worst = (d, k);
+        }
+    }
+    worst
+}
+
+#[test]
+fn sliding_harmonics_match_the_exact_periodic_solution() {
+    // Tolerance: every harmonic k = 1…11 of the simulated cycle, as a complex amplitude
+    // A_k e^{iθ_k}, within 1e-8·A1 of the exact one (so |ΔA_k| ≤ 1e-8·A1 and, for the
+    // fundamental, |Δθ_1| ≤ 1e-8 rad); even orders exactly zero in theory, so ≤ 1e-8·A1.
+    // Measured at these points: at most 8.2e-11·A1 (ζ = 0.0468, w = 2, β = 3, k = 7).
+    const TOL: f64 = 1e-8;
+    for (zeta, w, beta) in SLIDING_POINTS {
+        let params = Params::new(zeta, w, beta).unwrap();
+        let beta_c = stick_slip_boundary(zeta, w, 1.0).unwrap().beta_c;
+        assert!(beta >= 1.15 * beta_c, "{zeta} {w} {beta}: β_c = {beta_c}");
+        let exact = PeriodicSolution::new(&params).unwrap();
+        for k in (2..=10).step_by(2) {
+            assert!(exact.harmonic(k).amplitude < 1e-12 * exact.a1());
+        }
+        let plain = steady_with(params, &SteadyOptions::default());
+        let from = steady_state_from(
+            &exact_solver,
+            &params,
+            State::default(),
+            &SteadyOptions::default(),
+        )
+        .unwrap();
+        for (how, s) in [("steady_state", &plain), ("steady_state_from", &from)] {
+            assert_eq!(s.class, MotionClass::Sliding, "{how} {zeta} {w} {beta}");
+            assert_eq!(s.period, Some(1));
+            assert!(s.symmetric);
+            let (d, k) = harmonic_deviation(s, &exact, 11);
+            assert!(d <= TOL, "{how} ζ {zeta} w {w} β {beta}: {d:e} at k = {k}");
+            // The simulated gain (max y − min y)/(2β) is the exact peak/β, not A1/β.
+            assert!((s.peak - exact.peak).abs() <= 1e-9 * exact.peak);
+            assert!((s.gain - exact.peak / beta).abs() <= 1e-9 * exact.peak / beta);
+            assert!((s.gain - exact.gain()).abs() > 1e-6 * s.gain);
         }
     }
 }

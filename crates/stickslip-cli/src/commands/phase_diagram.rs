@@ -2,9 +2,10 @@
 
 use super::steady::SteadyFlags;
 use super::sweep::range_from_flags;
-use crate::model::{finite, ModelArgs};
+use crate::model::{finite, DiodeModel, Model, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
-use crate::plot::{Cell, Figure, Legend, Panel, PALETTE};
+use crate::overlay::{abscissae, boundary_curves};
+use crate::plot::{Cell, Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use std::io::Write;
@@ -48,7 +49,8 @@ pub struct Args {
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
-    /// Map of the classes as coloured cells (.png or .svg).
+    /// Map of the classes as coloured cells, with the paper's and the exact stick-slip
+    /// boundary where they exist inside the β range (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
 }
@@ -158,7 +160,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&points, &w, &beta, &model.params, path)?;
+        plot(&points, &w, &beta, &model, path)?;
     }
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     eprintln!(
@@ -179,9 +181,10 @@ fn plot(
     points: &[PhaseDiagramPoint],
     w: &ParameterRange,
     beta: &ParameterRange,
-    params: &stickslip::Params,
+    model: &Model,
     path: &std::path::Path,
 ) -> Result<()> {
+    let params = &model.params;
     // Cells centred on the grid points; a single row or column gets a unit-less width.
     let half = |r: &ParameterRange| {
         if r.steps() > 1 {
@@ -204,7 +207,40 @@ fn plot(
         .filter(|&&c| points.iter().any(|p| p.class == c))
         .map(|&c| (c.label().to_string(), color(c)))
         .collect();
+    // The boundaries of the piecewise-linear theory, where they exist inside the β range.
+    let (beta_lo, beta_hi) = (beta.from() - hb, beta.to() + hb);
+    // Across the cells' full width, but w > 0.
+    let ws = abscissae((w.from() - hw).max(0.5 * w.from()), w.to() + hw, w.steps());
+    let (paper, exact) = boundary_curves(params.zeta, params.mu_s, &ws, (beta_lo, beta_hi));
+    eprintln!(
+        "phase-diagram: theory on the plot: paper's boundary at {} and exact boundary at {} of {} frequencies inside the β range",
+        paper.present,
+        exact.present,
+        ws.len()
+    );
+    let prefix = match model.diode {
+        DiodeModel::Pwl => "",
+        DiodeModel::Shockley => "PWL theory: ",
+    };
+    let mut series = Vec::new();
+    if paper.present > 0 {
+        series.push(Series::new(
+            format!("{prefix}paper boundary, eq. (13)"),
+            paper.points,
+            PALETTE[3],
+            Style::Dashed(3),
+        ));
+    }
+    if exact.present > 0 {
+        series.push(Series::new(
+            format!("{prefix}exact boundary β_c"),
+            exact.points,
+            PALETTE[6],
+            Style::Line(2),
+        ));
+    }
     let panel = Panel {
+        series,
         title: format!(
             "motion classes from rest, ζ = {:.4}, μs = {}",
             params.zeta, params.mu_s
@@ -216,7 +252,6 @@ fn plot(
         x_range: Some((w.from() - hw, w.to() + hw)),
         y_range: Some((beta.from() - hb, beta.to() + hb)),
         legend: Some(Legend::UpperRight),
-        ..Default::default()
     };
     Figure::single(panel, (900, 700)).render(path)
 }

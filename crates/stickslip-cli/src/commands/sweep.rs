@@ -1,8 +1,9 @@
 //! `stickslip sweep`: w or β swept up and/or down with continuation (hysteresis).
 
 use super::steady::SteadyFlags;
-use crate::model::{finite, ModelArgs};
+use crate::model::{finite, DiodeModel, Model, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
+use crate::overlay::{abscissae, gain_curves, Curve};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
@@ -10,6 +11,7 @@ use std::path::PathBuf;
 use stickslip::steady::{
     sweep, ParameterRange, SweepDirection, SweepLeg, SweepParameter, SweepPoint,
 };
+use stickslip::Params;
 
 /// The swept parameter, as typed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -64,7 +66,8 @@ pub struct Args {
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
-    /// Plot of the gain against the swept parameter, up and down (.png or .svg).
+    /// Plot of the gain against the swept parameter, up and down, with the theory's gain
+    /// (the paper's A1/β and the exact sliding orbit's peak/β) where it exists (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
 }
@@ -194,7 +197,14 @@ pub fn run(args: Args) -> Result<()> {
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&points, parameter, path)?;
+        let theory = Theory::new(&model, parameter, &range);
+        eprintln!(
+            "sweep: theory on the plot: paper's gain at {} and exact sliding orbit at {} of {} values",
+            theory.paper.present,
+            theory.exact.present,
+            theory.paper.points.len()
+        );
+        plot(&points, parameter, &theory, path)?;
     }
     let differ = branches_differ(&points, parameter);
     eprintln!(
@@ -240,7 +250,47 @@ fn branches_differ(points: &[SweepPoint], parameter: SweepParameter) -> usize {
         .count()
 }
 
-fn plot(points: &[SweepPoint], parameter: SweepParameter, path: &std::path::Path) -> Result<()> {
+/// The theory's gain curves over the swept range, at the sweep's fixed parameter.
+struct Theory {
+    paper: Curve,
+    exact: Curve,
+    /// Legend prefix: the theory is that of the piecewise-linear model.
+    prefix: &'static str,
+}
+
+impl Theory {
+    fn new(model: &Model, parameter: SweepParameter, range: &ParameterRange) -> Self {
+        let xs = abscissae(range.from(), range.to(), range.steps());
+        let (paper, exact) = gain_curves(&model.params, &xs, |p, x| Params {
+            w: if parameter == SweepParameter::W {
+                x
+            } else {
+                p.w
+            },
+            beta: if parameter == SweepParameter::Beta {
+                x
+            } else {
+                p.beta
+            },
+            ..p
+        });
+        Self {
+            paper,
+            exact,
+            prefix: match model.diode {
+                DiodeModel::Pwl => "",
+                DiodeModel::Shockley => "PWL theory: ",
+            },
+        }
+    }
+}
+
+fn plot(
+    points: &[SweepPoint],
+    parameter: SweepParameter,
+    theory: &Theory,
+    path: &std::path::Path,
+) -> Result<()> {
     let leg = |which: SweepLeg| -> Vec<(f64, f64)> {
         points
             .iter()
@@ -283,6 +333,25 @@ fn plot(points: &[SweepPoint], parameter: SweepParameter, path: &std::path::Path
         PALETTE[1],
         Style::Markers(2),
     ));
+    // The simulated gain is the peak over β; on a sliding orbit that is the exact orbit's
+    // peak/β (not its A1/β). The paper's gain is its A1/β, eq. (11).
+    let prefix = theory.prefix;
+    if theory.paper.present > 0 {
+        series.push(Series::new(
+            format!("{prefix}paper, eq. (11): A1/β"),
+            theory.paper.points.clone(),
+            PALETTE[2],
+            Style::Dashed(2),
+        ));
+    }
+    if theory.exact.present > 0 {
+        series.push(Series::new(
+            format!("{prefix}exact sliding orbit: peak/β"),
+            theory.exact.points.clone(),
+            PALETTE[6],
+            Style::Line(1),
+        ));
+    }
     let panel = Panel {
         title,
         x_label: parameter.label().into(),

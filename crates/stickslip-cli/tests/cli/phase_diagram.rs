@@ -104,3 +104,74 @@ fn ctrl_c_leaves_no_output_file() {
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert!(left.is_empty(), "files left behind: {left:?}");
 }
+
+#[test]
+fn plot_carries_the_boundaries_inside_the_beta_range() {
+    let grid = [
+        "phase-diagram",
+        "--preset",
+        "paper",
+        "--w-min",
+        "0.3",
+        "--w-max",
+        "1.5",
+        "--w-steps",
+        "3",
+        "--beta-min",
+        "1.0",
+        "--beta-max",
+        "2.5",
+        "--beta-steps",
+        "3",
+        "--out",
+        "map.csv",
+    ];
+    let counts = |err: &str| -> (usize, usize, usize) {
+        let line = err
+            .lines()
+            .find(|l| l.contains("theory on the plot"))
+            .unwrap_or_else(|| panic!("no theory line in {err}"));
+        let n: Vec<usize> = line
+            .split(|c: char| !c.is_ascii_digit())
+            .filter_map(|s| s.parse().ok())
+            .collect();
+        assert_eq!(n.len(), 3, "{line}");
+        (n[0], n[1], n[2])
+    };
+    let mut args = grid.to_vec();
+    args.extend(["--plot", "map.svg"]);
+    let (dir, out) = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Near w = 0.3 both boundaries lie far above β = 2.5 (+ half a cell): the curves are
+    // cut there, and present over the rest of the range.
+    let (paper, exact, n) = counts(&stderr(&out));
+    assert_eq!(n, 200);
+    assert!(paper > n / 2 && paper < n, "{paper}");
+    assert!(exact > n / 2 && exact < n, "{exact}");
+    let svg = std::fs::read_to_string(dir.path().join("map.svg")).unwrap();
+    assert!(svg.contains("paper boundary, eq. (13)"));
+    assert!(svg.contains("exact boundary β_c"));
+    assert!(!svg.contains("PWL theory"));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("map.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        10
+    );
+
+    let mut args = grid.to_vec();
+    args.extend(["--model", "shockley", "--plot", "map.png"]);
+    let (dir, out) = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(counts(&stderr(&out)).1 > 0);
+    let png = std::fs::read(dir.path().join("map.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let mut args = grid.to_vec();
+    args.extend(["--model", "shockley", "--plot", "map.svg"]);
+    let (dir, out) = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(dir.path().join("map.svg")).unwrap();
+    assert!(svg.contains("PWL theory: paper boundary, eq. (13)"));
+    assert!(svg.contains("PWL theory: exact boundary β_c"));
+}

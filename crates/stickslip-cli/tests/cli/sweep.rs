@@ -122,3 +122,116 @@ fn bad_ranges_give_one_line_and_exit_code_2() {
     );
     assert_usage_error(dir.path(), &out, "--w");
 }
+
+/// Count from the line "theory on the plot: paper's gain at P and exact sliding orbit at E of
+/// N values" on standard error.
+fn theory_counts(err: &str, what: &str) -> (usize, usize, usize) {
+    let line = err
+        .lines()
+        .find(|l| l.contains("theory on the plot"))
+        .unwrap_or_else(|| panic!("no theory line in {err}"));
+    let numbers: Vec<usize> = line
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|s| s.parse().ok())
+        .collect();
+    assert_eq!(numbers.len(), 3, "{what}: {line}");
+    (numbers[0], numbers[1], numbers[2])
+}
+
+#[test]
+fn plot_over_w_carries_the_theorys_gain_curves() {
+    // β = 2.14 from w = 0.2 (stops, no sliding orbit) to 2 (sliding): the exact curve
+    // exists over part of the range only, the paper's everywhere.
+    let (dir, out) = run(&[
+        "sweep",
+        "--over",
+        "w",
+        "--beta",
+        "2.14",
+        "--from",
+        "0.2",
+        "--to",
+        "2",
+        "--steps",
+        "4",
+        "--direction",
+        "up",
+        "--out",
+        "s.csv",
+        "--plot",
+        "s.svg",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let (paper, exact, n) = theory_counts(&stderr(&out), "over w");
+    assert_eq!(n, 200);
+    assert_eq!(paper, n);
+    assert!(exact > n / 2 && exact < n, "{exact}");
+    let svg = std::fs::read_to_string(dir.path().join("s.svg")).unwrap();
+    assert!(svg.contains("paper, eq. (11): A1/β"));
+    assert!(svg.contains("exact sliding orbit: peak/β"));
+    assert!(!svg.contains("PWL theory"));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("s.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        5
+    );
+}
+
+#[test]
+fn plot_over_beta_carries_the_theory_and_shockley_labels_it_pwl() {
+    let (dir, out) = run(&[
+        "sweep",
+        "--over",
+        "beta",
+        "--w",
+        "0.9",
+        "--from",
+        "0.5",
+        "--to",
+        "3",
+        "--steps",
+        "3",
+        "--direction",
+        "down",
+        "--plot",
+        "b.png",
+        "--out",
+        "b.csv",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let (paper, exact, n) = theory_counts(&stderr(&out), "over beta");
+    // Below β_c ≈ 1.33 there is no sliding orbit; the paper's A1 needs β > 4/π.
+    assert!(exact > 0 && exact < n && paper > 0 && paper < n);
+    let png = std::fs::read(dir.path().join("b.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+
+    let (dir, out) = run(&[
+        "sweep",
+        "--preset",
+        "paper",
+        "--model",
+        "shockley",
+        "--over",
+        "w",
+        "--beta",
+        "2",
+        "--from",
+        "0.8",
+        "--to",
+        "1.0",
+        "--steps",
+        "2",
+        "--direction",
+        "up",
+        "--plot",
+        "s.svg",
+        "--out",
+        "s.csv",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(dir.path().join("s.svg")).unwrap();
+    assert!(svg.contains("PWL theory: paper, eq. (11): A1/β"));
+    assert!(svg.contains("PWL theory: exact sliding orbit: peak/β"));
+}
