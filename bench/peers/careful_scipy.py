@@ -4,7 +4,8 @@ friction sign held fixed, a terminal event at the velocity zero, and explicit st
 At every velocity zero the stick condition |beta*cos(w*t) - y| <= mu_s is checked: a stop
 is held (y' = 0, y fixed) until the force leaves [-mu_s, mu_s], found in closed form; a
 turn starts a new segment in the other direction. Extra job options: "method" (DOP853,
-LSODA, RK45, Radau, BDF), "rtol", "atol".
+LSODA, RK45, Radau, BDF), "rtol", "atol", "tail_periods" (events of the last this many
+periods are also counted apart, for classification; default 50).
 """
 
 import math
@@ -28,11 +29,19 @@ velocity_zero.terminal = True
 velocity_zero.direction = -1
 
 
-def run_point(zeta, mu_s, w, beta, periods, spp, method, rtol, atol):
+def run_point(zeta, mu_s, w, beta, periods, spp, method, rtol, atol, tail):
     t_end, grid = sample_grid(np, w, periods, spp)
+    tail_start = max(periods - tail, 0.0) * (TAU / w)
     ys = np.empty_like(grid)
     vs = np.empty_like(grid)
     counts = {"turn": 0, "stick": 0, "slip": 0}
+    tail_counts = dict(counts)
+
+    def count(kind):
+        counts[kind] += 1
+        if t >= tail_start:
+            tail_counts[kind] += 1
+
     work = {"nfev": 0, "njev": 0, "nlu": 0, "steps": 0, "segments": 0}
     t, y, v = 0.0, 0.0, 0.0
     k = 0  # next grid index to fill
@@ -51,7 +60,7 @@ def run_point(zeta, mu_s, w, beta, periods, spp, method, rtol, atol):
             t = t_next
             if t >= t_end:
                 break
-            counts["slip"] += 1
+            count("slip")
             mode, sign, v = "slide", exit_sign, 0.0
             continue
         sol = solve_ivp(
@@ -90,16 +99,16 @@ def run_point(zeta, mu_s, w, beta, periods, spp, method, rtol, atol):
         t, y, v = t_stop, y_stop, 0.0
         force = beta * math.cos(w * t) - y
         if abs(force) <= mu_s:
-            counts["stick"] += 1
+            count("stick")
             mode = "stick"
         elif math.copysign(1.0, force) != sign:
-            counts["turn"] += 1
+            count("turn")
             sign = -sign
         # else: a tangential touch with the force still pushing onward: slide on.
     while k < grid.size:  # the end point itself, if the loop ended exactly on it
         ys[k], vs[k] = y, v
         k += 1
-    return ys, vs, counts, work, (y, v)
+    return ys, vs, counts, tail_counts, work, (y, v)
 
 
 def main():
@@ -108,11 +117,12 @@ def main():
     rtol = float(job.get("rtol", 1e-10))
     atol = float(job.get("atol", 1e-12))
     zeta, mu_s, spp = job["zeta"], job.get("mu_s", 1.0), job["samples_per_period"]
+    tail = float(job.get("tail_periods", 50))
     results = []
     for p in job["points"]:
         start = time.perf_counter()
-        ys, vs, counts, work, final = run_point(
-            zeta, mu_s, p["w"], p["beta"], p["periods"], spp, method, rtol, atol
+        ys, vs, counts, tail_counts, work, final = run_point(
+            zeta, mu_s, p["w"], p["beta"], p["periods"], spp, method, rtol, atol, tail
         )
         wall = time.perf_counter() - start
         r = {
@@ -123,6 +133,8 @@ def main():
             "ok": True,
             "message": "",
             "events": counts,
+            "tail_periods": tail,
+            "tail_events": tail_counts,
             "work": work,
             "final": list(final),
         }

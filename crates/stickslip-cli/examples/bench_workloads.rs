@@ -17,7 +17,9 @@ use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::time::Instant;
 use stickslip::solver::{grid, run_until, sample_at};
-use stickslip::{Circuit, EventKind, ExactSolver, Params, Phase, Sample, Solver, State, Stats};
+use stickslip::{
+    Circuit, Event, EventKind, ExactSolver, Params, Phase, Sample, Solver, State, Stats,
+};
 
 #[derive(Debug, Parser)]
 #[command(about = "Benchmark workloads of stickslip, printed as JSON")]
@@ -69,6 +71,9 @@ struct TrajectoryArgs {
     /// every sample time).
     #[arg(long, value_enum, default_value_t = Sampling::Dense)]
     sampling: Sampling,
+    /// Also count the events of the last this many periods apart (for classification).
+    #[arg(long, default_value_t = 50.0)]
+    tail: f64,
     /// Leave the samples out of the output (the counters and final state stay).
     #[arg(long)]
     no_samples: bool,
@@ -181,7 +186,7 @@ impl EventCounts {
 fn sample_dense<S: Solver>(
     solver: &mut S,
     times: &[f64],
-    mut on_event: impl FnMut(EventKind),
+    mut on_event: impl FnMut(&Event),
 ) -> Result<Vec<Sample>> {
     let t_end = *times.last().context("no sample times")?;
     let mut out = Vec::with_capacity(times.len());
@@ -197,7 +202,7 @@ fn sample_dense<S: Solver>(
     }
     while solver.time() < t_end {
         if let Some(e) = solver.advance(t_end)? {
-            on_event(e.kind);
+            on_event(&e);
         }
         let (_, to) = solver.interval();
         while let Some(&t) = next.next_if(|&&t| t <= to) {
@@ -211,15 +216,23 @@ fn trajectory(args: TrajectoryArgs) -> Result<Value> {
     let params = Params::new(args.zeta.unwrap_or_else(paper_zeta), args.w, args.beta)?;
     let t_end = args.periods * params.drive_period();
     let count = (args.periods * args.samples_per_period as f64).round() as usize;
-    let (wall, (samples, counts, stats, final_state)) = timed(&args.timing, || {
+    let tail_start = (args.periods - args.tail).max(0.0) * params.drive_period();
+    let (wall, (samples, counts, tail_counts, stats, final_state)) = timed(&args.timing, || {
         let times = grid(0.0, t_end, count);
         let mut solver = ExactSolver::new(params, State::default());
         let mut counts = EventCounts::default();
-        let samples = match args.sampling {
-            Sampling::Dense => sample_dense(&mut solver, &times, |e| counts.add(e))?,
-            Sampling::SampleAt => sample_at(&mut solver, &times, |e| counts.add(e.kind))?,
+        let mut tail_counts = EventCounts::default();
+        let mut on_event = |e: &Event| {
+            counts.add(e.kind);
+            if e.tau >= tail_start {
+                tail_counts.add(e.kind);
+            }
         };
-        Ok((samples, counts, solver.stats(), solver.state()))
+        let samples = match args.sampling {
+            Sampling::Dense => sample_dense(&mut solver, &times, &mut on_event)?,
+            Sampling::SampleAt => sample_at(&mut solver, &times, &mut on_event)?,
+        };
+        Ok((samples, counts, tail_counts, solver.stats(), solver.state()))
     })?;
     let mut out = json!({
         "solver": "stickslip-exact",
@@ -231,6 +244,8 @@ fn trajectory(args: TrajectoryArgs) -> Result<Value> {
         "sampling": format!("{:?}", args.sampling).to_lowercase(),
         "wall_s": wall,
         "events": counts.json(),
+        "tail_periods": args.tail,
+        "tail_events": tail_counts.json(),
         "stats": stats_json(&stats),
         "final": [final_state.y, final_state.v],
     });
