@@ -13,3 +13,19 @@ pub fn solver_for(model: &Model) -> Result<Box<dyn Solver + Send>> {
         }
     }
 }
+
+/// Something that starts solvers of `model`'s diode law for any parameters and initial state,
+/// for commands that run many (sweeps, phase diagrams).
+pub type Factory = Box<
+    dyn Fn(stickslip::Params, stickslip::State) -> stickslip::Result<Box<dyn Solver + Send>> + Sync,
+>;
+
+/// The solver factory for `model`'s diode law.
+pub fn factory_for(model: &Model) -> Result<Factory> {
+    match model.diode {
+        DiodeModel::Pwl => Ok(Box::new(stickslip::steady::exact_solver)),
+        DiodeModel::Shockley => {
+            anyhow::bail!("--model shockley is not available in this version")
+        }
+    }
+}

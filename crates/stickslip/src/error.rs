@@ -48,6 +48,14 @@ pub enum Error {
         /// Why it does not exist.
         reason: String,
     },
+    /// A long computation (a sweep or a phase diagram) was stopped by its caller.
+    #[error("cancelled after {done} of {total} points")]
+    Cancelled {
+        /// Points finished when the computation stopped.
+        done: usize,
+        /// Points requested.
+        total: usize,
+    },
 }
 
 /// Result alias of the library.

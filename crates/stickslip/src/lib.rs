@@ -18,6 +18,8 @@
 //!   times found numerically, with a step rule that cannot miss a velocity zero.
 //! - [`Solver`]: the trait every solver implements; [`solver::run_until`] and
 //!   [`solver::sample_at`] drive any of them.
+//! - [`steady`]: the steady state of any solver ([`steady_state`]), its spectrum and
+//!   [`MotionClass`], sweeps with hysteresis and (w, β) phase diagrams.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
@@ -36,3 +38,4 @@ pub use exact::ExactSolver;
 pub use params::{Params, State};
 pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
+pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};

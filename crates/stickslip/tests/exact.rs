@@ -487,3 +487,115 @@ fn secular_resonance_without_damping_runs() {
         "rate {rate} vs {expected}"
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Near-tangential double zeros
+
+/// For ζ = 0 and a slide upwards, the initial state whose velocity grazes zero at t* (v = a = 0
+/// there, a local minimum), with its velocity as a function of time: y = −1 + P cos(wt + φ) +
+/// A cos t + B sin t with P = β/(1 − w²).
+fn grazing_start(w: f64, beta: f64, phi: f64, t_star: f64) -> Option<(State, impl Fn(f64) -> f64)> {
+    let p = beta / (1.0 - w * w);
+    let (sd, cd) = (w * t_star + phi).sin_cos();
+    let (st, ct) = t_star.sin_cos();
+    // v(t*) = −Pw sd − A st + B ct = 0 and a(t*) = −Pw² cd − A ct − B st = 0.
+    let a = -p * w * sd * st - p * w * w * cd * ct;
+    let b = p * w * sd * ct - p * w * w * cd * st;
+    let y0 = -1.0 + p * phi.cos() + a;
+    let v0 = -p * w * phi.sin() + b;
+    let velocity = move |t: f64| -p * w * (w * t + phi).sin() - a * t.sin() + b * t.cos();
+    let jerk = p * w * (w * w - 1.0) * sd;
+    // A true minimum at t*, positive velocity before it, and cos t* > 0 so that lowering v0
+    // (which shifts v by −δ cos t) opens a pair of zeros there.
+    let positive_before = (1..1000).all(|k| velocity(t_star * k as f64 / 1000.0) > 0.0);
+    (v0 > 0.0 && jerk > 0.0 && ct > 0.05 && positive_before)
+        .then_some((State { y: y0, v: v0 }, velocity))
+}
+
+/// First zero of `f` in [from, to] by a scan of step `h` and bisection, if any.
+fn first_zero(f: impl Fn(f64) -> f64, from: f64, to: f64, h: f64) -> Option<f64> {
+    let mut a = from;
+    while a < to {
+        let b = (a + h).min(to);
+        if f(b) <= 0.0 {
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(hi);
+        }
+        a = b;
+    }
+    None
+}
+
+#[test]
+fn near_tangential_double_zeros_are_not_missed() {
+    let mut cases = 0;
+    for &w in &[2.5, 3.0, 3.7, 5.0] {
+        for &beta in &[2.0, 6.0] {
+            for k in 0..16 {
+                let phi = k as f64 * PI / 8.0;
+                for &t_star in &[0.6, 0.9, 1.2] {
+                    let Some((start, velocity)) = grazing_start(w, beta, phi, t_star) else {
+                        continue;
+                    };
+                    let params = Params::new(0.0, w, beta).unwrap().with_phi(phi).unwrap();
+                    let scale = start.y.abs() + start.v.abs() + beta;
+                    for &delta in &[1e-3, 1e-6, 1e-9, 1e-12] {
+                        let d = delta * scale;
+                        // Dipping below zero: the first event is at the first of the two zeros,
+                        // within ~√(2δ/jerk) of t*.
+                        let below = events(
+                            params,
+                            State {
+                                y: start.y,
+                                v: start.v - d,
+                            },
+                            t_star + 1.0,
+                        );
+                        let first = below.first().unwrap_or_else(|| {
+                            panic!("w {w} β {beta} φ {phi} t* {t_star} δ {delta}: missed the zero pair")
+                        });
+                        assert!(
+                            (first.tau - t_star).abs() < 50.0 * delta.sqrt() + 1e-6
+                                && first.tau <= t_star + 1e-6,
+                            "w {w} β {beta} φ {phi} t* {t_star} δ {delta}: event at {}",
+                            first.tau
+                        );
+                        // Staying above zero: v + δ cos t > 0 near t*, so the first event is the
+                        // first zero of the analytic velocity after the grazing point.
+                        let lifted = |t: f64| velocity(t) + d * t.cos();
+                        let expected = first_zero(lifted, t_star + 1e-3, t_star + 1.0, 1e-4);
+                        let above = events(
+                            params,
+                            State {
+                                y: start.y,
+                                v: start.v + d,
+                            },
+                            t_star + 1.0,
+                        );
+                        match (above.first(), expected) {
+                            (Some(e), Some(t)) => assert!(
+                                (e.tau - t).abs() < 1e-9,
+                                "w {w} β {beta} φ {phi} t* {t_star} δ {delta}: {} vs {t}",
+                                e.tau
+                            ),
+                            (None, None) => {}
+                            (got, want) => panic!(
+                                "w {w} β {beta} φ {phi} t* {t_star} δ {delta}: {got:?} vs {want:?}"
+                            ),
+                        }
+                    }
+                    cases += 1;
+                }
+            }
+        }
+    }
+    assert!(cases >= 20, "enough grazing configurations: {cases}");
+}

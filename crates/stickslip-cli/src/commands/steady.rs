@@ -1,10 +1,289 @@
-//! `stickslip steady` (not yet available).
+//! `stickslip steady`: run to the steady state and report its class, period, spectrum and gain.
 
-/// Flags of `stickslip steady`.
+use crate::model::ModelArgs;
+use crate::output::{check_plot_path, usage, AtomicFile};
+use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use anyhow::Result;
+use serde_json::json;
+use std::io::Write;
+use std::path::PathBuf;
+use stickslip::steady::{steady_state_from, SteadyOptions, SteadyState};
+use stickslip::Params;
+
+/// Flags of the steady-state search, shared by `steady`, `sweep` and `phase-diagram`.
+#[derive(Debug, Clone, clap::Args)]
+#[command(next_help_heading = "Steady state")]
+pub struct SteadyFlags {
+    /// Relative tolerance of the once-per-period (stroboscopic) repetition.
+    #[arg(long, default_value_t = 1e-10, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    pub tolerance: f64,
+    /// Drive periods run at most before calling the motion non-periodic.
+    #[arg(
+        long = "max-periods",
+        default_value_t = 5000,
+        allow_hyphen_values = true
+    )]
+    pub max_periods: i64,
+    /// Longest period looked for, in drive periods (1 to 64).
+    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    pub max_period: i64,
+    /// Never extrapolate the stroboscopic map to its fixed point (slower; finds the same cycle).
+    #[arg(long = "no-extrapolation")]
+    pub no_extrapolation: bool,
+}
+
+impl SteadyFlags {
+    /// Validated library options (spectrum on).
+    pub fn options(&self) -> Result<SteadyOptions> {
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            usage!(
+                "invalid --tolerance {}: must be > 0 and < 1",
+                self.tolerance
+            );
+        }
+        if !(1..=100_000_000).contains(&self.max_periods) {
+            usage!(
+                "invalid --max-periods {}: must be from 1 to 1e8",
+                self.max_periods
+            );
+        }
+        if !(1..=64).contains(&self.max_period) {
+            usage!(
+                "invalid --max-period {}: must be from 1 to 64",
+                self.max_period
+            );
+        }
+        Ok(SteadyOptions::default()
+            .with_tolerance(self.tolerance)?
+            .with_max_periods(self.max_periods as usize)?
+            .with_max_period(self.max_period as usize)?
+            .with_accelerate(!self.no_extrapolation))
+    }
+}
+
+/// Run to the steady state from the initial state and report it.
+///
+/// The state once per drive period is followed until it repeats with a period p ≤ 16 drive
+/// periods (relative tolerance 1e-10), then p whole periods are recorded. The class
+/// (sliding, periodic-stick, nonperiodic-stick, static) comes from the exact event log;
+/// harmonics A_k of y from a real FFT of the recorded periods; gain = (max y − min y)/(2β);
+/// phase_lag = lag of the fundamental behind the drive (radians).
+///
+/// JSON keys: class, period (null if none), stops_per_cycle (stops per drive period),
+/// symmetric, peak (max |y|), gain, phase_lag, harmonics [A1, A2, ...], harmonic_phases,
+/// current_harmonics (of y' = current or velocity, dimensionless), subharmonic, mean,
+/// periods_to_settle, samples_per_period.
+///
+/// Example: stickslip steady --preset paper --w 0.6 --beta 1.2 --json --plot steady.png
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    #[command(flatten)]
+    steady: SteadyFlags,
+    /// Number of drive harmonics reported (at least 9).
+    #[arg(long, default_value_t = 16, allow_hyphen_values = true)]
+    harmonics: i64,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    /// X-Y data of the recorded cycle as CSV `tau,drive,y,v` (the oscilloscope's X-Y mode).
+    #[arg(long, value_name = "FILE")]
+    xy: Option<PathBuf>,
+    /// Plot of the cycle, its X-Y picture and its harmonics (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
 
 /// Run `stickslip steady`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`stickslip steady` is not available in this version")
+pub fn run(args: Args) -> Result<()> {
+    let options = args.steady.options()?;
+    if !(9..=256).contains(&args.harmonics) {
+        usage!(
+            "invalid --harmonics {}: must be from 9 to 256",
+            args.harmonics
+        );
+    }
+    let options = options.with_harmonics(args.harmonics as usize)?;
+    if let Some(p) = &args.plot {
+        check_plot_path(p)?;
+    }
+    if let Some(p) = &args.xy {
+        crate::output::check_output_path(p)?;
+    }
+    let model = args.model.build()?;
+    eprintln!("steady: {}", model.summary);
+    let factory = crate::solvers::factory_for(&model)?;
+    let steady = steady_state_from(&factory, &model.params, model.initial, &options)?;
+    crate::output::check_interrupt()?;
+
+    let report = report_json(&steady, &model.params);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_text(&steady, &model.params);
+    }
+    if let Some(path) = &args.xy {
+        let mut file = AtomicFile::create(path)?;
+        writeln!(file, "tau,drive,y,v")?;
+        for s in &steady.trace {
+            writeln!(
+                file,
+                "{},{},{},{}",
+                s.tau,
+                model.params.drive(s.tau),
+                s.y,
+                s.v
+            )?;
+        }
+        file.commit()?;
+    }
+    if let Some(path) = &args.plot {
+        plot(&steady, &model.params, path)?;
+    }
+    Ok(())
+}
+
+/// The JSON report of one steady state.
+pub fn report_json(steady: &SteadyState, params: &Params) -> serde_json::Value {
+    let spectrum = steady.spectrum.as_ref();
+    let amplitudes: Vec<f64> = spectrum
+        .map(|s| s.harmonics.iter().map(|h| h.amplitude).collect())
+        .unwrap_or_default();
+    let phases: Vec<f64> = spectrum
+        .map(|s| s.harmonics.iter().map(|h| h.phase).collect())
+        .unwrap_or_default();
+    let current: Vec<f64> = spectrum
+        .map(|s| s.derivative(params.w).iter().map(|h| h.amplitude).collect())
+        .unwrap_or_default();
+    json!({
+        "class": steady.class.label(),
+        "period": steady.period,
+        "stops_per_cycle": steady.stops_per_period,
+        "symmetric": steady.symmetric,
+        "peak": steady.peak,
+        "gain": finite_or_null(steady.gain),
+        "phase_lag": steady.phase_lag(),
+        "harmonics": amplitudes,
+        "harmonic_phases": phases,
+        "current_harmonics": current,
+        "subharmonic": spectrum.map(|s| s.subharmonic),
+        "mean": spectrum.map(|s| s.mean),
+        "periods_to_settle": steady.periods_to_settle,
+        "samples_per_period": spectrum.map(|s| s.samples_per_period),
+        "w": params.w,
+        "beta": params.beta,
+        "zeta": params.zeta,
+        "mu_s": params.mu_s,
+    })
+}
+
+fn finite_or_null(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn print_text(steady: &SteadyState, params: &Params) {
+    let period = steady
+        .period
+        .map(|p| p.to_string())
+        .unwrap_or_else(|| "none found".into());
+    println!("class             {}", steady.class.label());
+    println!("period            {period} (drive periods)");
+    println!("stops per period  {}", steady.stops_per_period);
+    println!("symmetric         {}", steady.symmetric);
+    println!("peak |y|          {:.10}", steady.peak);
+    println!("gain              {:.10}", steady.gain);
+    match steady.phase_lag() {
+        Some(lag) => println!(
+            "phase lag         {:.10} rad ({:.4}°)",
+            lag,
+            lag.to_degrees()
+        ),
+        None => println!("phase lag         none (no fundamental)"),
+    }
+    println!("periods to settle {}", steady.periods_to_settle);
+    if let Some(s) = &steady.spectrum {
+        println!(
+            "harmonics of y (N = {} samples per period, mean {:.3e}, subharmonic {:.3e}):",
+            s.samples_per_period, s.mean, s.subharmonic
+        );
+        println!("  k  amplitude A_k          phase θ_k (rad)   current k·w·A_k");
+        for (h, d) in s.harmonics.iter().zip(s.derivative(params.w)) {
+            println!(
+                "{:3}  {:<22.15e} {:>+.10}   {:.6e}",
+                h.order, h.amplitude, h.phase, d.amplitude
+            );
+        }
+    }
+}
+
+fn plot(steady: &SteadyState, params: &Params, path: &std::path::Path) -> Result<()> {
+    let t0 = steady.start;
+    let period = params.drive_period();
+    let trace: Vec<(f64, f64)> = steady
+        .trace
+        .iter()
+        .map(|s| ((s.tau - t0) / period, s.y))
+        .collect();
+    let drive: Vec<(f64, f64)> = steady
+        .trace
+        .iter()
+        .map(|s| ((s.tau - t0) / period, params.drive(s.tau)))
+        .collect();
+    let stops: Vec<(f64, f64)> = steady
+        .events
+        .iter()
+        .filter(|e| e.kind == stickslip::EventKind::Stick)
+        .map(|e| ((e.tau - t0) / period, e.y))
+        .collect();
+    let title = format!(
+        "{}: w = {:.3}, β = {:.3}, ζ = {:.4}",
+        steady.class.label(),
+        params.w,
+        params.beta,
+        params.zeta
+    );
+    let time = Panel {
+        title,
+        x_label: "drive periods".into(),
+        y_label: "y, drive".into(),
+        series: vec![
+            Series::new("drive", drive, PALETTE[1], Style::Line(2)),
+            Series::new("y", trace, PALETTE[0], Style::Line(2)),
+            Series::new("stops", stops, PALETTE[6], Style::Markers(4)),
+        ],
+        legend: Some(Legend::UpperRight),
+        ..Default::default()
+    };
+    let xy = Panel {
+        title: "X-Y: y against the drive".into(),
+        x_label: "drive β cos(wτ + φ)".into(),
+        y_label: "y".into(),
+        series: vec![Series::new(
+            "",
+            steady.xy(params),
+            PALETTE[0],
+            Style::Line(2),
+        )],
+        ..Default::default()
+    };
+    let bars: Vec<(f64, f64)> = steady
+        .spectrum
+        .iter()
+        .flat_map(|s| s.harmonics.iter().map(|h| (h.order as f64, h.amplitude)))
+        .collect();
+    let spectrum = Panel {
+        title: "harmonics of y".into(),
+        x_label: "k (multiple of the drive frequency)".into(),
+        y_label: "A_k".into(),
+        series: vec![Series::new("", bars, PALETTE[2], Style::Bars(0.6))],
+        ..Default::default()
+    };
+    Figure {
+        panels: vec![time, xy, spectrum],
+        columns: 3,
+        panel_size: (560, 440),
+    }
+    .render(path)
 }

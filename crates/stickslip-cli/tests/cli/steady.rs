@@ -1,1 +1,133 @@
 //! Tests of `stickslip steady`.
+
+use crate::common::*;
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let mut full = vec!["steady", "--json"];
+    full.extend_from_slice(args);
+    let (_dir, out) = run(&full);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("valid JSON")
+}
+
+#[test]
+fn json_report_has_every_key_of_the_issue() {
+    let v = json(&["--preset", "paper", "--w", "0.9", "--beta", "1.6"]);
+    for key in [
+        "class",
+        "period",
+        "stops_per_cycle",
+        "symmetric",
+        "peak",
+        "gain",
+        "phase_lag",
+        "harmonics",
+        "periods_to_settle",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}: {v}");
+    }
+    assert_eq!(v["class"], "sliding");
+    assert_eq!(v["period"], 1);
+    assert_eq!(v["stops_per_cycle"], 0.0);
+    assert_eq!(v["symmetric"], true);
+    let harmonics = v["harmonics"].as_array().unwrap();
+    assert!(harmonics.len() >= 9);
+    let a1 = harmonics[0].as_f64().unwrap();
+    let a2 = harmonics[1].as_f64().unwrap();
+    let a3 = harmonics[2].as_f64().unwrap();
+    assert!(a1 > 3.0 && a3 > 0.01 && a2 < 1e-8, "{a1} {a2} {a3}");
+    let peak = v["peak"].as_f64().unwrap();
+    let gain = v["gain"].as_f64().unwrap();
+    assert!((gain - peak / 1.6).abs() < 1e-9);
+    let lag = v["phase_lag"].as_f64().unwrap();
+    assert!(lag > 0.0 && lag < std::f64::consts::PI);
+}
+
+#[test]
+fn classes_at_the_papers_points() {
+    for (w, beta, class, stops) in [
+        ("0.9", "1.6", "sliding", 0.0),
+        ("0.6", "1.2", "periodic-stick", 2.0),
+        ("0.7", "1.2", "periodic-stick", 2.0),
+        ("0.7", "1.0", "static", 0.0),
+        ("0.15", "2.0", "periodic-stick", 4.0),
+    ] {
+        let v = json(&["--w", w, "--beta", beta]);
+        assert_eq!(v["class"], class, "w {w} beta {beta}");
+        assert_eq!(v["stops_per_cycle"], stops, "w {w} beta {beta}");
+    }
+    let v = json(&["--w", "0.7", "--beta", "1.0"]);
+    assert_eq!(v["phase_lag"], serde_json::Value::Null);
+    assert_eq!(v["gain"], 0.0);
+}
+
+#[test]
+fn a_cap_too_short_reports_no_period() {
+    let v = json(&["--w", "0.7", "--beta", "1.2", "--max-periods", "5"]);
+    assert_eq!(v["class"], "nonperiodic-stick");
+    assert_eq!(v["period"], serde_json::Value::Null);
+    assert_eq!(v["periods_to_settle"], 5);
+}
+
+#[test]
+fn text_report_xy_data_and_plot() {
+    let (dir, out) = run(&[
+        "steady", "--w", "0.6", "--beta", "1.2", "--xy", "xy.csv", "--plot", "s.svg",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("periodic-stick") && text.contains("phase lag"),
+        "{text}"
+    );
+    let xy = std::fs::read_to_string(dir.path().join("xy.csv")).unwrap();
+    let mut lines = xy.lines();
+    assert_eq!(lines.next(), Some("tau,drive,y,v"));
+    assert!(lines.count() >= 512);
+    let svg = std::fs::read_to_string(dir.path().join("s.svg")).unwrap();
+    assert!(svg.starts_with("<svg"));
+}
+
+#[test]
+fn bad_input_gives_one_line_and_exit_code_2() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--w", "1", "--beta", "2", "--tolerance", "0"],
+            "--tolerance",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--tolerance", "nan"],
+            "--tolerance",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-periods", "0"],
+            "--max-periods",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-periods", "-4"],
+            "--max-periods",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--max-period", "65"],
+            "--max-period",
+        ),
+        (
+            &["--w", "1", "--beta", "2", "--harmonics", "3"],
+            "--harmonics",
+        ),
+        (&["--w", "0", "--beta", "2"], "w"),
+        (&["--w", "1"], "--beta"),
+        (&["--w", "1", "--beta", "2", "--plot", "p.gif"], "p.gif"),
+        (
+            &["--w", "1", "--beta", "2", "--xy", "no/such/xy.csv"],
+            "no/such",
+        ),
+    ];
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = vec!["steady"];
+        full.extend_from_slice(args);
+        let out = run_in(dir.path(), &full);
+        assert_usage_error(dir.path(), &out, needle);
+    }
+}

@@ -1,1 +1,124 @@
 //! Tests of `stickslip sweep`.
+
+use crate::common::*;
+
+#[test]
+fn csv_columns_and_both_legs() {
+    let (dir, out) = run(&[
+        "sweep", "--over", "w", "--beta", "1.6", "--from", "0.8", "--to", "1.0", "--steps", "3",
+        "--out", "s.csv", "--plot", "s.png",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("s.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+    );
+    assert_eq!(lines.len(), 7);
+    assert!(lines[1].starts_with("0.8,1.6,up,"));
+    assert!(lines[3].starts_with("1,1.6,up,"));
+    assert!(lines[4].starts_with("1,1.6,down,"));
+    assert!(lines[6].starts_with("0.8,1.6,down,"));
+    let png = std::fs::read(dir.path().join("s.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+/// With μs = 1.5 the oscillator stays at rest when β rises from rest to 1.4 but keeps moving
+/// when β falls from 2 to 1.4: two coexisting motions, two branches.
+#[test]
+fn hysteresis_shows_two_branches() {
+    let (_dir, out) = run(&[
+        "sweep",
+        "--over",
+        "beta",
+        "--w",
+        "0.9",
+        "--mu-s",
+        "1.5",
+        "--from",
+        "1.0",
+        "--to",
+        "2.0",
+        "--steps",
+        "11",
+        "--direction",
+        "both",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let row = |leg: &str| -> Vec<String> {
+        text.lines()
+            .find(|l| l.starts_with(&format!("0.9,1.4,{leg},")))
+            .unwrap_or_else(|| panic!("no {leg} row at 1.4 in {text}"))
+            .split(',')
+            .map(String::from)
+            .collect()
+    };
+    let (up, down) = (row("up"), row("down"));
+    assert_eq!(up[6], "static");
+    assert_ne!(down[6], "static");
+    let gain: f64 = down[3].parse().unwrap();
+    assert!(gain > 1.0, "{gain}");
+    assert!(stderr(&out).contains("differ"), "{}", stderr(&out));
+}
+
+#[test]
+fn bad_ranges_give_one_line_and_exit_code_2() {
+    let base = ["sweep", "--over", "w", "--beta", "2"];
+    let cases: &[(&[&str], &str)] = &[
+        (&["--from", "2", "--to", "1", "--steps", "5"], "--from"),
+        (&["--from", "1", "--to", "2", "--steps", "0"], "--steps"),
+        (&["--from", "1", "--to", "2", "--steps", "-1"], "--steps"),
+        (&["--from", "1", "--to", "2", "--steps", "1"], "--steps"),
+        (&["--from", "nan", "--to", "2", "--steps", "5"], "--from"),
+        (&["--from", "1", "--to", "inf", "--steps", "5"], "--to"),
+        (&["--from", "0", "--to", "2", "--steps", "5"], "w"),
+        (&["--from", "1", "--to", "2"], "required"),
+        (
+            &["--from", "1", "--to", "2", "--steps", "3", "--w", "1"],
+            "--w",
+        ),
+        (
+            &[
+                "--from",
+                "1",
+                "--to",
+                "2",
+                "--steps",
+                "3",
+                "--direction",
+                "sideways",
+            ],
+            "--direction",
+        ),
+        (
+            &[
+                "--from",
+                "1",
+                "--to",
+                "2",
+                "--steps",
+                "3",
+                "--out",
+                "nope/s.csv",
+            ],
+            "nope",
+        ),
+    ];
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = base.to_vec();
+        full.extend_from_slice(args);
+        let out = run_in(dir.path(), &full);
+        assert_usage_error(dir.path(), &out, needle);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "sweep", "--over", "beta", "--from", "1", "--to", "2", "--steps", "3",
+        ],
+    );
+    assert_usage_error(dir.path(), &out, "--w");
+}

@@ -1,1 +1,72 @@
 //! Steady-state analysis: convergence to a cycle, spectra, motion classes, sweeps and maps.
+//!
+//! Everything here is written against the [`Solver`] trait, so it works with the exact
+//! piecewise-linear solver and with any other solver of the same model.
+//!
+//! - [`steady_state`] runs a solver until its stroboscopic map (the state once per drive
+//!   period, at τ = kT, T = 2π/w) repeats with a period p ≤ [`SteadyOptions::max_period`], then
+//!   records p whole periods: the exact event log, the extremes of y, and (optionally) samples
+//!   of the dense output for the [`Spectrum`].
+//! - [`MotionClass`]: sliding, periodic stick, non-periodic stick or static (the paper's
+//!   Fig. 6), decided from the event log of the recorded cycle ([`classify`]).
+//! - [`Spectrum`]: amplitudes and phases of the drive harmonics of y by a real FFT over whole
+//!   periods (no window, no leakage).
+//! - [`sweep()`]: w or β swept up and/or down, each step starting from the final state of the
+//!   one before (hysteresis, coexisting motions).
+//! - [`phase_diagram()`]: a (w, β) grid classified in parallel, each point from its own
+//!   initial state.
+//!
+//! Solvers are made by a [`SolverFactory`] (any `Fn(Params, State) -> Result<Box<dyn Solver +
+//! Send>>` that is `Sync`); [`exact_solver`] is the factory of the exact solver.
+
+mod classify;
+mod cycle;
+mod phase_diagram;
+mod range;
+mod spectrum;
+mod sweep;
+
+pub use classify::{classify, Classification, MotionClass};
+pub use cycle::{steady_state, steady_state_from, SteadyOptions, SteadyState};
+pub use phase_diagram::{phase_diagram, PhaseDiagramPoint};
+pub use range::ParameterRange;
+pub use spectrum::{Harmonic, Spectrum};
+pub use sweep::{sweep, SweepDirection, SweepLeg, SweepParameter, SweepPoint};
+
+use crate::error::Result;
+use crate::exact::ExactSolver;
+use crate::params::{Params, State};
+use crate::solver::Solver;
+
+/// Something that builds a solver for given parameters and initial state at τ = 0.
+///
+/// Implemented for every `Fn(Params, State) -> Result<Box<dyn Solver + Send>> + Sync`, so a
+/// closure or [`exact_solver`] can be passed wherever a factory is asked for. Sweeps and phase
+/// diagrams need a factory rather than a solver because every step or grid point starts a new
+/// solver (possibly on another thread).
+pub trait SolverFactory: Sync {
+    /// A solver for `params` starting from `initial` at τ = 0.
+    ///
+    /// # Errors
+    /// Whatever building the solver can report (invalid parameters).
+    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>>;
+}
+
+impl<F> SolverFactory for F
+where
+    F: Fn(Params, State) -> Result<Box<dyn Solver + Send>> + Sync,
+{
+    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        self(params, initial)
+    }
+}
+
+/// The factory of the exact solver: validates `params` and starts an [`ExactSolver`].
+///
+/// # Errors
+/// [`crate::Error::InvalidParameter`] when `params` or `initial` is invalid.
+pub fn exact_solver(params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+    let params = params.validate()?;
+    let initial = State::new(initial.y, initial.v)?;
+    Ok(Box::new(ExactSolver::new(params, initial)))
+}

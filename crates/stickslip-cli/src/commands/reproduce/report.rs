@@ -1,0 +1,219 @@
+//! The report directory: figures (PNG + SVG), data (CSV), `index.html` and `summary.json`.
+//!
+//! Everything is written first into a private staging directory next to the target and moved
+//! into place file by file at the end, so an interrupted run leaves no half-written file and
+//! files in the target that are not part of the report are left alone.
+
+use crate::output::check_interrupt;
+use crate::plot::Figure;
+use anyhow::{Context, Result};
+use serde_json::{Map, Value};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// One section of the report: a figure or a table of the paper, with its caption.
+#[derive(Debug, Default)]
+pub struct Section {
+    /// Anchor and file stem, e.g. `fig3`.
+    pub id: String,
+    /// Heading, e.g. "Fig. 3 — traces, spectra and X-Y loops".
+    pub title: String,
+    /// Caption (HTML allowed: it is our own text).
+    pub caption: String,
+    /// Figure files (stems; each written as `.png` and `.svg`).
+    pub figures: Vec<String>,
+    /// Data files (CSV) behind the section.
+    pub data: Vec<String>,
+    /// Tables shown in the page: (header, rows).
+    pub tables: Vec<(Vec<String>, Vec<Vec<String>>)>,
+}
+
+/// A report being written.
+pub struct Report {
+    target: PathBuf,
+    staging: PathBuf,
+    files: Vec<String>,
+    /// The sections, in order.
+    pub sections: Vec<Section>,
+    /// Key numbers for `summary.json`.
+    pub summary: Map<String, Value>,
+}
+
+impl Report {
+    /// Start a report that will end up in `target` (created if missing).
+    pub fn create(target: &Path) -> Result<Self> {
+        let parent = target
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if !parent.is_dir() {
+            crate::output::usage!(
+                "cannot write the report to {}: directory {} does not exist",
+                target.display(),
+                parent.display()
+            );
+        }
+        if target.exists() && !target.is_dir() {
+            crate::output::usage!("--out {} exists and is not a directory", target.display());
+        }
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "report".into());
+        let staging = parent.join(format!(".partial-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&staging)
+            .with_context(|| format!("cannot create {}", staging.display()))?;
+        Ok(Self {
+            target: target.to_path_buf(),
+            staging,
+            files: Vec::new(),
+            sections: Vec::new(),
+            summary: Map::new(),
+        })
+    }
+
+    /// Write a figure as `stem.png` and `stem.svg`.
+    pub fn figure(&mut self, stem: &str, figure: &Figure) -> Result<()> {
+        check_interrupt()?;
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}.{ext}");
+            figure.render(&self.staging.join(&name))?;
+            self.files.push(name);
+        }
+        Ok(())
+    }
+
+    /// Write a CSV file from a header and rows of already formatted cells.
+    pub fn csv(&mut self, name: &str, header: &[&str], rows: &[Vec<String>]) -> Result<()> {
+        check_interrupt()?;
+        let mut w = csv::Writer::from_path(self.staging.join(name))
+            .with_context(|| format!("cannot write {name}"))?;
+        w.write_record(header)?;
+        for r in rows {
+            w.write_record(r)?;
+        }
+        w.flush()?;
+        self.files.push(name.to_string());
+        Ok(())
+    }
+
+    /// Write `index.html` and `summary.json`, then move every file into the target directory.
+    pub fn finish(mut self) -> Result<PathBuf> {
+        check_interrupt()?;
+        let html = self.html();
+        std::fs::write(self.staging.join("index.html"), html)?;
+        self.files.push("index.html".into());
+        let summary = serde_json::to_string_pretty(&Value::Object(self.summary.clone()))?;
+        std::fs::write(self.staging.join("summary.json"), summary + "\n")?;
+        self.files.push("summary.json".into());
+        check_interrupt()?;
+        std::fs::create_dir_all(&self.target)
+            .with_context(|| format!("cannot create {}", self.target.display()))?;
+        for f in &self.files {
+            std::fs::rename(self.staging.join(f), self.target.join(f))
+                .with_context(|| format!("cannot move {f} into {}", self.target.display()))?;
+        }
+        let _ = std::fs::remove_dir_all(&self.staging);
+        Ok(self.target.clone())
+    }
+
+    fn html(&self) -> String {
+        let mut h = String::new();
+        h.push_str(
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+             <title>stickslip: the paper's figures, reproduced</title>\n<style>\n\
+             body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}\n\
+             img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}\n\
+             table{border-collapse:collapse;margin:0.8em 0}td,th{border:1px solid #ccc;padding:0.25em 0.6em;text-align:right}\n\
+             th{background:#f4f4f4}td:first-child,th:first-child{text-align:left}\n\
+             .caption{color:#333}.files{font-size:0.85em;color:#666}nav a{margin-right:1em}\n\
+             </style>\n</head>\n<body>\n",
+        );
+        h.push_str("<h1>The paper's figures, reproduced by stickslip</h1>\n");
+        h.push_str(
+            "<p>Xu, Fan, Wang and Jiang, <i>Nonlinear effect of forced harmonic oscillator subject \
+             to sliding friction and simulation by a simple nonlinear circuit</i>. Every figure \
+             below was computed by <code>stickslip reproduce</code> from the paper's circuit \
+             (L = 11.5 mH, C = 0.02 µF, R = 68 Ω, diodes U<sub>t</sub> = 0.7 V, R<sub>D</sub> = \
+             3.0 Ω). Simulated values come from the exact event-driven solver (PWL diodes) or \
+             the stiff solver (Shockley diodes); where they differ from the paper's series \
+             formula, the caption says so.</p>\n<nav>",
+        );
+        for s in &self.sections {
+            let _ = write!(h, "<a href=\"#{}\">{}</a>", s.id, s.id);
+        }
+        h.push_str("</nav>\n");
+        for s in &self.sections {
+            let _ = write!(
+                h,
+                "<section id=\"{}\">\n<h2>{}</h2>\n",
+                s.id,
+                escape(&s.title)
+            );
+            for f in &s.figures {
+                let _ = writeln!(
+                    h,
+                    "<a href=\"{f}.svg\"><img src=\"{f}.png\" alt=\"{f}\"></a>"
+                );
+            }
+            for (header, rows) in &s.tables {
+                h.push_str("<table>\n<tr>");
+                for c in header {
+                    let _ = write!(h, "<th>{}</th>", escape(c));
+                }
+                h.push_str("</tr>\n");
+                for r in rows {
+                    h.push_str("<tr>");
+                    for c in r {
+                        let _ = write!(h, "<td>{}</td>", escape(c));
+                    }
+                    h.push_str("</tr>\n");
+                }
+                h.push_str("</table>\n");
+            }
+            let _ = writeln!(h, "<p class=\"caption\">{}</p>", s.caption);
+            if !s.data.is_empty() || !s.figures.is_empty() {
+                h.push_str("<p class=\"files\">Files: ");
+                let mut names: Vec<String> = Vec::new();
+                for f in &s.figures {
+                    names.push(format!("<a href=\"{f}.png\">{f}.png</a>"));
+                    names.push(format!("<a href=\"{f}.svg\">{f}.svg</a>"));
+                }
+                for d in &s.data {
+                    names.push(format!("<a href=\"{d}\">{d}</a>"));
+                }
+                h.push_str(&names.join(", "));
+                h.push_str("</p>\n");
+            }
+            h.push_str("</section>\n");
+        }
+        h.push_str("<p class=\"files\"><a href=\"summary.json\">summary.json</a> holds the key numbers.</p>\n</body>\n</html>\n");
+        h
+    }
+}
+
+impl Drop for Report {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.staging);
+    }
+}
+
+/// Escape text for HTML.
+pub fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// A number with `digits` significant digits for tables.
+pub fn sig(x: f64, digits: usize) -> String {
+    if !x.is_finite() {
+        return "—".into();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let mag = x.abs().log10().floor() as i32;
+    let decimals = (digits as i32 - 1 - mag).max(0) as usize;
+    format!("{x:.decimals$}")
+}

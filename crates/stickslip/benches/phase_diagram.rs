@@ -1,0 +1,92 @@
+//! The phase diagram the README quotes (400 × 400 points, the paper's ζ, w 0.1–2.5,
+//! β 0.5–4, each point from rest), and the cost of one point against its distance from the
+//! stick-slip boundary.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::time::Duration;
+use stickslip::steady::{
+    exact_solver, phase_diagram, steady_state_from, ParameterRange, SteadyOptions,
+};
+use stickslip::{Circuit, MotionClass, Params, State};
+
+fn zeta() -> f64 {
+    Circuit::paper().scales().zeta()
+}
+
+fn bench_grid(c: &mut Criterion) {
+    let mut group = c.benchmark_group("phase_diagram");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(60));
+    let base = Params::new(zeta(), 1.0, 1.0).expect("valid");
+    let options = SteadyOptions::default();
+    for n in [100usize, 400] {
+        let w = ParameterRange::new("w", 0.1, 2.5, n).expect("valid");
+        let beta = ParameterRange::new("beta", 0.5, 4.0, n).expect("valid");
+        group.bench_with_input(
+            BenchmarkId::new("paper_window", format!("{n}x{n}")),
+            &n,
+            |b, _| {
+                b.iter(|| {
+                    phase_diagram(
+                        &exact_solver,
+                        base,
+                        State::default(),
+                        &w,
+                        &beta,
+                        &options,
+                        &|| true,
+                    )
+                    .expect("runs")
+                })
+            },
+        );
+    }
+    group.finish();
+}
+
+fn class(w: f64, beta: f64) -> MotionClass {
+    let params = Params::new(zeta(), w, beta).expect("valid");
+    let options = SteadyOptions::default().with_spectrum(false);
+    steady_state_from(&exact_solver, &params, State::default(), &options)
+        .expect("runs")
+        .class
+}
+
+/// β on the stick-slip boundary at w, by bisection between a sticking and a sliding β.
+fn boundary(w: f64) -> f64 {
+    let (mut stick, mut slide) = (1.3, 4.0);
+    assert_eq!(class(w, slide), MotionClass::Sliding);
+    assert_eq!(class(w, stick), MotionClass::PeriodicStick);
+    for _ in 0..45 {
+        let mid = 0.5 * (stick + slide);
+        if class(w, mid) == MotionClass::Sliding {
+            slide = mid;
+        } else {
+            stick = mid;
+        }
+    }
+    0.5 * (stick + slide)
+}
+
+fn bench_near_boundary(c: &mut Criterion) {
+    let mut group = c.benchmark_group("point_near_boundary");
+    group.measurement_time(Duration::from_secs(2));
+    group.warm_up_time(Duration::from_millis(500));
+    let options = SteadyOptions::default().with_spectrum(false);
+    for w in [0.6, 1.5] {
+        let beta_c = boundary(w);
+        for offset in [-1e-1, -1e-3, -1e-6, 1e-6, 1e-3, 1e-1, 1.0] {
+            let params = Params::new(zeta(), w, beta_c + offset).expect("valid");
+            let id = BenchmarkId::new(format!("w{w}"), format!("{offset:+e}"));
+            group.bench_with_input(id, &params, |b, p| {
+                b.iter(|| {
+                    steady_state_from(&exact_solver, p, State::default(), &options).expect("runs")
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_near_boundary, bench_grid);
+criterion_main!(benches);

@@ -1,0 +1,191 @@
+//! Motion classes (the paper's Fig. 6), decided from the exact event log.
+//!
+//! A *stop* is a Stick event followed by a Slip event (or the end of the record); it counts
+//! only when it lasts longer than a tiny fraction of the drive period
+//! ([`super::SteadyOptions::min_stop_fraction`], 10⁻⁸ by default). A stop of exactly zero
+//! duration is a turning point at which the net force sits on the static-friction limit, and
+//! rounding can turn such a point into a Stick followed by a Slip a few ulps later; no
+//! genuine stop is that short, since a stop of duration Δτ needs the force to pass the limit
+//! by about β(wΔτ)²/2, i.e. ~10⁻¹⁵β for Δτ = 10⁻⁸·T.
+
+use crate::solver::{Event, EventKind};
+use serde::{Deserialize, Serialize};
+
+/// The four kinds of steady motion of the paper's Fig. 6.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MotionClass {
+    /// No stop in the recorded cycle: the velocity only reverses.
+    Sliding,
+    /// Periodic (period p ≤ the maximum period) with at least one stop of non-zero duration.
+    PeriodicStick,
+    /// No period found within the cap on drive periods, with stops.
+    NonperiodicStick,
+    /// Amplitude of y at most β/100 (for example never leaves rest).
+    Static,
+}
+
+impl MotionClass {
+    /// All classes, in the order used for legends and colours.
+    pub const ALL: [MotionClass; 4] = [
+        MotionClass::Sliding,
+        MotionClass::PeriodicStick,
+        MotionClass::NonperiodicStick,
+        MotionClass::Static,
+    ];
+
+    /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `nonperiodic-stick`,
+    /// `static`.
+    pub fn label(self) -> &'static str {
+        match self {
+            MotionClass::Sliding => "sliding",
+            MotionClass::PeriodicStick => "periodic-stick",
+            MotionClass::NonperiodicStick => "nonperiodic-stick",
+            MotionClass::Static => "static",
+        }
+    }
+
+    /// The class with this label.
+    pub fn from_label(label: &str) -> Option<Self> {
+        MotionClass::ALL.into_iter().find(|c| c.label() == label)
+    }
+}
+
+/// The class of a recorded stretch of motion and its stops.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Classification {
+    /// The motion class.
+    pub class: MotionClass,
+    /// Stops longer than the threshold in the record (a stop straddling the ends of a
+    /// periodic record counts once; being stuck for the whole record is not a stop).
+    pub stops: usize,
+    /// Stops per drive period.
+    pub stops_per_period: f64,
+    /// Longest stop in the record, dimensionless time (0 without stops; infinite when the
+    /// oscillator is stuck for the whole record).
+    pub longest_stop: f64,
+}
+
+/// Classify a record of `periods` drive periods from τ = `start` to τ = `end`.
+///
+/// - `events`: the events inside the record, in order;
+/// - `stuck_at_start`: whether the oscillator was stuck at `start`;
+/// - `periodic`: whether the record is one period of a converged cycle (then a stop running
+///   over the end continues at the start, and the two parts are one stop);
+/// - `amplitude`: (max y − min y)/2 over the record; `beta`: the drive amplitude;
+/// - `min_stop`: shortest duration that counts as a stop (dimensionless time).
+pub fn classify(
+    events: &[Event],
+    start: f64,
+    end: f64,
+    periods: usize,
+    stuck_at_start: bool,
+    periodic: bool,
+    amplitude: f64,
+    beta: f64,
+    min_stop: f64,
+) -> Classification {
+    let mut durations = Vec::new();
+    let mut stuck_since = stuck_at_start.then_some(start);
+    // Duration of a stop that began before the record, up to its first Slip.
+    let mut head: Option<f64> = None;
+    for e in events {
+        match e.kind {
+            EventKind::Stick => stuck_since = Some(e.tau),
+            EventKind::Slip => {
+                if let Some(s) = stuck_since.take() {
+                    if stuck_at_start && s == start && head.is_none() && durations.is_empty() {
+                        head = Some(e.tau - start);
+                    } else {
+                        durations.push(e.tau - s);
+                    }
+                }
+            }
+            EventKind::Turn => {}
+        }
+    }
+    let tail = stuck_since.map(|s| end - s);
+    match (head, tail) {
+        (Some(h), Some(t)) if periodic => durations.push(h + t),
+        (None, Some(_)) if stuck_at_start && events.is_empty() => durations.push(f64::INFINITY),
+        (h, t) => durations.extend(h.into_iter().chain(t)),
+    }
+    // A stop lasting the whole record is rest, not a stop of the motion.
+    let stops = durations
+        .iter()
+        .filter(|&&d| d > min_stop && d.is_finite())
+        .count();
+    let longest_stop = durations.iter().copied().fold(0.0, f64::max);
+    let class = if amplitude <= beta / 100.0 {
+        MotionClass::Static
+    } else if stops > 0 && periodic {
+        MotionClass::PeriodicStick
+    } else if stops > 0 {
+        MotionClass::NonperiodicStick
+    } else {
+        MotionClass::Sliding
+    };
+    Classification {
+        class,
+        stops,
+        stops_per_period: stops as f64 / periods.max(1) as f64,
+        longest_stop,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ev(tau: f64, kind: EventKind) -> Event {
+        Event { tau, y: 0.0, kind }
+    }
+
+    #[test]
+    fn labels_round_trip() {
+        for c in MotionClass::ALL {
+            assert_eq!(MotionClass::from_label(c.label()), Some(c));
+        }
+        assert_eq!(MotionClass::from_label("none"), None);
+    }
+
+    #[test]
+    fn zero_duration_stops_are_turns() {
+        let events = [
+            ev(1.0, EventKind::Stick),
+            ev(1.0, EventKind::Slip),
+            ev(3.0, EventKind::Turn),
+        ];
+        let c = classify(&events, 0.0, 4.0, 1, false, true, 2.0, 1.5, 1e-8);
+        assert_eq!(c.class, MotionClass::Sliding);
+        assert_eq!(c.stops, 0);
+    }
+
+    #[test]
+    fn a_stop_over_the_end_of_a_cycle_counts_once() {
+        // Stuck at the start until 0.5, slides, sticks again at 3.5 until the end (4.0).
+        let events = [ev(0.5, EventKind::Slip), ev(3.5, EventKind::Stick)];
+        let c = classify(&events, 0.0, 4.0, 1, true, true, 1.0, 1.2, 1e-8);
+        assert_eq!(c.class, MotionClass::PeriodicStick);
+        assert_eq!(c.stops, 1);
+        assert!((c.longest_stop - 1.0).abs() < 1e-15);
+        // Two stops per period over two periods.
+        let events = [
+            ev(1.0, EventKind::Stick),
+            ev(1.5, EventKind::Slip),
+            ev(3.0, EventKind::Stick),
+            ev(3.5, EventKind::Slip),
+        ];
+        let c = classify(&events, 0.0, 4.0, 2, false, false, 1.0, 1.2, 1e-8);
+        assert_eq!(c.class, MotionClass::NonperiodicStick);
+        assert_eq!(c.stops_per_period, 1.0);
+    }
+
+    #[test]
+    fn small_amplitude_is_static() {
+        let c = classify(&[], 0.0, 4.0, 1, true, true, 0.0, 0.9, 1e-8);
+        assert_eq!(c.class, MotionClass::Static);
+        assert_eq!(c.longest_stop, f64::INFINITY);
+        assert_eq!(c.stops, 0);
+    }
+}

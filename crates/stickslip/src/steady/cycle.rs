@@ -1,0 +1,722 @@
+//! Running to the steady state and recording one cycle.
+//!
+//! **Convergence.** The state is taken once per drive period at τ_k = kT (T = 2π/w), where
+//! the drive phase is φ again (the stroboscopic map). The motion has settled on a cycle of
+//! period p when |x_k − x_{k−p}| ≤ tol·scale (max norm over y and y') for p + 1 consecutive k,
+//! i.e. over a whole cycle and once more; p is the smallest such period up to
+//! [`SteadyOptions::max_period`], `scale` is the largest |y| or |y'| of the last strobes, at
+//! least 1 (the kinetic friction force). A period p > 1 also needs the strobes p/d apart to
+//! differ by more than √tol·scale for every divisor d: otherwise the motion is still
+//! converging, alternately, to a cycle of the shorter period. An oscillator stuck for a whole period without an
+//! event has x_k = x_{k−1} exactly, so "stuck for ever" (β + |y| ≤ μs) is found after two
+//! periods without a special case. Without a period within [`SteadyOptions::max_periods`]
+//! the motion is called non-periodic.
+//!
+//! **Recording.** Then p whole periods (or `max_period` periods for a non-periodic motion) are
+//! recorded: the exact event log, the states at every strobe and half-period, and optionally
+//! N samples per period of the dense output for the [`Spectrum`]. Extremes of y are exact:
+//! y has its extremes where y' = 0, that is at events, which the log holds with their exact y.
+//!
+//! **Symmetry.** The equation is unchanged by (y, y', τ) → (−y, −y', τ + T/2), so a cycle is
+//! symmetric when the state half a period after a strobe is minus the state at some strobe of
+//! the cycle. Symmetric motions have no even harmonics.
+//!
+//! **Samples for the spectrum.** Between events y is smooth but y'' jumps at every event (by 2
+//! at a turn), so the Fourier amplitudes of y fall off like J/(πk³) with J the sum of the jumps
+//! of d²y/dθ² (θ = wτ) over a period, and aliasing with N samples per period perturbs the low
+//! harmonics by about 0.8·J/N³. By default N is the smallest power of two (512 to 65536) that
+//! makes this 10⁻¹⁰·scale, with J bounded from the events of the cycle by (1 + μs)/w² per event.
+
+use super::classify::{classify, MotionClass};
+use super::spectrum::Spectrum;
+use super::SolverFactory;
+use crate::error::{Error, Result};
+use crate::params::{Params, State};
+use crate::solver::{run_until, sample_at, Event, EventKind, Phase, Sample, Solver};
+use serde::{Deserialize, Serialize};
+use std::collections::VecDeque;
+
+/// How [`steady_state`] decides convergence and what it records.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SteadyOptions {
+    /// Relative tolerance of the stroboscopic map's repetition. Default 1e-10.
+    pub tolerance: f64,
+    /// Cap on the drive periods run before calling the motion non-periodic. Default 5000.
+    pub max_periods: usize,
+    /// Longest period p (in drive periods) looked for. Default 16.
+    pub max_period: usize,
+    /// Shortest stop that counts, as a fraction of the drive period. Default 1e-8 (see
+    /// [`super::classify`]).
+    pub min_stop_fraction: f64,
+    /// Whether to sample the recorded cycle and compute its [`Spectrum`]. Default true.
+    pub spectrum: bool,
+    /// Samples per drive period for the spectrum, a power of two ≥ 16; `None` (the default)
+    /// chooses it from the event log (see the module documentation).
+    pub samples_per_period: Option<usize>,
+    /// Number of drive harmonics reported. Default 16.
+    pub harmonics: usize,
+    /// Whether [`steady_state_from`] (and so sweeps and phase diagrams) may extrapolate the
+    /// stroboscopic map to its fixed point and restart there when it converges linearly.
+    /// Default true. The cycle is always confirmed by the plain repetition test afterwards.
+    pub accelerate: bool,
+}
+
+impl Default for SteadyOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_periods: 5000,
+            max_period: 16,
+            min_stop_fraction: 1e-8,
+            spectrum: true,
+            samples_per_period: None,
+            harmonics: 16,
+            accelerate: true,
+        }
+    }
+}
+
+fn invalid(name: &'static str, value: f64, allowed: &'static str) -> Error {
+    Error::InvalidParameter {
+        name,
+        value,
+        allowed,
+    }
+}
+
+impl SteadyOptions {
+    /// Set the relative tolerance.
+    ///
+    /// # Errors
+    /// When it is not finite and > 0.
+    pub fn with_tolerance(mut self, tolerance: f64) -> Result<Self> {
+        self.tolerance = tolerance;
+        self.validate()
+    }
+
+    /// Set the cap on drive periods.
+    ///
+    /// # Errors
+    /// When it is 0.
+    pub fn with_max_periods(mut self, max_periods: usize) -> Result<Self> {
+        self.max_periods = max_periods;
+        self.validate()
+    }
+
+    /// Set the longest period looked for.
+    ///
+    /// # Errors
+    /// When it is 0 or above 64.
+    pub fn with_max_period(mut self, max_period: usize) -> Result<Self> {
+        self.max_period = max_period;
+        self.validate()
+    }
+
+    /// Set the shortest stop that counts (fraction of the drive period).
+    ///
+    /// # Errors
+    /// When it is not finite, negative, or 1 or more.
+    pub fn with_min_stop_fraction(mut self, fraction: f64) -> Result<Self> {
+        self.min_stop_fraction = fraction;
+        self.validate()
+    }
+
+    /// Allow extrapolation of the stroboscopic map or not.
+    pub fn with_accelerate(mut self, accelerate: bool) -> Self {
+        self.accelerate = accelerate;
+        self
+    }
+
+    /// Compute the spectrum or not.
+    pub fn with_spectrum(mut self, spectrum: bool) -> Self {
+        self.spectrum = spectrum;
+        self
+    }
+
+    /// Set the samples per period of the spectrum (`None`: automatic).
+    ///
+    /// # Errors
+    /// When it is not a power of two from 16 to 2²⁰.
+    pub fn with_samples_per_period(mut self, samples: Option<usize>) -> Result<Self> {
+        self.samples_per_period = samples;
+        self.validate()
+    }
+
+    /// Set the number of harmonics reported.
+    ///
+    /// # Errors
+    /// When it is 0.
+    pub fn with_harmonics(mut self, harmonics: usize) -> Result<Self> {
+        self.harmonics = harmonics;
+        self.validate()
+    }
+
+    /// Check every field.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the first bad field.
+    pub fn validate(self) -> Result<Self> {
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return Err(invalid(
+                "tolerance",
+                self.tolerance,
+                "must be finite and > 0",
+            ));
+        }
+        if self.max_periods == 0 {
+            return Err(invalid("max_periods", 0.0, "must be at least 1"));
+        }
+        if self.max_period == 0 || self.max_period > 64 {
+            return Err(invalid(
+                "max_period",
+                self.max_period as f64,
+                "must be from 1 to 64",
+            ));
+        }
+        if !(self.min_stop_fraction >= 0.0 && self.min_stop_fraction < 1.0) {
+            return Err(invalid(
+                "min_stop_fraction",
+                self.min_stop_fraction,
+                "must be >= 0 and < 1",
+            ));
+        }
+        if let Some(n) = self.samples_per_period {
+            if !(16..=1 << 20).contains(&n) || !n.is_power_of_two() {
+                return Err(invalid(
+                    "samples_per_period",
+                    n as f64,
+                    "must be a power of two from 16 to 1048576",
+                ));
+            }
+        }
+        if self.harmonics == 0 {
+            return Err(invalid("harmonics", 0.0, "must be at least 1"));
+        }
+        Ok(self)
+    }
+}
+
+/// The steady motion found by [`steady_state`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SteadyState {
+    /// Motion class, from the event log of the recorded cycle.
+    pub class: MotionClass,
+    /// Period p in drive periods, `None` when no period ≤ `max_period` was found.
+    pub period: Option<usize>,
+    /// Drive periods run before the cycle was recognised (the cap when it was not).
+    pub periods_to_settle: usize,
+    /// Drive periods recorded: p, or `max_period` for a non-periodic motion.
+    pub recorded_periods: usize,
+    /// Stops of non-zero duration in the recorded periods.
+    pub stops: usize,
+    /// Stops per drive period.
+    pub stops_per_period: f64,
+    /// Longest stop in the record (dimensionless time; infinite when never moving).
+    pub longest_stop: f64,
+    /// Whether the cycle is mapped onto itself by (y, y', τ) → (−y, −y', τ + T/2).
+    /// Always false for a non-periodic motion.
+    pub symmetric: bool,
+    /// Smallest y over the recorded periods.
+    pub y_min: f64,
+    /// Largest y over the recorded periods.
+    pub y_max: f64,
+    /// Largest |y| over the recorded periods.
+    pub peak: f64,
+    /// Gain (y_max − y_min)/(2β), the paper's G (0 when β = 0 and nothing moves).
+    pub gain: f64,
+    /// Time τ at which the record starts (a whole number of drive periods).
+    pub start: f64,
+    /// Events inside the record, in order.
+    pub events: Vec<Event>,
+    /// States at the strobes τ = start + jT, j = 0 … recorded periods (the last one is the
+    /// final state).
+    pub strobes: Vec<State>,
+    /// States half a period after each strobe, τ = start + (j + ½)T.
+    pub half_strobes: Vec<State>,
+    /// Spectrum of y over the record (when requested).
+    pub spectrum: Option<Spectrum>,
+    /// The samples of the dense output behind the spectrum (empty without it).
+    pub trace: Vec<Sample>,
+}
+
+impl SteadyState {
+    /// Half the peak-to-peak excursion, (y_max − y_min)/2.
+    pub fn amplitude(&self) -> f64 {
+        0.5 * (self.y_max - self.y_min)
+    }
+
+    /// State at the end of the record (a whole number of drive periods after τ = 0, so the
+    /// drive phase there is φ).
+    pub fn final_state(&self) -> State {
+        *self
+            .strobes
+            .last()
+            .expect("a record has at least its first strobe")
+    }
+
+    /// Lag of the fundamental behind the drive (radians, in (−π, π]), from the spectrum.
+    pub fn phase_lag(&self) -> Option<f64> {
+        self.spectrum.as_ref().and_then(Spectrum::phase_lag)
+    }
+
+    /// Amplitude of the k-th drive harmonic of y, from the spectrum.
+    pub fn harmonic(&self, k: usize) -> Option<f64> {
+        self.spectrum.as_ref().and_then(|s| s.amplitude(k))
+    }
+
+    /// The oscilloscope's X-Y picture: (drive, y) at every sample of the trace.
+    pub fn xy(&self, params: &Params) -> Vec<(f64, f64)> {
+        self.trace
+            .iter()
+            .map(|s| (params.drive(s.tau), s.y))
+            .collect()
+    }
+}
+
+/// Largest |component| difference of two states.
+fn distance(a: State, b: State) -> f64 {
+    (a.y - b.y).abs().max((a.v - b.v).abs())
+}
+
+/// Time of strobe k: kT computed in one rounding.
+fn strobe(k: u64, period: f64) -> f64 {
+    k as f64 * period
+}
+
+/// Samples per period for an aliasing error of the low harmonics below 1e-10·scale, from the
+/// number of events per period (see the module documentation).
+fn auto_samples(events_per_period: f64, params: &Params, harmonics: usize, scale: f64) -> usize {
+    let jumps = events_per_period.max(2.0) * (1.0 + params.mu_s) / (params.w * params.w);
+    let needed = harmonics as f64 + (0.8 * jumps / (1e-10 * scale)).cbrt();
+    (needed.ceil() as usize)
+        .next_power_of_two()
+        .clamp(512, 1 << 16)
+}
+
+/// How far the stroboscopic map got: the period found (if any), where the solver stands.
+struct Settled {
+    /// Period p, or None at the cap.
+    found: Option<usize>,
+    /// Drive periods simulated in all (over restarts).
+    periods_run: usize,
+    /// Index k of the strobe τ = kT at which the current solver stands.
+    strobe_index: u64,
+    /// Scale of the state for the tolerances.
+    scale: f64,
+    /// Events per period over the last cycle (for the automatic sample count).
+    events_per_period: f64,
+}
+
+/// Where to restart after an extrapolation of the stroboscopic map, if the last strobes
+/// (oldest first) show linear convergence to a fixed point (see [`SteadyOptions::accelerate`]).
+fn extrapolate(history: &VecDeque<State>, tolerance: f64, scale: f64) -> Option<State> {
+    let n = history.len();
+    if n < 5 {
+        return None;
+    }
+    let x: Vec<[f64; 2]> = history.iter().skip(n - 5).map(|s| [s.y, s.v]).collect();
+    let d: Vec<[f64; 2]> = (1..5)
+        .map(|i| [x[i][0] - x[i - 1][0], x[i][1] - x[i - 1][1]])
+        .collect();
+    let norm = |a: [f64; 2]| a[0].abs().max(a[1].abs());
+    let last = d[3];
+    // Nearly converged already: plain iteration finishes in a few periods.
+    if norm(last) <= 1e3 * tolerance * scale {
+        return None;
+    }
+    // Fit d_{i+1} = J d_i on (d0 → d1, d1 → d2); check it predicts d3 from d2.
+    let det0 = d[0][0] * d[1][1] - d[0][1] * d[1][0];
+    let step = if det0.abs() > 1e-6 * norm(d[0]) * norm(d[1]) {
+        // J = [d1 d2] [d0 d1]^{-1}
+        let inv = [
+            [d[1][1] / det0, -d[1][0] / det0],
+            [-d[0][1] / det0, d[0][0] / det0],
+        ];
+        let j = [
+            [
+                d[1][0] * inv[0][0] + d[2][0] * inv[1][0],
+                d[1][0] * inv[0][1] + d[2][0] * inv[1][1],
+            ],
+            [
+                d[1][1] * inv[0][0] + d[2][1] * inv[1][0],
+                d[1][1] * inv[0][1] + d[2][1] * inv[1][1],
+            ],
+        ];
+        let apply = |m: [[f64; 2]; 2], a: [f64; 2]| {
+            [
+                m[0][0] * a[0] + m[0][1] * a[1],
+                m[1][0] * a[0] + m[1][1] * a[1],
+            ]
+        };
+        let predicted = apply(j, d[2]);
+        if norm([predicted[0] - last[0], predicted[1] - last[1]]) > 0.02 * norm(last) {
+            return None;
+        }
+        // Both eigenvalues of J well inside the unit circle.
+        let (tr, det) = (j[0][0] + j[1][1], j[0][0] * j[1][1] - j[0][1] * j[1][0]);
+        let disc = tr * tr - 4.0 * det;
+        let radius = if disc >= 0.0 {
+            0.5 * (tr.abs() + disc.sqrt())
+        } else {
+            det.sqrt()
+        };
+        if !(radius < 0.98) {
+            return None;
+        }
+        // x* = x + (I − J)^{-1} J d3.
+        let jd = apply(j, last);
+        let (a, b, c, e) = (1.0 - j[0][0], -j[0][1], -j[1][0], 1.0 - j[1][1]);
+        let det_ij = a * e - b * c;
+        [
+            (e * jd[0] - b * jd[1]) / det_ij,
+            (a * jd[1] - c * jd[0]) / det_ij,
+        ]
+    } else {
+        // The differences are parallel (one real mode dominates): scalar ratio along them.
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let r = dot(d[2], d[1]) / dot(d[1], d[1]);
+        let predicted = [r * d[2][0], r * d[2][1]];
+        if !(r.abs() < 0.98)
+            || norm([predicted[0] - last[0], predicted[1] - last[1]]) > 0.02 * norm(last)
+        {
+            return None;
+        }
+        let f = r / (1.0 - r);
+        [f * last[0], f * last[1]]
+    };
+    // Only small corrections: far from the fixed point the linear model is not to be trusted.
+    if !(norm(step) <= 1e-2 * scale) {
+        return None;
+    }
+    Some(State {
+        y: x[4][0] + step[0],
+        v: x[4][1] + step[1],
+    })
+}
+
+/// A solver, and possibly the means to replace it by one started from another state.
+trait Holder {
+    /// The solver type.
+    type S: Solver + ?Sized;
+    /// The current solver.
+    fn solver(&mut self) -> &mut Self::S;
+    /// Replace the solver by one starting from `state` at τ = 0; false if not possible.
+    fn restart(&mut self, state: State) -> Result<bool>;
+}
+
+/// A solver that cannot be restarted.
+struct Plain<'a, S: Solver + ?Sized>(&'a mut S);
+
+impl<S: Solver + ?Sized> Holder for Plain<'_, S> {
+    type S = S;
+    fn solver(&mut self) -> &mut S {
+        self.0
+    }
+    fn restart(&mut self, _: State) -> Result<bool> {
+        Ok(false)
+    }
+}
+
+/// Solvers from a factory.
+struct FromFactory<'a, F: SolverFactory + ?Sized> {
+    factory: &'a F,
+    params: Params,
+    solver: Box<dyn Solver + Send>,
+}
+
+impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
+    type S = dyn Solver + Send + 'static;
+    fn solver(&mut self) -> &mut (dyn Solver + Send + 'static) {
+        self.solver.as_mut()
+    }
+    fn restart(&mut self, state: State) -> Result<bool> {
+        self.solver = self.factory.make(self.params, state)?;
+        Ok(true)
+    }
+}
+
+/// Iterate the stroboscopic map until it repeats (see the module documentation). With
+/// `accelerate`, extrapolate when the convergence is linear and restart the solver there.
+fn run_to_cycle<H: Holder>(
+    holder: &mut H,
+    params: &Params,
+    options: &SteadyOptions,
+    accelerate: bool,
+) -> Result<Settled> {
+    let period = params.drive_period();
+    let max_period = options.max_period;
+
+    // First strobe at or after the solver's time.
+    let now = holder.solver().time();
+    let mut base = (now / period).ceil().max(0.0) as u64;
+    if strobe(base, period) < now {
+        base += 1;
+    }
+    run_until(holder.solver(), strobe(base, period), |_| {})?;
+
+    let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
+    history.push_back(holder.solver().state());
+    // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
+    let mut passes = vec![0usize; max_period + 1];
+    // Events of the last `max_period` periods, with the index of the period they fell in.
+    let mut recent: VecDeque<(usize, EventKind)> = VecDeque::new();
+    let mut found = None;
+    let mut scale = 1.0f64;
+    let mut local = 0usize;
+    let mut restarts = 0usize;
+    let mut periods_run = 0;
+    while periods_run < options.max_periods {
+        periods_run += 1;
+        local += 1;
+        run_until(holder.solver(), strobe(base + local as u64, period), |e| {
+            recent.push_back((local, e.kind))
+        })?;
+        while recent
+            .front()
+            .is_some_and(|(m, _)| *m + max_period <= local)
+        {
+            recent.pop_front();
+        }
+        let x = holder.solver().state();
+        scale = history
+            .iter()
+            .fold(1.0f64, |s, h| s.max(h.y.abs()).max(h.v.abs()))
+            .max(x.y.abs())
+            .max(x.v.abs());
+        let limit = options.tolerance * scale;
+        // A cycle of p > 1 periods must not be close to one of a divisor of p: a slow
+        // alternating transient towards a 1-cycle (eigenvalue near −1) repeats after two
+        // periods long before it repeats after one.
+        let distinct = options.tolerance.sqrt() * scale;
+        let lags = history.len().min(max_period);
+        let gaps: Vec<f64> = (1..=lags)
+            .map(|lag| distance(x, history[history.len() - lag]))
+            .collect();
+        for lag in 1..=lags {
+            let repeats = gaps[lag - 1] <= limit
+                && (1..lag)
+                    .filter(|d| lag % d == 0)
+                    .all(|d| gaps[d - 1] > distinct);
+            passes[lag] = if repeats { passes[lag] + 1 } else { 0 };
+        }
+        history.push_back(x);
+        if history.len() > max_period.max(5) {
+            history.pop_front();
+        }
+        if let Some(p) = (1..=max_period).find(|&p| passes[p] > p) {
+            found = Some(p);
+            break;
+        }
+        if accelerate && restarts < MAX_RESTARTS {
+            if let Some(target) = extrapolate(&history, options.tolerance, scale) {
+                if holder.restart(target)? {
+                    restarts += 1;
+                    base = 0;
+                    local = 0;
+                    history.clear();
+                    history.push_back(holder.solver().state());
+                    passes.iter_mut().for_each(|p| *p = 0);
+                    recent.clear();
+                }
+            }
+        }
+    }
+    let cycle = found.unwrap_or(max_period);
+    let events = recent.iter().filter(|(m, _)| *m + cycle > local).count();
+    Ok(Settled {
+        found,
+        periods_run,
+        strobe_index: base + local as u64,
+        scale,
+        events_per_period: events as f64 / cycle as f64,
+    })
+}
+
+/// Most extrapolations of the stroboscopic map in one run.
+const MAX_RESTARTS: usize = 6;
+
+/// Run `solver` to its steady state and record one cycle.
+///
+/// `params` must be the parameters the solver was built with (the drive frequency and phase
+/// define the strobes; β the static threshold). The solver may start at any time; strobes are
+/// at whole multiples of the drive period. Afterwards the solver stands at the end of the
+/// record. This form never extrapolates ([`SteadyOptions::accelerate`] needs
+/// [`steady_state_from`], which can start new solvers).
+///
+/// ```
+/// use stickslip::steady::{steady_state, MotionClass, SteadyOptions};
+/// use stickslip::{ExactSolver, Params, State};
+/// let params = Params::new(0.0468, 0.9, 1.6).unwrap();
+/// let mut solver = ExactSolver::new(params, State::default());
+/// let steady = steady_state(&mut solver, &params, &SteadyOptions::default()).unwrap();
+/// assert_eq!(steady.class, MotionClass::Sliding);
+/// assert_eq!(steady.period, Some(1));
+/// assert!(steady.symmetric);
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid options; whatever the solver reports.
+pub fn steady_state<S: Solver + ?Sized>(
+    solver: &mut S,
+    params: &Params,
+    options: &SteadyOptions,
+) -> Result<SteadyState> {
+    let options = options.validate()?;
+    let mut holder = Plain(solver);
+    let settled = run_to_cycle(&mut holder, params, &options, false)?;
+    record(holder.0, params, &options, &settled)
+}
+
+/// The steady state reached from `initial` (at τ = 0) by solvers from `factory`.
+///
+/// With [`SteadyOptions::accelerate`] (the default), once the stroboscopic map converges
+/// linearly to a fixed point, the fixed point is extrapolated from the last strobes and a new
+/// solver is started there; the cycle is then recognised by the same test as without
+/// extrapolation, on the new solver's strobes, so the result satisfies the same tolerance.
+/// `periods_to_settle` counts every period simulated.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid options or parameters; whatever the solvers
+/// report.
+pub fn steady_state_from<F: SolverFactory + ?Sized>(
+    factory: &F,
+    params: &Params,
+    initial: State,
+    options: &SteadyOptions,
+) -> Result<SteadyState> {
+    let options = options.validate()?;
+    let mut holder = FromFactory {
+        factory,
+        params: *params,
+        solver: factory.make(*params, initial)?,
+    };
+    let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
+    record(holder.solver.as_mut(), params, &options, &settled)
+}
+
+/// Record one cycle (or `max_period` periods) from the strobe the solver stands at.
+fn record<S: Solver + ?Sized>(
+    solver: &mut S,
+    params: &Params,
+    options: &SteadyOptions,
+    settled: &Settled,
+) -> Result<SteadyState> {
+    let period = params.drive_period();
+    let found = settled.found;
+    let scale = settled.scale;
+    let start_index = settled.strobe_index;
+    let recorded = found.unwrap_or(options.max_period);
+    let start = strobe(start_index, period);
+    let stuck_at_start = solver.phase() == Phase::Stick;
+
+    let mut events = Vec::new();
+    let mut strobes = vec![solver.state()];
+    let mut half_strobes = Vec::with_capacity(recorded);
+    let mut trace = Vec::new();
+    let mut spectrum = None;
+    if options.spectrum {
+        let n = options.samples_per_period.unwrap_or_else(|| {
+            auto_samples(settled.events_per_period, params, options.harmonics, scale)
+        });
+        let base = start_index * n as u64;
+        let times: Vec<f64> = (0..(recorded * n) as u64)
+            .map(|j| (base + j) as f64 / n as f64 * period)
+            .collect();
+        trace = sample_at(solver, &times, |e| events.push(*e))?;
+        run_until(solver, strobe(start_index + recorded as u64, period), |e| {
+            events.push(*e)
+        })?;
+        for j in 0..recorded {
+            let at = |i: usize| State {
+                y: trace[i].y,
+                v: trace[i].v,
+            };
+            if j > 0 {
+                strobes.push(at(j * n));
+            }
+            half_strobes.push(at(j * n + n / 2));
+        }
+        strobes.push(solver.state());
+        let y: Vec<f64> = trace.iter().map(|s| s.y).collect();
+        spectrum = Some(Spectrum::from_samples(
+            &y,
+            recorded,
+            options.harmonics,
+            params.phi,
+        )?);
+    } else {
+        for j in 0..recorded as u64 {
+            let half = (2 * (start_index + j) + 1) as f64 / 2.0 * period;
+            run_until(solver, half, |e| events.push(*e))?;
+            half_strobes.push(solver.state());
+            run_until(solver, strobe(start_index + j + 1, period), |e| {
+                events.push(*e)
+            })?;
+            strobes.push(solver.state());
+        }
+    }
+
+    let mut y_min = f64::INFINITY;
+    let mut y_max = f64::NEG_INFINITY;
+    let ys = events
+        .iter()
+        .map(|e| e.y)
+        .chain(strobes.iter().chain(&half_strobes).map(|s| s.y))
+        .chain(trace.iter().map(|s| s.y));
+    for y in ys {
+        y_min = y_min.min(y);
+        y_max = y_max.max(y);
+    }
+    let amplitude = 0.5 * (y_max - y_min);
+    let gain = if params.beta > 0.0 {
+        amplitude / params.beta
+    } else if amplitude == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    };
+
+    let symmetric = found.is_some() && {
+        let limit = 1e3 * options.tolerance * scale;
+        (0..recorded).any(|shift| {
+            (0..recorded).all(|j| {
+                let h = half_strobes[j];
+                let s = strobes[(j + shift) % recorded];
+                (h.y + s.y).abs().max((h.v + s.v).abs()) <= limit
+            })
+        })
+    };
+
+    let end = strobe(start_index + recorded as u64, period);
+    let c = classify(
+        &events,
+        start,
+        end,
+        recorded,
+        stuck_at_start,
+        found.is_some(),
+        amplitude,
+        params.beta,
+        options.min_stop_fraction * period,
+    );
+    Ok(SteadyState {
+        class: c.class,
+        period: found,
+        periods_to_settle: settled.periods_run,
+        recorded_periods: recorded,
+        stops: c.stops,
+        stops_per_period: c.stops_per_period,
+        longest_stop: c.longest_stop,
+        symmetric,
+        y_min,
+        y_max,
+        peak: y_max.abs().max(y_min.abs()),
+        gain,
+        start,
+        events,
+        strobes,
+        half_strobes,
+        spectrum,
+        trace,
+    })
+}
