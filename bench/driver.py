@@ -221,11 +221,17 @@ def coarse(cls):
 
 
 def workload_b(n, periods, subsets, tail):
-    """The n x n phase diagram (w 0.1-2.5, beta 0.5-4) in stickslip, and each peer on a
-    regular sub-grid (`subsets`: label, script, options, every, offset, periods), with
-    stickslip timed on exactly the same sub-grid and periods (one thread) for a measured
-    like-for-like ratio, and the peer's full-grid time extrapolated (labelled as such)."""
-    log(f"(b) {n} x {n} phase diagram, {periods} periods per point")
+    """The n x n phase diagram (w 0.1-2.5, beta 0.5-4), every point from rest.
+
+    stickslip: the library's steady::phase_diagram (each point until its stroboscopic map
+    repeats), and a fixed `periods` per point for comparison. Peers: a regular sub-grid each
+    (`subsets`: label, script, options, every, offset, periods, scales), with stickslip timed
+    on exactly the same sub-grid and periods (fixed mode, one thread) for a measured ratio.
+    The peers' full-grid times are extrapolated, and labelled so: every grid point takes the
+    cost per period measured at the nearest sub-grid point, times the periods stickslip ran
+    there (steady) or `periods` (fixed); a peer that fails in its first periods whatever the
+    count (`scales` False) takes its time per point instead."""
+    log(f"(b) {n} x {n} phase diagram")
     wv, bv = grid_values(0.1, 2.5, n), grid_values(0.5, 4.0, n)
 
     def grid_args(idx):
@@ -234,38 +240,57 @@ def workload_b(n, periods, subsets, tail):
                 "--beta-steps", len(idx)]
 
     everything = list(range(n))
-    once = ["--min-repeats", 1, "--min-seconds", 0]
-    full = runner(["phase-diagram"] + grid_args(everything) +
-                  ["--periods", periods, "--tail", tail] + once)
-    full_1 = runner(["phase-diagram"] + grid_args(everything) +
-                    ["--periods", periods, "--tail", tail] + once, threads=1)
-    log(f"    stickslip, full grid: {full['wall_s']['median']:.2f} s on {full['threads']} "
-        f"threads, {full_1['wall_s']['median']:.2f} s on 1")
-    out = {"n": n, "periods": periods, "full": summary_b(full), "full_1": summary_b(full_1),
-           "classes": count_classes(full["points"]), "peers": []}
-    for label, script, opts, every, offset, sub_periods in subsets:
+    steady = runner(["phase-diagram", "--mode", "steady"] + grid_args(everything))
+    steady_1 = runner(["phase-diagram", "--mode", "steady"] + grid_args(everything), threads=1)
+    fixed_1 = runner(["phase-diagram", "--mode", "fixed", "--periods", periods, "--tail", tail,
+                      "--min-repeats", 1, "--min-seconds", 0] + grid_args(everything),
+                     threads=1)
+    log(f"    stickslip, steady API: {steady['wall_s']['median'] * 1e3:.1f} ms on "
+        f"{steady['threads']} threads, {steady_1['wall_s']['median'] * 1e3:.1f} ms on 1; "
+        f"fixed {periods} periods: {fixed_1['wall_s']['median']:.2f} s on 1")
+    periods_run = [p["periods_run"] for p in steady["points"]]
+    fixed_classes = {(p["w"], p["beta"]): coarse(p["class"]) for p in fixed_1["points"]}
+    same = sum(coarse(p["class"]) == fixed_classes.get((p["w"], p["beta"]))
+               for p in steady["points"])
+    out = {"n": n, "periods": periods, "tail": tail, "steady": summary_b(steady),
+           "steady_1": summary_b(steady_1), "fixed_1": summary_b(fixed_1),
+           "steady_periods_total": sum(periods_run), "steady_periods_max": max(periods_run),
+           "classes": count_classes(steady["points"]),
+           "steady_vs_fixed_same_class": same, "peers": []}
+    for label, script, opts, every, offset, sub_periods, scales in subsets:
         idx = list(range(offset, n, every))
         sub_tail = min(tail, max(1, sub_periods // 2))
-        ours = runner(["phase-diagram"] + grid_args(idx) +
-                      ["--periods", sub_periods, "--tail", sub_tail], threads=1)
-        truth = {(round(p["w"], 9), round(p["beta"], 9)): p["class"] for p in ours["points"]}
+        ours = runner(["phase-diagram", "--mode", "fixed", "--periods", sub_periods, "--tail",
+                       sub_tail] + grid_args(idx), threads=1)
+        truth = [coarse(p["class"]) for p in ours["points"]]  # w-major, as `points` below
         points = [{"w": wv[i], "beta": bv[j], "periods": sub_periods} for i in idx for j in idx]
         res = peer(script, dict({"zeta": ZETA, "samples_per_period": 20, "keep_samples": True,
                                  "tail_periods": sub_tail, "points": points}, **opts))
         agree, failed, confusion = 0, 0, {}
-        for r in res:
-            key = min(truth, key=lambda k: abs(k[0] - r["w"]) + abs(k[1] - r["beta"]))
+        for r, want in zip(res, truth):
             if r["ok"]:
                 sticks = r["tail_events"]["stick"] if r.get("events") else None
-                got = classify(r["y"], r["v"], r["beta"], 20, sub_tail, sticks)
+                got = coarse(classify(r["y"], r["v"], r["beta"], 20, sub_tail, sticks))
             else:
                 got = "failed"
                 failed += 1
-            pair = f"{coarse(truth[key])} → {coarse(got)}"
+            pair = f"{want} → {got}"
             confusion[pair] = confusion.get(pair, 0) + 1
-            agree += coarse(got) == coarse(truth[key])
+            agree += got == want
         wall = sum(r["wall_s"] for r in res)
-        entry = {
+        # Extrapolation (not a measurement): cost per period at the nearest sub-grid point.
+        cost = {}
+        for k, r in enumerate(res):
+            cost[(idx[k // len(idx)], idx[k % len(idx)])] = (
+                r["wall_s"] / sub_periods if scales else r["wall_s"])
+        nearest = [min(idx, key=lambda m: abs(m - i)) for i in range(n)]
+        est_steady, est_fixed = 0.0, 0.0
+        for i in range(n):
+            for j in range(n):
+                c = cost[(nearest[i], nearest[j])]
+                est_steady += c * (periods_run[i * n + j] if scales else 1)
+                est_fixed += c * (periods if scales else 1)
+        out["peers"].append({
             "solver": label, "every": every, "offset": offset, "points": len(res),
             "periods": sub_periods, "wall_s": wall, "per_point_s": wall / len(res),
             "stickslip_wall_s": ours["wall_s"]["median"],
@@ -273,11 +298,8 @@ def workload_b(n, periods, subsets, tail):
             "evals": sum(r["work"]["nfev"] for r in res),
             "steps": sum(r["work"]["steps"] for r in res),
             "agree": agree, "failed": failed, "confusion": confusion,
-            # An extrapolation, not a measurement: mean time per sub-grid point, times the
-            # grid's points, times the ratio of periods.
-            "extrapolated_full_s": wall / len(res) * n * n * (periods / sub_periods),
-        }
-        out["peers"].append(entry)
+            "extrapolated_steady_s": est_steady, "extrapolated_fixed_s": est_fixed,
+        })
         log(f"    {label}: {len(res)} points x {sub_periods} periods in {wall:.1f} s "
             f"(stickslip on the same: {ours['wall_s']['median'] * 1e3:.2f} ms)")
     return out
@@ -441,29 +463,44 @@ def targets_a(rows):
 
 def report_b(b):
     n, periods = b["n"], b["periods"]
+    st, st1, fx1 = b["steady"], b["steady_1"], b["fixed_1"]
     lines = [
-        f"stickslip, all {n * n} points × {periods} periods: "
-        f"**{fmt_time(b['full']['wall_s'])}** on {b['full']['threads']} threads, "
-        f"**{fmt_time(b['full_1']['wall_s'])}** on 1 thread "
-        f"({fmt_num(b['full']['stats']['events'])} events); classes {b['classes']}. "
-        f"Method: {b['full']['method']}.",
+        f"stickslip, all {n * n} points from rest, measured:",
+        "",
+        f"- `steady::phase_diagram` (the library's API): **{fmt_time(st['wall_s'])}** on "
+        f"{st['threads']} threads, **{fmt_time(st1['wall_s'])}** on 1 thread; "
+        f"{fmt_num(b['steady_periods_total'])} drive periods in all (at most "
+        f"{b['steady_periods_max']} at one point), {fmt_num(st['stats']['events'])} events, "
+        f"{fmt_num(st['stats']['evaluations'])} evaluations; classes "
+        + ", ".join(f"{k} {v}" for k, v in sorted(b["classes"].items())) + ".",
+        f"- a fixed {periods} periods per point, classified from the events of the last "
+        f"{b['tail']}: **{fmt_time(fx1['wall_s'])}** on 1 thread "
+        f"({fmt_num(fx1['stats']['events'])} events); the same coarse class as the steady "
+        f"API at {b['steady_vs_fixed_same_class']} of {n * n} points.",
+        "",
+        "Peers on a sub-grid, stickslip (fixed periods, 1 thread) on exactly the same points "
+        "and periods; full-grid times of the peers are **extrapolations** (see BENCHMARKS.md):",
         "",
     ]
-    headers = ["peer", "sub-grid (measured)", "peer wall", "stickslip wall, same points, 1 thread",
-               "speed-up (measured)", "classes agree", "peer full grid (extrapolated)",
-               "speed-up vs stickslip full grid, 1 thread (extrapolated)"]
+    headers = ["peer", "sub-grid × periods (measured)", "peer wall", "stickslip wall, same work",
+               "speed-up (measured)", "classes agree with stickslip",
+               "peer, full grid as steady API (extrapolated)", "speed-up vs steady API, 1 thread",
+               f"peer, full grid × {periods} periods (extrapolated)",
+               f"speed-up vs fixed {periods}, 1 thread"]
     rows = []
     for p in b["peers"]:
-        side = int(math.sqrt(p["points"]))
-        conf = ", ".join(f"{k}: {v}" for k, v in sorted(p["confusion"].items()))
+        side = int(round(math.sqrt(p["points"])))
+        conf = ", ".join(f"{k} {v}" for k, v in sorted(p["confusion"].items()))
         rows.append([
             p["solver"],
-            f"{side}×{side} (every {p['every']}th from index {p['offset']}) × {p['periods']} periods",
+            f"{side}×{side} (every {p['every']}th from index {p['offset']}) × {p['periods']}",
             fmt_time(p["wall_s"]), fmt_time(p["stickslip_wall_s"]),
             speedup(p["wall_s"], p["stickslip_wall_s"]),
             f"{p['agree']}/{p['points']} ({conf})",
-            f"≈ {fmt_time(p['extrapolated_full_s'])} (extrapolated)",
-            f"≈ {speedup(p['extrapolated_full_s'], b['full_1']['wall_s'])} (extrapolated)",
+            f"≈ {fmt_time(p['extrapolated_steady_s'])}",
+            f"≈ {speedup(p['extrapolated_steady_s'], st1['wall_s'])}",
+            f"≈ {fmt_time(p['extrapolated_fixed_s'])}",
+            f"≈ {speedup(p['extrapolated_fixed_s'], fx1['wall_s'])}",
         ])
     return "\n".join(lines) + "\n" + table(headers, rows)
 
@@ -554,20 +591,20 @@ def main():
     if args.smoke:
         a_points, a_periods, a_tail = FIG6[:2], 10, 5
         b_n, b_periods, b_tail = 8, 20, 10
-        b_subsets = [("paper: odeint LSODA, defaults", "paper_lsoda.py", {}, 4, 1, 20),
+        b_subsets = [("paper: odeint LSODA, defaults", "paper_lsoda.py", {}, 4, 1, 20, False),
                      ("careful: solve_ivp DOP853 1e-10", "careful_scipy.py",
-                      {"method": "DOP853", "rtol": 1e-10, "atol": 1e-12}, 4, 1, 10)]
+                      {"method": "DOP853", "rtol": 1e-10, "atol": 1e-12}, 4, 1, 10, True)]
         c_points, c_periods, c_settings = FIG3[1:2], 5, NGSPICE_SETTINGS[1:2]
         c_rtols = [1e-6, 1e-8]
     else:
         a_points, a_periods, a_tail = FIG6, 300, 50
         b_n, b_periods, b_tail = 40, 300, 50
         b_subsets = [
-            ("paper: odeint LSODA, defaults", "paper_lsoda.py", {}, 5, 2, 300),
+            ("paper: odeint LSODA, defaults", "paper_lsoda.py", {}, 5, 2, 300, False),
             ("careful: solve_ivp DOP853 1e-10", "careful_scipy.py",
-             {"method": "DOP853", "rtol": 1e-10, "atol": 1e-12}, 5, 2, 60),
+             {"method": "DOP853", "rtol": 1e-10, "atol": 1e-12}, 5, 2, 60, True),
             ("careful: solve_ivp LSODA 1e-10", "careful_scipy.py",
-             {"method": "LSODA", "rtol": 1e-10, "atol": 1e-12}, 10, 2, 60),
+             {"method": "LSODA", "rtol": 1e-10, "atol": 1e-12}, 10, 2, 60, True),
         ]
         c_points, c_periods, c_settings = FIG3, 300, NGSPICE_SETTINGS
         c_rtols = SHOCKLEY_RTOLS

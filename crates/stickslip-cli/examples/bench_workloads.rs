@@ -15,8 +15,11 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use rayon::prelude::*;
 use serde_json::{json, Value};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 use stickslip::solver::{grid, run_until, sample_at};
+use stickslip::steady::{self, ParameterRange, SteadyOptions};
 use stickslip::{
     Circuit, Event, EventKind, ExactSolver, Params, Phase, Sample, Solver, State, Stats,
 };
@@ -90,6 +93,15 @@ enum Sampling {
     SampleAt,
 }
 
+/// How the phase diagram is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum DiagramMode {
+    /// `stickslip::steady::phase_diagram`.
+    Steady,
+    /// A fixed number of periods per point.
+    Fixed,
+}
+
 #[derive(Debug, clap::Args)]
 struct PhaseDiagramArgs {
     /// Damping ratio ζ [default: the paper's circuit].
@@ -113,10 +125,16 @@ struct PhaseDiagramArgs {
     /// Grid points along β.
     #[arg(long, default_value_t = 40)]
     beta_steps: usize,
-    /// Drive periods run at every point.
+    /// `steady`: the library's `steady::phase_diagram` (each point run until its
+    /// stroboscopic map repeats, default `SteadyOptions`); `fixed`: a fixed number of periods
+    /// per point, classified from the exact events of the last `--tail` periods (the same
+    /// work as the peers do).
+    #[arg(long, value_enum, default_value_t = DiagramMode::Steady)]
+    mode: DiagramMode,
+    /// Drive periods run at every point (`--mode fixed`).
     #[arg(long, default_value_t = 300)]
     periods: usize,
-    /// Drive periods at the end in which the motion is classified.
+    /// Drive periods at the end in which the motion is classified (`--mode fixed`).
     #[arg(long, default_value_t = 50)]
     tail: usize,
     #[command(flatten)]
@@ -331,7 +349,139 @@ fn classify_point(params: Params, periods: usize, tail: usize) -> Result<PointRe
     })
 }
 
+/// Work counters summed over every solver a factory made (each adds its own when dropped).
+#[derive(Default)]
+struct WorkTotals {
+    events: AtomicU64,
+    evaluations: AtomicU64,
+    steps: AtomicU64,
+    rejected: AtomicU64,
+}
+
+impl WorkTotals {
+    fn stats(&self) -> Stats {
+        Stats {
+            events: self.events.load(Ordering::Relaxed),
+            evaluations: self.evaluations.load(Ordering::Relaxed),
+            steps: self.steps.load(Ordering::Relaxed),
+            rejected: self.rejected.load(Ordering::Relaxed),
+        }
+    }
+}
+
+/// The exact solver, passing every call through, that adds its counters to `totals` when
+/// dropped: `steady::phase_diagram` makes and drops its solvers itself.
+struct Counted {
+    inner: ExactSolver,
+    totals: Arc<WorkTotals>,
+}
+
+impl Drop for Counted {
+    fn drop(&mut self) {
+        let s = self.inner.stats();
+        self.totals.events.fetch_add(s.events, Ordering::Relaxed);
+        self.totals
+            .evaluations
+            .fetch_add(s.evaluations, Ordering::Relaxed);
+        self.totals.steps.fetch_add(s.steps, Ordering::Relaxed);
+        self.totals
+            .rejected
+            .fetch_add(s.rejected, Ordering::Relaxed);
+    }
+}
+
+impl Solver for Counted {
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    fn state(&self) -> State {
+        self.inner.state()
+    }
+    fn phase(&self) -> Phase {
+        self.inner.phase()
+    }
+    fn drive(&self, tau: f64) -> f64 {
+        self.inner.drive(tau)
+    }
+    fn advance(&mut self, t_end: f64) -> stickslip::Result<Option<Event>> {
+        self.inner.advance(t_end)
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.inner.interval()
+    }
+    fn dense(&self, tau: f64) -> Sample {
+        self.inner.dense(tau)
+    }
+    fn stats(&self) -> Stats {
+        self.inner.stats()
+    }
+}
+
 fn phase_diagram(args: PhaseDiagramArgs) -> Result<Value> {
+    match args.mode {
+        DiagramMode::Steady => phase_diagram_steady(args),
+        DiagramMode::Fixed => phase_diagram_fixed(args),
+    }
+}
+
+fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
+    let zeta = args.zeta.unwrap_or_else(paper_zeta);
+    let base = Params::new(zeta, args.w_from, args.beta_from)?;
+    let w = ParameterRange::new("w", args.w_from, args.w_to, args.w_steps)?;
+    let beta = ParameterRange::new("beta", args.beta_from, args.beta_to, args.beta_steps)?;
+    let options = SteadyOptions::default();
+    let mut totals = Arc::new(WorkTotals::default());
+    let (wall, points) = timed(&args.timing, || {
+        totals = Arc::new(WorkTotals::default());
+        let counters = Arc::clone(&totals);
+        let factory =
+            move |params: Params, initial: State| -> stickslip::Result<Box<dyn Solver + Send>> {
+                let params = params.validate()?;
+                Ok(Box::new(Counted {
+                    inner: ExactSolver::new(params, State::new(initial.y, initial.v)?),
+                    totals: Arc::clone(&counters),
+                }))
+            };
+        Ok(steady::phase_diagram(
+            &factory,
+            base,
+            State::default(),
+            &w,
+            &beta,
+            &options,
+            &|| true,
+        )?)
+    })?;
+    let points: Vec<Value> = points
+        .iter()
+        .map(|p| {
+            // Periods simulated: to settle, then the recorded cycle (max_period without one).
+            let recorded = p.period.unwrap_or(options.max_period);
+            json!({
+                "w": p.w,
+                "beta": p.beta,
+                "class": p.class,
+                "period": p.period,
+                "periods_run": p.periods_to_settle + recorded,
+            })
+        })
+        .collect();
+    Ok(json!({
+        "solver": "stickslip-exact",
+        "method": "stickslip::steady::phase_diagram with the default SteadyOptions (each point \
+                   from rest until its stroboscopic map repeats to 1e-10, at most 5000 periods, \
+                   with extrapolation of linear convergence), rayon",
+        "threads": rayon::current_num_threads(),
+        "zeta": zeta,
+        "w_steps": args.w_steps,
+        "beta_steps": args.beta_steps,
+        "wall_s": wall,
+        "stats": stats_json(&totals.stats()),
+        "points": points,
+    }))
+}
+
+fn phase_diagram_fixed(args: PhaseDiagramArgs) -> Result<Value> {
     let zeta = args.zeta.unwrap_or_else(paper_zeta);
     let value = |from: f64, to: f64, steps: usize, i: usize| {
         if steps == 1 {
