@@ -94,7 +94,7 @@ pub struct ModelArgs {
     /// U_t = 0.7 V, R_D = 3.0 Ω).
     #[arg(long, value_enum, help_heading = "Model (physical)")]
     pub preset: Option<Preset>,
-    /// A TOML experiment file ([circuit] or [mechanics], [drive], [model], [shockley]);
+    /// A TOML experiment file (sections `[circuit]` or `[mechanics]`, `[drive]`, `[model]`, `[shockley]`);
     /// see the README for an example.
     #[arg(long, value_name = "FILE", help_heading = "Model (physical)")]
     pub config: Option<PathBuf>,

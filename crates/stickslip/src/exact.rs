@@ -1,7 +1,7 @@
 //! The exact event-driven solver for the piecewise-linear (Coulomb friction / PWL diode) model.
 //!
 //! Between switching events the equation of motion is linear, so each sliding segment and each
-//! stuck segment is advanced in closed form ([`crate::linear`]); only the event times are found
+//! stuck segment is advanced in closed form (the private module `linear`); only the event times are found
 //! numerically.
 //!
 //! **No missed velocity zeros.** On a sliding segment with direction s, let g(t) = s·y'(t) ≥ 0.

@@ -153,7 +153,7 @@ pub fn run(args: Args) -> Result<()> {
                     if circuit { "drive U" } else { "drive" },
                     drive,
                     PALETTE[1],
-                    Style::Line(3),
+                    Style::Line(2),
                 ),
                 Series::new(
                     if circuit { "u_C" } else { "y" },

@@ -263,7 +263,7 @@ fn plot(points: &[SweepPoint], parameter: SweepParameter, path: &std::path::Path
     };
     let mut series = Vec::new();
     for (which, color, style, label) in [
-        (SweepLeg::Up, PALETTE[0], Style::Line(3), "sweep up"),
+        (SweepLeg::Up, PALETTE[0], Style::Line(2), "sweep up"),
         (SweepLeg::Down, PALETTE[1], Style::Dashed(2), "sweep down"),
     ] {
         let data = leg(which);

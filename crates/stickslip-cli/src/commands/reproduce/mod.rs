@@ -49,7 +49,15 @@ pub fn run(args: Args) -> Result<()> {
         scales: circuit.scales(),
         quick: args.quick,
     };
-    let jobs: Vec<Job> = vec![("Table 1", figures::table1), ("Fig. 1", figures::fig1)];
+    let jobs: Vec<Job> = vec![
+        ("Table 1", figures::table1),
+        ("Fig. 1", figures::fig1),
+        ("Fig. 3", figures::fig3),
+        ("Fig. 4", figures::fig4),
+        ("Fig. 5", figures::fig5),
+        ("Fig. 6", figures::fig6),
+        ("Fig. 7", figures::fig7),
+    ];
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \
          U_t = 0.7 V, R_D = 3.0 Ω; writing {}",

@@ -1,7 +1,19 @@
 //! One function per figure or table of the paper.
 
+mod common;
 mod fig1;
+mod fig3;
+mod fig4;
+mod fig5;
+mod fig6;
+mod fig7;
 mod table1;
+mod theory_curves;
 
 pub use fig1::fig1;
+pub use fig3::fig3;
+pub use fig4::fig4;
+pub use fig5::fig5;
+pub use fig6::fig6;
+pub use fig7::fig7;
 pub use table1::table1;

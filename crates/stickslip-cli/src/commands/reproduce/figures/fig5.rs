@@ -1,0 +1,92 @@
+//! Fig. 5: the fundamental A1 and the third harmonic A3, against frequency and amplitude.
+
+use super::super::report::{Report, Section};
+use super::super::Context;
+use super::common::{num, sweep_pwl};
+use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use anyhow::Result;
+use stickslip::steady::{SweepLeg, SweepParameter};
+
+/// Fig. 5 (a) A1, A3 against Ω/ω0 at β = 7.1; (b) against β at Ω/ω0 = 0.33.
+pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
+    let ut = ctx.circuit.diode.turn_on;
+    let steps = if ctx.quick { 25 } else { 73 };
+    let mut panels = Vec::new();
+    let mut rows = Vec::new();
+    for (parameter, fixed, from, to) in [
+        (SweepParameter::W, 7.1, 0.2, 2.0),
+        (SweepParameter::Beta, 0.33, 1.0, 15.0),
+    ] {
+        let points = sweep_pwl(ctx, parameter, fixed, from, to, steps, true)?;
+        let x = |p: &stickslip::steady::SweepPoint| match parameter {
+            SweepParameter::W => p.params.w,
+            SweepParameter::Beta => p.params.beta,
+        };
+        let mut a1 = Vec::new();
+        let mut a3 = Vec::new();
+        for p in points.iter().filter(|p| p.leg == SweepLeg::Up) {
+            let h1 = p.steady.harmonic(1).unwrap_or(f64::NAN) * ut;
+            let h3 = p.steady.harmonic(3).unwrap_or(f64::NAN) * ut;
+            a1.push((x(p), h1));
+            a3.push((x(p), h3));
+        }
+        for p in &points {
+            rows.push(vec![
+                parameter.label().into(),
+                num(p.params.w),
+                num(p.params.beta),
+                p.leg.label().into(),
+                num(p.steady.harmonic(1).unwrap_or(f64::NAN) * ut),
+                num(p.steady.harmonic(3).unwrap_or(f64::NAN) * ut),
+                p.steady.class.label().into(),
+            ]);
+        }
+        let mut series = vec![
+            Series::new("A1, simulated", a1, PALETTE[0], Style::Markers(3)),
+            Series::new("A3, simulated", a3, PALETTE[1], Style::Markers(3)),
+        ];
+        series.extend(super::theory_curves::harmonic_curves(
+            ctx, parameter, fixed, from, to,
+        )?);
+        let (title, x_label) = match parameter {
+            SweepParameter::W => ("(a) β = 7.1".to_string(), "Ω/ω0"),
+            SweepParameter::Beta => ("(b) Ω/ω0 = 0.33".to_string(), "β = U/U_t"),
+        };
+        panels.push(Panel {
+            title,
+            x_label: x_label.into(),
+            y_label: "amplitude (V)".into(),
+            series,
+            legend: Some(Legend::UpperRight),
+            x_range: Some((from, to)),
+            ..Default::default()
+        });
+    }
+    report.figure(
+        "fig5",
+        &Figure {
+            panels,
+            columns: 2,
+            panel_size: (620, 460),
+        },
+    )?;
+    report.csv(
+        "fig5.csv",
+        &["swept", "w", "beta", "direction", "A1_V", "A3_V", "class"],
+        &rows,
+    )?;
+    report.sections.push(Section {
+        id: "fig5".into(),
+        title: "Fig. 5 — harmonic amplitudes".into(),
+        caption: format!(
+            "Amplitudes of the fundamental A1 and of the third harmonic A3 of u_C (volts), \
+             (a) against Ω/ω0 at β = 7.1 and (b) against β at Ω/ω0 = 0.33. Dots: simulated \
+             steady states (exact solver, spectrum by FFT over whole periods, up sweep). {}",
+            super::theory_curves::HARMONIC_NOTE
+        ),
+        figures: vec!["fig5".into()],
+        data: vec!["fig5.csv".into()],
+        tables: vec![],
+    });
+    Ok(())
+}
