@@ -46,11 +46,13 @@ def main():
         # valid up to the last output time that LSODA actually reached (tcur >= t_out).
         valid = grid.size
         failed_at = None
+        counted = grid.size - 2  # the info entry of the last output step
         if not ok:
             reached = info["tcur"] >= grid[1:]
             first_miss = int(np.argmin(reached)) if not reached.all() else grid.size - 1
             valid = first_miss + 1
             failed_at = float(info["tcur"][first_miss])
+            counted = first_miss  # (odeint fills in the counters of the failing step too)
         last = valid - 1
         r = {
             "w": w,
@@ -63,9 +65,9 @@ def main():
             "valid_samples": valid,
             "events": None,
             "work": {
-                "nfev": int(info["nfe"][last - 1]) if last >= 1 else 0,
-                "njev": int(info["nje"][last - 1]) if last >= 1 else 0,
-                "steps": int(info["nst"][last - 1]) if last >= 1 else 0,
+                "nfev": int(info["nfe"][counted]),
+                "njev": int(info["nje"][counted]),
+                "steps": int(info["nst"][counted]),
             },
             "final": [float(sol[last, 0]), float(sol[last, 1])],
         }
