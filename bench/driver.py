@@ -388,7 +388,9 @@ def fmt_time(s):
         return f"{s * 1e6:.0f} µs"
     if s < 1.0:
         return f"{s * 1e3:.2f} ms"
-    return f"{s:.2f} s"
+    if s < 120.0:
+        return f"{s:.2f} s"
+    return f"{s / 60:.1f} min"
 
 
 def fmt_num(x):
@@ -491,6 +493,16 @@ def report_b(b):
     for p in b["peers"]:
         side = int(round(math.sqrt(p["points"])))
         conf = ", ".join(f"{k} {v}" for k, v in sorted(p["confusion"].items()))
+        if p["failed"] == p["points"]:
+            none = "– (failed at every point: no diagram)"
+            rows.append([
+                p["solver"],
+                f"{side}×{side} (every {p['every']}th from index {p['offset']}) × {p['periods']}",
+                fmt_time(p["wall_s"]), fmt_time(p["stickslip_wall_s"]),
+                speedup(p["wall_s"], p["stickslip_wall_s"]),
+                f"{p['agree']}/{p['points']} ({conf})", none, "–", none, "–",
+            ])
+            continue
         rows.append([
             p["solver"],
             f"{side}×{side} (every {p['every']}th from index {p['offset']}) × {p['periods']}",
