@@ -566,6 +566,17 @@ impl ModelArgs {
         } else {
             format!("dimensionless: {dimensionless}")
         };
+        let summary = match (diode, system) {
+            (DiodeModel::Shockley, Some(System::Circuit(c))) => format!(
+                "{summary}; Shockley diodes I_s = {} A, n = {}, R_s = {} Ω at {} °C (R_D unused; ζ_R = R√(C/L)/2 = {:.6})",
+                shockley.saturation_current,
+                shockley.emission,
+                shockley.series_resistance,
+                shockley.temperature_c,
+                0.5 * c.resistance / c.impedance()
+            ),
+            _ => summary,
+        };
         Ok(Model {
             params,
             initial,

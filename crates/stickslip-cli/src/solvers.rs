@@ -1,15 +1,22 @@
 //! The solver a model asks for: exact (PWL diode / Coulomb friction) or stiff (Shockley).
 
-use crate::model::{DiodeModel, Model};
+use crate::model::{DiodeModel, Model, ShockleySettings};
+use crate::output::usage;
 use anyhow::Result;
-use stickslip::{ExactSolver, Solver};
+use stickslip::shockley::{DiodePair, ShockleyCircuit, ShockleyModel, ShockleyOptions};
+use stickslip::{ExactSolver, ShockleySolver, Solver, System};
 
 /// A boxed solver for `model`, starting from its initial state at τ = 0.
 pub fn solver_for(model: &Model) -> Result<Box<dyn Solver + Send>> {
     match model.diode {
         DiodeModel::Pwl => Ok(Box::new(ExactSolver::new(model.params, model.initial))),
         DiodeModel::Shockley => {
-            anyhow::bail!("--model shockley is not available in this version")
+            let shockley = shockley_model(model)?;
+            Ok(Box::new(ShockleySolver::new(
+                shockley,
+                model.initial,
+                ShockleyOptions::default(),
+            )?))
         }
     }
 }
@@ -25,7 +32,41 @@ pub fn factory_for(model: &Model) -> Result<Factory> {
     match model.diode {
         DiodeModel::Pwl => Ok(Box::new(stickslip::steady::exact_solver)),
         DiodeModel::Shockley => {
-            anyhow::bail!("--model shockley is not available in this version")
+            // ζ of the PWL model is not used: the Shockley circuit has its own, from R alone.
+            let circuit = shockley_circuit(model)?;
+            Ok(Box::new(move |params: stickslip::Params, initial| {
+                let m = circuit.model_dimensionless(params.w, params.beta, params.phi)?;
+                let solver = ShockleySolver::new(m, initial, ShockleyOptions::default())?;
+                Ok(Box::new(solver) as Box<dyn Solver + Send>)
+            }))
         }
     }
+}
+
+/// The Shockley circuit of `model`: its L, C and R, its U_t as the reference voltage (so β
+/// means the same drive as with the PWL diode), and the `--diode-*` parts; the PWL R_D is not
+/// used (the diode law has its own R_s).
+pub fn shockley_circuit(model: &Model) -> Result<ShockleyCircuit> {
+    let Some(System::Circuit(circuit)) = model.system else {
+        usage!("the Shockley diode model needs a circuit description (e.g. --preset paper)");
+    };
+    let ShockleySettings {
+        saturation_current,
+        emission,
+        series_resistance,
+        temperature_c,
+    } = model.shockley;
+    let diode = DiodePair::new(
+        saturation_current,
+        emission,
+        series_resistance,
+        temperature_c,
+    )?;
+    Ok(ShockleyCircuit::from_circuit(&circuit, diode)?)
+}
+
+/// The dimensionless Shockley model of `model` (ζ_R from R alone; w, β, φ as given).
+pub fn shockley_model(model: &Model) -> Result<ShockleyModel> {
+    let p = &model.params;
+    Ok(shockley_circuit(model)?.model_dimensionless(p.w, p.beta, p.phi)?)
 }

@@ -37,5 +37,6 @@ pub use error::{Error, Result};
 pub use exact::ExactSolver;
 pub use params::{Params, State};
 pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
+pub use shockley::{DiodePair, ShockleyCircuit, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};

@@ -65,7 +65,6 @@ fn color(class: MotionClass) -> RGBColor {
 
 /// Run `stickslip phase-diagram`.
 pub fn run(args: Args) -> Result<()> {
-    let options = args.steady.options()?;
     let w = range_from_flags(
         "w",
         ("w-min", args.w_min),
@@ -110,6 +109,7 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     let model = model_args.build()?;
+    let options = args.steady.options(&model)?;
     eprintln!(
         "phase-diagram: {}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
         model.summary,

@@ -90,7 +90,6 @@ pub fn range_from_flags(
 
 /// Run `stickslip sweep`.
 pub fn run(args: Args) -> Result<()> {
-    let options = args.steady.options()?.with_harmonics(3)?;
     let range = range_from_flags(
         args.over_label(),
         ("from", args.from),
@@ -129,6 +128,7 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     let model = model_args.build()?;
+    let options = args.steady.options(&model)?.with_harmonics(3)?;
     // Every swept value must be valid for the model (w > 0, β ≥ 0).
     for value in [range.from(), range.to()] {
         parameter.set(model.params, value)?;

@@ -1,1 +1,94 @@
 //! Tests of `stickslip reproduce`.
+
+use crate::common::*;
+use std::path::Path;
+
+/// Decode a PNG fully and return its size.
+fn decode_png(path: &Path) -> (u32, u32) {
+    let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut reader = png::Decoder::new(file).read_info().expect("a PNG header");
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).expect("PNG data decodes");
+    // Not blank: more than one colour in the image.
+    let first = &buf[..3];
+    assert!(
+        buf.chunks(info.line_size / info.width as usize)
+            .any(|px| &px[..3] != first),
+        "{} is blank",
+        path.display()
+    );
+    (info.width, info.height)
+}
+
+#[test]
+fn writes_every_figure_table_and_the_report() {
+    let (dir, out) = run(&["reproduce", "--quick", "--out", "report"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = dir.path().join("report");
+    let figures = ["fig1", "fig3", "fig4", "fig5", "fig6", "fig7"];
+    let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
+    for f in figures {
+        for ext in ["png", "svg"] {
+            let name = format!("{f}.{ext}");
+            let path = report.join(&name);
+            assert!(path.is_file(), "{name} missing");
+            assert!(html.contains(&name), "index.html does not reference {name}");
+        }
+        let (w, h) = decode_png(&report.join(format!("{f}.png")));
+        assert!(
+            (400..=4000).contains(&w) && (300..=4000).contains(&h),
+            "{f}: {w}×{h}"
+        );
+        let svg = std::fs::read_to_string(report.join(format!("{f}.svg"))).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"),
+            "{f}.svg"
+        );
+    }
+    // Every data file the page lists exists and has a header and rows.
+    for csv in html
+        .split("href=\"")
+        .skip(1)
+        .filter_map(|s| s.split('"').next())
+        .filter(|s| s.ends_with(".csv"))
+    {
+        let text =
+            std::fs::read_to_string(report.join(csv)).unwrap_or_else(|_| panic!("{csv} missing"));
+        assert!(text.lines().count() >= 2, "{csv} is empty");
+    }
+    // summary.json: Table 1 and the four Fig. 6 classes.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report.join("summary.json")).unwrap())
+            .unwrap();
+    let t1 = &summary["table1"];
+    assert_eq!(format!("{:.1}", t1["alpha"].as_f64().unwrap()), "6173.9");
+    assert_eq!(format!("{:.1}", t1["omega0"].as_f64().unwrap()), "65938.0");
+    for key in ["zeta", "Q", "f0"] {
+        assert!(t1[key].as_f64().is_some(), "table1.{key}");
+    }
+    let fig6 = summary["fig6"].as_array().expect("fig6 classes");
+    assert_eq!(fig6.len(), 4);
+    let classes: Vec<&str> = fig6.iter().map(|p| p["class"].as_str().unwrap()).collect();
+    let allowed = ["sliding", "periodic-stick", "nonperiodic-stick", "static"];
+    assert!(classes.iter().all(|c| allowed.contains(c)), "{classes:?}");
+    // The first and last of the paper's points are unambiguous.
+    assert_eq!(classes[0], "sliding");
+    assert_eq!(classes[3], "static");
+    // No staging directory is left behind.
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, vec!["report".to_string()]);
+}
+
+#[test]
+fn bad_output_directory_is_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_in(dir.path(), &["reproduce", "--out", "missing/deeper/report"]);
+    assert_usage_error(dir.path(), &out, "missing/deeper");
+    std::fs::write(dir.path().join("file"), "x").unwrap();
+    let out = run_in(dir.path(), &["reproduce", "--out", "file"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("not a directory"));
+}

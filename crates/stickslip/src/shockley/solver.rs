@@ -1,0 +1,222 @@
+//! The stiff solver of the Shockley model behind the common [`Solver`] trait.
+
+use super::circuit::ShockleyModel;
+use super::options::ShockleyOptions;
+use super::radau::{Radau5, Settings, Step};
+use super::stops::{Classifier, Mark};
+use crate::error::{Error, Result};
+use crate::params::State;
+use crate::solver::{Event, Phase, Sample, Solver, Stats};
+use std::collections::VecDeque;
+
+/// Radau IIA (order 5) solver of y'' + 2ζ_R y' + y + D(y') = β cos(w τ + φ), with turns and
+/// stops detected on the dense output by the threshold rule of [`crate::shockley`].
+///
+/// Each call of [`Solver::advance`] covers at most one integration step, and stops early at
+/// `t_end` or at an event; [`Solver::dense`] is the step's collocation polynomial.
+///
+/// ```
+/// use stickslip::shockley::{ShockleyCircuit, ShockleyOptions, ShockleySolver};
+/// use stickslip::{solver::run_until, Solver, State, EventKind};
+/// // The paper's circuit at w = 0.95, β = 2.14: it slides, turning twice per period.
+/// let model = ShockleyCircuit::paper().model_dimensionless(0.95, 2.14, 0.0).unwrap();
+/// let mut solver =
+///     ShockleySolver::new(model, State::default(), ShockleyOptions::default()).unwrap();
+/// let period = model.params.drive_period();
+/// run_until(&mut solver, 50.0 * period, |_| {}).unwrap();
+/// let mut kinds = Vec::new();
+/// run_until(&mut solver, 60.0 * period, |e| kinds.push(e.kind)).unwrap();
+/// assert_eq!(kinds.len(), 20);
+/// assert!(kinds.iter().all(|k| *k == EventKind::Turn));
+/// ```
+#[derive(Debug, Clone)]
+pub struct ShockleySolver {
+    model: ShockleyModel,
+    options: ShockleyOptions,
+    radau: Radau5,
+    classifier: Classifier,
+    /// Integrated steps not yet passed by the reported time, contiguous, in time order.
+    steps: VecDeque<Step>,
+    /// Reported time, state and phase.
+    now: f64,
+    state: State,
+    phase: Phase,
+    /// The step of the last advance, its interval and the phase over it (for dense output).
+    last: Option<Step>,
+    interval: (f64, f64),
+    interval_phase: Phase,
+    events: u64,
+}
+
+impl ShockleySolver {
+    /// A solver starting at τ = 0 from `initial`.
+    ///
+    /// The phase at τ = 0 is decided by the stop rule (from rest the solver integrates ahead
+    /// over the minimum stop duration to decide whether the start is a stop), so construction
+    /// can fail like integration.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for invalid options or model; [`Error::Integrator`] when
+    /// the integration fails while deciding the initial phase.
+    pub fn new(model: ShockleyModel, initial: State, options: ShockleyOptions) -> Result<Self> {
+        let options = options.validate()?;
+        let model = ShockleyModel::new(model.params, model.law)?;
+        let initial = State::new(initial.y, initial.v)?;
+        let settings = Settings {
+            rtol: options.rtol,
+            atol: options.atol,
+            max_step: options.max_step,
+            initial_step: 1e-4,
+        };
+        let radau = Radau5::new(model, 0.0, [initial.y, initial.v], settings);
+        let min_stop = options.min_stop_fraction * model.params.drive_period();
+        let classifier = Classifier::new(initial.v, options.stop_threshold, min_stop);
+        let mut solver = Self {
+            model,
+            options,
+            radau,
+            classifier,
+            steps: VecDeque::new(),
+            now: 0.0,
+            state: initial,
+            phase: Phase::Stick,
+            last: None,
+            interval: (0.0, 0.0),
+            interval_phase: Phase::Stick,
+            events: 0,
+        };
+        let phase = loop {
+            if let Some(phase) = solver.classifier.initial_phase() {
+                break phase;
+            }
+            solver.integrate_one()?;
+        };
+        solver.phase = phase;
+        solver.interval_phase = phase;
+        Ok(solver)
+    }
+
+    /// The model being solved.
+    pub fn model(&self) -> &ShockleyModel {
+        &self.model
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &ShockleyOptions {
+        &self.options
+    }
+
+    /// Newton iterations so far (each solves the three coupled stages at once).
+    pub fn newton_iterations(&self) -> u64 {
+        self.radau.counters.newton
+    }
+
+    fn integrate_one(&mut self) -> Result<()> {
+        let step = self.radau.step()?;
+        self.classifier.feed(&step);
+        self.steps.push_back(step);
+        Ok(())
+    }
+}
+
+impl Solver for ShockleySolver {
+    fn time(&self) -> f64 {
+        self.now
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    fn drive(&self, tau: f64) -> f64 {
+        self.model.params.drive(tau)
+    }
+
+    fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
+        if t_end < self.now || t_end.is_nan() {
+            return Err(Error::TimeBeforeCurrent {
+                requested: t_end,
+                current: self.now,
+            });
+        }
+        let from = self.now;
+        if t_end == from {
+            self.interval = (from, from);
+            self.interval_phase = self.phase;
+            return Ok(None);
+        }
+        loop {
+            while self.steps.front().is_some_and(|s| s.t1() <= self.now) {
+                self.steps.pop_front();
+            }
+            let Some(&step) = self.steps.front() else {
+                self.integrate_one()?;
+                continue;
+            };
+            let mut target = t_end.min(step.t1());
+            let mut hit: Option<Mark> = None;
+            if let Some(mark) = self.classifier.marks.front() {
+                if mark.tau <= target {
+                    debug_assert!(mark.tau >= from, "events are decided ahead of time");
+                    target = mark.tau.max(from);
+                    hit = Some(*mark);
+                }
+            }
+            if target > self.classifier.frontier(self.radau.time()) {
+                self.integrate_one()?;
+                continue;
+            }
+            let x = step.eval(target);
+            self.now = target;
+            self.state = State { y: x[0], v: x[1] };
+            self.last = Some(step);
+            self.interval = (from, target);
+            self.interval_phase = self.phase;
+            let Some(mark) = hit else {
+                return Ok(None);
+            };
+            self.classifier.marks.pop_front();
+            self.phase = mark.phase_after;
+            self.events += 1;
+            return Ok(Some(Event {
+                tau: target,
+                y: x[0],
+                kind: mark.kind,
+            }));
+        }
+    }
+
+    fn interval(&self) -> (f64, f64) {
+        self.interval
+    }
+
+    fn dense(&self, tau: f64) -> Sample {
+        let (y, v) = match &self.last {
+            Some(step) => {
+                let x = step.eval(tau);
+                (x[0], x[1])
+            }
+            None => (self.state.y, self.state.v),
+        };
+        Sample {
+            tau,
+            y,
+            v,
+            phase: self.interval_phase,
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        let c = self.radau.counters;
+        Stats {
+            events: self.events,
+            evaluations: c.rhs,
+            steps: c.accepted,
+            rejected: c.rejected,
+        }
+    }
+}
