@@ -8,7 +8,9 @@ at 27 C (SPICE's default). The transient runs over all periods but stores only t
 
 Job options: "zeta" is ignored (the circuit fixes it); per point "w", "beta", "periods";
 "options": a dict of .options (e.g. {"reltol": 1e-6}); "method" (trap or gear);
-"steps_per_period": TMAX = T / this (and TSTEP the same); "keep_samples".
+"steps_per_period": TMAX = T / this (and TSTEP the same). Or, per point, "netlist": a
+complete netlist to run as it is (stickslip::shockley::netlist's, which writes every output
+point of the run with `wrdata out.txt`); the rows of its last period are kept.
 The wall time is that of the ngspice process (perf_counter around subprocess.run, so it
 includes ngspice's start-up and netlist parsing); ngspice's own "Total analysis time" and its
 time-point counters are reported too.
@@ -74,7 +76,8 @@ def main():
             out = os.path.join(tmp, "out.txt")
             with open(cir, "w") as fh:
                 # (ngspice lower-cases the deck, so the output file is named relative to cwd.)
-                fh.write(netlist(w, beta, periods, spp, options, method, "out.txt"))
+                fh.write(p.get("netlist") or netlist(w, beta, periods, spp, options, method,
+                                                     "out.txt"))
             start = time.perf_counter()
             proc = subprocess.run(
                 ["ngspice", "-b", "bench.cir"],
@@ -111,6 +114,9 @@ def main():
                         except ValueError:
                             continue  # the header line
                 os.remove(out)
+                # Only the last period (a netlist given as it is writes the whole run).
+                t_last = (periods - 1) * TAU / (w * OMEGA0)
+                rows = [row for row in rows if row[0] >= t_last * (1 - 1e-12)]
                 omega0 = OMEGA0
                 # Dimensionless: tau = omega0 t, y = u_C / U_t, y' = i sqrt(L/C) / U_t.
                 z = math.sqrt(L / C)

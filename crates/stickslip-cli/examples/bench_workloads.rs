@@ -3,7 +3,8 @@
 //!
 //! ```text
 //! bench_workloads trajectory --w 0.9 --beta 1.6 --periods 300 --samples-per-period 20
-//! bench_workloads phase-diagram --w-steps 40 --beta-steps 40 --periods 300
+//! bench_workloads phase-diagram --w-steps 40 --beta-steps 40
+//! bench_workloads shockley --w 0.95 --beta 2.14 --periods 300 --rtol 1e-6
 //! ```
 //!
 //! Wall times are measured inside the process with `std::time::Instant` around the solver
@@ -18,6 +19,7 @@ use serde_json::{json, Value};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
+use stickslip::shockley::{self, NetlistOptions, ShockleyCircuit, ShockleyOptions, ShockleySolver};
 use stickslip::solver::{grid, run_until, sample_at};
 use stickslip::steady::{self, ParameterRange, SteadyOptions};
 use stickslip::{
@@ -37,6 +39,24 @@ enum Workload {
     Trajectory(TrajectoryArgs),
     /// Motion classes on a (w, β) grid, every point from rest (workload (b)).
     PhaseDiagram(PhaseDiagramArgs),
+    /// The paper's circuit with Shockley diodes, the last period sampled (workload (c)).
+    Shockley(ShockleyArgs),
+    /// The same circuit as an ngspice netlist from `stickslip::shockley::netlist` (default
+    /// options, output by `wrdata` to `out.txt`), printed as JSON {"netlist": text}.
+    Netlist(NetlistArgs),
+}
+
+#[derive(Debug, clap::Args)]
+struct NetlistArgs {
+    /// Drive frequency w.
+    #[arg(long)]
+    w: f64,
+    /// Drive amplitude β = U/0.7 V.
+    #[arg(long)]
+    beta: f64,
+    /// Drive periods.
+    #[arg(long, default_value_t = 300.0)]
+    periods: f64,
 }
 
 #[derive(Debug, clap::Args)]
@@ -545,11 +565,97 @@ fn phase_diagram_fixed(args: PhaseDiagramArgs) -> Result<Value> {
     }))
 }
 
+#[derive(Debug, clap::Args)]
+struct ShockleyArgs {
+    /// Drive frequency w.
+    #[arg(long)]
+    w: f64,
+    /// Drive amplitude β = U/0.7 V.
+    #[arg(long)]
+    beta: f64,
+    /// Drive periods to run.
+    #[arg(long, default_value_t = 300)]
+    periods: usize,
+    /// Relative tolerance of the stiff solver.
+    #[arg(long, default_value_t = 1e-6)]
+    rtol: f64,
+    /// Absolute tolerance [default: equal to rtol].
+    #[arg(long)]
+    atol: Option<f64>,
+    /// Largest step in τ [default: the library's, `ShockleyOptions::default().max_step`].
+    #[arg(long)]
+    max_step: Option<f64>,
+    /// Samples of the last period, from its dense output.
+    #[arg(long, default_value_t = 200)]
+    samples: usize,
+    #[command(flatten)]
+    timing: Timing,
+}
+
+/// The paper's circuit with two 1N4148 diodes from rest: run to the last period, then sample
+/// it from the dense output.
+fn shockley(args: ShockleyArgs) -> Result<Value> {
+    let model = ShockleyCircuit::paper().model_dimensionless(args.w, args.beta, 0.0)?;
+    let mut options = ShockleyOptions::default()
+        .with_rtol(args.rtol)?
+        .with_atol(args.atol.unwrap_or(args.rtol))?;
+    if let Some(h) = args.max_step {
+        options = options.with_max_step(h)?;
+    }
+    let period = model.params.drive_period();
+    let start = (args.periods - 1) as f64 * period;
+    let times = grid(start, args.periods as f64 * period, args.samples);
+    let (wall, (samples, counts, stats, newton)) = timed(&args.timing, || {
+        let mut solver = ShockleySolver::new(model, State::default(), options)?;
+        let mut counts = EventCounts::default();
+        run_until(&mut solver, start, |e| counts.add(e.kind))?;
+        let samples = sample_dense(&mut solver, &times, |e| counts.add(e.kind))?;
+        Ok((samples, counts, solver.stats(), solver.newton_iterations()))
+    })?;
+    Ok(json!({
+        "solver": "stickslip-shockley",
+        "w": args.w,
+        "beta": args.beta,
+        "periods": args.periods,
+        "rtol": options.rtol,
+        "atol": options.atol,
+        "max_step": options.max_step,
+        "wall_s": wall,
+        "events": counts.json(),
+        "stats": stats_json(&stats),
+        "newton_iterations": newton,
+        "last_period": {
+            "tau": samples.iter().map(|s| s.tau).collect::<Vec<_>>(),
+            "y": samples.iter().map(|s| s.y).collect::<Vec<_>>(),
+            "v": samples.iter().map(|s| s.v).collect::<Vec<_>>(),
+        },
+    }))
+}
+
+fn spice_netlist(args: NetlistArgs) -> Result<Value> {
+    let circuit = ShockleyCircuit::paper();
+    let model = circuit.model_dimensionless(args.w, args.beta, 0.0)?;
+    let options = NetlistOptions {
+        periods: args.periods,
+        wrdata: Some("out.txt".into()),
+        ..NetlistOptions::default()
+    };
+    let text = shockley::netlist(&circuit, &model.params, State::default(), &options)?;
+    Ok(json!({
+        "netlist": text,
+        "periods": options.periods,
+        "points_per_period": options.points_per_period,
+        "max_step_fraction": options.max_step_fraction,
+    }))
+}
+
 fn main() -> Result<()> {
     let cli = Cli::parse();
     let out = match cli.workload {
         Workload::Trajectory(a) => trajectory(a)?,
         Workload::PhaseDiagram(a) => phase_diagram(a)?,
+        Workload::Shockley(a) => shockley(a)?,
+        Workload::Netlist(a) => spice_netlist(a)?,
     };
     println!("{out}");
     Ok(())
