@@ -8,7 +8,8 @@ at 27 C (SPICE's default). The transient runs over all periods but stores only t
 
 Job options: "zeta" is ignored (the circuit fixes it); per point "w", "beta", "periods";
 "options": a dict of .options (e.g. {"reltol": 1e-6}); "method" (trap or gear);
-"steps_per_period": TMAX = T / this (and TSTEP the same). Or, per point, "netlist": a
+"steps_per_period": TMAX = T / this (and TSTEP the same); "repeats": run each netlist this
+many times and report the median wall time (default 1). Or, per point, "netlist": a
 complete netlist to run as it is (stickslip::shockley::netlist's, which writes every output
 point of the run with `wrdata out.txt`); the rows of its last period are kept.
 The wall time is that of the ngspice process (perf_counter around subprocess.run, so it
@@ -78,15 +79,18 @@ def main():
                 # (ngspice lower-cases the deck, so the output file is named relative to cwd.)
                 fh.write(p.get("netlist") or netlist(w, beta, periods, spp, options, method,
                                                      "out.txt"))
-            start = time.perf_counter()
-            proc = subprocess.run(
-                ["ngspice", "-b", "bench.cir"],
-                capture_output=True,
-                text=True,
-                cwd=tmp,
-                stdin=subprocess.DEVNULL,
-            )
-            wall = time.perf_counter() - start
+            walls = []
+            for _ in range(max(1, int(job.get("repeats", 1)))):
+                start = time.perf_counter()
+                proc = subprocess.run(
+                    ["ngspice", "-b", "bench.cir"],
+                    capture_output=True,
+                    text=True,
+                    cwd=tmp,
+                    stdin=subprocess.DEVNULL,
+                )
+                walls.append(time.perf_counter() - start)
+            wall = sorted(walls)[len(walls) // 2]
             text = proc.stdout + proc.stderr
             ok = proc.returncode == 0 and os.path.exists(out)
             r = {
@@ -94,6 +98,7 @@ def main():
                 "beta": beta,
                 "periods": periods,
                 "wall_s": wall,
+                "walls_s": walls,
                 "ok": ok,
                 "message": "" if ok else text[-2000:],
                 "analysis_s": stat(text, "Total analysis time (seconds)"),
