@@ -446,7 +446,7 @@ def speedup(peer_s, ours_s):
 
 def report_a(rows):
     headers = ["point (w, β)", "solver", "wall", "events", "RHS evals", "steps",
-               "max |Δy|", "final |Δ(y,y')|", "class", "speed-up", "note"]
+               "max error of y", "final error of (y, y')", "class", "speed-up", "note"]
     out = []
     ours = {tuple(r["point"]): r for r in rows if r["solver"] == "stickslip exact"}
     for r in rows:
@@ -545,7 +545,8 @@ def report_b(b):
 
 def report_c(rows, have_shockley):
     headers = ["point (w, β)", "solver", "wall", "ngspice analysis time", "work",
-               "max |Δy| last period", "relative to amplitude", "speed-up at matched accuracy"]
+               "max error of y, last period", "relative to amplitude",
+               "speed-up at matched accuracy"]
     out = []
     for r in rows:
         work = r["work"] or {}
@@ -613,6 +614,84 @@ class Checks:
             self.failures.append(message)
 
 
+def render(results):
+    """The tables of a run, as Markdown (also from a saved results.json: --render)."""
+    info = results["machine"]
+    sections = []
+    if "a" in results:
+        rows = results["a"]
+        _, lines = targets_a(rows)
+        periods = results["sizes"]["a_periods"]
+        sections.append(f"## (a) One trajectory of {periods} drive periods from rest, "
+                        f"20 samples per period (Fig. 6 points, ζ = {ZETA:.10g})\n\n"
+                        + report_a(rows) + "\n\n¹ stickslip's error: at most its largest "
+                        "difference to the independent DOP853 run at rtol 1e-13.\n\n"
+                        "Target ≥ 1000× at equal or better accuracy:\n\n" + "\n".join(lines))
+    if "b" in results:
+        b = results["b"]
+        sections.append(f"## (b) {b['n']} × {b['n']} phase diagram, w 0.1–2.5, β 0.5–4\n\n"
+                        + report_b(b))
+    if "c" in results:
+        rows, have = results["c"], results["c_have_shockley"]
+        text = report_c(rows, have)
+        if have:
+            _, lines = targets_c(rows)
+            text += "\n\nTarget ≥ 20× at matched accuracy:\n\n" + "\n".join(lines)
+        else:
+            text += ("\n\nThe stickslip side of (c) needs `stickslip::shockley` (not in this "
+                     "build): only the peers ran.")
+        sections.append(f"## (c) Shockley diodes, {results['sizes']['c_periods']} periods of "
+                        f"the paper's circuit (Fig. 3 points)\n\n" + text)
+    head = (f"# stickslip benchmark{' (smoke)' if results['smoke'] else ''}\n\n"
+            f"Machine: {info['cpu']}, {info['cores']} cores, {info.get('memory_gib', '?')} GiB; "
+            f"{info['platform']}; Python {info['python']}, NumPy {info['numpy']}, SciPy "
+            f"{info['scipy']}; {info['ngspice']}; {info['rustc']}.\n"
+            f"Load average (1, 5, 15 min) at start {tuple(round(x, 2) for x in info['load_start'])}, "
+            f"at end {tuple(round(x, 2) for x in info['load_end'])}; harness "
+            f"{info['harness_s']:.0f} s.\n"
+            "Speed-up = peer wall time / stickslip wall time, both from this run.")
+    return head + "\n\n" + "\n\n".join(sections) + "\n"
+
+
+def run_checks(results):
+    """Correctness checks: agreement with the exact solution and the references, no failed
+    peer runs. No timing enters a check: the targets are reported, never enforced."""
+    checks = Checks()
+    for r in results.get("a", []):
+        rows = results["a"]
+        mine = next(o for o in rows
+                    if o["point"] == r["point"] and o["solver"] == "stickslip exact")
+        if r["solver"].startswith("careful"):
+            checks.check(r["err_max"] <= 1e-6, f"(a) {r['solver']} at {r['point']}: error "
+                         f"{r['err_max']:.2e} against stickslip (expected <= 1e-6)")
+            checks.check(coarse(r["class"]) == coarse(mine["class"]),
+                         f"(a) {r['solver']} at {r['point']}: class {r['class']}, "
+                         f"stickslip {mine['class']}")
+        if r["solver"] == "stickslip exact":
+            checks.check(r["error_bound"] <= 1e-8, f"(a) stickslip at {r['point']}: differs "
+                         f"by {r['error_bound']:.2e} from the DOP853 1e-13 check")
+    for p in results.get("b", {}).get("peers", []):
+        if p["solver"].startswith("careful"):
+            # (Near the stick-slip boundary a class can legitimately flip with a 1e-10 error;
+            # a wholesale disagreement is breakage.)
+            checks.check(p["agree"] >= 0.75 * p["points"],
+                         f"(b) {p['solver']}: classes agree with stickslip at only "
+                         f"{p['agree']} of {p['points']} points")
+    for r in results.get("c", []):
+        if r["solver"].startswith("reference"):
+            checks.check(r["ok"], f"(c) the reference at {r['point']} failed")
+        elif r["solver"].startswith("ngspice"):
+            checks.check(r["ok"], f"(c) {r['solver']} at {r['point']} failed")
+            checks.check(r["ok"] and r["err"] <= 0.05 * r["amplitude"],
+                         f"(c) {r['solver']} at {r['point']}: error {r['err']} against "
+                         f"the reference (expected <= 5% of the amplitude)")
+        elif r["stickslip"] and r["rtol"] <= 1e-6:
+            checks.check(r["err"] <= 1e-4 * r["amplitude"],
+                         f"(c) {r['solver']} at {r['point']}: error {r['err']:.2e} against "
+                         f"the reference (expected <= 1e-4 of the amplitude)")
+    return checks
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--smoke", action="store_true",
@@ -622,7 +701,13 @@ def main():
                     help="directory for results.json and tables.md [default: target/bench]")
     ap.add_argument("--only", choices=["a", "b", "c"], action="append",
                     help="run only these workloads (repeatable)")
+    ap.add_argument("--render", metavar="RESULTS_JSON",
+                    help="print the tables of a saved results.json again, run nothing")
     args = ap.parse_args()
+    if args.render:
+        with open(args.render) as fh:
+            print(render(json.load(fh)))
+        return 0
     only = set(args.only or ["a", "b", "c"])
     os.makedirs(args.out, exist_ok=True)
     started = time.perf_counter()
@@ -635,7 +720,8 @@ def main():
         b_subsets = [("paper: odeint LSODA, defaults", "paper_lsoda.py", {}, 4, 1, 20, False),
                      ("careful: solve_ivp DOP853 1e-10", "careful_scipy.py",
                       {"method": "DOP853", "rtol": 1e-10, "atol": 1e-12}, 4, 1, 10, True)]
-        c_points, c_periods, c_settings = FIG3[1:2], 5, NGSPICE_SETTINGS[1:2] + NGSPICE_SETTINGS[3:]
+        c_points, c_periods = FIG3[1:2], 5
+        c_settings = NGSPICE_SETTINGS[1:2] + NGSPICE_SETTINGS[3:]
         c_shockley = [(1e-6, None), (1e-8, None)]
     else:
         a_points, a_periods, a_tail = FIG6, 300, 50
@@ -649,79 +735,22 @@ def main():
         ]
         c_points, c_periods, c_settings = FIG3, 300, NGSPICE_SETTINGS
         c_shockley = SHOCKLEY_SETTINGS
-    results = {"machine": info, "smoke": args.smoke}
-    sections = []
-    checks = Checks()
+    results = {"machine": info, "smoke": args.smoke,
+               "sizes": {"a_periods": a_periods, "c_periods": c_periods}}
     if "a" in only:
-        rows = workload_a(a_points, a_periods, 20, a_tail)
-        results["a"] = rows
-        met, lines = targets_a(rows)
-        results["target_a_met"] = met
-        sections.append(f"## (a) One trajectory of {a_periods} drive periods from rest, "
-                        f"20 samples per period (Fig. 6 points, ζ = {ZETA:.10g})\n\n"
-                        + report_a(rows) + "\n\n¹ stickslip's error: at most its largest "
-                        "difference to the independent DOP853 run at rtol 1e-13 (see "
-                        "BENCHMARKS.md).\n\nTarget ≥ 1000× at equal or better accuracy:\n"
-                        + "\n".join(lines))
-        for r in rows:
-            mine = next(o for o in rows
-                        if o["point"] == r["point"] and o["solver"] == "stickslip exact")
-            if r["solver"].startswith("careful"):
-                checks.check(r["err_max"] <= 1e-6, f"(a) {r['solver']} at {r['point']}: error "
-                             f"{r['err_max']:.2e} against stickslip (expected <= 1e-6)")
-                checks.check(coarse(r["class"]) == coarse(mine["class"]),
-                             f"(a) {r['solver']} at {r['point']}: class {r['class']}, "
-                             f"stickslip {mine['class']}")
-            if r["solver"] == "stickslip exact":
-                checks.check(r["error_bound"] <= 1e-8, f"(a) stickslip at {r['point']}: differs "
-                             f"by {r['error_bound']:.2e} from the DOP853 1e-13 check")
+        results["a"] = workload_a(a_points, a_periods, 20, a_tail)
+        results["target_a_met"] = targets_a(results["a"])[0]
     if "b" in only:
-        b = workload_b(b_n, b_periods, b_subsets, b_tail)
-        results["b"] = b
-        sections.append(f"## (b) {b_n} × {b_n} phase diagram, w 0.1–2.5, β 0.5–4\n\n" + report_b(b))
-        for p in b["peers"]:
-            if p["solver"].startswith("careful"):
-                # (Near the stick-slip boundary a class can legitimately flip with a 1e-10
-                # error; a wholesale disagreement is breakage.)
-                checks.check(p["agree"] >= 0.75 * p["points"],
-                             f"(b) {p['solver']}: classes agree with stickslip at only "
-                             f"{p['agree']} of {p['points']} points")
+        results["b"] = workload_b(b_n, b_periods, b_subsets, b_tail)
     if "c" in only:
-        rows, have = workload_c(c_points, c_periods, c_settings, c_shockley)
-        results["c"] = rows
-        text = report_c(rows, have)
-        if have:
-            met, lines = targets_c(rows)
-            results["target_c_met"] = met
-            text += "\n\nTarget ≥ 20× at matched accuracy:\n" + "\n".join(lines)
-        else:
-            text += ("\n\nThe stickslip side of (c) needs `stickslip::shockley` (not in this "
-                     "build): only the peers ran.")
-        sections.append(f"## (c) Shockley diodes, {c_periods} periods of the paper's circuit "
-                        f"(Fig. 3 points)\n\n" + text)
-        for r in rows:
-            if r["solver"].startswith("reference"):
-                checks.check(r["ok"], f"(c) the reference at {r['point']} failed")
-            elif r["solver"].startswith("ngspice"):
-                checks.check(r["ok"], f"(c) {r['solver']} at {r['point']} failed")
-                checks.check(r["ok"] and r["err"] <= 0.05 * r["amplitude"],
-                             f"(c) {r['solver']} at {r['point']}: error {r['err']} against "
-                             f"the reference (expected <= 5% of the amplitude)")
-            elif r["stickslip"] and r["rtol"] <= 1e-6:
-                checks.check(r["err"] <= 1e-4 * r["amplitude"],
-                             f"(c) {r['solver']} at {r['point']}: error {r['err']:.2e} against "
-                             f"the reference (expected <= 1e-4 of the amplitude)")
+        results["c"], results["c_have_shockley"] = workload_c(c_points, c_periods, c_settings,
+                                                              c_shockley)
+        if results["c_have_shockley"]:
+            results["target_c_met"] = targets_c(results["c"])[0]
     info["load_end"] = loadavg()
     info["harness_s"] = time.perf_counter() - started
-    head = (f"# stickslip benchmark{' (smoke)' if args.smoke else ''}\n\n"
-            f"Machine: {info['cpu']}, {info['cores']} cores, {info.get('memory_gib', '?')} GiB; "
-            f"{info['platform']}; Python {info['python']}, NumPy {info['numpy']}, SciPy "
-            f"{info['scipy']}; {info['ngspice']}; {info['rustc']}.\n"
-            f"Load average (1, 5, 15 min) at start {tuple(round(x, 2) for x in info['load_start'])}, "
-            f"at end {tuple(round(x, 2) for x in info['load_end'])}; harness "
-            f"{info['harness_s']:.0f} s.\n"
-            "Speed-up = peer wall time / stickslip wall time, both from this run.")
-    text = head + "\n\n" + "\n\n".join(sections) + "\n"
+    text = render(results)
+    checks = run_checks(results)
     with open(os.path.join(args.out, "results.json"), "w") as fh:
         json.dump(results, fh, indent=1)
     with open(os.path.join(args.out, "tables.md"), "w") as fh:
@@ -730,7 +759,6 @@ def main():
     print(f"results in {args.out}")
     for p in checks.failures:
         print(f"CHECK FAILED: {p}")
-    # (No timing enters a check: the targets are reported above, never enforced.)
     print(f"bench: {checks.passed} passed, {len(checks.failures)} failed")
     return 1 if checks.failures else 0
 
