@@ -206,6 +206,12 @@ impl ExactSolver {
         self.stats.evaluations += 1;
         let mut steps = 0u64;
         loop {
+            if steps > MAX_SEARCH_STEPS {
+                return Err(Error::EventSearch {
+                    tau: self.tau0 + a,
+                    reason: "velocity-zero search did not converge",
+                });
+            }
             let g = sign * e.d[1];
             let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
@@ -256,7 +262,9 @@ impl ExactSolver {
                 } else {
                     hc
                 };
-                if target > h {
+                // (Only when the target is past a in floating point: a step below one ulp
+                // would evaluate the same point for ever.)
+                if target > h && (a + target).min(limit) > a {
                     let b = (a + target).min(limit);
                     let eb = linear.eval(b);
                     self.stats.evaluations += 1;
@@ -293,12 +301,6 @@ impl ExactSolver {
             a += h;
             e = linear.eval(a);
             self.stats.evaluations += 1;
-            if steps > MAX_SEARCH_STEPS {
-                return Err(Error::EventSearch {
-                    tau: self.tau0 + a,
-                    reason: "velocity-zero search did not converge",
-                });
-            }
         }
     }
 

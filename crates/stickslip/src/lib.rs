@@ -40,3 +40,4 @@ pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
 pub use shockley::{DiodePair, ShockleyCircuit, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};
+pub use theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};

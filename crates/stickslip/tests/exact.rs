@@ -599,3 +599,58 @@ fn near_tangential_double_zeros_are_not_missed() {
     }
     assert!(cases >= 20, "enough grazing configurations: {cases}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Regressions
+
+/// Runs `periods` drive periods, failing if any single advance stops making progress.
+fn runs_through(params: Params, initial: State, periods: f64) -> usize {
+    let mut solver = ExactSolver::new(params, initial);
+    let t_end = periods * params.drive_period();
+    let mut events = 0;
+    let mut idle = 0;
+    while solver.time() < t_end {
+        let before = solver.time();
+        if solver.advance(t_end).expect("advances").is_some() {
+            events += 1;
+        }
+        idle = if solver.time() == before { idle + 1 } else { 0 };
+        assert!(idle < 16, "{params:?}: stalled at tau = {before}");
+    }
+    events
+}
+
+#[test]
+fn regression_slip_stick_loop_at_one_instant_after_many_periods() {
+    // The force at a velocity zero and the stick exit used differently rounded drive phases;
+    // at tau ~ 1.6e4 a stop ended "now" and the next slide stopped at once, for ever.
+    for &(zeta, w, beta, periods) in &[
+        (0.046816, 0.6, 1.2, 3000.0),
+        (0.046816, 0.7, 1.2, 3000.0),
+        (0.0, 0.5, 3.3, 1500.0),
+        (0.05, 0.07, 378.3, 400.0),
+    ] {
+        let params = Params::new(zeta, w, beta).unwrap();
+        assert!(runs_through(params, State::default(), periods) > periods as usize);
+    }
+}
+
+#[test]
+fn regression_search_hung_on_a_concave_step_below_one_ulp() {
+    // ζ = 0 at w = 1/2 and 1/4, started on the continuum of sliding orbits there (the
+    // symmetric orbit shifted by a free oscillation): the curvature-certified target fell below
+    // one ulp of the search point, which was then evaluated again for ever.
+    use stickslip::theory::PeriodicSolution;
+    for &(w, beta) in &[(0.5, 4.5), (0.25, 24.0)] {
+        let params = Params::new(0.0, w, beta).unwrap();
+        let orbit = PeriodicSolution::new(&params).unwrap();
+        let t0 = orbit.first_lower_turn();
+        let offset = 0.02 * orbit.peak;
+        let on = orbit.state_at(0.0);
+        let start = State {
+            y: on.y + offset * t0.cos(),
+            v: on.v + offset * t0.sin(),
+        };
+        assert!(runs_through(params, start, 200.0) >= 399);
+    }
+}

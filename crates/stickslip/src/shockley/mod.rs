@@ -39,7 +39,7 @@
 //! changes once, at the turn). From rest at τ = 0 a stop is the initial phase, not an event,
 //! as for the exact solver.
 //!
-//! [`netlist`] writes the same circuit for SPICE, for cross-checks in ngspice or any SPICE.
+//! [`netlist()`] writes the same circuit for SPICE, for cross-checks in ngspice or any SPICE.
 
 pub mod circuit;
 pub mod diode;

@@ -118,7 +118,17 @@ impl Classifier {
     /// Classify one more step, appending the events it decides to `marks`.
     pub fn feed(&mut self, step: &Step) {
         let cubic = step.cubic(1);
-        // Most steps stay clear of the threshold: nothing to decide.
+        // Most steps stay clear of the threshold: nothing to decide. First a cheap bound:
+        // p(θ) minus its chord is −θ(1−θ)(p2 + p3(1+θ)), at most (|p2| + 2|p3|)/4.
+        let (start, end) = (cubic[0], step.x1[1]);
+        let bow = 0.25 * (cubic[2].abs() + 2.0 * cubic[3].abs());
+        match self.mode {
+            Mode::Moving { sign } if sign > 0.0 && start.min(end) - bow >= self.threshold => return,
+            Mode::Moving { sign } if sign < 0.0 && start.max(end) + bow <= -self.threshold => {
+                return
+            }
+            _ => {}
+        }
         let (low, high) = range(&cubic);
         match self.mode {
             Mode::Moving { sign } if sign > 0.0 && low >= self.threshold => return,
@@ -302,7 +312,7 @@ fn range(p: &[f64; 4]) -> (f64, f64) {
 
 /// Hand `found` every θ ∈ (0, 1) where the cubic `p` crosses `level` (changes from ≤ level
 /// to > level or back). The cubic is split at its critical points into monotone pieces, so no
-/// crossing is missed, and each crossing is bisected to 1e-16 in θ.
+/// crossing is missed, and each crossing is located to rounding level in θ.
 pub(crate) fn crossings(p: &[f64; 4], level: f64, mut found: impl FnMut(f64)) {
     let above = |theta: f64| horner(p, theta) > level;
     let (points, count) = critical_points(p);
@@ -315,21 +325,55 @@ pub(crate) fn crossings(p: &[f64; 4], level: f64, mut found: impl FnMut(f64)) {
         if above(hi) == side {
             continue;
         }
-        // Invariant: above(lo) == side != above(hi).
-        // To 1e-16 in θ (rounding of the step's own time), or to adjacent doubles.
-        while hi - lo > 1e-16 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
+        // Invariant: above(lo) == side != above(hi). Regula falsi with the Illinois
+        // modification (superlinear, never leaves the bracket) down to 1e-9 in θ, then one
+        // Newton step from the middle of the bracket, which squares that error.
+        let (mut f_lo, mut f_hi) = (horner(p, lo) - level, horner(p, hi) - level);
+        let mut kept = 0i8;
+        let mut x = 0.5 * (lo + hi);
+        for _ in 0..200 {
+            if hi - lo <= 1e-9 {
+                let mid = 0.5 * (lo + hi);
+                let slope = p[1] + mid * (2.0 * p[2] + mid * 3.0 * p[3]);
+                let newton = mid - (horner(p, mid) - level) / slope;
+                x = if newton >= lo && newton <= hi {
+                    newton
+                } else {
+                    mid
+                };
                 break;
             }
-            if above(mid) == side {
-                lo = mid;
+            x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+            if !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+                if !(x > lo && x < hi) {
+                    // lo and hi are adjacent doubles.
+                    break;
+                }
+            }
+            let f = horner(p, x) - level;
+            if f == 0.0 {
+                break;
+            }
+            if (f > 0.0) == side {
+                lo = x;
+                f_lo = f;
+                // The same end kept twice: halve the other end's weight (Illinois).
+                if kept == 1 {
+                    f_hi *= 0.5;
+                }
+                kept = 1;
             } else {
-                hi = mid;
+                hi = x;
+                f_hi = f;
+                if kept == -1 {
+                    f_lo *= 0.5;
+                }
+                kept = -1;
             }
         }
-        if hi < 1.0 {
-            found(hi);
+        if x < 1.0 {
+            found(x);
         }
     }
 }

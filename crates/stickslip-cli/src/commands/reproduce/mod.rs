@@ -57,6 +57,7 @@ pub fn run(args: Args) -> Result<()> {
         ("Fig. 5", figures::fig5),
         ("Fig. 6", figures::fig6),
         ("Fig. 7", figures::fig7),
+        ("accuracy", figures::accuracy),
     ];
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \

@@ -18,11 +18,12 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     let mut rows = Vec::new();
     let mut peaks = Vec::new();
     for &beta in &BETAS {
-        let points = sweep_pwl(ctx, SweepParameter::W, beta, 0.2, 2.0, steps, false)?;
+        let points = sweep_pwl(ctx, SweepParameter::W, beta, 0.2, 2.0, steps, true)?;
         let mut up = Vec::new();
         let mut down = Vec::new();
         for p in &points {
-            let g = p.steady.gain;
+            // G = A1/β, the definition of the paper's formula and of the exact curve.
+            let g = p.steady.harmonic(1).unwrap_or(f64::NAN) / beta;
             match p.leg {
                 SweepLeg::Up => up.push((p.params.w, g)),
                 SweepLeg::Down => down.push((p.params.w, g)),
@@ -32,6 +33,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
                 num(beta),
                 p.leg.label().into(),
                 num(g),
+                num(p.steady.gain),
                 p.steady.class.label().into(),
             ]);
         }
@@ -55,7 +57,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     series.extend(super::theory_curves::gain_curves(ctx, &BETAS)?);
     let panel = Panel {
-        title: "Fig. 4: resonance of the gain G = amplitude(u_C)/U".into(),
+        title: "Fig. 4: resonance of the gain G = A1/β".into(),
         x_label: "Ω/ω0".into(),
         y_label: "gain G".into(),
         series,
@@ -66,7 +68,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     report.figure("fig4", &Figure::single(panel, (900, 600)))?;
     report.csv(
         "fig4.csv",
-        &["w", "beta", "direction", "gain", "class"],
+        &["w", "beta", "direction", "gain_A1", "gain_peak", "class"],
         &rows,
     )?;
     report.summary.insert("fig4_peaks".into(), json!(peaks));
@@ -74,7 +76,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
         id: "fig4".into(),
         title: "Fig. 4 — resonance curves".into(),
         caption: format!(
-            "Gain G = (max u_C − min u_C)/(2U) against Ω/ω0 at β = 1.43, 3.61 and 14.3: \
+            "Gain G against Ω/ω0 at β = 1.43, 3.61 and 14.3: \
              simulated steady states of the exact solver, sweeping the frequency up (dots) and \
              then down (squares), each step starting from where the last ended. {}",
             super::theory_curves::GAIN_NOTE

@@ -1,5 +1,6 @@
 //! One function per figure or table of the paper.
 
+mod accuracy;
 mod common;
 mod fig1;
 mod fig3;
@@ -10,6 +11,7 @@ mod fig7;
 mod table1;
 mod theory_curves;
 
+pub use accuracy::accuracy;
 pub use fig1::fig1;
 pub use fig3::fig3;
 pub use fig4::fig4;
