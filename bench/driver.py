@@ -507,7 +507,7 @@ def report_b(b):
         f"API at {b['steady_vs_fixed_same_class']} of {n * n} points.",
         "",
         "Peers on a sub-grid, stickslip (fixed periods, 1 thread) on exactly the same points "
-        "and periods; full-grid times of the peers are **extrapolations** (see BENCHMARKS.md):",
+        "and periods; full-grid times of the peers are **extrapolations**, not measurements (see BENCHMARKS.md):",
         "",
     ]
     headers = ["peer", "sub-grid × periods (measured)", "peer wall", "stickslip wall, same work",
