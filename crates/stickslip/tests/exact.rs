@@ -1,6 +1,9 @@
 //! Tests of the exact solver against closed forms, an independent brute-force integrator and
 //! conservation laws.
 
+mod common;
+
+use common::gauss_legendre;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::f64::consts::PI;
@@ -369,30 +372,6 @@ fn events_agree_with_an_independent_brute_force_integrator() {
 
 // ---------------------------------------------------------------------------------------------
 // Conservation
-
-/// Gauss–Legendre nodes and weights on [-1, 1] (Newton on the Legendre recurrence).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (1..=n)
-        .map(|i| {
-            let mut x = (PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let k = k as f64;
-                    (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
 
 #[test]
 fn gauss_legendre_integrates_polynomials_exactly() {

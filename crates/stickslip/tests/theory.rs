@@ -6,6 +6,9 @@
 // Hand values are quoted with the 17 significant digits they were computed to.
 #![allow(clippy::excessive_precision)]
 
+mod common;
+
+use common::gauss_legendre;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use stickslip::theory::{
     paper_boundary, stick_slip_boundary, Obstruction, PaperHarmonic, PaperSeries, PeriodicSolution,
@@ -34,30 +37,6 @@ impl Rng {
     fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
         (lo.ln() + (hi.ln() - lo.ln()) * self.next()).exp()
     }
-}
-
-/// Nodes and weights of n-point Gauss–Legendre quadrature on [−1, 1] (Newton on P_n).
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (1..=n)
-        .map(|i| {
-            let mut x = (PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let k = k as f64;
-                    (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
 }
 
 /// ∫ₐᵇ f, composite 16-point Gauss–Legendre on pieces no longer than 0.25.
