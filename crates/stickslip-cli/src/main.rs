@@ -1,9 +1,6 @@
 //! `stickslip`: the forced oscillator with dry friction and its diode-RLC twin, from the
 //! command line. Every subcommand is glue over the `stickslip` library.
 
-// Shared plotting and output helpers serve several commands, not all of them yet.
-#![allow(dead_code)]
-
 use clap::Parser;
 use std::process::ExitCode;
 

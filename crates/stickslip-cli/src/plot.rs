@@ -126,10 +126,6 @@ pub enum Legend {
     UpperLeft,
     /// Upper right.
     UpperRight,
-    /// Lower left.
-    LowerLeft,
-    /// Lower right.
-    LowerRight,
 }
 
 /// Panels on a grid.
@@ -366,8 +362,6 @@ where
             .position(match position {
                 Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
                 Legend::UpperRight => SeriesLabelPosition::UpperRight,
-                Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
-                Legend::LowerRight => SeriesLabelPosition::LowerRight,
             })
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(180, 180, 180))
