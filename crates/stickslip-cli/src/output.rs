@@ -140,6 +140,15 @@ impl Sink {
         }
     }
 
+    /// Check, before any work, that [`Sink::open`] will be able to create `path` (nothing to
+    /// check for standard output: `None` or `-`).
+    pub fn check(path: Option<&Path>) -> Result<()> {
+        match path {
+            Some(p) if p != Path::new("-") => check_output_path(p),
+            _ => Ok(()),
+        }
+    }
+
     /// Finish: commit the file, or flush standard output.
     pub fn finish(self) -> Result<()> {
         match self {

@@ -1,7 +1,7 @@
 //! `stickslip netlist`: the circuit as a SPICE netlist with Shockley diodes.
 
 use crate::model::ModelArgs;
-use crate::output::{check_output_path, usage, Sink};
+use crate::output::{usage, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -49,11 +49,7 @@ pub struct Args {
 
 /// Run `stickslip netlist`.
 pub fn run(args: Args) -> Result<()> {
-    if let Some(path) = &args.out {
-        if path.as_os_str() != "-" {
-            check_output_path(path)?;
-        }
-    }
+    Sink::check(args.out.as_deref())?;
     let model = args.model.build()?;
     let circuit = crate::solvers::shockley_circuit(&model)?;
     let options = NetlistOptions {

@@ -105,11 +105,7 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
-    if let Some(p) = &args.out {
-        if p.as_os_str() != "-" {
-            crate::output::check_output_path(p)?;
-        }
-    }
+    Sink::check(args.out.as_deref())?;
     let model = model_args.build()?;
     let options = args.steady.options(&model)?;
     eprintln!(

@@ -62,10 +62,8 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
-    for path in [&args.out, &args.events].into_iter().flatten() {
-        if path.as_os_str() != "-" {
-            crate::output::check_output_path(path)?;
-        }
+    for path in [&args.out, &args.events] {
+        Sink::check(path.as_deref())?;
     }
     let model = args.model.build()?;
     eprintln!("simulate: {}", model.summary);

@@ -125,11 +125,7 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
-    if let Some(p) = &args.out {
-        if p.as_os_str() != "-" {
-            crate::output::check_output_path(p)?;
-        }
-    }
+    Sink::check(args.out.as_deref())?;
     let model = model_args.build()?;
     let options = args.steady.options(&model)?.with_harmonics(3)?;
     // Every swept value must be valid for the model (w > 0, β ≥ 0).

@@ -2,7 +2,7 @@
 //! stick-slip boundary or gain curves.
 
 use crate::model::{DiodeModel, ModelArgs};
-use crate::output::{check_output_path, check_plot_path, usage, Sink};
+use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use serde_json::{json, Map, Value};
@@ -351,11 +351,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
-    if let Some(p) = &args.out {
-        if p.as_os_str() != "-" {
-            check_output_path(p)?;
-        }
-    }
+    Sink::check(args.out.as_deref())?;
     let mut m = args.model.clone();
     if m.w.is_some() || m.freq.is_some() || m.omega.is_some() {
         usage!("--curve sweeps w: give --w-min and --w-max instead of --w, --freq or --omega");
