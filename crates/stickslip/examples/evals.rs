@@ -1,9 +1,14 @@
-//! Work per event of the exact solver at a few points (evaluations and search steps per event).
+//! Work per event of the exact solver at a few points: closed-form evaluations, search steps
+//! and fallbacks to the careful search per event, and the time per event.
 use stickslip::solver::run_until;
 use stickslip::{Circuit, ExactSolver, Params, Solver, State};
 
 fn main() {
     let zeta = Circuit::paper().scales().zeta();
+    let periods: f64 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(3000.0);
     for (w, beta) in [
         (0.9, 1.6),
         (0.6, 1.2),
@@ -15,14 +20,16 @@ fn main() {
         let p = Params::new(zeta, w, beta).unwrap();
         let mut s = ExactSolver::new(p, State::default());
         let t0 = std::time::Instant::now();
-        run_until(&mut s, 3000.0 * p.drive_period(), |_| {}).unwrap();
+        run_until(&mut s, periods * p.drive_period(), |_| {}).unwrap();
         let dt = t0.elapsed().as_secs_f64();
         let st = s.stats();
+        let per = |x: u64| x as f64 / st.events as f64;
         println!(
-            "w {w:5} beta {beta:5}: events {:7} evals/event {:6.2} steps/event {:6.2}  {:.0} ns/event",
+            "w {w:5} beta {beta:5}: events {:7} evals/event {:5.2} steps/event {:5.2} fallbacks/event {:5.3}  {:.0} ns/event",
             st.events,
-            st.evaluations as f64 / st.events as f64,
-            st.steps as f64 / st.events as f64,
+            per(st.evaluations),
+            per(st.steps),
+            per(st.rejected),
             dt * 1e9 / st.events as f64
         );
     }

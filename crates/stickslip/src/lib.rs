@@ -23,6 +23,7 @@
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
+mod certify;
 pub mod error;
 pub mod exact;
 mod linear;
@@ -32,6 +33,7 @@ pub mod shockley;
 pub mod solver;
 pub mod steady;
 pub mod theory;
+mod trig;
 
 pub use error::{Error, Result};
 pub use exact::ExactSolver;

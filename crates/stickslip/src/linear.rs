@@ -13,6 +13,8 @@
 //! (ζ < 1), C = 1, S = t (ζ = 1) and C = cosh(κt), S = sinh(κt)/κ (ζ > 1); differentiation
 //! maps the coefficients (p, q) of `p·EC + q·ES` to `(q − ζp, −(1−ζ²)p − ζq)`.
 
+use crate::trig::sin_cos;
+
 /// Damping regime of y'' + 2ζy' + y = 0, with what the basis needs.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Damping {
@@ -23,6 +25,8 @@ pub(crate) struct Damping {
     decay: f64,
     /// Bound on |S(t)| independent of t: 1/ω_d, 1/(2κ) or infinity.
     s_cap: f64,
+    /// 1/ω_d (underdamped only).
+    inv_omega: f64,
 }
 
 impl Damping {
@@ -34,6 +38,7 @@ impl Damping {
                 omega,
                 decay: zeta,
                 s_cap: 1.0 / omega,
+                inv_omega: 1.0 / omega,
             }
         } else if zeta == 1.0 {
             Self {
@@ -41,6 +46,7 @@ impl Damping {
                 omega: 0.0,
                 decay: 1.0,
                 s_cap: f64::INFINITY,
+                inv_omega: f64::NAN,
             }
         } else {
             let kappa = ((zeta - 1.0) * (zeta + 1.0)).sqrt();
@@ -49,6 +55,7 @@ impl Damping {
                 omega: kappa,
                 decay: 1.0 / (zeta + kappa),
                 s_cap: 0.5 / kappa,
+                inv_omega: f64::NAN,
             }
         }
     }
@@ -59,7 +66,7 @@ impl Damping {
         let z = self.zeta;
         if z < 1.0 {
             let e = (-z * t).exp();
-            let (s, c) = (self.omega * t).sin_cos();
+            let (s, c) = sin_cos(self.omega * t);
             (e * c, e * s / self.omega, e, e * s)
         } else if z == 1.0 {
             let e = (-t).exp();
@@ -102,35 +109,82 @@ pub(crate) struct Derivatives {
     trig: [f64; 4],
 }
 
-/// One linear segment in closed form.
+/// The drive's share of every segment of a run: its particular solution and the bounds
+/// that follow from it, computed once.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct LinearSegment {
+pub(crate) struct Forcing {
     damping: Damping,
     w: f64,
-    /// Drive phase at local time 0.
-    theta: f64,
+    beta: f64,
     /// Particular solution of the drive, P cos(wt+θ) + Q sin(wt+θ).
     drive_p: f64,
     drive_q: f64,
     /// β/2 in the secular case (ζ = 0, w = 1), where the particular solution is
     /// (β/2)·t·sin(t + θ); zero otherwise.
     secular: f64,
+    /// √(P² + Q²), amplitude of the drive's particular solution.
+    drive_amplitude: f64,
+    /// Drive amplitude times w³ and w⁴.
+    drive_bound: [f64; 2],
+    /// Complex amplitudes P_k − i Q_k of the drive in orders 3 and 4.
+    drive_phasors: [(f64, f64); 2],
+}
+
+impl Forcing {
+    /// The drive β cos(wt + θ) of y'' + 2ζy' + y = β cos(wt + θ) − c.
+    pub(crate) fn new(damping: Damping, w: f64, beta: f64) -> Self {
+        let zeta = damping.zeta;
+        let detune = (1.0 - w) * (1.0 + w);
+        let (drive_p, drive_q, secular) = if zeta == 0.0 && detune == 0.0 {
+            (0.0, 0.0, 0.5 * beta)
+        } else {
+            let two_zw = 2.0 * zeta * w;
+            let den = detune * detune + two_zw * two_zw;
+            (beta * detune / den, beta * two_zw / den, 0.0)
+        };
+        let drive_amplitude = drive_p.hypot(drive_q);
+        let mut forcing = Self {
+            damping,
+            w,
+            beta,
+            drive_p,
+            drive_q,
+            secular,
+            drive_amplitude,
+            drive_bound: [0.0; 2],
+            drive_phasors: [(0.0, 0.0); 2],
+        };
+        // Drive coefficients of order k: (P, Q) rotated k times by (P, Q) → (wQ, −wP).
+        let (mut dp, mut dq) = (drive_p, drive_q);
+        for k in 0..ORDERS {
+            if k >= 3 {
+                forcing.drive_bound[k - 3] = drive_amplitude * w.powi(k as i32);
+                forcing.drive_phasors[k - 3] = (dp, -dq);
+            }
+            (dp, dq) = (w * dq, -w * dp);
+        }
+        forcing
+    }
+}
+
+/// One linear segment in closed form.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LinearSegment {
+    forcing: Forcing,
+    /// Drive phase at local time 0.
+    theta: f64,
     /// The constant particular solution −c.
     offset: f64,
     /// Homogeneous coefficients (p, q) of y and its derivatives.
     hom: [(f64, f64); ORDERS],
-    /// √(P² + Q²), amplitude of the drive's particular solution.
-    drive_amplitude: f64,
     /// Amplitude √(p² + (q/ω_d)²) of the underdamped homogeneous mode (the same for every
     /// derivative), infinite when not underdamped.
     mode_amplitude: f64,
-    /// |p_k| and |q_k| of the homogeneous coefficients for the bounds of orders 3 and 4.
-    hom_abs: [(f64, f64); 2],
-    /// Drive amplitude times w³ and w⁴.
-    drive_bound: [f64; 2],
-    /// Complex amplitudes of the homogeneous mode (p_k − i q_k/ω_d) and of the drive
-    /// (P_k − i Q_k) in orders 3 and 4 (underdamped, non-secular segments only).
-    phasors: [((f64, f64), (f64, f64)); 2],
+    /// Complex amplitudes of the homogeneous mode (p_k − i q_k/ω_d) in orders 3 and 4
+    /// (underdamped segments only).
+    hom_phasors: [(f64, f64); 2],
+    /// y, y', …, y'''' at local time 0, from the initial state and the equation itself.
+    start: Derivatives,
 }
 
 impl LinearSegment {
@@ -144,67 +198,72 @@ impl LinearSegment {
         y0: f64,
         v0: f64,
     ) -> Self {
-        let zeta = damping.zeta;
-        let detune = (1.0 - w) * (1.0 + w);
-        let (drive_p, drive_q, secular) = if zeta == 0.0 && detune == 0.0 {
-            (0.0, 0.0, 0.5 * beta)
-        } else {
-            let two_zw = 2.0 * zeta * w;
-            let den = detune * detune + two_zw * two_zw;
-            (beta * detune / den, beta * two_zw / den, 0.0)
-        };
-        let mut seg = Self {
-            damping,
-            w,
-            theta,
-            drive_p,
-            drive_q,
-            secular,
-            offset: -c,
-            hom: [(0.0, 0.0); ORDERS],
-            drive_amplitude: drive_p.hypot(drive_q),
-            mode_amplitude: f64::INFINITY,
-            hom_abs: [(0.0, 0.0); 2],
-            drive_bound: [0.0; 2],
-            phasors: [((0.0, 0.0), (0.0, 0.0)); 2],
-        };
-        let (sin0, cos0) = theta.sin_cos();
-        let yp0 = seg.offset + drive_p * cos0 + drive_q * sin0;
-        let vp0 = w * (drive_q * cos0 - drive_p * sin0) + secular * sin0;
+        let forcing = Forcing::new(damping, w, beta);
+        Self::with_forcing(&forcing, theta, sin_cos(theta), c, y0, v0)
+    }
+
+    /// Segment of y'' + 2ζy' + y = β cos(wt + θ) − c from (y0, v0), for a drive computed
+    /// once, with `(sin θ, cos θ)` given.
+    #[inline]
+    pub(crate) fn with_forcing(
+        forcing: &Forcing,
+        theta: f64,
+        (sin0, cos0): (f64, f64),
+        c: f64,
+        y0: f64,
+        v0: f64,
+    ) -> Self {
+        let f = forcing;
+        let (zeta, w, beta) = (f.damping.zeta, f.w, f.beta);
+        // Derivatives at 0 straight from the equation y'' = β cos(wt + θ) − c − y − 2ζy' and
+        // its derivatives: exact to rounding, with no cancellation between the homogeneous
+        // and particular parts.
+        let mut d = [y0, v0, 0.0, 0.0, 0.0];
+        d[2] = beta * cos0 - c - d[0] - 2.0 * zeta * d[1];
+        d[3] = -beta * w * sin0 - d[1] - 2.0 * zeta * d[2];
+        d[4] = -beta * w * w * cos0 - d[2] - 2.0 * zeta * d[3];
+        let yp0 = -c + f.drive_p * cos0 + f.drive_q * sin0;
+        let vp0 = w * (f.drive_q * cos0 - f.drive_p * sin0) + f.secular * sin0;
         let u0 = y0 - yp0;
         let u1 = v0 - vp0;
-        seg.hom[0] = (u0, u1 + zeta * u0);
+        let mut hom = [(0.0, 0.0); ORDERS];
+        hom[0] = (u0, u1 + zeta * u0);
         for k in 1..ORDERS {
-            seg.hom[k] = damping.derive(seg.hom[k - 1]);
+            hom[k] = f.damping.derive(hom[k - 1]);
         }
-        if zeta < 1.0 {
-            let (p, q) = seg.hom[0];
-            seg.mode_amplitude = p.hypot(q / damping.omega);
+        let (mode_amplitude, hom_phasors) = if zeta < 1.0 {
+            let (p, q) = hom[0];
+            let inv = f.damping.inv_omega;
+            (
+                (p * p + q * q * inv * inv).sqrt(),
+                [(hom[3].0, -hom[3].1 * inv), (hom[4].0, -hom[4].1 * inv)],
+            )
+        } else {
+            (f64::INFINITY, [(0.0, 0.0); 2])
+        };
+        Self {
+            forcing: *forcing,
+            theta,
+            offset: -c,
+            hom,
+            mode_amplitude,
+            hom_phasors,
+            start: Derivatives {
+                d,
+                envelope: 1.0,
+                velocity_noise: 0.0,
+                trig: [1.0, 0.0, cos0, sin0],
+            },
         }
-        // Drive coefficients of order k: (P, Q) rotated k times by (P, Q) → (wQ, −wP).
-        let (mut dp, mut dq) = (drive_p, drive_q);
-        for k in 0..ORDERS {
-            if k >= 3 {
-                let i = k - 3;
-                seg.hom_abs[i] = (seg.hom[k].0.abs(), seg.hom[k].1.abs());
-                seg.drive_bound[i] = seg.drive_amplitude * w.powi(k as i32);
-                if zeta < 1.0 {
-                    let (p, q) = seg.hom[k];
-                    seg.phasors[i] = ((p, -q / damping.omega), (dp, -dq));
-                }
-            }
-            (dp, dq) = (w * dq, -w * dp);
-        }
-        seg
     }
 
     /// y, y', …, y'''' at local time t.
     #[inline]
     pub(crate) fn eval(&self, t: f64) -> Derivatives {
-        let (ec, es, envelope, e_sin) = self.damping.basis(t);
-        let (s, c) = (self.w * t + self.theta).sin_cos();
+        let (ec, es, envelope, e_sin) = self.forcing.damping.basis(t);
+        let (s, c) = sin_cos(self.forcing.w * t + self.theta);
         // Drive: derivatives of P c + Q s rotate (P, Q) → (wQ, −wP).
-        let (mut p, mut q) = (self.drive_p, self.drive_q);
+        let (mut p, mut q) = (self.forcing.drive_p, self.forcing.drive_q);
         let mut d = [0.0; ORDERS];
         let mut hom_v = 0.0;
         let mut drive_v = 0.0;
@@ -217,12 +276,12 @@ impl LinearSegment {
                 drive_v = f.abs() + (p * c).abs() + (q * s).abs();
             }
             *dk = h + f;
-            (p, q) = (self.w * q, -self.w * p);
+            (p, q) = (self.forcing.w * q, -self.forcing.w * p);
         }
         d[0] += self.offset;
-        if self.secular != 0.0 {
+        if self.forcing.secular != 0.0 {
             // d^k/dt^k [t sin x] = t sin(x + kπ/2) + k sin(x + (k−1)π/2), x = t + θ.
-            let h = self.secular;
+            let h = self.forcing.secular;
             let rot = [s, c, -s, -c];
             for (k, dk) in d.iter_mut().enumerate() {
                 *dk += h * (t * rot[k % 4] + k as f64 * rot[(k + 3) % 4]);
@@ -237,18 +296,44 @@ impl LinearSegment {
         }
     }
 
+    /// y, y', …, y'''' at local time 0 (the segment's initial state, exact).
+    #[inline]
+    pub(crate) fn start(&self) -> &Derivatives {
+        &self.start
+    }
+
+    /// Whether the segment is an underdamped, non-secular one: a decaying mode at ω_d and
+    /// the drive at w, each a rotating phasor, whose bounds [`LinearSegment::global_bounds`]
+    /// gives.
+    #[inline]
+    pub(crate) fn is_two_phasor(&self) -> bool {
+        self.forcing.damping.zeta < 1.0 && self.forcing.secular == 0.0
+    }
+
+    /// Bounds of |y''''| and |y⁽⁵⁾| over the whole segment (t ≥ 0) of a two-phasor segment:
+    /// the mode's amplitude (|ω_d − iζ| = 1, so differentiation keeps it) plus the drive's
+    /// times w⁴ and w⁵.
+    #[inline]
+    pub(crate) fn global_bounds(&self) -> (f64, f64) {
+        let w4 = self.forcing.w * self.forcing.w * self.forcing.w * self.forcing.w;
+        (
+            self.mode_amplitude + self.forcing.drive_amplitude * w4,
+            self.mode_amplitude + self.forcing.drive_amplitude * w4 * self.forcing.w,
+        )
+    }
+
     /// (y, y') at local time t.
     #[inline]
     pub(crate) fn state(&self, t: f64) -> (f64, f64) {
-        let (ec, es, _, _) = self.damping.basis(t);
-        let (s, c) = (self.w * t + self.theta).sin_cos();
-        let (p, q) = (self.drive_p, self.drive_q);
+        let (ec, es, _, _) = self.forcing.damping.basis(t);
+        let (s, c) = sin_cos(self.forcing.w * t + self.theta);
+        let (p, q) = (self.forcing.drive_p, self.forcing.drive_q);
         let (h0, h1) = (self.hom[0], self.hom[1]);
         let mut y = self.offset + h0.0 * ec + h0.1 * es + p * c + q * s;
-        let mut v = h1.0 * ec + h1.1 * es + self.w * (q * c - p * s);
-        if self.secular != 0.0 {
-            y += self.secular * t * s;
-            v += self.secular * (s + t * c);
+        let mut v = h1.0 * ec + h1.1 * es + self.forcing.w * (q * c - p * s);
+        if self.forcing.secular != 0.0 {
+            y += self.forcing.secular * t * s;
+            v += self.forcing.secular * (s + t * c);
         }
         (y, v)
     }
@@ -262,26 +347,27 @@ impl LinearSegment {
     /// where the two terms nearly cancel.
     #[inline]
     pub(crate) fn derivative_bounds(&self, a: f64, span: f64, at: &Derivatives) -> (f64, f64) {
-        let reach = (a + span).min(self.damping.s_cap);
+        let reach = (a + span).min(self.forcing.damping.s_cap);
         let [ec, e_sin, c, s] = at.trig;
-        let underdamped = self.damping.zeta < 1.0 && self.secular == 0.0;
-        let detune = (self.w - self.damping.omega).abs();
+        let underdamped = self.forcing.damping.zeta < 1.0 && self.forcing.secular == 0.0;
+        let detune = (self.forcing.w - self.forcing.damping.omega).abs();
         let mut out = [0.0; 2];
         for (i, o) in out.iter_mut().enumerate() {
-            let (p, q) = self.hom_abs[i];
-            let hom = (p + q * reach).min(self.mode_amplitude);
-            *o = hom * at.envelope + self.drive_bound[i];
-            if self.secular != 0.0 {
-                *o += self.secular * (a + span + (i + 3) as f64);
+            let (p, q) = self.hom[i + 3];
+            let hom = (p.abs() + q.abs() * reach).min(self.mode_amplitude);
+            *o = hom * at.envelope + self.forcing.drive_bound[i];
+            if self.forcing.secular != 0.0 {
+                *o += self.forcing.secular * (a + span + (i + 3) as f64);
             }
             if underdamped {
-                let ((hr, hi), (dr, di)) = self.phasors[i];
+                let (hr, hi) = self.hom_phasors[i];
+                let (dr, di) = self.forcing.drive_phasors[i];
                 let (h_re, h_im) = (hr * ec - hi * e_sin, hr * e_sin + hi * ec);
                 let (d_re, d_im) = (dr * c - di * s, dr * s + di * c);
                 // Plain square roots: these moduli are far from overflow, and hypot is slow.
                 let (s_re, s_im) = (h_re + d_re, h_im + d_im);
                 let sum = (s_re * s_re + s_im * s_im).sqrt();
-                let drift = self.damping.zeta * (h_re * h_re + h_im * h_im).sqrt()
+                let drift = self.forcing.damping.zeta * (h_re * h_re + h_im * h_im).sqrt()
                     + detune * (d_re * d_re + d_im * d_im).sqrt();
                 *o = o.min(sum + drift * span);
             }

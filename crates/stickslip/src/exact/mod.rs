@@ -1,0 +1,327 @@
+//! The exact event-driven solver for the piecewise-linear (Coulomb friction / PWL diode) model.
+//!
+//! Between switching events the equation of motion is linear, so each sliding segment and each
+//! stuck segment is advanced in closed form (the private module `linear`); only the event
+//! times are found numerically.
+//!
+//! **Velocity zeros** (a turn or a stop) are found by the search of the private module
+//! `search`: a predicted search that proves, from one evaluation of the closed form where the
+//! last slide of the same kind ended, that no zero comes earlier and where the zero lies; and a
+//! careful search, with steps that provably cannot pass a zero however tangential, wherever
+//! the prediction cannot be proved.
+//!
+//! **Stick exit** is solved in closed form: while stuck at y_s the net force
+//! β cos(wτ + φ) − y_s is a shifted cosine, and its first outward crossing of ±μs is an arccos.
+
+mod search;
+
+use crate::error::{Error, Result};
+use crate::linear::{Damping, Forcing, LinearSegment};
+use crate::params::{Params, State};
+use crate::solver::{Event, EventKind, Phase, Sample, Solver, Stats};
+use crate::trig::sin_cos;
+use search::{slide_kind, ZeroSearch};
+use std::f64::consts::TAU;
+
+/// Motion during one segment.
+#[derive(Debug, Clone, Copy)]
+#[allow(clippy::large_enum_variant)]
+enum Segment {
+    /// Sliding in direction `sign` (±1).
+    Slide { sign: f64, linear: LinearSegment },
+    /// Stuck at y = `y`; leaves at local time `exit` (infinite if never) in direction
+    /// `exit_sign`.
+    Stick { y: f64, exit: f64, exit_sign: f64 },
+}
+
+/// The exact solver. See the module documentation for the method.
+///
+/// ```
+/// use stickslip::{ExactSolver, Params, Solver, State, EventKind};
+/// // Free Coulomb decay from y = 7.5: turning points −5.5, 3.5, −1.5, then a stop at −0.5.
+/// let params = Params::new(0.0, 1.0, 0.0).unwrap();
+/// let mut solver = ExactSolver::new(params, State { y: 7.5, v: 0.0 });
+/// let mut turns = Vec::new();
+/// while let Some(event) = solver.advance(100.0).unwrap() {
+///     turns.push((event.kind, event.y));
+/// }
+/// assert_eq!(turns.len(), 4);
+/// assert!((turns[0].1 + 5.5).abs() < 1e-12 && turns[3].0 == EventKind::Stick);
+/// assert!((turns[3].1 + 0.5).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ExactSolver {
+    params: Params,
+    /// The drive's particular solution, the same for every sliding segment.
+    forcing: Forcing,
+    /// Absolute start time of the current segment.
+    tau0: f64,
+    /// Drive phase w τ0 + φ (mod 2π) at the segment start, carried from segment to segment so
+    /// that the force checks at events and the stick exits all see one and the same phase.
+    theta0: f64,
+    /// Consecutive events at one and the same instant (zero-length segments), to break loops
+    /// that rounding could otherwise cause at a tangential stick boundary.
+    repeats: u32,
+    /// Two segment slots: the current one, and the one before it (kept for dense output over
+    /// an interval that ended at an event). A new segment is written over the older one, so
+    /// no segment is ever copied.
+    slots: [Segment; 2],
+    /// Index of the current segment in `slots`.
+    current: usize,
+    /// Current absolute time.
+    time: f64,
+    /// The velocity-zero search on the current sliding segment, with the work counters.
+    search: ZeroSearch,
+    /// Slot of the segment covered by the last advance, its start, and the interval covered
+    /// (for dense output).
+    last: (usize, f64, f64, f64),
+}
+
+impl ExactSolver {
+    /// A solver starting at τ = 0 from `initial`. With y'(0) = 0 the oscillator starts stuck
+    /// when the net force |β cos φ − y0| is at most μs.
+    pub fn new(params: Params, initial: State) -> Self {
+        let stuck = Segment::Stick {
+            y: initial.y,
+            exit: f64::INFINITY,
+            exit_sign: 0.0,
+        };
+        let mut solver = Self {
+            params,
+            forcing: Forcing::new(Damping::new(params.zeta), params.w, params.beta),
+            tau0: 0.0,
+            theta0: params.phi.rem_euclid(TAU),
+            repeats: 0,
+            slots: [stuck; 2],
+            current: 0,
+            time: 0.0,
+            search: ZeroSearch::new(),
+            last: (0, 0.0, 0.0, 0.0),
+        };
+        let theta = solver.theta0;
+        let trig = sin_cos(theta);
+        if initial.v != 0.0 {
+            solver.start_slide(0.0, theta, trig, initial.y, initial.v, initial.v.signum());
+        } else {
+            let force = params.beta * trig.1 - initial.y;
+            if force.abs() <= params.mu_s {
+                solver.start_stick(0.0, theta, initial.y);
+            } else {
+                solver.start_slide(0.0, theta, trig, initial.y, 0.0, force.signum());
+            }
+        }
+        solver.last = (solver.current, solver.tau0, 0.0, 0.0);
+        solver
+    }
+
+    /// The parameters of the model.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The current segment.
+    fn segment(&self) -> &Segment {
+        &self.slots[self.current]
+    }
+
+    /// Make `segment` the current one, starting at `tau0` with drive phase `theta`, in the
+    /// slot of the one before the current.
+    fn begin(&mut self, tau0: f64, theta: f64, segment: Segment) {
+        self.current = 1 - self.current;
+        self.slots[self.current] = segment;
+        self.tau0 = tau0;
+        self.theta0 = theta;
+        self.time = tau0;
+    }
+
+    /// Drive phase at local time t of the current segment, reduced to [0, 2π).
+    fn phase_at(&self, t: f64) -> f64 {
+        (self.theta0 + self.params.w * t).rem_euclid(TAU)
+    }
+
+    /// Start a slide in direction `sign`; `trig` is (sin θ, cos θ).
+    fn start_slide(&mut self, tau0: f64, theta: f64, trig: (f64, f64), y: f64, v: f64, sign: f64) {
+        let from_stop = matches!(self.segment(), Segment::Stick { .. });
+        self.search.begin(slide_kind(sign, from_stop));
+        let linear = LinearSegment::with_forcing(&self.forcing, theta, trig, sign, y, v);
+        self.begin(tau0, theta, Segment::Slide { sign, linear });
+    }
+
+    fn start_stick(&mut self, tau0: f64, theta: f64, y: f64) {
+        let (exit, exit_sign) = self.stick_exit(theta, y, self.repeats < 4);
+        self.begin(tau0, theta, Segment::Stick { y, exit, exit_sign });
+    }
+
+    /// Local time and direction at which a stop at y, starting at drive phase θ, ends: the
+    /// first outward crossing of β cos(ψ) − y = ±μs. With `allow_now`, a crossing a rounding
+    /// error behind θ means "now" (a stop of zero duration).
+    fn stick_exit(&self, theta: f64, y: f64, allow_now: bool) -> (f64, f64) {
+        let p = &self.params;
+        if p.beta == 0.0 {
+            return (f64::INFINITY, 0.0);
+        }
+        let ahead = |psi: f64| {
+            let d = (psi - theta).rem_euclid(TAU);
+            if allow_now && d > TAU - 1e-12 {
+                0.0
+            } else {
+                d
+            }
+        };
+        let up = (y + p.mu_s) / p.beta; // cos ψ rising through this: force reaches +μs
+        let down = (y - p.mu_s) / p.beta; // cos ψ falling through this: force reaches −μs
+        let mut best = (f64::INFINITY, 0.0);
+        if up <= -1.0 {
+            return (0.0, 1.0);
+        }
+        if down >= 1.0 {
+            return (0.0, -1.0);
+        }
+        if up < 1.0 {
+            let d = ahead(TAU - up.acos());
+            best = (d, 1.0);
+        }
+        if down > -1.0 {
+            let d = ahead(down.acos());
+            if d < best.0 {
+                best = (d, -1.0);
+            }
+        }
+        (best.0 / p.w, best.1)
+    }
+
+    /// Track consecutive zero-length segments.
+    fn count_repeat(&mut self, local_time: f64) {
+        if local_time == 0.0 {
+            self.repeats += 1;
+        } else {
+            self.repeats = 0;
+        }
+    }
+
+    fn segment_sample(segment: &Segment, tau0: f64, tau: f64) -> Sample {
+        match segment {
+            Segment::Slide { sign, linear } => {
+                let (y, v) = linear.state(tau - tau0);
+                Sample {
+                    tau,
+                    y,
+                    v,
+                    phase: if *sign > 0.0 {
+                        Phase::SlipPositive
+                    } else {
+                        Phase::SlipNegative
+                    },
+                }
+            }
+            Segment::Stick { y, .. } => Sample {
+                tau,
+                y: *y,
+                v: 0.0,
+                phase: Phase::Stick,
+            },
+        }
+    }
+
+    /// Mark the current segment as covered from `from` to absolute time `tau_end`, for dense
+    /// output, and move the clock there.
+    fn close(&mut self, from: f64, tau_end: f64) {
+        self.last = (self.current, self.tau0, from, tau_end);
+        self.time = tau_end;
+    }
+
+    /// Count an event and hand it out.
+    fn event(&mut self, tau: f64, y: f64, kind: EventKind) -> Result<Option<Event>> {
+        self.search.stats.events += 1;
+        Ok(Some(Event { tau, y, kind }))
+    }
+}
+
+impl Solver for ExactSolver {
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn state(&self) -> State {
+        let s = Self::segment_sample(self.segment(), self.tau0, self.time);
+        State { y: s.y, v: s.v }
+    }
+
+    fn phase(&self) -> Phase {
+        match *self.segment() {
+            Segment::Slide { sign, .. } if sign > 0.0 => Phase::SlipPositive,
+            Segment::Slide { .. } => Phase::SlipNegative,
+            Segment::Stick { .. } => Phase::Stick,
+        }
+    }
+
+    fn drive(&self, tau: f64) -> f64 {
+        self.params.drive(tau)
+    }
+
+    fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
+        if t_end < self.time || t_end.is_nan() {
+            return Err(Error::TimeBeforeCurrent {
+                requested: t_end,
+                current: self.time,
+            });
+        }
+        let from = self.time;
+        let limit = t_end - self.tau0;
+        let (sign, t, y) = match &self.slots[self.current] {
+            &Segment::Stick { y, exit, exit_sign } => {
+                if exit > limit || exit == f64::INFINITY {
+                    self.close(from, t_end);
+                    return Ok(None);
+                }
+                let tau = self.tau0 + exit;
+                let theta = self.phase_at(exit);
+                self.close(from, tau);
+                self.count_repeat(exit);
+                self.start_slide(tau, theta, sin_cos(theta), y, 0.0, exit_sign);
+                return self.event(tau, y, EventKind::Slip);
+            }
+            Segment::Slide { sign, linear } => {
+                match self.search.first_zero(*sign, linear, limit, self.tau0)? {
+                    Some((t, y)) => (*sign, t, y),
+                    None => {
+                        self.close(from, t_end);
+                        return Ok(None);
+                    }
+                }
+            }
+        };
+        let tau = self.tau0 + t;
+        let theta = self.phase_at(t);
+        self.close(from, tau);
+        let trig = sin_cos(theta);
+        let force = self.params.beta * trig.1 - y;
+        self.count_repeat(t);
+        if force.abs() <= self.params.mu_s || (t == 0.0 && force.signum() == sign) {
+            // (At t = 0 a slide that cannot start is a stop, even when rounding puts the
+            // force a hair beyond μs.)
+            self.start_stick(tau, theta, y);
+            self.event(tau, y, EventKind::Stick)
+        } else if force.signum() != sign {
+            self.start_slide(tau, theta, trig, y, 0.0, force.signum());
+            self.event(tau, y, EventKind::Turn)
+        } else {
+            // The velocity touched zero while the force still pushes onward: the motion goes
+            // on in the same direction (a tangency within rounding), no event.
+            self.start_slide(tau, theta, trig, y, 0.0, sign);
+            self.advance(t_end)
+        }
+    }
+
+    fn interval(&self) -> (f64, f64) {
+        (self.last.2, self.last.3)
+    }
+
+    fn dense(&self, tau: f64) -> Sample {
+        Self::segment_sample(&self.slots[self.last.0], self.last.1, tau)
+    }
+
+    fn stats(&self) -> Stats {
+        self.search.stats
+    }
+}

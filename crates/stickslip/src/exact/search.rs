@@ -1,0 +1,389 @@
+//! The search for the first velocity zero of a sliding segment: a predicted search that
+//! usually needs one evaluation of the closed form, and the careful search it falls back on.
+//!
+//! **Careful search.** On a sliding segment with direction s, let g(t) = s·y'(t) ≥ 0. From a
+//! point a with known g, g', g'' and bounds M₂ ≥ |g''|, M₃ ≥ |g'''| on [a, a + H] (from the
+//! closed form: every term's amplitude times its frequency to the power of the derivative, or
+//! the modulus of the two rotating phasors), Taylor's theorem gives
+//!
+//! ```text
+//! g(a + h) ≥ g + g'h − M₂h²/2      and      g(a + h) ≥ g + g'h + g''h²/2 − M₃h³/6,
+//! ```
+//!
+//! so g has no zero before the first positive root of either right-hand side. Second, while
+//! |g''(a)| > M₃·h the curvature keeps its sign on [a, a + h]: where g is convex it lies above
+//! its tangent (no zero before the Newton point), and where it is concave it is at least
+//! min(g(a), g(a + h)), so a positive value at a + h proves the stretch free of zeros and a
+//! sign change brackets exactly one zero, which a safeguarded Newton iteration then locates to
+//! rounding. Every step is thus derived from the segment's own frequencies, amplitudes and
+//! curvature (not from a fixed dt) and can never pass a zero, however tangential.
+//!
+//! **Predicted search.** A slide usually lasts as long as the last slide that started the same
+//! way (same direction, from a stop or not): in a steady state exactly so. The search
+//! evaluates the closed form once, a hair before that predicted end b, and then proves, from
+//! Taylor data at 0 and at b alone, that (0, b] has no zero (lower bounds reaching from both
+//! ends, [`certify::reach`]) and that the zero lies in a bracket of rounding size just past b
+//! where g is strictly decreasing ([`certify::locate`]). Where a proof fails it evaluates once
+//! more (a split point, a Newton point); where it still fails, the careful search continues
+//! from the last point up to which no zero is proved.
+
+use crate::certify::{self, cubic_safe_step, quadratic_safe_step, Jet, Location};
+use crate::error::{Error, Result};
+use crate::linear::{Derivatives, LinearSegment};
+use crate::solver::Stats;
+
+/// Largest number of search steps on one segment before the search reports failure.
+const MAX_SEARCH_STEPS: u64 = 1_000_000;
+
+/// Kinds of slide told apart for prediction (see [`slide_kind`]).
+const KINDS: usize = 4;
+
+/// Slides are told apart by direction and by how they start (from a stop, or otherwise), so
+/// that the duration of the last slide of the same kind predicts the next one's.
+pub(super) fn slide_kind(sign: f64, from_stop: bool) -> usize {
+    usize::from(sign > 0.0) + 2 * usize::from(from_stop)
+}
+
+/// What the predicted search concludes.
+enum Predicted {
+    /// The first zero: local time and y there.
+    Zero(f64, f64),
+    /// No zero in (0, t]: the careful search continues from t.
+    Clear(f64),
+}
+
+/// The state of the search on the current sliding segment, and what it learns from one
+/// segment for the next.
+#[derive(Debug, Clone)]
+pub(super) struct ZeroSearch {
+    /// Local time up to which the current sliding segment is known to have no velocity zero.
+    searched: f64,
+    /// The first velocity zero (local time, y) of the current sliding segment, once found.
+    zero: Option<(f64, f64)>,
+    /// Whether the predicted search has run on the current sliding segment.
+    predicted_tried: bool,
+    /// The kind of the current slide.
+    kind: usize,
+    /// Per kind of slide: the duration of the last one, and how far its prediction missed.
+    durations: [(f64, f64); KINDS],
+    /// Whether to try the predicted search first (off only in tests that compare the two).
+    pub(super) predict: bool,
+    /// Work counters.
+    pub(super) stats: Stats,
+}
+
+impl ZeroSearch {
+    pub(super) fn new() -> Self {
+        Self {
+            searched: 0.0,
+            zero: None,
+            predicted_tried: false,
+            kind: 0,
+            durations: [(f64::NAN, 0.0); KINDS],
+            predict: true,
+            stats: Stats::default(),
+        }
+    }
+
+    /// Start on a new sliding segment of the given kind.
+    pub(super) fn begin(&mut self, kind: usize) {
+        self.searched = 0.0;
+        self.zero = None;
+        self.predicted_tried = false;
+        self.kind = kind;
+    }
+
+    /// The first velocity zero `(t, y(t))` of the current sliding segment in local times
+    /// (0, limit], or None when there is none up to `limit`. `tau0` (the segment's start)
+    /// only labels errors.
+    ///
+    /// # Errors
+    /// [`Error::EventSearch`] when the careful search does not converge.
+    pub(super) fn first_zero(
+        &mut self,
+        sign: f64,
+        linear: &LinearSegment,
+        limit: f64,
+        tau0: f64,
+    ) -> Result<Option<(f64, f64)>> {
+        if !self.predicted_tried && self.predict {
+            self.predicted_tried = true;
+            match self.predicted(sign, linear) {
+                Predicted::Zero(t, y) => self.zero = Some((t, y)),
+                Predicted::Clear(t) => {
+                    self.searched = t;
+                    self.stats.rejected += 1;
+                }
+            }
+        }
+        let found = match self.zero {
+            Some((t, _)) if t > limit => return Ok(None),
+            Some(zero) => Some(zero),
+            None => self.careful(sign, linear, limit, tau0)?,
+        };
+        if let Some((t, _)) = found {
+            let (predicted, _) = self.durations[self.kind];
+            let miss = if predicted.is_nan() {
+                0.0
+            } else {
+                (t - predicted).abs()
+            };
+            self.durations[self.kind] = (t, miss);
+        }
+        Ok(found)
+    }
+
+    /// The closed form at local time t, counted.
+    fn evaluate(&mut self, linear: &LinearSegment, t: f64) -> Derivatives {
+        self.stats.evaluations += 1;
+        linear.eval(t)
+    }
+
+    /// The predicted search (see the module documentation).
+    fn predicted(&mut self, sign: f64, linear: &LinearSegment) -> Predicted {
+        // At most this many split points to cover (0, b], and Newton points to bracket.
+        const SPLITS: usize = 3;
+        const NEWTON: usize = 4;
+        let (predicted, miss) = self.durations[self.kind];
+        if !(predicted > 0.0) || !linear.is_two_phasor() {
+            return Predicted::Clear(0.0);
+        }
+        let jet = |e: &Derivatives| Jet {
+            g: [sign * e.d[1], sign * e.d[2], sign * e.d[3], sign * e.d[4]],
+            noise: e.velocity_noise,
+        };
+        let mut start = jet(linear.start());
+        if start.g[0] == 0.0 {
+            // From rest the acceleration along the slide is ≥ 0 (the force has crossed ±μs
+            // outward, or exceeds it after a turn); a negative value is rounding.
+            start.g[1] = start.g[1].max(0.0);
+        }
+        if start.g[0] < 0.0 {
+            return Predicted::Clear(0.0);
+        }
+        // Aim short of the prediction by more than its last miss, so that b is rarely past
+        // the zero and the zero is close beyond it.
+        let margin = 1e-7 * predicted + 2.0 * miss;
+        let mut b = predicted - margin;
+        if !(b > 0.0) {
+            return Predicted::Clear(0.0);
+        }
+        let mut eb = self.evaluate(linear, b);
+        let mut jb = jet(&eb);
+        if jb.g[0] <= jb.noise {
+            // Past the zero (or on it): step back twice the Newton distance.
+            if !(jb.g[1] < 0.0) {
+                return Predicted::Clear(0.0);
+            }
+            b -= 2.0 * (jb.g[0] - jb.noise) / jb.g[1] + margin;
+            if !(b > 0.0) {
+                return Predicted::Clear(0.0);
+            }
+            eb = self.evaluate(linear, b);
+            jb = jet(&eb);
+            if jb.g[0] <= jb.noise {
+                return Predicted::Clear(0.0);
+            }
+        }
+        // (0, b] has no zero: cover it from both ends.
+        let (m2, m3) = linear.derivative_bounds(0.0, b, linear.start());
+        let (mut left, mut jl) = (0.0, start);
+        let mut splits = 0;
+        loop {
+            if certify::covers(jl, jb, b - left, m2, m3) {
+                break;
+            }
+            let ahead = certify::reach(jl, m2, m3, b - left);
+            splits += 1;
+            if splits > SPLITS || !(ahead > 0.0) || left + ahead >= b {
+                return Predicted::Clear(left);
+            }
+            left += ahead;
+            let e = self.evaluate(linear, left);
+            jl = jet(&e);
+        }
+        // The zero beyond b.
+        let (m3_all, m4_all) = linear.global_bounds();
+        let (mut from, mut p, mut e) = (b, b, eb);
+        for _ in 0..NEWTON {
+            match certify::locate(jet(&e), p, from, m3_all, m4_all) {
+                Location::Found(located) => {
+                    let x = located.offset;
+                    let d = e.d;
+                    let y =
+                        d[0] + x * (d[1] + x * (0.5 * d[2] + x * (d[3] / 6.0 + x * d[4] / 24.0)));
+                    self.stats.steps += 1;
+                    return Predicted::Zero(p + x, y);
+                }
+                Location::Closer(offset) => {
+                    let q = p + offset;
+                    let eq = self.evaluate(linear, q);
+                    if sign * eq.d[1] > eq.velocity_noise && q > from {
+                        // g decreases from `from` to q and is still positive at q.
+                        from = q;
+                    }
+                    (p, e) = (q, eq);
+                }
+                Location::Unknown => break,
+            }
+        }
+        Predicted::Clear(from)
+    }
+
+    /// The careful search: first velocity zero of the current sliding segment in local times
+    /// (searched, limit], `Some((t, y(t)))`, or None. Advances `self.searched`.
+    fn careful(
+        &mut self,
+        sign: f64,
+        linear: &LinearSegment,
+        limit: f64,
+        tau0: f64,
+    ) -> Result<Option<(f64, f64)>> {
+        let mut a = self.searched;
+        let mut e = if a == 0.0 {
+            *linear.start()
+        } else {
+            self.stats.evaluations += 1;
+            linear.eval(a)
+        };
+        let mut steps = 0u64;
+        loop {
+            if steps > MAX_SEARCH_STEPS {
+                return Err(Error::EventSearch {
+                    tau: tau0 + a,
+                    reason: "velocity-zero search did not converge",
+                });
+            }
+            let g = sign * e.d[1];
+            let mut g1 = sign * e.d[2];
+            let g2 = sign * e.d[3];
+            if a == 0.0 && g == 0.0 {
+                // A slide that starts from rest has an acceleration ≥ 0 along its direction
+                // (the force has crossed ±μs outward, or exceeds it after a turn); a negative
+                // value here is rounding.
+                g1 = g1.max(0.0);
+            }
+            if a > 0.0 && ((g <= e.velocity_noise && g1 < 0.0) || g < -e.velocity_noise) {
+                // Converged onto a zero from the left (or crossed it within rounding noise).
+                self.searched = a;
+                let newton = if g1 < 0.0 {
+                    (g / -g1).clamp(0.0, 1e-6)
+                } else {
+                    0.0
+                };
+                return Ok(Some((a + newton, e.d[0])));
+            }
+            let span = 2.0;
+            let (m2, m3) = linear.derivative_bounds(a, span, &e);
+            let g = g.max(0.0);
+            // Taylor steps: rigorous lower bounds of the first zero.
+            let mut h = quadratic_safe_step(g, g1, m2);
+            if g1 >= 0.0 && g2 > 0.0 {
+                // (Where g2 ≤ 0 the curvature step below does better.)
+                h = h.max(cubic_safe_step(g, g1, g2, m3));
+            }
+            // Curvature-certified length: g'' keeps the sign of g2 on [a, a + hc].
+            let hc = if m3 > 0.0 {
+                (g2.abs() / m3).min(span)
+            } else {
+                span
+            };
+            if g2 > 0.0 {
+                // Convex: g lies above its tangent, which stays positive up to the Newton
+                // point (everywhere when g1 ≥ 0).
+                let reach = if g1 < 0.0 { hc.min(g / -g1) } else { hc };
+                h = h.max(reach);
+            } else if g2 < 0.0 {
+                // Concave: on [a, b] g is at least min(g(a), g(b)); aim just past the Newton
+                // point, where the zero is expected.
+                let target = if g1 < 0.0 {
+                    // Root of the local quadratic model g + g1 h + g2 h²/2 (g2 < 0), a little
+                    // beyond it so that the zero is bracketed.
+                    let model = 2.0 * g / (-g1 + (g1 * g1 - 2.0 * g2 * g).sqrt());
+                    hc.min(1.02 * model + 1e-9 * a.max(1.0))
+                } else {
+                    hc
+                };
+                // (Only when the target is past a in floating point: a step below one ulp
+                // would evaluate the same point for ever.)
+                if target > h && (a + target).min(limit) > a {
+                    let b = (a + target).min(limit);
+                    let eb = linear.eval(b);
+                    self.stats.evaluations += 1;
+                    steps += 1;
+                    self.stats.steps += 1;
+                    if sign * eb.d[1] > 0.0 {
+                        if b >= limit {
+                            self.searched = limit;
+                            return Ok(None);
+                        }
+                        a = b;
+                        e = eb;
+                        continue;
+                    }
+                    // Exactly one zero in (a, b]: g is concave there.
+                    return Ok(Some(self.polish(sign, linear, a, b, eb)));
+                }
+            }
+            h = h.min(span);
+            if !(h > 0.0) || a + h == a {
+                // Stalled on a double zero (g and g' both at rounding level): that is the event.
+                if a > 0.0 {
+                    self.searched = a;
+                    return Ok(Some((a, e.d[0])));
+                }
+                h = 1e-12;
+            }
+            steps += 1;
+            self.stats.steps += 1;
+            if a + h >= limit {
+                self.searched = limit;
+                return Ok(None);
+            }
+            a += h;
+            e = linear.eval(a);
+            self.stats.evaluations += 1;
+        }
+    }
+
+    /// The single velocity zero in (a, b], where s·v(a) > 0 ≥ s·v(b): Newton's method kept
+    /// inside the shrinking bracket (bisection when a step leaves it).
+    fn polish(
+        &mut self,
+        sign: f64,
+        linear: &LinearSegment,
+        mut a: f64,
+        mut b: f64,
+        eb: Derivatives,
+    ) -> (f64, f64) {
+        let mut t = b;
+        let mut e = eb;
+        for _ in 0..100 {
+            let g = sign * e.d[1];
+            if g > 0.0 {
+                a = t;
+            } else {
+                b = t;
+            }
+            let g1 = sign * e.d[2];
+            let newton = if g1 != 0.0 { t - g / g1 } else { f64::NAN };
+            // Newton converges quadratically: after a step below 1e-10 the next iterate is
+            // exact to rounding, and y moves by v·Δt.
+            if (newton - t).abs() <= 1e-10 * t.abs().max(1.0) || g == 0.0 {
+                let next = if g == 0.0 { t } else { newton.clamp(a, b) };
+                self.searched = a;
+                return (next, e.d[0] + e.d[1] * (next - t));
+            }
+            let next = if newton > a && newton < b {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
+            t = next;
+            e = linear.eval(t);
+            self.stats.evaluations += 1;
+        }
+        self.searched = a;
+        (t, e.d[0])
+    }
+}
