@@ -1,5 +1,8 @@
 //! Work per event of the exact solver at a few points: closed-form evaluations, search steps
 //! and fallbacks to the careful search per event, and the time per event.
+//!
+//! `cargo run --release -p stickslip --example evals -- [PERIODS [W BETA]]` (3000 periods at
+//! six points by default; one point when W and BETA are given).
 use stickslip::solver::run_until;
 use stickslip::{Circuit, ExactSolver, Params, Solver, State};
 
@@ -9,14 +12,22 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(3000.0);
-    for (w, beta) in [
-        (0.9, 1.6),
-        (0.6, 1.2),
-        (0.7, 1.2),
-        (0.29, 2.14),
-        (1.43, 2.14),
-        (0.95, 14.3),
-    ] {
+    let one: Vec<f64> = std::env::args()
+        .skip(2)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let points = match one[..] {
+        [w, beta] => vec![(w, beta)],
+        _ => vec![
+            (0.9, 1.6),
+            (0.6, 1.2),
+            (0.7, 1.2),
+            (0.29, 2.14),
+            (1.43, 2.14),
+            (0.95, 14.3),
+        ],
+    };
+    for (w, beta) in points {
         let p = Params::new(zeta, w, beta).unwrap();
         let mut s = ExactSolver::new(p, State::default());
         let t0 = std::time::Instant::now();

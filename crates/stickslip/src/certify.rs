@@ -94,12 +94,29 @@ pub(crate) fn cubic_safe_step(g: f64, g1: f64, g2: f64, m3: f64) -> f64 {
     0.0
 }
 
+/// The positive root of g1 + (g2/2)·h − (m3/6)·h² (g1 ≥ 0, m3 > 0): where the cubic lower
+/// bound g + g1·h + g2·h²/2 − m3·h³/6 ≥ h·(g1 + g2·h/2 − m3·h²/6) is still positive (for
+/// g ≥ 0). Exact for the cubic's root when g = 0, as at the start of every slide.
+#[inline]
+fn cubic_root_from_slope(g1: f64, g2: f64, m3: f64) -> f64 {
+    let half = 0.5 * g2;
+    let root = (half * half + (2.0 / 3.0) * m3 * g1).sqrt();
+    // 3(half + root)/m3, written without cancellation when half < 0.
+    if half >= 0.0 {
+        3.0 * (half + root) / m3
+    } else {
+        2.0 * g1 / (root - half)
+    }
+}
+
 /// A length h ≥ 0 such that g has no zero in (a, a + h], from the jet of g at a and bounds
 /// m2 ≥ |g''|, m3 ≥ |g'''| over [a, a + cap]. The result is at most `cap` only when it stops
 /// there; it may exceed `cap`, and is then only valid up to `cap`.
 ///
 /// Two lower bounds of g(a + h) are tried: g + g'h − m2·h²/2, and (where g' ≥ 0)
-/// g + g'h + g''h²/2 − m3·h³/6. Each has a single positive root, before which it is positive.
+/// g + g'h + g''h²/2 − m3·h³/6. Each has a single positive root, before which it is positive:
+/// the first's in closed form, the second's first from below in closed form and, where that
+/// is not enough, to 1e-4 by Newton's method.
 pub(crate) fn reach(jet: Jet, m2: f64, m3: f64, cap: f64) -> f64 {
     let g = jet.floor();
     let [_, g1, g2, _] = jet.g;
@@ -107,14 +124,12 @@ pub(crate) fn reach(jet: Jet, m2: f64, m3: f64, cap: f64) -> f64 {
         return 0.0;
     }
     let quadratic = quadratic_safe_step(g, g1, m2);
-    if quadratic >= cap || g1 < 0.0 {
+    if quadratic >= cap || g1 < 0.0 || !(m3 > 0.0) {
         return quadratic;
     }
-    // The cubic bound's root can be checked at `cap` first: positive there means no root
-    // before it (one positive root, positive before it).
-    let at_cap = g + cap * (g1 + cap * (0.5 * g2 - m3 * cap / 6.0));
-    if m3 > 0.0 && at_cap > 0.0 {
-        return cap;
+    let cubic = cubic_root_from_slope(g1, g2, m3);
+    if cubic >= cap || g == 0.0 {
+        return quadratic.max(cubic);
     }
     quadratic.max(cubic_safe_step(g, g1, g2, m3))
 }
@@ -124,16 +139,23 @@ pub(crate) fn reach(jet: Jet, m2: f64, m3: f64, cap: f64) -> f64 {
 /// a + len backwards meet. The cheap quadratic bounds are tried first.
 pub(crate) fn covers(left: Jet, right: Jet, len: f64, m2: f64, m3: f64) -> bool {
     let right = right.reflected();
-    let quadratic = |jet: Jet| {
+    // First the closed-form bounds from both ends (no root finding).
+    let cheap = |jet: Jet| {
         let g = jet.floor();
+        let [_, g1, g2, _] = jet.g;
         if g < 0.0 {
-            0.0
+            return 0.0;
+        }
+        let quadratic = quadratic_safe_step(g, g1, m2);
+        if g1 >= 0.0 && m3 > 0.0 {
+            quadratic.max(cubic_root_from_slope(g1, g2, m3))
         } else {
-            quadratic_safe_step(g, jet.g[1], m2)
+            quadratic
         }
     };
-    let back = quadratic(right);
-    if quadratic(left) + back >= len {
+    let back = cheap(right);
+    let ahead = cheap(left);
+    if ahead + back >= len {
         return true;
     }
     let ahead = reach(left, m2, m3, len - back);
@@ -173,7 +195,9 @@ fn model_root([g, g1, g2, g3]: [f64; 4]) -> f64 {
     for _ in 0..8 {
         let step = model(d) / slope(d);
         d -= step;
-        if !(step.abs() > 1e-17 * d.abs()) {
+        // Newton converges quadratically: after a step below 1e-9 of d the next error is
+        // far below rounding. (A tighter test would never pass: steps stall at rounding.)
+        if !(step.abs() > 1e-9 * d.abs()) {
             break;
         }
     }
@@ -288,6 +312,31 @@ mod tests {
             noise: 0.0,
         };
         assert!(!covers(jet(a), right, b - a, 1.0, 1.0));
+    }
+
+    #[test]
+    fn the_closed_form_cubic_bound_is_the_root_when_g_is_zero() {
+        for &(g1, g2, m3) in &[
+            (1.0, 0.0, 1.0),
+            (0.3, -0.7, 2.0),
+            (0.0, 0.5, 1.5),
+            (2.0, 3.0, 0.1),
+        ] {
+            let h = cubic_root_from_slope(g1, g2, m3);
+            let cubic = h * (g1 + h * (0.5 * g2 - m3 * h / 6.0));
+            assert!(
+                cubic.abs() < 1e-12 * (1.0 + h * h * h * m3),
+                "{g1} {g2} {m3}: {cubic}"
+            );
+            // Below the root the bound is positive: it is the first positive root.
+            for k in 1..100 {
+                let x = h * k as f64 / 100.0;
+                assert!(
+                    x * (g1 + x * (0.5 * g2 - m3 * x / 6.0)) > 0.0,
+                    "{g1} {g2} {m3} at {x}"
+                );
+            }
+        }
     }
 
     #[test]

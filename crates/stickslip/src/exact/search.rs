@@ -119,6 +119,8 @@ impl ZeroSearch {
         let found = match self.zero {
             Some((t, _)) if t > limit => return Ok(None),
             Some(zero) => Some(zero),
+            // (The predicted search may have cleared the segment past the limit.)
+            None if self.searched >= limit => return Ok(None),
             None => self.careful(sign, linear, limit, tau0)?,
         };
         if let Some((t, _)) = found {
@@ -185,12 +187,15 @@ impl ZeroSearch {
                 return Predicted::Clear(0.0);
             }
         }
-        // (0, b] has no zero: cover it from both ends.
+        // (0, b] has no zero: cover it from both ends, with the cheap bounds over the whole
+        // segment first and then with bounds over (0, b] (tighter near resonance).
+        let [m2_all, m3_all, m4_all] = linear.global_bounds();
+        let covered = certify::covers(start, jb, b, m2_all, m3_all);
         let (m2, m3) = linear.derivative_bounds(0.0, b, linear.start());
         let (mut left, mut jl) = (0.0, start);
         let mut splits = 0;
         loop {
-            if certify::covers(jl, jb, b - left, m2, m3) {
+            if covered || certify::covers(jl, jb, b - left, m2, m3) {
                 break;
             }
             let ahead = certify::reach(jl, m2, m3, b - left);
@@ -203,7 +208,6 @@ impl ZeroSearch {
             jl = jet(&e);
         }
         // The zero beyond b.
-        let (m3_all, m4_all) = linear.global_bounds();
         let (mut from, mut p, mut e) = (b, b, eb);
         for _ in 0..NEWTON {
             match certify::locate(jet(&e), p, from, m3_all, m4_all) {
