@@ -325,6 +325,22 @@ impl LinearSegment {
         ]
     }
 
+    /// (sin, cos) of the drive phase w(t + dt) + θ, from the derivatives `at` local time t:
+    /// the phase there turned on by w·dt (a short series, exact to rounding, for |w·dt| ≤
+    /// 1e-3; the full function beyond).
+    #[inline]
+    pub(crate) fn drive_trig_after(&self, at: &Derivatives, t: f64, dt: f64) -> (f64, f64) {
+        let x = self.forcing.w * dt;
+        if !(x.abs() <= 1e-3) {
+            return sin_cos(self.forcing.w * (t + dt) + self.theta);
+        }
+        let [_, _, c, s] = at.trig;
+        let x2 = x * x;
+        let cos_x = 1.0 - 0.5 * x2 * (1.0 - x2 / 12.0);
+        let sin_x = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0));
+        (s * cos_x + c * sin_x, c * cos_x - s * sin_x)
+    }
+
     /// (y, y') at local time t.
     #[inline]
     pub(crate) fn state(&self, t: f64) -> (f64, f64) {

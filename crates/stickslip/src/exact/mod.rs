@@ -20,7 +20,7 @@ use crate::linear::{Damping, Forcing, LinearSegment};
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind, Phase, Sample, Solver, Stats};
 use crate::trig::sin_cos;
-use search::{slide_kind, ZeroSearch};
+use search::{slide_kind, Zero, ZeroSearch};
 use std::f64::consts::TAU;
 
 /// Motion during one segment.
@@ -136,7 +136,16 @@ impl ExactSolver {
 
     /// Drive phase at local time t of the current segment, reduced to [0, 2π).
     fn phase_at(&self, t: f64) -> f64 {
-        (self.theta0 + self.params.w * t).rem_euclid(TAU)
+        let phase = self.theta0 + self.params.w * t;
+        // Most segments end within a turn of their start: there the reduction is nothing or
+        // one subtraction, exact (Sterbenz), as the general reduction would give.
+        if (0.0..TAU).contains(&phase) {
+            phase
+        } else if (TAU..2.0 * TAU).contains(&phase) {
+            phase - TAU
+        } else {
+            phase.rem_euclid(TAU)
+        }
     }
 
     /// Start a slide in direction `sign`; `trig` is (sin θ, cos θ).
@@ -268,7 +277,7 @@ impl Solver for ExactSolver {
         }
         let from = self.time;
         let limit = t_end - self.tau0;
-        let (sign, t, y) = match &self.slots[self.current] {
+        let (sign, Zero { t, y, drive }) = match &self.slots[self.current] {
             &Segment::Stick { y, exit, exit_sign } => {
                 if exit > limit || exit == f64::INFINITY {
                     self.close(from, t_end);
@@ -283,7 +292,7 @@ impl Solver for ExactSolver {
             }
             Segment::Slide { sign, linear } => {
                 match self.search.first_zero(*sign, linear, limit, self.tau0)? {
-                    Some((t, y)) => (*sign, t, y),
+                    Some(zero) => (*sign, zero),
                     None => {
                         self.close(from, t_end);
                         return Ok(None);
@@ -294,7 +303,7 @@ impl Solver for ExactSolver {
         let tau = self.tau0 + t;
         let theta = self.phase_at(t);
         self.close(from, tau);
-        let trig = sin_cos(theta);
+        let trig = drive.unwrap_or_else(|| sin_cos(theta));
         let force = self.params.beta * trig.1 - y;
         self.count_repeat(t);
         if force.abs() <= self.params.mu_s || (t == 0.0 && force.signum() == sign) {

@@ -44,10 +44,21 @@ pub(super) fn slide_kind(sign: f64, from_stop: bool) -> usize {
     usize::from(sign > 0.0) + 2 * usize::from(from_stop)
 }
 
+/// The first velocity zero of a sliding segment.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Zero {
+    /// Local time.
+    pub t: f64,
+    /// Position there.
+    pub y: f64,
+    /// (sin, cos) of the drive phase there, when the search has them at hand.
+    pub drive: Option<(f64, f64)>,
+}
+
 /// What the predicted search concludes.
 enum Predicted {
-    /// The first zero: local time and y there.
-    Zero(f64, f64),
+    /// The first zero.
+    Zero(Zero),
     /// No zero in (0, t]: the careful search continues from t.
     Clear(f64),
 }
@@ -58,8 +69,8 @@ enum Predicted {
 pub(super) struct ZeroSearch {
     /// Local time up to which the current sliding segment is known to have no velocity zero.
     searched: f64,
-    /// The first velocity zero (local time, y) of the current sliding segment, once found.
-    zero: Option<(f64, f64)>,
+    /// The first velocity zero of the current sliding segment, once found.
+    zero: Option<Zero>,
     /// Whether the predicted search has run on the current sliding segment.
     predicted_tried: bool,
     /// The kind of the current slide.
@@ -93,8 +104,8 @@ impl ZeroSearch {
         self.kind = kind;
     }
 
-    /// The first velocity zero `(t, y(t))` of the current sliding segment in local times
-    /// (0, limit], or None when there is none up to `limit`. `tau0` (the segment's start)
+    /// The first velocity zero of the current sliding segment in local times (0, limit], or
+    /// None when there is none up to `limit`. `tau0` (the segment's start)
     /// only labels errors.
     ///
     /// # Errors
@@ -105,11 +116,11 @@ impl ZeroSearch {
         linear: &LinearSegment,
         limit: f64,
         tau0: f64,
-    ) -> Result<Option<(f64, f64)>> {
+    ) -> Result<Option<Zero>> {
         if !self.predicted_tried && self.predict {
             self.predicted_tried = true;
             match self.predicted(sign, linear) {
-                Predicted::Zero(t, y) => self.zero = Some((t, y)),
+                Predicted::Zero(zero) => self.zero = Some(zero),
                 Predicted::Clear(t) => {
                     self.searched = t;
                     self.stats.rejected += 1;
@@ -117,22 +128,23 @@ impl ZeroSearch {
             }
         }
         let found = match self.zero {
-            Some((t, _)) if t > limit => return Ok(None),
-            Some(zero) => Some(zero),
+            Some(zero) if zero.t > limit => return Ok(None),
+            Some(zero) => zero,
             // (The predicted search may have cleared the segment past the limit.)
             None if self.searched >= limit => return Ok(None),
-            None => self.careful(sign, linear, limit, tau0)?,
+            None => match self.careful(sign, linear, limit, tau0)? {
+                Some((t, y)) => Zero { t, y, drive: None },
+                None => return Ok(None),
+            },
         };
-        if let Some((t, _)) = found {
-            let (predicted, _) = self.durations[self.kind];
-            let miss = if predicted.is_nan() {
-                0.0
-            } else {
-                (t - predicted).abs()
-            };
-            self.durations[self.kind] = (t, miss);
-        }
-        Ok(found)
+        let (predicted, _) = self.durations[self.kind];
+        let miss = if predicted.is_nan() {
+            0.0
+        } else {
+            (found.t - predicted).abs()
+        };
+        self.durations[self.kind] = (found.t, miss);
+        Ok(Some(found))
     }
 
     /// The closed form at local time t, counted.
@@ -187,15 +199,12 @@ impl ZeroSearch {
                 return Predicted::Clear(0.0);
             }
         }
-        // (0, b] has no zero: cover it from both ends, with the cheap bounds over the whole
-        // segment first and then with bounds over (0, b] (tighter near resonance).
-        let [m2_all, m3_all, m4_all] = linear.global_bounds();
-        let covered = certify::covers(start, jb, b, m2_all, m3_all);
+        // (0, b] has no zero: cover it from both ends.
         let (m2, m3) = linear.derivative_bounds(0.0, b, linear.start());
         let (mut left, mut jl) = (0.0, start);
         let mut splits = 0;
         loop {
-            if covered || certify::covers(jl, jb, b - left, m2, m3) {
+            if certify::covers(jl, jb, b - left, m2, m3) {
                 break;
             }
             let ahead = certify::reach(jl, m2, m3, b - left);
@@ -208,6 +217,7 @@ impl ZeroSearch {
             jl = jet(&e);
         }
         // The zero beyond b.
+        let [_, m3_all, m4_all] = linear.global_bounds();
         let (mut from, mut p, mut e) = (b, b, eb);
         for _ in 0..NEWTON {
             match certify::locate(jet(&e), p, from, m3_all, m4_all) {
@@ -217,7 +227,11 @@ impl ZeroSearch {
                     let y =
                         d[0] + x * (d[1] + x * (0.5 * d[2] + x * (d[3] / 6.0 + x * d[4] / 24.0)));
                     self.stats.steps += 1;
-                    return Predicted::Zero(p + x, y);
+                    return Predicted::Zero(Zero {
+                        t: p + x,
+                        y,
+                        drive: Some(linear.drive_trig_after(&e, p, x)),
+                    });
                 }
                 Location::Closer(offset) => {
                     let q = p + offset;
