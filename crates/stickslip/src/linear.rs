@@ -27,6 +27,8 @@ pub(crate) struct Damping {
     s_cap: f64,
     /// 1/ω_d (underdamped only).
     inv_omega: f64,
+    /// (1 − ζ)(1 + ζ).
+    one_minus_zeta2: f64,
 }
 
 impl Damping {
@@ -39,6 +41,7 @@ impl Damping {
                 decay: zeta,
                 s_cap: 1.0 / omega,
                 inv_omega: 1.0 / omega,
+                one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
             }
         } else if zeta == 1.0 {
             Self {
@@ -47,6 +50,7 @@ impl Damping {
                 decay: 1.0,
                 s_cap: f64::INFINITY,
                 inv_omega: f64::NAN,
+                one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
             }
         } else {
             let kappa = ((zeta - 1.0) * (zeta + 1.0)).sqrt();
@@ -56,6 +60,7 @@ impl Damping {
                 decay: 1.0 / (zeta + kappa),
                 s_cap: 0.5 / kappa,
                 inv_omega: f64::NAN,
+                one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
             }
         }
     }
@@ -88,7 +93,7 @@ impl Damping {
     #[inline]
     fn derive(&self, (p, q): (f64, f64)) -> (f64, f64) {
         let z = self.zeta;
-        (q - z * p, -(1.0 - z) * (1.0 + z) * p - z * q)
+        (q - z * p, -self.one_minus_zeta2 * p - z * q)
     }
 }
 
@@ -208,12 +213,42 @@ impl LinearSegment {
     pub(crate) fn with_forcing(
         forcing: &Forcing,
         theta: f64,
-        (sin0, cos0): (f64, f64),
+        trig: (f64, f64),
         c: f64,
         y0: f64,
         v0: f64,
     ) -> Self {
-        let f = forcing;
+        let mut segment = Self {
+            forcing: *forcing,
+            theta,
+            offset: 0.0,
+            hom: [(0.0, 0.0); ORDERS],
+            mode_amplitude: f64::INFINITY,
+            hom_phasors: [(0.0, 0.0); 2],
+            start: Derivatives {
+                d: [0.0; ORDERS],
+                envelope: 1.0,
+                velocity_noise: 0.0,
+                trig: [1.0, 0.0, 1.0, 0.0],
+            },
+        };
+        segment.restart(theta, trig, c, y0, v0);
+        segment
+    }
+
+    /// Make this the segment of the same drive with phase θ at its start, from (y0, v0), with
+    /// friction force c and `(sin θ, cos θ)` given: in place, so that the drive's share is not
+    /// copied again.
+    #[inline]
+    pub(crate) fn restart(
+        &mut self,
+        theta: f64,
+        (sin0, cos0): (f64, f64),
+        c: f64,
+        y0: f64,
+        v0: f64,
+    ) {
+        let f = &self.forcing;
         let (zeta, w, beta) = (f.damping.zeta, f.w, f.beta);
         // Derivatives at 0 straight from the equation y'' = β cos(wt + θ) − c − y − 2ζy' and
         // its derivatives: exact to rounding, with no cancellation between the homogeneous
@@ -226,35 +261,27 @@ impl LinearSegment {
         let vp0 = w * (f.drive_q * cos0 - f.drive_p * sin0) + f.secular * sin0;
         let u0 = y0 - yp0;
         let u1 = v0 - vp0;
-        let mut hom = [(0.0, 0.0); ORDERS];
-        hom[0] = (u0, u1 + zeta * u0);
+        self.hom[0] = (u0, u1 + zeta * u0);
         for k in 1..ORDERS {
-            hom[k] = f.damping.derive(hom[k - 1]);
+            self.hom[k] = f.damping.derive(self.hom[k - 1]);
         }
-        let (mode_amplitude, hom_phasors) = if zeta < 1.0 {
-            let (p, q) = hom[0];
+        if zeta < 1.0 {
+            let (p, q) = self.hom[0];
             let inv = f.damping.inv_omega;
-            (
-                (p * p + q * q * inv * inv).sqrt(),
-                [(hom[3].0, -hom[3].1 * inv), (hom[4].0, -hom[4].1 * inv)],
-            )
-        } else {
-            (f64::INFINITY, [(0.0, 0.0); 2])
-        };
-        Self {
-            forcing: *forcing,
-            theta,
-            offset: -c,
-            hom,
-            mode_amplitude,
-            hom_phasors,
-            start: Derivatives {
-                d,
-                envelope: 1.0,
-                velocity_noise: 0.0,
-                trig: [1.0, 0.0, cos0, sin0],
-            },
+            self.mode_amplitude = (p * p + q * q * inv * inv).sqrt();
+            self.hom_phasors = [
+                (self.hom[3].0, -self.hom[3].1 * inv),
+                (self.hom[4].0, -self.hom[4].1 * inv),
+            ];
         }
+        self.theta = theta;
+        self.offset = -c;
+        self.start = Derivatives {
+            d,
+            envelope: 1.0,
+            velocity_noise: 0.0,
+            trig: [1.0, 0.0, cos0, sin0],
+        };
     }
 
     /// y, y', …, y'''' at local time t.

@@ -64,13 +64,12 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     let n = (x * FRAC_2_PI + TO_INT) - TO_INT;
     let r = ((x - n * P1) - n * P2) - n * P3;
     let (s, c) = (kernel_sin(r), kernel_cos(r));
-    // Quadrant q = n mod 4: odd quadrants swap sin and cos; sin is negated in quadrants 2
-    // and 3, cos in 1 and 2.
-    let q = n as i64;
-    let (s, c) = if q & 1 == 0 { (s, c) } else { (c, s) };
-    let sin_sign = if q & 2 == 0 { 1.0 } else { -1.0 };
-    let cos_sign = if (q + 1) & 2 == 0 { 1.0 } else { -1.0 };
-    (sin_sign * s, cos_sign * c)
+    match (n as i64) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
 }
 
 #[cfg(test)]

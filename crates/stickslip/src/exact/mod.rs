@@ -148,12 +148,30 @@ impl ExactSolver {
         }
     }
 
-    /// Start a slide in direction `sign`; `trig` is (sin θ, cos θ).
+    /// Start a slide in direction `sign`; `trig` is (sin θ, cos θ). The slide is written over
+    /// the segment before the current one, in place when that was a slide too (as it always
+    /// is in a steady state).
     fn start_slide(&mut self, tau0: f64, theta: f64, trig: (f64, f64), y: f64, v: f64, sign: f64) {
         let from_stop = matches!(self.segment(), Segment::Stick { .. });
         self.search.begin(slide_kind(sign, from_stop));
-        let linear = LinearSegment::with_forcing(&self.forcing, theta, trig, sign, y, v);
-        self.begin(tau0, theta, Segment::Slide { sign, linear });
+        let next = 1 - self.current;
+        match &mut self.slots[next] {
+            Segment::Slide {
+                sign: old_sign,
+                linear,
+            } => {
+                *old_sign = sign;
+                linear.restart(theta, trig, sign, y, v);
+            }
+            slot => {
+                let linear = LinearSegment::with_forcing(&self.forcing, theta, trig, sign, y, v);
+                *slot = Segment::Slide { sign, linear };
+            }
+        }
+        self.current = next;
+        self.tau0 = tau0;
+        self.theta0 = theta;
+        self.time = tau0;
     }
 
     fn start_stick(&mut self, tau0: f64, theta: f64, y: f64) {
