@@ -32,6 +32,8 @@ pub mod physical;
 pub mod shockley;
 pub mod solver;
 pub mod steady;
+#[cfg(test)]
+mod test_rng;
 pub mod theory;
 mod trig;
 

@@ -75,18 +75,7 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A fixed-seed xorshift generator: uniform numbers in [−1, 1).
-    struct Uniform(u64);
-
-    impl Uniform {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
+    use crate::test_rng::TestRng;
 
     fn check(x: f64) {
         let (s, c) = sin_cos(x);
@@ -99,10 +88,10 @@ mod tests {
 
     #[test]
     fn agrees_with_the_system_library() {
-        let mut rng = Uniform(0x9e37_79b9_7f4a_7c15);
+        let mut rng = TestRng::new(0x9e37_79b9_7f4a_7c15);
         for i in 0..1_000_000 {
             let scale = [1.0, 10.0, 1e3, 1e5, 1e6][i % 5];
-            check(scale * rng.next());
+            check(rng.range(-scale, scale));
         }
         // Near multiples of π/2, where the reduction cancels most.
         for k in -20_000i32..20_000 {

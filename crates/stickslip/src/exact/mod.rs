@@ -356,28 +356,12 @@ impl Solver for ExactSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A fixed-seed xorshift generator.
-    struct Rng(u64);
-
-    impl Rng {
-        /// Uniform in [0, 1).
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            lo + (hi - lo) * self.next()
-        }
-    }
+    use crate::test_rng::TestRng;
 
     /// Random parameters in every underdamped regime the predicted search serves (and a few
     /// others, which it must leave to the careful search), random drive phases, static
     /// friction and initial states.
-    fn random_case(rng: &mut Rng) -> (Params, State) {
+    fn random_case(rng: &mut TestRng) -> (Params, State) {
         let zeta = match rng.next() {
             u if u < 0.15 => 0.0,
             u if u < 0.3 => rng.range(1e-4, 1e-2),
@@ -419,7 +403,7 @@ mod tests {
     /// end and reported an event after it.
     #[test]
     fn predicted_search_agrees_with_the_careful_search() {
-        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut rng = TestRng::new(0x1234_5678_9abc_def1);
         let (mut segments, mut predicted) = (0u32, 0u64);
         for case in 0..6000 {
             let (params, initial) = random_case(&mut rng);
