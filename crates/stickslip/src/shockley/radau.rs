@@ -354,7 +354,7 @@ impl Radau5 {
                         next
                     }
                 } else {
-                    junction_step(&law, old, delta[i], l[i][i])
+                    junction_step(&law, old, d[i].0, delta[i], l[i][i])
                 };
                 moved[i] = v[i] - old;
                 let next = law.value_and_slope(v[i]);
@@ -528,24 +528,38 @@ impl Radau5 {
 }
 
 /// A Newton step `delta` in the junction voltage u = a·asinh(V/ε) of a stage currently at
-/// current `v`, returned as the new current. Beyond the edge of the range where the diode
-/// dominates the stage (junction slope a/√(ε² + V²) above `diagonal`), an outward step is cut
-/// back to the edge plus a·ln(1 + excess/a), so that ε·sinh(u/a) grows at most linearly in
-/// the excess instead of exponentially.
-fn junction_step(law: &super::diode::DiodeLaw, v: f64, delta: f64, diagonal: f64) -> f64 {
-    let a = law.scale;
-    let u = a * (v / law.knee).asinh();
-    let mut target = u + delta;
-    // Edge of the diode-dominated range: a/√(ε² + V²) = diagonal.
-    let edge_current = ((a / diagonal).powi(2) - law.knee * law.knee)
-        .max(0.0)
-        .sqrt();
-    let edge = a * (edge_current / law.knee).asinh();
-    if target.abs() > edge && target.abs() > u.abs() {
-        let excess = target.abs() - edge.max(u.abs());
-        target = target.signum() * (edge.max(u.abs()) + a * (1.0 + excess / a).ln());
+/// current `v` with diode voltage `value` = D(v), returned as the new current. Beyond the edge
+/// of the range where the diode dominates the stage (junction slope a/√(ε² + V²) above
+/// `diagonal`), an outward step is cut back to the edge plus a·ln(1 + excess/a), so that
+/// ε·sinh(u/a) grows at most linearly in the excess instead of exponentially.
+fn junction_step(
+    law: &super::diode::DiodeLaw,
+    v: f64,
+    value: f64,
+    delta: f64,
+    diagonal: f64,
+) -> f64 {
+    let (a, knee) = (law.scale, law.knee);
+    // The junction voltage is the diode voltage less its series part: no asinh needed.
+    let u = value - law.resistance * v;
+    let target = u + delta;
+    let current = knee * (target / a).sinh();
+    // Edge of the diode-dominated range: a/√(ε² + V²) = diagonal. A step inside it, or
+    // inwards, stands as it is (|current| > edge_current is |target| > a·asinh(edge/ε)).
+    let edge_current = ((a / diagonal).powi(2) - knee * knee).max(0.0).sqrt();
+    if current.abs() <= edge_current || target.abs() <= u.abs() {
+        return current;
     }
-    law.knee * (target / a).sinh()
+    // a·asinh(edge/ε) = a·ln((edge + √(ε² + edge²))/ε), and √(ε² + edge²) = a/diagonal there.
+    let edge = if edge_current > 0.0 {
+        a * ((edge_current + a / diagonal) / knee).ln()
+    } else {
+        0.0
+    };
+    let base = edge.max(u.abs());
+    let excess = target.abs() - base;
+    let limited = target.signum() * (base + a * (1.0 + excess / a).ln());
+    knee * (limited / a).sinh()
 }
 
 /// Root-mean-square of e/scale; infinite when the estimate failed.
@@ -619,6 +633,42 @@ mod tests {
     use super::*;
     use crate::params::Params;
     use crate::shockley::DiodeLaw;
+
+    /// The junction step in its plain form: u = a·asinh(V/ε), the edge a·asinh(edge/ε).
+    fn junction_step_reference(law: &DiodeLaw, v: f64, delta: f64, diagonal: f64) -> f64 {
+        let a = law.scale;
+        let u = a * (v / law.knee).asinh();
+        let mut target = u + delta;
+        let edge_current = ((a / diagonal).powi(2) - law.knee * law.knee)
+            .max(0.0)
+            .sqrt();
+        let edge = a * (edge_current / law.knee).asinh();
+        if target.abs() > edge && target.abs() > u.abs() {
+            let excess = target.abs() - edge.max(u.abs());
+            target = target.signum() * (edge.max(u.abs()) + a * (1.0 + excess / a).ln());
+        }
+        law.knee * (target / a).sinh()
+    }
+
+    #[test]
+    fn junction_step_matches_its_plain_form() {
+        let law = DiodeLaw::new(0.0704, 9.4e-6, 8.5e-4).unwrap();
+        for &v in &[0.0, 1e-9, -3e-7, 4e-6, -2e-5, 1e-4, -3e-3, 0.02, -0.4] {
+            for &delta in &[-0.3, -0.05, -1e-3, -1e-6, 0.0, 2e-6, 4e-3, 0.07, 0.5] {
+                for &diagonal in &[0.5, 30.0, 700.0, 5e3, 1e5] {
+                    let (value, _) = law.value_and_slope(v);
+                    let fast = junction_step(&law, v, value, delta, diagonal);
+                    let plain = junction_step_reference(&law, v, delta, diagonal);
+                    let scale = plain.abs().max(law.knee);
+                    let err = (fast - plain).abs() / scale;
+                    assert!(
+                        err < 1e-9,
+                        "v {v} delta {delta} diagonal {diagonal}: {fast} vs {plain}"
+                    );
+                }
+            }
+        }
+    }
 
     /// y'' + c y' + y = β cos(w t + φ): exact solution from (y0, v0) at t = 0 (c < 2).
     fn linear_exact(c: f64, p: &Params, y0: f64, v0: f64, t: f64) -> (f64, f64) {
