@@ -221,7 +221,8 @@ pub(crate) fn locate(jet: Jet, p: f64, from: f64, m3: f64, m4: f64) -> Location 
         return Location::Unknown;
     }
     let offset = model_root(jet.g);
-    if !offset.is_finite() || p + offset <= from - 0.5 * (p - from) {
+    // (A model zero where g is already proved positive: nothing to conclude.)
+    if !offset.is_finite() || p + offset < from {
         return Location::Unknown;
     }
     let remainder = |x: f64| m4 * x * x * x * x / 24.0;

@@ -127,8 +127,14 @@ impl ExactSolver {
     /// Make `segment` the current one, starting at `tau0` with drive phase `theta`, in the
     /// slot of the one before the current.
     fn begin(&mut self, tau0: f64, theta: f64, segment: Segment) {
-        self.current = 1 - self.current;
-        self.slots[self.current] = segment;
+        let next = 1 - self.current;
+        self.slots[next] = segment;
+        self.enter(next, tau0, theta);
+    }
+
+    /// Make the segment in `slot` the current one, starting at `tau0` with drive phase `theta`.
+    fn enter(&mut self, slot: usize, tau0: f64, theta: f64) {
+        self.current = slot;
         self.tau0 = tau0;
         self.theta0 = theta;
         self.time = tau0;
@@ -168,10 +174,7 @@ impl ExactSolver {
                 *slot = Segment::Slide { sign, linear };
             }
         }
-        self.current = next;
-        self.tau0 = tau0;
-        self.theta0 = theta;
-        self.time = tau0;
+        self.enter(next, tau0, theta);
     }
 
     fn start_stick(&mut self, tau0: f64, theta: f64, y: f64) {
@@ -442,7 +445,7 @@ mod tests {
                         // The closed form is exact to rounding of its largest terms; the event
                         // time to that over the slope of the velocity there.
                         let d = linear.eval(e.tau - solver.last.1).d;
-                        let scale = 1.0 + linear.global_bounds()[0];
+                        let scale = 1.0 + linear.third_derivative_bound();
                         let slack = 1e-13 * scale / d[2].abs().max(1e-3);
                         let tol = 1e-10 * e.tau.abs().max(1.0) + slack;
                         assert!(

@@ -217,7 +217,7 @@ impl ZeroSearch {
             jl = jet(&e);
         }
         // The zero beyond b.
-        let [_, m3_all, m4_all] = linear.global_bounds();
+        let (m3_all, m4_all) = linear.global_bounds();
         let (mut from, mut p, mut e) = (b, b, eb);
         for _ in 0..NEWTON {
             match certify::locate(jet(&e), p, from, m3_all, m4_all) {
