@@ -401,9 +401,8 @@ mod tests {
     /// searches carefully only must find the same next event as the solver itself, which
     /// tries the predicted search first, also when the solver advances in small pieces.
     ///
-    /// This seed pins a bug found with it (checked by undoing the fix): when the predicted
-    /// search proved a segment free of zeros beyond the requested end, the careful search
-    /// started past that end and reported an event after it.
+    /// This test found the bug that `search::tests::regression_no_zero_reported_past_the_requested_end`
+    /// now pins: an event reported past the requested end.
     #[test]
     fn predicted_search_agrees_with_the_careful_search() {
         let mut rng = TestRng::new(0x1234_5678_9abc_def1);

@@ -405,3 +405,42 @@ impl ZeroSearch {
         (t, e.d[0])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear::Damping;
+
+    /// A slide of y'' + 0.1 y' + y = −1 from rest at y = −5 in the + direction: its velocity
+    /// rises until about τ = π/2 and first vanishes near τ = π.
+    fn rising_slide() -> LinearSegment {
+        LinearSegment::new(Damping::new(0.05), 0.9, 0.0, 0.0, 1.0, -5.0, 0.0)
+    }
+
+    /// Regression: with a prediction far too short (τ = 1, where the velocity still rises)
+    /// the predicted search proves (0, 1) free of zeros but cannot bracket the zero. Asked for
+    /// the first zero up to τ = 0.5, the search then started the careful search at τ = 1,
+    /// past the requested end, and reported the zero near π as if it lay before 0.5.
+    #[test]
+    fn regression_no_zero_reported_past_the_requested_end() {
+        let linear = rising_slide();
+        let mut search = ZeroSearch::new();
+        search.begin(slide_kind(1.0, false));
+        search.durations[search.kind] = (1.0, 0.0);
+        let early = search.first_zero(1.0, &linear, 0.5, 0.0).unwrap();
+        assert!(early.is_none(), "a zero reported before 0.5: {early:?}");
+        assert!(
+            search.searched > 0.5,
+            "the prediction cleared past the limit"
+        );
+        let zero = search.first_zero(1.0, &linear, 10.0, 0.0).unwrap().unwrap();
+        let mut careful = ZeroSearch::new();
+        careful.predict = false;
+        careful.begin(slide_kind(1.0, false));
+        let expected = careful
+            .first_zero(1.0, &linear, 10.0, 0.0)
+            .unwrap()
+            .unwrap();
+        assert!((zero.t - expected.t).abs() < 1e-12 && zero.t > 3.0 && zero.t < 3.3);
+    }
+}
