@@ -19,11 +19,13 @@ use serde_json::{json, Value};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
-use stickslip::shockley::{self, NetlistOptions, ShockleyCircuit, ShockleyOptions, ShockleySolver};
+use stickslip::scan::{Axis, Grid, ParameterRange};
+use stickslip::shockley::{self, NetlistOptions, ShockleyModel, ShockleyOptions, ShockleySolver};
 use stickslip::solver::{grid, run_until, sample_at};
-use stickslip::steady::{self, ParameterRange, SteadyOptions};
+use stickslip::steady::SteadyOptions;
 use stickslip::{
-    Circuit, Event, EventKind, ExactSolver, Params, Phase, Sample, Solver, State, Stats,
+    Circuit, Event, EventKind, ExactSolver, Experiment, Parameter, Params, Phase, Sample, Solver,
+    State, Stats,
 };
 
 #[derive(Debug, Parser)]
@@ -116,7 +118,7 @@ enum Sampling {
 /// How the phase diagram is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum DiagramMode {
-    /// `stickslip::steady::phase_diagram`.
+    /// `stickslip::scan::Grid`.
     Steady,
     /// A fixed number of periods per point.
     Fixed,
@@ -145,7 +147,7 @@ struct PhaseDiagramArgs {
     /// Grid points along β.
     #[arg(long, default_value_t = 40)]
     beta_steps: usize,
-    /// `steady`: the library's `steady::phase_diagram` (each point run until its
+    /// `steady`: the library's `scan::Grid` (each point run until its
     /// stroboscopic map repeats, default `SteadyOptions`); `fixed`: a fixed number of periods
     /// per point, classified from the exact events of the last `--tail` periods (the same
     /// work as the peers do).
@@ -390,7 +392,7 @@ impl WorkTotals {
 }
 
 /// The exact solver, passing every call through, that adds its counters to `totals` when
-/// dropped: `steady::phase_diagram` makes and drops its solvers itself.
+/// dropped: `scan::Grid` makes and drops its solvers itself.
 struct Counted {
     inner: ExactSolver,
     totals: Arc<WorkTotals>,
@@ -411,6 +413,9 @@ impl Drop for Counted {
 }
 
 impl Solver for Counted {
+    fn params(&self) -> &Params {
+        self.inner.params()
+    }
     fn time(&self) -> f64 {
         self.inner.time()
     }
@@ -462,15 +467,16 @@ fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
                     totals: Arc::clone(&counters),
                 }))
             };
-        Ok(steady::phase_diagram(
-            &factory,
-            base,
-            State::default(),
-            &w,
-            &beta,
-            &options,
-            &|| true,
-        )?)
+        let experiment = Experiment::dimensionless(base.zeta, base.w, base.beta)?;
+        Ok(Grid::new(
+            &experiment,
+            Axis::range(Parameter::W, &w)?,
+            Axis::range(Parameter::Beta, &beta)?,
+        )?
+        .options(options)?
+        .with_factory(factory)
+        .run(&())?
+        .points)
     })?;
     let points: Vec<Value> = points
         .iter()
@@ -478,8 +484,8 @@ fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
             // Periods simulated: to settle, then the recorded cycle (max_period without one).
             let recorded = p.period.unwrap_or(options.max_period);
             json!({
-                "w": p.w,
-                "beta": p.beta,
+                "w": p.params.w,
+                "beta": p.params.beta,
                 "class": p.class,
                 "period": p.period,
                 "periods_run": p.periods_to_settle + recorded,
@@ -488,7 +494,7 @@ fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
         .collect();
     Ok(json!({
         "solver": "stickslip-exact",
-        "method": "stickslip::steady::phase_diagram with the default SteadyOptions (each point \
+        "method": "stickslip::scan::Grid with the default SteadyOptions (each point \
                    from rest until its stroboscopic map repeats to 1e-10, at most 5000 periods, \
                    with extrapolation of linear convergence), rayon",
         "threads": rayon::current_num_threads(),
@@ -594,8 +600,17 @@ struct ShockleyArgs {
 
 /// The paper's circuit with two 1N4148 diodes from rest: run to the last period, then sample
 /// it from the dense output.
+/// The paper's circuit with 1N4148 diodes, and its dimensionless model at (w, β).
+fn paper_shockley(w: f64, beta: f64) -> Result<(Circuit, ShockleyModel)> {
+    let circuit = Circuit::paper_shockley();
+    let model = circuit
+        .shockley_model(&circuit.params(w, beta, 0.0)?)?
+        .context("a Shockley circuit has a Shockley model")?;
+    Ok((circuit, model))
+}
+
 fn shockley(args: ShockleyArgs) -> Result<Value> {
-    let model = ShockleyCircuit::paper().model_dimensionless(args.w, args.beta, 0.0)?;
+    let (_, model) = paper_shockley(args.w, args.beta)?;
     let mut options = ShockleyOptions::default()
         .with_rtol(args.rtol)?
         .with_atol(args.atol.unwrap_or(args.rtol))?;
@@ -633,8 +648,7 @@ fn shockley(args: ShockleyArgs) -> Result<Value> {
 }
 
 fn spice_netlist(args: NetlistArgs) -> Result<Value> {
-    let circuit = ShockleyCircuit::paper();
-    let model = circuit.model_dimensionless(args.w, args.beta, 0.0)?;
+    let (circuit, model) = paper_shockley(args.w, args.beta)?;
     let options = NetlistOptions {
         periods: args.periods,
         wrdata: Some("out.txt".into()),

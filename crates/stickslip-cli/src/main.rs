@@ -5,11 +5,10 @@ use clap::Parser;
 use std::process::ExitCode;
 
 mod commands;
+mod flags;
 mod model;
 mod output;
-mod overlay;
 mod plot;
-mod solvers;
 
 /// Forced oscillator with dry (Coulomb) friction, and its twin: a series RLC circuit damped by
 /// two anti-parallel diodes. Exact stick-slip trajectories, spectra, resonance curves with
@@ -60,16 +59,7 @@ fn main() -> ExitCode {
     match commands::run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            let usage = err.downcast_ref::<output::UsageError>().is_some()
-                || err
-                    .downcast_ref::<stickslip::Error>()
-                    .is_some_and(|e| matches!(e, stickslip::Error::InvalidParameter { .. }));
-            // One line: the chain of causes joined.
-            let message = err
-                .chain()
-                .map(|c| c.to_string())
-                .collect::<Vec<_>>()
-                .join(": ");
+            let (message, usage) = describe(&err);
             eprintln!("error: {message}");
             if usage {
                 ExitCode::from(2)
@@ -78,4 +68,31 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// One line for the user, and whether the error is in what they typed (exit code 2): a
+/// library error about the description names the flags, not the library's keys.
+fn describe(err: &anyhow::Error) -> (String, bool) {
+    use stickslip::Error;
+    let library = err.downcast_ref::<Error>();
+    let usage = err.downcast_ref::<output::UsageError>().is_some()
+        || library.is_some_and(|e| {
+            matches!(
+                e,
+                Error::InvalidParameter { .. }
+                    | Error::Spec(_)
+                    | Error::Config(_)
+                    | Error::Unsupported(_)
+            )
+        });
+    if let Some(Error::Spec(spec)) = library {
+        return (spec.render(&model::flag_name), true);
+    }
+    // The chain of causes joined.
+    let message = err
+        .chain()
+        .map(|c| c.to_string())
+        .collect::<Vec<_>>()
+        .join(": ");
+    (message, usage)
 }

@@ -3,6 +3,7 @@
 
 use crate::output::AtomicFile;
 use anyhow::{Context, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -126,6 +127,19 @@ pub enum Legend {
     UpperLeft,
     /// Upper right.
     UpperRight,
+    /// The corner where the legend covers the fewest data points (upper right on a tie).
+    Best,
+}
+
+/// Colour of each motion class in maps, the same in every figure.
+pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
+    use stickslip::steady::MotionClass;
+    match class {
+        MotionClass::Sliding => RGBColor(235, 235, 235),
+        MotionClass::PeriodicStick => PALETTE[0],
+        MotionClass::NonperiodicStick => PALETTE[1],
+        MotionClass::Static => PALETTE[2],
+    }
 }
 
 /// Panels on a grid.
@@ -240,6 +254,8 @@ where
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, (FAMILY, font + 2))
         .margin(8)
+        // Room for the last tick label, centred on the right edge.
+        .margin_right(font * 2)
         .x_label_area_size(font * 3)
         .y_label_area_size(font * 4)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
@@ -275,7 +291,13 @@ where
 
     for s in &panel.series {
         let color = s.color;
-        let anno = match s.style {
+        let finite = || {
+            s.points
+                .iter()
+                .copied()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+        };
+        match s.style {
             Style::Line(width) | Style::Dashed(width) => {
                 let style = color.stroke_width(width);
                 // Break the polyline at non-finite points.
@@ -287,82 +309,82 @@ where
                         pieces.push(Vec::new());
                     }
                 }
-                for (i, piece) in pieces.into_iter().filter(|p| !p.is_empty()).enumerate() {
-                    let a = if matches!(s.style, Style::Dashed(_)) {
+                for piece in pieces.into_iter().filter(|p| !p.is_empty()) {
+                    if matches!(s.style, Style::Dashed(_)) {
                         chart.draw_series(DashedLineSeries::new(piece, 6, 4, style))
                     } else {
                         chart.draw_series(LineSeries::new(piece, style))
                     }
                     .map_err(|e| e.to_string())?;
-                    if i == 0 && !s.label.is_empty() {
-                        a.label(s.label.clone()).legend(move |(x, y)| {
-                            PathElement::new(
-                                vec![(x, y), (x + 16, y)],
-                                color.stroke_width(width.max(2)),
-                            )
-                        });
-                    }
                 }
-                continue;
             }
-            Style::Markers(r) => chart
-                .draw_series(
-                    s.points
-                        .iter()
-                        .filter(|p| p.0.is_finite() && p.1.is_finite())
-                        .map(|&p| Circle::new(p, r, color.filled())),
-                )
-                .map_err(|e| e.to_string())?,
+            Style::Markers(r) => {
+                chart
+                    .draw_series(finite().map(|p| Circle::new(p, r, color.filled())))
+                    .map_err(|e| e.to_string())?;
+            }
             Style::Squares(r) => {
                 let r = r as i32;
                 chart
-                    .draw_series(
-                        s.points
-                            .iter()
-                            .filter(|p| p.0.is_finite() && p.1.is_finite())
-                            .map(|&p| {
-                                EmptyElement::at(p)
-                                    + Rectangle::new([(-r, -r), (r, r)], color.stroke_width(1))
-                            }),
-                    )
-                    .map_err(|e| e.to_string())?
+                    .draw_series(finite().map(|p| {
+                        EmptyElement::at(p)
+                            + Rectangle::new([(-r, -r), (r, r)], color.stroke_width(1))
+                    }))
+                    .map_err(|e| e.to_string())?;
             }
-            Style::Bars(width) => chart
-                .draw_series(
-                    s.points
-                        .iter()
-                        .filter(|p| p.0.is_finite() && p.1.is_finite())
-                        .map(|&(x, y)| {
-                            Rectangle::new(
-                                [(x - width / 2.0, 0.0), (x + width / 2.0, y)],
-                                color.filled(),
-                            )
-                        }),
-                )
-                .map_err(|e| e.to_string())?,
-        };
+            Style::Bars(width) => {
+                chart
+                    .draw_series(finite().map(|(x, y)| {
+                        Rectangle::new(
+                            [(x - width / 2.0, 0.0), (x + width / 2.0, y)],
+                            color.filled(),
+                        )
+                    }))
+                    .map_err(|e| e.to_string())?;
+            }
+        }
         if !s.label.is_empty() {
+            // The legend's sample is drawn as the series is: a dashed line for a dashed
+            // series, a dot for markers. A series with no points is a legend entry only.
             let style = s.style;
-            anno.label(s.label.clone())
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
+                .map_err(|e| e.to_string())?
+                .label(s.label.clone())
                 .legend(move |(x, y)| match style {
-                    Style::Squares(_) => {
-                        EmptyElement::at((x + 6, y))
-                            + Rectangle::new([(-4, -4), (4, 4)], color.stroke_width(1))
+                    Style::Line(w) => {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(w.max(2)))
+                            .into_dyn()
                     }
-                    _ => {
-                        EmptyElement::at((x + 6, y))
-                            + Rectangle::new([(-4, -4), (4, 4)], color.filled())
+                    Style::Dashed(w) => plotters::element::DashedPathElement::new(
+                        vec![(x, y), (x + 20, y)],
+                        5,
+                        3,
+                        color.stroke_width(w.max(2)),
+                    )
+                    .into_dyn(),
+                    Style::Markers(r) => {
+                        Circle::new((x + 10, y), r.clamp(3, 5), color.filled()).into_dyn()
+                    }
+                    Style::Squares(_) => {
+                        Rectangle::new([(x + 6, y - 4), (x + 14, y + 4)], color.stroke_width(1))
+                            .into_dyn()
+                    }
+                    Style::Bars(_) => {
+                        Rectangle::new([(x + 4, y - 5), (x + 16, y + 5)], color.filled()).into_dyn()
                     }
                 });
         }
     }
     if let Some(position) = panel.legend {
+        let position = match position {
+            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Legend::UpperRight => SeriesLabelPosition::UpperRight,
+            Legend::Best => best_corner(panel, &chart, font),
+        };
         chart
             .configure_series_labels()
-            .position(match position {
-                Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-                Legend::UpperRight => SeriesLabelPosition::UpperRight,
-            })
+            .position(position)
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(180, 180, 180))
             .label_font((FAMILY, font))
@@ -370,4 +392,77 @@ where
             .map_err(|e| e.to_string())?;
     }
     Ok(())
+}
+
+/// The corner where a legend box would cover the fewest data points (upper right, upper
+/// left, lower right, lower left, in that order of preference on a tie). The box's size is
+/// estimated from the number of entries and the longest label at the legend's font size.
+fn best_corner<DB: DrawingBackend>(
+    panel: &Panel,
+    chart: &ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    font: u32,
+) -> SeriesLabelPosition {
+    let labels: Vec<&str> = panel
+        .series
+        .iter()
+        .map(|s| s.label.as_str())
+        .chain(panel.cell_legend.iter().map(|c| c.0.as_str()))
+        .filter(|l| !l.is_empty())
+        .collect();
+    let chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+    let font = f64::from(font);
+    let (width, height) = (
+        chars * 0.6 * font + 40.0,
+        labels.len() as f64 * (font + 6.0) + 12.0,
+    );
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let (left, right, top, bottom) = (
+        f64::from(xs.start),
+        f64::from(xs.end),
+        f64::from(ys.start),
+        f64::from(ys.end),
+    );
+    let margin = 10.0;
+    let corners = [
+        (
+            SeriesLabelPosition::UpperRight,
+            right - margin - width,
+            top + margin,
+        ),
+        (SeriesLabelPosition::UpperLeft, left + margin, top + margin),
+        (
+            SeriesLabelPosition::LowerRight,
+            right - margin - width,
+            bottom - margin - height,
+        ),
+        (
+            SeriesLabelPosition::LowerLeft,
+            left + margin,
+            bottom - margin - height,
+        ),
+    ];
+    let points: Vec<(f64, f64)> = panel
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .map(|p| {
+            let (x, y) = chart.backend_coord(&p);
+            (f64::from(x), f64::from(y))
+        })
+        .collect();
+    let covered = |x0: f64, y0: f64| {
+        points
+            .iter()
+            .filter(|&&(x, y)| x >= x0 && x <= x0 + width && y >= y0 && y <= y0 + height)
+            .count()
+    };
+    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
+    for (position, x0, y0) in corners {
+        let n = covered(x0, y0);
+        if n < best.0 {
+            best = (n, position);
+        }
+    }
+    best.1
 }

@@ -4,10 +4,9 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::time::Duration;
-use stickslip::steady::{
-    exact_solver, phase_diagram, steady_state_from, ParameterRange, SteadyOptions,
-};
-use stickslip::{Circuit, MotionClass, Params, State};
+use stickslip::scan::{Axis, Grid, ParameterRange};
+use stickslip::steady::{exact_solver, steady_state_from, SteadyOptions};
+use stickslip::{Circuit, Experiment, MotionClass, Parameter, Params, State};
 
 fn zeta() -> f64 {
     Circuit::paper().scales().zeta()
@@ -17,28 +16,20 @@ fn bench_grid(c: &mut Criterion) {
     let mut group = c.benchmark_group("phase_diagram");
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(60));
-    let base = Params::new(zeta(), 1.0, 1.0).expect("valid");
-    let options = SteadyOptions::default();
+    let paper = Experiment::paper();
     for n in [100usize, 400] {
         let w = ParameterRange::new("w", 0.1, 2.5, n).expect("valid");
         let beta = ParameterRange::new("beta", 0.5, 4.0, n).expect("valid");
+        let grid = Grid::new(
+            &paper,
+            Axis::range(Parameter::W, &w).expect("valid"),
+            Axis::range(Parameter::Beta, &beta).expect("valid"),
+        )
+        .expect("valid");
         group.bench_with_input(
             BenchmarkId::new("paper_window", format!("{n}x{n}")),
             &n,
-            |b, _| {
-                b.iter(|| {
-                    phase_diagram(
-                        &exact_solver,
-                        base,
-                        State::default(),
-                        &w,
-                        &beta,
-                        &options,
-                        &|| true,
-                    )
-                    .expect("runs")
-                })
-            },
+            |b, _| b.iter(|| grid.run(&()).expect("runs")),
         );
     }
     group.finish();

@@ -15,17 +15,19 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 use stickslip::shockley::{
-    netlist, NetlistOptions, ShockleyCircuit, ShockleyModel, ShockleyOptions, ShockleySolver,
+    netlist, NetlistOptions, ShockleyModel, ShockleyOptions, ShockleySolver,
 };
 use stickslip::solver::{grid, run_until, sample_at};
-use stickslip::{Solver, State};
+use stickslip::{Circuit, Solver, State};
 
 const PERIODS: f64 = 300.0;
 
 fn model() -> ShockleyModel {
-    ShockleyCircuit::paper()
-        .model_dimensionless(0.95, 2.14, 0.0)
+    let circuit = Circuit::paper_shockley();
+    circuit
+        .shockley_model(&circuit.params(0.95, 2.14, 0.0).expect("valid"))
         .expect("valid")
+        .expect("Shockley diodes")
 }
 
 /// Our configurations: rtol = atol, and the largest step in τ.
@@ -46,7 +48,7 @@ fn name((rtol, max_step): (f64, f64)) -> String {
 /// u_C in volts at the dimensionless times `times` (sorted, within the last period).
 fn ours(config: (f64, f64), times: &[f64]) -> Vec<f64> {
     let mut solver = ShockleySolver::new(model(), State::default(), options(config)).expect("ok");
-    let u_t = ShockleyCircuit::paper().reference_voltage;
+    let u_t = Circuit::paper_shockley().diode.reference_voltage();
     sample_at(&mut solver, times, |_| {})
         .expect("solver runs")
         .iter()
@@ -99,7 +101,7 @@ fn spice_netlist(s: &Spice, wrdata: Option<&str>) -> String {
         vntol: None,
         wrdata: Some(wrdata.unwrap_or("unused.txt").to_string()),
     };
-    let text = netlist(&ShockleyCircuit::paper(), &m.params, State::default(), &o).expect("ok");
+    let text = netlist(&Circuit::paper_shockley(), &m.params, State::default(), &o).expect("ok");
     if wrdata.is_some() {
         text
     } else {
@@ -137,7 +139,7 @@ fn deviation(values: &[f64], reference: &[f64]) -> f64 {
 fn bench_shockley(c: &mut Criterion) {
     let m = model();
     let period = m.params.drive_period();
-    let omega0 = ShockleyCircuit::paper().scales().omega0;
+    let omega0 = Circuit::paper_shockley().scales().omega0;
     let last = grid((PERIODS - 1.0) * period, PERIODS * period, 2000);
     let tight = (1e-11, 0.25);
     let reference = ours(tight, &last);

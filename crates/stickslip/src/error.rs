@@ -1,5 +1,11 @@
 //! Typed errors of the library.
+//!
+//! Every variant carries the values a caller needs to act on it (the offending value, the time
+//! of a numerical failure, the reason a solution does not exist as an enum), and its `Display`
+//! is one line.
 
+use crate::experiment::{ConfigError, SpecError};
+use crate::theory::Obstruction;
 use thiserror::Error;
 
 /// Everything that can go wrong in the library, with the offending value in the variant.
@@ -32,23 +38,23 @@ pub enum Error {
         /// What failed.
         reason: &'static str,
     },
-    /// A stiff integrator could not continue (step size underflow, too many failures).
-    #[error("integrator failed at tau = {tau}: {reason}")]
-    Integrator {
-        /// Time (dimensionless τ) at which the failure happened.
+    /// The stiff integrator's step size fell below what the time's rounding allows.
+    #[error("integrator failed at tau = {tau}: step size underflow (h = {step:e})")]
+    StepSizeTooSmall {
+        /// Time (dimensionless τ) at which the step could not be taken.
         tau: f64,
-        /// What failed.
-        reason: String,
+        /// The step size (dimensionless) that was too small.
+        step: f64,
     },
     /// A quantity requested from a theory does not exist for these parameters.
     #[error("{what} does not exist: {reason}")]
     NoSolution {
         /// What was asked for.
-        what: &'static str,
+        what: Quantity,
         /// Why it does not exist.
-        reason: String,
+        reason: NoSolutionReason,
     },
-    /// A long computation (a sweep or a phase diagram) was stopped by its caller.
+    /// A long computation (a sweep or a grid) was stopped by its caller.
     #[error("cancelled after {done} of {total} points")]
     Cancelled {
         /// Points finished when the computation stopped.
@@ -56,6 +62,174 @@ pub enum Error {
         /// Points requested.
         total: usize,
     },
+    /// An experiment description is incomplete or contradicts itself.
+    #[error(transparent)]
+    Spec(#[from] SpecError),
+    /// An experiment file could not be read as an experiment.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// What was asked for does not apply to this model.
+    #[error("{0}")]
+    Unsupported(Unsupported),
+}
+
+/// A quantity that a theory may fail to provide.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Quantity {
+    /// The paper's A1, eq. (11).
+    PaperA1,
+    /// A superharmonic of the paper's eq. (11).
+    PaperHarmonic,
+    /// The paper's undamped A1, eq. (9).
+    PaperUndampedA1,
+    /// A superharmonic of the paper's eq. (9).
+    PaperUndampedHarmonic,
+    /// The paper's stick-slip boundary, eq. (13).
+    PaperBoundary,
+    /// The exact symmetric periodic motion that never stops.
+    ExactOrbit,
+    /// The exact stick-slip boundary β_c.
+    ExactBoundary,
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Quantity::PaperA1 => "the paper's A1 (eq. (11))",
+            Quantity::PaperHarmonic => "the paper's superharmonic (eq. (11))",
+            Quantity::PaperUndampedA1 => "the paper's undamped A1 (eq. (9))",
+            Quantity::PaperUndampedHarmonic => "the paper's undamped superharmonic (eq. (9))",
+            Quantity::PaperBoundary => "the paper's boundary (eq. (13))",
+            Quantity::ExactOrbit => "the exact non-sticking periodic solution",
+            Quantity::ExactBoundary => "the exact stick-slip boundary",
+        })
+    }
+}
+
+/// Why a theory's quantity does not exist.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum NoSolutionReason {
+    /// ζ = 0 and w = 1: the paper's impedance Z vanishes and eq. (11) is 0/0.
+    ZeroImpedance,
+    /// Eq. (11) takes the square root of π²β²Z² − 16(w² − 1)² < 0.
+    NegativeRadicand {
+        /// The radicand.
+        radicand: f64,
+        /// The drive amplitude β.
+        beta: f64,
+        /// The smallest β for which the radicand is not negative, 4|1 − w²|/(πZ).
+        beta_min: f64,
+    },
+    /// Eq. (11) gives A1 < 0: β is below 4/π.
+    NegativeAmplitude {
+        /// The negative A1.
+        a1: f64,
+        /// The drive amplitude β.
+        beta: f64,
+    },
+    /// ζ = 0 and (order)·w = 1: the friction's harmonic drives the undamped oscillator at
+    /// resonance and the harmonic is infinite.
+    HarmonicResonance {
+        /// The odd harmonic order.
+        order: u32,
+    },
+    /// Eq. (9) takes the square root of β² − (4/π)² < 0.
+    BelowFourOverPi {
+        /// The radicand β² − (4/π)².
+        radicand: f64,
+        /// The drive amplitude β.
+        beta: f64,
+    },
+    /// Eq. (9) divides by 1 − w² = 0 at w = 1.
+    UndampedResonance,
+    /// Eq. (9) divides by zero at (order)·w = 1.
+    UndampedHarmonicResonance {
+        /// The odd harmonic order.
+        order: u32,
+    },
+    /// The exact construction fails for this reason.
+    Obstruction(Obstruction),
+    /// No β up to `limit` gives a motion that never stops.
+    NoBetaBelow {
+        /// The largest β tried.
+        limit: f64,
+    },
+}
+
+impl std::fmt::Display for NoSolutionReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            NoSolutionReason::ZeroImpedance => {
+                f.write_str("Z = 0 at ζ = 0, w = 1: eq. (11) is 0/0 (the undamped resonance)")
+            }
+            NoSolutionReason::NegativeRadicand {
+                radicand,
+                beta,
+                beta_min,
+            } => write!(
+                f,
+                "eq. (11) takes the square root of π²β²Z² − 16(w² − 1)² = {radicand:.6} < 0 \
+                 (β = {beta} < 4|1 − w²|/(πZ) = {beta_min:.6})"
+            ),
+            NoSolutionReason::NegativeAmplitude { a1, beta } => write!(
+                f,
+                "eq. (11) gives A1 = {a1:.6} < 0: β = {beta} is below 4/π, where the \
+                 friction's square wave outweighs the drive"
+            ),
+            NoSolutionReason::HarmonicResonance { order } => write!(
+                f,
+                "A_{order} is infinite at ζ = 0, {order}w = 1: the friction's harmonic \
+                 {order} drives the undamped oscillator at resonance"
+            ),
+            NoSolutionReason::BelowFourOverPi { radicand, beta } => write!(
+                f,
+                "eq. (9) takes the square root of β² − (4/π)² = {radicand:.6} < 0 \
+                 (β = {beta} < 4/π)"
+            ),
+            NoSolutionReason::UndampedResonance => {
+                f.write_str("eq. (9) divides by 1 − w² = 0 at w = 1")
+            }
+            NoSolutionReason::UndampedHarmonicResonance { order } => {
+                write!(f, "eq. (9) divides by zero at {order}w = 1")
+            }
+            NoSolutionReason::Obstruction(why) => write!(f, "{why}"),
+            NoSolutionReason::NoBetaBelow { limit } => {
+                write!(f, "no β up to {limit:e} gives a non-sticking motion")
+            }
+        }
+    }
+}
+
+/// A request that does not apply to the model it was made for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Unsupported {
+    /// The Shockley diode law needs a circuit (L, C, R and a reference voltage).
+    ShockleyNeedsCircuit,
+    /// A SPICE netlist describes a circuit with Shockley diodes.
+    NetlistNeedsShockley,
+    /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
+    /// model.
+    TheoryNeedsPwl,
+}
+
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Unsupported::ShockleyNeedsCircuit => {
+                "the Shockley diode model needs a circuit description (e.g. the paper preset)"
+            }
+            Unsupported::NetlistNeedsShockley => {
+                "a SPICE netlist needs a circuit description with Shockley diodes"
+            }
+            Unsupported::TheoryNeedsPwl => {
+                "the theory covers the piecewise-linear diode (Coulomb friction) model, not \
+                 Shockley diodes"
+            }
+        })
+    }
 }
 
 /// Result alias of the library.

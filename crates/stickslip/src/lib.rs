@@ -12,6 +12,11 @@
 //! y' = 0 and |β cos(w τ + φ) − y| ≤ μs            while stuck
 //! ```
 //!
+//! - [`experiment`]: what front ends describe and run: an [`Experiment`] (a dimensionless
+//!   model, a circuit with PWL or Shockley diodes, or a mechanical oscillator; a drive; μs; an
+//!   initial state), read from a TOML file or built value by value, that converts to
+//!   [`Params`], builds the right solver and its steady-state options, and converts back to
+//!   physical units.
 //! - [`physical`]: circuits and mechanical oscillators in SI units, and their exact
 //!   conversion to [`Params`] (the paper's Table 1).
 //! - [`ExactSolver`]: exact event-driven solution; every segment in closed form, only event
@@ -19,16 +24,23 @@
 //! - [`Solver`]: the trait every solver implements; [`solver::run_until`] and
 //!   [`solver::sample_at`] drive any of them.
 //! - [`steady`]: the steady state of any solver ([`steady_state`]), its spectrum and
-//!   [`MotionClass`], sweeps with hysteresis and (w, β) phase diagrams.
+//!   [`MotionClass`].
+//! - [`scan`]: sweeps of ζ, w, β or μs with hysteresis ([`scan::Sweep`]) and grids of any two
+//!   ([`scan::Grid`]), with progress and cancellation, deterministic for any number of
+//!   threads.
+//! - [`theory`]: the paper's series solution, the exact periodic solution, both stick-slip
+//!   boundaries, and their curves.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
 mod certify;
 pub mod error;
 pub mod exact;
+pub mod experiment;
 mod linear;
 pub mod params;
 pub mod physical;
+pub mod scan;
 pub mod shockley;
 pub mod solver;
 pub mod steady;
@@ -36,12 +48,14 @@ pub mod steady;
 mod test_rng;
 pub mod theory;
 mod trig;
+pub mod units;
 
-pub use error::{Error, Result};
+pub use error::{Error, NoSolutionReason, Quantity, Result, Unsupported};
 pub use exact::ExactSolver;
-pub use params::{Params, State};
-pub use physical::{Circuit, Mechanics, PwlDiode, Scales, System};
-pub use shockley::{DiodePair, ShockleyCircuit, ShockleyOptions, ShockleySolver};
+pub use experiment::{DiodeModel, Experiment, ExperimentSpec};
+pub use params::{Parameter, Params, State};
+pub use physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
+pub use shockley::{DiodePair, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};
 pub use theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};

@@ -89,6 +89,88 @@ impl Params {
     }
 }
 
+/// One of the four dimensionless parameters that sweeps and grids vary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Parameter {
+    /// Damping ratio ζ ≥ 0.
+    Zeta,
+    /// Drive frequency w = Ω/ω0 > 0.
+    W,
+    /// Drive amplitude β ≥ 0.
+    Beta,
+    /// Static-to-kinetic friction ratio μs ≥ 1.
+    MuS,
+}
+
+impl Parameter {
+    /// All four, in the order ζ, w, β, μs.
+    pub const ALL: [Parameter; 4] = [
+        Parameter::Zeta,
+        Parameter::W,
+        Parameter::Beta,
+        Parameter::MuS,
+    ];
+
+    /// The name used in files, flags and column headers: `zeta`, `w`, `beta`, `mu_s`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Parameter::Zeta => "zeta",
+            Parameter::W => "w",
+            Parameter::Beta => "beta",
+            Parameter::MuS => "mu_s",
+        }
+    }
+
+    /// The parameter named `label` ([`Parameter::label`]).
+    pub fn from_label(label: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.label() == label)
+    }
+
+    /// A description with its symbol, for axis labels and metadata (e.g. "drive frequency
+    /// w = Ω/ω0").
+    pub fn long_name(self) -> &'static str {
+        match self {
+            Parameter::Zeta => "damping ratio ζ",
+            Parameter::W => "drive frequency w = Ω/ω0",
+            Parameter::Beta => "drive amplitude β (in units of the kinetic friction force)",
+            Parameter::MuS => "static-to-kinetic friction ratio μs",
+        }
+    }
+
+    /// Its value in `params`.
+    pub fn get(self, params: &Params) -> f64 {
+        match self {
+            Parameter::Zeta => params.zeta,
+            Parameter::W => params.w,
+            Parameter::Beta => params.beta,
+            Parameter::MuS => params.mu_s,
+        }
+    }
+
+    /// `params` with this parameter set to `value`, validated.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when the value is out of range (ζ < 0, w ≤ 0,
+    /// β < 0, μs < 1, or not finite).
+    pub fn set(self, params: Params, value: f64) -> Result<Params> {
+        let mut p = params;
+        match self {
+            Parameter::Zeta => p.zeta = value,
+            Parameter::W => p.w = value,
+            Parameter::Beta => p.beta = value,
+            Parameter::MuS => p.mu_s = value,
+        }
+        p.validate()
+    }
+}
+
+impl std::fmt::Display for Parameter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
 /// Position and velocity (y, y') at one instant, dimensionless.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct State {
@@ -144,6 +226,19 @@ mod tests {
                 other => panic!("expected an error for {field}, got {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn parameters_set_and_get_by_name() {
+        let p = Params::new(0.1, 1.0, 2.0).unwrap();
+        for (param, value) in Parameter::ALL.into_iter().zip([0.2, 0.5, 3.0, 1.5]) {
+            let q = param.set(p, value).unwrap();
+            assert_eq!(param.get(&q), value);
+            assert_eq!(Parameter::from_label(param.label()), Some(param));
+        }
+        assert!(Parameter::MuS.set(p, 0.9).is_err());
+        assert!(Parameter::W.set(p, 0.0).is_err());
+        assert_eq!(Parameter::from_label("gamma"), None);
     }
 
     #[test]

@@ -13,6 +13,7 @@
 
 use crate::error::{check, Result};
 use crate::params::Params;
+use crate::shockley::{DiodePair, ShockleyModel};
 use serde::{Deserialize, Serialize};
 
 /// Piecewise-linear model of two anti-parallel diodes: an ideal diode, a voltage source U_t
@@ -58,7 +59,79 @@ impl PwlDiode {
     }
 }
 
-/// A series RLC circuit damped by a pair of anti-parallel diodes (PWL model).
+/// A Shockley diode pair in a circuit, with the reference voltage U_t that sets the unit of
+/// y = u_C/U_t and of β = U/U_t (the PWL turn-on voltage of the same circuit, 0.7 V in the
+/// paper, so that β means the same drive with either diode law).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ShockleyDiode {
+    /// The two anti-parallel diodes.
+    pub pair: DiodePair,
+    /// Reference voltage U_t in volts (> 0).
+    pub reference_voltage: f64,
+}
+
+impl ShockleyDiode {
+    /// Validated Shockley diode pair with reference voltage U_t (volts).
+    ///
+    /// # Errors
+    /// When the pair is invalid or U_t is not finite and > 0.
+    pub fn new(pair: DiodePair, reference_voltage: f64) -> Result<Self> {
+        Ok(Self {
+            pair: pair.validate()?,
+            reference_voltage: check(
+                "U_t",
+                reference_voltage,
+                reference_voltage > 0.0,
+                "must be finite and > 0 (volts)",
+            )?,
+        })
+    }
+}
+
+/// The diode pair of a [`Circuit`]: the paper's piecewise-linear model (solved exactly) or
+/// the Shockley law (solved by the stiff solver).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "lowercase")]
+pub enum Diode {
+    /// U_t sgn(i) + R_D i.
+    Pwl(PwlDiode),
+    /// n V_T asinh(i/(2 I_s)) + R_s i.
+    Shockley(ShockleyDiode),
+}
+
+impl Diode {
+    /// The voltage that sets the unit of y and β: U_t (PWL turn-on, or the Shockley
+    /// reference).
+    pub fn reference_voltage(&self) -> f64 {
+        match self {
+            Diode::Pwl(d) => d.turn_on,
+            Diode::Shockley(d) => d.reference_voltage,
+        }
+    }
+
+    /// The part of the diodes' resistance that enters ζ: R_D for the PWL model, 0 for the
+    /// Shockley law (its R_s is part of the nonlinear law).
+    pub fn linear_resistance(&self) -> f64 {
+        match self {
+            Diode::Pwl(d) => d.resistance,
+            Diode::Shockley(_) => 0.0,
+        }
+    }
+
+    fn validate(&self) -> Result<Self> {
+        Ok(match self {
+            Diode::Pwl(d) => Diode::Pwl(PwlDiode::new(d.turn_on, d.resistance)?),
+            Diode::Shockley(d) => Diode::Shockley(ShockleyDiode::new(d.pair, d.reference_voltage)?),
+        })
+    }
+}
+
+/// A series RLC circuit damped by a pair of anti-parallel diodes.
+///
+/// In dimensionless form (y = u_C/U_t, τ = ω0 t):
+/// - PWL diodes: y'' + 2ζ y' + y + sgn(y') = β cos(wτ + φ) with 2ζ = (R + R_D)√(C/L);
+/// - Shockley diodes: y'' + 2ζ_R y' + y + D(y') = β cos(wτ + φ) with 2ζ_R = R√(C/L) and D
+///   the dimensionless diode law ([`crate::shockley::DiodeLaw`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Circuit {
     /// Inductance L in henry (> 0).
@@ -68,20 +141,15 @@ pub struct Circuit {
     /// Series resistance R in ohms, without the diodes (≥ 0).
     pub resistance: f64,
     /// The diode pair.
-    pub diode: PwlDiode,
+    pub diode: Diode,
 }
 
 impl Circuit {
     /// Validated circuit.
     ///
     /// # Errors
-    /// When L ≤ 0, C ≤ 0, R < 0 or any value is not finite.
-    pub fn new(
-        inductance: f64,
-        capacitance: f64,
-        resistance: f64,
-        diode: PwlDiode,
-    ) -> Result<Self> {
+    /// When L ≤ 0, C ≤ 0, R < 0, the diode is invalid, or any value is not finite.
+    pub fn new(inductance: f64, capacitance: f64, resistance: f64, diode: Diode) -> Result<Self> {
         Ok(Self {
             inductance: check(
                 "L",
@@ -101,7 +169,7 @@ impl Circuit {
                 resistance >= 0.0,
                 "must be finite and >= 0 (ohms)",
             )?,
-            diode: PwlDiode::new(diode.turn_on, diode.resistance)?,
+            diode: diode.validate()?,
         })
     }
 
@@ -112,16 +180,36 @@ impl Circuit {
             inductance: 11.5e-3,
             capacitance: 0.02e-6,
             resistance: 68.0,
-            diode: PwlDiode {
+            diode: Diode::Pwl(PwlDiode {
                 turn_on: 0.7,
                 resistance: 3.0,
-            },
+            }),
         }
     }
 
-    /// Total series resistance R + R_D in ohms.
+    /// The paper's circuit with two 1N4148 diodes at 27 °C instead of the PWL model (U_t =
+    /// 0.7 V kept as the reference voltage).
+    pub fn paper_shockley() -> Self {
+        Self::paper().with_shockley(DiodePair::one_n4148())
+    }
+
+    /// The same L, C and R with a Shockley diode pair: the diodes' reference voltage U_t is
+    /// kept (so β keeps its meaning U/U_t), a PWL resistance R_D is dropped (the Shockley law
+    /// has its own R_s).
+    pub fn with_shockley(&self, pair: DiodePair) -> Self {
+        Self {
+            diode: Diode::Shockley(ShockleyDiode {
+                pair,
+                reference_voltage: self.diode.reference_voltage(),
+            }),
+            ..*self
+        }
+    }
+
+    /// Total resistance that enters ζ, in ohms: R + R_D with PWL diodes, R with Shockley
+    /// diodes.
     pub fn total_resistance(&self) -> f64 {
-        self.resistance + self.diode.resistance
+        self.resistance + self.diode.linear_resistance()
     }
 
     /// Characteristic impedance √(L/C) in ohms.
@@ -129,15 +217,42 @@ impl Circuit {
         (self.inductance / self.capacitance).sqrt()
     }
 
-    /// Scales that turn dimensionless values into volts, amperes and seconds.
+    /// Scales that turn dimensionless values into volts, amperes and seconds. `alpha` is
+    /// [`Circuit::total_resistance`]/L, so `zeta()` is the ζ of the dimensionless model (ζ_R
+    /// with Shockley diodes).
     pub fn scales(&self) -> Scales {
         let omega0 = 1.0 / (self.inductance * self.capacitance).sqrt();
+        let reference = self.diode.reference_voltage();
         Scales {
             omega0,
             alpha: self.total_resistance() / self.inductance,
-            position: self.diode.turn_on,
-            velocity: self.diode.turn_on / self.impedance(),
-            force: self.diode.turn_on,
+            position: reference,
+            velocity: reference / self.impedance(),
+            force: reference,
+        }
+    }
+
+    /// Dimensionless parameters of this circuit (ζ from its parts) for a dimensionless drive
+    /// w = Ω/ω0, β = U/U_t and phase φ (radians), with μs = 1.
+    ///
+    /// # Errors
+    /// When w ≤ 0, β < 0 or a value is not finite.
+    pub fn params(&self, w: f64, beta: f64, phi: f64) -> Result<Params> {
+        Params::new(self.scales().zeta(), w, beta)?.with_phi(phi)
+    }
+
+    /// The dimensionless Shockley model at `params` (its ζ is ζ_R, its μs is not used), or
+    /// `None` with PWL diodes.
+    ///
+    /// # Errors
+    /// When `params` is invalid.
+    pub fn shockley_model(&self, params: &Params) -> Result<Option<ShockleyModel>> {
+        match self.diode {
+            Diode::Pwl(_) => Ok(None),
+            Diode::Shockley(d) => {
+                let law = d.pair.law(d.reference_voltage, self.impedance())?;
+                Ok(Some(ShockleyModel::new(*params, law)?))
+            }
         }
     }
 }
@@ -192,8 +307,9 @@ impl Mechanics {
     }
 }
 
-/// Either twin.
+/// Either physical twin.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum System {
     /// The diode-damped RLC circuit.
     Circuit(Circuit),
@@ -312,6 +428,21 @@ mod tests {
     }
 
     #[test]
+    fn shockley_circuit_keeps_the_reference_and_drops_r_d() {
+        let c = Circuit::paper_shockley();
+        let s = c.scales();
+        assert!((s.omega0 - 65_938.0).abs() < 0.1);
+        assert!((2.0 * s.zeta() - 68.0 / c.impedance()).abs() < 1e-15);
+        assert_eq!(s.force, 0.7);
+        // β keeps its meaning: 1.498 V is β = 2.14 against U_t = 0.7 V.
+        let p = s.params(1.498, 0.95 * s.omega0, 0.0).unwrap();
+        assert!((p.beta - 2.14).abs() < 1e-12);
+        assert!(Circuit::paper().shockley_model(&p).unwrap().is_none());
+        let m = c.shockley_model(&p).unwrap().unwrap();
+        assert_eq!(m.params, p);
+    }
+
+    #[test]
     fn mechanics_scales() {
         let m = Mechanics::new(2.0, 8.0, 0.4, 0.5).unwrap();
         let s = m.scales();
@@ -325,6 +456,11 @@ mod tests {
     #[test]
     fn rejects_bad_components() {
         assert!(Circuit::new(0.0, 1e-6, 1.0, Circuit::paper().diode).is_err());
+        let bad = DiodePair {
+            saturation_current: -1.0,
+            ..DiodePair::one_n4148()
+        };
+        assert!(Circuit::new(1e-3, 1e-6, 1.0, Circuit::paper().with_shockley(bad).diode).is_err());
         assert!(PwlDiode::new(-0.7, 3.0).is_err());
         assert!(Mechanics::new(1.0, 1.0, -1.0, 1.0).is_err());
     }

@@ -2,7 +2,7 @@
 //! and generic drivers (run to a time, sample on a grid) written once against it.
 
 use crate::error::{Error, Result};
-use crate::params::State;
+use crate::params::{Params, State};
 use serde::{Deserialize, Serialize};
 
 /// How the oscillator moves at an instant.
@@ -100,6 +100,10 @@ pub struct Stats {
 ///
 /// All times are dimensionless (τ = ω0·t) and absolute (the solver starts at τ = 0).
 pub trait Solver {
+    /// The dimensionless parameters the solver was built with (for the Shockley solver, ζ is
+    /// ζ_R and μs is not used).
+    fn params(&self) -> &Params;
+
     /// Current time τ.
     fn time(&self) -> f64;
 

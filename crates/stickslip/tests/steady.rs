@@ -1,12 +1,12 @@
 //! Steady states, spectra, motion classes, sweeps and phase diagrams.
 
+use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection, SweepLeg};
 use stickslip::solver::{run_until, sample_at, EventKind};
 use stickslip::steady::{
-    exact_solver, phase_diagram, steady_state, steady_state_from, sweep, MotionClass,
-    ParameterRange, SteadyOptions, SteadyState, SweepDirection, SweepLeg, SweepParameter,
+    exact_solver, steady_state, steady_state_from, MotionClass, SteadyOptions, SteadyState,
 };
 use stickslip::theory::{stick_slip_boundary, PeriodicSolution};
-use stickslip::{Circuit, Error, ExactSolver, Params, Solver, State};
+use stickslip::{Circuit, Error, ExactSolver, Experiment, Parameter, Params, Solver, State};
 
 fn zeta() -> f64 {
     Circuit::paper().scales().zeta()
@@ -18,7 +18,7 @@ fn paper(w: f64, beta: f64) -> Params {
 
 fn steady_with(params: Params, options: &SteadyOptions) -> SteadyState {
     let mut solver = ExactSolver::new(params, State::default());
-    steady_state(&mut solver, &params, options).unwrap()
+    steady_state(&mut solver, options).unwrap()
 }
 
 fn steady(w: f64, beta: f64) -> SteadyState {
@@ -120,20 +120,19 @@ fn a_cap_too_short_for_convergence_gives_nonperiodic_stick() {
 fn coexisting_static_and_moving_states_with_static_friction_above_kinetic() {
     // μs = 1.5: between β ≈ 1.35 and μs the oscillator stays at rest when it starts at rest
     // (sweep up) but keeps moving when it was already moving (sweep down).
-    let base = paper(0.9, 0.5).with_mu_s(1.5).unwrap();
+    let base = Experiment::dimensionless(zeta(), 0.9, 0.5)
+        .unwrap()
+        .with_mu_s(1.5)
+        .unwrap();
     let range = ParameterRange::new("beta", 1.0, 2.0, 21).unwrap();
     let options = SteadyOptions::default().with_spectrum(false);
-    let points = sweep(
-        &exact_solver,
-        base,
-        State::default(),
-        SweepParameter::Beta,
-        &range,
-        SweepDirection::Both,
-        &options,
-        &mut |_, _, _| true,
-    )
-    .unwrap();
+    let points = Sweep::new(&base, Axis::range(Parameter::Beta, &range).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Both)
+        .options(options)
+        .unwrap()
+        .run(&())
+        .unwrap();
     assert_eq!(points.len(), 42);
     let at = |leg: SweepLeg, beta: f64| {
         points
@@ -157,20 +156,15 @@ fn coexisting_static_and_moving_states_with_static_friction_above_kinetic() {
 
 #[test]
 fn sweep_steps_continue_from_the_previous_final_state() {
-    let base = paper(1.0, 2.0);
-    let range = ParameterRange::new("w", 0.8, 0.9, 2).unwrap();
+    let base = Experiment::dimensionless(zeta(), 1.0, 2.0).unwrap();
     let options = SteadyOptions::default().with_spectrum(false);
-    let points = sweep(
-        &exact_solver,
-        base,
-        State::default(),
-        SweepParameter::W,
-        &range,
-        SweepDirection::Up,
-        &options,
-        &mut |_, _, _| true,
-    )
-    .unwrap();
+    let points = Sweep::new(&base, Axis::new(Parameter::W, vec![0.8, 0.9]).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Up)
+        .options(options)
+        .unwrap()
+        .run(&())
+        .unwrap();
     let first_end = points[0].steady.final_state();
     let again = steady_state_from(&exact_solver, &paper(0.9, 2.0), first_end, &options).unwrap();
     assert_eq!(again, points[1].steady);
@@ -327,7 +321,7 @@ fn steady_state_runs_from_a_solver_that_started_earlier() {
     let params = paper(0.9, 1.6);
     let mut solver = ExactSolver::new(params, State::default());
     run_until(&mut solver, 3.3 * params.drive_period(), |_| {}).unwrap();
-    let s = steady_state(&mut solver, &params, &SteadyOptions::default()).unwrap();
+    let s = steady_state(&mut solver, &SteadyOptions::default()).unwrap();
     let fresh = steady(0.9, 1.6);
     assert_eq!(s.class, MotionClass::Sliding);
     assert!((s.start / params.drive_period()).fract().abs() < 1e-9);
@@ -337,28 +331,29 @@ fn steady_state_runs_from_a_solver_that_started_earlier() {
 
 #[test]
 fn phase_diagram_matches_single_runs_and_is_deterministic() {
-    let base = paper(1.0, 1.0);
+    let base = Experiment::dimensionless(zeta(), 1.0, 1.0).unwrap();
     let w = ParameterRange::new("w", 0.3, 1.5, 4).unwrap();
     let beta = ParameterRange::new("beta", 0.8, 2.6, 3).unwrap();
     let options = SteadyOptions::default();
-    let run = || {
-        phase_diagram(
-            &exact_solver,
-            base,
-            State::default(),
-            &w,
-            &beta,
-            &options,
-            &|| true,
-        )
-    };
-    let points = run().unwrap();
+    let grid = Grid::new(
+        &base,
+        Axis::range(Parameter::W, &w).unwrap(),
+        Axis::range(Parameter::Beta, &beta).unwrap(),
+    )
+    .unwrap()
+    .options(options)
+    .unwrap();
+    let points = grid.run(&()).unwrap().points;
     assert_eq!(points.len(), 12);
-    assert_eq!(points, run().unwrap());
+    assert_eq!(points, grid.run(&()).unwrap().points);
+    // Block by block equals all at once.
+    let mut blocks = grid.run_block(0..2, 0..3, &()).unwrap();
+    blocks.extend(grid.run_block(2..4, 0..3, &()).unwrap());
+    assert_eq!(blocks, points);
     for (i, p) in points.iter().enumerate() {
-        assert_eq!(p.w, w.value(i / 3));
-        assert_eq!(p.beta, beta.value(i % 3));
-        let params = paper(p.w, p.beta);
+        assert_eq!(p.params.w, w.value(i / 3));
+        assert_eq!(p.params.beta, beta.value(i % 3));
+        let params = paper(p.params.w, p.params.beta);
         // The same computation as the map's (which skips the spectrum), point by point.
         let s = steady_state_from(
             &exact_solver,
@@ -386,19 +381,21 @@ fn phase_diagram_matches_single_runs_and_is_deterministic() {
 
 #[test]
 fn phase_diagram_can_be_cancelled() {
-    let base = paper(1.0, 1.0);
+    let base = Experiment::dimensionless(zeta(), 1.0, 1.0).unwrap();
     let w = ParameterRange::new("w", 0.3, 1.5, 10).unwrap();
     let beta = ParameterRange::new("beta", 1.2, 2.6, 10).unwrap();
-    let result = phase_diagram(
-        &exact_solver,
-        base,
-        State::default(),
-        &w,
-        &beta,
-        &SteadyOptions::default(),
-        &|| false,
-    );
+    let result = Grid::new(
+        &base,
+        Axis::range(Parameter::W, &w).unwrap(),
+        Axis::range(Parameter::Beta, &beta).unwrap(),
+    )
+    .unwrap()
+    .run(&|_: usize, _: usize| false);
     assert!(matches!(result, Err(Error::Cancelled { total: 100, .. })));
+    let sweep = Sweep::new(&base, Axis::range(Parameter::W, &w).unwrap())
+        .unwrap()
+        .run(&|done: usize, _: usize| done < 3);
+    assert_eq!(sweep, Err(Error::Cancelled { done: 3, total: 20 }));
 }
 
 #[test]
@@ -432,19 +429,21 @@ fn bad_ranges_and_options_are_rejected_with_the_value() {
 
     // A swept value outside the model's range is refused before any work.
     let r = ParameterRange::new("w", -1.0, 1.0, 3).unwrap();
-    let result = sweep(
-        &exact_solver,
-        paper(1.0, 2.0),
-        State::default(),
-        SweepParameter::W,
-        &r,
-        SweepDirection::Up,
-        &o,
-        &mut |_, _, _| panic!("no step may run"),
-    );
     assert!(matches!(
-        result,
+        Axis::range(Parameter::W, &r),
         Err(Error::InvalidParameter { name: "w", .. })
+    ));
+    assert!(matches!(
+        Axis::new(Parameter::MuS, vec![1.0, 0.5]),
+        Err(Error::InvalidParameter { name: "mu_s", .. })
+    ));
+    // A grid of one parameter against itself is refused.
+    let w = Axis::new(Parameter::W, vec![0.5]).unwrap();
+    assert!(Grid::new(&Experiment::paper(), w.clone(), w.clone()).is_err());
+    // A missing drive value that the sweep does not set is named.
+    assert!(matches!(
+        Sweep::new(&Experiment::paper(), w),
+        Err(Error::Spec(_))
     ));
 }
 
@@ -453,6 +452,9 @@ fn analysis_is_generic_over_the_solver_trait() {
     /// A solver that hides the exact solver's type behind the trait.
     struct Wrapped(ExactSolver);
     impl Solver for Wrapped {
+        fn params(&self) -> &Params {
+            self.0.params()
+        }
         fn time(&self) -> f64 {
             self.0.time()
         }
@@ -481,28 +483,15 @@ fn analysis_is_generic_over_the_solver_trait() {
     let factory = |p: Params, s: State| -> stickslip::Result<Box<dyn Solver + Send>> {
         Ok(Box::new(Wrapped(ExactSolver::new(p, s))))
     };
-    let w = ParameterRange::new("w", 0.6, 0.9, 2).unwrap();
-    let beta = ParameterRange::new("beta", 1.2, 1.6, 2).unwrap();
-    let o = SteadyOptions::default();
-    let wrapped = phase_diagram(
-        &factory,
-        paper(1.0, 1.0),
-        State::default(),
-        &w,
-        &beta,
-        &o,
-        &|| true,
-    );
-    let direct = phase_diagram(
-        &exact_solver,
-        paper(1.0, 1.0),
-        State::default(),
-        &w,
-        &beta,
-        &o,
-        &|| true,
-    );
-    assert_eq!(wrapped.unwrap(), direct.unwrap());
+    let grid = Grid::new(
+        &Experiment::dimensionless(zeta(), 1.0, 1.0).unwrap(),
+        Axis::new(Parameter::W, vec![0.6, 0.9]).unwrap(),
+        Axis::new(Parameter::Beta, vec![1.2, 1.6]).unwrap(),
+    )
+    .unwrap();
+    let direct = grid.run(&()).unwrap();
+    let wrapped = grid.with_factory(factory).run(&()).unwrap();
+    assert_eq!(wrapped, direct);
 }
 
 #[test]

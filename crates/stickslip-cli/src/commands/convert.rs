@@ -3,7 +3,7 @@
 use crate::model::ModelArgs;
 use crate::output::usage;
 use anyhow::Result;
-use serde_json::json;
+use stickslip::experiment::{Key, SpecError};
 
 /// Print ω0, f0, α, ζ, Q of a physical description, and w and β when a drive is given.
 ///
@@ -20,60 +20,37 @@ pub struct Args {
 
 /// Run `stickslip convert`.
 pub fn run(args: Args) -> Result<()> {
-    let mut m = args.model.clone();
-    let has_drive = m.w.is_some()
-        || m.freq.is_some()
-        || m.omega.is_some()
-        || m.beta.is_some()
-        || m.amplitude.is_some();
-    let partial_drive = has_drive
-        && !((m.w.is_some() || m.freq.is_some() || m.omega.is_some())
-            && (m.beta.is_some() || m.amplitude.is_some()));
-    if partial_drive {
-        usage!("a drive needs both a frequency (--freq, --omega or --w) and an amplitude (--amplitude or --beta)");
+    let experiment = args.model.experiment()?;
+    if experiment.w().is_some() != experiment.beta().is_some() {
+        let key = if experiment.w().is_none() {
+            Key::W
+        } else {
+            Key::Beta
+        };
+        return Err(stickslip::Error::Spec(SpecError::MissingDrive { key }).into());
     }
-    if !has_drive {
-        // Only the circuit: fill a placeholder drive, reported as absent.
-        m.w = Some(1.0);
-        m.beta = Some(0.0);
-    }
-    let model = m.build()?;
-    let Some(system) = model.system else {
+    let Some(c) = experiment.conversion() else {
         usage!("convert needs a physical description: --preset paper, --config FILE, or --inductance --capacitance --resistance --ut --rd (or --mass --stiffness --damping --friction)");
     };
-    let s = system.scales();
     if args.json {
-        let mut v = json!({
-            "omega0": s.omega0,
-            "f0": s.f0(),
-            "alpha": s.alpha,
-            "zeta": s.zeta(),
-            "Q": s.quality_factor(),
-        });
-        if has_drive {
-            v["w"] = json!(model.params.w);
-            v["beta"] = json!(model.params.beta);
-        }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        println!("{}", serde_json::to_string_pretty(&c)?);
     } else {
+        let description = experiment.to_string();
         println!(
             "{}",
-            model.summary.split("; dimensionless").next().unwrap_or("")
+            description.split("; dimensionless").next().unwrap_or("")
         );
-        println!("omega0 = {:.1} rad/s   (1/sqrt(LC) or sqrt(k/m))", s.omega0);
-        println!("f0     = {:.3} Hz", s.f0());
+        println!("omega0 = {:.1} rad/s   (1/sqrt(LC) or sqrt(k/m))", c.omega0);
+        println!("f0     = {:.3} Hz", c.f0);
         println!(
             "alpha  = {:.1} 1/s     (the paper's alpha = 2 zeta omega0)",
-            s.alpha
+            c.alpha
         );
-        println!("zeta   = {:.6}", s.zeta());
-        println!("Q      = {:.4}", s.quality_factor());
-        if has_drive {
-            println!("w      = {:.6}  (Omega/omega0)", model.params.w);
-            println!(
-                "beta   = {:.6}  (drive amplitude / friction)",
-                model.params.beta
-            );
+        println!("zeta   = {:.6}", c.zeta);
+        println!("Q      = {:.4}", c.q);
+        if let (Some(w), Some(beta)) = (c.w, c.beta) {
+            println!("w      = {w:.6}  (Omega/omega0)");
+            println!("beta   = {beta:.6}  (drive amplitude / friction)");
         }
     }
     Ok(())

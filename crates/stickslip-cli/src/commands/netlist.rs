@@ -5,7 +5,9 @@ use crate::output::{usage, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::experiment::DiodeModel;
 use stickslip::shockley::{netlist, NetlistOptions};
+use stickslip::{Error, Unsupported};
 
 /// Write the circuit as a SPICE netlist, to cross-check a simulation in ngspice or any SPICE:
 /// source U cos(Ω t + φ) (as SIN with phase φ + 90°), R, L, two anti-parallel diodes sharing
@@ -50,8 +52,14 @@ pub struct Args {
 /// Run `stickslip netlist`.
 pub fn run(args: Args) -> Result<()> {
     Sink::check(args.out.as_deref())?;
-    let model = args.model.build()?;
-    let circuit = crate::solvers::shockley_circuit(&model)?;
+    // SPICE has no PWL diode: the netlist's diodes follow the Shockley law.
+    let mut spec = args.model.spec()?;
+    spec.set_diode(DiodeModel::Shockley);
+    let experiment = spec.build()?;
+    let Some(circuit) = experiment.circuit_ref() else {
+        return Err(Error::Unsupported(Unsupported::ShockleyNeedsCircuit).into());
+    };
+    let params = experiment.params()?;
     let options = NetlistOptions {
         periods: args.periods,
         points_per_period: args.points_per_period,
@@ -61,9 +69,9 @@ pub fn run(args: Args) -> Result<()> {
         vntol: args.vntol,
         wrdata: args.wrdata.clone(),
     };
-    let text = match netlist(&circuit, &model.params, model.initial, &options) {
+    let text = match netlist(circuit, &params, experiment.initial(), &options) {
         Ok(text) => text,
-        Err(stickslip::Error::InvalidParameter {
+        Err(Error::InvalidParameter {
             name,
             value,
             allowed,
@@ -81,11 +89,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         Err(e) => return Err(e.into()),
     };
-    let d = &circuit.diode;
-    eprintln!(
-        "netlist: {}; Shockley diodes I_s = {} A, n = {}, R_s = {} Ω at {} °C",
-        model.summary, d.saturation_current, d.emission, d.series_resistance, d.temperature
-    );
+    eprintln!("netlist: {experiment}");
     let mut sink = Sink::open(args.out.as_deref())?;
     sink.write_all(text.as_bytes())?;
     sink.finish()?;

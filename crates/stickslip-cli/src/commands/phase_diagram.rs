@@ -1,16 +1,16 @@
 //! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
 
-use super::steady::SteadyFlags;
-use super::sweep::range_from_flags;
-use crate::model::{finite, DiodeModel, Model, ModelArgs};
+use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
-use crate::overlay::{abscissae, boundary_curves};
-use crate::plot::{Cell, Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{class_color, Cell, Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
-use plotters::style::RGBColor;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::steady::{phase_diagram, MotionClass, ParameterRange, PhaseDiagramPoint};
+use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::steady::MotionClass;
+use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
+use stickslip::{DiodeModel, Experiment, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
 /// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
@@ -55,16 +55,6 @@ pub struct Args {
     plot: Option<PathBuf>,
 }
 
-/// Colour of each class on the map.
-fn color(class: MotionClass) -> RGBColor {
-    match class {
-        MotionClass::Sliding => RGBColor(235, 235, 235),
-        MotionClass::PeriodicStick => PALETTE[0],
-        MotionClass::NonperiodicStick => PALETTE[1],
-        MotionClass::Static => PALETTE[2],
-    }
-}
-
 /// Run `stickslip phase-diagram`.
 pub fn run(args: Args) -> Result<()> {
     let w = range_from_flags(
@@ -91,26 +81,26 @@ pub fn run(args: Args) -> Result<()> {
             w.steps() * beta.steps()
         );
     }
-    let mut model_args = args.model.clone();
-    if model_args.w.is_some()
-        || model_args.beta.is_some()
-        || model_args.freq.is_some()
-        || model_args.omega.is_some()
-        || model_args.amplitude.is_some()
-    {
-        usage!("phase-diagram sets w and β from the grid: use --w-min/--w-max and --beta-min/--beta-max, not --w, --beta, --freq, --omega or --amplitude");
-    }
-    model_args.w = Some(w.from());
-    model_args.beta = Some(beta.from());
+    reject_swept_flags(&args.model, Parameter::W, "phase-diagram (--w-min/--w-max)")?;
+    reject_swept_flags(
+        &args.model,
+        Parameter::Beta,
+        "phase-diagram (--beta-min/--beta-max)",
+    )?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
-    let model = model_args.build()?;
-    let options = args.steady.options(&model)?;
+    let experiment = args.model.experiment()?;
+    let options = args.steady.options(&experiment)?;
+    let grid = Grid::new(
+        &experiment,
+        Axis::range(Parameter::W, &w)?,
+        Axis::range(Parameter::Beta, &beta)?,
+    )?
+    .options(options)?;
     eprintln!(
-        "phase-diagram: {}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
-        model.summary,
+        "phase-diagram: {experiment}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
         w.steps(),
         beta.steps(),
         w.from(),
@@ -119,25 +109,16 @@ pub fn run(args: Args) -> Result<()> {
         beta.to(),
         options.max_periods
     );
-    let factory = crate::solvers::factory_for(&model)?;
     let total = w.steps() * beta.steps();
     let bar = crate::output::progress(total as u64, "phase diagram");
     let started = std::time::Instant::now();
-    let result = phase_diagram(
-        &factory,
-        model.params,
-        model.initial,
-        &w,
-        &beta,
-        &options,
-        &|| {
-            bar.inc(1);
-            !crate::output::interrupted()
-        },
-    );
+    let result = grid.run(&|_: usize, _: usize| {
+        bar.inc(1);
+        !crate::output::interrupted()
+    });
     bar.finish_and_clear();
     crate::output::check_interrupt()?;
-    let points = result?;
+    let points = result?.points;
     let elapsed = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
@@ -146,8 +127,8 @@ pub fn run(args: Args) -> Result<()> {
         writeln!(
             sink,
             "{},{},{},{},{},{}",
-            p.w,
-            p.beta,
+            p.params.w,
+            p.params.beta,
             p.class.label(),
             p.period.map(|x| x.to_string()).unwrap_or_default(),
             p.stops_per_period,
@@ -156,7 +137,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&points, &w, &beta, &model, path)?;
+        plot(&points, &w, &beta, &experiment, path)?;
     }
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     eprintln!(
@@ -174,13 +155,12 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 fn plot(
-    points: &[PhaseDiagramPoint],
+    points: &[GridPoint],
     w: &ParameterRange,
     beta: &ParameterRange,
-    model: &Model,
+    experiment: &Experiment,
     path: &std::path::Path,
 ) -> Result<()> {
-    let params = &model.params;
     // Cells centred on the grid points; a single row or column gets a unit-less width.
     let half = |r: &ParameterRange| {
         if r.steps() > 1 {
@@ -193,44 +173,50 @@ fn plot(
     let cells = points
         .iter()
         .map(|p| Cell {
-            x: (p.w - hw, p.w + hw),
-            y: (p.beta - hb, p.beta + hb),
-            color: color(p.class),
+            x: (p.params.w - hw, p.params.w + hw),
+            y: (p.params.beta - hb, p.params.beta + hb),
+            color: class_color(p.class),
         })
         .collect();
     let cell_legend = MotionClass::ALL
         .iter()
         .filter(|&&c| points.iter().any(|p| p.class == c))
-        .map(|&c| (c.label().to_string(), color(c)))
+        .map(|&c| (c.label().to_string(), class_color(c)))
         .collect();
-    // The boundaries of the piecewise-linear theory, where they exist inside the β range.
+    // The boundaries of the piecewise-linear theory, where they exist inside the β range,
+    // across the cells' full width (but w > 0).
     let (beta_lo, beta_hi) = (beta.from() - hb, beta.to() + hb);
-    // Across the cells' full width, but w > 0.
     let ws = abscissae((w.from() - hw).max(0.5 * w.from()), w.to() + hw, w.steps());
-    let (paper, exact) = boundary_curves(params.zeta, params.mu_s, &ws, (beta_lo, beta_hi));
+    let base =
+        experiment.params_with(&[(Parameter::W, w.from()), (Parameter::Beta, beta.from())])?;
+    let boundary = |theory| {
+        theory_curve(theory, TheoryQuantity::Boundary, &base, Parameter::W, &ws)
+            .within(beta_lo, beta_hi)
+    };
+    let (paper, exact) = (boundary(Theory::Paper), boundary(Theory::Exact));
     eprintln!(
         "phase-diagram: theory on the plot: paper's boundary at {} and exact boundary at {} of {} frequencies inside the β range",
-        paper.present,
-        exact.present,
+        paper.present(),
+        exact.present(),
         ws.len()
     );
-    let prefix = match model.diode {
+    let prefix = match experiment.diode_model() {
         DiodeModel::Pwl => "",
         DiodeModel::Shockley => "PWL theory: ",
     };
     let mut series = Vec::new();
-    if paper.present > 0 {
+    if paper.present() > 0 {
         series.push(Series::new(
             format!("{prefix}paper boundary, eq. (13)"),
-            paper.points,
+            paper.points(),
             PALETTE[3],
             Style::Dashed(3),
         ));
     }
-    if exact.present > 0 {
+    if exact.present() > 0 {
         series.push(Series::new(
             format!("{prefix}exact boundary β_c"),
-            exact.points,
+            exact.points(),
             PALETTE[6],
             Style::Line(2),
         ));
@@ -239,7 +225,7 @@ fn plot(
         series,
         title: format!(
             "motion classes from rest, ζ = {:.4}, μs = {}",
-            params.zeta, params.mu_s
+            base.zeta, base.mu_s
         ),
         x_label: "w = Ω/ω0".into(),
         y_label: "β = U/U_t".into(),

@@ -7,7 +7,7 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::solver::{grid, sample_at};
-use stickslip::{Event, System};
+use stickslip::Event;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
 ///
@@ -65,25 +65,24 @@ pub fn run(args: Args) -> Result<()> {
     for path in [&args.out, &args.events] {
         Sink::check(path.as_deref())?;
     }
-    let model = args.model.build()?;
-    eprintln!("simulate: {}", model.summary);
+    let experiment = args.model.experiment()?;
+    let params = experiment.params()?;
+    eprintln!("simulate: {experiment}");
 
-    let mut solver = crate::solvers::solver_for(&model)?;
-    let period = model.params.drive_period();
+    let mut solver = experiment.solver()?;
+    let period = params.drive_period();
     let t_end = args.periods * period;
     let times = grid(0.0, t_end, total as usize);
     let mut events: Vec<Event> = Vec::new();
     let samples = sample_at(solver.as_mut(), &times, |e| events.push(*e))?;
     crate::output::check_interrupt()?;
 
-    let scales = model.system.map(|s| s.scales());
+    let units = experiment.units();
     let mut sink = Sink::open(args.out.as_deref())?;
     let mut w = csv::Writer::from_writer(&mut sink);
     let mut header = vec!["tau", "y", "v", "drive", "phase"];
-    match model.system {
-        Some(System::Circuit(_)) => header.extend(["t_s", "uc_V", "i_A", "u_V"]),
-        Some(System::Mechanics(_)) => header.extend(["t_s", "r_m", "rdot_m_s", "F_N"]),
-        None => {}
+    if let Some(u) = &units {
+        header.extend(u.columns());
     }
     w.write_record(&header)?;
     for s in &samples {
@@ -95,13 +94,8 @@ pub fn run(args: Args) -> Result<()> {
             fmt(drive),
             s.phase.label().to_string(),
         ];
-        if let Some(sc) = scales {
-            row.extend([
-                fmt(sc.time(s.tau)),
-                fmt(s.y * sc.position),
-                fmt(s.v * sc.velocity),
-                fmt(drive * sc.force),
-            ]);
+        if let Some(u) = &units {
+            row.extend(u.convert(s.tau, s.y, s.v, drive).map(fmt));
         }
         w.write_record(&row)?;
     }
@@ -119,14 +113,20 @@ pub fn run(args: Args) -> Result<()> {
     }
 
     if let Some(path) = &args.plot {
-        let (tx, yx, x_label, y_label) = match (model.system, scales) {
-            (Some(System::Circuit(_)), Some(sc)) => {
-                (1e3 / sc.omega0, sc.position, "t (ms)", "voltage (V)")
-            }
-            (Some(System::Mechanics(_)), Some(sc)) => {
-                (1.0 / sc.omega0, sc.position, "t (s)", "r (m), F·k/F0 (m)")
-            }
-            _ => (1.0, 1.0, "τ = ω0 t", "y, drive"),
+        let (tx, yx, x_label, y_label) = match units {
+            Some(u) if u.circuit => (
+                1e3 / u.scales.omega0,
+                u.scales.position,
+                "t (ms)",
+                "voltage (V)",
+            ),
+            Some(u) => (
+                1.0 / u.scales.omega0,
+                u.scales.position,
+                "t (s)",
+                "r (m), F·k/F0 (m)",
+            ),
+            None => (1.0, 1.0, "τ = ω0 t", "y, drive"),
         };
         let trace: Vec<(f64, f64)> = samples.iter().map(|s| (s.tau * tx, s.y * yx)).collect();
         let drive: Vec<(f64, f64)> = samples
@@ -138,11 +138,11 @@ pub fn run(args: Args) -> Result<()> {
             .filter(|e| e.kind == stickslip::EventKind::Stick)
             .map(|e| (e.tau * tx, e.y * yx))
             .collect();
-        let circuit = matches!(model.system, Some(System::Circuit(_)));
+        let circuit = units.is_some_and(|u| u.circuit);
         let panel = Panel {
             title: format!(
                 "w = {:.3}, β = {:.3}, ζ = {:.4}",
-                model.params.w, model.params.beta, model.params.zeta
+                params.w, params.beta, params.zeta
             ),
             x_label: x_label.into(),
             y_label: y_label.into(),

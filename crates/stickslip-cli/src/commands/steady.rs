@@ -1,68 +1,13 @@
 //! `stickslip steady`: run to the steady state and report its class, period, spectrum and gain.
 
+use crate::flags::SteadyFlags;
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
-use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::steady::{steady_state_from, SteadyOptions, SteadyState};
-use stickslip::Params;
-
-/// Flags of the steady-state search, shared by `steady`, `sweep` and `phase-diagram`.
-#[derive(Debug, Clone, clap::Args)]
-#[command(next_help_heading = "Steady state")]
-pub struct SteadyFlags {
-    /// Relative tolerance of the once-per-period (stroboscopic) repetition [default: 1e-10
-    /// with the exact PWL solver, 1e-6 (its rtol) with the Shockley solver].
-    #[arg(long, value_parser = crate::model::finite, allow_hyphen_values = true)]
-    pub tolerance: Option<f64>,
-    /// Drive periods run at most before calling the motion non-periodic.
-    #[arg(
-        long = "max-periods",
-        default_value_t = 5000,
-        allow_hyphen_values = true
-    )]
-    pub max_periods: i64,
-    /// Longest period looked for, in drive periods (1 to 64).
-    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
-    pub max_period: i64,
-    /// Never extrapolate the stroboscopic map to its fixed point (slower; finds the same cycle).
-    #[arg(long = "no-extrapolation")]
-    pub no_extrapolation: bool,
-}
-
-impl SteadyFlags {
-    /// Validated library options (spectrum on) for `model`'s solver.
-    pub fn options(&self, model: &crate::model::Model) -> Result<SteadyOptions> {
-        // A stiff solver's strobe map repeats only to its own accuracy.
-        let tolerance = self.tolerance.unwrap_or(match model.diode {
-            crate::model::DiodeModel::Pwl => 1e-10,
-            crate::model::DiodeModel::Shockley => 1e-6,
-        });
-        if !(tolerance > 0.0 && tolerance < 1.0) {
-            usage!("invalid --tolerance {tolerance}: must be > 0 and < 1");
-        }
-        if !(1..=100_000_000).contains(&self.max_periods) {
-            usage!(
-                "invalid --max-periods {}: must be from 1 to 1e8",
-                self.max_periods
-            );
-        }
-        if !(1..=64).contains(&self.max_period) {
-            usage!(
-                "invalid --max-period {}: must be from 1 to 64",
-                self.max_period
-            );
-        }
-        Ok(SteadyOptions::default()
-            .with_tolerance(tolerance)?
-            .with_max_periods(self.max_periods as usize)?
-            .with_max_period(self.max_period as usize)?
-            .with_accelerate(!self.no_extrapolation))
-    }
-}
+use stickslip::steady::{SteadyReport, SteadyState};
 
 /// Run to the steady state from the initial state and report it.
 ///
@@ -113,21 +58,21 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(p) = &args.xy {
         crate::output::check_output_path(p)?;
     }
-    let model = args.model.build()?;
+    let experiment = args.model.experiment()?;
+    experiment.params()?;
     let options = args
         .steady
-        .options(&model)?
+        .options(&experiment)?
         .with_harmonics(args.harmonics as usize)?;
-    eprintln!("steady: {}", model.summary);
-    let factory = crate::solvers::factory_for(&model)?;
-    let steady = steady_state_from(&factory, &model.params, model.initial, &options)?;
+    eprintln!("steady: {experiment}");
+    let steady = experiment.steady_with(&options)?;
     crate::output::check_interrupt()?;
 
-    let report = report_json(&steady, &model.params);
     if args.json {
+        let report = SteadyReport::from(&steady);
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_text(&steady, &model.params);
+        print_text(&steady);
     }
     if let Some(path) = &args.xy {
         let mut file = AtomicFile::create(path)?;
@@ -137,7 +82,7 @@ pub fn run(args: Args) -> Result<()> {
                 file,
                 "{},{},{},{}",
                 s.tau,
-                model.params.drive(s.tau),
+                steady.params.drive(s.tau),
                 s.y,
                 s.v
             )?;
@@ -145,50 +90,13 @@ pub fn run(args: Args) -> Result<()> {
         file.commit()?;
     }
     if let Some(path) = &args.plot {
-        plot(&steady, &model.params, path)?;
+        plot(&steady, path)?;
     }
     Ok(())
 }
 
-/// The JSON report of one steady state.
-pub fn report_json(steady: &SteadyState, params: &Params) -> serde_json::Value {
-    let spectrum = steady.spectrum.as_ref();
-    let amplitudes: Vec<f64> = spectrum
-        .map(|s| s.harmonics.iter().map(|h| h.amplitude).collect())
-        .unwrap_or_default();
-    let phases: Vec<f64> = spectrum
-        .map(|s| s.harmonics.iter().map(|h| h.phase).collect())
-        .unwrap_or_default();
-    let current: Vec<f64> = spectrum
-        .map(|s| s.derivative(params.w).iter().map(|h| h.amplitude).collect())
-        .unwrap_or_default();
-    json!({
-        "class": steady.class.label(),
-        "period": steady.period,
-        "stops_per_cycle": steady.stops_per_period,
-        "symmetric": steady.symmetric,
-        "peak": steady.peak,
-        "gain": finite_or_null(steady.gain),
-        "phase_lag": steady.phase_lag(),
-        "harmonics": amplitudes,
-        "harmonic_phases": phases,
-        "current_harmonics": current,
-        "subharmonic": spectrum.map(|s| s.subharmonic),
-        "mean": spectrum.map(|s| s.mean),
-        "periods_to_settle": steady.periods_to_settle,
-        "samples_per_period": spectrum.map(|s| s.samples_per_period),
-        "w": params.w,
-        "beta": params.beta,
-        "zeta": params.zeta,
-        "mu_s": params.mu_s,
-    })
-}
-
-fn finite_or_null(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
-
-fn print_text(steady: &SteadyState, params: &Params) {
+fn print_text(steady: &SteadyState) {
+    let params = &steady.params;
     let period = steady
         .period
         .map(|p| p.to_string())
@@ -223,7 +131,8 @@ fn print_text(steady: &SteadyState, params: &Params) {
     }
 }
 
-fn plot(steady: &SteadyState, params: &Params, path: &std::path::Path) -> Result<()> {
+fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
+    let params = &steady.params;
     let t0 = steady.start;
     let period = params.drive_period();
     let trace: Vec<(f64, f64)> = steady
@@ -265,12 +174,7 @@ fn plot(steady: &SteadyState, params: &Params, path: &std::path::Path) -> Result
         title: "X-Y: y against the drive".into(),
         x_label: "drive β cos(wτ + φ)".into(),
         y_label: "y".into(),
-        series: vec![Series::new(
-            "",
-            steady.xy(params),
-            PALETTE[0],
-            Style::Line(2),
-        )],
+        series: vec![Series::new("", steady.xy(), PALETTE[0], Style::Line(2))],
         ..Default::default()
     };
     let bars: Vec<(f64, f64)> = steady

@@ -1,17 +1,17 @@
-//! `stickslip sweep`: w or β swept up and/or down with continuation (hysteresis).
+//! `stickslip sweep`: w, β, ζ or μs swept up and/or down with continuation (hysteresis).
 
-use super::steady::SteadyFlags;
-use crate::model::{finite, DiodeModel, Model, ModelArgs};
-use crate::output::{check_plot_path, usage, Sink};
-use crate::overlay::{abscissae, gain_curves, Curve};
+use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::model::{finite, ModelArgs};
+use crate::output::{check_plot_path, Sink};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::steady::{
-    sweep, ParameterRange, SweepDirection, SweepLeg, SweepParameter, SweepPoint,
+use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg, SweepPoint};
+use stickslip::theory::curves::{
+    abscissae, theory_curve, Theory as TheoryKind, TheoryCurve, TheoryQuantity,
 };
-use stickslip::Params;
+use stickslip::{DiodeModel, Experiment, Parameter};
 
 /// The swept parameter, as typed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -20,6 +20,22 @@ pub enum Over {
     W,
     /// The drive amplitude β.
     Beta,
+    /// The damping ratio ζ.
+    Zeta,
+    /// The static-to-kinetic friction ratio μs.
+    MuS,
+}
+
+impl Over {
+    /// The library's parameter.
+    pub fn parameter(self) -> Parameter {
+        match self {
+            Over::W => Parameter::W,
+            Over::Beta => Parameter::Beta,
+            Over::Zeta => Parameter::Zeta,
+            Over::MuS => Parameter::MuS,
+        }
+    }
 }
 
 /// Sweep direction, as typed.
@@ -33,11 +49,13 @@ pub enum Direction {
     Both,
 }
 
-/// Sweep w or β with the other parameter fixed; each step starts from the final state of the
-/// step before, as when turning a knob, so hysteresis and coexisting motions show up.
+/// Sweep one parameter (w, β, ζ or μs) with the others fixed; each step starts from the final
+/// state of the step before, as when turning a knob, so hysteresis and coexisting motions
+/// show up.
 ///
 /// Output CSV columns: w,beta,direction,gain,A1,A3,class,stops_per_cycle
-/// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y).
+/// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y); a sweep of
+/// zeta or mu_s puts the swept value first: zeta,w,beta,... or mu_s,w,beta,...
 ///
 /// Example: stickslip sweep --preset paper --over w --beta 2.14 --from 0.2 --to 2 --steps 91 \
 ///          --direction both --out sweep.csv --plot sweep.png
@@ -48,7 +66,7 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    /// The swept parameter (the other one comes from --w or --beta).
+    /// The swept parameter (the others come from the model flags).
     #[arg(long, value_enum)]
     over: Over,
     /// First value of the swept parameter (dimensionless).
@@ -72,69 +90,32 @@ pub struct Args {
     plot: Option<PathBuf>,
 }
 
-/// Validate a range given by flags `--{from_flag}`, `--{to_flag}`, `--{steps_flag}`.
-pub fn range_from_flags(
-    name: &'static str,
-    (from_flag, from): (&str, f64),
-    (to_flag, to): (&str, f64),
-    (steps_flag, steps): (&str, i64),
-) -> Result<ParameterRange> {
-    if from > to {
-        usage!("invalid range: --{from_flag} {from} is above --{to_flag} {to}");
-    }
-    if !(1..=100_000).contains(&steps) {
-        usage!("invalid --{steps_flag} {steps}: must be from 1 to 100000");
-    }
-    if steps == 1 && from != to {
-        usage!("invalid --{steps_flag} 1: a range from {from} to {to} needs at least 2 points");
-    }
-    Ok(ParameterRange::new(name, from, to, steps as usize)?)
-}
-
 /// Run `stickslip sweep`.
 pub fn run(args: Args) -> Result<()> {
+    let parameter = args.over.parameter();
     let range = range_from_flags(
-        args.over_label(),
+        parameter.label(),
         ("from", args.from),
         ("to", args.to),
         ("steps", args.steps),
     )?;
-    let parameter = match args.over {
-        Over::W => SweepParameter::W,
-        Over::Beta => SweepParameter::Beta,
-    };
-    let mut model_args = args.model.clone();
-    match parameter {
-        SweepParameter::W => {
-            if model_args.w.is_some() || model_args.freq.is_some() || model_args.omega.is_some() {
-                usage!(
-                    "--over w sweeps the frequency: give --from/--to, not --w, --freq or --omega"
-                );
-            }
-            model_args.w = Some(range.from().max(f64::MIN_POSITIVE));
-        }
-        SweepParameter::Beta => {
-            if model_args.beta.is_some() || model_args.amplitude.is_some() {
-                usage!(
-                    "--over beta sweeps the amplitude: give --from/--to, not --beta or --amplitude"
-                );
-            }
-            model_args.beta = Some(range.from().max(0.0));
-        }
-    }
+    reject_swept_flags(&args.model, parameter, "--over")?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
-    let model = model_args.build()?;
-    let options = args.steady.options(&model)?.with_harmonics(3)?;
-    // Every swept value must be valid for the model (w > 0, β ≥ 0).
-    for value in [range.from(), range.to()] {
-        parameter.set(model.params, value)?;
-    }
+    let experiment = args.model.experiment()?;
+    let options = args.steady.options(&experiment)?.with_harmonics(3)?;
+    let direction = match args.direction {
+        Direction::Up => SweepDirection::Up,
+        Direction::Down => SweepDirection::Down,
+        Direction::Both => SweepDirection::Both,
+    };
+    let sweep = Sweep::new(&experiment, Axis::range(parameter, &range)?)?
+        .direction(direction)
+        .options(options)?;
     eprintln!(
-        "sweep: {} over {} from {} to {} in {} steps, {}",
-        model.summary,
+        "sweep: {experiment}; over {} from {} to {} in {} steps, {}",
         parameter.label(),
         range.from(),
         range.to(),
@@ -145,39 +126,26 @@ pub fn run(args: Args) -> Result<()> {
             Direction::Both => "up and down",
         }
     );
-    let direction = match args.direction {
-        Direction::Up => SweepDirection::Up,
-        Direction::Down => SweepDirection::Down,
-        Direction::Both => SweepDirection::Both,
-    };
-    let factory = crate::solvers::factory_for(&model)?;
-    let legs = if direction == SweepDirection::Both {
-        2
-    } else {
-        1
-    };
-    let bar = crate::output::progress((range.steps() * legs) as u64, "sweep");
-    let result = sweep(
-        &factory,
-        model.params,
-        model.initial,
-        parameter,
-        &range,
-        direction,
-        &options,
-        &mut |_, _, _| {
-            bar.inc(1);
-            !crate::output::interrupted()
-        },
-    );
+    let bar = crate::output::progress(sweep.plan().len() as u64, "sweep");
+    let result = sweep.run(&|_: usize, _: usize| {
+        bar.inc(1);
+        !crate::output::interrupted()
+    });
     bar.finish_and_clear();
     crate::output::check_interrupt()?;
     let points = result?;
 
+    let extra = matches!(parameter, Parameter::Zeta | Parameter::MuS);
     let mut sink = Sink::open(args.out.as_deref())?;
+    if extra {
+        write!(sink, "{},", parameter.label())?;
+    }
     writeln!(sink, "w,beta,direction,gain,A1,A3,class,stops_per_cycle")?;
     for p in &points {
         let s = &p.steady;
+        if extra {
+            write!(sink, "{},", p.value)?;
+        }
         writeln!(
             sink,
             "{},{},{},{},{},{},{},{}",
@@ -193,16 +161,16 @@ pub fn run(args: Args) -> Result<()> {
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        let theory = Theory::new(&model, parameter, &range);
+        let theory = Theory::new(&experiment, parameter, &range)?;
         eprintln!(
             "sweep: theory on the plot: paper's gain at {} and exact sliding orbit at {} of {} values",
-            theory.paper.present,
-            theory.exact.present,
-            theory.paper.points.len()
+            theory.paper.present(),
+            theory.exact.present(),
+            theory.paper.x.len()
         );
         plot(&points, parameter, &theory, path)?;
     }
-    let differ = branches_differ(&points, parameter);
+    let differ = branches_differ(&points);
     eprintln!(
         "sweep: {} steps{}",
         points.len(),
@@ -215,30 +183,14 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-impl Args {
-    fn over_label(&self) -> &'static str {
-        match self.over {
-            Over::W => "w",
-            Over::Beta => "beta",
-        }
-    }
-}
-
-fn swept(p: &SweepPoint, parameter: SweepParameter) -> f64 {
-    match parameter {
-        SweepParameter::W => p.params.w,
-        SweepParameter::Beta => p.params.beta,
-    }
-}
-
 /// Values at which the up and the down leg found different motions (gain or class).
-fn branches_differ(points: &[SweepPoint], parameter: SweepParameter) -> usize {
+fn branches_differ(points: &[SweepPoint]) -> usize {
     let up: Vec<&SweepPoint> = points.iter().filter(|p| p.leg == SweepLeg::Up).collect();
     let down: Vec<&SweepPoint> = points.iter().filter(|p| p.leg == SweepLeg::Down).collect();
     up.iter()
         .filter(|u| {
             down.iter().any(|d| {
-                swept(d, parameter) == swept(u, parameter)
+                d.value == u.value
                     && (d.steady.class != u.steady.class
                         || (d.steady.gain - u.steady.gain).abs() > 1e-6 * u.steady.gain.abs())
             })
@@ -246,44 +198,35 @@ fn branches_differ(points: &[SweepPoint], parameter: SweepParameter) -> usize {
         .count()
 }
 
-/// The theory's gain curves over the swept range, at the sweep's fixed parameter.
+/// The theory's gain curves over the swept range, at the sweep's fixed parameters.
 struct Theory {
-    paper: Curve,
-    exact: Curve,
+    paper: TheoryCurve,
+    exact: TheoryCurve,
     /// Legend prefix: the theory is that of the piecewise-linear model.
     prefix: &'static str,
 }
 
 impl Theory {
-    fn new(model: &Model, parameter: SweepParameter, range: &ParameterRange) -> Self {
+    fn new(experiment: &Experiment, parameter: Parameter, range: &ParameterRange) -> Result<Self> {
         let xs = abscissae(range.from(), range.to(), range.steps());
-        let (paper, exact) = gain_curves(&model.params, &xs, |p, x| Params {
-            w: if parameter == SweepParameter::W {
-                x
-            } else {
-                p.w
-            },
-            beta: if parameter == SweepParameter::Beta {
-                x
-            } else {
-                p.beta
-            },
-            ..p
-        });
-        Self {
-            paper,
-            exact,
-            prefix: match model.diode {
+        let base = experiment.params_with(&[(parameter, range.from())])?;
+        // The simulated gain is the peak over β; on a sliding orbit that is the exact orbit's
+        // peak/β (not its A1/β). The paper's gain is its A1/β, eq. (11).
+        let curve = |theory, quantity| theory_curve(theory, quantity, &base, parameter, &xs);
+        Ok(Self {
+            paper: curve(TheoryKind::Paper, TheoryQuantity::Gain),
+            exact: curve(TheoryKind::Exact, TheoryQuantity::PeakGain),
+            prefix: match experiment.diode_model() {
                 DiodeModel::Pwl => "",
                 DiodeModel::Shockley => "PWL theory: ",
             },
-        }
+        })
     }
 }
 
 fn plot(
     points: &[SweepPoint],
-    parameter: SweepParameter,
+    parameter: Parameter,
     theory: &Theory,
     path: &std::path::Path,
 ) -> Result<()> {
@@ -291,21 +234,26 @@ fn plot(
         points
             .iter()
             .filter(|p| p.leg == which)
-            .map(|p| (swept(p, parameter), p.steady.gain))
+            .map(|p| (p.value, p.steady.gain))
             .collect()
     };
     let stick = |which: SweepLeg| -> Vec<(f64, f64)> {
         points
             .iter()
             .filter(|p| p.leg == which && p.steady.stops > 0)
-            .map(|p| (swept(p, parameter), p.steady.gain))
+            .map(|p| (p.value, p.steady.gain))
             .collect()
     };
-    let first = points.first().map(|p| p.params);
-    let title = match (parameter, first) {
-        (SweepParameter::W, Some(p)) => format!("gain against w at β = {:.3}", p.beta),
-        (SweepParameter::Beta, Some(p)) => format!("gain against β at w = {:.3}", p.w),
-        _ => "gain".into(),
+    let title = match points.first().map(|p| p.params) {
+        Some(p) => {
+            let fixed: Vec<String> = Parameter::ALL
+                .into_iter()
+                .filter(|&q| q != parameter && (q != Parameter::MuS || p.mu_s != 1.0))
+                .map(|q| format!("{} = {:.3}", q.label(), q.get(&p)))
+                .collect();
+            format!("gain against {} at {}", parameter.label(), fixed.join(", "))
+        }
+        None => "gain".into(),
     };
     let mut series = Vec::new();
     for (which, color, style, label) in [
@@ -329,21 +277,19 @@ fn plot(
         PALETTE[1],
         Style::Markers(2),
     ));
-    // The simulated gain is the peak over β; on a sliding orbit that is the exact orbit's
-    // peak/β (not its A1/β). The paper's gain is its A1/β, eq. (11).
     let prefix = theory.prefix;
-    if theory.paper.present > 0 {
+    if theory.paper.present() > 0 {
         series.push(Series::new(
             format!("{prefix}paper, eq. (11): A1/β"),
-            theory.paper.points.clone(),
+            theory.paper.points(),
             PALETTE[2],
             Style::Dashed(2),
         ));
     }
-    if theory.exact.present > 0 {
+    if theory.exact.present() > 0 {
         series.push(Series::new(
             format!("{prefix}exact sliding orbit: peak/β"),
-            theory.exact.points.clone(),
+            theory.exact.points(),
             PALETTE[6],
             Style::Line(1),
         ));
@@ -353,7 +299,7 @@ fn plot(
         x_label: parameter.label().into(),
         y_label: "gain G = (max y − min y)/(2β)".into(),
         series,
-        legend: Some(Legend::UpperRight),
+        legend: Some(Legend::Best),
         ..Default::default()
     };
     Figure::single(panel, (900, 560)).render(path)

@@ -1,18 +1,18 @@
 //! `stickslip theory`: the paper's series solution against the exact periodic solution, and
 //! stick-slip boundary or gain curves.
 
-use crate::model::{DiodeModel, ModelArgs};
+use crate::flags::reject_swept_flags;
+use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
-use serde_json::{json, Map, Value};
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::experiment::Key;
 use stickslip::solver::grid;
-use stickslip::theory::{
-    paper_boundary, stick_slip_boundary, PaperHarmonic, PaperSeries, PeriodicSolution,
-};
-use stickslip::{Error, Params};
+use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
+use stickslip::theory::TheoryReport;
+use stickslip::{DiodeModel, Experiment, Parameter, Unsupported};
 
 /// The paper's series solution (its eqs. 9–11, 13) next to the exact non-sticking periodic
 /// solution (Den Hartog 1930 for ζ = 0, its damped generalisation otherwise).
@@ -84,7 +84,7 @@ pub fn run(args: Args) -> Result<()> {
             usage!("--{name} is not used by theory: it computes steady states, not a run from an initial state");
         }
     }
-    if m.model == Some(DiodeModel::Shockley) {
+    if m.model == Some(crate::model::DiodeModel::Shockley) {
         usage!("theory covers the piecewise-linear diode (Coulomb friction) model; --model shockley is not supported");
     }
     match args.curve {
@@ -106,226 +106,70 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
-/// `Some(x)` for finite x; `None` and a note otherwise.
-fn value(result: Result<f64, Error>, what: &str, notes: &mut Vec<String>) -> Option<f64> {
-    match result {
-        Ok(x) if x.is_finite() => Some(x),
-        Ok(x) => {
-            notes.push(format!("{what}: not finite ({x})"));
-            None
-        }
-        Err(e) => {
-            notes.push(format!("{what}: {}", reason(&e)));
-            None
-        }
+/// The experiment of the model flags, which must describe the PWL model.
+fn pwl_experiment(args: &Args) -> Result<Experiment> {
+    let experiment = args.model.experiment()?;
+    if experiment.diode_model() == DiodeModel::Shockley {
+        return Err(stickslip::Error::Unsupported(Unsupported::TheoryNeedsPwl).into());
     }
-}
-
-/// The reason of a library error, without the "does not exist" preamble of NoSolution.
-fn reason(e: &Error) -> String {
-    match e {
-        Error::NoSolution { reason, .. } => reason.clone(),
-        other => other.to_string(),
-    }
-}
-
-/// Everything shown for one point.
-struct Point {
-    paper: [Option<f64>; 6], // A1, A3, A5, phi0, gain, beta_c
-    paper_notes: Vec<String>,
-    exact: Option<PeriodicSolution>,
-    exact_beta_c: Option<f64>,
-    exact_notes: Vec<String>,
-}
-
-fn evaluate(params: &Params) -> Result<Point> {
-    let (zeta, w, beta) = (params.zeta, params.w, params.beta);
-    let mut paper_notes = Vec::new();
-    let series = PaperSeries::new(zeta, w, beta);
-    let a1 = value(
-        series.clone().map(|s| s.a1),
-        "A1 (eq. 11)",
-        &mut paper_notes,
-    );
-    let phi0 = series.as_ref().ok().map(|s| s.phi0);
-    let harmonic = |order: u32, notes: &mut Vec<String>| {
-        value(
-            PaperHarmonic::new(zeta, w, order).map(|h| h.amplitude),
-            &format!("A{order} (eq. 11)"),
-            notes,
-        )
-    };
-    let a3 = harmonic(3, &mut paper_notes);
-    let a5 = harmonic(5, &mut paper_notes);
-    let paper_beta_c = value(paper_boundary(zeta, w), "beta_c (eq. 13)", &mut paper_notes);
-    if params.mu_s != 1.0 {
-        paper_notes.push(format!(
-            "eq. (13) takes static friction equal to kinetic (μs = 1), not μs = {}",
-            params.mu_s
-        ));
-    }
-    if let (Ok(s), Some(_)) = (&series, paper_beta_c) {
-        if !s.slides_by_eq13() {
-            paper_notes.push(
-                "β is below the paper's own boundary (eq. 13): by its criterion the motion sticks"
-                    .into(),
-            );
-        }
-    }
-
-    let mut exact_notes = Vec::new();
-    let exact = match PeriodicSolution::new(params) {
-        Ok(s) => Some(s),
-        Err(Error::NoSolution { reason, .. }) => {
-            exact_notes.push(format!("no non-sticking periodic solution: {reason}"));
-            None
-        }
-        Err(e) => return Err(e.into()),
-    };
-    let exact_beta_c = match stick_slip_boundary(zeta, w, params.mu_s) {
-        Ok(b) => {
-            if exact.is_none() {
-                if let Some(n) = b.continuum {
-                    exact_notes.push(continuum_note(n));
-                }
-            }
-            Some(b.beta_c)
-        }
-        Err(Error::NoSolution { reason, .. }) => {
-            if !exact_notes.iter().any(|n| n.contains(&reason)) {
-                exact_notes.push(format!("beta_c: {reason}"));
-            }
-            None
-        }
-        Err(e) => return Err(e.into()),
-    };
-    if let Some(s) = &exact {
-        if let Some(n) = s.continuum {
-            exact_notes.push(continuum_note(n));
-        }
-    }
-    Ok(Point {
-        paper: [a1, a3, a5, phi0, a1.map(|a| a / beta), paper_beta_c],
-        paper_notes,
-        exact,
-        exact_beta_c,
-        exact_notes,
-    })
-}
-
-fn continuum_note(n: u32) -> String {
-    let at = if n == 1 {
-        "1/2".to_string()
-    } else {
-        format!("1/{}", 2 * n)
-    };
-    format!(
-        "w is near {at} with little damping: there the symmetric solution is one of a \
-         continuum of periodic motions, most of them asymmetric (exactly so at ζ = 0, \
-         w = {at}), and attracts only weakly; a simulation may settle elsewhere"
-    )
+    Ok(experiment)
 }
 
 fn point(args: &Args) -> Result<()> {
-    let model = args.model.build()?;
-    eprintln!("theory: {}", model.summary);
-    let p = evaluate(&model.params)?;
-    let [a1, a3, a5, phi0, gain, beta_c] = p.paper;
-    let exact = p.exact.as_ref();
-    let harmonic = |k: u32| exact.map(|s| s.harmonic(k).amplitude);
+    let experiment = pwl_experiment(args)?;
+    let params = experiment.params()?;
+    eprintln!("theory: {experiment}");
+    let report = TheoryReport::new(&params)?;
     if args.json {
-        let mut paper = Map::new();
-        for (key, v) in [
-            ("A1", a1),
-            ("A3", a3),
-            ("A5", a5),
-            ("phi0", phi0),
-            ("gain", gain),
-            ("beta_c", beta_c),
-        ] {
-            paper.insert(key.into(), json!(v));
-        }
-        if !p.paper_notes.is_empty() {
-            paper.insert("note".into(), json!(p.paper_notes.join("; ")));
-        }
-        let mut exact_json = Map::new();
-        exact_json.insert("exists".into(), json!(exact.is_some()));
-        for (key, v) in [
-            ("peak", exact.map(|s| s.peak)),
-            ("A1", exact.map(|s| s.a1())),
-            ("A3", harmonic(3)),
-            ("A5", harmonic(5)),
-            ("phase", exact.map(|s| s.phase_lag())),
-            ("gain", exact.map(|s| s.gain())),
-            ("beta_c", p.exact_beta_c),
-            ("spectral_radius", exact.map(|s| s.spectral_radius())),
-        ] {
-            exact_json.insert(key.into(), json!(v));
-        }
-        if !p.exact_notes.is_empty() {
-            exact_json.insert("note".into(), json!(p.exact_notes.join("; ")));
-        }
-        let out = json!({
-            "params": {
-                "zeta": model.params.zeta,
-                "w": model.params.w,
-                "beta": model.params.beta,
-                "mu_s": model.params.mu_s,
-            },
-            "paper": Value::Object(paper),
-            "exact": Value::Object(exact_json),
-        });
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-
+    let (paper, exact) = (&report.paper, &report.exact);
     let cell = |v: Option<f64>| v.map_or_else(|| "—".to_string(), |x| format!("{x:.6}"));
     let error = |paper: Option<f64>, exact: Option<f64>| match (paper, exact) {
         (Some(a), Some(b)) if b != 0.0 => format!("{:+.2}%", 100.0 * (a - b) / b),
         _ => "—".to_string(),
     };
     let rows: [(&str, Option<f64>, Option<f64>); 7] = [
-        ("A1", a1, exact.map(|s| s.a1())),
-        ("A3", a3, harmonic(3)),
-        ("A5", a5, harmonic(5)),
-        ("phase lag (rad)", phi0, exact.map(|s| s.phase_lag())),
-        ("gain A1/β", gain, exact.map(|s| s.gain())),
-        ("β_c", beta_c, p.exact_beta_c),
-        ("peak |y|", None, exact.map(|s| s.peak)),
+        ("A1", paper.a1, exact.a1),
+        ("A3", paper.a3, exact.a3),
+        ("A5", paper.a5, exact.a5),
+        ("phase lag (rad)", paper.phi0, exact.phase),
+        ("gain A1/β", paper.gain, exact.gain),
+        ("β_c", paper.beta_c, exact.beta_c),
+        ("peak |y|", None, exact.peak),
     ];
     let mut text = String::new();
     text.push_str(&format!(
         "{:<16} {:>14} {:>14} {:>12}\n",
         "", "paper", "exact", "paper error"
     ));
-    for (name, paper, exact) in rows {
+    for (name, p, e) in rows {
         text.push_str(&format!(
             "{name:<16} {:>14} {:>14} {:>12}\n",
-            cell(paper),
-            cell(exact),
-            error(paper, exact)
+            cell(p),
+            cell(e),
+            error(p, e)
         ));
     }
     text.push_str(&format!(
         "exact solution: {}\n",
-        match exact {
-            Some(s) => format!(
-                "exists (turning points ±{:.6}, spectral radius {:.4}: {})",
-                s.peak,
-                s.spectral_radius(),
-                if s.spectral_radius() < 1.0 {
+        match (exact.peak, exact.spectral_radius) {
+            (Some(peak), Some(radius)) => format!(
+                "exists (turning points ±{peak:.6}, spectral radius {radius:.4}: {})",
+                if radius < 1.0 {
                     "attracting"
                 } else {
                     "not attracting"
                 }
             ),
-            None => "does not exist".into(),
+            _ => "does not exist".into(),
         }
     ));
-    for note in &p.paper_notes {
+    for note in &paper.notes {
         text.push_str(&format!("note (paper): {note}\n"));
     }
-    for note in &p.exact_notes {
+    for note in &exact.notes {
         text.push_str(&format!("note (exact): {note}\n"));
     }
     text.push_str(
@@ -352,11 +196,9 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
-    let mut m = args.model.clone();
-    if m.w.is_some() || m.freq.is_some() || m.omega.is_some() {
-        usage!("--curve sweeps w: give --w-min and --w-max instead of --w, --freq or --omega");
-    }
-    let has_beta = m.beta.is_some() || m.amplitude.is_some();
+    let m = &args.model;
+    reject_swept_flags(m, Parameter::W, "--curve (--w-min/--w-max)")?;
+    let has_beta = m.given(Key::Beta) || m.given(Key::Amplitude);
     match curve {
         Curve::Boundary if has_beta => {
             usage!("--curve boundary finds β_c itself: drop --beta/--amplitude")
@@ -366,18 +208,17 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         }
         _ => {}
     }
-    // Placeholders for what the curve sweeps or finds; the model supplies ζ, μs (and β).
-    m.w = Some(1.0);
-    if curve == Curve::Boundary {
-        m.beta = Some(0.0);
-    }
-    let model = m.build()?;
-    let params = model.params;
-    let described = model
-        .summary
+    let experiment = pwl_experiment(args)?;
+    // The curve sets w (and finds β_c); the model supplies ζ, μs (and β).
+    let params = experiment.params_with(&[
+        (Parameter::W, lo),
+        (Parameter::Beta, experiment.beta().unwrap_or(0.0)),
+    ])?;
+    let text = experiment.to_string();
+    let described = text
         .split("; ω0")
         .next()
-        .filter(|_| model.system.is_some())
+        .filter(|_| experiment.system().is_some())
         .map(|s| format!("{s}; "))
         .unwrap_or_default();
     eprintln!(
@@ -405,29 +246,21 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     } else {
         grid(lo, hi, steps as usize)
     };
-    let mut rows: Vec<Row> = Vec::with_capacity(ws.len());
+    let quantity = match curve {
+        Curve::Boundary => TheoryQuantity::Boundary,
+        Curve::Gain => TheoryQuantity::Gain,
+    };
     let bar = crate::output::progress(ws.len() as u64, "theory");
-    for &w in &ws {
+    let mut rows: Vec<Row> = Vec::with_capacity(ws.len());
+    for chunk in ws.chunks(16) {
         crate::output::check_interrupt()?;
-        let row = match curve {
-            Curve::Boundary => (
-                w,
-                absent_if_no_solution(paper_boundary(params.zeta, w))?,
-                absent_if_no_solution(
-                    stick_slip_boundary(params.zeta, w, params.mu_s).map(|b| b.beta_c),
-                )?,
-            ),
-            Curve::Gain => {
-                let p = Params { w, ..params };
-                (
-                    w,
-                    absent_if_no_solution(PaperSeries::new(p.zeta, w, p.beta).map(|s| s.gain()))?,
-                    absent_if_no_solution(PeriodicSolution::new(&p).map(|s| s.gain()))?,
-                )
-            }
-        };
-        rows.push(row);
-        bar.inc(1);
+        let of = |theory| theory_curve(theory, quantity, &params, Parameter::W, chunk).y;
+        let (paper, exact) = (of(Theory::Paper), of(Theory::Exact));
+        let present = |v: f64| v.is_finite().then_some(v);
+        for (k, &w) in chunk.iter().enumerate() {
+            rows.push((w, present(paper[k]), present(exact[k])));
+        }
+        bar.inc(chunk.len() as u64);
     }
     bar.finish_and_clear();
 
@@ -517,12 +350,3 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
 
 /// One row of a curve: w, the paper's value and the exact value (None where there is none).
 type Row = (f64, Option<f64>, Option<f64>);
-
-/// `Ok(None)` for a value that does not exist; other errors pass through.
-fn absent_if_no_solution(result: Result<f64, Error>) -> Result<Option<f64>> {
-    match result {
-        Ok(x) if x.is_finite() => Ok(Some(x)),
-        Ok(_) | Err(Error::NoSolution { .. }) => Ok(None),
-        Err(e) => Err(e.into()),
-    }
-}

@@ -93,8 +93,11 @@ fn bad_input_is_a_one_line_usage_error() {
             &["convert", "--preset", "paper", "--freq", "1k"],
             "amplitude",
         ),
-        (&["convert", "--preset", "paper", "--resistance", "-5"], "R"),
-        (&["convert", "--preset", "paper", "--ut", "0"], "U_t"),
+        (
+            &["convert", "--preset", "paper", "--resistance", "-5"],
+            "--resistance",
+        ),
+        (&["convert", "--preset", "paper", "--ut", "0"], "--ut"),
         (
             &[
                 "convert",

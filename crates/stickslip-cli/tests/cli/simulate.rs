@@ -70,7 +70,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         (&["--w", "1", "--beta", "-2"], "beta"),
         (&["--w", "1"], "--beta"),
         (&["--beta", "1"], "--w"),
-        (&["--w", "1", "--beta", "2", "--mu-s", "0.5"], "mu_s"),
+        (&["--w", "1", "--beta", "2", "--mu-s", "0.5"], "--mu-s"),
         (&["--w", "1", "--beta", "2", "--phi", "inf"], "--phi"),
         (&["--w", "1", "--beta", "2", "--y0", "x"], "--y0"),
         (&["--w", "1", "--beta", "2", "--v0", ""], "--v0"),
@@ -107,7 +107,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
                 "--beta",
                 "2",
             ],
-            "L",
+            "--inductance",
         ),
         (
             &[
@@ -120,7 +120,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
                 "--beta",
                 "2",
             ],
-            "C",
+            "--capacitance",
         ),
         (
             &[

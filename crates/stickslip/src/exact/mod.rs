@@ -114,11 +114,6 @@ impl ExactSolver {
         solver
     }
 
-    /// The parameters of the model.
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
     /// The current segment.
     fn segment(&self) -> &Segment {
         &self.slots[self.current]
@@ -268,6 +263,10 @@ impl ExactSolver {
 }
 
 impl Solver for ExactSolver {
+    fn params(&self) -> &Params {
+        &self.params
+    }
+
     fn time(&self) -> f64 {
         self.time
     }

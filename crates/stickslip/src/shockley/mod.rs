@@ -7,7 +7,8 @@
 //! U_D(i) = n V_T asinh(i/(2 I_s)) + R_s i,          V_T = k T/q,
 //! ```
 //!
-//! in the series circuit L q̈ + R q̇ + q/C + U_D(q̇) = U cos(Ω t + φ) ([`ShockleyCircuit`]).
+//! in the series circuit L q̈ + R q̇ + q/C + U_D(q̇) = U cos(Ω t + φ) (a [`crate::Circuit`]
+//! whose diode is [`crate::physical::Diode::Shockley`]).
 //! In the dimensionless variables of the crate (y = u_C/U_t with the PWL turn-on voltage U_t
 //! kept as the reference, so that β = U/U_t means the same drive in both models):
 //!
@@ -41,8 +42,8 @@
 //!
 //! [`netlist()`] writes the same circuit for SPICE, for cross-checks in ngspice or any SPICE.
 
-pub mod circuit;
 pub mod diode;
+pub mod model;
 pub mod netlist;
 pub mod options;
 mod radau;
@@ -52,8 +53,8 @@ mod stops;
 #[cfg(test)]
 mod tests;
 
-pub use circuit::{ShockleyCircuit, ShockleyModel};
 pub use diode::{DiodeLaw, DiodePair};
+pub use model::ShockleyModel;
 pub use netlist::{netlist, NetlistOptions};
 pub use options::ShockleyOptions;
 pub use solver::ShockleySolver;

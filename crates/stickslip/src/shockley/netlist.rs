@@ -20,9 +20,9 @@
 //!
 //! The generator is a pure function returning the text; it does no I/O.
 
-use super::circuit::ShockleyCircuit;
-use crate::error::{check, Result};
+use crate::error::{check, Error, Result, Unsupported};
 use crate::params::{Params, State};
+use crate::physical::{Circuit, Diode};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
@@ -75,22 +75,25 @@ fn number(x: f64) -> String {
 /// from `initial` (dimensionless: u_C(0) = y0·U_t, i(0) = v0·U_t/√(L/C)).
 ///
 /// # Errors
+/// [`Error::Unsupported`] for a circuit with PWL diodes;
 /// [`crate::Error::InvalidParameter`] when the circuit, the parameters, the initial state or
 /// an option is invalid (periods ≤ 0, no output points, a step fraction outside (0, 1], a
 /// tolerance ≤ 0), or when `wrdata` is empty or contains white space or a quote.
 pub fn netlist(
-    circuit: &ShockleyCircuit,
+    circuit: &Circuit,
     params: &Params,
     initial: State,
     options: &NetlistOptions,
 ) -> Result<String> {
-    let c = ShockleyCircuit::new(
+    let c = Circuit::new(
         circuit.inductance,
         circuit.capacitance,
         circuit.resistance,
         circuit.diode,
-        circuit.reference_voltage,
     )?;
+    let Diode::Shockley(shockley) = c.diode else {
+        return Err(Error::Unsupported(Unsupported::NetlistNeedsShockley));
+    };
     let p = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
     check(
@@ -122,7 +125,7 @@ pub fn netlist(
     }
     if let Some(file) = &options.wrdata {
         if file.is_empty() || file.contains(|c: char| c.is_whitespace() || c == '"') {
-            return Err(crate::Error::InvalidParameter {
+            return Err(Error::InvalidParameter {
                 name: "wrdata",
                 value: f64::NAN,
                 allowed: "a file name without spaces, quotes or line breaks",
@@ -138,7 +141,7 @@ pub fn netlist(
     let phase_deg = (p.phi.to_degrees() + 90.0).rem_euclid(360.0);
     let uc0 = initial.y * s.position;
     let i0 = initial.v * s.velocity;
-    let d = &c.diode;
+    let d = &shockley.pair;
 
     let mut n = String::new();
     // `write!` into a String cannot fail.
@@ -158,7 +161,7 @@ pub fn netlist(
         number(s.zeta()),
         number(p.w),
         number(p.beta),
-        number(c.reference_voltage),
+        number(shockley.reference_voltage),
         number(p.phi),
         number(s.f0())
     ));
@@ -235,7 +238,7 @@ mod tests {
 
     #[test]
     fn paper_netlist_has_the_parts_and_the_drive() {
-        let c = ShockleyCircuit::paper();
+        let c = Circuit::paper_shockley();
         let p = Params::new(0.0, 0.95, 2.14).unwrap();
         let text = netlist(&c, &p, State::default(), &NetlistOptions::default()).unwrap();
         let f = 0.95 * c.scales().f0();
@@ -256,7 +259,7 @@ mod tests {
 
     #[test]
     fn initial_state_phase_and_options() {
-        let c = ShockleyCircuit::paper();
+        let c = Circuit::paper_shockley();
         let p = Params::new(0.0, 0.5, 1.0)
             .unwrap()
             .with_phi(std::f64::consts::FRAC_PI_2)
@@ -279,9 +282,9 @@ mod tests {
 
     #[test]
     fn zero_resistance_connects_the_source_to_the_inductor() {
-        let c = ShockleyCircuit {
+        let c = Circuit {
             resistance: 0.0,
-            ..ShockleyCircuit::paper()
+            ..Circuit::paper_shockley()
         };
         let p = Params::new(0.0, 1.0, 1.0).unwrap();
         let text = netlist(&c, &p, State::default(), &NetlistOptions::default()).unwrap();
@@ -290,8 +293,23 @@ mod tests {
     }
 
     #[test]
+    fn a_pwl_circuit_has_no_netlist() {
+        let p = Params::new(0.0, 1.0, 1.0).unwrap();
+        let r = netlist(
+            &Circuit::paper(),
+            &p,
+            State::default(),
+            &NetlistOptions::default(),
+        );
+        assert_eq!(
+            r,
+            Err(Error::Unsupported(Unsupported::NetlistNeedsShockley))
+        );
+    }
+
+    #[test]
     fn rejects_bad_options() {
-        let c = ShockleyCircuit::paper();
+        let c = Circuit::paper_shockley();
         let p = Params::new(0.0, 1.0, 1.0).unwrap();
         let bad = [
             NetlistOptions {

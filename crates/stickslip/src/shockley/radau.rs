@@ -37,7 +37,7 @@
 //! which is that polynomial (cubic in θ through the step start and the three stage values,
 //! continuous across steps since c3 = 1). Tolerances are used as given (RADAU5 rescales them).
 
-use super::circuit::ShockleyModel;
+use super::model::ShockleyModel;
 use crate::error::{Error, Result};
 
 /// Dimension of the first-order system (y, y').
@@ -418,7 +418,7 @@ impl Radau5 {
     /// Take one accepted step (retrying with smaller steps as needed).
     ///
     /// # Errors
-    /// [`Error::Integrator`] when the step size underflows or the solution is not finite.
+    /// [`Error::StepSizeTooSmall`] when the step size underflows.
     pub fn step(&mut self) -> Result<Step> {
         let (f0, av0) = match self.start.take() {
             // The last Newton iterate of the previous step ends exactly here.
@@ -437,9 +437,9 @@ impl Radau5 {
         loop {
             let h = self.h.min(self.settings.max_step);
             if !(h > 16.0 * f64::EPSILON * self.t.abs().max(1.0)) {
-                return Err(Error::Integrator {
+                return Err(Error::StepSizeTooSmall {
                     tau: self.t,
-                    reason: format!("step size underflow (h = {h:e})"),
+                    step: h,
                 });
             }
             let Some(Converged { z, iterations, end }) = self.newton(h, self.start_values(h))

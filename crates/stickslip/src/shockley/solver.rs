@@ -1,11 +1,11 @@
 //! The stiff solver of the Shockley model behind the common [`Solver`] trait.
 
-use super::circuit::ShockleyModel;
+use super::model::ShockleyModel;
 use super::options::ShockleyOptions;
 use super::radau::{Radau5, Settings, Step};
 use super::stops::{Classifier, Mark};
 use crate::error::{Error, Result};
-use crate::params::State;
+use crate::params::{Params, State};
 use crate::solver::{Event, Phase, Sample, Solver, Stats};
 use std::collections::VecDeque;
 
@@ -16,10 +16,12 @@ use std::collections::VecDeque;
 /// `t_end` or at an event; [`Solver::dense`] is the step's collocation polynomial.
 ///
 /// ```
-/// use stickslip::shockley::{ShockleyCircuit, ShockleyOptions, ShockleySolver};
-/// use stickslip::{solver::run_until, Solver, State, EventKind};
+/// use stickslip::shockley::{ShockleyOptions, ShockleySolver};
+/// use stickslip::{solver::run_until, Circuit, Solver, State, EventKind};
 /// // The paper's circuit at w = 0.95, β = 2.14: it slides, turning twice per period.
-/// let model = ShockleyCircuit::paper().model_dimensionless(0.95, 2.14, 0.0).unwrap();
+/// let circuit = Circuit::paper_shockley();
+/// let params = circuit.params(0.95, 2.14, 0.0).unwrap();
+/// let model = circuit.shockley_model(&params).unwrap().unwrap();
 /// let mut solver =
 ///     ShockleySolver::new(model, State::default(), ShockleyOptions::default()).unwrap();
 /// let period = model.params.drive_period();
@@ -56,7 +58,7 @@ impl ShockleySolver {
     /// can fail like integration.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for invalid options or model; [`Error::Integrator`] when
+    /// [`Error::InvalidParameter`] for invalid options or model; [`Error::StepSizeTooSmall`] when
     /// the integration fails while deciding the initial phase.
     pub fn new(model: ShockleyModel, initial: State, options: ShockleyOptions) -> Result<Self> {
         let options = options.validate()?;
@@ -120,6 +122,10 @@ impl ShockleySolver {
 }
 
 impl Solver for ShockleySolver {
+    fn params(&self) -> &Params {
+        &self.model.params
+    }
+
     fn time(&self) -> f64 {
         self.now
     }

@@ -7,8 +7,9 @@ use crate::solver::{grid, run_until, sample_at};
 use crate::{Circuit, Event, EventKind, ExactSolver, Params, Phase, Solver, State};
 
 fn paper(w: f64, beta: f64) -> ShockleyModel {
-    ShockleyCircuit::paper()
-        .model_dimensionless(w, beta, 0.0)
+    let c = Circuit::paper_shockley();
+    c.shockley_model(&c.params(w, beta, 0.0).unwrap())
+        .unwrap()
         .unwrap()
 }
 
@@ -314,7 +315,7 @@ fn rejects_invalid_options() {
 fn pwl_distance(w: f64, beta: f64, a: f64) -> (f64, Vec<Event>, Vec<Event>) {
     let c = Circuit::paper();
     let z = c.impedance();
-    let r = c.diode.resistance / z;
+    let r = c.diode.linear_resistance() / z;
     let zeta_r = c.resistance / z / 2.0;
     let pwl = Params::new(zeta_r + r / 2.0, w, beta).unwrap();
     let t = pwl.drive_period();

@@ -199,6 +199,8 @@ impl SteadyOptions {
 /// The steady motion found by [`steady_state`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SteadyState {
+    /// The parameters of the motion.
+    pub params: Params,
     /// Motion class, from the event log of the recorded cycle.
     pub class: MotionClass,
     /// Period p in drive periods, `None` when no period ≤ `max_period` was found.
@@ -265,10 +267,10 @@ impl SteadyState {
     }
 
     /// The oscilloscope's X-Y picture: (drive, y) at every sample of the trace.
-    pub fn xy(&self, params: &Params) -> Vec<(f64, f64)> {
+    pub fn xy(&self) -> Vec<(f64, f64)> {
         self.trace
             .iter()
-            .map(|s| (params.drive(s.tau), s.y))
+            .map(|s| (self.params.drive(s.tau), s.y))
             .collect()
     }
 }
@@ -537,18 +539,18 @@ const MAX_RESTARTS: usize = 6;
 
 /// Run `solver` to its steady state and record one cycle.
 ///
-/// `params` must be the parameters the solver was built with (the drive frequency and phase
-/// define the strobes; β the static threshold). The solver may start at any time; strobes are
-/// at whole multiples of the drive period. Afterwards the solver stands at the end of the
-/// record. This form never extrapolates ([`SteadyOptions::accelerate`] needs
-/// [`steady_state_from`], which can start new solvers).
+/// The solver's own parameters ([`Solver::params`]) define the strobes (drive frequency and
+/// phase) and the gain (β). The solver may start at any time; strobes are at whole multiples
+/// of the drive period. Afterwards the solver stands at the end of the record. This form
+/// never extrapolates ([`SteadyOptions::accelerate`] needs [`steady_state_from`], which can
+/// start new solvers).
 ///
 /// ```
 /// use stickslip::steady::{steady_state, MotionClass, SteadyOptions};
 /// use stickslip::{ExactSolver, Params, State};
 /// let params = Params::new(0.0468, 0.9, 1.6).unwrap();
 /// let mut solver = ExactSolver::new(params, State::default());
-/// let steady = steady_state(&mut solver, &params, &SteadyOptions::default()).unwrap();
+/// let steady = steady_state(&mut solver, &SteadyOptions::default()).unwrap();
 /// assert_eq!(steady.class, MotionClass::Sliding);
 /// assert_eq!(steady.period, Some(1));
 /// assert!(steady.symmetric);
@@ -558,13 +560,13 @@ const MAX_RESTARTS: usize = 6;
 /// [`Error::InvalidParameter`] for invalid options; whatever the solver reports.
 pub fn steady_state<S: Solver + ?Sized>(
     solver: &mut S,
-    params: &Params,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
     let options = options.validate()?;
+    let params = *solver.params();
     let mut holder = Plain(solver);
-    let settled = run_to_cycle(&mut holder, params, &options, false)?;
-    record(holder.0, params, &options, &settled)
+    let settled = run_to_cycle(&mut holder, &params, &options, false)?;
+    record(holder.0, &params, &options, &settled)
 }
 
 /// The steady state reached from `initial` (at τ = 0) by solvers from `factory`.
@@ -700,6 +702,7 @@ fn record<S: Solver + ?Sized>(
         options.min_stop_fraction * period,
     );
     Ok(SteadyState {
+        params: *params,
         class: c.class,
         period: found,
         periods_to_settle: settled.periods_run,

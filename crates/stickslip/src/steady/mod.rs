@@ -11,27 +11,21 @@
 //!   Fig. 6), decided from the event log of the recorded cycle ([`classify`]).
 //! - [`Spectrum`]: amplitudes and phases of the drive harmonics of y by a real FFT over whole
 //!   periods (no window, no leakage).
-//! - [`sweep()`]: w or β swept up and/or down, each step starting from the final state of the
-//!   one before (hysteresis, coexisting motions).
-//! - [`phase_diagram()`]: a (w, β) grid classified in parallel, each point from its own
-//!   initial state.
 //!
-//! Solvers are made by a [`SolverFactory`] (any `Fn(Params, State) -> Result<Box<dyn Solver +
-//! Send>>` that is `Sync`); [`exact_solver`] is the factory of the exact solver.
+//! Sweeps and grids of steady states are in [`crate::scan`]. Solvers are made by a
+//! [`SolverFactory`] (any `Fn(Params, State) -> Result<Box<dyn Solver + Send>>` that is
+//! `Sync`, or an experiment's [`crate::experiment::ExperimentFactory`]); [`exact_solver`] is
+//! the factory of the exact solver.
 
 mod classify;
 mod cycle;
-mod phase_diagram;
-mod range;
+mod report;
 mod spectrum;
-mod sweep;
 
 pub use classify::{classify, Classification, MotionClass};
 pub use cycle::{steady_state, steady_state_from, SteadyOptions, SteadyState};
-pub use phase_diagram::{phase_diagram, PhaseDiagramPoint};
-pub use range::ParameterRange;
+pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
-pub use sweep::{sweep, SweepDirection, SweepLeg, SweepParameter, SweepPoint};
 
 use crate::error::Result;
 use crate::exact::ExactSolver;

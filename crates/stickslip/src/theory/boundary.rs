@@ -15,7 +15,7 @@
 
 use super::paper::paper_boundary;
 use super::periodic::{Matching, Obstruction, PeriodicSolution};
-use crate::error::{check, Error, Result};
+use crate::error::{check, Error, NoSolutionReason, Quantity, Result};
 use crate::params::Params;
 use serde::{Deserialize, Serialize};
 
@@ -56,8 +56,8 @@ pub fn stick_slip_boundary(zeta: f64, w: f64, mu_s: f64) -> Result<StickSlipBoun
     check("w", w, w > 0.0, "must be finite and > 0")?;
     check("mu_s", mu_s, mu_s >= 1.0, "must be finite and >= 1")?;
     let matching = Matching::new(zeta, w).map_err(|why| Error::NoSolution {
-        what: "the exact stick-slip boundary",
-        reason: why.to_string(),
+        what: Quantity::ExactBoundary,
+        reason: NoSolutionReason::Obstruction(why),
     })?;
     let attempt = |beta: f64| -> Result<std::result::Result<PeriodicSolution, Obstruction>> {
         let params = Params {
@@ -77,8 +77,8 @@ pub fn stick_slip_boundary(zeta: f64, w: f64, mu_s: f64) -> Result<StickSlipBoun
         hi *= 2.0;
         if hi > BETA_LIMIT {
             return Err(Error::NoSolution {
-                what: "the exact stick-slip boundary",
-                reason: format!("no β up to {BETA_LIMIT:e} gives a non-sticking motion"),
+                what: Quantity::ExactBoundary,
+                reason: NoSolutionReason::NoBetaBelow { limit: BETA_LIMIT },
             });
         }
     }

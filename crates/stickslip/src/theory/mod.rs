@@ -7,6 +7,9 @@
 //!   ([`PeriodicSolution`]): Den Hartog's solution (Phil. Mag. 1930) for ζ = 0, and its
 //!   damped generalisation, with exact harmonics ([`Harmonic`]) and stability.
 //! - [`boundary`]: the exact stick-slip boundary β_c(w, ζ, μs) ([`stick_slip_boundary`]).
+//! - [`curves`]: either theory's gain, harmonics or boundary along one parameter, cut where
+//!   they do not exist (the curves drawn over sweeps and maps).
+//! - [`report`]: both theories side by side at one point ([`TheoryReport`]).
 //!
 //! ```
 //! use stickslip::theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};
@@ -24,11 +27,14 @@
 //! ```
 
 pub mod boundary;
+pub mod curves;
 pub mod fourier;
 pub mod paper;
 pub mod periodic;
+pub mod report;
 
 pub use boundary::{stick_slip_boundary, StickSlipBoundary};
 pub use fourier::Harmonic;
 pub use paper::{paper_boundary, PaperHarmonic, PaperSeries, UndampedSeries};
 pub use periodic::{Obstruction, PeriodicSolution, CONTINUUM_DEFECT};
+pub use report::{TheoryNote, TheoryReport};

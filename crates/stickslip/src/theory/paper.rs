@@ -32,7 +32,7 @@
 //!   module reproduces the printed formulas; [`PaperHarmonic::balance_phase`] gives the phase
 //!   the harmonic balance yields.
 
-use crate::error::{check, Error, Result};
+use crate::error::{check, Error, NoSolutionReason, Quantity, Result};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -76,11 +76,8 @@ impl PaperSeries {
         let a1 = eq11_a1(zeta, w, beta)?;
         if a1 < 0.0 {
             return Err(Error::NoSolution {
-                what: "the paper's A1 (eq. (11))",
-                reason: format!(
-                    "eq. (11) gives A1 = {a1:.6} < 0: β = {beta} is below 4/π, where the \
-                     friction's square wave outweighs the drive"
-                ),
+                what: Quantity::PaperA1,
+                reason: NoSolutionReason::NegativeAmplitude { a1, beta },
             });
         }
         // Rounding can push the cosine a hair past ±1 when the drive barely beats friction.
@@ -124,19 +121,19 @@ fn eq11_a1(zeta: f64, w: f64, beta: f64) -> Result<f64> {
     let z2 = detune * detune + 4.0 * zeta * zeta * w * w;
     if z2 == 0.0 {
         return Err(Error::NoSolution {
-            what: "the paper's A1 (eq. (11))",
-            reason: "Z = 0 at ζ = 0, w = 1: eq. (11) is 0/0 (the undamped resonance)".into(),
+            what: Quantity::PaperA1,
+            reason: NoSolutionReason::ZeroImpedance,
         });
     }
     let radicand = PI * PI * beta * beta * z2 - 16.0 * detune * detune;
     if radicand < 0.0 {
         return Err(Error::NoSolution {
-            what: "the paper's A1 (eq. (11))",
-            reason: format!(
-                "eq. (11) takes the square root of π²β²Z² − 16(w² − 1)² = {radicand:.6} < 0 \
-                 (β = {beta} < 4|1 − w²|/(πZ) = {:.6})",
-                FOUR_OVER_PI * detune.abs() / z2.sqrt()
-            ),
+            what: Quantity::PaperA1,
+            reason: NoSolutionReason::NegativeRadicand {
+                radicand,
+                beta,
+                beta_min: FOUR_OVER_PI * detune.abs() / z2.sqrt(),
+            },
         });
     }
     Ok((-8.0 * zeta * w + radicand.sqrt()) / (PI * z2))
@@ -172,11 +169,8 @@ impl PaperHarmonic {
         let modulus = detune.hypot(damp);
         if modulus == 0.0 {
             return Err(Error::NoSolution {
-                what: "the paper's superharmonic (eq. (11))",
-                reason: format!(
-                    "A_{order} is infinite at ζ = 0, {order}w = 1: the friction's harmonic \
-                     {order} drives the undamped oscillator at resonance"
-                ),
+                what: Quantity::PaperHarmonic,
+                reason: NoSolutionReason::HarmonicResonance { order },
             });
         }
         Ok(Self {
@@ -221,18 +215,15 @@ impl UndampedSeries {
         let radicand = beta * beta - FOUR_OVER_PI * FOUR_OVER_PI;
         if radicand < 0.0 {
             return Err(Error::NoSolution {
-                what: "the paper's undamped A1 (eq. (9))",
-                reason: format!(
-                    "eq. (9) takes the square root of β² − (4/π)² = {radicand:.6} < 0 \
-                     (β = {beta} < 4/π)"
-                ),
+                what: Quantity::PaperUndampedA1,
+                reason: NoSolutionReason::BelowFourOverPi { radicand, beta },
             });
         }
         let detune = (1.0 - w) * (1.0 + w);
         if detune == 0.0 {
             return Err(Error::NoSolution {
-                what: "the paper's undamped A1 (eq. (9))",
-                reason: "eq. (9) divides by 1 − w² = 0 at w = 1".into(),
+                what: Quantity::PaperUndampedA1,
+                reason: NoSolutionReason::UndampedResonance,
             });
         }
         Ok(Self {
@@ -257,8 +248,8 @@ impl UndampedSeries {
         let den = k * PI * (k * self.w - 1.0) * (k * self.w + 1.0);
         if den == 0.0 {
             return Err(Error::NoSolution {
-                what: "the paper's undamped superharmonic (eq. (9))",
-                reason: format!("eq. (9) divides by zero at {}w = 1", 2 * n - 1),
+                what: Quantity::PaperUndampedHarmonic,
+                reason: NoSolutionReason::UndampedHarmonicResonance { order: 2 * n - 1 },
             });
         }
         Ok(4.0 / den)
@@ -286,8 +277,8 @@ pub fn paper_boundary(zeta: f64, w: f64) -> Result<f64> {
     let z2 = detune * detune + 4.0 * zeta * zeta * w * w;
     if z2 == 0.0 {
         return Err(Error::NoSolution {
-            what: "the paper's boundary (eq. (13))",
-            reason: "eq. (11) is undefined at ζ = 0, w = 1".into(),
+            what: Quantity::PaperBoundary,
+            reason: NoSolutionReason::ZeroImpedance,
         });
     }
     let w2 = w * w;

@@ -53,7 +53,7 @@
 //! Jacobian, in closed form. The orbit attracts nearby motions when it is below 1.
 
 use super::fourier::{segment_integral, wrap_phase, Harmonic};
-use crate::error::{Error, Result};
+use crate::error::{Error, NoSolutionReason, Quantity, Result};
 use crate::exact::ExactSolver;
 use crate::linear::{Damping, LinearSegment};
 use crate::params::{Params, State};
@@ -273,8 +273,8 @@ impl PeriodicSolution {
     /// a numerical failure of the velocity check ([`Error::EventSearch`]).
     pub fn new(params: &Params) -> Result<Self> {
         Self::solve(params)?.map_err(|why| Error::NoSolution {
-            what: "the exact non-sticking periodic solution",
-            reason: why.to_string(),
+            what: Quantity::ExactOrbit,
+            reason: NoSolutionReason::Obstruction(why),
         })
     }
 

@@ -8,7 +8,8 @@ use crate::output::progress;
 use anyhow::Result;
 use report::Report;
 use std::path::PathBuf;
-use stickslip::{Circuit, Scales};
+use stickslip::experiment::Experiment;
+use stickslip::{Circuit, Diode, PwlDiode, Scales};
 
 /// Regenerate every figure and table of the paper, with an HTML report.
 ///
@@ -30,8 +31,12 @@ pub struct Args {
 
 /// Settings shared by the figures.
 pub struct Context {
+    /// The paper's experiment (PWL diodes), without a drive: each figure sets its own.
+    pub paper: Experiment,
     /// The paper's circuit.
     pub circuit: Circuit,
+    /// Its PWL diode pair.
+    pub diode: PwlDiode,
     /// Its scales (ω0, α, U_t, ...).
     pub scales: Scales,
     /// Whether to use coarse grids.
@@ -44,8 +49,13 @@ type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
 pub fn run(args: Args) -> Result<()> {
     let mut report = Report::create(&args.out)?;
     let circuit = Circuit::paper();
+    let Diode::Pwl(diode) = circuit.diode else {
+        unreachable!("the paper's circuit has PWL diodes")
+    };
     let ctx = Context {
+        paper: Experiment::paper(),
         circuit,
+        diode,
         scales: circuit.scales(),
         quick: args.quick,
     };

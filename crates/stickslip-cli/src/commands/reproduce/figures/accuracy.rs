@@ -3,14 +3,14 @@
 
 use super::super::report::{sig, Report, Section};
 use super::super::Context;
-use super::common::{num, paper_params, steady_pwl};
+use super::common::{num, paper_at, steady_pwl};
 use anyhow::Result;
 use serde_json::json;
-use stickslip::steady::{exact_solver, steady_state_from, MotionClass};
+use stickslip::steady::MotionClass;
 use stickslip::theory::{
     paper_boundary, stick_slip_boundary, PaperHarmonic, PaperSeries, PeriodicSolution,
 };
-use stickslip::{State, SteadyOptions};
+use stickslip::SteadyOptions;
 
 struct Row {
     figure: &'static str,
@@ -28,11 +28,7 @@ fn relative(x: Option<f64>, reference: f64) -> Option<f64> {
 fn simulated_boundary(ctx: &Context, w: f64, mut lo: f64, mut hi: f64) -> Result<f64> {
     let options = SteadyOptions::default().with_spectrum(false);
     let slides = |beta: f64| -> Result<bool> {
-        let p = paper_params(ctx, w, beta)?;
-        Ok(
-            steady_state_from(&exact_solver, &p, State::default(), &options)?.class
-                == MotionClass::Sliding,
-        )
+        Ok(paper_at(ctx, w, beta)?.steady_with(&options)?.class == MotionClass::Sliding)
     };
     if slides(lo)? || !slides(hi)? {
         anyhow::bail!("the simulated boundary at w = {w} is not bracketed by [{lo}, {hi}]");
@@ -51,7 +47,7 @@ fn simulated_boundary(ctx: &Context, w: f64, mut lo: f64, mut hi: f64) -> Result
 /// The accuracy table.
 pub fn accuracy(report: &mut Report, ctx: &Context) -> Result<()> {
     let zeta = ctx.scales.zeta();
-    let ut = ctx.circuit.diode.turn_on;
+    let ut = ctx.diode.turn_on;
     let mut rows = Vec::new();
     let amplitude_points: [(&str, f64, f64); 11] = [
         ("fig3", 0.29, 2.14),

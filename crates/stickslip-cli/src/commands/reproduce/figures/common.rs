@@ -3,8 +3,8 @@
 use super::super::Context;
 use anyhow::Result;
 use plotters::style::RGBColor;
-use stickslip::steady::{exact_solver, steady_state_from};
-use stickslip::{Params, State, SteadyOptions, SteadyState};
+use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepPoint};
+use stickslip::{Experiment, Parameter, Params, SteadyOptions, SteadyState};
 
 /// One colour per drive amplitude, the same in every figure.
 pub fn beta_color(beta: f64) -> RGBColor {
@@ -30,19 +30,20 @@ pub fn beta_color(beta: f64) -> RGBColor {
 
 /// Dimensionless parameters of the paper's circuit at (w, β).
 pub fn paper_params(ctx: &Context, w: f64, beta: f64) -> Result<Params> {
-    Ok(Params::new(ctx.scales.zeta(), w, beta)?)
+    Ok(ctx
+        .paper
+        .params_with(&[(Parameter::W, w), (Parameter::Beta, beta)])?)
+}
+
+/// The paper's experiment driven at (w, β).
+pub fn paper_at(ctx: &Context, w: f64, beta: f64) -> Result<Experiment> {
+    Ok(ctx.paper.clone().with_w(w)?.with_beta(beta)?)
 }
 
 /// Steady state from rest with the exact solver.
 pub fn steady_pwl(ctx: &Context, w: f64, beta: f64) -> Result<(Params, SteadyState)> {
-    let params = paper_params(ctx, w, beta)?;
-    let s = steady_state_from(
-        &exact_solver,
-        &params,
-        State::default(),
-        &SteadyOptions::default(),
-    )?;
-    Ok((params, s))
+    let s = paper_at(ctx, w, beta)?.steady()?;
+    Ok((s.params, s))
 }
 
 /// A number for file contents.
@@ -51,32 +52,23 @@ pub fn num(x: f64) -> String {
 }
 
 /// Sweep `parameter` of the paper's circuit up then down (each step from the last), the other
-/// parameter fixed at `fixed`, from rest.
+/// drive parameter fixed at `fixed`, from rest.
 pub fn sweep_pwl(
     ctx: &Context,
-    parameter: stickslip::steady::SweepParameter,
+    parameter: Parameter,
     fixed: f64,
     from: f64,
     to: f64,
     steps: usize,
     spectrum: bool,
-) -> Result<Vec<stickslip::steady::SweepPoint>> {
-    use stickslip::steady::{sweep, ParameterRange, SweepDirection, SweepParameter};
-    let (w, beta, name) = match parameter {
-        SweepParameter::W => (from, fixed, "w"),
-        SweepParameter::Beta => (fixed, from, "beta"),
+) -> Result<Vec<SweepPoint>> {
+    let experiment = match parameter {
+        Parameter::W => ctx.paper.clone().with_beta(fixed)?,
+        _ => ctx.paper.clone().with_w(fixed)?,
     };
-    let base = paper_params(ctx, w, beta)?;
-    let range = ParameterRange::new(name, from, to, steps)?;
-    let options = SteadyOptions::default().with_spectrum(spectrum);
-    Ok(sweep(
-        &exact_solver,
-        base,
-        State::default(),
-        parameter,
-        &range,
-        SweepDirection::Both,
-        &options,
-        &mut |_, _, _| !crate::output::interrupted(),
-    )?)
+    let range = ParameterRange::new(parameter.label(), from, to, steps)?;
+    Ok(Sweep::new(&experiment, Axis::range(parameter, &range)?)?
+        .direction(SweepDirection::Both)
+        .options(SteadyOptions::default().with_spectrum(spectrum))?
+        .run(&|_: usize, _: usize| !crate::output::interrupted())?)
 }

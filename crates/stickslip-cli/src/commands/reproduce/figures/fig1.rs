@@ -37,7 +37,7 @@ pub fn fig1(report: &mut Report, ctx: &Context) -> Result<()> {
     };
 
     // (b) PWL pair: I = 0 for |U| < U_t, (|U| − U_t)/R_D beyond, with the sign of U.
-    let d = ctx.circuit.diode;
+    let d = ctx.diode;
     let pwl: Vec<(f64, f64)> = (0..=400)
         .map(|k| {
             // Up to 50 mA either way, inside the axes.

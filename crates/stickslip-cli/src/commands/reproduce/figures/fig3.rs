@@ -14,7 +14,7 @@ const XY_BETAS: [f64; 4] = [1.07, 1.43, 2.14, 3.61];
 
 /// Fig. 3 (1a)–(2c) traces with spectra, (3a)–(3c) X-Y loops.
 pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
-    let ut = ctx.circuit.diode.turn_on;
+    let ut = ctx.diode.turn_on;
     let ms = 1e3 / ctx.scales.omega0;
     let mut trace_panels = Vec::new();
     let mut spectrum_panels = Vec::new();
@@ -95,12 +95,9 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     for (col, &w) in FREQUENCIES.iter().enumerate() {
         let mut series = Vec::new();
         for &beta in &XY_BETAS {
-            let (params, s) = steady_pwl(ctx, w, beta)?;
-            let mut pts: Vec<(f64, f64)> = s
-                .xy(&params)
-                .into_iter()
-                .map(|(u, y)| (u * ut, y * ut))
-                .collect();
+            let (_, s) = steady_pwl(ctx, w, beta)?;
+            let mut pts: Vec<(f64, f64)> =
+                s.xy().into_iter().map(|(u, y)| (u * ut, y * ut)).collect();
             if let Some(&first) = pts.first() {
                 pts.push(first);
             }

@@ -3,10 +3,12 @@
 use super::super::report::{Report, Section};
 use super::super::Context;
 use super::common::{beta_color, num, sweep_pwl};
+use super::theory_curves::{style_legend, INK};
 use crate::plot::{Figure, Legend, Panel, Series, Style};
 use anyhow::Result;
 use serde_json::json;
-use stickslip::steady::{SweepLeg, SweepParameter};
+use stickslip::scan::SweepLeg;
+use stickslip::Parameter;
 
 /// The paper's three drive amplitudes.
 pub const BETAS: [f64; 3] = [1.43, 3.61, 14.3];
@@ -18,7 +20,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     let mut rows = Vec::new();
     let mut peaks = Vec::new();
     for &beta in &BETAS {
-        let points = sweep_pwl(ctx, SweepParameter::W, beta, 0.2, 2.0, steps, true)?;
+        let points = sweep_pwl(ctx, Parameter::W, beta, 0.2, 2.0, steps, true)?;
         let mut up = Vec::new();
         let mut down = Vec::new();
         for p in &points {
@@ -42,26 +44,28 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             .chain(&down)
             .fold((0.0, 0.0), |m, &(w, g)| if g > m.1 { (w, g) } else { m });
         peaks.push(json!({"beta": beta, "w": peak.0, "gain": peak.1}));
-        series.push(Series::new(
-            format!("β = {beta}, sweep up"),
-            up,
-            beta_color(beta),
-            Style::Markers(3),
-        ));
-        series.push(Series::new(
-            format!("β = {beta}, sweep down"),
-            down,
-            beta_color(beta),
-            Style::Squares(4),
-        ));
+        series.push(Series::new("", up, beta_color(beta), Style::Markers(3)));
+        series.push(Series::new("", down, beta_color(beta), Style::Squares(4)));
     }
     series.extend(super::theory_curves::gain_curves(ctx, &BETAS)?);
+    // The legend: one colour per β, one symbol per sweep direction, one line per theory.
+    for &beta in &BETAS {
+        series.push(Series::new(
+            format!("β = {beta}"),
+            vec![],
+            beta_color(beta),
+            Style::Bars(1.0),
+        ));
+    }
+    series.push(Series::new("sweep up", vec![], INK, Style::Markers(3)));
+    series.push(Series::new("sweep down", vec![], INK, Style::Squares(4)));
+    series.extend(style_legend());
     let panel = Panel {
         title: "Fig. 4: resonance of the gain G = A1/β".into(),
         x_label: "Ω/ω0".into(),
         y_label: "gain G".into(),
         series,
-        legend: Some(Legend::UpperRight),
+        legend: Some(Legend::Best),
         x_range: Some((0.2, 2.0)),
         ..Default::default()
     };

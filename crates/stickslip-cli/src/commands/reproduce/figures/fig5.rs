@@ -3,25 +3,24 @@
 use super::super::report::{Report, Section};
 use super::super::Context;
 use super::common::{num, sweep_pwl};
+use super::theory_curves::{style_legend, INK};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
-use stickslip::steady::{SweepLeg, SweepParameter};
+use stickslip::scan::{SweepLeg, SweepPoint};
+use stickslip::Parameter;
 
 /// Fig. 5 (a) A1, A3 against Ω/ω0 at β = 7.1; (b) against β at Ω/ω0 = 0.33.
 pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
-    let ut = ctx.circuit.diode.turn_on;
+    let ut = ctx.diode.turn_on;
     let steps = if ctx.quick { 25 } else { 73 };
     let mut panels = Vec::new();
     let mut rows = Vec::new();
     for (parameter, fixed, from, to) in [
-        (SweepParameter::W, 7.1, 0.2, 2.0),
-        (SweepParameter::Beta, 0.33, 1.0, 15.0),
+        (Parameter::W, 7.1, 0.2, 2.0),
+        (Parameter::Beta, 0.33, 1.0, 15.0),
     ] {
         let points = sweep_pwl(ctx, parameter, fixed, from, to, steps, true)?;
-        let x = |p: &stickslip::steady::SweepPoint| match parameter {
-            SweepParameter::W => p.params.w,
-            SweepParameter::Beta => p.params.beta,
-        };
+        let x = |p: &SweepPoint| p.value;
         let mut a1 = Vec::new();
         let mut a3 = Vec::new();
         for p in points.iter().filter(|p| p.leg == SweepLeg::Up) {
@@ -42,22 +41,32 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             ]);
         }
         let mut series = vec![
-            Series::new("A1, simulated", a1, PALETTE[0], Style::Markers(3)),
-            Series::new("A3, simulated", a3, PALETTE[1], Style::Markers(3)),
+            Series::new("", a1, PALETTE[0], Style::Markers(3)),
+            Series::new("", a3, PALETTE[1], Style::Markers(3)),
         ];
         series.extend(super::theory_curves::harmonic_curves(
-            ctx, parameter, fixed, from, to,
+            ctx,
+            parameter,
+            fixed,
+            from,
+            to,
+            [PALETTE[0], PALETTE[1]],
         )?);
+        // The legend: one colour per harmonic, one symbol or line per source.
+        series.push(Series::new("A1", vec![], PALETTE[0], Style::Bars(1.0)));
+        series.push(Series::new("A3", vec![], PALETTE[1], Style::Bars(1.0)));
+        series.push(Series::new("simulated", vec![], INK, Style::Markers(3)));
+        series.extend(style_legend());
         let (title, x_label) = match parameter {
-            SweepParameter::W => ("(a) β = 7.1".to_string(), "Ω/ω0"),
-            SweepParameter::Beta => ("(b) Ω/ω0 = 0.33".to_string(), "β = U/U_t"),
+            Parameter::W => ("(a) β = 7.1".to_string(), "Ω/ω0"),
+            _ => ("(b) Ω/ω0 = 0.33".to_string(), "β = U/U_t"),
         };
         panels.push(Panel {
             title,
             x_label: x_label.into(),
             y_label: "amplitude (V)".into(),
             series,
-            legend: Some(Legend::UpperRight),
+            legend: Some(Legend::Best),
             x_range: Some((from, to)),
             ..Default::default()
         });

@@ -2,13 +2,13 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{beta_color, num, paper_params, steady_pwl};
+use super::common::{beta_color, num, paper_at, steady_pwl};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
 use stickslip::solver::{grid, sample_at};
-use stickslip::{EventKind, ExactSolver, State};
+use stickslip::EventKind;
 
 /// The paper's four points and the class it gives each.
 pub const POINTS: [(f64, f64, &str); 4] = [
@@ -20,7 +20,7 @@ pub const POINTS: [(f64, f64, &str); 4] = [
 
 /// Fig. 6 (a)–(d): traces from rest at the paper's four points, titled with our class.
 pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
-    let ut = ctx.circuit.diode.turn_on;
+    let ut = ctx.diode.turn_on;
     let ms = 1e3 / ctx.scales.omega0;
     let mut panels = Vec::new();
     let mut rows = Vec::new();
@@ -29,14 +29,14 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
     for (i, &(w, beta, paper_class)) in POINTS.iter().enumerate() {
         let (params, s) = steady_pwl(ctx, w, beta)?;
         let periods = 12.0;
-        let mut solver = ExactSolver::new(paper_params(ctx, w, beta)?, State::default());
+        let mut solver = paper_at(ctx, w, beta)?.solver()?;
         let times = grid(
             0.0,
             periods * params.drive_period(),
             (periods * 200.0) as usize,
         );
         let mut stops = Vec::new();
-        let samples = sample_at(&mut solver, &times, |e| {
+        let samples = sample_at(solver.as_mut(), &times, |e| {
             if e.kind == EventKind::Stick {
                 stops.push((e.tau * ms, e.y * ut));
             }

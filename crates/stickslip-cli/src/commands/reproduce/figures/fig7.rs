@@ -2,54 +2,36 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{num, paper_params};
-use crate::plot::{Cell, Figure, Legend, Panel};
+use super::common::num;
+use crate::plot::{class_color, Cell, Figure, Legend, Panel};
 use anyhow::Result;
-use plotters::style::RGBColor;
 use serde_json::{json, Value};
-use stickslip::shockley::{ShockleyCircuit, ShockleyOptions};
-use stickslip::steady::{
-    exact_solver, phase_diagram, MotionClass, ParameterRange, PhaseDiagramPoint, SolverFactory,
-};
-use stickslip::{Params, ShockleySolver, Solver, State, SteadyOptions};
-
-/// Colour of each motion class in the maps.
-pub fn class_color(class: MotionClass) -> RGBColor {
-    match class {
-        MotionClass::Sliding => RGBColor(235, 235, 235),
-        MotionClass::PeriodicStick => RGBColor(0, 114, 178),
-        MotionClass::NonperiodicStick => RGBColor(213, 94, 0),
-        MotionClass::Static => RGBColor(0, 158, 115),
-    }
-}
+use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::steady::MotionClass;
+use stickslip::{DiodePair, Experiment, Parameter};
 
 /// A map from rest over the paper's range, with its grid and timing.
 struct Map {
-    points: Vec<PhaseDiagramPoint>,
+    points: Vec<GridPoint>,
     w: ParameterRange,
     beta: ParameterRange,
     seconds: f64,
 }
 
 impl Map {
-    fn compute<F: SolverFactory + ?Sized>(
-        ctx: &Context,
-        factory: &F,
-        n: usize,
-        options: &SteadyOptions,
-    ) -> Result<Self> {
+    /// The map of `experiment` from rest on an n × n grid, with the experiment's own
+    /// steady-state options.
+    fn compute(experiment: &Experiment, n: usize) -> Result<Self> {
         let w = ParameterRange::new("w", 0.1, 2.5, n)?;
         let beta = ParameterRange::new("beta", 0.5, 4.0, n)?;
         let started = std::time::Instant::now();
-        let points = phase_diagram(
-            factory,
-            paper_params(ctx, 1.0, 1.0)?,
-            State::default(),
-            &w,
-            &beta,
-            options,
-            &|| !crate::output::interrupted(),
-        )?;
+        let points = Grid::new(
+            experiment,
+            Axis::range(Parameter::W, &w)?,
+            Axis::range(Parameter::Beta, &beta)?,
+        )?
+        .run(&|_: usize, _: usize| !crate::output::interrupted())?
+        .points;
         Ok(Self {
             points,
             w,
@@ -72,8 +54,8 @@ impl Map {
             .points
             .iter()
             .map(|p| Cell {
-                x: (p.w - dw, p.w + dw),
-                y: (p.beta - db, p.beta + db),
+                x: (p.params.w - dw, p.params.w + dw),
+                y: (p.params.beta - db, p.params.beta + db),
                 color: class_color(p.class),
             })
             .collect();
@@ -101,8 +83,8 @@ impl Map {
             .iter()
             .map(|p| {
                 vec![
-                    num(p.w),
-                    num(p.beta),
+                    num(p.params.w),
+                    num(p.params.beta),
                     p.class.label().into(),
                     p.period.map(|x| x.to_string()).unwrap_or_default(),
                     num(p.stops_per_period),
@@ -140,28 +122,12 @@ impl Map {
 
 /// Fig. 7 (a) the PWL model's map from rest, (b) the Shockley model's.
 pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
-    let pwl = Map::compute(
-        ctx,
-        &exact_solver,
-        if ctx.quick { 60 } else { 200 },
-        &SteadyOptions::default(),
-    )?;
-    // The stiff solver's strobe map repeats only to its rtol (1e-6).
-    let circuit = ShockleyCircuit::paper();
-    let shockley_factory =
-        move |params: Params, initial: State| -> stickslip::Result<Box<dyn Solver + Send>> {
-            let m = circuit.model_dimensionless(params.w, params.beta, params.phi)?;
-            Ok(Box::new(ShockleySolver::new(
-                m,
-                initial,
-                ShockleyOptions::default(),
-            )?))
-        };
+    let pwl = Map::compute(&ctx.paper, if ctx.quick { 60 } else { 200 })?;
+    // The stiff solver's strobe map repeats only to its rtol (1e-6): the experiment's own
+    // steady-state options say so.
     let shockley = Map::compute(
-        ctx,
-        &shockley_factory,
+        &ctx.paper.clone().with_shockley(DiodePair::one_n4148())?,
         if ctx.quick { 24 } else { 64 },
-        &SteadyOptions::default().with_tolerance(1e-6)?,
     )?;
 
     let mut a = pwl.panel("(a) PWL diodes (exact solver)");

@@ -43,7 +43,7 @@ pub fn table1(report: &mut Report, ctx: &Context) -> Result<()> {
         ],
         vec![
             "U_t (β = U/U_t)".into(),
-            sig(c.diode.turn_on, 2),
+            sig(ctx.diode.turn_on, 2),
             "V".into(),
             "0.7".into(),
         ],

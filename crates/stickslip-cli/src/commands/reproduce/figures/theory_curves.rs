@@ -5,11 +5,9 @@ use super::super::Context;
 use super::common::beta_color;
 use crate::plot::{Series, Style, PALETTE};
 use anyhow::Result;
-use stickslip::steady::SweepParameter;
-use stickslip::theory::{
-    paper_boundary, stick_slip_boundary, PaperHarmonic, PaperSeries, PeriodicSolution,
-};
-use stickslip::Params;
+use plotters::style::RGBColor;
+use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
+use stickslip::{Parameter, Params};
 
 /// Points of a theory curve.
 const POINTS: usize = 400;
@@ -37,115 +35,112 @@ pub const BOUNDARY_NOTE: &str = "Dashed: the paper's approximate boundary (its e
     from it away from resonance (below it at low frequency, where the exact β_c grows like \
     2/w² rather than 1/w²).";
 
-fn grid(from: f64, to: f64) -> impl Iterator<Item = f64> {
-    (0..POINTS).map(move |k| from + (to - from) * k as f64 / (POINTS - 1) as f64)
+/// The base parameters of the paper's circuit (μs = 1, φ = 0) at (w, β).
+fn base(ctx: &Context, w: f64, beta: f64) -> Result<Params> {
+    super::common::paper_params(ctx, w, beta)
 }
 
-/// Gain curves A1/β of the paper's series solution and of the exact periodic solution.
+/// The line style of each theory: dashed for the paper's series, solid for the exact orbit.
+pub fn theory_style(theory: Theory) -> Style {
+    match theory {
+        Theory::Paper => Style::Dashed(2),
+        Theory::Exact => Style::Line(2),
+    }
+}
+
+/// Legend entries that say what the line styles mean (no data of their own).
+pub fn style_legend() -> Vec<Series> {
+    vec![
+        Series::new("paper, eq. 11", vec![], INK, theory_style(Theory::Paper)),
+        Series::new("exact", vec![], INK, theory_style(Theory::Exact)),
+    ]
+}
+
+/// The colour of legend entries that stand for a style, not for data.
+pub const INK: RGBColor = RGBColor(60, 60, 60);
+
+/// Gain curves A1/β of the paper's series solution and of the exact periodic solution, one
+/// colour per β, without legend entries (see [`style_legend`]).
 pub fn gain_curves(ctx: &Context, betas: &[f64]) -> Result<Vec<Series>> {
-    let zeta = ctx.scales.zeta();
+    let ws = abscissae(0.2, 2.0, POINTS);
     let mut out = Vec::new();
     for &beta in betas {
-        let paper: Vec<(f64, f64)> = grid(0.2, 2.0)
-            .map(|w| {
-                (
-                    w,
-                    PaperSeries::new(zeta, w, beta).map_or(f64::NAN, |p| p.gain()),
-                )
-            })
-            .collect();
-        let exact: Vec<(f64, f64)> = grid(0.2, 2.0)
-            .map(|w| {
-                let g = Params::new(zeta, w, beta)
-                    .ok()
-                    .and_then(|p| PeriodicSolution::new(&p).ok())
-                    .map_or(f64::NAN, |s| s.gain());
-                (w, g)
-            })
-            .collect();
-        out.push(Series::new(
-            format!("β = {beta}, paper eq. 11"),
-            paper,
-            beta_color(beta),
-            Style::Dashed(2),
-        ));
-        out.push(Series::new(
-            format!("β = {beta}, exact"),
-            exact,
-            beta_color(beta),
-            Style::Line(2),
-        ));
+        for theory in [Theory::Paper, Theory::Exact] {
+            let curve = theory_curve(
+                theory,
+                TheoryQuantity::Gain,
+                &base(ctx, 1.0, beta)?,
+                Parameter::W,
+                &ws,
+            );
+            out.push(Series::new(
+                "",
+                curve.points(),
+                beta_color(beta),
+                theory_style(theory),
+            ));
+        }
     }
     Ok(out)
 }
 
-/// A1 and A3 (volts) of the paper's series solution and of the exact periodic solution.
+/// A1 and A3 (volts) of the paper's series solution and of the exact periodic solution, in
+/// the colours of the simulated A1 and A3, without legend entries.
 pub fn harmonic_curves(
     ctx: &Context,
-    parameter: SweepParameter,
+    parameter: Parameter,
     fixed: f64,
     from: f64,
     to: f64,
+    colors: [RGBColor; 2],
 ) -> Result<Vec<Series>> {
-    let zeta = ctx.scales.zeta();
-    let ut = ctx.circuit.diode.turn_on;
-    let at = |x: f64| match parameter {
-        SweepParameter::W => (x, fixed),
-        SweepParameter::Beta => (fixed, x),
+    let ut = ctx.diode.turn_on;
+    let base = match parameter {
+        Parameter::W => base(ctx, from, fixed)?,
+        _ => base(ctx, fixed, from)?,
     };
-    let mut curves: [Vec<(f64, f64)>; 4] = Default::default();
-    for x in grid(from, to) {
-        let (w, beta) = at(x);
-        let paper = PaperSeries::new(zeta, w, beta).ok();
-        curves[0].push((x, paper.map_or(f64::NAN, |p| p.a1 * ut)));
-        // A3 of eq. (11) does not depend on β (nor need A1 to exist).
-        curves[1].push((
-            x,
-            PaperHarmonic::new(zeta, w, 3).map_or(f64::NAN, |h| h.amplitude.abs() * ut),
-        ));
-        let exact = Params::new(zeta, w, beta)
-            .ok()
-            .and_then(|p| PeriodicSolution::new(&p).ok());
-        curves[2].push((x, exact.as_ref().map_or(f64::NAN, |s| s.a1() * ut)));
-        curves[3].push((
-            x,
-            exact
-                .as_ref()
-                .map_or(f64::NAN, |s| s.harmonic(3).amplitude * ut),
-        ));
+    let xs = abscissae(from, to, POINTS);
+    let mut out = Vec::new();
+    for theory in [Theory::Paper, Theory::Exact] {
+        for (k, color) in [1, 3].into_iter().zip(colors) {
+            let curve = theory_curve(theory, TheoryQuantity::Harmonic(k), &base, parameter, &xs);
+            out.push(Series::new(
+                "",
+                curve.scaled(ut).points(),
+                color,
+                theory_style(theory),
+            ));
+        }
     }
-    let [p1, p3, e1, e3] = curves;
-    Ok(vec![
-        Series::new("A1, paper eq. 11", p1, PALETTE[0], Style::Dashed(2)),
-        Series::new("A3, paper eq. 11", p3, PALETTE[1], Style::Dashed(2)),
-        Series::new("A1, exact", e1, PALETTE[0], Style::Line(2)),
-        Series::new("A3, exact", e3, PALETTE[1], Style::Line(2)),
-    ])
+    Ok(out)
 }
 
 /// The paper's and the exact stick-slip boundaries β_c(w) (NaN where they leave the map).
 pub fn boundary_curves(ctx: &Context, w_min: f64, w_max: f64) -> Result<Vec<Series>> {
-    let zeta = ctx.scales.zeta();
-    let inside = |b: f64| {
-        if (0.0..=4.0).contains(&b) {
-            b
-        } else {
-            f64::NAN
-        }
+    let ws = abscissae(w_min, w_max, POINTS);
+    let curve = |theory| -> Result<Vec<(f64, f64)>> {
+        Ok(theory_curve(
+            theory,
+            TheoryQuantity::Boundary,
+            &base(ctx, 1.0, 1.0)?,
+            Parameter::W,
+            &ws,
+        )
+        .within(0.0, 4.0)
+        .points())
     };
-    let paper: Vec<(f64, f64)> = grid(w_min, w_max)
-        .map(|w| (w, paper_boundary(zeta, w).map_or(f64::NAN, inside)))
-        .collect();
-    let exact: Vec<(f64, f64)> = grid(w_min, w_max)
-        .map(|w| {
-            (
-                w,
-                stick_slip_boundary(zeta, w, 1.0).map_or(f64::NAN, |b| inside(b.beta_c)),
-            )
-        })
-        .collect();
     Ok(vec![
-        Series::new("paper eq. 13", paper, PALETTE[6], Style::Dashed(2)),
-        Series::new("exact β_c", exact, PALETTE[3], Style::Line(2)),
+        Series::new(
+            "paper eq. 13",
+            curve(Theory::Paper)?,
+            PALETTE[6],
+            Style::Dashed(2),
+        ),
+        Series::new(
+            "exact β_c",
+            curve(Theory::Exact)?,
+            PALETTE[3],
+            Style::Line(2),
+        ),
     ])
 }

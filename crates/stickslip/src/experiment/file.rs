@@ -1,0 +1,369 @@
+//! The TOML experiment file.
+//!
+//! ```toml
+//! # every key optional except what the computation needs
+//! [circuit]          # or [mechanics] with m, k, gamma, F0
+//! L = "11.5m"        # H; numbers may be strings with SI prefixes
+//! C = 0.02e-6        # F
+//! R = 68             # Ω, without the diodes
+//! U_t = 0.7          # V, PWL diode turn-on (the reference voltage of y and β)
+//! R_D = 3.0          # Ω, PWL diode resistance
+//! [drive]
+//! U = 1.498          # V (F in N for mechanics); or beta = 2.14
+//! f = "9.97k"        # Hz; or omega (rad/s), or w = 0.95
+//! phi = 0.0          # rad
+//! [model]
+//! mu_s = 1.0
+//! y0 = 0.0           # or uc0 (V or m)
+//! v0 = 0.0           # or i0 (A or m/s)
+//! diode = "pwl"      # or "shockley"
+//! # zeta = 0.05      # only without [circuit] or [mechanics]
+//! [shockley]         # 1N4148 defaults
+//! Is = 4.352e-9      # A
+//! n = 1.906
+//! Rs = 0.6458        # Ω
+//! temperature = 27   # °C
+//! ```
+//!
+//! Unknown sections and keys are errors; every error names the file, the line and the key.
+
+use super::key::Key;
+use super::spec::ExperimentSpec;
+use super::DiodeModel;
+use crate::error::{Error, Result};
+use crate::units::parse_si;
+use serde::de::{self, Deserializer, Visitor};
+use serde::Deserialize;
+use toml::Spanned;
+
+/// An experiment file that is not a valid experiment description.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{}", self.describe())]
+pub struct ConfigError {
+    /// The file's name as given.
+    pub file: String,
+    /// Line number (from 1) of the problem, when known.
+    pub line: Option<usize>,
+    /// The key, as `[section] key`, when known.
+    pub key: Option<String>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl ConfigError {
+    fn describe(&self) -> String {
+        let mut s = self.file.clone();
+        if let Some(line) = self.line {
+            s.push_str(&format!(", line {line}"));
+        }
+        if let Some(key) = &self.key {
+            s.push_str(&format!(", {key}"));
+        }
+        format!("{s}: {}", self.message)
+    }
+}
+
+/// A number: a TOML integer or float, or a string with an SI prefix (`"11.5m"`).
+#[derive(Debug, Clone, Copy)]
+struct Number(f64);
+
+impl<'de> Deserialize<'de> for Number {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct NumberVisitor;
+        impl Visitor<'_> for NumberVisitor {
+            type Value = Number;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number, or a string with an SI prefix such as \"20n\"")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Number, E> {
+                Ok(Number(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Number, E> {
+                Ok(Number(v as f64))
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Number, E> {
+                Ok(Number(v))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
+                parse_si(v).map(Number).map_err(E::custom)
+            }
+        }
+        deserializer.deserialize_any(NumberVisitor)
+    }
+}
+
+type Value = Option<Spanned<Number>>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Document {
+    circuit: Option<CircuitSection>,
+    mechanics: Option<MechanicsSection>,
+    drive: Option<DriveSection>,
+    model: Option<ModelSection>,
+    shockley: Option<ShockleySection>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CircuitSection {
+    #[serde(rename = "L")]
+    inductance: Value,
+    #[serde(rename = "C")]
+    capacitance: Value,
+    #[serde(rename = "R")]
+    resistance: Value,
+    #[serde(rename = "U_t")]
+    turn_on: Value,
+    #[serde(rename = "R_D")]
+    diode_resistance: Value,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MechanicsSection {
+    m: Value,
+    k: Value,
+    gamma: Value,
+    #[serde(rename = "F0")]
+    friction: Value,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DriveSection {
+    #[serde(rename = "U")]
+    volts: Value,
+    #[serde(rename = "F")]
+    newtons: Value,
+    f: Value,
+    omega: Value,
+    w: Value,
+    beta: Value,
+    phi: Value,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelSection {
+    zeta: Value,
+    mu_s: Value,
+    y0: Value,
+    v0: Value,
+    uc0: Value,
+    i0: Value,
+    diode: Option<DiodeModel>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShockleySection {
+    #[serde(rename = "Is")]
+    saturation_current: Value,
+    n: Value,
+    #[serde(rename = "Rs")]
+    series_resistance: Value,
+    temperature: Value,
+}
+
+/// Line number (from 1) of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+/// `[section] key` of the line at `offset`, read from the text around it.
+fn key_at(text: &str, offset: usize) -> Option<String> {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[start..].lines().next().unwrap_or("");
+    let key = line.split_once('=').map(|(k, _)| k.trim().to_string())?;
+    let section = text[..start]
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('[') && l.ends_with(']'));
+    Some(match section {
+        Some(s) => format!("{s} {key}"),
+        None => key,
+    })
+}
+
+impl ExperimentSpec {
+    /// Read an experiment description from the text of a TOML file; `file` names it in
+    /// errors and descriptions.
+    ///
+    /// ```
+    /// use stickslip::experiment::{ExperimentSpec, Key};
+    /// let text = "[circuit]\nL = \"11.5m\"\nC = 20e-9\nR = 68\nU_t = 0.7\nR_D = 3\n\
+    ///             [drive]\nU = 1.498\nw = 0.95\n";
+    /// let spec = ExperimentSpec::from_toml(text, "exp.toml").unwrap();
+    /// assert_eq!(spec.get(Key::Inductance), Some(11.5e-3));
+    /// let bad = ExperimentSpec::from_toml("[circuit]\nQ = 3\n", "exp.toml").unwrap_err();
+    /// assert!(bad.to_string().starts_with("exp.toml, line 2, [circuit] Q: unknown field `Q`"));
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Config`] for a syntax error, an unknown section or key, a value that is not a
+    /// number or out of its key's range, or a file that describes both a circuit and a
+    /// mechanical oscillator, or a drive amplitude twice.
+    pub fn from_toml(text: &str, file: &str) -> Result<Self> {
+        let fail = |line: Option<usize>, key: Option<String>, message: String| {
+            Error::Config(ConfigError {
+                file: file.to_string(),
+                line,
+                key,
+                message,
+            })
+        };
+        let doc: Document = toml::from_str(text).map_err(|e| {
+            let at = e.span().map(|s| s.start);
+            fail(
+                at.map(|o| line_of(text, o)),
+                at.and_then(|o| key_at(text, o)),
+                e.message().to_string(),
+            )
+        })?;
+        let mut spec = ExperimentSpec::new();
+        spec.set_source(file);
+        let mut put = |section: &str, name: &str, key: Key, value: &Value| -> Result<()> {
+            let Some(v) = value else { return Ok(()) };
+            if section == "drive" && key == Key::Amplitude && spec.has(Key::Amplitude) {
+                return Err(fail(
+                    Some(line_of(text, v.span().start)),
+                    Some(format!("[{section}] {name}")),
+                    "give the drive amplitude once: U (V) or F (N)".into(),
+                ));
+            }
+            spec.set(key, v.get_ref().0).map_err(|e| {
+                fail(
+                    Some(line_of(text, v.span().start)),
+                    Some(format!("[{section}] {name}")),
+                    e.to_string(),
+                )
+            })?;
+            Ok(())
+        };
+        if let (Some(_), Some(_)) = (&doc.circuit, &doc.mechanics) {
+            return Err(fail(
+                None,
+                None,
+                "describe either [circuit] or [mechanics], not both".into(),
+            ));
+        }
+        if let Some(c) = &doc.circuit {
+            put("circuit", "L", Key::Inductance, &c.inductance)?;
+            put("circuit", "C", Key::Capacitance, &c.capacitance)?;
+            put("circuit", "R", Key::Resistance, &c.resistance)?;
+            put("circuit", "U_t", Key::TurnOn, &c.turn_on)?;
+            put("circuit", "R_D", Key::DiodeResistance, &c.diode_resistance)?;
+        }
+        if let Some(m) = &doc.mechanics {
+            put("mechanics", "m", Key::Mass, &m.m)?;
+            put("mechanics", "k", Key::Stiffness, &m.k)?;
+            put("mechanics", "gamma", Key::Damping, &m.gamma)?;
+            put("mechanics", "F0", Key::Friction, &m.friction)?;
+        }
+        if let Some(d) = &doc.drive {
+            put("drive", "U", Key::Amplitude, &d.volts)?;
+            put("drive", "F", Key::Amplitude, &d.newtons)?;
+            put("drive", "f", Key::Frequency, &d.f)?;
+            put("drive", "omega", Key::Omega, &d.omega)?;
+            put("drive", "w", Key::W, &d.w)?;
+            put("drive", "beta", Key::Beta, &d.beta)?;
+            put("drive", "phi", Key::Phi, &d.phi)?;
+        }
+        if let Some(m) = &doc.model {
+            put("model", "zeta", Key::Zeta, &m.zeta)?;
+            put("model", "mu_s", Key::MuS, &m.mu_s)?;
+            put("model", "y0", Key::Y0, &m.y0)?;
+            put("model", "v0", Key::V0, &m.v0)?;
+            put("model", "uc0", Key::Uc0, &m.uc0)?;
+            put("model", "i0", Key::I0, &m.i0)?;
+        }
+        if let Some(s) = &doc.shockley {
+            put(
+                "shockley",
+                "Is",
+                Key::SaturationCurrent,
+                &s.saturation_current,
+            )?;
+            put("shockley", "n", Key::Emission, &s.n)?;
+            put(
+                "shockley",
+                "Rs",
+                Key::SeriesResistance,
+                &s.series_resistance,
+            )?;
+            put("shockley", "temperature", Key::Temperature, &s.temperature)?;
+        }
+        if let Some(diode) = doc.model.as_ref().and_then(|m| m.diode) {
+            spec.set_diode(diode);
+        }
+        Ok(spec)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> String {
+        ExperimentSpec::from_toml(text, "x.toml")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn reads_every_section() {
+        let text = "[circuit]\nL = \"11.5mH\"\nC = 0.02e-6\nR = 68\nU_t = 0.7\nR_D = 3.0\n\
+                    [drive]\nU = 1.498\nf = \"9.97k\"\nphi = 0.5\n\
+                    [model]\nmu_s = 1.5\ny0 = 0.1\nv0 = -0.2\ndiode = \"shockley\"\n\
+                    [shockley]\nIs = \"2n\"\nn = 1.5\nRs = 1\ntemperature = 50\n";
+        let s = ExperimentSpec::from_toml(text, "x.toml").unwrap();
+        for (key, value) in [
+            (Key::Inductance, 11.5e-3),
+            (Key::Capacitance, 0.02e-6),
+            (Key::Resistance, 68.0),
+            (Key::Amplitude, 1.498),
+            (Key::Frequency, 9970.0),
+            (Key::Phi, 0.5),
+            (Key::MuS, 1.5),
+            (Key::V0, -0.2),
+            (Key::SaturationCurrent, 2e-9),
+            (Key::Temperature, 50.0),
+        ] {
+            assert_eq!(s.get(key), Some(value), "{key}");
+        }
+        assert_eq!(s.diode(), Some(DiodeModel::Shockley));
+        assert!(s.build().is_ok());
+    }
+
+    #[test]
+    fn errors_name_the_file_the_line_and_the_key() {
+        assert_eq!(
+            err("[circuit]\nL = 1\nQ = 3\n"),
+            "x.toml, line 3, [circuit] Q: unknown field `Q`, expected one of `L`, `C`, `R`, \
+             `U_t`, `R_D`"
+        );
+        assert_eq!(
+            err("[circuit]\nC = -1\n"),
+            "x.toml, line 2, [circuit] C: invalid C = -1: must be finite and > 0 (farad)"
+        );
+        let text = err("[drive]\nf = \"fast\"\n");
+        assert!(
+            text.starts_with("x.toml, line 2, [drive] f: 'fast' is not a number"),
+            "{text}"
+        );
+        let text = err("[model]\ndiode = \"ideal\"\n");
+        assert!(
+            text.contains("line 2") && text.contains("unknown variant `ideal`"),
+            "{text}"
+        );
+        let text = err("[wiring]\nx = 1\n");
+        assert!(text.contains("unknown field `wiring`"), "{text}");
+        assert!(err("[circuit]\nL = 1\n[mechanics]\nm = 1\n").contains("not both"));
+        assert!(err("[drive]\nU = 1\nF = 2\n").contains("[drive] F: give the drive amplitude once"));
+        let text = err("[circuit\nL = 1\n");
+        assert!(text.starts_with("x.toml, line 1"), "{text}");
+    }
+}

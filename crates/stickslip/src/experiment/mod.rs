@@ -1,0 +1,800 @@
+//! Experiments: what every front end (the command-line tool, the Python package, the lab
+//! server) describes and runs.
+//!
+//! An [`Experiment`] is a system (a dimensionless model, a circuit whose diodes are PWL or
+//! Shockley, or a mechanical oscillator), a drive, the friction ratio μs and an initial state.
+//! It converts to the dimensionless [`Params`], builds the right solver (the exact solver for
+//! PWL diodes and Coulomb friction, the stiff solver for Shockley diodes), chooses the
+//! steady-state options that fit that solver, and converts results back to physical units.
+//!
+//! Experiments are described value by value in an [`ExperimentSpec`] (from a TOML file, flags
+//! or keyword arguments, stacked in layers) and built by [`ExperimentSpec::build`], or made
+//! directly:
+//!
+//! ```
+//! use stickslip::experiment::Experiment;
+//! use stickslip::steady::MotionClass;
+//! // The paper's circuit at its Fig. 3 point Ω/ω0 = 0.95, β = 2.14.
+//! let experiment = Experiment::paper().with_w(0.95).unwrap().with_beta(2.14).unwrap();
+//! let steady = experiment.steady().unwrap();
+//! assert_eq!(steady.class, MotionClass::Sliding);
+//! // The same drive in volts and hertz.
+//! let scales = experiment.scales().unwrap();
+//! assert!((scales.drive_amplitude(2.14) - 1.498).abs() < 1e-12);
+//! ```
+
+mod file;
+mod key;
+mod spec;
+
+pub use file::ConfigError;
+pub use key::Key;
+pub use spec::{ExperimentSpec, SpecError};
+
+use crate::error::{Error, Result};
+use crate::params::{Parameter, Params, State};
+use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
+use crate::shockley::{DiodePair, ShockleyOptions, ShockleySolver};
+use crate::solver::Solver;
+use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
+use crate::ExactSolver;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// Which law the diode pair follows, and so which solver runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DiodeModel {
+    /// Piecewise linear U_t sgn(i) + R_D i, or Coulomb friction: the exact solver.
+    #[default]
+    Pwl,
+    /// The Shockley law of two anti-parallel diodes: the stiff solver.
+    Shockley,
+}
+
+impl DiodeModel {
+    /// `pwl` or `shockley`.
+    pub fn label(self) -> &'static str {
+        match self {
+            DiodeModel::Pwl => "pwl",
+            DiodeModel::Shockley => "shockley",
+        }
+    }
+}
+
+/// Built-in physical descriptions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// The paper's experiment ([`Circuit::paper`]).
+    Paper,
+}
+
+impl Preset {
+    /// The preset's name: `paper`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Preset::Paper => "paper",
+        }
+    }
+
+    /// The circuit it describes (with PWL diodes).
+    pub fn circuit(self) -> Circuit {
+        match self {
+            Preset::Paper => Circuit::paper(),
+        }
+    }
+}
+
+/// Where a physical description came from, for descriptions of the experiment.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Origin {
+    /// Dimensionless parameters only.
+    Parameters,
+    /// A built-in description.
+    Preset(Preset),
+    /// A file, by name.
+    File(String),
+    /// Parts given one by one.
+    Parts,
+}
+
+/// One experiment, validated. See the module documentation.
+///
+/// The drive frequency and amplitude may be absent (an experiment that a sweep or a grid
+/// completes); everything that needs them says so ([`Experiment::params`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Experiment {
+    system: Option<System>,
+    zeta: f64,
+    w: Option<f64>,
+    beta: Option<f64>,
+    phi: f64,
+    mu_s: f64,
+    initial: State,
+    origin: Origin,
+    shockley: ShockleyOptions,
+}
+
+impl Experiment {
+    fn with_system(system: Option<System>, zeta: f64, origin: Origin) -> Self {
+        Self {
+            system,
+            zeta,
+            w: None,
+            beta: None,
+            phi: 0.0,
+            mu_s: 1.0,
+            initial: State::default(),
+            origin,
+            shockley: ShockleyOptions::default(),
+        }
+    }
+
+    /// The dimensionless model at (ζ, w, β), with φ = 0, μs = 1, from rest.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when ζ < 0, w ≤ 0, β < 0 or a value is not finite.
+    pub fn dimensionless(zeta: f64, w: f64, beta: f64) -> Result<Self> {
+        let p = Params::new(zeta, w, beta)?;
+        let mut e = Self::with_system(None, p.zeta, Origin::Parameters);
+        e.w = Some(p.w);
+        e.beta = Some(p.beta);
+        Ok(e)
+    }
+
+    /// The paper's circuit with PWL diodes ([`Circuit::paper`]), no drive yet, from rest.
+    pub fn paper() -> Self {
+        Self::circuit(Circuit::paper())
+            .expect("the paper's circuit is valid")
+            .with_origin(Origin::Preset(Preset::Paper))
+    }
+
+    /// A circuit, no drive yet, from rest.
+    ///
+    /// # Errors
+    /// When the circuit is invalid.
+    pub fn circuit(circuit: Circuit) -> Result<Self> {
+        let c = Circuit::new(
+            circuit.inductance,
+            circuit.capacitance,
+            circuit.resistance,
+            circuit.diode,
+        )?;
+        Ok(Self::with_system(
+            Some(System::Circuit(c)),
+            c.scales().zeta(),
+            Origin::Parts,
+        ))
+    }
+
+    /// A mechanical oscillator, no drive yet, from rest.
+    ///
+    /// # Errors
+    /// When the oscillator is invalid.
+    pub fn mechanics(mechanics: Mechanics) -> Result<Self> {
+        let m = Mechanics::new(
+            mechanics.mass,
+            mechanics.stiffness,
+            mechanics.damping,
+            mechanics.friction,
+        )?;
+        Ok(Self::with_system(
+            Some(System::Mechanics(m)),
+            m.scales().zeta(),
+            Origin::Parts,
+        ))
+    }
+
+    /// The experiment described by the text of a TOML file ([`ExperimentSpec::from_toml`]).
+    ///
+    /// # Errors
+    /// As [`ExperimentSpec::from_toml`] and [`ExperimentSpec::build`].
+    pub fn from_toml(text: &str, file: &str) -> Result<Self> {
+        ExperimentSpec::from_toml(text, file)?.build()
+    }
+
+    /// The same experiment, said to come from `origin` (for its description).
+    pub fn with_origin(mut self, origin: Origin) -> Self {
+        self.origin = origin;
+        self
+    }
+
+    /// Set the drive frequency w = Ω/ω0.
+    ///
+    /// # Errors
+    /// When w is not finite and > 0.
+    pub fn with_w(mut self, w: f64) -> Result<Self> {
+        self.w = Some(Key::W.check(w)?);
+        Ok(self)
+    }
+
+    /// Set the drive amplitude β (U/U_t or F/F0).
+    ///
+    /// # Errors
+    /// When β is not finite and ≥ 0.
+    pub fn with_beta(mut self, beta: f64) -> Result<Self> {
+        self.beta = Some(Key::Beta.check(beta)?);
+        Ok(self)
+    }
+
+    /// Set the drive phase φ in radians.
+    ///
+    /// # Errors
+    /// When φ is not finite.
+    pub fn with_phi(mut self, phi: f64) -> Result<Self> {
+        self.phi = Key::Phi.check(phi)?;
+        Ok(self)
+    }
+
+    /// Set the static-to-kinetic friction ratio μs (not used by the Shockley diode law).
+    ///
+    /// # Errors
+    /// When μs is not finite and ≥ 1.
+    pub fn with_mu_s(mut self, mu_s: f64) -> Result<Self> {
+        self.mu_s = Key::MuS.check(mu_s)?;
+        Ok(self)
+    }
+
+    /// Set ζ of a dimensionless experiment.
+    ///
+    /// # Errors
+    /// [`SpecError::ZetaWithPhysical`] for a physical system (its parts decide ζ); when ζ is
+    /// not finite and ≥ 0.
+    pub fn with_zeta(mut self, zeta: f64) -> Result<Self> {
+        if self.system.is_some() {
+            return Err(SpecError::ZetaWithPhysical.into());
+        }
+        self.zeta = Key::Zeta.check(zeta)?;
+        Ok(self)
+    }
+
+    /// Set the dimensionless initial state (y0, v0) at τ = 0.
+    ///
+    /// # Errors
+    /// When a value is not finite.
+    pub fn with_initial(mut self, initial: State) -> Result<Self> {
+        self.initial = State::new(initial.y, initial.v)?;
+        Ok(self)
+    }
+
+    /// Set the drive frequency f in Hz (physical systems).
+    ///
+    /// # Errors
+    /// [`SpecError::NeedsPhysical`] without a physical system; when f is not finite and > 0.
+    pub fn with_frequency(self, hertz: f64) -> Result<Self> {
+        let hertz = Key::Frequency.check(hertz)?;
+        let s = self.physical_scales(Key::Frequency)?;
+        self.with_w(hertz * TAU / s.omega0)
+    }
+
+    /// Set the drive angular frequency Ω in rad/s (physical systems).
+    ///
+    /// # Errors
+    /// [`SpecError::NeedsPhysical`] without a physical system; when Ω is not finite and > 0.
+    pub fn with_omega(self, omega: f64) -> Result<Self> {
+        let omega = Key::Omega.check(omega)?;
+        let s = self.physical_scales(Key::Omega)?;
+        self.with_w(omega / s.omega0)
+    }
+
+    /// Set the drive amplitude U in volts (circuit) or F in newtons (mechanics).
+    ///
+    /// # Errors
+    /// [`SpecError::NeedsPhysical`] without a physical system; when the amplitude is not
+    /// finite and ≥ 0.
+    pub fn with_amplitude(self, amplitude: f64) -> Result<Self> {
+        let amplitude = Key::Amplitude.check(amplitude)?;
+        let s = self.physical_scales(Key::Amplitude)?;
+        self.with_beta(amplitude / s.force)
+    }
+
+    /// Use Shockley diodes in the circuit (U_t kept as the reference voltage, R_D dropped).
+    ///
+    /// # Errors
+    /// [`crate::Error::Unsupported`] without a circuit; when the pair is invalid.
+    pub fn with_shockley(mut self, pair: DiodePair) -> Result<Self> {
+        let Some(System::Circuit(c)) = self.system else {
+            return Err(Error::Unsupported(crate::Unsupported::ShockleyNeedsCircuit));
+        };
+        let c = Circuit::new(
+            c.inductance,
+            c.capacitance,
+            c.resistance,
+            c.with_shockley(pair).diode,
+        )?;
+        self.system = Some(System::Circuit(c));
+        self.zeta = c.scales().zeta();
+        Ok(self)
+    }
+
+    /// Set the accuracy of the stiff solver used with Shockley diodes.
+    ///
+    /// # Errors
+    /// When the options are invalid.
+    pub fn with_shockley_options(mut self, options: ShockleyOptions) -> Result<Self> {
+        self.shockley = options.validate()?;
+        Ok(self)
+    }
+
+    fn physical_scales(&self, key: Key) -> Result<Scales> {
+        self.scales()
+            .ok_or(Error::Spec(SpecError::NeedsPhysical { key }))
+    }
+
+    /// The physical system, if one was described (`None`: dimensionless).
+    pub fn system(&self) -> Option<&System> {
+        self.system.as_ref()
+    }
+
+    /// The circuit, if the system is one.
+    pub fn circuit_ref(&self) -> Option<&Circuit> {
+        match &self.system {
+            Some(System::Circuit(c)) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// Where the description came from.
+    pub fn origin(&self) -> &Origin {
+        &self.origin
+    }
+
+    /// The damping ratio ζ of the dimensionless model (ζ_R, the circuit resistance only,
+    /// with Shockley diodes).
+    pub fn zeta(&self) -> f64 {
+        self.zeta
+    }
+
+    /// The drive frequency w = Ω/ω0, if given.
+    pub fn w(&self) -> Option<f64> {
+        self.w
+    }
+
+    /// The drive amplitude β, if given.
+    pub fn beta(&self) -> Option<f64> {
+        self.beta
+    }
+
+    /// The drive phase φ (radians).
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// The static-to-kinetic friction ratio μs.
+    pub fn mu_s(&self) -> f64 {
+        self.mu_s
+    }
+
+    /// The dimensionless initial state at τ = 0.
+    pub fn initial(&self) -> State {
+        self.initial
+    }
+
+    /// The diode law, and so the solver.
+    pub fn diode_model(&self) -> DiodeModel {
+        match &self.system {
+            Some(System::Circuit(Circuit {
+                diode: Diode::Shockley(_),
+                ..
+            })) => DiodeModel::Shockley,
+            _ => DiodeModel::Pwl,
+        }
+    }
+
+    /// The accuracy settings of the stiff solver (used with Shockley diodes).
+    pub fn shockley_options(&self) -> &ShockleyOptions {
+        &self.shockley
+    }
+
+    /// The scales to physical units, for a physical system.
+    pub fn scales(&self) -> Option<Scales> {
+        self.system.map(|s| s.scales())
+    }
+
+    /// Physical units of samples, for a physical system.
+    pub fn units(&self) -> Option<PhysicalUnits> {
+        self.system.map(|s| PhysicalUnits {
+            circuit: matches!(s, System::Circuit(_)),
+            scales: s.scales(),
+        })
+    }
+
+    /// The dimensionless parameters.
+    ///
+    /// # Errors
+    /// [`SpecError::MissingDrive`] when the drive frequency or amplitude is missing.
+    pub fn params(&self) -> Result<Params> {
+        self.params_with(&[])
+    }
+
+    /// The dimensionless parameters with some of ζ, w, β, μs set to other values (a sweep's
+    /// or a grid's); a value set here may be missing from the experiment.
+    ///
+    /// # Errors
+    /// [`SpecError::MissingDrive`] when w or β is missing and not set here; a value out of
+    /// range.
+    pub fn params_with(&self, values: &[(Parameter, f64)]) -> Result<Params> {
+        let given = |p: Parameter| values.iter().rev().find(|(q, _)| *q == p).map(|v| v.1);
+        let w = given(Parameter::W)
+            .or(self.w)
+            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::W }))?;
+        let beta = given(Parameter::Beta)
+            .or(self.beta)
+            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::Beta }))?;
+        let zeta = given(Parameter::Zeta).unwrap_or(self.zeta);
+        let mu_s = given(Parameter::MuS).unwrap_or(self.mu_s);
+        Params::new(zeta, w, beta)?
+            .with_phi(self.phi)?
+            .with_mu_s(mu_s)
+    }
+
+    /// The same experiment with some of ζ, w, β, μs changed (ζ too, even for a physical
+    /// system: the parameters are dimensionless).
+    ///
+    /// # Errors
+    /// A value out of range.
+    pub fn with_parameter(mut self, parameter: Parameter, value: f64) -> Result<Self> {
+        let key = match parameter {
+            Parameter::Zeta => Key::Zeta,
+            Parameter::W => Key::W,
+            Parameter::Beta => Key::Beta,
+            Parameter::MuS => Key::MuS,
+        };
+        let value = key.check(value)?;
+        match parameter {
+            Parameter::Zeta => self.zeta = value,
+            Parameter::W => self.w = Some(value),
+            Parameter::Beta => self.beta = Some(value),
+            Parameter::MuS => self.mu_s = value,
+        }
+        Ok(self)
+    }
+
+    /// The factory of this experiment's solver (exact, or stiff for Shockley diodes), for
+    /// any parameters and initial state.
+    pub fn factory(&self) -> ExperimentFactory {
+        ExperimentFactory {
+            circuit: self
+                .circuit_ref()
+                .copied()
+                .filter(|_| self.diode_model() == DiodeModel::Shockley),
+            options: self.shockley,
+        }
+    }
+
+    /// A solver of this experiment from its initial state at τ = 0.
+    ///
+    /// # Errors
+    /// A missing drive ([`Experiment::params`]).
+    pub fn solver(&self) -> Result<Box<dyn Solver + Send>> {
+        self.factory().make(self.params()?, self.initial)
+    }
+
+    /// The steady-state options that fit this experiment's solver: the defaults of
+    /// [`SteadyOptions`], with the repetition tolerance of the stroboscopic map at the stiff
+    /// solver's own accuracy (its rtol, 1e-6 by default) with Shockley diodes, since its
+    /// strobes repeat only that well.
+    pub fn steady_options(&self) -> SteadyOptions {
+        match self.diode_model() {
+            DiodeModel::Pwl => SteadyOptions::default(),
+            DiodeModel::Shockley => SteadyOptions {
+                tolerance: self.shockley.rtol,
+                ..SteadyOptions::default()
+            },
+        }
+    }
+
+    /// The steady state reached from the initial state, with [`Experiment::steady_options`].
+    ///
+    /// # Errors
+    /// A missing drive; whatever the solver reports.
+    pub fn steady(&self) -> Result<SteadyState> {
+        self.steady_with(&self.steady_options())
+    }
+
+    /// The steady state reached from the initial state, with `options`.
+    ///
+    /// # Errors
+    /// A missing drive; invalid options; whatever the solver reports.
+    pub fn steady_with(&self, options: &SteadyOptions) -> Result<SteadyState> {
+        steady_state_from(&self.factory(), &self.params()?, self.initial, options)
+    }
+
+    /// The conversion of a physical description to the dimensionless model (what
+    /// `stickslip convert` prints), or `None` for a dimensionless experiment.
+    pub fn conversion(&self) -> Option<Conversion> {
+        let s = self.scales()?;
+        let drive = self.w.zip(self.beta);
+        Some(Conversion {
+            omega0: s.omega0,
+            f0: s.f0(),
+            alpha: s.alpha,
+            zeta: s.zeta(),
+            q: s.quality_factor(),
+            w: drive.map(|d| d.0),
+            beta: drive.map(|d| d.1),
+        })
+    }
+}
+
+/// `value` with an SI prefix and `unit`, to 6 significant digits (`11.5 mH`, `20 nF`,
+/// `0.7 V`).
+fn si(value: f64, unit: &str) -> String {
+    const PREFIXES: [(f64, &str); 9] = [
+        (1e9, "G"),
+        (1e6, "M"),
+        (1e3, "k"),
+        (1.0, ""),
+        (1e-3, "m"),
+        (1e-6, "µ"),
+        (1e-9, "n"),
+        (1e-12, "p"),
+        (1e-15, "f"),
+    ];
+    let magnitude = value.abs();
+    // No prefix from 0.1 to 1000: 0.7 V, not 700 mV.
+    let (scale, prefix) = if (0.1..1e3).contains(&magnitude) {
+        (1.0, "")
+    } else {
+        PREFIXES
+            .iter()
+            .copied()
+            .find(|&(scale, _)| magnitude >= scale)
+            .filter(|_| magnitude > 0.0 && magnitude < 1e12)
+            .unwrap_or((1.0, ""))
+    };
+    let scaled = value / scale;
+    // Six significant digits, without trailing zeros.
+    let digits = (5 - scaled.abs().log10().floor().max(0.0) as i32).max(0) as usize;
+    let text = format!("{scaled:.digits$}");
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    };
+    format!("{text} {prefix}{unit}")
+}
+
+impl std::fmt::Display for Experiment {
+    /// One line: which description this is, its natural frequency and drive in physical
+    /// units, and the dimensionless numbers.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let origin = match &self.origin {
+            Origin::Preset(p) => format!("preset {}", p.label()),
+            Origin::File(name) => name.clone(),
+            Origin::Parts | Origin::Parameters => "flags".into(),
+        };
+        match &self.system {
+            Some(System::Circuit(c)) => {
+                write!(
+                    f,
+                    "circuit ({origin}): L = {}, C = {}, R = {}, ",
+                    si(c.inductance, "H"),
+                    si(c.capacitance, "F"),
+                    si(c.resistance, "Ω")
+                )?;
+                match c.diode {
+                    Diode::Pwl(d) => write!(
+                        f,
+                        "U_t = {}, R_D = {}; ",
+                        si(d.turn_on, "V"),
+                        si(d.resistance, "Ω")
+                    )?,
+                    Diode::Shockley(d) => write!(
+                        f,
+                        "Shockley diodes I_s = {}, n = {}, R_s = {} at {} °C, U_t = {} \
+                         (reference); ",
+                        si(d.pair.saturation_current, "A"),
+                        d.pair.emission,
+                        si(d.pair.series_resistance, "Ω"),
+                        d.pair.temperature,
+                        si(d.reference_voltage, "V")
+                    )?,
+                }
+            }
+            Some(System::Mechanics(m)) => write!(
+                f,
+                "mechanics ({origin}): m = {}, k = {}, γ = {}, F0 = {}; ",
+                si(m.mass, "kg"),
+                si(m.stiffness, "N/m"),
+                si(m.damping, "N·s/m"),
+                si(m.friction, "N")
+            )?,
+            None => {}
+        }
+        if let Some(s) = self.scales() {
+            write!(f, "ω0 = {:.1} rad/s (f0 = {:.2} Hz); ", s.omega0, s.f0())?;
+            if let (Some(w), Some(beta)) = (self.w, self.beta) {
+                let unit = if matches!(self.system, Some(System::Mechanics(_))) {
+                    "N"
+                } else {
+                    "V"
+                };
+                write!(
+                    f,
+                    "drive {:.6} {unit} at {:.3} Hz; ",
+                    s.drive_amplitude(beta),
+                    s.drive_omega(w) / TAU
+                )?;
+            }
+        }
+        let value =
+            |x: Option<f64>| x.map_or_else(|| "(not set)".to_string(), |x| format!("{x:.6}"));
+        write!(
+            f,
+            "dimensionless: ζ = {:.6}, w = {}, β = {}, φ = {}, μs = {}, y0 = {}, v0 = {}",
+            self.zeta,
+            value(self.w),
+            value(self.beta),
+            self.phi,
+            self.mu_s,
+            self.initial.y,
+            self.initial.v
+        )
+    }
+}
+
+/// The solver factory of an [`Experiment`]: the exact solver, or the stiff solver of the
+/// experiment's Shockley circuit (ζ of the parameters is then ζ_R).
+#[derive(Debug, Clone, Copy)]
+pub struct ExperimentFactory {
+    circuit: Option<Circuit>,
+    options: ShockleyOptions,
+}
+
+impl SolverFactory for ExperimentFactory {
+    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        let params = params.validate()?;
+        let initial = State::new(initial.y, initial.v)?;
+        match self
+            .circuit
+            .map(|c| c.shockley_model(&params))
+            .transpose()?
+            .flatten()
+        {
+            Some(model) => Ok(Box::new(ShockleySolver::new(model, initial, self.options)?)),
+            None => Ok(Box::new(ExactSolver::new(params, initial))),
+        }
+    }
+}
+
+/// Conversion between the dimensionless samples of a run and physical units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicalUnits {
+    /// Whether the system is a circuit (volts, amperes) or a mechanical oscillator (metres,
+    /// newtons).
+    pub circuit: bool,
+    /// The scales.
+    pub scales: Scales,
+}
+
+impl PhysicalUnits {
+    /// Column names of [`PhysicalUnits::convert`]: `t_s, uc_V, i_A, u_V` for a circuit,
+    /// `t_s, r_m, rdot_m_s, F_N` for a mechanical oscillator.
+    pub fn columns(&self) -> [&'static str; 4] {
+        if self.circuit {
+            ["t_s", "uc_V", "i_A", "u_V"]
+        } else {
+            ["t_s", "r_m", "rdot_m_s", "F_N"]
+        }
+    }
+
+    /// Time (s), position (V or m), velocity (A or m/s) and drive (V or N) of a sample at τ
+    /// with position y, velocity y' and drive β cos(wτ + φ).
+    pub fn convert(&self, tau: f64, y: f64, v: f64, drive: f64) -> [f64; 4] {
+        let s = &self.scales;
+        [s.time(tau), y * s.position, v * s.velocity, drive * s.force]
+    }
+}
+
+/// What a physical description means in the dimensionless model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Conversion {
+    /// Natural angular frequency ω0 (rad/s).
+    pub omega0: f64,
+    /// Natural frequency f0 = ω0/2π (Hz).
+    pub f0: f64,
+    /// The paper's α = 2ζω0 (1/s).
+    pub alpha: f64,
+    /// Damping ratio ζ.
+    pub zeta: f64,
+    /// Quality factor Q = 1/(2ζ).
+    #[serde(rename = "Q")]
+    pub q: f64,
+    /// Drive frequency w = Ω/ω0, when a drive was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub w: Option<f64>,
+    /// Drive amplitude β, when a drive was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta: Option<f64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::steady::MotionClass;
+
+    #[test]
+    fn paper_shockley_uses_the_stiff_solver_with_its_own_zeta() {
+        let e = Experiment::paper()
+            .with_shockley(DiodePair::one_n4148())
+            .unwrap()
+            .with_w(0.95)
+            .unwrap()
+            .with_beta(2.14)
+            .unwrap();
+        assert_eq!(e.diode_model(), DiodeModel::Shockley);
+        let c = Circuit::paper();
+        assert!((2.0 * e.zeta() - c.resistance / c.impedance()).abs() < 1e-15);
+        assert_eq!(e.steady_options().tolerance, 1e-6);
+        let solver = e.solver().unwrap();
+        assert_eq!(solver.params().zeta, e.zeta());
+    }
+
+    #[test]
+    fn a_missing_drive_is_named() {
+        let e = Experiment::paper().with_w(0.9).unwrap();
+        assert_eq!(
+            e.params(),
+            Err(Error::Spec(SpecError::MissingDrive { key: Key::Beta }))
+        );
+        let p = e.params_with(&[(Parameter::Beta, 1.6)]).unwrap();
+        assert_eq!((p.w, p.beta), (0.9, 1.6));
+    }
+
+    #[test]
+    fn physical_setters_agree_with_the_scales() {
+        let e = Experiment::paper()
+            .with_frequency(9.97e3)
+            .unwrap()
+            .with_amplitude(1.498)
+            .unwrap();
+        let expected = Circuit::paper()
+            .scales()
+            .params(1.498, 9.97e3 * TAU, 0.0)
+            .unwrap();
+        assert_eq!(e.params().unwrap(), expected);
+        assert!(Experiment::dimensionless(0.1, 1.0, 1.0)
+            .unwrap()
+            .with_frequency(1.0)
+            .is_err());
+        assert!(Experiment::paper().with_zeta(0.1).is_err());
+    }
+
+    #[test]
+    fn steady_state_of_a_mechanical_oscillator() {
+        let m = Mechanics::new(2.0, 8.0, 0.4, 0.5).unwrap();
+        let e = Experiment::mechanics(m)
+            .unwrap()
+            .with_omega(1.8)
+            .unwrap()
+            .with_amplitude(1.0)
+            .unwrap();
+        let s = e.steady().unwrap();
+        assert_eq!(s.class, MotionClass::Sliding);
+        let units = e.units().unwrap();
+        assert_eq!(units.columns()[1], "r_m");
+        assert_eq!(units.convert(2.0, 1.0, 0.0, 0.0)[0], 1.0);
+    }
+
+    #[test]
+    fn descriptions_use_si_prefixes() {
+        assert_eq!(si(11.5e-3, "H"), "11.5 mH");
+        assert_eq!(si(0.02e-6, "F"), "20 nF");
+        assert_eq!(si(68.0, "Ω"), "68 Ω");
+        assert_eq!(si(4.352e-9, "A"), "4.352 nA");
+        assert_eq!(si(0.0, "Ω"), "0 Ω");
+        assert_eq!(si(65938.0, "Hz"), "65.938 kHz");
+        let text = Experiment::paper().to_string();
+        assert!(text.starts_with("circuit (preset paper): L = 11.5 mH, C = 20 nF, R = 68 Ω, U_t = 0.7 V, R_D = 3 Ω; ω0 = 65938.0 rad/s"), "{text}");
+    }
+
+    #[test]
+    fn experiments_round_trip_through_serde() {
+        let e = Experiment::paper().with_w(0.7).unwrap();
+        let json = serde_json::to_string(&e).unwrap();
+        let back: Experiment = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, e);
+    }
+}

@@ -1,0 +1,550 @@
+//! An experiment as described: every value optional, in layers (a preset, a file, flags or
+//! keyword arguments), turned into an [`Experiment`] by [`ExperimentSpec::build`].
+
+use super::key::Key;
+use super::{DiodeModel, Experiment, Origin, Preset};
+use crate::error::{Error, Result, Unsupported};
+use crate::params::State;
+use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System};
+use crate::shockley::{DiodePair, ShockleyOptions};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+
+/// Keys that describe a circuit.
+const CIRCUIT_KEYS: [Key; 5] = [
+    Key::Inductance,
+    Key::Capacitance,
+    Key::Resistance,
+    Key::TurnOn,
+    Key::DiodeResistance,
+];
+/// Keys that describe a mechanical oscillator.
+const MECHANICS_KEYS: [Key; 4] = [Key::Mass, Key::Stiffness, Key::Damping, Key::Friction];
+/// Keys that mean something only with a physical description.
+const PHYSICAL_ONLY: [Key; 5] = [
+    Key::Amplitude,
+    Key::Frequency,
+    Key::Omega,
+    Key::Uc0,
+    Key::I0,
+];
+/// Groups of keys that give the same quantity: a layer that sets one of them replaces the
+/// whole group of the layers below, and one layer may set only one of each.
+const GROUPS: [(&[Key], &str); 4] = [
+    (&[Key::W, Key::Frequency, Key::Omega], "drive frequency"),
+    (&[Key::Beta, Key::Amplitude], "drive amplitude"),
+    (&[Key::Y0, Key::Uc0], "initial position"),
+    (&[Key::V0, Key::I0], "initial velocity"),
+];
+
+/// An experiment description that is incomplete or contradicts itself.
+///
+/// `Display` names keys by [`Key::name`]; [`SpecError::render`] names them as the caller's
+/// own interface does (the command-line tool's flags, say).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SpecError {
+    /// A part of a physical description is missing.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    Missing {
+        /// The missing value.
+        key: Key,
+        /// Whether the description is of a circuit (else a mechanical oscillator).
+        circuit: bool,
+    },
+    /// The drive frequency (`key` = [`Key::W`]) or amplitude ([`Key::Beta`]) is needed and
+    /// was not given.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    MissingDrive {
+        /// [`Key::W`] or [`Key::Beta`].
+        key: Key,
+    },
+    /// Two values that give the same quantity were both given.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    Twice {
+        /// The first value.
+        first: Key,
+        /// The second value.
+        second: Key,
+        /// The quantity they both give.
+        what: &'static str,
+    },
+    /// ζ was given with a physical description, whose parts decide it.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    ZetaWithPhysical,
+    /// A circuit and a mechanical oscillator were both described.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    CircuitAndMechanics {
+        /// A mechanical value that was given.
+        mechanical: Key,
+    },
+    /// A physical value was given without a physical description to convert it with.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    NeedsPhysical {
+        /// The physical value.
+        key: Key,
+    },
+}
+
+impl SpecError {
+    /// The message, one line, with each key named by `name` (e.g. a command-line flag).
+    pub fn render(&self, name: &dyn Fn(Key) -> String) -> String {
+        match *self {
+            SpecError::Missing { key, circuit: true } => format!(
+                "a circuit description needs {} (or use the {} paper)",
+                name(key),
+                name(Key::Preset)
+            ),
+            SpecError::Missing {
+                key,
+                circuit: false,
+            } => format!("a mechanical description needs {}", name(key)),
+            SpecError::MissingDrive { key: Key::Beta } => format!(
+                "missing drive amplitude: give {} (U/U_t), or {} with a physical description",
+                name(Key::Beta),
+                name(Key::Amplitude)
+            ),
+            SpecError::MissingDrive { .. } => format!(
+                "missing drive frequency: give {} (Ω/ω0), or {}/{} with a physical description",
+                name(Key::W),
+                name(Key::Frequency),
+                name(Key::Omega),
+            ),
+            SpecError::Twice {
+                first,
+                second,
+                what,
+            } => format!("give the {what} once: {} or {}", name(first), name(second)),
+            SpecError::ZetaWithPhysical => format!(
+                "{} conflicts with a physical description (ζ follows from its parts); change {} \
+                 instead",
+                name(Key::Zeta),
+                name(Key::Resistance)
+            ),
+            SpecError::CircuitAndMechanics { mechanical } => format!(
+                "the mechanical values ({}, {}, {}, {}) cannot be combined with a circuit \
+                 description (got {})",
+                name(Key::Mass),
+                name(Key::Stiffness),
+                name(Key::Damping),
+                name(Key::Friction),
+                name(mechanical)
+            ),
+            SpecError::NeedsPhysical { key } => format!(
+                "{} is a physical value: also describe the system (the {} paper, a circuit or \
+                 a mechanical oscillator)",
+                name(key),
+                name(Key::Preset)
+            ),
+        }
+    }
+}
+
+/// An experiment description in which every value is optional.
+///
+/// Values are checked one by one as they are set ([`Key::check`]); the description as a
+/// whole is checked by [`ExperimentSpec::build`]. Descriptions stack: [`ExperimentSpec::overlay`]
+/// puts one over another (a file over a preset, flags over a file), where the upper layer
+/// wins value by value, and a layer that gives a quantity in any form (the drive frequency as
+/// w, f or Ω, say) replaces that quantity of the layers below.
+///
+/// ```
+/// use stickslip::experiment::{ExperimentSpec, Key, Preset};
+/// let mut spec = ExperimentSpec::new();
+/// spec.set_preset(Preset::Paper);
+/// spec.set(Key::Frequency, 9.97e3).unwrap();
+/// spec.set(Key::Amplitude, 1.498).unwrap();
+/// let experiment = spec.build().unwrap();
+/// let p = experiment.params().unwrap();
+/// assert!((p.beta - 2.14).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ExperimentSpec {
+    values: BTreeMap<Key, f64>,
+    preset: Option<Preset>,
+    diode: Option<DiodeModel>,
+    /// Where the values came from (a file name), for descriptions and messages.
+    source: Option<String>,
+}
+
+impl ExperimentSpec {
+    /// An empty description.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Set `key` to `value` (in the key's unit, [`Key::description`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when the value is outside the key's range ([`Key::check`]);
+    /// for [`Key::Diode`] and [`Key::Preset`], which are not numbers (use
+    /// [`ExperimentSpec::set_diode`] and [`ExperimentSpec::set_preset`]).
+    pub fn set(&mut self, key: Key, value: f64) -> Result<&mut Self> {
+        self.values.insert(key, key.check(value)?);
+        Ok(self)
+    }
+
+    /// This description with `key` set to `value` ([`ExperimentSpec::set`]).
+    ///
+    /// # Errors
+    /// As [`ExperimentSpec::set`].
+    pub fn with(mut self, key: Key, value: f64) -> Result<Self> {
+        self.set(key, value)?;
+        Ok(self)
+    }
+
+    /// Remove `key`.
+    pub fn unset(&mut self, key: Key) -> &mut Self {
+        self.values.remove(&key);
+        match key {
+            Key::Preset => self.preset = None,
+            Key::Diode => self.diode = None,
+            _ => {}
+        }
+        self
+    }
+
+    /// The value of `key`, if set.
+    pub fn get(&self, key: Key) -> Option<f64> {
+        self.values.get(&key).copied()
+    }
+
+    /// Whether `key` is set.
+    pub fn has(&self, key: Key) -> bool {
+        match key {
+            Key::Preset => self.preset.is_some(),
+            Key::Diode => self.diode.is_some(),
+            _ => self.values.contains_key(&key),
+        }
+    }
+
+    /// Start from a built-in physical description.
+    pub fn set_preset(&mut self, preset: Preset) -> &mut Self {
+        self.preset = Some(preset);
+        self
+    }
+
+    /// Choose the diode law (a circuit is needed for [`DiodeModel::Shockley`]).
+    pub fn set_diode(&mut self, diode: DiodeModel) -> &mut Self {
+        self.diode = Some(diode);
+        self
+    }
+
+    /// Name where the values came from (a file name), for descriptions.
+    pub fn set_source(&mut self, source: impl Into<String>) -> &mut Self {
+        self.source = Some(source.into());
+        self
+    }
+
+    /// The preset, if any.
+    pub fn preset(&self) -> Option<Preset> {
+        self.preset
+    }
+
+    /// The diode law, if chosen.
+    pub fn diode(&self) -> Option<DiodeModel> {
+        self.diode
+    }
+
+    /// This description with `top` over it: each value of `top` wins, and a quantity that
+    /// `top` gives in any form (see the type's documentation) replaces the same quantity
+    /// below.
+    pub fn overlay(&self, top: &ExperimentSpec) -> ExperimentSpec {
+        let mut out = self.clone();
+        for (keys, _) in GROUPS {
+            if keys.iter().any(|k| top.values.contains_key(k)) {
+                for k in keys {
+                    out.values.remove(k);
+                }
+            }
+        }
+        for (&k, &v) in &top.values {
+            out.values.insert(k, v);
+        }
+        out.preset = top.preset.or(self.preset);
+        out.diode = top.diode.or(self.diode);
+        out.source = top.source.clone().or_else(|| self.source.clone());
+        out
+    }
+
+    /// Check the description as a whole and build the experiment. The drive frequency and
+    /// amplitude may be missing (a sweep or a grid sets them); [`Experiment::params`] asks
+    /// for them.
+    ///
+    /// # Errors
+    /// - [`Error::Spec`]: a missing part of a physical description, a quantity given twice,
+    ///   ζ with a physical description, a circuit with mechanical values, a physical value
+    ///   (U, f, Ω, u_C(0), i(0)) without a physical description;
+    /// - [`Error::Unsupported`]: Shockley diodes without a circuit;
+    /// - [`Error::InvalidParameter`]: a value out of range after conversion (w from f, say).
+    pub fn build(&self) -> Result<Experiment> {
+        let has = |k: Key| self.values.contains_key(&k);
+        let circuit = self.preset.is_some() || CIRCUIT_KEYS.iter().any(|&k| has(k));
+        let mechanical = MECHANICS_KEYS.iter().copied().find(|&k| has(k));
+        if let (true, Some(key)) = (circuit, mechanical) {
+            return Err(SpecError::CircuitAndMechanics { mechanical: key }.into());
+        }
+        let model = self.diode.unwrap_or_default();
+        let system = if mechanical.is_some() {
+            let need = |key: Key| {
+                self.get(key).ok_or(Error::Spec(SpecError::Missing {
+                    key,
+                    circuit: false,
+                }))
+            };
+            Some(System::Mechanics(Mechanics::new(
+                need(Key::Mass)?,
+                need(Key::Stiffness)?,
+                need(Key::Damping)?,
+                need(Key::Friction)?,
+            )?))
+        } else if circuit {
+            Some(System::Circuit(self.circuit(model)?))
+        } else {
+            None
+        };
+        if model == DiodeModel::Shockley && !matches!(system, Some(System::Circuit(_))) {
+            return Err(Error::Unsupported(Unsupported::ShockleyNeedsCircuit));
+        }
+        if system.is_none() {
+            if let Some(key) = PHYSICAL_ONLY.iter().copied().find(|&k| has(k)) {
+                return Err(SpecError::NeedsPhysical { key }.into());
+            }
+        }
+        for (keys, what) in GROUPS {
+            let given: Vec<Key> = keys.iter().copied().filter(|&k| has(k)).collect();
+            if given.len() > 1 {
+                return Err(SpecError::Twice {
+                    first: given[0],
+                    second: given[1],
+                    what,
+                }
+                .into());
+            }
+        }
+        let scales = system.map(|s| s.scales());
+        let zeta = match (scales, self.get(Key::Zeta)) {
+            (Some(_), Some(_)) => return Err(SpecError::ZetaWithPhysical.into()),
+            (Some(s), None) => s.zeta(),
+            (None, Some(z)) => z,
+            (None, None) => Circuit::paper().scales().zeta(),
+        };
+        // Physical values convert with the scales; without scales they were rejected above.
+        let to_w = |omega: f64| scales.map(|s| omega / s.omega0);
+        let w = match (
+            self.get(Key::W),
+            self.get(Key::Frequency),
+            self.get(Key::Omega),
+        ) {
+            (Some(w), _, _) => Some(w),
+            (None, Some(f), _) => to_w(f * TAU),
+            (None, None, Some(omega)) => to_w(omega),
+            (None, None, None) => None,
+        };
+        let beta = match (self.get(Key::Beta), self.get(Key::Amplitude)) {
+            (Some(b), _) => Some(b),
+            (None, Some(u)) => scales.map(|s| u / s.force),
+            (None, None) => None,
+        };
+        let y0 = match (self.get(Key::Y0), self.get(Key::Uc0)) {
+            (Some(y), _) => y,
+            (None, Some(u)) => scales.map_or(u, |s| u / s.position),
+            (None, None) => 0.0,
+        };
+        let v0 = match (self.get(Key::V0), self.get(Key::I0)) {
+            (Some(v), _) => v,
+            (None, Some(i)) => scales.map_or(i, |s| i / s.velocity),
+            (None, None) => 0.0,
+        };
+        let origin = match (system, self.preset, &self.source) {
+            (None, _, _) => Origin::Parameters,
+            (Some(_), Some(p), _) => Origin::Preset(p),
+            (Some(_), None, Some(file)) => Origin::File(file.clone()),
+            (Some(_), None, None) => Origin::Parts,
+        };
+        let mut experiment = Experiment {
+            system,
+            zeta: Key::Zeta.check(zeta)?,
+            w: None,
+            beta: None,
+            phi: self.get(Key::Phi).unwrap_or(0.0),
+            mu_s: self.get(Key::MuS).unwrap_or(1.0),
+            initial: State::new(y0, v0)?,
+            origin,
+            shockley: ShockleyOptions::default(),
+        };
+        if let Some(w) = w {
+            experiment.w = Some(Key::W.check(w)?);
+        }
+        if let Some(beta) = beta {
+            experiment.beta = Some(Key::Beta.check(beta)?);
+        }
+        Ok(experiment)
+    }
+
+    /// The circuit: its parts from the values, else from the preset.
+    fn circuit(&self, model: DiodeModel) -> Result<Circuit> {
+        let base = self.preset.map(Preset::circuit);
+        let part = |key: Key, from_base: Option<f64>| {
+            self.get(key)
+                .or(from_base)
+                .ok_or(Error::Spec(SpecError::Missing { key, circuit: true }))
+        };
+        let inductance = part(Key::Inductance, base.map(|b| b.inductance))?;
+        let capacitance = part(Key::Capacitance, base.map(|b| b.capacitance))?;
+        let resistance = part(Key::Resistance, base.map(|b| b.resistance))?;
+        let base_diode = base.map(|b| b.diode);
+        let turn_on = part(Key::TurnOn, base_diode.map(|d| d.reference_voltage()))?;
+        let diode = match model {
+            DiodeModel::Pwl => {
+                let base_rd = match base_diode {
+                    Some(Diode::Pwl(d)) => Some(d.resistance),
+                    _ => None,
+                };
+                Diode::Pwl(PwlDiode::new(
+                    turn_on,
+                    part(Key::DiodeResistance, base_rd)?,
+                )?)
+            }
+            DiodeModel::Shockley => {
+                let d = DiodePair::one_n4148();
+                let pair = DiodePair::new(
+                    self.get(Key::SaturationCurrent)
+                        .unwrap_or(d.saturation_current),
+                    self.get(Key::Emission).unwrap_or(d.emission),
+                    self.get(Key::SeriesResistance)
+                        .unwrap_or(d.series_resistance),
+                    self.get(Key::Temperature).unwrap_or(d.temperature),
+                )?;
+                Diode::Shockley(ShockleyDiode::new(pair, turn_on)?)
+            }
+        };
+        Circuit::new(inductance, capacitance, resistance, diode)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(pairs: &[(Key, f64)]) -> ExperimentSpec {
+        let mut s = ExperimentSpec::new();
+        for &(k, v) in pairs {
+            s.set(k, v).unwrap();
+        }
+        s
+    }
+
+    #[test]
+    fn dimensionless_defaults_to_the_papers_damping() {
+        let e = spec(&[(Key::W, 0.9), (Key::Beta, 1.6)]).build().unwrap();
+        let p = e.params().unwrap();
+        assert_eq!(p.zeta, Circuit::paper().scales().zeta());
+        assert_eq!((p.w, p.beta, p.phi, p.mu_s), (0.9, 1.6, 0.0, 1.0));
+        assert!(e.system().is_none());
+    }
+
+    #[test]
+    fn the_preset_converts_a_physical_drive_exactly_as_the_scales_do() {
+        let mut s = spec(&[(Key::Frequency, 9.97e3), (Key::Amplitude, 1.498)]);
+        s.set_preset(Preset::Paper);
+        let p = s.build().unwrap().params().unwrap();
+        let scales = Circuit::paper().scales();
+        let expected = scales.params(1.498, 9.97e3 * TAU, 0.0).unwrap();
+        assert_eq!(p, expected);
+    }
+
+    #[test]
+    fn layers_replace_a_quantity_whatever_its_form() {
+        let mut file = spec(&[(Key::W, 0.5), (Key::Beta, 2.0)]);
+        file.set_preset(Preset::Paper);
+        let flags = spec(&[(Key::Frequency, 1e4)]);
+        let e = file.overlay(&flags).build().unwrap();
+        let p = e.params().unwrap();
+        assert!((p.w - 1e4 * TAU / Circuit::paper().scales().omega0).abs() < 1e-15);
+        assert_eq!(p.beta, 2.0);
+    }
+
+    #[test]
+    fn contradictions_and_gaps_are_typed() {
+        let err = |s: ExperimentSpec| s.build().unwrap_err();
+        assert_eq!(
+            err(spec(&[(Key::Inductance, 1e-3)])),
+            Error::Spec(SpecError::Missing {
+                key: Key::Capacitance,
+                circuit: true
+            })
+        );
+        assert_eq!(
+            err(spec(&[
+                (Key::Mass, 1.0),
+                (Key::Stiffness, 1.0),
+                (Key::Damping, 0.0)
+            ])),
+            Error::Spec(SpecError::Missing {
+                key: Key::Friction,
+                circuit: false
+            })
+        );
+        let mut both = spec(&[(Key::Mass, 1.0)]);
+        both.set_preset(Preset::Paper);
+        assert!(matches!(
+            err(both),
+            Error::Spec(SpecError::CircuitAndMechanics { .. })
+        ));
+        assert_eq!(
+            err(spec(&[(Key::Amplitude, 1.0), (Key::W, 1.0)])),
+            Error::Spec(SpecError::NeedsPhysical {
+                key: Key::Amplitude
+            })
+        );
+        let mut twice = spec(&[(Key::Frequency, 1e3), (Key::Omega, 5.0)]);
+        twice.set_preset(Preset::Paper);
+        assert!(matches!(err(twice), Error::Spec(SpecError::Twice { .. })));
+        let mut zeta = spec(&[(Key::Zeta, 0.1)]);
+        zeta.set_preset(Preset::Paper);
+        assert_eq!(err(zeta), Error::Spec(SpecError::ZetaWithPhysical));
+        let mut shockley = spec(&[(Key::W, 1.0)]);
+        shockley.set_diode(DiodeModel::Shockley);
+        assert_eq!(
+            err(shockley),
+            Error::Unsupported(Unsupported::ShockleyNeedsCircuit)
+        );
+    }
+
+    #[test]
+    fn messages_name_keys_as_the_caller_does() {
+        let e = SpecError::MissingDrive { key: Key::W };
+        assert_eq!(
+            e.to_string(),
+            "missing drive frequency: give w (Ω/ω0), or f/omega with a physical description"
+        );
+        let flags = e.render(&|k| format!("--{}", k.name()));
+        assert!(flags.starts_with("missing drive frequency: give --w"));
+    }
+
+    #[test]
+    fn shockley_needs_no_r_d_and_keeps_u_t() {
+        let mut s = spec(&[
+            (Key::Inductance, 11.5e-3),
+            (Key::Capacitance, 20e-9),
+            (Key::Resistance, 68.0),
+            (Key::TurnOn, 0.7),
+            (Key::Emission, 1.5),
+        ]);
+        s.set_diode(DiodeModel::Shockley);
+        let e = s.build().unwrap();
+        let Some(System::Circuit(c)) = e.system() else {
+            panic!("a circuit")
+        };
+        let Diode::Shockley(d) = c.diode else {
+            panic!("Shockley diodes")
+        };
+        assert_eq!((d.pair.emission, d.reference_voltage), (1.5, 0.7));
+        assert_eq!(
+            d.pair.saturation_current,
+            DiodePair::one_n4148().saturation_current
+        );
+    }
+}

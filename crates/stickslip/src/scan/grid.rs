@@ -1,0 +1,276 @@
+//! Steady motions on a grid of two parameters, computed in parallel (rayon), each point from
+//! the experiment's initial state (rest, as in the paper's Fig. 7).
+
+use super::axis::Axis;
+use super::monitor::Monitor;
+use crate::error::{Error, Result};
+use crate::experiment::Experiment;
+use crate::params::Params;
+use crate::steady::{steady_state_from, MotionClass, SolverFactory, SteadyOptions};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::ops::{ControlFlow, Range};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+
+/// One point of a grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GridPoint {
+    /// The parameters of the point.
+    pub params: Params,
+    /// Motion class.
+    pub class: MotionClass,
+    /// Period in drive periods (`None`: none found within the cap).
+    pub period: Option<usize>,
+    /// Stops of non-zero duration per drive period.
+    pub stops_per_period: f64,
+    /// Gain (y_max − y_min)/(2β).
+    pub gain: f64,
+    /// Whether the cycle is symmetric.
+    pub symmetric: bool,
+    /// Drive periods run before the cycle was recognised.
+    pub periods_to_settle: usize,
+}
+
+/// A finished grid: its two axes and its points, first-axis-major: `points[i·n + j]` holds
+/// (first_i, second_j) with n = second.len().
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GridMap {
+    /// The first axis (rows).
+    pub first: Axis,
+    /// The second axis (columns).
+    pub second: Axis,
+    /// The points.
+    pub points: Vec<GridPoint>,
+}
+
+impl GridMap {
+    /// The point at (first_i, second_j).
+    ///
+    /// # Panics
+    /// When i or j is out of range.
+    pub fn at(&self, i: usize, j: usize) -> &GridPoint {
+        assert!(
+            i < self.first.len() && j < self.second.len(),
+            "index out of the grid"
+        );
+        &self.points[i * self.second.len() + j]
+    }
+}
+
+impl std::fmt::Debug for Grid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Grid")
+            .field("experiment", &self.experiment)
+            .field("first", &self.first)
+            .field("second", &self.second)
+            .field("options", &self.options)
+            .field("threads", &self.threads)
+            .finish_non_exhaustive()
+    }
+}
+
+/// A grid of two distinct parameters of an experiment (see the module documentation).
+///
+/// Defaults: the experiment's steady-state options ([`Experiment::steady_options`], without
+/// the spectrum, which a grid never computes); rayon's global thread pool.
+#[derive(Clone)]
+pub struct Grid {
+    experiment: Experiment,
+    factory: Arc<dyn SolverFactory + Send>,
+    first: Axis,
+    second: Axis,
+    options: SteadyOptions,
+    threads: Option<usize>,
+}
+
+impl Grid {
+    /// A grid of `first` × `second` over `experiment`, which needs no value of either
+    /// parameter.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when both axes vary the same parameter; a value out of
+    /// range for the model; a drive value missing that the grid does not set.
+    pub fn new(experiment: &Experiment, first: Axis, second: Axis) -> Result<Self> {
+        if first.parameter() == second.parameter() {
+            return Err(Error::InvalidParameter {
+                name: first.parameter().label(),
+                value: f64::NAN,
+                allowed: "a grid needs two different parameters",
+            });
+        }
+        let (p, q) = (first.parameter(), second.parameter());
+        for &a in first.values() {
+            experiment.params_with(&[(p, a), (q, second.values()[0])])?;
+        }
+        for &b in second.values() {
+            experiment.params_with(&[(p, first.values()[0]), (q, b)])?;
+        }
+        Ok(Self {
+            options: experiment.steady_options().with_spectrum(false),
+            factory: Arc::new(experiment.factory()),
+            experiment: experiment.clone(),
+            first,
+            second,
+            threads: None,
+        })
+    }
+
+    /// Build solvers with `factory` instead of the experiment's own (for another solver of the
+    /// same model).
+    pub fn with_factory(mut self, factory: impl SolverFactory + Send + 'static) -> Self {
+        self.factory = Arc::new(factory);
+        self
+    }
+
+    /// Use these steady-state options (the spectrum is never computed).
+    ///
+    /// # Errors
+    /// When the options are invalid.
+    pub fn options(mut self, options: SteadyOptions) -> Result<Self> {
+        self.options = options.validate()?.with_spectrum(false);
+        Ok(self)
+    }
+
+    /// Compute on a pool of `threads` threads of its own instead of rayon's global pool
+    /// (results are the same for any number).
+    ///
+    /// # Errors
+    /// When `threads` is 0.
+    pub fn threads(mut self, threads: usize) -> Result<Self> {
+        if threads == 0 {
+            return Err(Error::InvalidParameter {
+                name: "threads",
+                value: 0.0,
+                allowed: "must be at least 1",
+            });
+        }
+        self.threads = Some(threads);
+        Ok(self)
+    }
+
+    /// The steady-state options used.
+    pub fn steady_options(&self) -> &SteadyOptions {
+        &self.options
+    }
+
+    /// The first axis (rows).
+    pub fn first(&self) -> &Axis {
+        &self.first
+    }
+
+    /// The second axis (columns).
+    pub fn second(&self) -> &Axis {
+        &self.second
+    }
+
+    /// Rows and columns.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.first.len(), self.second.len())
+    }
+
+    /// The point at (first_i, second_j), computed alone.
+    ///
+    /// # Errors
+    /// Whatever the solver reports.
+    ///
+    /// # Panics
+    /// When i or j is out of range.
+    pub fn point(&self, i: usize, j: usize) -> Result<GridPoint> {
+        let params = self.experiment.params_with(&[
+            (self.first.parameter(), self.first.values()[i]),
+            (self.second.parameter(), self.second.values()[j]),
+        ])?;
+        let s = steady_state_from(
+            self.factory.as_ref(),
+            &params,
+            self.experiment.initial(),
+            &self.options,
+        )?;
+        Ok(GridPoint {
+            params,
+            class: s.class,
+            period: s.period,
+            stops_per_period: s.stops_per_period,
+            gain: s.gain,
+            symmetric: s.symmetric,
+            periods_to_settle: s.periods_to_settle,
+        })
+    }
+
+    /// Compute the whole grid; `monitor` sees every finished point and can stop the work.
+    ///
+    /// # Errors
+    /// [`Error::Cancelled`]; the first solver failure.
+    pub fn run(&self, monitor: &dyn Monitor) -> Result<GridMap> {
+        let (rows, cols) = self.shape();
+        let points = self.run_block(0..rows, 0..cols, monitor)?;
+        Ok(GridMap {
+            first: self.first.clone(),
+            second: self.second.clone(),
+            points,
+        })
+    }
+
+    /// Compute the block `rows` × `cols` of the grid, row-major; `monitor` sees every
+    /// finished point (counted within the block) and can stop the work. A grid computed
+    /// block by block equals the grid computed at once.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a block outside the grid; [`Error::Cancelled`]; the
+    /// first solver failure.
+    pub fn run_block(
+        &self,
+        rows: Range<usize>,
+        cols: Range<usize>,
+        monitor: &dyn Monitor,
+    ) -> Result<Vec<GridPoint>> {
+        let (nr, nc) = self.shape();
+        if rows.start > rows.end || rows.end > nr || cols.start > cols.end || cols.end > nc {
+            return Err(Error::InvalidParameter {
+                name: "block",
+                value: rows.end.max(cols.end) as f64,
+                allowed: "the block must lie inside the grid",
+            });
+        }
+        let width = cols.len();
+        let total = rows.len() * width;
+        let stop = AtomicBool::new(false);
+        let done = AtomicUsize::new(0);
+        let work = || -> Result<Vec<GridPoint>> {
+            (0..total)
+                .into_par_iter()
+                .map(|k| {
+                    if stop.load(Ordering::Relaxed) {
+                        return Err(Error::Cancelled {
+                            done: done.load(Ordering::Relaxed),
+                            total,
+                        });
+                    }
+                    let point = self.point(rows.start + k / width, cols.start + k % width)?;
+                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if monitor.step(finished, total) == ControlFlow::Break(()) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(Error::Cancelled {
+                            done: finished,
+                            total,
+                        });
+                    }
+                    Ok(point)
+                })
+                .collect()
+        };
+        match self.threads {
+            None => work(),
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|_| Error::InvalidParameter {
+                    name: "threads",
+                    value: n as f64,
+                    allowed: "a thread pool of this size could not be started",
+                })?
+                .install(work),
+        }
+    }
+}

@@ -1,0 +1,81 @@
+//! A steady state as a flat record of numbers: what `stickslip steady --json` prints, what
+//! the Python package's `steady(...).to_dict()` and the lab's `/api/steady` return.
+
+use super::cycle::SteadyState;
+use serde::Serialize;
+
+/// The numbers of a [`SteadyState`], dimensionless (y in units of the friction force over the
+/// stiffness; phases in radians).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SteadyReport {
+    /// Motion class label: `sliding`, `periodic-stick`, `nonperiodic-stick` or `static`.
+    pub class: &'static str,
+    /// Period in drive periods (`None`: none found within the cap).
+    pub period: Option<usize>,
+    /// Stops of non-zero duration per drive period.
+    pub stops_per_cycle: f64,
+    /// Whether the cycle is mapped onto itself by (y, y', τ) → (−y, −y', τ + T/2).
+    pub symmetric: bool,
+    /// Largest |y|.
+    pub peak: f64,
+    /// Gain (y_max − y_min)/(2β) (`None` where it is infinite: β = 0 with motion).
+    pub gain: Option<f64>,
+    /// Lag of the fundamental behind the drive (radians), from the spectrum.
+    pub phase_lag: Option<f64>,
+    /// Amplitudes A_1, A_2, … of the drive harmonics of y.
+    pub harmonics: Vec<f64>,
+    /// Phases θ_1, θ_2, … of the drive harmonics of y (radians).
+    pub harmonic_phases: Vec<f64>,
+    /// Amplitudes k·w·A_k of the harmonics of y' (the current or velocity, dimensionless).
+    pub current_harmonics: Vec<f64>,
+    /// Largest amplitude at a frequency that is not a multiple of the drive's.
+    pub subharmonic: Option<f64>,
+    /// Mean of y over the recorded periods.
+    pub mean: Option<f64>,
+    /// Drive periods run before the cycle was recognised.
+    pub periods_to_settle: usize,
+    /// Samples per drive period of the spectrum.
+    pub samples_per_period: Option<usize>,
+    /// Drive frequency w.
+    pub w: f64,
+    /// Drive amplitude β.
+    pub beta: f64,
+    /// Damping ratio ζ (ζ_R with Shockley diodes).
+    pub zeta: f64,
+    /// Static-to-kinetic friction ratio μs.
+    pub mu_s: f64,
+}
+
+impl From<&SteadyState> for SteadyReport {
+    fn from(steady: &SteadyState) -> Self {
+        let spectrum = steady.spectrum.as_ref();
+        let p = &steady.params;
+        let of = |f: fn(&super::Harmonic) -> f64| -> Vec<f64> {
+            spectrum
+                .map(|s| s.harmonics.iter().map(f).collect())
+                .unwrap_or_default()
+        };
+        Self {
+            class: steady.class.label(),
+            period: steady.period,
+            stops_per_cycle: steady.stops_per_period,
+            symmetric: steady.symmetric,
+            peak: steady.peak,
+            gain: steady.gain.is_finite().then_some(steady.gain),
+            phase_lag: steady.phase_lag(),
+            harmonics: of(|h| h.amplitude),
+            harmonic_phases: of(|h| h.phase),
+            current_harmonics: spectrum
+                .map(|s| s.derivative(p.w).iter().map(|h| h.amplitude).collect())
+                .unwrap_or_default(),
+            subharmonic: spectrum.map(|s| s.subharmonic),
+            mean: spectrum.map(|s| s.mean),
+            periods_to_settle: steady.periods_to_settle,
+            samples_per_period: spectrum.map(|s| s.samples_per_period),
+            w: p.w,
+            beta: p.beta,
+            zeta: p.zeta,
+            mu_s: p.mu_s,
+        }
+    }
+}

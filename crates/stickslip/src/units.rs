@@ -1,0 +1,103 @@
+//! Numbers with SI prefixes and units, as people write component values: `20n`, `0.02uF`,
+//! `11.5mH`, `9.97kHz`, `68ohm`, `1e-3`.
+//!
+//! The unit is optional and not checked against the quantity (it is there for the reader);
+//! the prefix scales the number. Prefixes: f p n u µ m k M G.
+
+/// Why a text is not a number.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NumberError {
+    /// The text does not parse as a number, with or without a prefix.
+    #[error("'{0}' is not a number (plain, or with an SI prefix such as 20n, 11.5m, 9.9k)")]
+    NotANumber(String),
+    /// The number is infinite or NaN.
+    #[error("'{0}' is not a finite number")]
+    NotFinite(String),
+}
+
+/// Units that may follow a number (stripped, not checked).
+const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
+
+/// SI prefixes and their factors.
+const PREFIXES: [(char, f64); 9] = [
+    ('f', 1e-15),
+    ('p', 1e-12),
+    ('n', 1e-9),
+    ('u', 1e-6),
+    ('µ', 1e-6),
+    ('m', 1e-3),
+    ('k', 1e3),
+    ('M', 1e6),
+    ('G', 1e9),
+];
+
+/// Parse a finite number with an optional SI prefix and unit.
+///
+/// ```
+/// use stickslip::units::parse_si;
+/// assert_eq!(parse_si("11.5m").unwrap(), 11.5e-3);
+/// assert_eq!(parse_si("9.9kHz").unwrap(), 9900.0);
+/// assert!(parse_si("nan").is_err());
+/// ```
+///
+/// # Errors
+/// [`NumberError`] when the text is not a number or not finite.
+pub fn parse_si(text: &str) -> Result<f64, NumberError> {
+    let t = text.trim();
+    let mut body = t;
+    for unit in UNITS {
+        if let Some(rest) = body.strip_suffix(unit) {
+            body = rest;
+            break;
+        }
+    }
+    let mut scale = 1.0;
+    if let Some(last) = body.chars().last() {
+        if let Some(&(_, s)) = PREFIXES.iter().find(|(c, _)| *c == last) {
+            scale = s;
+            body = &body[..body.len() - last.len_utf8()];
+        }
+    }
+    match body.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x * scale),
+        Ok(_) => Err(NumberError::NotFinite(text.to_string())),
+        Err(_) => Err(NumberError::NotANumber(text.to_string())),
+    }
+}
+
+/// Parse a finite plain number (no prefix, no unit), as dimensionless values are written.
+///
+/// # Errors
+/// [`NumberError`] when the text is not a finite number.
+pub fn parse_plain(text: &str) -> Result<f64, NumberError> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(NumberError::NotFinite(text.to_string())),
+        Err(_) => Err(NumberError::NotFinite(text.to_string())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn si_values() {
+        assert_eq!(parse_si("11.5m").unwrap(), 11.5e-3);
+        assert!((parse_si("0.02uF").unwrap() - 0.02e-6).abs() < 1e-22);
+        assert_eq!(parse_si("68ohm").unwrap(), 68.0);
+        assert_eq!(parse_si("9.9kHz").unwrap(), 9900.0);
+        assert_eq!(parse_si("-1e-3").unwrap(), -1e-3);
+        assert_eq!(parse_si("2µ").unwrap(), 2e-6);
+        assert!(matches!(parse_si("abc"), Err(NumberError::NotANumber(_))));
+        assert!(parse_si("nan").is_err());
+        assert!(matches!(parse_si("1e400"), Err(NumberError::NotFinite(_))));
+    }
+
+    #[test]
+    fn plain_values() {
+        assert_eq!(parse_plain(" 0.25 ").unwrap(), 0.25);
+        assert!(parse_plain("1k").is_err());
+        assert!(parse_plain("inf").is_err());
+    }
+}

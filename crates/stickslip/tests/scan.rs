@@ -1,0 +1,113 @@
+//! Sweeps and grids as library builders: results that do not depend on the number of
+//! threads, experiments read from a file.
+
+use stickslip::experiment::Experiment;
+use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
+use stickslip::steady::MotionClass;
+use stickslip::{DiodePair, Parameter};
+
+fn paper() -> Experiment {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/paper.toml"))
+        .unwrap();
+    Experiment::from_toml(&text, "paper.toml").unwrap()
+}
+
+#[test]
+fn the_example_file_is_the_papers_circuit() {
+    assert_eq!(
+        paper().with_origin(stickslip::experiment::Origin::Preset(
+            stickslip::experiment::Preset::Paper
+        )),
+        Experiment::paper()
+    );
+}
+
+/// A map and a sweep with 1, 2 and 8 threads: bit for bit the same.
+#[test]
+fn maps_and_sweeps_do_not_depend_on_the_number_of_threads() {
+    let grid = Grid::new(
+        &paper(),
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.3, 1.7, 12).unwrap(),
+        )
+        .unwrap(),
+        Axis::range(
+            Parameter::Beta,
+            &ParameterRange::new("beta", 0.8, 3.0, 10).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let maps: Vec<_> = [1, 2, 8]
+        .into_iter()
+        .map(|n| grid.clone().threads(n).unwrap().run(&()).unwrap())
+        .collect();
+    let classes: Vec<MotionClass> = maps[0].points.iter().map(|p| p.class).collect();
+    assert!(classes.contains(&MotionClass::Sliding));
+    assert!(classes.contains(&MotionClass::PeriodicStick));
+    assert_eq!(maps[0], maps[1]);
+    assert_eq!(maps[0], maps[2]);
+
+    let sweep = Sweep::new(
+        &paper().with_beta(3.61).unwrap(),
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.6, 1.4, 9).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap()
+    .direction(SweepDirection::Both);
+    let runs: Vec<_> = [1, 2, 8]
+        .into_iter()
+        .map(|n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+                .install(|| sweep.run(&()).unwrap())
+        })
+        .collect();
+    assert_eq!(runs[0].len(), 18);
+    assert_eq!(runs[0], runs[1]);
+    assert_eq!(runs[0], runs[2]);
+}
+
+/// Any two of ζ, w, β, μs: a (μs, ζ) grid at a fixed drive.
+#[test]
+fn grids_over_any_two_parameters() {
+    let e = Experiment::dimensionless(0.05, 0.9, 1.45).unwrap();
+    let map = Grid::new(
+        &e,
+        Axis::new(Parameter::MuS, vec![1.0, 1.5]).unwrap(),
+        Axis::new(Parameter::Zeta, vec![0.02, 0.05]).unwrap(),
+    )
+    .unwrap()
+    .run(&())
+    .unwrap();
+    assert_eq!(map.points.len(), 4);
+    assert_eq!(map.at(1, 0).params.mu_s, 1.5);
+    assert_eq!(map.at(1, 0).params.zeta, 0.02);
+    // From rest, β = 1.45 below μs = 1.5 cannot start the motion: static.
+    assert_eq!(map.at(1, 1).class, MotionClass::Static);
+    assert_ne!(map.at(0, 1).class, MotionClass::Static);
+}
+
+/// The Shockley model runs through the same builders with its own tolerance.
+#[test]
+fn shockley_maps_use_the_stiff_solver_and_its_tolerance() {
+    let e = Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .unwrap();
+    let grid = Grid::new(
+        &e,
+        Axis::new(Parameter::W, vec![0.95]).unwrap(),
+        Axis::new(Parameter::Beta, vec![2.14]).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(grid.steady_options().tolerance, 1e-6);
+    let map = grid.run(&()).unwrap();
+    assert_eq!(map.points[0].class, MotionClass::Sliding);
+    assert_eq!(map.points[0].params.zeta, e.zeta());
+}
