@@ -130,6 +130,15 @@ impl Key {
         }
     }
 
+    /// The key named `name` ([`Key::name`]), or `None`. `F` (newtons) names the drive
+    /// amplitude as `U` (volts) does.
+    pub fn from_name(name: &str) -> Option<Key> {
+        if name == "F" {
+            return Some(Key::Amplitude);
+        }
+        Key::ALL.into_iter().find(|k| k.name() == name)
+    }
+
     /// What the key means, with its unit.
     pub fn description(self) -> &'static str {
         match self {
@@ -221,6 +230,11 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), Key::ALL.len());
+        for k in Key::ALL {
+            assert_eq!(Key::from_name(k.name()), Some(k));
+        }
+        assert_eq!(Key::from_name("F"), Some(Key::Amplitude));
+        assert_eq!(Key::from_name("Q"), None);
     }
 
     #[test]
