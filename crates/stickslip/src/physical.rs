@@ -173,6 +173,19 @@ impl Circuit {
         })
     }
 
+    /// Re-check all fields (for values built by struct literal or deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field, as in [`Circuit::new`].
+    pub fn validate(&self) -> Result<Self> {
+        Self::new(
+            self.inductance,
+            self.capacitance,
+            self.resistance,
+            self.diode,
+        )
+    }
+
     /// The paper's experiment: L = 11.5 mH, C = 0.02 µF, R = 68 Ω, U_t = 0.7 V, R_D = 3.0 Ω
     /// (total series resistance 71 Ω), giving α = 6173.9 s⁻¹ and ω0 = 65938.0 rad/s.
     pub fn paper() -> Self {
@@ -292,6 +305,14 @@ impl Mechanics {
             )?,
             friction: check("F0", friction, friction > 0.0, "must be finite and > 0 (N)")?,
         })
+    }
+
+    /// Re-check all fields (for values built by struct literal or deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field, as in [`Mechanics::new`].
+    pub fn validate(&self) -> Result<Self> {
+        Self::new(self.mass, self.stiffness, self.damping, self.friction)
     }
 
     /// Scales that turn dimensionless values into metres, m/s, newtons and seconds.

@@ -155,12 +155,7 @@ impl Experiment {
     /// # Errors
     /// When the circuit is invalid.
     pub fn circuit(circuit: Circuit) -> Result<Self> {
-        let c = Circuit::new(
-            circuit.inductance,
-            circuit.capacitance,
-            circuit.resistance,
-            circuit.diode,
-        )?;
+        let c = circuit.validate()?;
         Ok(Self::with_system(
             Some(System::Circuit(c)),
             c.scales().zeta(),
@@ -173,12 +168,7 @@ impl Experiment {
     /// # Errors
     /// When the oscillator is invalid.
     pub fn mechanics(mechanics: Mechanics) -> Result<Self> {
-        let m = Mechanics::new(
-            mechanics.mass,
-            mechanics.stiffness,
-            mechanics.damping,
-            mechanics.friction,
-        )?;
+        let m = mechanics.validate()?;
         Ok(Self::with_system(
             Some(System::Mechanics(m)),
             m.scales().zeta(),
@@ -297,12 +287,7 @@ impl Experiment {
         let Some(System::Circuit(c)) = self.system else {
             return Err(Error::Unsupported(crate::Unsupported::ShockleyNeedsCircuit));
         };
-        let c = Circuit::new(
-            c.inductance,
-            c.capacitance,
-            c.resistance,
-            c.with_shockley(pair).diode,
-        )?;
+        let c = c.with_shockley(pair).validate()?;
         self.system = Some(System::Circuit(c));
         self.zeta = c.scales().zeta();
         Ok(self)

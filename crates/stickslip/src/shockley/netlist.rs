@@ -85,12 +85,7 @@ pub fn netlist(
     initial: State,
     options: &NetlistOptions,
 ) -> Result<String> {
-    let c = Circuit::new(
-        circuit.inductance,
-        circuit.capacitance,
-        circuit.resistance,
-        circuit.diode,
-    )?;
+    let c = circuit.validate()?;
     let Diode::Shockley(shockley) = c.diode else {
         return Err(Error::Unsupported(Unsupported::NetlistNeedsShockley));
     };
