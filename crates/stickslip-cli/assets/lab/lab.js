@@ -697,6 +697,14 @@
     const level = (a) => (ax.db ? 20 * Math.log10(Math.max(a, 1e-300)) : a);
     const yOfLevel = (v) => (ax.db ? box.y0 + ((ax.top - v) / ax.perDiv) * box.dy : bottom - (v / ax.perDiv) * box.dy);
     const color = COLORS[field('fft-source').value];
+    const unit = { ch1: units().drive, ch2: units().position, ch3: units().velocity }[field('fft-source').value];
+    for (let j = 0; j < SCREEN.divY; j++) {
+      const v = ax.db ? ax.top - j * ax.perDiv : (SCREEN.divY - j) * ax.perDiv;
+      label(g, ax.db ? `${v} dB${unit}` : si(v, unit, 3), box.x0 + SCREEN.divX * box.dx - 4, box.y0 + j * box.dy + 13, COLORS.axis, 'right');
+    }
+    for (let i = 1; i < SCREEN.divX; i += 2) {
+      label(g, si(i * ax.hzdiv, 'Hz', 3), box.x0 + i * box.dx, box.y0 + 13, COLORS.axis, 'center');
+    }
     for (const b of ax.bars) {
       const x = xOf(b.f);
       const y = Math.max(box.y0, Math.min(bottom, yOfLevel(level(b.a))));
@@ -991,9 +999,10 @@
     drawMap();
   }
 
-  function plotFrame(canvas, xr, yr, xlabel, ylabel) {
+  /** Axes, grid and labels of a plot; `legendRow` leaves a row under the x label. */
+  function plotFrame(canvas, xr, yr, xlabel, ylabel, legendRow = false) {
     const { g, w, h } = prepare(canvas);
-    const box = { l: 56, r: w - 14, t: 14, b: h - 40 };
+    const box = { l: 56, r: w - 14, t: 14, b: h - (legendRow ? 58 : 40) };
     g.fillStyle = '#ffffff';
     g.fillRect(0, 0, w, h);
     const X = (x) => box.l + ((x - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
@@ -1023,7 +1032,7 @@
     }
     g.strokeStyle = '#555';
     g.strokeRect(box.l, box.t, box.r - box.l, box.b - box.t);
-    label(g, xlabel, (box.l + box.r) / 2, h - 8, '#222', 'center');
+    label(g, xlabel, (box.l + box.r) / 2, box.b + 32, '#222', 'center');
     g.save();
     g.translate(14, (box.t + box.b) / 2);
     g.rotate(-Math.PI / 2);
@@ -1146,7 +1155,7 @@
       const hb = half(m.beta);
       const xr = [m.w[0] - hw, m.w[m.w.length - 1] + hw];
       const yr = [m.beta[0] - hb, m.beta[m.beta.length - 1] + hb];
-      const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t');
+      const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t', true);
       const nb = m.beta.length;
       for (let i = 0; i < m.w.length; i++) {
         for (let j = 0; j < nb; j++) {
@@ -1167,13 +1176,13 @@
       let lx = box.l + 6;
       for (const c of m.classes) {
         o.fillStyle = CLASS_COLORS[c];
-        o.fillRect(lx, box.b + 22, 10, 10);
+        o.fillRect(lx, box.b + 40, 10, 10);
         o.strokeStyle = '#999';
-        o.strokeRect(lx, box.b + 22, 10, 10);
-        label(o, c, lx + 13, box.b + 31, '#222');
-        lx += o.measureText(c).width + 30;
+        o.strokeRect(lx, box.b + 40, 10, 10);
+        label(o, c, lx + 13, box.b + 49, '#222');
+        lx += o.measureText(c).width + 26;
       }
-      label(o, `${b.prefix}β_c: exact ━, paper ╍`, box.r, box.b + 31, '#222', 'right');
+      label(o, `${b.prefix}β_c: exact ━, paper ╍`, box.r, box.b + 49, '#222', 'right');
       return { X, Y, box };
     });
     // The current point.

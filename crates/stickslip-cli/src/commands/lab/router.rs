@@ -156,6 +156,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
         .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
         .with_state(lab)
         .layer(axum::middleware::map_response(security_headers));
     if verbose {
@@ -231,6 +232,17 @@ async fn not_found(request: Request) -> Response {
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
              /api/map, /api/theory, /api/presets)",
             request.uri().path().chars().take(80).collect::<String>()
+        ),
+    )
+    .into_response()
+}
+
+async fn method_not_allowed(request: Request) -> Response {
+    ApiError::status(
+        StatusCode::METHOD_NOT_ALLOWED,
+        format!(
+            "{} is not served here: the lab answers GET (and HEAD) only",
+            request.method()
         ),
     )
     .into_response()

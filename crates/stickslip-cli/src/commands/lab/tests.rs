@@ -390,6 +390,20 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     refused("/nope", StatusCode::NOT_FOUND, "no such page: /nope").await;
     refused("/api/steadyx", StatusCode::NOT_FOUND, "/api/steadyx").await;
     refused("/../../etc/passwd", StatusCode::NOT_FOUND, "no such page").await;
+    let response = router(lab(Duration::from_secs(10)))
+        .oneshot(
+            Request::post("/api/steady?preset=paper&w=1&beta=1")
+                .body(Body::empty())
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::METHOD_NOT_ALLOWED);
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap();
+    let body: Value = serde_json::from_slice(&body).unwrap();
+    assert!(body["error"].as_str().unwrap().contains("GET"), "{body}");
 
     let lab = lab(Duration::from_secs(10));
     let (status, content_type, body) = get_with(&lab, "/").await;
@@ -441,5 +455,34 @@ async fn the_time_limit_stops_a_computation() {
         lab.active(),
         0,
         "the computation kept running after its time limit"
+    );
+}
+
+#[tokio::test]
+async fn a_dropped_request_stops_its_computation() {
+    let lab = lab(Duration::from_secs(600));
+    // A Shockley map this size takes minutes.
+    let uri = "/api/map?preset=paper&model=shockley&w-steps=40&beta-steps=40&w-min=0.1&w-max=0.6";
+    let app = router(lab.clone());
+    let request = tokio::spawn(app.oneshot(Request::get(uri).body(Body::empty()).unwrap()));
+    let wait_for = |count: usize| {
+        let lab = lab.clone();
+        async move {
+            for _ in 0..500 {
+                if lab.active() == count {
+                    return true;
+                }
+                tokio::time::sleep(Duration::from_millis(20)).await;
+            }
+            false
+        }
+    };
+    assert!(wait_for(1).await, "the computation did not start");
+    // The client goes away: the server drops the request's future.
+    request.abort();
+    assert!(request.await.unwrap_err().is_cancelled());
+    assert!(
+        wait_for(0).await,
+        "the computation kept running after its client went away"
     );
 }
