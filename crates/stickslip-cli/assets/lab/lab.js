@@ -1414,6 +1414,10 @@
         showSystem();
       }
       field('preset-choice').value = state.system === 'mechanics' ? 'mechanics' : field('preset-choice').value;
+      // The stiff solver takes about 10 ms a point: a smaller map stays within the time limit.
+      if (state.system === 'shockley' && ['120x100', '200x200', '60x50'].includes(field('map-size').value)) {
+        field('map-size').value = '40x30';
+      }
       showSystem();
       state.autoscalePending = true;
       schedule(0);

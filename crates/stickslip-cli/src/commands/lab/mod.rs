@@ -20,10 +20,10 @@ use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
 
-/// Serve the lab: a two-channel oscilloscope and a function generator on the RLC-diode
-/// circuit (or its mechanical twin), in the browser, computed by the exact solver.
+/// Serve the lab: an oscilloscope and a function generator in the browser, on the exact solver.
 ///
-/// The page opens on the paper's circuit at its Fig. 3 point Ω/ω0 = 0.95, β = 2.14:
+/// A two-channel scope and a function generator on the RLC-diode circuit (or its mechanical
+/// twin), computed by the library on request. The page opens on the paper's circuit at its Fig. 3 point Ω/ω0 = 0.95, β = 2.14:
 /// generator (frequency, amplitude, phase), circuit (L, C, R, PWL or Shockley diodes,
 /// presets) or mass-spring-friction view, scope (Y-T, X-Y, FFT; steady cycle or transient
 /// from rest; cursors), measurements beside the paper's series values and the exact orbit's,
