@@ -81,15 +81,19 @@ pub fn range_from_flags(
     Ok(ParameterRange::new(name, from, to, steps as usize)?)
 }
 
-/// Refuse flags that give a value of the swept parameter (`--over w` with `--w`, say).
-pub fn reject_swept_flags(model: &ModelArgs, over: Parameter, command: &str) -> Result<()> {
-    let keys: &[Key] = match over {
+/// The keys that give a value of `parameter` (w also as f or Ω, β also as U).
+pub fn keys_of(parameter: Parameter) -> &'static [Key] {
+    match parameter {
         Parameter::W => &[Key::W, Key::Frequency, Key::Omega],
         Parameter::Beta => &[Key::Beta, Key::Amplitude],
         Parameter::Zeta => &[Key::Zeta],
         Parameter::MuS => &[Key::MuS],
-    };
-    if let Some(&key) = keys.iter().find(|&&k| model.given(k)) {
+    }
+}
+
+/// Refuse flags that give a value of the swept parameter (`--over w` with `--w`, say).
+pub fn reject_swept_flags(model: &ModelArgs, over: Parameter, command: &str) -> Result<()> {
+    if let Some(&key) = keys_of(over).iter().find(|&&k| model.given(k)) {
         usage!(
             "{command} sets {} from its range: drop {}",
             over.label(),

@@ -21,6 +21,29 @@ pub fn finite(text: &str) -> Result<f64, String> {
     stickslip::units::parse_plain(text).map_err(|e| e.to_string())
 }
 
+/// Read the value of the flag of `key` as that flag does: a plain number for the
+/// dimensionless values, the emission coefficient and the temperature, a number with an
+/// optional SI prefix and unit for the physical values. (The lab reads query values with it,
+/// so that its keys take what the flags take.)
+///
+/// # Errors
+/// The parser's one-line message; [`Key::Preset`] and [`Key::Diode`] are not numbers.
+pub fn parse_value(key: Key, text: &str) -> Result<f64, String> {
+    match key {
+        Key::Zeta
+        | Key::W
+        | Key::Beta
+        | Key::Phi
+        | Key::MuS
+        | Key::Y0
+        | Key::V0
+        | Key::Emission
+        | Key::Temperature => finite(text),
+        Key::Preset | Key::Diode => Err(format!("{} is not a number", flag_name(key))),
+        _ => si_value(text),
+    }
+}
+
 /// Which law the diode pair follows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
 pub enum DiodeModel {
@@ -282,6 +305,39 @@ mod tests {
             ..Default::default()
         };
         assert!(args.experiment().is_err());
+    }
+
+    /// `parse_value` reads every value as its flag does (the flags' parsers are attributes,
+    /// so this test keeps the two in step).
+    #[test]
+    fn parse_value_reads_values_as_the_flags_do() {
+        #[derive(clap::Parser)]
+        struct Flags {
+            #[command(flatten)]
+            model: ModelArgs,
+        }
+        use clap::Parser;
+        for key in Key::ALL {
+            if matches!(key, Key::Preset | Key::Diode) {
+                assert!(parse_value(key, "1").is_err());
+                continue;
+            }
+            for text in ["1k", "0.25", "2e-3", "-1", "abc", "20nF", "inf"] {
+                let flag = flag_name(key);
+                let clap = Flags::try_parse_from(["stickslip", &format!("{flag}={text}")]);
+                assert_eq!(
+                    clap.is_ok(),
+                    parse_value(key, text).is_ok(),
+                    "{flag} {text}: {:?}",
+                    clap.err().map(|e| e.to_string())
+                );
+                if let Ok(flags) = clap {
+                    let mut spec_from_flags = flags.model.values().into_iter();
+                    let value = spec_from_flags.find(|(k, _)| *k == key).and_then(|kv| kv.1);
+                    assert_eq!(value, parse_value(key, text).ok(), "{flag} {text}");
+                }
+            }
+        }
     }
 
     #[test]

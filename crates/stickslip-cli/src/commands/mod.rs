@@ -3,6 +3,7 @@
 use clap::Subcommand;
 
 pub mod convert;
+pub mod lab;
 pub mod netlist;
 pub mod phase_diagram;
 pub mod reproduce;
@@ -29,6 +30,7 @@ pub enum Command {
     Netlist(netlist::Args),
     /// Regenerate every figure and table of the paper with an HTML report.
     Reproduce(reproduce::Args),
+    Lab(lab::Args),
 }
 
 /// Run one subcommand.
@@ -42,5 +44,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::PhaseDiagram(a) => phase_diagram::run(a),
         Command::Netlist(a) => netlist::run(a),
         Command::Reproduce(a) => reproduce::run(a),
+        Command::Lab(a) => lab::run(a),
     }
 }

@@ -198,16 +198,23 @@ fn branches_differ(points: &[SweepPoint]) -> usize {
         .count()
 }
 
-/// The theory's gain curves over the swept range, at the sweep's fixed parameters.
-struct Theory {
-    paper: TheoryCurve,
-    exact: TheoryCurve,
+/// The theory's gain curves over the swept range, at the sweep's fixed parameters (also
+/// drawn by the lab's sweep view).
+pub(crate) struct Theory {
+    /// The paper's gain A1/β, eq. (11).
+    pub(crate) paper: TheoryCurve,
+    /// The exact sliding orbit's peak/β.
+    pub(crate) exact: TheoryCurve,
     /// Legend prefix: the theory is that of the piecewise-linear model.
-    prefix: &'static str,
+    pub(crate) prefix: &'static str,
 }
 
 impl Theory {
-    fn new(experiment: &Experiment, parameter: Parameter, range: &ParameterRange) -> Result<Self> {
+    pub(crate) fn new(
+        experiment: &Experiment,
+        parameter: Parameter,
+        range: &ParameterRange,
+    ) -> Result<Self> {
         let xs = abscissae(range.from(), range.to(), range.steps());
         let base = experiment.params_with(&[(parameter, range.from())])?;
         // The simulated gain is the peak over β; on a sliding orbit that is the exact orbit's

@@ -4,6 +4,7 @@
 mod common;
 
 mod convert;
+mod lab;
 mod netlist;
 mod phase_diagram;
 mod reproduce;

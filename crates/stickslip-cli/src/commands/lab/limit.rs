@@ -1,0 +1,214 @@
+//! The lab's limits on one request: a time limit, and a stop as soon as nobody waits for
+//! the answer (the page dropped a stale request). Both reach into the computation: every
+//! solver the request builds checks its [`Budget`] as it advances, and sweeps and maps check
+//! it between points through the library's [`Monitor`](stickslip::scan::Monitor).
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use stickslip::steady::SolverFactory;
+use stickslip::{Error, Event, Params, Phase, Result, Sample, Solver, State, Stats};
+
+/// Why a computation must stop, shared between the request and its computation.
+#[derive(Debug)]
+pub struct Budget {
+    deadline: Instant,
+    limit: Duration,
+    abandoned: AtomicBool,
+    /// Steps or points finished, and their number, of a sweep or a map.
+    done: AtomicUsize,
+    total: AtomicUsize,
+}
+
+impl Budget {
+    /// A budget of `limit` from now.
+    pub fn new(limit: Duration) -> Arc<Self> {
+        Arc::new(Self {
+            deadline: Instant::now() + limit,
+            limit,
+            abandoned: AtomicBool::new(false),
+            done: AtomicUsize::new(0),
+            total: AtomicUsize::new(0),
+        })
+    }
+
+    /// When the time runs out.
+    pub fn deadline(&self) -> Instant {
+        self.deadline
+    }
+
+    /// The time limit.
+    pub fn limit(&self) -> Duration {
+        self.limit
+    }
+
+    /// Nobody waits for the answer any more.
+    pub fn abandon(&self) {
+        self.abandoned.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether nobody waits for the answer.
+    pub fn abandoned(&self) -> bool {
+        self.abandoned.load(Ordering::Relaxed)
+    }
+
+    /// Whether the time has run out.
+    pub fn timed_out(&self) -> bool {
+        Instant::now() >= self.deadline
+    }
+
+    /// Whether the computation should stop.
+    pub fn spent(&self) -> bool {
+        self.abandoned() || self.timed_out()
+    }
+
+    /// A monitor for sweeps and grids: it counts the finished steps or points and stops
+    /// the work when the budget is spent.
+    pub fn keep_going(&self) -> impl Fn(usize, usize) -> bool + Sync + '_ {
+        move |done, total| {
+            self.done.fetch_max(done, Ordering::Relaxed);
+            self.total.store(total, Ordering::Relaxed);
+            !self.spent()
+        }
+    }
+
+    /// A sweep or map of `total` steps or points starts.
+    pub fn start(&self, total: usize) {
+        self.total.store(total, Ordering::Relaxed);
+    }
+
+    /// Steps or points finished and their number, as the monitor last saw them (0 of 0
+    /// before the first one finished).
+    pub fn progress(&self) -> (usize, usize) {
+        (
+            self.done.load(Ordering::Relaxed),
+            self.total.load(Ordering::Relaxed),
+        )
+    }
+}
+
+/// Abandons its budget when dropped: held by the request's future, which the server drops
+/// when the client goes away.
+pub struct AbandonOnDrop(pub Arc<Budget>);
+
+impl Drop for AbandonOnDrop {
+    fn drop(&mut self) {
+        self.0.abandon();
+    }
+}
+
+/// Solver calls between two looks at the clock: a look costs about as much as a few events
+/// of the exact solver, so the clock is read once per this many calls.
+const CALLS_PER_CHECK: u32 = 64;
+
+/// A solver that stops with [`Error::Cancelled`] once its budget is spent; otherwise it is
+/// the solver it wraps, call for call (results are bit-identical).
+pub struct Limited {
+    inner: Box<dyn Solver + Send>,
+    budget: Arc<Budget>,
+    calls: u32,
+}
+
+impl Solver for Limited {
+    fn params(&self) -> &Params {
+        self.inner.params()
+    }
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    fn state(&self) -> State {
+        self.inner.state()
+    }
+    fn phase(&self) -> Phase {
+        self.inner.phase()
+    }
+    fn drive(&self, tau: f64) -> f64 {
+        self.inner.drive(tau)
+    }
+    fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
+        self.calls = self.calls.wrapping_add(1);
+        if self.calls % CALLS_PER_CHECK == 0 && self.budget.spent() {
+            return Err(Error::Cancelled { done: 0, total: 1 });
+        }
+        self.inner.advance(t_end)
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.inner.interval()
+    }
+    fn dense(&self, tau: f64) -> Sample {
+        self.inner.dense(tau)
+    }
+    fn stats(&self) -> Stats {
+        self.inner.stats()
+    }
+}
+
+/// A factory whose solvers are [`Limited`] by one budget.
+#[derive(Clone)]
+pub struct LimitedFactory<F> {
+    inner: F,
+    budget: Arc<Budget>,
+}
+
+impl<F: SolverFactory> LimitedFactory<F> {
+    /// Solvers of `inner`, limited by `budget`.
+    pub fn new(inner: F, budget: Arc<Budget>) -> Self {
+        Self { inner, budget }
+    }
+}
+
+impl<F: SolverFactory> SolverFactory for LimitedFactory<F> {
+    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        Ok(Box::new(Limited {
+            inner: self.inner.make(params, initial)?,
+            budget: self.budget.clone(),
+            calls: 0,
+        }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stickslip::experiment::Experiment;
+    use stickslip::steady::steady_state_from;
+
+    #[test]
+    fn a_limited_solver_gives_the_same_steady_state() {
+        let e = Experiment::paper()
+            .with_w(0.29)
+            .unwrap()
+            .with_beta(2.14)
+            .unwrap();
+        let budget = Budget::new(Duration::from_secs(600));
+        let limited = LimitedFactory::new(e.factory(), budget);
+        let s = steady_state_from(
+            &limited,
+            &e.params().unwrap(),
+            e.initial(),
+            &e.steady_options(),
+        )
+        .unwrap();
+        assert_eq!(s, e.steady().unwrap());
+    }
+
+    #[test]
+    fn a_spent_budget_stops_the_solver() {
+        let e = Experiment::paper()
+            .with_w(0.95)
+            .unwrap()
+            .with_beta(2.14)
+            .unwrap();
+        let budget = Budget::new(Duration::from_secs(600));
+        budget.abandon();
+        let limited = LimitedFactory::new(e.factory(), budget);
+        let err = steady_state_from(
+            &limited,
+            &e.params().unwrap(),
+            e.initial(),
+            &e.steady_options(),
+        )
+        .unwrap_err();
+        assert!(matches!(err, Error::Cancelled { .. }), "{err}");
+    }
+}

@@ -1,0 +1,488 @@
+//! Requests straight to the router (no socket): answers equal the library's (and so the
+//! command-line tool's) for the same point; bad input, caps and unknown paths are refused
+//! with one line of JSON; the time limit stops a computation.
+
+use super::router::{router, Lab, Settings};
+use crate::model::{ModelArgs, Preset};
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
+use serde_json::Value;
+use std::time::Duration;
+use stickslip::experiment::Experiment;
+use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
+use stickslip::solver::{grid, sample_at};
+use stickslip::steady::SteadyReport;
+use stickslip::theory::TheoryReport;
+use stickslip::Parameter;
+use tower::ServiceExt;
+
+fn lab(time_limit: Duration) -> Lab {
+    Lab::new(Settings {
+        time_limit,
+        jobs: 2,
+        verbose: false,
+    })
+}
+
+/// GET `uri` from a fresh router; status, content type and body.
+async fn get_with(lab: &Lab, uri: &str) -> (StatusCode, String, Vec<u8>) {
+    let response = router(lab.clone())
+        .oneshot(Request::get(uri).body(Body::empty()).unwrap())
+        .await
+        .unwrap();
+    let status = response.status();
+    let content_type = response
+        .headers()
+        .get("content-type")
+        .map(|v| v.to_str().unwrap().to_string())
+        .unwrap_or_default();
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap()
+        .to_vec();
+    (status, content_type, body)
+}
+
+async fn get(uri: &str) -> (StatusCode, Value) {
+    let (status, content_type, body) = get_with(&lab(Duration::from_secs(60)), uri).await;
+    assert_eq!(content_type, "application/json", "{uri}");
+    (status, serde_json::from_slice(&body).unwrap())
+}
+
+/// A 400 (or `status`) with one line of error, naming `needle`.
+async fn refused(uri: &str, status: StatusCode, needle: &str) -> Value {
+    let (got, body) = get(uri).await;
+    assert_eq!(got, status, "{uri}: {body}");
+    let message = body["error"].as_str().expect("an error message");
+    assert!(!message.contains('\n'), "{uri}: {message}");
+    assert!(
+        message.contains(needle),
+        "{uri}: '{needle}' not in '{message}'"
+    );
+    body
+}
+
+/// Every key of `expected` has the same value in `answer`.
+fn same_keys(answer: &Value, expected: &Value) {
+    let expected = expected.as_object().unwrap();
+    assert!(!expected.is_empty());
+    for (key, value) in expected {
+        assert_eq!(&answer[key], value, "key {key}");
+    }
+}
+
+#[tokio::test]
+async fn steady_equals_the_library_and_the_cli_for_the_same_point() {
+    // Dimensionless keys on the paper's circuit.
+    let (status, answer) = get("/api/steady?preset=paper&w=0.95&beta=2.14").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let e = Experiment::paper()
+        .with_w(0.95)
+        .unwrap()
+        .with_beta(2.14)
+        .unwrap();
+    let steady = e.steady().unwrap();
+    same_keys(
+        &answer,
+        &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
+    );
+    assert_eq!(answer["class"], "sliding");
+
+    // Physical keys with SI prefixes, against the experiment the CLI builds from its flags
+    // (`stickslip steady --preset paper --freq 9.97k --amplitude 1.498 --json`).
+    let (status, answer) =
+        get("/api/steady?preset=paper&freq=9.97k&amplitude=1.498&samples=256").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let flags = ModelArgs {
+        preset: Some(Preset::Paper),
+        freq: Some(9970.0),
+        amplitude: Some(1.498),
+        ..Default::default()
+    };
+    let e = flags.experiment().unwrap();
+    let steady = e.steady().unwrap();
+    same_keys(
+        &answer,
+        &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
+    );
+    assert_eq!(answer["experiment"], e.to_string());
+    assert_eq!(answer["drive"]["f_Hz"].as_f64().unwrap(), 9970.0);
+
+    // The trace: the recorded cycle at 256 samples per period, in volts and amperes too.
+    let trace = &answer["trace"];
+    assert_eq!(trace["samples_per_period"], 256);
+    let column = |name: &str| -> Vec<f64> {
+        trace["columns"][name]
+            .as_array()
+            .unwrap_or_else(|| panic!("column {name}"))
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (y, uc, i, v) = (column("y"), column("uc_V"), column("i_A"), column("v"));
+    assert_eq!(y.len(), 256 * steady.recorded_periods);
+    let stride = steady.trace.len() / y.len();
+    let scales = e.scales().unwrap();
+    for k in 0..y.len() {
+        assert_eq!(y[k], steady.trace[k * stride].y);
+        assert_eq!(uc[k], y[k] * scales.position);
+        assert_eq!(i[k], v[k] * scales.velocity);
+    }
+    assert_eq!(answer["columns"][1], "uc_V");
+}
+
+#[tokio::test]
+async fn shockley_and_mechanics_answer_as_the_library() {
+    let (status, answer) =
+        get("/api/steady?preset=paper&model=shockley&w=0.95&beta=2.14&diode-n=1.8").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let flags = ModelArgs {
+        preset: Some(Preset::Paper),
+        model: Some(crate::model::DiodeModel::Shockley),
+        w: Some(0.95),
+        beta: Some(2.14),
+        diode_n: Some(1.8),
+        ..Default::default()
+    };
+    let steady = flags.experiment().unwrap().steady().unwrap();
+    same_keys(
+        &answer,
+        &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
+    );
+    assert_eq!(answer["model"], "shockley");
+
+    let (status, answer) =
+        get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")
+            .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let flags = ModelArgs {
+        mass: Some(0.5),
+        stiffness: Some(200.0),
+        damping: Some(0.94),
+        friction: Some(1.0),
+        mu_s: Some(1.5),
+        w: Some(0.7),
+        beta: Some(1.4),
+        ..Default::default()
+    };
+    let steady = flags.experiment().unwrap().steady().unwrap();
+    same_keys(
+        &answer,
+        &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
+    );
+    assert_eq!(answer["system"], "mechanics");
+    assert_eq!(answer["columns"][1], "r_m");
+}
+
+#[tokio::test]
+async fn theory_equals_the_library() {
+    let (status, answer) = get("/api/theory?preset=paper&w=0.9&beta=1.43").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let params = Experiment::paper()
+        .with_w(0.9)
+        .unwrap()
+        .with_beta(1.43)
+        .unwrap()
+        .params()
+        .unwrap();
+    let expected = serde_json::to_value(TheoryReport::new(&params).unwrap()).unwrap();
+    assert_eq!(answer, expected);
+}
+
+#[tokio::test]
+async fn simulate_equals_the_library() {
+    let (status, answer) =
+        get("/api/simulate?preset=paper&w=0.7&beta=1.2&periods=3&samples=50").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let e = Experiment::paper()
+        .with_w(0.7)
+        .unwrap()
+        .with_beta(1.2)
+        .unwrap();
+    let mut solver = e.solver().unwrap();
+    let times = grid(0.0, 3.0 * e.params().unwrap().drive_period(), 150);
+    let mut events = Vec::new();
+    let samples = sample_at(solver.as_mut(), &times, |ev| events.push(*ev)).unwrap();
+    let y: Vec<f64> = answer["trace"]["columns"]["y"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(y, samples.iter().map(|s| s.y).collect::<Vec<_>>());
+    assert_eq!(answer["events"].as_array().unwrap().len(), events.len());
+    assert!(events.iter().any(|e| e.kind == stickslip::EventKind::Stick));
+    assert_eq!(answer["phase"][0], samples[0].phase.label());
+}
+
+#[tokio::test]
+async fn sweep_and_map_equal_the_library() {
+    let (status, answer) =
+        get("/api/sweep?preset=paper&beta=3.61&over=w&from=0.5&to=1.5&steps=5&direction=both")
+            .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let e = Experiment::paper().with_beta(3.61).unwrap();
+    let range = ParameterRange::new("w", 0.5, 1.5, 5).unwrap();
+    let options = e.steady_options().with_harmonics(3).unwrap();
+    let points = Sweep::new(&e, Axis::range(Parameter::W, &range).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Both)
+        .options(options)
+        .unwrap()
+        .run(&())
+        .unwrap();
+    let rows = answer["points"].as_array().unwrap();
+    assert_eq!(rows.len(), points.len());
+    for (row, p) in rows.iter().zip(&points) {
+        assert_eq!(row["value"].as_f64().unwrap(), p.value);
+        assert_eq!(row["leg"], p.leg.label());
+        assert_eq!(row["gain"].as_f64().unwrap(), p.steady.gain);
+        assert_eq!(row["A1"].as_f64(), p.steady.harmonic(1));
+        assert_eq!(row["class"], p.steady.class.label());
+    }
+    assert!(answer["theory"]["x"].as_array().unwrap().len() >= 200);
+
+    let (status, answer) = get(
+        "/api/map?preset=paper&w-min=0.3&w-max=1.5&w-steps=4&beta-min=0.8&beta-max=3&beta-steps=3",
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let w = ParameterRange::new("w", 0.3, 1.5, 4).unwrap();
+    let beta = ParameterRange::new("beta", 0.8, 3.0, 3).unwrap();
+    let map = Grid::new(
+        &Experiment::paper(),
+        Axis::range(Parameter::W, &w).unwrap(),
+        Axis::range(Parameter::Beta, &beta).unwrap(),
+    )
+    .unwrap()
+    .run(&())
+    .unwrap();
+    let classes = answer["classes"].as_array().unwrap();
+    let class = answer["class"].as_array().unwrap();
+    assert_eq!(class.len(), 12);
+    for (k, p) in map.points.iter().enumerate() {
+        let label = &classes[class[k].as_u64().unwrap() as usize];
+        assert_eq!(label, p.class.label(), "point {k}");
+        assert_eq!(answer["gain"][k].as_f64().unwrap(), p.gain);
+    }
+}
+
+#[tokio::test]
+async fn bad_input_is_refused_with_one_line_naming_the_key() {
+    let bad = StatusCode::BAD_REQUEST;
+    let body = refused("/api/steady?preset=paper&w=-1&beta=2", bad, "invalid w -1").await;
+    assert_eq!(body["field"], "w");
+    refused("/api/steady?preset=paper&freq=abc&amplitude=1", bad, "freq").await;
+    refused(
+        "/api/steady?preset=paper&w=0.9",
+        bad,
+        "missing drive amplitude",
+    )
+    .await;
+    refused(
+        "/api/steady?w=0.9&beta=1&amplitude=2",
+        bad,
+        "amplitude is a physical",
+    )
+    .await;
+    refused(
+        "/api/steady?preset=paper&w=0.9&beta=1&colour=red",
+        bad,
+        "unknown key 'colour'",
+    )
+    .await;
+    refused(
+        "/api/steady?preset=paper&w=0.9&w=1&beta=1",
+        bad,
+        "given twice",
+    )
+    .await;
+    refused(
+        "/api/steady?config=/etc/passwd&w=1&beta=1",
+        bad,
+        "reads no files",
+    )
+    .await;
+    refused("/api/steady?preset=lab&w=1&beta=1", bad, "invalid preset").await;
+    refused(
+        "/api/theory?preset=paper&model=shockley&w=1&beta=1",
+        bad,
+        "piecewise-linear",
+    )
+    .await;
+    refused(
+        "/api/theory?preset=paper&w=1&beta=1&y0=1",
+        bad,
+        "not used by theory",
+    )
+    .await;
+    refused("/api/sweep?preset=paper&over=w&w=1&beta=2", bad, "drop w").await;
+    refused("/api/sweep?preset=paper&beta=2&from=2&to=1", bad, "above").await;
+    refused(
+        "/api/sweep?preset=paper&beta=2&over=gamma",
+        bad,
+        "invalid over",
+    )
+    .await;
+    refused("/api/map?preset=paper&freq=1k", bad, "drop freq").await;
+    refused("/api/presets?x=1", bad, "takes no keys").await;
+    // Percent-encoding that is not UTF-8, control characters: still one line.
+    refused("/api/steady?w=%FF%FE&beta=%0A", bad, "w").await;
+}
+
+#[tokio::test]
+async fn request_sizes_are_capped() {
+    let bad = StatusCode::BAD_REQUEST;
+    refused(
+        "/api/steady?preset=paper&w=1&beta=2&samples=8192",
+        bad,
+        "from 16 to 4096",
+    )
+    .await;
+    refused(
+        "/api/steady?preset=paper&w=1&beta=2&samples=300",
+        bad,
+        "power of two",
+    )
+    .await;
+    refused(
+        "/api/steady?preset=paper&w=1&beta=2&max-periods=100000",
+        bad,
+        "max-periods",
+    )
+    .await;
+    refused(
+        "/api/steady?preset=paper&w=1&beta=2&max-period=64",
+        bad,
+        "max-period",
+    )
+    .await;
+    refused(
+        "/api/simulate?preset=paper&w=1&beta=2&periods=1e6",
+        bad,
+        "at most 2000",
+    )
+    .await;
+    refused(
+        "/api/simulate?preset=paper&w=1&beta=2&periods=2000&samples=1000",
+        bad,
+        "at most 200000",
+    )
+    .await;
+    refused(
+        "/api/sweep?preset=paper&beta=2&steps=1000",
+        bad,
+        "from 1 to 400",
+    )
+    .await;
+    refused(
+        "/api/map?preset=paper&w-steps=300&beta-steps=300",
+        bad,
+        "at most 40000 points",
+    )
+    .await;
+    let long = format!("/api/steady?preset=paper&w=1&beta=2&x={}", "9".repeat(5000));
+    refused(&long, bad, "at most 4096").await;
+}
+
+#[tokio::test]
+async fn unknown_paths_are_404_and_the_page_is_served() {
+    refused("/nope", StatusCode::NOT_FOUND, "no such page: /nope").await;
+    refused("/api/steadyx", StatusCode::NOT_FOUND, "/api/steadyx").await;
+    refused("/../../etc/passwd", StatusCode::NOT_FOUND, "no such page").await;
+    let response = router(lab(Duration::from_secs(10)))
+        .oneshot(
+            Request::post("/api/steady?preset=paper&w=1&beta=1")
+                .body(Body::empty())
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::METHOD_NOT_ALLOWED);
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap();
+    let body: Value = serde_json::from_slice(&body).unwrap();
+    assert!(body["error"].as_str().unwrap().contains("GET"), "{body}");
+
+    let lab = lab(Duration::from_secs(10));
+    let (status, content_type, body) = get_with(&lab, "/").await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(content_type.starts_with("text/html"));
+    let html = String::from_utf8(body).unwrap();
+    for hook in [
+        r#"name="freq""#,
+        r#"name="amplitude""#,
+        r#"data-measure="gain""#,
+        r#"data-measure="class""#,
+        r#"data-measure="A1""#,
+        r#"data-measure="A3""#,
+    ] {
+        assert!(html.contains(hook), "{hook}");
+    }
+    // Assets are local: no address of another server in the page.
+    assert!(!html.contains("http://") && !html.contains("https://"));
+    let (status, content_type, _) = get_with(&lab, "/lab.js").await;
+    assert_eq!(status, StatusCode::OK);
+    assert!(content_type.starts_with("text/javascript"));
+    let (status, _, _) = get_with(&lab, "/lab.css").await;
+    assert_eq!(status, StatusCode::OK);
+    let (status, presets) = get("/api/presets").await;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
+    assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+}
+
+#[tokio::test]
+async fn the_time_limit_stops_a_computation() {
+    let lab = lab(Duration::from_millis(300));
+    // A Shockley map this size takes minutes without the limit.
+    let uri = "/api/map?preset=paper&model=shockley&w-steps=40&beta-steps=40&w-min=0.1&w-max=0.6";
+    let (status, _, body) = get_with(&lab, uri).await;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    let body: Value = serde_json::from_slice(&body).unwrap();
+    let message = body["error"].as_str().unwrap();
+    assert!(message.contains("time limit of 0.3 s"), "{message}");
+    assert!(message.contains("of 1600 done"), "{message}");
+    // The workers stopped too (the answer does not wait for them).
+    for _ in 0..500 {
+        if lab.active() == 0 {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert_eq!(
+        lab.active(),
+        0,
+        "the computation kept running after its time limit"
+    );
+}
+
+#[tokio::test]
+async fn a_dropped_request_stops_its_computation() {
+    let lab = lab(Duration::from_secs(600));
+    // A Shockley map this size takes minutes.
+    let uri = "/api/map?preset=paper&model=shockley&w-steps=40&beta-steps=40&w-min=0.1&w-max=0.6";
+    let app = router(lab.clone());
+    let request = tokio::spawn(app.oneshot(Request::get(uri).body(Body::empty()).unwrap()));
+    let wait_for = |count: usize| {
+        let lab = lab.clone();
+        async move {
+            for _ in 0..500 {
+                if lab.active() == count {
+                    return true;
+                }
+                tokio::time::sleep(Duration::from_millis(20)).await;
+            }
+            false
+        }
+    };
+    assert!(wait_for(1).await, "the computation did not start");
+    // The client goes away: the server drops the request's future.
+    request.abort();
+    assert!(request.await.unwrap_err().is_cancelled());
+    assert!(
+        wait_for(0).await,
+        "the computation kept running after its client went away"
+    );
+}
