@@ -56,6 +56,9 @@ pub enum Error {
         /// Points requested.
         total: usize,
     },
+    /// A stability analysis failed (Newton's method, a non-finite Jacobian, …).
+    #[error(transparent)]
+    Stability(#[from] crate::stability::StabilityError),
 }
 
 /// Result alias of the library.

@@ -20,6 +20,8 @@
 //!   [`solver::sample_at`] drive any of them.
 //! - [`steady`]: the steady state of any solver ([`steady_state`]), its spectrum and
 //!   [`MotionClass`], sweeps with hysteresis and (w, β) phase diagrams.
+//! - [`stability`]: the exact tangent dynamics (segment and saltation matrices) and the strobe
+//!   map with its Jacobian.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
@@ -31,6 +33,7 @@ pub mod params;
 pub mod physical;
 pub mod shockley;
 pub mod solver;
+pub mod stability;
 pub mod steady;
 #[cfg(test)]
 mod test_rng;

@@ -1,0 +1,48 @@
+//! Stability and chaos, exactly: the tangent dynamics of the exact solution.
+//!
+//! Everything is dimensionless (τ = ω0·t), on the model
+//!
+//! ```text
+//! y'' + 2ζ y' + y + sgn(y') = F(τ) = β cos(w τ + φ)     while sliding,
+//! y' = 0 and |F(τ) − y| ≤ μs                             while stuck,
+//! ```
+//!
+//! with the state x = (y, y') and perturbations δx = (δy, δy').
+//!
+//! # Tangent dynamics
+//!
+//! The derivative of the exact flow, J = ∂x(τ)/∂x(τ₀), is a product of the state-transition
+//! matrices of the segments and the saltation matrices of the events between them, in time
+//! order:
+//!
+//! ```text
+//! J = Φ_N · S_N · Φ_{N−1} · … · S_1 · Φ_0.
+//! ```
+//!
+//! - [`segment`]: every slide has Φ(Δτ) = e^{AΔτ}, A = [[0, 1], [−1, −2ζ]] (the friction and
+//!   the drive do not depend on the state), in the closed-form basis of every damping regime,
+//!   with det Φ = e^{−2ζΔτ}; a stuck segment has diag(1, 0).
+//! - [`saltation`]: from S = I + (f⁺ − f⁻)∇hᵀ/(∇h·f⁻ + ∂h/∂τ), a turn gives
+//!   diag(1, a⁺/a⁻) with a∓ = F − y − s∓ (always a contraction, |a⁻| > μs + 1), a stop
+//!   diag(1, 0) (rank one), a release in direction s [[1, 0], [−(μs − 1)/(sF'), 1]] (the
+//!   static limit moves with the drive; at μs = 1 the field is continuous there and S = I), and
+//!   a zero-duration stop the product of the last two, one side of a kink for μs > 1 and
+//!   smooth at μs = 1.
+//! - [`TangentSolver`]: an [`crate::ExactSolver`] that carries J (and ln|det J|) along its
+//!   trajectory, reading every saltation from the numbers the solver decided the event with.
+//!   The solver itself is unchanged, so runs without tangents cost what they always did.
+//! - [`strobe_map`]: the p-fold strobe map P^p (the state at τ = kT, T = 2π/w, to the state p
+//!   periods later) with its exact Jacobian.
+
+mod error;
+mod matrix;
+pub mod saltation;
+pub mod segment;
+pub mod strobe;
+pub mod tangent;
+
+pub use error::StabilityError;
+pub use matrix::{Matrix2, Multiplier};
+pub use segment::{sliding_transition, stuck_transition};
+pub use strobe::{strobe_map, StrobeImage};
+pub use tangent::TangentSolver;
