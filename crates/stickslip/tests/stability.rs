@@ -1,10 +1,15 @@
 //! Tests of the stability analysis: the tangent dynamics against finite differences of the
-//! exact flow.
+//! exact flow, and periodic orbits by Newton's method against long simulations.
 
 use std::f64::consts::TAU;
 use stickslip::solver::run_until;
-use stickslip::stability::{saltation, sliding_transition, stuck_transition, TangentSolver};
-use stickslip::{Event, EventKind, ExactSolver, Params, Phase, Solver, State};
+use stickslip::stability::{
+    find_periodic_orbit, periodic_orbit_from_steady, saltation, sliding_transition, strobe_map,
+    stuck_transition, Matrix2, NewtonOptions, PeriodicOrbit, Stability, StabilityError,
+    TangentSolver,
+};
+use stickslip::steady::{exact_solver, steady_state_from, SteadyOptions};
+use stickslip::{Error, Event, EventKind, ExactSolver, Params, Phase, Solver, State};
 
 /// Uniform pseudo-random numbers from a fixed seed (xorshift64), the same on every run.
 struct Rng(u64);
@@ -428,4 +433,339 @@ fn zero_duration_stops_have_one_sided_derivatives_and_are_smooth_at_mu_s_one() {
         kinked >= 60 && smooth >= 30,
         "cases: {kinked} kinked, {smooth} at mu_s = 1"
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Periodic orbits
+
+/// Steady-state options for settling on orbits: no spectrum.
+fn settling() -> SteadyOptions {
+    SteadyOptions::default().with_spectrum(false)
+}
+
+/// The monodromy matrix of random periodic orbits (found by simulation, refined by Newton)
+/// against central differences of the p-fold strobe map, in every regime and with μs from 1
+/// to 3. The strobe map is smooth near an orbit that follows one sequence of events, so the
+/// differences carry O(h²) and rounding O(10⁻¹⁶/h): the best of h = 1e-5, 1e-6, 1e-7 must
+/// agree to 1e-6·(1 + max|M|) and h = 1e-6 to 1e-4·(1 + max|M|). Orbits stuck at their strobe
+/// are checked in the δy column (see `stability::periodic_orbit`); orbits with a
+/// zero-duration stop are left out (the map has a kink there, tested above). Also Liouville
+/// with saltations: an orbit that never stops has det M = e^{−2ζpT}·Π_turns(a⁺/a⁻), each turn
+/// with a⁺/a⁻ = (|F − y| − 1)/(|F − y| + 1), to 1e-10 relative.
+#[test]
+fn monodromy_matches_finite_differences_of_the_strobe_map() {
+    let mut rng = Rng(0x5eed_0004_5678_9abc);
+    let (mut sliding, mut sticking, mut stuck_strobe) = (0, 0, 0);
+    for case in 0..160 {
+        let (name, zeta, w) = regime(&mut rng, case % 4);
+        let mu_s = if case % 2 == 0 {
+            1.0
+        } else {
+            rng.range(1.0, 3.0)
+        };
+        let params = Params::new(zeta, w, rng.range(0.5, 8.0))
+            .and_then(|p| p.with_phi(rng.range(0.0, TAU)))
+            .and_then(|p| p.with_mu_s(mu_s))
+            .unwrap();
+        let initial = State {
+            y: rng.range(-3.0, 3.0),
+            v: rng.range(-2.0, 2.0),
+        };
+        let steady = steady_state_from(&exact_solver, &params, initial, &settling()).unwrap();
+        if steady.period.is_none() || steady.longest_stop.is_infinite() {
+            continue;
+        }
+        let orbit = periodic_orbit_from_steady(&params, &steady, &NewtonOptions::default())
+            .unwrap_or_else(|e| panic!("{name} case {case} {params:?}: {e}"));
+        if orbit.stops.iter().any(|s| s.duration == 0.0) {
+            continue;
+        }
+        let m = orbit.monodromy;
+        let p = orbit.period;
+        let horizon = p as f64 * params.drive_period();
+        let columns: &[usize] = if orbit.stuck_at_strobe { &[0] } else { &[0, 1] };
+        let scale = 1.0 + m.max_abs();
+        let errors: Vec<f64> = [1e-5, 1e-6, 1e-7]
+            .iter()
+            .map(|&h| {
+                central_differences(&params, orbit.state, horizon, h, columns)
+                    .map_or(f64::INFINITY, |fd| difference(&fd, &m.0, columns))
+            })
+            .collect();
+        let best = errors.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            best <= 1e-6 * scale && errors[1] <= 1e-4 * scale,
+            "{name} case {case} {params:?} p {p}: FD errors {errors:?}, M {m:?}, events {:?}",
+            orbit.events
+        );
+        if orbit.stops.is_empty() {
+            let mut det = (-2.0 * zeta * horizon).exp();
+            for e in &orbit.events {
+                let net = (drive_and_rate(&params, e.tau).0 - e.y).abs();
+                det *= (net - 1.0) / (net + 1.0);
+            }
+            assert!(
+                (m.det() - det).abs() <= 1e-10 * det,
+                "{name} case {case}: det M {} against {det}",
+                m.det()
+            );
+            sliding += 1;
+        } else {
+            let image = strobe_map(&params, orbit.state, p).unwrap();
+            assert!(
+                image.log_det.is_none()
+                    && orbit.multipliers[1].modulus() <= 1e-14 * m.max_abs()
+                    && m.det().abs() <= 1e-14 * m.max_abs() * m.max_abs(),
+                "{name} case {case}: a stop makes M singular, {m:?}"
+            );
+            sticking += 1;
+            stuck_strobe += usize::from(orbit.stuck_at_strobe);
+        }
+    }
+    assert!(
+        sliding >= 20 && sticking >= 20 && stuck_strobe >= 3,
+        "orbits: {sliding} sliding, {sticking} sticking ({stuck_strobe} stuck at the strobe)"
+    );
+}
+
+/// Settled steady states, stable by construction, at the paper's points and with μs > 1,
+/// periods 1, 3 and 13.
+fn settled_points() -> Vec<(Params, usize)> {
+    let paper = 0.046816;
+    [
+        (paper, 0.7, 1.2, 1.0, 1),
+        (paper, 0.6, 1.2, 1.0, 1),
+        (paper, 0.9, 1.6, 1.0, 1),
+        (paper, 0.29, 2.14, 1.0, 1),
+        (paper, 1.43, 2.14, 1.0, 1),
+        (0.05, 0.9, 3.0, 1.5, 1),
+        (0.02, 0.5, 6.0, 2.0, 1),
+        (0.0, 0.39, 9.0, 3.0, 3),
+        (0.0, 0.38, 9.0, 3.0, 13),
+    ]
+    .iter()
+    .map(|&(zeta, w, beta, mu_s, p)| {
+        (
+            Params::new(zeta, w, beta)
+                .and_then(|q| q.with_mu_s(mu_s))
+                .unwrap(),
+            p,
+        )
+    })
+    .collect()
+}
+
+/// Newton's method from a settled steady state lands on the orbit the simulation settled on
+/// (within 1e-8·scale: the simulation's tolerance is 1e-10 relative, amplified by 1/(1 − |μ|)
+/// at most 5 here) in at most 6 steps, and from a guess 1e-2 away it converges quadratically:
+/// every step from a residual r_n ≤ 1e-2 to one above 1e-14·scale (ten times the rounding of
+/// the map) has r_{n+1} ≤ 10·r_n² (residuals in units of the kinetic friction force; linear
+/// convergence at any rate q fails this once r_n < q/10), and there is such a step at every
+/// point.
+#[test]
+fn newton_finds_the_orbit_a_long_simulation_settles_on_quadratically() {
+    for (params, period) in settled_points() {
+        let steady =
+            steady_state_from(&exact_solver, &params, State::default(), &settling()).unwrap();
+        assert_eq!(steady.period, Some(period), "{params:?}");
+        let orbit =
+            periodic_orbit_from_steady(&params, &steady, &NewtonOptions::default()).unwrap();
+        let settled = steady.strobes[0];
+        let scale = 1f64.max(settled.y.abs()).max(settled.v.abs());
+        let distance = (orbit.state.y - settled.y)
+            .abs()
+            .max((orbit.state.v - settled.v).abs());
+        assert!(
+            orbit.iterations <= 6 && distance <= 1e-8 * scale,
+            "{params:?}: {} iterations, {distance:e} from the settled strobe",
+            orbit.iterations
+        );
+        assert_eq!(orbit.stability, Stability::Stable, "{params:?}");
+        assert_eq!(orbit.residuals.len(), orbit.iterations + 1);
+        let guess = State {
+            y: orbit.state.y + 1e-2,
+            v: if orbit.stuck_at_strobe {
+                0.0
+            } else {
+                orbit.state.v - 1e-2
+            },
+        };
+        let again = find_periodic_orbit(&params, guess, period, &NewtonOptions::default())
+            .unwrap_or_else(|e| panic!("{params:?} from {guess:?}: {e}"));
+        assert!(
+            (again.state.y - orbit.state.y).abs() <= 1e-9 * scale
+                && (again.state.v - orbit.state.v).abs() <= 1e-9 * scale,
+            "{params:?}: {:?} against {:?}",
+            again.state,
+            orbit.state
+        );
+        let r = &again.residuals;
+        let steps: Vec<f64> = r
+            .windows(2)
+            .filter(|t| t[0] <= 1e-2 && t[1] > 1e-14 * scale)
+            .map(|t| t[1] / (t[0] * t[0]))
+            .collect();
+        assert!(
+            !steps.is_empty() && steps.iter().all(|&k| k <= 10.0),
+            "{params:?}: residuals {r:?}, r[n+1]/r[n]^2 {steps:?}"
+        );
+    }
+}
+
+/// Components of the eigenvector of `m` for the real eigenvalue `mu`, of unit max norm.
+fn eigenvector(m: &Matrix2, mu: f64) -> [f64; 2] {
+    let [[a, b], [c, d]] = m.0;
+    let e = if b.abs() + (mu - a).abs() >= c.abs() + (mu - d).abs() {
+        [b, mu - a]
+    } else {
+        [mu - d, c]
+    };
+    let n = e[0].abs().max(e[1].abs());
+    [e[0] / n, e[1] / n]
+}
+
+/// Unstable orbits, found by Newton's method from a coarse grid of guesses in a chaotic window
+/// (ζ = 0, μs = 3) and with damping and μs = 2 where a stable orbit coexists: at least one
+/// unstable orbit at each point. A perturbation of 1e-7 along the unstable eigenvector grows
+/// under the strobe map by |μ| per orbit period: every step with the perturbation below 1e-4
+/// multiplies it by |μ| to 1e-3 relative (the nonlinear part is of the order of the
+/// perturbation, and Newton's residual, ~1e-11, puts the orbit 1e-4 of the first perturbation
+/// away at most), and it keeps the eigenvector's direction to 1e-3.
+#[test]
+fn unstable_orbits_are_found_and_perturbations_grow_at_their_multiplier() {
+    let points = [
+        (0.0, 0.33, 9.0, 3.0),
+        (0.0, 0.47, 9.0, 3.0),
+        (0.02, 0.5, 6.0, 2.0),
+    ];
+    for (zeta, w, beta, mu_s) in points {
+        let params = Params::new(zeta, w, beta)
+            .and_then(|p| p.with_mu_s(mu_s))
+            .unwrap();
+        let mut unstable: Vec<PeriodicOrbit> = Vec::new();
+        for period in 1..=2 {
+            for i in 0..13 {
+                for j in 0..7 {
+                    let guess = State {
+                        y: -12.0 + 2.0 * i as f64,
+                        v: -6.0 + 2.0 * j as f64,
+                    };
+                    let Ok(orbit) =
+                        find_periodic_orbit(&params, guess, period, &NewtonOptions::default())
+                    else {
+                        continue;
+                    };
+                    let known = unstable.iter().any(|o| {
+                        o.period == period
+                            && (o.state.y - orbit.state.y).abs() < 1e-6
+                            && (o.state.v - orbit.state.v).abs() < 1e-6
+                    });
+                    if orbit.stability == Stability::Unstable && !known {
+                        unstable.push(orbit);
+                    }
+                }
+            }
+        }
+        assert!(!unstable.is_empty(), "{params:?}: no unstable orbit found");
+        for orbit in &unstable {
+            let mu = orbit.multipliers[0];
+            assert!(mu.is_real() && mu.re.abs() > 1.0, "{params:?}: {mu:?}");
+            let e = eigenvector(&orbit.monodromy, mu.re);
+            let epsilon = 1e-7;
+            let x0 = orbit.state;
+            let mut x = State {
+                y: x0.y + epsilon * e[0],
+                v: x0.v + epsilon * e[1],
+            };
+            let mut size = epsilon;
+            let mut steps = 0;
+            while size < 1e-4 {
+                x = strobe_map(&params, x, orbit.period).unwrap().state;
+                let delta = [x.y - x0.y, x.v - x0.v];
+                let new_size = delta[0].abs().max(delta[1].abs());
+                assert!(
+                    (new_size / size - mu.re.abs()).abs() <= 1e-3 * mu.re.abs(),
+                    "{params:?} p {} at {x0:?}: grew by {} against |mu| = {}",
+                    orbit.period,
+                    new_size / size,
+                    mu.re.abs()
+                );
+                let off = |sign: f64| {
+                    (delta[0] / new_size - sign * e[0])
+                        .abs()
+                        .max((delta[1] / new_size - sign * e[1]).abs())
+                };
+                assert!(
+                    off(1.0).min(off(-1.0)) <= 1e-3,
+                    "{params:?}: direction {delta:?} against {e:?}"
+                );
+                size = new_size;
+                steps += 1;
+            }
+            assert!(steps >= 3, "{params:?}: {steps} steps");
+        }
+    }
+}
+
+/// Typed errors: Newton's method that cannot converge in its iterations, a tangential
+/// release, iterates that run onto the jump of the strobe map, and invalid arguments.
+#[test]
+fn failures_are_typed() {
+    let params = Params::new(0.0, 0.33, 9.0)
+        .and_then(|p| p.with_mu_s(3.0))
+        .unwrap();
+    let one_step = NewtonOptions {
+        max_iterations: 1,
+        ..NewtonOptions::default()
+    };
+    match find_periodic_orbit(&params, State { y: -10.0, v: -5.0 }, 1, &one_step) {
+        Err(Error::Stability(StabilityError::NoConvergence { iterations: 1, .. })) => {}
+        other => panic!("{other:?}"),
+    }
+    // At rest where the net force is exactly −μs with the drive at its maximum: the release
+    // is tangential.
+    let tangential = Params::new(0.02, 0.5, 6.0)
+        .and_then(|p| p.with_mu_s(2.0))
+        .unwrap();
+    match strobe_map(&tangential, State { y: 8.0, v: 0.0 }, 1) {
+        Err(Error::Stability(StabilityError::NonFiniteJacobian { tau })) => assert_eq!(tau, 0.0),
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(
+        strobe_map(&params, State::default(), 0),
+        Err(Error::InvalidParameter {
+            name: "periods",
+            ..
+        })
+    ));
+    // From this guess the period-2 iterates run onto y' = 0 at a net force of about 2.15,
+    // between the kinetic and the static limit (μs = 3), where the map jumps: with y' = 0
+    // exactly the oscillator stays stuck and lands far from the limit point.
+    match find_periodic_orbit(
+        &params,
+        State { y: -8.0, v: 1.0 },
+        2,
+        &NewtonOptions::default(),
+    ) {
+        Err(Error::Stability(StabilityError::OnDiscontinuity { y, v, net_force })) => {
+            assert!(
+                v.abs() < 1e-12 && net_force > 1.0 && net_force < 3.0,
+                "{y} {v}"
+            );
+            let stuck = strobe_map(&params, State { y, v: 0.0 }, 2).unwrap();
+            assert!(stuck.stuck_at_start && (stuck.state.y - y).abs() > 1.0);
+        }
+        other => panic!("{other:?}"),
+    }
+    let loose = NewtonOptions {
+        tolerance: 1.0,
+        ..NewtonOptions::default()
+    };
+    assert!(matches!(
+        find_periodic_orbit(&params, State::default(), 1, &loose),
+        Err(Error::InvalidParameter {
+            name: "tolerance",
+            ..
+        })
+    ));
 }

@@ -1,4 +1,5 @@
-//! Stability and chaos, exactly: the tangent dynamics of the exact solution.
+//! Stability and chaos, exactly: the tangent dynamics of the exact solution, and periodic
+//! orbits by Newton's method with their Floquet multipliers.
 //!
 //! Everything is dimensionless (τ = ω0·t), on the model
 //!
@@ -31,11 +32,19 @@
 //! - [`TangentSolver`]: an [`crate::ExactSolver`] that carries J (and ln|det J|) along its
 //!   trajectory, reading every saltation from the numbers the solver decided the event with.
 //!   The solver itself is unchanged, so runs without tangents cost what they always did.
-//! - [`strobe_map`]: the p-fold strobe map P^p (the state at τ = kT, T = 2π/w, to the state p
-//!   periods later) with its exact Jacobian.
+//!
+//! # Periodic orbits
+//!
+//! [`strobe_map`] is the p-fold strobe map P^p (the state at τ = kT, T = 2π/w, to the state p
+//! periods later) with its exact Jacobian; [`find_periodic_orbit`] solves P^p(x) = x by
+//! Newton's method (quadratic convergence, stable and unstable orbits alike, the rank-one
+//! Jacobian of orbits that stick handled as its module explains) and returns the orbit's
+//! events and stops, its monodromy matrix, Floquet multipliers and [`Stability`].
+//! [`periodic_orbit_from_steady`] starts it from a settled [`crate::SteadyState`].
 
 mod error;
 mod matrix;
+pub mod periodic_orbit;
 pub mod saltation;
 pub mod segment;
 pub mod strobe;
@@ -43,6 +52,9 @@ pub mod tangent;
 
 pub use error::StabilityError;
 pub use matrix::{Matrix2, Multiplier};
+pub use periodic_orbit::{
+    find_periodic_orbit, periodic_orbit_from_steady, NewtonOptions, PeriodicOrbit, Stability, Stop,
+};
 pub use segment::{sliding_transition, stuck_transition};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
