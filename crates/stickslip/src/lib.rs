@@ -20,8 +20,9 @@
 //!   [`solver::sample_at`] drive any of them.
 //! - [`steady`]: the steady state of any solver ([`steady_state`]), its spectrum and
 //!   [`MotionClass`], sweeps with hysteresis and (w, β) phase diagrams.
-//! - [`stability`]: the exact tangent dynamics (segment and saltation matrices), and periodic
-//!   orbits by Newton's method with their Floquet multipliers.
+//! - [`stability`]: the exact tangent dynamics (segment and saltation matrices), periodic
+//!   orbits by Newton's method with their Floquet multipliers, Lyapunov exponents, and chaos
+//!   told from quasi-periodic motion.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 

@@ -1,12 +1,14 @@
 //! Tests of the stability analysis: the tangent dynamics against finite differences of the
-//! exact flow, and periodic orbits by Newton's method against long simulations.
+//! exact flow, periodic orbits by Newton's method against long simulations, and Lyapunov
+//! exponents against the two-trajectory estimate and the Floquet multipliers.
 
 use std::f64::consts::TAU;
 use stickslip::solver::run_until;
 use stickslip::stability::{
-    find_periodic_orbit, periodic_orbit_from_steady, saltation, sliding_transition, strobe_map,
-    stuck_transition, Matrix2, NewtonOptions, PeriodicOrbit, Stability, StabilityError,
-    TangentSolver,
+    classify_nonperiodic, find_periodic_orbit, lyapunov_exponents, periodic_orbit_from_steady,
+    saltation, sliding_transition, strobe_map, stuck_transition, two_trajectory_exponent,
+    LyapunovOptions, Matrix2, NewtonOptions, NonperiodicVerdict, PeriodicOrbit, SecondExponent,
+    Stability, StabilityError, TangentSolver,
 };
 use stickslip::steady::{exact_solver, steady_state_from, SteadyOptions};
 use stickslip::{Error, Event, EventKind, ExactSolver, Params, Phase, Solver, State};
@@ -707,6 +709,177 @@ fn unstable_orbits_are_found_and_perturbations_grow_at_their_multiplier() {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Lyapunov exponents
+
+/// The options of the Lyapunov tests: 1000 periods of transient, 20 000 measured in 20 blocks.
+fn measuring() -> LyapunovOptions {
+    LyapunovOptions::default()
+}
+
+/// Chaotic points (ζ = 0, μs = 3, β = 9, in the two windows of the w sweep) and stable orbits:
+/// the tangent estimate and the two-trajectory estimate (separation d₀ = 1e-8, its own solver
+/// runs restarted every period) agree within 4 combined standard errors plus twice the
+/// two-trajectory estimate's bias, which its block error does not see. The bias is O(d₀) (the
+/// curvature of the map) and is estimated as the change of the estimate from d₀ to 2d₀. At
+/// the chaotic points the exponent is positive beyond 4 standard errors; all estimates
+/// converged.
+#[test]
+fn tangent_exponent_agrees_with_the_two_trajectory_estimate() {
+    let chaotic = [
+        (0.0, 0.30, 9.0, 3.0),
+        (0.0, 0.33, 9.0, 3.0),
+        (0.0, 0.47, 9.0, 3.0),
+    ];
+    let periodic = [
+        (0.046816, 0.7, 1.2, 1.0),
+        (0.046816, 0.9, 1.6, 1.0),
+        (0.046816, 1.43, 2.14, 1.0),
+        (0.02, 0.5, 6.0, 2.0),
+    ];
+    for (is_chaotic, points) in [(true, &chaotic[..]), (false, &periodic[..])] {
+        for &(zeta, w, beta, mu_s) in points {
+            let params = Params::new(zeta, w, beta)
+                .and_then(|p| p.with_mu_s(mu_s))
+                .unwrap();
+            let tangent = lyapunov_exponents(&params, State::default(), &measuring()).unwrap();
+            let two =
+                two_trajectory_exponent(&params, State::default(), &measuring(), 1e-8).unwrap();
+            let wider =
+                two_trajectory_exponent(&params, State::default(), &measuring(), 2e-8).unwrap();
+            let bias = (wider.largest.per_tau - two.largest.per_tau).abs();
+            let (t, b) = (tangent.largest, two.largest);
+            let combined = t.error_per_tau.hypot(b.error_per_tau);
+            assert!(
+                (t.per_tau - b.per_tau).abs() <= 4.0 * combined + 2.0 * bias,
+                "{params:?}: tangent {t:?}, two trajectories {b:?}, bias {bias:e}"
+            );
+            assert!(tangent.converged && two.converged, "{params:?}");
+            assert_eq!(
+                t.per_tau > 4.0 * t.error_per_tau,
+                is_chaotic,
+                "{params:?}: {t:?}"
+            );
+            assert!((t.per_period - t.per_tau * params.drive_period()).abs() <= 1e-15);
+        }
+    }
+}
+
+/// Every periodic orbit's largest exponent, measured along the orbit from its strobe, is
+/// ln|μ_max|/(pT) from Newton's monodromy matrix: within 4 standard errors plus 1e-9·|λ| (the
+/// monodromy matrix and the long run round differently), and negative. The second exponent is
+/// finite for sliding orbits, with λ₁ + λ₂ = ln|det M|/(pT) to 1e-9 (Liouville with the turns'
+/// saltations), and −∞ for orbits that stop.
+#[test]
+fn every_periodic_orbit_has_the_exponent_of_its_largest_multiplier() {
+    let options = LyapunovOptions {
+        transient_periods: 200,
+        periods: 4000,
+        ..LyapunovOptions::default()
+    };
+    for (params, _) in settled_points() {
+        let steady =
+            steady_state_from(&exact_solver, &params, State::default(), &settling()).unwrap();
+        let orbit =
+            periodic_orbit_from_steady(&params, &steady, &NewtonOptions::default()).unwrap();
+        let lyap = lyapunov_exponents(&params, orbit.state, &options).unwrap();
+        let expected = orbit.exponent();
+        let l = lyap.largest;
+        assert!(
+            expected < 0.0
+                && (l.per_tau - expected).abs() <= 4.0 * l.error_per_tau + 1e-9 * expected.abs(),
+            "{params:?}: Lyapunov {l:?}, ln|mu|/pT = {expected}"
+        );
+        match lyap.second {
+            SecondExponent::Finite(second) => {
+                assert!(orbit.stops.is_empty(), "{params:?}");
+                let horizon = orbit.period as f64 * params.drive_period();
+                let contraction = orbit.monodromy.det().ln() / horizon;
+                assert!(
+                    (l.per_tau + second.per_tau - contraction).abs() <= 1e-9 * contraction.abs(),
+                    "{params:?}: {l:?} + {second:?} against ln det M / pT = {contraction}"
+                );
+            }
+            SecondExponent::MinusInfinity { stops } => {
+                assert!(stops > 0 && !orbit.stops.is_empty(), "{params:?}");
+                assert_eq!(lyap.second.per_tau(), f64::NEG_INFINITY);
+            }
+        }
+    }
+}
+
+/// The verdicts: chaos in the window at w = 0.33 (ζ = 0, μs = 3, β = 9); contraction at the
+/// paper's Fig. 6 point (0.7, 1.2) and at (ζ, μs, w, β) = (0, 2.5, 0.4227, 3.627), whose strobe
+/// map does not repeat within 5000 periods but which contracts slowly onto a stable period-1
+/// orbit (its exponent equals that orbit's ln|μ|/T; a measurement still in the approach is
+/// undecided); rest (β < μs from rest) has exponent 0
+/// exactly, the verdict for neither growth nor decay; and a measurement that begins in a
+/// transient disagrees between its halves (undecided).
+#[test]
+fn classify_nonperiodic_tells_chaos_from_contraction() {
+    let verdict = |zeta: f64, w: f64, beta: f64, mu_s: f64, options: &LyapunovOptions| {
+        let params = Params::new(zeta, w, beta)
+            .and_then(|p| p.with_mu_s(mu_s))
+            .unwrap();
+        classify_nonperiodic(&params, State::default(), options).unwrap()
+    };
+    let c = verdict(0.0, 0.33, 9.0, 3.0, &measuring());
+    assert_eq!(
+        c.verdict,
+        NonperiodicVerdict::Chaotic,
+        "{:?}",
+        c.exponents.largest
+    );
+    let c = verdict(0.046816, 0.7, 1.2, 1.0, &measuring());
+    assert_eq!(c.verdict, NonperiodicVerdict::Contracting);
+
+    let slow = Params::new(0.0, 0.4227, 3.627)
+        .and_then(|p| p.with_mu_s(2.5))
+        .unwrap();
+    // Its multiplier is 0.9991 per period: 1000 periods of transient leave the measurement
+    // in the approach (undecided); 20 000 do not.
+    let c = classify_nonperiodic(&slow, State::default(), &measuring()).unwrap();
+    assert_eq!(c.verdict, NonperiodicVerdict::Undecided);
+    let long = LyapunovOptions {
+        transient_periods: 20_000,
+        ..measuring()
+    };
+    let c = classify_nonperiodic(&slow, State::default(), &long).unwrap();
+    assert_eq!(c.verdict, NonperiodicVerdict::Contracting);
+    let steady = steady_state_from(
+        &exact_solver,
+        &slow,
+        State::default(),
+        &settling().with_max_periods(40_000).unwrap(),
+    )
+    .unwrap();
+    assert!(steady.periods_to_settle > 5000 && steady.period == Some(1));
+    let orbit = periodic_orbit_from_steady(&slow, &steady, &NewtonOptions::default()).unwrap();
+    let l = c.exponents.largest;
+    assert!(
+        (l.per_tau - orbit.exponent()).abs() <= 4.0 * l.error_per_tau + 1e-9 * l.per_tau.abs(),
+        "{l:?} against ln|mu|/T = {}",
+        orbit.exponent()
+    );
+
+    let rest = verdict(0.05, 0.8, 0.5, 1.0, &measuring());
+    assert_eq!(rest.exponents.largest.per_tau, 0.0);
+    assert_eq!(rest.verdict, NonperiodicVerdict::QuasiPeriodic);
+
+    let early = LyapunovOptions {
+        transient_periods: 0,
+        periods: 200,
+        ..LyapunovOptions::default()
+    };
+    let c = verdict(0.046816, 0.7, 1.2, 1.0, &early);
+    assert_eq!(
+        c.verdict,
+        NonperiodicVerdict::Undecided,
+        "{:?}",
+        c.exponents
+    );
+}
+
 /// Typed errors: Newton's method that cannot converge in its iterations, a tangential
 /// release, iterates that run onto the jump of the strobe map, and invalid arguments.
 #[test]
@@ -765,6 +938,38 @@ fn failures_are_typed() {
         find_periodic_orbit(&params, State::default(), 1, &loose),
         Err(Error::InvalidParameter {
             name: "tolerance",
+            ..
+        })
+    ));
+}
+
+/// Invalid options and separations are rejected, naming the field.
+#[test]
+fn lyapunov_options_are_validated() {
+    let params = Params::new(0.05, 0.9, 1.6).unwrap();
+    let odd_blocks = LyapunovOptions {
+        blocks: 5,
+        ..LyapunovOptions::default()
+    };
+    assert!(matches!(
+        lyapunov_exponents(&params, State::default(), &odd_blocks),
+        Err(Error::InvalidParameter { name: "blocks", .. })
+    ));
+    let short = LyapunovOptions {
+        periods: 10,
+        ..LyapunovOptions::default()
+    };
+    assert!(matches!(
+        classify_nonperiodic(&params, State::default(), &short),
+        Err(Error::InvalidParameter {
+            name: "periods",
+            ..
+        })
+    ));
+    assert!(matches!(
+        two_trajectory_exponent(&params, State::default(), &measuring(), 0.0),
+        Err(Error::InvalidParameter {
+            name: "separation",
             ..
         })
     ));

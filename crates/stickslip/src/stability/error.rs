@@ -54,4 +54,11 @@ pub enum StabilityError {
         /// Net force β cos φ − y at the strobe.
         net_force: f64,
     },
+    /// The two trajectories of the two-trajectory estimate became identical, so their
+    /// separation cannot be renormalised.
+    #[error("the two trajectories coincide after {period} drive periods")]
+    SeparationLost {
+        /// Drive periods of the two-trajectory run (its alignment included).
+        period: usize,
+    },
 }

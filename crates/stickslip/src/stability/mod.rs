@@ -1,5 +1,5 @@
-//! Stability and chaos, exactly: the tangent dynamics of the exact solution, and periodic
-//! orbits by Newton's method with their Floquet multipliers.
+//! Stability and chaos, exactly: the tangent dynamics of the exact solution, periodic orbits
+//! by Newton's method with their Floquet multipliers, and Lyapunov exponents.
 //!
 //! Everything is dimensionless (τ = ω0·t), on the model
 //!
@@ -41,20 +41,37 @@
 //! Jacobian of orbits that stick handled as its module explains) and returns the orbit's
 //! events and stops, its monodromy matrix, Floquet multipliers and [`Stability`].
 //! [`periodic_orbit_from_steady`] starts it from a settled [`crate::SteadyState`].
+//!
+//! # Lyapunov exponents
+//!
+//! [`lyapunov_exponents`] gives the largest exponent from the renormalised tangent, per unit τ
+//! and per drive period, with a standard error from block means and a convergence check, and
+//! the second exponent from ln|det J| (−∞ once the motion stops: a stop erases the velocity
+//! perturbation). [`two_trajectory_exponent`] is the classical two-trajectory estimate on the
+//! same solver, an independent check. [`classify_nonperiodic`] tells chaos from
+//! quasi-periodic and contracting motion by the sign of the exponent beyond its error.
 
 mod error;
+pub mod lyapunov;
 mod matrix;
+pub mod nonperiodic;
 pub mod periodic_orbit;
 pub mod saltation;
 pub mod segment;
 pub mod strobe;
 pub mod tangent;
+pub mod two_trajectory;
 
 pub use error::StabilityError;
+pub use lyapunov::{
+    lyapunov_exponents, Estimate, LyapunovExponents, LyapunovOptions, SecondExponent,
+};
 pub use matrix::{Matrix2, Multiplier};
+pub use nonperiodic::{classify_nonperiodic, NonperiodicClassification, NonperiodicVerdict};
 pub use periodic_orbit::{
     find_periodic_orbit, periodic_orbit_from_steady, NewtonOptions, PeriodicOrbit, Stability, Stop,
 };
 pub use segment::{sliding_transition, stuck_transition};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
+pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};

@@ -170,6 +170,16 @@ impl TangentSolver {
         self.grazing
     }
 
+    /// Go on from the current state with a new solver whose clock starts at τ = 0, keeping J,
+    /// ln|det J| and the stops. Only at a strobe (a whole number of drive periods since τ = 0),
+    /// where the drive phase is φ again. Absolute times then stay small in a long run: their
+    /// rounding, ulp(τ), doubles at every power of two and would otherwise change the segment
+    /// durations the Jacobian sees (by about 10⁻¹⁰ relative at τ ~ 10⁵) from one stretch of the
+    /// run to the next.
+    pub(crate) fn restart_clock(&mut self) {
+        self.solver = ExactSolver::new(*self.solver.params(), self.solver.state());
+    }
+
     /// Divide J by its Frobenius norm and return the logarithm of that norm, the factor e^s
     /// of [`TangentSolver::log_scale`] included (for Lyapunov exponents: the growth since the
     /// last renormalisation). ln|det J| is kept as it was.
