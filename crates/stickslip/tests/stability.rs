@@ -881,7 +881,8 @@ fn classify_nonperiodic_tells_chaos_from_contraction() {
 }
 
 /// Typed errors: Newton's method that cannot converge in its iterations, a tangential
-/// release, iterates that run onto the jump of the strobe map, and invalid arguments.
+/// release, iterates that run onto the jump of the strobe map, a steady state without a
+/// period, and invalid arguments.
 #[test]
 fn failures_are_typed() {
     let params = Params::new(0.0, 0.33, 9.0)
@@ -927,6 +928,14 @@ fn failures_are_typed() {
             );
             let stuck = strobe_map(&params, State { y, v: 0.0 }, 2).unwrap();
             assert!(stuck.stuck_at_start && (stuck.state.y - y).abs() > 1.0);
+        }
+        other => panic!("{other:?}"),
+    }
+    // A chaotic motion has no period to refine.
+    let chaotic = steady_state_from(&exact_solver, &params, State::default(), &settling()).unwrap();
+    match periodic_orbit_from_steady(&params, &chaotic, &NewtonOptions::default()) {
+        Err(Error::Stability(StabilityError::NoPeriod { periods_run })) => {
+            assert_eq!(periods_run, SteadyOptions::default().max_periods)
         }
         other => panic!("{other:?}"),
     }

@@ -54,6 +54,12 @@ pub enum StabilityError {
         /// Net force β cos φ − y at the strobe.
         net_force: f64,
     },
+    /// A periodic orbit was asked of a steady state that found no period.
+    #[error("the steady state found no period in {periods_run} drive periods")]
+    NoPeriod {
+        /// Drive periods the steady-state analysis ran.
+        periods_run: usize,
+    },
     /// The two trajectories of the two-trajectory estimate became identical, so their
     /// separation cannot be renormalised.
     #[error("the two trajectories coincide after {period} drive periods")]

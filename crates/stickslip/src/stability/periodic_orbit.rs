@@ -299,17 +299,18 @@ pub fn find_periodic_orbit(
 /// guess), refined by [`find_periodic_orbit`].
 ///
 /// # Errors
-/// [`Error::NoSolution`] when the steady state has no period; as [`find_periodic_orbit`].
+/// [`StabilityError::NoPeriod`] when the steady state has no period; as
+/// [`find_periodic_orbit`].
 pub fn periodic_orbit_from_steady(
     params: &Params,
     steady: &SteadyState,
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
     let (Some(period), Some(&guess)) = (steady.period, steady.strobes.first()) else {
-        return Err(Error::NoSolution {
-            what: "periodic orbit",
-            reason: "the steady state did not settle on a period".into(),
-        });
+        return Err(StabilityError::NoPeriod {
+            periods_run: steady.periods_to_settle,
+        }
+        .into());
     };
     find_periodic_orbit(params, guess, period, options)
 }
