@@ -71,6 +71,9 @@ pub enum Error {
     /// What was asked for does not apply to this model.
     #[error("{0}")]
     Unsupported(Unsupported),
+    /// A stability analysis failed (Newton's method, a non-finite Jacobian, …).
+    #[error(transparent)]
+    Stability(#[from] crate::stability::StabilityError),
 }
 
 /// A quantity that a theory may fail to provide.

@@ -30,6 +30,9 @@
 //!   threads.
 //! - [`theory`]: the paper's series solution, the exact periodic solution, both stick-slip
 //!   boundaries, and their curves.
+//! - [`stability`]: the exact tangent dynamics (segment and saltation matrices), periodic
+//!   orbits by Newton's method with their Floquet multipliers, Lyapunov exponents, and chaos
+//!   told from quasi-periodic motion.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
@@ -43,6 +46,7 @@ pub mod physical;
 pub mod scan;
 pub mod shockley;
 pub mod solver;
+pub mod stability;
 pub mod steady;
 #[cfg(test)]
 mod test_rng;

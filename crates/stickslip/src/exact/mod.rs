@@ -114,6 +114,16 @@ impl ExactSolver {
         solver
     }
 
+    /// The sliding direction of the current segment and y, y', …, y'''' at its start, or
+    /// `None` while stuck: what the tangent dynamics ([`crate::stability`]) read at an event,
+    /// the same numbers the solver decided it with.
+    pub(crate) fn slide_start(&self) -> Option<(f64, &[f64; 5])> {
+        match self.segment() {
+            Segment::Slide { sign, linear } => Some((*sign, &linear.start().d)),
+            Segment::Stick { .. } => None,
+        }
+    }
+
     /// The current segment.
     fn segment(&self) -> &Segment {
         &self.slots[self.current]

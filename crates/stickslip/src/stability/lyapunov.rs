@@ -1,0 +1,280 @@
+//! Lyapunov exponents from the exact tangent dynamics, with a statistical error.
+//!
+//! **Largest exponent.** The Jacobian J of the flow ([`TangentSolver`]) is carried along the
+//! trajectory and renormalised at the end of every block of L drive periods: J ← J/‖J‖,
+//! recording g_b = ln‖J‖ (the Frobenius norm; within a block the solver keeps the entries of J
+//! within 10^±100 itself, [`TangentSolver::log_scale`]). After a transient (during which J is
+//! carried too, so that its columns have turned into the most unstable direction) the exponent
+//! is
+//!
+//! ```text
+//! λ₁ = Σ_b g_b / (N T)      per unit τ,       λ₁ T per drive period,
+//! ```
+//!
+//! over N = blocks × L periods. Every block (and every stretch of L periods of the transient)
+//! runs on a solver restarted at τ = 0 from the strobe state, J kept: the rounding of absolute
+//! times grows with τ (ulp(τ) doubles at every power of two) and would change the segment
+//! durations the Jacobian sees by about 10⁻¹⁰ relative at τ ~ 10⁵, from one block to the next.
+//! **Error**: the N periods are cut into blocks of L periods; the
+//! block means are nearly independent when L is long against the correlation time, and the
+//! error is their standard error, sd/√blocks. **Convergence check**: the means of the first
+//! and the second half of the blocks must agree within [`LyapunovOptions::significance`]
+//! times 2σ_r, the standard deviation of their difference for a stationary motion, with
+//! σ_r = 1.4826·MAD/√blocks the standard error from the median absolute deviation of the block
+//! means (plus 10⁻¹²·(1 + |λ₁|), the rounding of a periodic motion, whose blocks agree to the
+//! last bits). The robust spread is not widened by a transient confined to a few blocks, so
+//! such a transient cannot excuse itself; the slow, bounded beat of ln‖J‖ along an orbit with
+//! complex multipliers (a focus) spreads over all blocks and passes. A drift between the
+//! halves makes the estimate not converged.
+//!
+//! **Second exponent.** λ₁ + λ₂ = lim (1/τ) ln|det J|, and ln|det J| is known exactly as a sum
+//! ([`TangentSolver::log_det`]): −2ζ per unit of sliding time (Liouville, between events) plus
+//! ln(a⁺/a⁻) < 0 per turn (the turn saltation, [`super::saltation`]): the turns contract phase
+//! area as well, so λ₁ + λ₂ = −2ζ only for the sliding segments themselves. A stop makes J
+//! singular (det J = 0): λ₂ = −∞, reported as [`SecondExponent::MinusInfinity`], never as the
+//! logarithm of a rounded zero.
+
+use super::error::StabilityError;
+use super::tangent::TangentSolver;
+use crate::error::{Error, Result};
+use crate::params::{Params, State};
+use serde::{Deserialize, Serialize};
+
+/// Options of [`lyapunov_exponents`], [`super::two_trajectory_exponent`] and
+/// [`super::classify_nonperiodic`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LyapunovOptions {
+    /// Drive periods run before measuring (the tangent is carried and renormalised, not
+    /// recorded). Default 1000.
+    pub transient_periods: usize,
+    /// Drive periods measured; rounded down to a multiple of `blocks`. Default 20 000.
+    pub periods: usize,
+    /// Blocks the measured periods are cut into for the error, even and at least 4.
+    /// Default 20.
+    pub blocks: usize,
+    /// Standard errors that make a difference significant (the convergence check and the
+    /// verdicts of [`super::classify_nonperiodic`]). Default 4.
+    pub significance: f64,
+}
+
+impl Default for LyapunovOptions {
+    fn default() -> Self {
+        Self {
+            transient_periods: 1000,
+            periods: 20_000,
+            blocks: 20,
+            significance: 4.0,
+        }
+    }
+}
+
+impl LyapunovOptions {
+    /// Check every field.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the first bad field.
+    pub fn validate(self) -> Result<Self> {
+        let bad = |name, value: f64, allowed| {
+            Err(Error::InvalidParameter {
+                name,
+                value,
+                allowed,
+            })
+        };
+        if self.blocks < 4 || self.blocks % 2 != 0 {
+            return bad("blocks", self.blocks as f64, "must be even and at least 4");
+        }
+        if self.periods < self.blocks {
+            return bad(
+                "periods",
+                self.periods as f64,
+                "must be at least the number of blocks",
+            );
+        }
+        if !(self.significance > 0.0 && self.significance.is_finite()) {
+            return bad("significance", self.significance, "must be finite and > 0");
+        }
+        Ok(self)
+    }
+}
+
+/// An exponent with its statistical error, per unit τ and per drive period. Dimensionless
+/// (rates in units of ω0 per unit τ; per drive period a plain number).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The exponent per unit τ.
+    pub per_tau: f64,
+    /// Its standard error from the block means, per unit τ.
+    pub error_per_tau: f64,
+    /// The exponent per drive period, λ·T.
+    pub per_period: f64,
+    /// Its standard error per drive period.
+    pub error_per_period: f64,
+}
+
+impl Estimate {
+    fn new(per_tau: f64, error_per_tau: f64, drive_period: f64) -> Self {
+        Self {
+            per_tau,
+            error_per_tau,
+            per_period: per_tau * drive_period,
+            error_per_period: error_per_tau * drive_period,
+        }
+    }
+}
+
+/// The second Lyapunov exponent.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SecondExponent {
+    /// The motion never stopped while measured: λ₂ = (1/τ) ln|det J| − λ₁.
+    Finite(Estimate),
+    /// The motion stopped (`stops` times while measured): every stop erases the velocity
+    /// perturbation, det J = 0 and λ₂ = −∞.
+    MinusInfinity {
+        /// Stops while measured.
+        stops: u64,
+    },
+}
+
+impl SecondExponent {
+    /// The exponent per unit τ, −∞ for [`SecondExponent::MinusInfinity`].
+    pub fn per_tau(&self) -> f64 {
+        match self {
+            SecondExponent::Finite(e) => e.per_tau,
+            SecondExponent::MinusInfinity { .. } => f64::NEG_INFINITY,
+        }
+    }
+}
+
+/// The Lyapunov exponents of a motion (see the module documentation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LyapunovExponents {
+    /// The largest exponent.
+    pub largest: Estimate,
+    /// The second exponent.
+    pub second: SecondExponent,
+    /// Whether the two halves of the measurement agree (see the module documentation).
+    pub converged: bool,
+    /// The block means of the largest exponent, per unit τ, in time order.
+    pub block_means: Vec<f64>,
+    /// Drive periods measured (a multiple of the blocks).
+    pub periods: usize,
+    /// The drive period T = 2π/w (dimensionless time).
+    pub drive_period: f64,
+    /// The state at the end of the measurement (at a strobe).
+    pub final_state: State,
+}
+
+/// Mean and standard error of the block means `means`.
+pub(super) fn mean_and_error(means: &[f64]) -> (f64, f64) {
+    let n = means.len() as f64;
+    let mean = means.iter().sum::<f64>() / n;
+    let var = means.iter().map(|m| (m - mean) * (m - mean)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+/// Whether the first and second halves of `means` agree (see the module documentation).
+pub(super) fn halves_agree(means: &[f64], significance: f64) -> bool {
+    let n = means.len();
+    let (first, second) = means.split_at(n / 2);
+    let m1 = first.iter().sum::<f64>() / first.len() as f64;
+    let m2 = second.iter().sum::<f64>() / second.len() as f64;
+    let median = |values: &mut Vec<f64>| {
+        values.sort_by(f64::total_cmp);
+        let k = values.len();
+        if k % 2 == 1 {
+            values[k / 2]
+        } else {
+            0.5 * (values[k / 2 - 1] + values[k / 2])
+        }
+    };
+    let center = median(&mut means.to_vec());
+    let mad = median(&mut means.iter().map(|m| (m - center).abs()).collect());
+    let robust_error = 1.4826 * mad / (n as f64).sqrt();
+    let floor = 1e-12 * (1.0 + m1.abs().max(m2.abs()));
+    (m1 - m2).abs() <= significance * 2.0 * robust_error + floor
+}
+
+/// The largest Lyapunov exponent (and the second) of the motion from `initial` at τ = 0 (a
+/// strobe), by the exact tangent dynamics (see the module documentation).
+///
+/// ```
+/// use stickslip::stability::{lyapunov_exponents, LyapunovOptions};
+/// use stickslip::{Params, State};
+/// // A sliding motion: both exponents finite and negative.
+/// let params = Params::new(0.0468, 0.9, 1.6).unwrap();
+/// let options = LyapunovOptions { transient_periods: 200, periods: 400, ..Default::default() };
+/// let lyap = lyapunov_exponents(&params, State::default(), &options).unwrap();
+/// assert!(lyap.converged && lyap.largest.per_tau < 0.0 && lyap.second.per_tau() < 0.0);
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid parameters, state or options;
+/// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
+/// reports.
+pub fn lyapunov_exponents(
+    params: &Params,
+    initial: State,
+    options: &LyapunovOptions,
+) -> Result<LyapunovExponents> {
+    let options = options.validate()?;
+    let params = params.validate()?;
+    let initial = State::new(initial.y, initial.v)?;
+    let period = params.drive_period();
+    let per_block = options.periods / options.blocks;
+    let length = per_block as f64 * period;
+    // `periods` drive periods from the current strobe, the clock restarted first (see
+    // `TangentSolver::restart_clock`); the growth ln‖J‖ over them, J renormalised at the end.
+    let run = |tangent: &mut TangentSolver, periods: usize| -> Result<f64> {
+        tangent.restart_clock();
+        tangent.run_until(periods as f64 * period, |_| {})?;
+        Ok(tangent.renormalize())
+    };
+    let mut tangent = TangentSolver::new(params, initial);
+    let mut left = options.transient_periods;
+    while left > 0 {
+        let chunk = left.min(per_block);
+        run(&mut tangent, chunk)?;
+        left -= chunk;
+        if tangent.grazing().is_some() {
+            // (Only the measurement needs a finite Jacobian: start it afresh.)
+            tangent.reset();
+        }
+    }
+    // Keep the aligned J; restart ln|det J| and the stop count for the measurement.
+    tangent.reset_log_det();
+    let mut block_means = Vec::with_capacity(options.blocks);
+    let mut second_means = Vec::with_capacity(options.blocks);
+    let mut last_log_det = Some(0.0);
+    for _ in 0..options.blocks {
+        let growth = run(&mut tangent, per_block)?;
+        if let Some(tau) = tangent.grazing() {
+            return Err(StabilityError::NonFiniteJacobian { tau }.into());
+        }
+        block_means.push(growth / length);
+        let log_det = tangent.log_det();
+        if let (Some(now), Some(before)) = (log_det, last_log_det) {
+            second_means.push((now - before - growth) / length);
+        }
+        last_log_det = log_det;
+    }
+    let (mean, error) = mean_and_error(&block_means);
+    let second = if tangent.log_det().is_some() {
+        let (mean2, error2) = mean_and_error(&second_means);
+        SecondExponent::Finite(Estimate::new(mean2, error2, period))
+    } else {
+        SecondExponent::MinusInfinity {
+            stops: tangent.stops(),
+        }
+    };
+    Ok(LyapunovExponents {
+        largest: Estimate::new(mean, error, period),
+        second,
+        converged: halves_agree(&block_means, options.significance),
+        block_means,
+        periods: per_block * options.blocks,
+        drive_period: period,
+        final_state: tangent.state(),
+    })
+}

@@ -1,0 +1,69 @@
+//! Is a motion whose strobe map does not repeat chaotic? The verdict from the largest
+//! Lyapunov exponent and its error.
+
+use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions};
+use crate::error::Result;
+use crate::params::{Params, State};
+use serde::{Deserialize, Serialize};
+
+/// What the largest Lyapunov exponent λ₁ says about a motion that does not repeat, with σ its
+/// standard error and k = [`LyapunovOptions::significance`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NonperiodicVerdict {
+    /// λ₁ > kσ and the measurement converged: nearby motions separate exponentially.
+    Chaotic,
+    /// |λ₁| ≤ kσ and the measurement converged: neither growth nor decay (quasi-periodic
+    /// motion on a torus; also rest, which is periodic).
+    QuasiPeriodic,
+    /// λ₁ < −kσ and the measurement converged: the motion contracts onto an attractor that
+    /// is periodic, either not yet reached or of a longer period than was looked for.
+    Contracting,
+    /// The two halves of the measurement disagree (a transient, or chaos that ends): no
+    /// verdict at this length.
+    Undecided,
+}
+
+/// The verdict on a motion and the exponents behind it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NonperiodicClassification {
+    /// The verdict.
+    pub verdict: NonperiodicVerdict,
+    /// The Lyapunov exponents it rests on.
+    pub exponents: LyapunovExponents,
+}
+
+/// Classify the motion from `state` at τ = 0 (a strobe; for example the final state of a
+/// steady-state run that found no period) by its largest Lyapunov exponent (see
+/// [`NonperiodicVerdict`] and [`super::lyapunov`]).
+///
+/// ```
+/// use stickslip::stability::{classify_nonperiodic, LyapunovOptions, NonperiodicVerdict};
+/// use stickslip::{Params, State};
+/// let params = Params::new(0.0468, 0.7, 1.2).unwrap();
+/// let options = LyapunovOptions { transient_periods: 100, periods: 400, ..Default::default() };
+/// let c = classify_nonperiodic(&params, State::default(), &options).unwrap();
+/// assert_eq!(c.verdict, NonperiodicVerdict::Contracting);
+/// ```
+///
+/// # Errors
+/// As [`lyapunov_exponents`].
+pub fn classify_nonperiodic(
+    params: &Params,
+    state: State,
+    options: &LyapunovOptions,
+) -> Result<NonperiodicClassification> {
+    let exponents = lyapunov_exponents(params, state, options)?;
+    let k = options.significance;
+    let (lambda, sigma) = (exponents.largest.per_tau, exponents.largest.error_per_tau);
+    let verdict = if !exponents.converged {
+        NonperiodicVerdict::Undecided
+    } else if lambda > k * sigma {
+        NonperiodicVerdict::Chaotic
+    } else if lambda < -k * sigma {
+        NonperiodicVerdict::Contracting
+    } else {
+        NonperiodicVerdict::QuasiPeriodic
+    };
+    Ok(NonperiodicClassification { verdict, exponents })
+}

@@ -1,0 +1,399 @@
+//! Periodic orbits by Newton's method on the p-fold strobe map, with their monodromy matrix
+//! and Floquet multipliers.
+//!
+//! A periodic orbit of period p (in drive periods) is a fixed point x* = P^p(x*) of the p-fold
+//! strobe map ([`strobe_map`]); Newton's method solves P^p(x) − x = 0 with the exact Jacobian
+//! M(x) = ∂P^p/∂x of [`super::tangent`]:
+//!
+//! ```text
+//! (M(x_n) − I) δ_n = −(P^p(x_n) − x_n),      x_{n+1} = x_n + λ_n δ_n,
+//! ```
+//!
+//! with λ_n = 1 unless the residual grows, when the step is halved (at most
+//! [`NewtonOptions::max_halvings`] times). Near the orbit every step is a full one and the
+//! convergence is quadratic while the iterates follow the orbit's sequence of events; the map
+//! is piecewise smooth, and a change of that sequence between iterates only costs an extra
+//! step. Since M is computed and not approximated, unstable orbits are found as easily as
+//! stable ones.
+//!
+//! **Orbits that stick.** A stop erases the velocity perturbation (the stick saltation
+//! diag(1, 0)), so the monodromy matrix of an orbit that stops has rank one, M = u ℓᵀ: the map
+//! is locally one-dimensional, one Floquet multiplier is exactly 0 and the other is
+//! μ = ℓᵀu = tr M. The Newton matrix M − I has eigenvalues −1 and μ − 1, so it stays regular
+//! (unless μ = 1) and the plain step is used: it solves in the remaining direction by itself
+//! (the component along the erased direction of the residual is removed in one step). Two
+//! cases need more:
+//!
+//! - *The strobe falls inside a stop* (the state is (y, 0) and the net force within ±μs, at
+//!   the start and at the image). There the map is differentiable in y only: a velocity
+//!   perturbation is erased, and for μs > 1 one along a net force beyond the kinetic friction
+//!   would not be stopped at all (see [`super::segment`]). Newton then solves the scalar
+//!   equation P^p_y(y, 0) = y, keeping y' = 0: δy = −r_y/(M₁₁ − 1).
+//! - *M − I numerically singular* (a multiplier at 1: a fold, or a continuum of fixed points
+//!   such as rest). Then the step is the minimum-norm least-squares solution
+//!   (pseudo-inverse), which moves only where the residual can be reduced;
+//!   [`StabilityError::SingularJacobian`] only when M − I vanishes or is not finite.
+//!
+//! - *The iterates run onto y' = 0 inside the band 1 < |F − y| ≤ μs* (μs > 1 only), moving
+//!   along the net force. The map jumps there: a state with y' = 0 stays stuck, one with y' a
+//!   hair along the force slides away. Newton's iterates can converge (linearly, by halved
+//!   steps) to such a point, which is no orbit: the motion that returns there would stop.
+//!   This ends in [`StabilityError::OnDiscontinuity`].
+//!
+//! The iteration stops when max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|):
+//! the map is evaluated to rounding, which the Jacobian amplifies by up to max|M_ij| for an
+//! unstable orbit.
+
+use super::error::StabilityError;
+use super::matrix::{Matrix2, Multiplier};
+use super::strobe::{strobe_map, StrobeImage};
+use crate::error::{Error, Result};
+use crate::params::{Params, State};
+use crate::solver::{Event, EventKind};
+use crate::steady::SteadyState;
+use serde::{Deserialize, Serialize};
+
+/// Options of [`find_periodic_orbit`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct NewtonOptions {
+    /// Relative tolerance of the residual (see the module documentation). Default 1e-12.
+    pub tolerance: f64,
+    /// Most Newton steps. Default 30.
+    pub max_iterations: usize,
+    /// Most halvings of one step when the residual grows. Default 12.
+    pub max_halvings: usize,
+    /// An orbit whose largest multiplier modulus is within this of 1 is called
+    /// [`Stability::Neutral`]. Default 1e-9.
+    pub neutral_band: f64,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-12,
+            max_iterations: 30,
+            max_halvings: 12,
+            neutral_band: 1e-9,
+        }
+    }
+}
+
+impl NewtonOptions {
+    /// Check every field.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the first bad field.
+    pub fn validate(self) -> Result<Self> {
+        let bad = |name, value, allowed| {
+            Err(Error::InvalidParameter {
+                name,
+                value,
+                allowed,
+            })
+        };
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return bad("tolerance", self.tolerance, "must be > 0 and < 1");
+        }
+        if self.max_iterations == 0 {
+            return bad("max_iterations", 0.0, "must be at least 1");
+        }
+        if !(self.neutral_band >= 0.0 && self.neutral_band < 1.0) {
+            return bad("neutral_band", self.neutral_band, "must be >= 0 and < 1");
+        }
+        Ok(self)
+    }
+}
+
+/// Stability of a periodic orbit from its largest Floquet multiplier modulus |μ|.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stability {
+    /// |μ| < 1 − band: perturbations decay.
+    Stable,
+    /// |μ| > 1 + band: a perturbation grows by |μ| per orbit period.
+    Unstable,
+    /// |μ| within the band around 1 (a bifurcation, or a continuum of orbits such as rest).
+    Neutral,
+}
+
+/// A stop of the motion within an orbit.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Stop {
+    /// When it starts, dimensionless time from the orbit's strobe, in [0, pT).
+    pub start: f64,
+    /// How long it lasts (dimensionless time; 0 for a zero-duration stop, pT for an orbit at
+    /// rest). A stop that runs over the end of the orbit continues at its start and is one
+    /// stop.
+    pub duration: f64,
+}
+
+/// A periodic orbit found by [`find_periodic_orbit`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PeriodicOrbit {
+    /// Period p in drive periods (as asked for; a fixed point of P^p may have a shorter one).
+    pub period: usize,
+    /// The drive period T = 2π/w (dimensionless time).
+    pub drive_period: f64,
+    /// The state at the orbit's strobe (τ = 0 mod pT, drive phase φ).
+    pub state: State,
+    /// Whether the orbit is stuck at its strobe (then the map is solved in y alone).
+    pub stuck_at_strobe: bool,
+    /// The events over one orbit period, times from the strobe (0 < τ ≤ pT).
+    pub events: Vec<Event>,
+    /// The stops over one orbit period (zero-duration stops included, with duration 0).
+    pub stops: Vec<Stop>,
+    /// The monodromy matrix M = ∂P^p/∂(y, y') at the orbit.
+    pub monodromy: Matrix2,
+    /// The Floquet multipliers (eigenvalues of M), the larger modulus first; a complex pair
+    /// is possible. One is 0 when the orbit stops.
+    pub multipliers: [Multiplier; 2],
+    /// Verdict from the larger multiplier modulus.
+    pub stability: Stability,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// The residual max(|Δy|, |Δy'|) of P^p(x) − x at the guess and after every step.
+    pub residuals: Vec<f64>,
+}
+
+impl PeriodicOrbit {
+    /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ_max|/(pT) (−∞ when both
+    /// multipliers vanish).
+    pub fn exponent(&self) -> f64 {
+        let modulus = self.multipliers[0].modulus();
+        if modulus == 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            modulus.ln() / (self.period as f64 * self.drive_period)
+        }
+    }
+}
+
+/// Largest |component| of a difference of states.
+fn residual(image: &StrobeImage, x: State) -> (f64, [f64; 2]) {
+    let r = [image.state.y - x.y, image.state.v - x.v];
+    (r[0].abs().max(r[1].abs()), r)
+}
+
+/// Whether x is at the tolerance (see the module documentation).
+fn converged(norm: f64, x: State, jacobian: &Matrix2, tolerance: f64) -> bool {
+    let scale = 1f64.max(x.y.abs()).max(x.v.abs());
+    norm <= tolerance * scale * jacobian.max_abs().max(1.0)
+}
+
+/// The periodic orbit of period `period` (in drive periods, p ≥ 1) near `guess` (the state at
+/// a strobe τ = kT), by Newton's method on the p-fold strobe map with its exact Jacobian (see
+/// the module documentation). Stable and unstable orbits alike.
+///
+/// ```
+/// use stickslip::stability::{find_periodic_orbit, NewtonOptions, Stability};
+/// use stickslip::{Params, State};
+/// let params = Params::new(0.0468, 0.9, 1.6).unwrap();
+/// let orbit = find_periodic_orbit(&params, State::default(), 1, &NewtonOptions::default()).unwrap();
+/// assert_eq!(orbit.stability, Stability::Stable);
+/// assert!(orbit.stops.is_empty() && orbit.events.len() == 2);
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid parameters, guess, options or p = 0;
+/// [`StabilityError::NoConvergence`] when the tolerance is not reached;
+/// [`StabilityError::SingularJacobian`] when no step can be formed;
+/// [`StabilityError::OnDiscontinuity`] when the iterates converge onto the jump of the map;
+/// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
+/// reports.
+pub fn find_periodic_orbit(
+    params: &Params,
+    guess: State,
+    period: usize,
+    options: &NewtonOptions,
+) -> Result<PeriodicOrbit> {
+    let options = options.validate()?;
+    let mut x = State::new(guess.y, guess.v)?;
+    let mut image = strobe_map(params, x, period)?;
+    let (mut norm, mut r) = residual(&image, x);
+    let mut residuals = vec![norm];
+    let mut iterations = 0;
+    while !converged(norm, x, &image.jacobian, options.tolerance) {
+        if iterations == options.max_iterations {
+            let scale = 1f64.max(x.y.abs()).max(x.v.abs());
+            return Err(StabilityError::NoConvergence {
+                iterations,
+                residual: norm,
+                tolerance: options.tolerance * scale * image.jacobian.max_abs().max(1.0),
+            }
+            .into());
+        }
+        let m = image.jacobian;
+        let singular = |determinant: f64| StabilityError::SingularJacobian {
+            y: x.y,
+            v: x.v,
+            determinant,
+        };
+        let step = if image.stuck_at_start && image.stuck_at_end {
+            let slope = m.0[0][0] - 1.0;
+            if !(slope != 0.0 && slope.is_finite()) {
+                return Err(singular(m.minus_identity().det()).into());
+            }
+            [-r[0] / slope, 0.0]
+        } else {
+            m.minus_identity()
+                .solve([-r[0], -r[1]])
+                .ok_or_else(|| singular(m.minus_identity().det()))?
+        };
+        let mut fraction = 1.0;
+        let mut halvings = 0;
+        loop {
+            let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
+            let trial_image = strobe_map(params, trial, period)?;
+            let (trial_norm, trial_r) = residual(&trial_image, trial);
+            if trial_norm < norm || halvings == options.max_halvings {
+                (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
+                break;
+            }
+            fraction *= 0.5;
+            halvings += 1;
+        }
+        iterations += 1;
+        residuals.push(norm);
+    }
+    let net_force = params.beta * params.phi.cos() - x.y;
+    if !image.stuck_at_start
+        && x.v * net_force >= 0.0
+        && net_force.abs() > 1.0
+        && net_force.abs() <= params.mu_s
+        && converged(x.v.abs(), x, &image.jacobian, options.tolerance)
+    {
+        return Err(StabilityError::OnDiscontinuity {
+            y: x.y,
+            v: x.v,
+            net_force,
+        }
+        .into());
+    }
+    let multipliers = image.jacobian.eigenvalues();
+    let modulus = multipliers[0].modulus();
+    let stability = if modulus < 1.0 - options.neutral_band {
+        Stability::Stable
+    } else if modulus > 1.0 + options.neutral_band {
+        Stability::Unstable
+    } else {
+        Stability::Neutral
+    };
+    let drive_period = params.drive_period();
+    let end = period as f64 * drive_period;
+    Ok(PeriodicOrbit {
+        period,
+        drive_period,
+        state: x,
+        stuck_at_strobe: image.stuck_at_start,
+        stops: stops(&image.events, image.stuck_at_start, end),
+        events: image.events,
+        monodromy: image.jacobian,
+        multipliers,
+        stability,
+        iterations,
+        residuals,
+    })
+}
+
+/// The periodic orbit of a settled steady state (its period and first recorded strobe as the
+/// guess), refined by [`find_periodic_orbit`].
+///
+/// # Errors
+/// [`StabilityError::NoPeriod`] when the steady state has no period; as
+/// [`find_periodic_orbit`].
+pub fn periodic_orbit_from_steady(
+    params: &Params,
+    steady: &SteadyState,
+    options: &NewtonOptions,
+) -> Result<PeriodicOrbit> {
+    let (Some(period), Some(&guess)) = (steady.period, steady.strobes.first()) else {
+        return Err(StabilityError::NoPeriod {
+            periods_run: steady.periods_to_settle,
+        }
+        .into());
+    };
+    find_periodic_orbit(params, guess, period, options)
+}
+
+/// The stops of one orbit period [0, end] from its events (a stop over the end joins the one
+/// at the start).
+fn stops(events: &[Event], stuck_at_start: bool, end: f64) -> Vec<Stop> {
+    let mut out = Vec::new();
+    let mut since = stuck_at_start.then_some(0.0);
+    let mut head: Option<f64> = None;
+    for e in events {
+        match e.kind {
+            EventKind::Stick => since = Some(e.tau),
+            EventKind::Slip => {
+                if let Some(s) = since.take() {
+                    if stuck_at_start && s == 0.0 && head.is_none() && out.is_empty() {
+                        head = Some(e.tau);
+                    } else {
+                        out.push(Stop {
+                            start: s,
+                            duration: e.tau - s,
+                        });
+                    }
+                }
+            }
+            EventKind::Turn => {}
+        }
+    }
+    match (head, since) {
+        (Some(h), Some(s)) => out.push(Stop {
+            start: s,
+            duration: end - s + h,
+        }),
+        (Some(h), None) => out.push(Stop {
+            start: 0.0,
+            duration: h,
+        }),
+        (None, Some(s)) => out.push(Stop {
+            start: s,
+            duration: end - s,
+        }),
+        (None, None) => {}
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ev(tau: f64, kind: EventKind) -> Event {
+        Event { tau, y: 0.0, kind }
+    }
+
+    #[test]
+    fn stops_join_over_the_end_and_keep_zero_durations() {
+        let events = [
+            ev(0.5, EventKind::Slip),
+            ev(1.0, EventKind::Stick),
+            ev(1.0, EventKind::Slip),
+            ev(3.5, EventKind::Stick),
+        ];
+        let s = stops(&events, true, 4.0);
+        assert_eq!(
+            s,
+            vec![
+                Stop {
+                    start: 1.0,
+                    duration: 0.0
+                },
+                Stop {
+                    start: 3.5,
+                    duration: 1.0
+                }
+            ]
+        );
+        assert_eq!(
+            stops(&[], true, 4.0),
+            vec![Stop {
+                start: 0.0,
+                duration: 4.0
+            }]
+        );
+        assert!(stops(&[ev(1.0, EventKind::Turn)], false, 4.0).is_empty());
+    }
+}

@@ -1,0 +1,77 @@
+//! The p-fold strobe map and its exact Jacobian.
+
+use super::error::StabilityError;
+use super::matrix::Matrix2;
+use super::tangent::TangentSolver;
+use crate::error::{Error, Result};
+use crate::params::{Params, State};
+use crate::solver::{Event, Phase};
+use serde::{Deserialize, Serialize};
+
+/// The image of a state under the p-fold strobe map P^p: the state p drive periods later,
+/// with the Jacobian and the events on the way.
+///
+/// The strobe map takes the state at τ = kT (T = 2π/w, drive phase φ) to the state at
+/// τ = (k + 1)T; it does not depend on k, so it is computed from τ = 0.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StrobeImage {
+    /// The state at τ = pT.
+    pub state: State,
+    /// The Jacobian ∂P^p/∂(y, y') at the starting state (for a periodic orbit: the monodromy
+    /// matrix). When the motion starts stuck its second column is zero (see
+    /// [`super::segment`]).
+    pub jacobian: Matrix2,
+    /// ln|det J|, `None` when the motion stops on the way (det J = 0).
+    pub log_det: Option<f64>,
+    /// The events in 0 < τ ≤ pT (a release at τ = 0 included), times from the start.
+    pub events: Vec<Event>,
+    /// Whether the motion is stuck at τ = 0.
+    pub stuck_at_start: bool,
+    /// Whether the motion is stuck at τ = pT.
+    pub stuck_at_end: bool,
+}
+
+/// The p-fold strobe map P^p (`periods` = p ≥ 1 drive periods) from `state` at a strobe, with
+/// its exact Jacobian.
+///
+/// ```
+/// use stickslip::stability::strobe_map;
+/// use stickslip::{Params, State};
+/// // Free Coulomb decay from y = 7.5 stops at y = −0.5 within one drive period: the stop
+/// // erases the velocity perturbation, so the Jacobian is singular and only δy survives.
+/// let params = Params::new(0.0, 0.25, 0.0).unwrap();
+/// let image = strobe_map(&params, State { y: 7.5, v: 0.0 }, 1).unwrap();
+/// assert!(image.stuck_at_end && image.log_det.is_none());
+/// assert_eq!(image.jacobian.0[1], [0.0, 0.0]);
+/// assert!((image.state.y + 0.5).abs() < 1e-12);
+/// ```
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for invalid parameters, state or p = 0;
+/// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver reports.
+pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
+    let params = params.validate()?;
+    let state = State::new(state.y, state.v)?;
+    if periods == 0 {
+        return Err(Error::InvalidParameter {
+            name: "periods",
+            value: 0.0,
+            allowed: "must be at least 1",
+        });
+    }
+    let mut tangent = TangentSolver::new(params, state);
+    let stuck_at_start = tangent.phase() == Phase::Stick;
+    let mut events = Vec::new();
+    tangent.run_until(periods as f64 * params.drive_period(), |e| events.push(*e))?;
+    if let Some(tau) = tangent.grazing() {
+        return Err(StabilityError::NonFiniteJacobian { tau }.into());
+    }
+    Ok(StrobeImage {
+        state: tangent.state(),
+        jacobian: tangent.jacobian(),
+        log_det: tangent.log_det(),
+        events,
+        stuck_at_start,
+        stuck_at_end: tangent.phase() == Phase::Stick,
+    })
+}
