@@ -64,7 +64,7 @@ fn diode(name: &str) -> PyResult<DiodeModel> {
         "pwl" => Ok(DiodeModel::Pwl),
         "shockley" => Ok(DiodeModel::Shockley),
         _ => Err(PyValueError::new_err(format!(
-            "invalid model '{name}': must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
+            "invalid diode '{name}': must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
         ))),
     }
 }

@@ -45,7 +45,13 @@ def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
             f"expected a stickslip.Experiment, got {type(experiment).__name__}: "
             "build one with stickslip.Experiment(...) or Experiment.paper(...)"
         )
-    return experiment if model is None else experiment.replace(diode=model)
+    if model is None:
+        return experiment
+    if model not in ("pwl", "shockley"):
+        raise ValueError(
+            f"invalid model {model!r}: must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
+        )
+    return experiment.replace(diode=model)
 
 
 def _events(tau: np.ndarray, y: np.ndarray, kind: np.ndarray) -> np.ndarray:
