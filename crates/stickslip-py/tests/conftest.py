@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
-CLI = pathlib.Path(os.environ.get("STICKSLIP_CLI", ROOT / "target" / "release" / "stickslip"))
+TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")).resolve()
+CLI = pathlib.Path(os.environ.get("STICKSLIP_CLI", TARGET / "release" / "stickslip"))
 
 
 class Cli:

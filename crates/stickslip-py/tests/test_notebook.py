@@ -3,11 +3,10 @@ rot): Figs. 4, 6 and 7 of the paper and a map on a Dask LocalCluster."""
 
 from __future__ import annotations
 
-import pathlib
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, TARGET
 
 NOTEBOOK = ROOT / "examples" / "python" / "paper.ipynb"
 
@@ -27,6 +26,6 @@ def test_the_paper_notebook_runs(tmp_path):
     text = "".join(o.get("text", "") for o in outputs if o.output_type == "stream")
     assert "identical to the local map" in text
     # The executed notebook, for a look (target/ is not committed).
-    out = pathlib.Path(ROOT / "target" / "notebooks")
+    out = TARGET / "notebooks"
     out.mkdir(parents=True, exist_ok=True)
     nbformat.write(notebook, out / NOTEBOOK.name)

@@ -1,0 +1,176 @@
+"""The Python package's benchmarks (run by bench/python; numbers in BENCHMARKS.md):
+
+(a) a 400 × 400 map from Python against the same map through the library (Grid::run in
+    crates/stickslip/examples/library_timing.rs), runs interleaved, medians and their ratio;
+(b) a 1000 × 1000 map as Dask tasks on a cluster of two single-threaded worker processes
+    against one, and the machine's load around each run;
+(c) a 10^6-sample trajectory returned to numpy against the same run in the library, and the
+    cost of one copy of its arrays for scale.
+
+Every ratio comes from the same invocation. Timing is reported, never enforced."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import pathlib
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import stickslip
+import stickslip.dask
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")).resolve()
+EXAMPLE = TARGET / "release" / "examples" / "library_timing"
+
+
+def library(*args: object) -> dict:
+    out = subprocess.run([str(EXAMPLE), *map(str, args)], check=True, capture_output=True,
+                         text=True).stdout
+    return json.loads(out)
+
+
+def load() -> float:
+    return os.getloadavg()[0]
+
+
+def map_in_python_and_library(n: int, repeats: int) -> dict:
+    w, beta = np.linspace(0.1, 2.5, n), np.linspace(0.5, 4.0, n)
+    rust, python, loads = [], [], []
+    counts = None
+    for _ in range(repeats):
+        loads.append(load())
+        r = library("map", n)
+        rust.append(r["seconds"])
+        started = time.perf_counter()
+        m = stickslip.phase_diagram(stickslip.Experiment.paper(), w=w, beta=beta)
+        python.append(time.perf_counter() - started)
+        counts = m.counts()
+        if counts != r["counts"]:
+            raise SystemExit(f"the two maps differ: Python {counts}, library {r['counts']}")
+    return {
+        "grid": f"{n} x {n}",
+        "library_s": rust,
+        "python_s": python,
+        "library_median_s": statistics.median(rust),
+        "python_median_s": statistics.median(python),
+        "ratio_python_over_library": statistics.median(python) / statistics.median(rust),
+        "threads": r["threads"],
+        "load_average": loads,
+        "counts": counts,
+    }
+
+
+def map_on_a_cluster(n: int) -> dict:
+    from distributed import Client, LocalCluster
+
+    w, beta = np.linspace(0.1, 2.5, n), np.linspace(0.5, 4.0, n)
+    runs = {}
+    reference = None
+    for workers in (1, 2, 1, 2):
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                          dashboard_address=None) as cluster, Client(cluster) as client:
+            before = load()
+            started = time.perf_counter()
+            m = stickslip.dask.phase_diagram(stickslip.Experiment.paper(), client=client,
+                                             w=w, beta=beta)
+            seconds = time.perf_counter() - started
+            runs.setdefault(workers, []).append(
+                {"seconds": seconds, "load_before": before, "load_after": load()})
+            if reference is None:
+                reference = m.motion
+            elif not np.array_equal(reference, m.motion):
+                raise SystemExit("the cluster's maps differ between runs")
+            print(f"  {workers} worker(s): {seconds:.1f} s (load {before:.1f} -> {load():.1f})",
+                  file=sys.stderr)
+    one = min(r["seconds"] for r in runs[1])
+    two = min(r["seconds"] for r in runs[2])
+    return {
+        "grid": f"{n} x {n}",
+        "runs": runs,
+        "one_worker_best_s": one,
+        "two_workers_best_s": two,
+        "speedup": one / two,
+        "task_seconds": stickslip.dask.TASK_SECONDS,
+        "cores": os.cpu_count(),
+    }
+
+
+def trajectory_to_numpy(periods: float, samples: int, repeats: int) -> dict:
+    experiment = stickslip.Experiment(w=0.7, beta=1.2)
+    rust, python, copy = [], [], []
+    for _ in range(repeats):
+        r = library("simulate", periods, samples)
+        rust.append(r["seconds"])
+        started = time.perf_counter()
+        run = stickslip.simulate(experiment, periods, samples)
+        python.append(time.perf_counter() - started)
+        started = time.perf_counter()
+        copies = [np.array(run[c], copy=True) for c in ("tau", "y", "v", "drive", "phase")]
+        copy.append(time.perf_counter() - started)
+        assert len(run) == r["samples"] and len(copies[0]) == r["samples"]
+    # The float columns are numpy arrays over the library's own buffers.
+    owned = all(type(run[c].base).__name__ == "PySliceContainer" for c in ("tau", "y", "v", "drive"))
+    overhead = statistics.median(python) - statistics.median(rust)
+    return {
+        "samples": len(run),
+        "events": len(run.events),
+        "library_s": rust,
+        "python_s": python,
+        "one_copy_s": copy,
+        "library_median_s": statistics.median(rust),
+        "python_median_s": statistics.median(python),
+        "returning_s": overhead,
+        "one_copy_median_s": statistics.median(copy),
+        "returning_over_one_copy": overhead / statistics.median(copy),
+        "float_columns_without_copy": owned,
+        "bytes": int(sum(run[c].nbytes for c in ("tau", "y", "v", "drive", "phase"))),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--smoke", action="store_true", help="tiny workloads (seconds)")
+    parser.add_argument("--only", action="append", choices=["a", "b", "c"])
+    parser.add_argument("--out", type=pathlib.Path, default=TARGET / "bench" / "python.json")
+    args = parser.parse_args()
+    only = set(args.only or ["a", "b", "c"])
+    results = {
+        "machine": {"cores": os.cpu_count(), "load_average_start": os.getloadavg(),
+                    "python": sys.version.split()[0], "stickslip": stickslip.__version__},
+    }
+    if "a" in only:
+        print("(a) 400 x 400 map: Python against the library ...", file=sys.stderr)
+        results["a"] = map_in_python_and_library(40 if args.smoke else 400, 1 if args.smoke else 3)
+        a = results["a"]
+        print(f"(a) {a['grid']}: library {a['library_median_s']:.3f} s, Python "
+              f"{a['python_median_s']:.3f} s: ratio {a['ratio_python_over_library']:.3f}")
+    if "b" in only:
+        print("(b) 1000 x 1000 map on 1 and 2 single-threaded workers ...", file=sys.stderr)
+        results["b"] = map_on_a_cluster(60 if args.smoke else 1000)
+        b = results["b"]
+        print(f"(b) {b['grid']}: 1 worker {b['one_worker_best_s']:.1f} s, 2 workers "
+              f"{b['two_workers_best_s']:.1f} s: speed-up {b['speedup']:.2f}")
+    if "c" in only:
+        print("(c) a 10^6-sample trajectory to numpy ...", file=sys.stderr)
+        results["c"] = trajectory_to_numpy(50 if args.smoke else 5000, 200, 3 if args.smoke else 7)
+        c = results["c"]
+        print(f"(c) {c['samples']} samples: library {c['library_median_s'] * 1e3:.1f} ms, Python "
+              f"{c['python_median_s'] * 1e3:.1f} ms: returning {c['returning_s'] * 1e3:.1f} ms "
+              f"= {c['returning_over_one_copy']:.2f} of one copy ({c['one_copy_median_s'] * 1e3:.1f} ms "
+              f"for {c['bytes'] / 1e6:.0f} MB); float columns without a copy: "
+              f"{c['float_columns_without_copy']}")
+    results["machine"]["load_average_end"] = os.getloadavg()
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(results, indent=2))
+    print(f"every number in {args.out}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

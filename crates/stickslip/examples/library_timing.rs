@@ -1,0 +1,70 @@
+//! The library side of the Python benchmarks (`bench/python`): one timed run, as JSON on
+//! standard output, for the Python package's same call to be compared with.
+//!
+//! ```text
+//! cargo run --release -p stickslip --example library_timing -- map N
+//!     Grid::run of the paper's N × N map (w 0.1–2.5, β 0.5–4, each point from rest) on
+//!     rayon's global pool: what stickslip.phase_diagram(Experiment.paper(), w=..., beta=...)
+//!     runs.
+//! cargo run --release -p stickslip --example library_timing -- simulate PERIODS SAMPLES
+//!     Experiment::simulate of the dimensionless model (the paper's ζ, w = 0.7, β = 1.2):
+//!     what stickslip.simulate(Experiment(w=0.7, beta=1.2), PERIODS, SAMPLES) runs.
+//! ```
+use std::time::Instant;
+use stickslip::scan::{Axis, Grid, ParameterRange};
+use stickslip::{Circuit, Experiment, MotionClass, Parameter};
+
+fn arg<T: std::str::FromStr>(k: usize) -> T {
+    std::env::args()
+        .nth(k)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or_else(|| panic!("argument {k} missing or invalid; see the file's documentation"))
+}
+
+fn main() {
+    let what: String = arg(1);
+    match what.as_str() {
+        "map" => {
+            let n: usize = arg(2);
+            let w = ParameterRange::new("w", 0.1, 2.5, n).expect("valid");
+            let beta = ParameterRange::new("beta", 0.5, 4.0, n).expect("valid");
+            let grid = Grid::new(
+                &Experiment::paper(),
+                Axis::range(Parameter::W, &w).expect("valid"),
+                Axis::range(Parameter::Beta, &beta).expect("valid"),
+            )
+            .expect("valid");
+            let started = Instant::now();
+            let map = grid.run(&()).expect("runs");
+            let seconds = started.elapsed().as_secs_f64();
+            let counts: Vec<String> = MotionClass::ALL
+                .iter()
+                .map(|&c| {
+                    let k = map.points.iter().filter(|p| p.class == c).count();
+                    format!("\"{}\": {k}", c.label())
+                })
+                .collect();
+            println!(
+                "{{\"seconds\": {seconds}, \"points\": {}, \"threads\": {}, \"counts\": {{{}}}}}",
+                map.points.len(),
+                rayon::current_num_threads(),
+                counts.join(", ")
+            );
+        }
+        "simulate" => {
+            let periods: f64 = arg(2);
+            let samples: usize = arg(3);
+            let zeta = Circuit::paper().scales().zeta();
+            let e = Experiment::dimensionless(zeta, 0.7, 1.2).expect("valid");
+            let started = Instant::now();
+            let run = e.simulate(periods, samples, &()).expect("runs");
+            let seconds = started.elapsed().as_secs_f64();
+            println!(
+                "{{\"seconds\": {seconds}, \"samples\": {}, \"events\": {}}}",
+                run.len(),
+                run.events.len()
+            );
+        }
+        other => panic!("unknown workload {other}: map or simulate"),
+    }
+}
