@@ -27,8 +27,28 @@ use stickslip::System;
 ///
 /// Experiments are immutable, comparable and picklable (through their JSON, ``to_json``).
 ///
+/// ``Experiment(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0)`` is the
+/// dimensionless model:
+///
+/// Args:
+///     zeta: damping ratio ζ ≥ 0 (default: the paper's circuit, 0.046816).
+///     w: drive frequency w = Ω/ω0 > 0 (None: set later by a sweep or a map).
+///     beta: drive amplitude β ≥ 0 in units of the kinetic friction force (None: set
+///         later).
+///     phi: drive phase φ at τ = 0, radians (default 0).
+///     mu_s: static-to-kinetic friction ratio μs ≥ 1 (default 1, as in the paper).
+///     y0: initial position (default 0).
+///     v0: initial velocity (default 0).
+///
+/// Raises:
+///     ValueError: a value out of range, or a description that is incomplete or contradicts
+///         itself, with the library's one-line message.
+///     TypeError: an unknown keyword.
+///
 /// Example:
 ///     >>> import stickslip
+///     >>> Experiment(zeta=0.05, w=0.7, beta=1.2).mu_s
+///     1.0
 ///     >>> exp = stickslip.Experiment.paper(w=0.95, beta=2.14)
 ///     >>> round(exp.zeta, 6)
 ///     0.046816
@@ -177,24 +197,7 @@ fn preset_paper() -> ExperimentSpec {
 
 #[pymethods]
 impl PyExperiment {
-    /// A dimensionless experiment.
-    ///
-    /// Args:
-    ///     zeta: damping ratio ζ ≥ 0 (default: the paper's circuit, 0.046816).
-    ///     w: drive frequency w = Ω/ω0 > 0 (None: set later by a sweep or a map).
-    ///     beta: drive amplitude β ≥ 0 in units of the kinetic friction force (None: set
-    ///         later).
-    ///     phi: drive phase φ at τ = 0, radians (default 0).
-    ///     mu_s: static-to-kinetic friction ratio μs ≥ 1 (default 1, as in the paper).
-    ///     y0: initial position (default 0).
-    ///     v0: initial velocity (default 0).
-    ///
-    /// Raises:
-    ///     ValueError: a value out of range, with the library's message.
-    ///
-    /// Example:
-    ///     >>> Experiment(zeta=0.05, w=0.7, beta=1.2).mu_s
-    ///     1.0
+    /// A dimensionless experiment (documented on the class: Python shows the class's docstring).
     #[new]
     #[pyo3(signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None))]
     fn new(

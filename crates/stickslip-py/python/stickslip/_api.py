@@ -539,8 +539,8 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
         >>> import numpy as np
         >>> exp = stickslip.Experiment.paper(beta=3.61)
         >>> s = stickslip.sweep(exp, over="w", values=np.linspace(0.5, 1.5, 11))
-        >>> len(s), s.leg[0], s.leg[-1]
-        (22, 'up', 'down')
+        >>> print(len(s), s.leg[0], s.leg[-1])
+        22 up down
     """
     experiment = _with_model(experiment, model)
     data = _core.sweep(experiment, over, _values("values", values), direction, options, progress)

@@ -14,7 +14,8 @@ own, the same way whichever worker runs it, so the result is bit-identical to th
   blocks at once as it has threads: start workers with ``--nthreads`` equal to their cores
   (``dask worker ... --nthreads 8``), or one single-threaded worker process per core.
 - **Task size**: ``chunks="auto"`` (the default) times a few points of the grid on the client
-  (one thread) and sizes blocks to take about ``TASK_SECONDS`` (one second) each; or give
+  (one thread) and sizes blocks to take about ``TASK_SECONDS`` (one second) each, and smaller
+  when that would leave fewer than four tasks per worker thread; or give
   ``chunks=(rows, columns)`` per block, or an int (rows per block, all columns).
 
 Needs ``dask[distributed]`` (``pip install "stickslip[dask]"``).
@@ -37,6 +38,7 @@ Example::
 from __future__ import annotations
 
 import itertools
+import os
 import time
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -79,7 +81,7 @@ def _block_task(experiment_json: str, first: str, first_values: np.ndarray, seco
 
 def _block_shape(chunks: Chunks, experiment: Experiment, first: str, v1: np.ndarray,
                  second: str, v2: np.ndarray, options: Dict[str, Any],
-                 fixed: List[Tuple[str, float]]) -> Tuple[int, int]:
+                 fixed: List[Tuple[str, float]], outer: int, threads: int) -> Tuple[int, int]:
     """Rows and columns per block; checks every input once on the client."""
     n1, n2 = len(v1), len(v2)
     # Builds the grid (checking the experiment, both axes and the options) and computes
@@ -94,7 +96,10 @@ def _block_shape(chunks: Chunks, experiment: Experiment, first: str, v1: np.ndar
         _core.grid(experiment, first, np.ascontiguousarray(v1[rows]), second,
                    np.ascontiguousarray(v2[cols]), options, 1, None, fixed, None)
         per_point = max((time.perf_counter() - started) / (len(rows) * len(cols)), 1e-7)
-        points = max(1, int(TASK_SECONDS / per_point))
+        # About TASK_SECONDS each, and at least four tasks per worker thread (so that the last
+        # tasks, which finish at different times, are a small part of the whole).
+        points = max(1, min(int(TASK_SECONDS / per_point),
+                            (outer * n1 * n2) // (4 * max(threads, 1))))
         if points >= n2:
             return min(n1, points // n2), n2
         return 1, points
@@ -107,6 +112,19 @@ def _block_shape(chunks: Chunks, experiment: Experiment, first: str, v1: np.ndar
     if min(shape) < 1:
         raise ValueError(f"invalid chunks {chunks!r}: a block has at least one row and one column")
     return min(shape[0], n1), min(shape[1], n2)
+
+
+def _worker_threads(client: Any) -> int:
+    """Threads of the cluster that will compute: the client's (or the default client's)
+    workers, else this machine's cores (Dask's local threads)."""
+    if client is None:
+        try:
+            from distributed import default_client
+
+            client = default_client()
+        except (ImportError, ValueError):
+            return os.cpu_count() or 1
+    return sum(client.nthreads().values()) or 1
 
 
 def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str, np.ndarray],
@@ -124,7 +142,7 @@ def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str,
 
     middle = combinations[len(combinations) // 2]
     rows, cols = _block_shape(chunks, experiment, first, v1, second, v2, options,
-                              fixed_at(middle))
+                              fixed_at(middle), len(combinations), _worker_threads(client))
     for index in combinations:
         if index != middle:
             # Checks each outer value (the grid is built, nothing is computed).
