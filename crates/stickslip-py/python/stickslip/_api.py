@@ -249,9 +249,19 @@ class SweepResult:
         self.over = over
         self.options = options
         self.labels: Tuple[str, ...] = MOTION_CLASSES
-        for name in ("value", "w", "beta", "zeta", "mu_s", "gain", "peak", "stops_per_cycle",
-                     "phase_lag", "motion", "period", "symmetric", "periods_to_settle"):
-            setattr(self, name, data[name])
+        self.value: np.ndarray = data["value"]
+        self.w: np.ndarray = data["w"]
+        self.beta: np.ndarray = data["beta"]
+        self.zeta: np.ndarray = data["zeta"]
+        self.mu_s: np.ndarray = data["mu_s"]
+        self.gain: np.ndarray = data["gain"]
+        self.peak: np.ndarray = data["peak"]
+        self.stops_per_cycle: np.ndarray = data["stops_per_cycle"]
+        self.phase_lag: np.ndarray = data["phase_lag"]
+        self.motion: np.ndarray = data["motion"]
+        self.period: np.ndarray = data["period"]
+        self.symmetric: np.ndarray = data["symmetric"]
+        self.periods_to_settle: np.ndarray = data["periods_to_settle"]
         self.leg = np.asarray(["up", "down"])[data["leg"]]
         self.harmonics = data["harmonics"].reshape(len(self.value), data["harmonic_count"])
 

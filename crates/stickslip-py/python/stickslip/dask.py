@@ -173,7 +173,9 @@ def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str,
             raise
 
     shape = outer_shape + (n1, n2)
-    arrays = {name: np.empty(shape, dtype=dtype) for name, dtype in _DTYPES.items()}
+    arrays: Dict[str, np.ndarray] = {
+        name: np.empty(shape, dtype=dtype) for name, dtype in _DTYPES.items()
+    }
     for (index, (r0, r1, c0, c1)), result in zip(blocks, results):
         for name, array in arrays.items():
             array[index + (slice(r0, r1), slice(c0, c1))] = result[name].reshape(r1 - r0, c1 - c0)
