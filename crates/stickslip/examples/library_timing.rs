@@ -6,9 +6,10 @@
 //!     Grid::run of the paper's N × N map (w 0.1–2.5, β 0.5–4, each point from rest) on
 //!     rayon's global pool: what stickslip.phase_diagram(Experiment.paper(), w=..., beta=...)
 //!     runs.
-//! cargo run --release -p stickslip --example library_timing -- simulate PERIODS SAMPLES
-//!     Experiment::simulate of the dimensionless model (the paper's ζ, w = 0.7, β = 1.2):
-//!     what stickslip.simulate(Experiment(w=0.7, beta=1.2), PERIODS, SAMPLES) runs.
+//! cargo run --release -p stickslip --example library_timing -- simulate PERIODS SAMPLES REPEATS
+//!     Experiment::simulate of the dimensionless model (the paper's ζ, w = 0.7, β = 1.2),
+//!     REPEATS times in one process: what stickslip.simulate(Experiment(w=0.7, beta=1.2),
+//!     PERIODS, SAMPLES) runs.
 //! ```
 use std::time::Instant;
 use stickslip::scan::{Axis, Grid, ParameterRange};
@@ -55,14 +56,25 @@ fn main() {
             let periods: f64 = arg(2);
             let samples: usize = arg(3);
             let zeta = Circuit::paper().scales().zeta();
+            let repeats: usize = arg(4);
             let e = Experiment::dimensionless(zeta, 0.7, 1.2).expect("valid");
-            let started = Instant::now();
-            let run = e.simulate(periods, samples, &()).expect("runs");
-            let seconds = started.elapsed().as_secs_f64();
+            // Repeated in one process, each run on a thread of its own, as the Python package
+            // runs it (the allocator's per-thread arenas then behave the same on both sides).
+            let mut seconds = Vec::new();
+            let mut samples_events = (0, 0);
+            for _ in 0..repeats {
+                let started = Instant::now();
+                let run = std::thread::scope(|s| {
+                    s.spawn(|| e.simulate(periods, samples, &()).expect("runs"))
+                        .join()
+                        .expect("no panic")
+                });
+                seconds.push(started.elapsed().as_secs_f64());
+                samples_events = (run.len(), run.events.len());
+            }
             println!(
-                "{{\"seconds\": {seconds}, \"samples\": {}, \"events\": {}}}",
-                run.len(),
-                run.events.len()
+                "{{\"seconds\": {seconds:?}, \"samples\": {}, \"events\": {}}}",
+                samples_events.0, samples_events.1
             );
         }
         other => panic!("unknown workload {other}: map or simulate"),
