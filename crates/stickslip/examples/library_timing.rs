@@ -22,6 +22,20 @@ fn arg<T: std::str::FromStr>(k: usize) -> T {
         .unwrap_or_else(|| panic!("argument {k} missing or invalid; see the file's documentation"))
 }
 
+/// CPU time of this process so far (user + system, all threads) in seconds, from
+/// /proc/self/stat (Linux; clock ticks of 10 ms), or NaN where it cannot be read.
+fn cpu_seconds() -> f64 {
+    let ticks = std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            // The fields after the command name (which may hold spaces) in parentheses.
+            let rest = &s[s.rfind(')')? + 2..];
+            let fields: Vec<&str> = rest.split_whitespace().collect();
+            Some(fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?)
+        });
+    ticks.map_or(f64::NAN, |t| t / 100.0)
+}
+
 fn main() {
     let what: String = arg(1);
     match what.as_str() {
@@ -35,9 +49,10 @@ fn main() {
                 Axis::range(Parameter::Beta, &beta).expect("valid"),
             )
             .expect("valid");
-            let started = Instant::now();
+            let (started, cpu) = (Instant::now(), cpu_seconds());
             let map = grid.run(&()).expect("runs");
             let seconds = started.elapsed().as_secs_f64();
+            let cpu = cpu_seconds() - cpu;
             let counts: Vec<String> = MotionClass::ALL
                 .iter()
                 .map(|&c| {
@@ -46,7 +61,7 @@ fn main() {
                 })
                 .collect();
             println!(
-                "{{\"seconds\": {seconds}, \"points\": {}, \"threads\": {}, \"counts\": {{{}}}}}",
+                "{{\"seconds\": {seconds}, \"cpu_seconds\": {cpu}, \"points\": {}, \"threads\": {}, \"counts\": {{{}}}}}",
                 map.points.len(),
                 rayon::current_num_threads(),
                 counts.join(", ")
