@@ -253,11 +253,9 @@ def test_progress_callback_and_its_exceptions_stop_the_map():
 # 3. (the check) two threads run two single-threaded maps in about the time of one:
 #    below 0.75 of the serial time measured in the same test. On a machine whose cores are
 #    busy with other work that cannot hold: the scheduler shares the cores between process
-#    groups, and two threads of ours get no more time than one. So the test first measures
-#    what two independent processes gain from running together right now (pure Python busy
-#    loops, no GIL between them); when they gain nothing the machine cannot show parallelism
-#    and the test is skipped with that measurement, else the two maps must gain as much
-#    (within 0.15). The best of three attempts counts.
+#    groups, and two threads of ours get no more time than one. So each attempt also measures
+#    what two independent processes gain from running together at that moment (pure Python
+#    busy loops, no GIL between them), as the control; see the test for the rule.
 SECOND = dict(w=np.linspace(0.2, 2.4, 160), beta=np.linspace(0.6, 3.9, 160))
 
 
@@ -326,27 +324,38 @@ def test_two_threads_run_two_maps_in_about_the_time_of_one():
     def one_map():
         return stickslip.phase_diagram(Experiment.paper(), threads=1, **SECOND)
 
-    attempts = []
-    for _ in range(3):
-        machine = _busy_processes(2, True) / _busy_processes(2, False)
-        started = time.perf_counter()
-        one_map()
-        one_map()
-        serial = time.perf_counter() - started
+    def two_maps_in_threads() -> float:
         threads = [threading.Thread(target=one_map) for _ in range(2)]
         started = time.perf_counter()
         for t in threads:
             t.start()
         for t in threads:
             t.join()
-        maps = (time.perf_counter() - started) / serial
-        attempts.append((maps, machine))
-        if maps < 0.75:
-            break
-    maps, machine = min(attempts)
-    report = (f"two concurrent maps took {maps:.2f} of their serial time, two independent "
-              f"processes {machine:.2f} (attempts {[(round(a, 2), round(b, 2)) for a, b in attempts]}, "
-              f"load average {os.getloadavg()[0]:.1f} on {cores} cores)")
-    if maps >= 0.75 and min(b for _, b in attempts) > 0.85:
-        pytest.skip(f"the machine is too busy to show parallelism: {report}")
-    assert maps < 0.75 or maps < min(b for _, b in attempts) + 0.15, report
+        return time.perf_counter() - started
+
+    def two_maps_one_after_the_other() -> float:
+        started = time.perf_counter()
+        one_map()
+        one_map()
+        return time.perf_counter() - started
+
+    # Each attempt measures, in close succession, what two independent processes gain from
+    # running together (the machine's share of parallelism at that moment) and what two maps
+    # in two threads gain. An attempt passes when the maps take under 0.75 of their serial
+    # time, or gain as much as the processes (within 0.15) while the processes gain something.
+    # It fails when the processes gain clearly (under 0.7) and the maps do not (0.25 more):
+    # with the GIL held the maps gain nothing. Five attempts: one passing attempt passes;
+    # three failing ones fail; else the machine was too busy to tell, and the test says so.
+    attempts = []
+    for _ in range(5):
+        machine = _busy_processes(2, True) / _busy_processes(2, False)
+        maps = two_maps_in_threads() / two_maps_one_after_the_other()
+        attempts.append((round(maps, 2), round(machine, 2)))
+        if maps < 0.75 or (machine < 0.85 and maps < machine + 0.15):
+            return
+    report = (f"(maps, processes) concurrent/serial time ratios {attempts}, load average "
+              f"{os.getloadavg()[0]:.1f} on {cores} cores")
+    failing = sum(1 for maps, machine in attempts if machine < 0.7 and maps > machine + 0.25)
+    if failing >= 3:
+        pytest.fail(f"two maps in two threads did not run side by side: {report}")
+    pytest.skip(f"the machine is too busy to show parallelism: {report}")
