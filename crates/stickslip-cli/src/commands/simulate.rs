@@ -6,8 +6,6 @@ use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::solver::{grid, sample_at};
-use stickslip::Event;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
 ///
@@ -69,13 +67,11 @@ pub fn run(args: Args) -> Result<()> {
     let params = experiment.params()?;
     eprintln!("simulate: {experiment}");
 
-    let mut solver = experiment.solver()?;
-    let period = params.drive_period();
-    let t_end = args.periods * period;
-    let times = grid(0.0, t_end, total as usize);
-    let mut events: Vec<Event> = Vec::new();
-    let samples = sample_at(solver.as_mut(), &times, |e| events.push(*e))?;
+    let run = experiment.simulate(args.periods, args.samples_per_period as usize, &|_, _| {
+        !crate::output::interrupted()
+    });
     crate::output::check_interrupt()?;
+    let run = run?;
 
     let units = experiment.units();
     let mut sink = Sink::open(args.out.as_deref())?;
@@ -85,17 +81,17 @@ pub fn run(args: Args) -> Result<()> {
         header.extend(u.columns());
     }
     w.write_record(&header)?;
-    for s in &samples {
-        let drive = solver.drive(s.tau);
+    for k in 0..run.len() {
+        let (tau, y, v, drive) = (run.tau[k], run.y[k], run.v[k], run.drive[k]);
         let mut row = vec![
-            fmt(s.tau),
-            fmt(s.y),
-            fmt(s.v),
+            fmt(tau),
+            fmt(y),
+            fmt(v),
             fmt(drive),
-            s.phase.label().to_string(),
+            run.phase[k].label().to_string(),
         ];
         if let Some(u) = &units {
-            row.extend(u.convert(s.tau, s.y, s.v, drive).map(fmt));
+            row.extend(u.convert(tau, y, v, drive).map(fmt));
         }
         w.write_record(&row)?;
     }
@@ -106,7 +102,7 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(path) = &args.events {
         let mut file = AtomicFile::create(path)?;
         writeln!(file, "tau,y,kind")?;
-        for e in &events {
+        for e in &run.events {
             writeln!(file, "{},{},{}", fmt(e.tau), fmt(e.y), e.kind.label())?;
         }
         file.commit()?;
@@ -128,12 +124,16 @@ pub fn run(args: Args) -> Result<()> {
             ),
             None => (1.0, 1.0, "τ = ω0 t", "y, drive"),
         };
-        let trace: Vec<(f64, f64)> = samples.iter().map(|s| (s.tau * tx, s.y * yx)).collect();
-        let drive: Vec<(f64, f64)> = samples
-            .iter()
-            .map(|s| (s.tau * tx, solver.drive(s.tau) * yx))
-            .collect();
-        let stops: Vec<(f64, f64)> = events
+        let scaled = |column: &[f64]| -> Vec<(f64, f64)> {
+            run.tau
+                .iter()
+                .zip(column)
+                .map(|(tau, x)| (tau * tx, x * yx))
+                .collect()
+        };
+        let (trace, drive) = (scaled(&run.y), scaled(&run.drive));
+        let stops: Vec<(f64, f64)> = run
+            .events
             .iter()
             .filter(|e| e.kind == stickslip::EventKind::Stick)
             .map(|e| (e.tau * tx, e.y * yx))
@@ -168,9 +168,9 @@ pub fn run(args: Args) -> Result<()> {
     }
     eprintln!(
         "simulate: {} samples over {} drive periods, {} events{}",
-        samples.len(),
+        run.len(),
         args.periods,
-        events.len(),
+        run.events.len(),
         args.out
             .as_ref()
             .map(|p| format!(", trajectory in {}", p.display()))

@@ -26,10 +26,12 @@
 mod file;
 mod key;
 mod spec;
+mod trajectory;
 
 pub use file::ConfigError;
 pub use key::Key;
 pub use spec::{ExperimentSpec, SpecError};
+pub use trajectory::Trajectory;
 
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};

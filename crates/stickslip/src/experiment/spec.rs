@@ -205,6 +205,22 @@ impl ExperimentSpec {
         self
     }
 
+    /// Remove the quantity that `key` gives, in every form: [`Key::W`] removes the drive
+    /// frequency given as w, f or Ω, say (see the type's documentation).
+    pub fn unset_quantity(&mut self, key: Key) -> &mut Self {
+        match GROUPS.iter().find(|(keys, _)| keys.contains(&key)) {
+            Some((keys, _)) => {
+                for &k in *keys {
+                    self.unset(k);
+                }
+            }
+            None => {
+                self.unset(key);
+            }
+        }
+        self
+    }
+
     /// The value of `key`, if set.
     pub fn get(&self, key: Key) -> Option<f64> {
         self.values.get(&key).copied()
@@ -511,6 +527,17 @@ mod tests {
             err(shockley),
             Error::Unsupported(Unsupported::ShockleyNeedsCircuit)
         );
+    }
+
+    #[test]
+    fn a_quantity_is_unset_in_every_form() {
+        let mut s = spec(&[(Key::Frequency, 1e4), (Key::Beta, 2.0), (Key::Phi, 0.5)]);
+        s.set_preset(Preset::Paper);
+        s.unset_quantity(Key::W).unset_quantity(Key::Phi);
+        assert!(!s.has(Key::Frequency) && !s.has(Key::Phi));
+        assert_eq!(s.get(Key::Beta), Some(2.0));
+        s.unset_quantity(Key::Preset);
+        assert_eq!(s.preset(), None);
     }
 
     #[test]

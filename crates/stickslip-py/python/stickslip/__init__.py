@@ -1,0 +1,73 @@
+"""stickslip: the forced harmonic oscillator damped by dry (Coulomb) friction, and its
+electrical twin, a series RLC circuit damped by two anti-parallel diodes.
+
+In dimensionless time τ = ω0·t::
+
+    y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)        while sliding
+    y' = 0 and |β cos(w τ + φ) − y| ≤ μs               while stuck
+
+For the circuit y = u_C/U_t, 2ζ = (R + R_D)√(C/L), β = U/U_t, w = Ω/ω0.
+
+- ``Experiment``: what to run (dimensionless, the paper's circuit, any circuit with PWL or
+  Shockley diodes, a mechanical oscillator, or a TOML file).
+- ``simulate``: an exact trajectory as numpy arrays, with its events.
+- ``steady``: the steady state (class, period, stops, gain, harmonics, X-Y data).
+- ``theory`` and ``boundary``: the paper's series solution and the exact one; the stick-slip
+  boundary β_c.
+- ``sweep``: one parameter up and down with continuation (hysteresis).
+- ``phase_diagram``: motion classes on a grid of two parameters, in parallel; ``to_xarray()``.
+- ``stickslip.dask``: the same maps as Dask tasks on any cluster.
+
+Every computation releases the GIL; Ctrl-C stops a long sweep, map or run; bad input raises
+``ValueError`` with the library's one-line message.
+
+Example::
+
+    import numpy as np
+    import stickslip
+
+    exp = stickslip.Experiment.paper(w=0.7, beta=1.2)      # the paper's circuit
+    print(stickslip.steady(exp).to_dict()["class"])        # periodic-stick
+    m = stickslip.phase_diagram(stickslip.Experiment.paper(),
+                                w=np.linspace(0.1, 2.5, 200), beta=np.linspace(0.5, 4, 200))
+    print(m.counts())
+"""
+
+from ._api import (
+    EVENT_DTYPE,
+    EVENT_KINDS,
+    MOTION_CLASSES,
+    PARAMETERS,
+    PHASE_LABELS,
+    PhaseDiagram,
+    SteadyState,
+    SweepResult,
+    Trajectory,
+    boundary,
+    phase_diagram,
+    simulate,
+    steady,
+    sweep,
+    theory,
+)
+from ._core import Experiment, __version__
+
+__all__ = [
+    "EVENT_DTYPE",
+    "EVENT_KINDS",
+    "Experiment",
+    "MOTION_CLASSES",
+    "PARAMETERS",
+    "PHASE_LABELS",
+    "PhaseDiagram",
+    "SteadyState",
+    "SweepResult",
+    "Trajectory",
+    "__version__",
+    "boundary",
+    "phase_diagram",
+    "simulate",
+    "steady",
+    "sweep",
+    "theory",
+]

@@ -1,0 +1,617 @@
+"""The package's functions and result types (see ``stickslip/__init__.py``)."""
+
+from __future__ import annotations
+
+import copy
+import json
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _core
+from ._core import Experiment
+
+#: The four kinds of steady motion, in the order of their codes in ``motion`` arrays.
+MOTION_CLASSES: Tuple[str, ...] = tuple(_core.MOTION_CLASSES)
+#: The parameters that sweeps and maps vary, with their long names (units: dimensionless).
+PARAMETERS: Dict[str, str] = dict(_core.PARAMETER_LONG_NAMES)
+#: ``phase`` codes of a trajectory: +1 sliding with y' > 0, -1 sliding with y' < 0, 0 stuck.
+PHASE_LABELS: Dict[int, str] = {1: "slip+", -1: "slip-", 0: "stick"}
+#: ``kind`` of an event, by code, as in the command-line tool's event CSV.
+EVENT_KINDS: Tuple[str, ...] = ("turn", "stick", "slip")
+#: The structured dtype of event arrays.
+EVENT_DTYPE = np.dtype([("tau", np.float64), ("y", np.float64), ("kind", "U5")])
+
+Progress = Optional[Callable[[int, int], Any]]
+
+
+def _values(name: str, values: Any) -> np.ndarray:
+    """``values`` as a one-dimensional, C-contiguous, aligned float64 array (what the compiled
+    core reads without a copy). Arrays that arrive misaligned (numpy arrays unpickled from
+    pickle-5 buffers on Dask workers, or views into packed records) are copied aligned."""
+    a = np.asarray(values, dtype=np.float64)
+    if a.ndim == 0:
+        a = a.reshape(1)
+    if a.ndim != 1:
+        raise ValueError(f"{name} must be a one-dimensional array of values, got shape {a.shape}")
+    if a.size == 0:
+        raise ValueError(f"{name} must hold at least one value")
+    return np.require(a, np.float64, ["C", "A"])
+
+
+def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
+    if not isinstance(experiment, Experiment):
+        raise TypeError(
+            f"expected a stickslip.Experiment, got {type(experiment).__name__}: "
+            "build one with stickslip.Experiment(...) or Experiment.paper(...)"
+        )
+    if model is None:
+        return experiment
+    if model not in ("pwl", "shockley"):
+        raise ValueError(
+            f"invalid model {model!r}: must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
+        )
+    return experiment.replace(diode=model)
+
+
+def _events(tau: np.ndarray, y: np.ndarray, kind: np.ndarray) -> np.ndarray:
+    events = np.empty(len(tau), dtype=EVENT_DTYPE)
+    events["tau"] = tau
+    events["y"] = y
+    events["kind"] = np.asarray(EVENT_KINDS)[kind]
+    return events
+
+
+def _fixed_attributes(experiment: Experiment, varied: Sequence[str]) -> Dict[str, Any]:
+    """The experiment's inputs that a sweep or map does not vary, as netCDF-safe attributes."""
+    attrs: Dict[str, Any] = {
+        "title": "stickslip: steady motions of the forced oscillator with dry friction",
+        "Conventions": "CF-1.10",
+        "experiment": str(experiment),
+        "experiment_json": experiment.to_json(),
+        "model": experiment.model,
+        "system": experiment.system,
+        "stickslip_version": _core.__version__,
+    }
+    for name in ("zeta", "w", "beta", "phi", "mu_s", "y0", "v0"):
+        value = getattr(experiment, name)
+        if name not in varied and value is not None:
+            attrs[name] = value
+    return attrs
+
+
+def _coordinate(name: str, values: np.ndarray) -> Tuple[str, np.ndarray, Dict[str, str]]:
+    return (name, values, {"units": "1", "long_name": PARAMETERS[name]})
+
+
+def _motion_attributes() -> Dict[str, Any]:
+    return {
+        "long_name": "motion class of the steady state",
+        "flag_values": np.arange(len(MOTION_CLASSES), dtype=np.int8),
+        "flag_meanings": " ".join(MOTION_CLASSES),
+    }
+
+
+_PERIOD_ATTRIBUTES = {
+    "long_name": "period of the steady motion in drive periods (-1: none found)",
+    "units": "1",
+}
+
+
+class Trajectory:
+    """One run from the initial state, sampled evenly (``stickslip.simulate``).
+
+    Attributes:
+        tau, y, v, drive: numpy float64 arrays, one value per sample: dimensionless time
+            τ = ω0·t, position, velocity, and the drive β cos(wτ + φ) (units of y).
+        phase: int8 array: +1 sliding with y' > 0, -1 sliding with y' < 0, 0 stuck
+            (``PHASE_LABELS``; ``phase_labels()`` gives the CSV's slip+/slip-/stick).
+        events: structured array with fields ``tau``, ``y``, ``kind`` ('turn', 'stick' or
+            'slip'), every event from τ = 0 to the last sample.
+        columns: the names of every sample column, in the order of the command-line tool's
+            CSV: tau, y, v, drive, phase, then for a circuit t_s, uc_V, i_A, u_V (seconds,
+            volts, amperes, volts) or for a mechanical oscillator t_s, r_m, rdot_m_s, F_N,
+            each also an attribute.
+        experiment: the experiment that ran.
+    """
+
+    def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self.tau: np.ndarray = data["tau"]
+        self.y: np.ndarray = data["y"]
+        self.v: np.ndarray = data["v"]
+        self.drive: np.ndarray = data["drive"]
+        self.phase: np.ndarray = data["phase"]
+        self.events: np.ndarray = _events(data["event_tau"], data["event_y"], data["event_kind"])
+        self.physical: Tuple[str, ...] = tuple(data["physical"])
+        for name in self.physical:
+            setattr(self, name, data[name])
+        self.columns: Tuple[str, ...] = ("tau", "y", "v", "drive", "phase") + self.physical
+
+    def __len__(self) -> int:
+        return len(self.tau)
+
+    def __getitem__(self, column: str) -> np.ndarray:
+        if column not in self.columns:
+            raise KeyError(f"no column {column!r}: the columns are {', '.join(self.columns)}")
+        return getattr(self, column)
+
+    def phase_labels(self) -> np.ndarray:
+        """The phase of every sample as 'slip+', 'slip-' or 'stick'."""
+        return np.asarray(["stick", "slip+", "slip-"])[self.phase]
+
+    def __repr__(self) -> str:
+        return (
+            f"<stickslip.Trajectory: {len(self)} samples, τ from {self.tau[0]:g} to "
+            f"{self.tau[-1]:g}, {len(self.events)} events; columns {', '.join(self.columns)}>"
+        )
+
+
+class SteadyState:
+    """The steady motion reached from the initial state (``stickslip.steady``).
+
+    ``to_dict()`` is exactly the JSON of ``stickslip steady --json`` for the same input (same
+    keys, same numbers): class, period (None: none found), stops_per_cycle, symmetric, peak,
+    gain, phase_lag (radians), harmonics, harmonic_phases, current_harmonics, subharmonic,
+    mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s. Each is also an
+    attribute (``motion`` for the class), the lists as numpy arrays.
+
+    Attributes:
+        motion: 'sliding', 'periodic-stick', 'nonperiodic-stick' or 'static'.
+        harmonics, harmonic_phases, current_harmonics: float64 arrays: A_k of y, their phases
+            θ_k (radians), and k·w·A_k (the harmonics of y'), for k = 1, 2, ...
+        trace: the recorded cycle sampled for the spectrum, an object with float64 arrays
+            ``tau, y, v, drive`` and int8 ``phase`` (empty when the spectrum is off).
+        xy: (drive, y) at every sample of the trace: the oscilloscope's X-Y picture.
+        events: structured array (tau, y, kind) of the events of the recorded cycle.
+        start: τ at which the record starts (a whole number of drive periods).
+        recorded_periods, stops, y_min, y_max, longest_stop: as the library's SteadyState.
+    """
+
+    def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self._report: Dict[str, Any] = data["report"]
+        r = self._report
+        self.motion: str = r["class"]
+        self.period: Optional[int] = r["period"]
+        self.stops_per_cycle: float = r["stops_per_cycle"]
+        self.symmetric: bool = r["symmetric"]
+        self.peak: float = r["peak"]
+        self.gain: Optional[float] = r["gain"]
+        self.phase_lag: Optional[float] = r["phase_lag"]
+        self.harmonics = np.asarray(r["harmonics"], dtype=np.float64)
+        self.harmonic_phases = np.asarray(r["harmonic_phases"], dtype=np.float64)
+        self.current_harmonics = np.asarray(r["current_harmonics"], dtype=np.float64)
+        self.subharmonic: Optional[float] = r["subharmonic"]
+        self.mean: Optional[float] = r["mean"]
+        self.periods_to_settle: int = r["periods_to_settle"]
+        self.samples_per_period: Optional[int] = r["samples_per_period"]
+        self.w: float = r["w"]
+        self.beta: float = r["beta"]
+        self.zeta: float = r["zeta"]
+        self.mu_s: float = r["mu_s"]
+        tau = data["trace_tau"]
+        drive = data["xy_drive"]
+        self.trace = _Trace(tau, data["trace_y"], data["trace_v"], drive, data["trace_phase"])
+        self.xy: Tuple[np.ndarray, np.ndarray] = (drive, data["xy_y"])
+        self.events = _events(data["event_tau"], data["event_y"], data["event_kind"])
+        self.start: float = data["start"]
+        self.recorded_periods: int = data["recorded_periods"]
+        self.stops: int = data["stops"]
+        self.y_min: float = data["y_min"]
+        self.y_max: float = data["y_max"]
+        self.longest_stop: float = data["longest_stop"]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The report as ``stickslip steady --json`` prints it (a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def __repr__(self) -> str:
+        period = "none found" if self.period is None else self.period
+        return (
+            f"<stickslip.SteadyState {self.motion}: period {period}, {self.stops_per_cycle:g} "
+            f"stops per cycle, gain {self.gain}, at w = {self.w:g}, β = {self.beta:g}>"
+        )
+
+
+class _Trace:
+    """Samples of a recorded cycle."""
+
+    def __init__(self, tau, y, v, drive, phase) -> None:
+        self.tau, self.y, self.v, self.drive, self.phase = tau, y, v, drive, phase
+
+    def __len__(self) -> int:
+        return len(self.tau)
+
+    def __repr__(self) -> str:
+        return f"<trace: {len(self)} samples>"
+
+
+class SweepResult:
+    """A sweep with continuation (``stickslip.sweep``): one entry per step, in the order run.
+
+    Attributes:
+        over: the swept parameter ('w', 'beta', 'zeta' or 'mu_s').
+        value: float64 array, the swept parameter's value at each step.
+        leg: array of 'up' or 'down' (the direction of the leg each step belongs to).
+        w, beta, zeta, mu_s: float64 arrays, the parameters of each step.
+        motion: int8 codes into ``labels`` (``MOTION_CLASSES``).
+        period: int16, period in drive periods, -1 where none was found.
+        stops_per_cycle, gain, peak: float64 arrays.
+        phase_lag: float64, lag of the fundamental behind the drive (radians; NaN without one).
+        harmonics: float64 array (steps × harmonics): A_1, A_2, ... of y (NaN where absent).
+        symmetric: bool array; periods_to_settle: int64 array.
+        experiment, options: what was run.
+    """
+
+    def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any], data) -> None:
+        self.experiment = experiment
+        self.over = over
+        self.options = options
+        self.labels: Tuple[str, ...] = MOTION_CLASSES
+        self.value: np.ndarray = data["value"]
+        self.w: np.ndarray = data["w"]
+        self.beta: np.ndarray = data["beta"]
+        self.zeta: np.ndarray = data["zeta"]
+        self.mu_s: np.ndarray = data["mu_s"]
+        self.gain: np.ndarray = data["gain"]
+        self.peak: np.ndarray = data["peak"]
+        self.stops_per_cycle: np.ndarray = data["stops_per_cycle"]
+        self.phase_lag: np.ndarray = data["phase_lag"]
+        self.motion: np.ndarray = data["motion"]
+        self.period: np.ndarray = data["period"]
+        self.symmetric: np.ndarray = data["symmetric"]
+        self.periods_to_settle: np.ndarray = data["periods_to_settle"]
+        self.leg = np.asarray(["up", "down"])[data["leg"]]
+        self.harmonics = data["harmonics"].reshape(len(self.value), data["harmonic_count"])
+
+    def __len__(self) -> int:
+        return len(self.value)
+
+    def motion_labels(self) -> np.ndarray:
+        """The class of every step as a label."""
+        return np.asarray(self.labels)[self.motion]
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run) and the swept
+        parameter (its values in the given order; the down leg is reordered to match), and a
+        ``harmonic`` dimension for the harmonics. Coordinates carry ``units`` and
+        ``long_name``, ``motion`` the CF ``flag_values``/``flag_meanings``, the dataset the
+        fixed inputs and the package version. Needs xarray (``pip install xarray``)."""
+        import xarray as xr
+
+        legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
+
+        def table(column: np.ndarray) -> np.ndarray:
+            rows = []
+            for leg in legs:
+                part = column[self.leg == leg]
+                rows.append(part[::-1] if leg == "down" else part)
+            return np.stack(rows)
+
+        values = table(self.value)[0]
+        dims = ("leg", self.over)
+        coords = {
+            "leg": ("leg", np.asarray(legs), {"long_name": "direction of the sweep leg"}),
+            self.over: _coordinate(self.over, values),
+            "harmonic": ("harmonic", np.arange(1, self.harmonics.shape[1] + 1),
+                         {"long_name": "order k of the drive harmonic", "units": "1"}),
+        }
+        data = {
+            "motion": (dims, table(self.motion), _motion_attributes()),
+            "period": (dims, table(self.period), dict(_PERIOD_ATTRIBUTES)),
+            "stops_per_cycle": (dims, table(self.stops_per_cycle),
+                                {"long_name": "stops of non-zero duration per drive period",
+                                 "units": "1"}),
+            "gain": (dims, table(self.gain),
+                     {"long_name": "gain (y_max - y_min)/(2 beta)", "units": "1"}),
+            "peak": (dims, table(self.peak), {"long_name": "largest |y|", "units": "1"}),
+            "phase_lag": (dims, table(self.phase_lag),
+                          {"long_name": "lag of the fundamental behind the drive",
+                           "units": "rad"}),
+            "harmonics": (dims + ("harmonic",),
+                          np.stack([table(self.harmonics[:, k])
+                                    for k in range(self.harmonics.shape[1])], axis=-1),
+                          {"long_name": "amplitude A_k of the drive harmonic k of y",
+                           "units": "1"}),
+        }
+        for name in ("w", "beta", "zeta", "mu_s"):
+            if name != self.over:
+                data.setdefault(name, (dims, table(getattr(self, name)), _coordinate(name, values)[2]))
+        attrs = _fixed_attributes(self.experiment, [self.over])
+        attrs["steady_options"] = json.dumps(self.options)
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def __repr__(self) -> str:
+        return f"<stickslip.SweepResult over {self.over}: {len(self)} steps>"
+
+
+class PhaseDiagram:
+    """Steady motions on a grid of parameters, each point from the initial state
+    (``stickslip.phase_diagram``, ``stickslip.dask.phase_diagram``, ``stickslip.dask.sweep_grid``).
+
+    Attributes:
+        dims: the parameters along the axes, in the order given (a map has two; a stack of
+            maps from ``sweep_grid`` has the outer ones first).
+        coords: dict from each parameter to its float64 values.
+        motion: int8 array of shape ``tuple(len(coords[d]) for d in dims)``: codes into
+            ``labels`` = ``MOTION_CLASSES`` = ('sliding', 'periodic-stick',
+            'nonperiodic-stick', 'static').
+        period: int16 array, the period in drive periods, **-1 where none was found** (up to
+            the ``max_period`` option, 16 by default).
+        stops_per_cycle: float64 array, stops of non-zero duration per drive period.
+        gain: float64 array, (y_max − y_min)/(2β) (inf at β = 0 with motion).
+        symmetric: bool array; periods_to_settle: int64 array.
+        experiment, options: what was run.
+    """
+
+    def __init__(self, experiment: Experiment, dims: Sequence[str],
+                 coords: Mapping[str, np.ndarray], options: Dict[str, Any],
+                 arrays: Mapping[str, np.ndarray]) -> None:
+        self.experiment = experiment
+        self.dims: Tuple[str, ...] = tuple(dims)
+        self.coords: Dict[str, np.ndarray] = {d: coords[d] for d in self.dims}
+        self.options = options
+        self.labels: Tuple[str, ...] = MOTION_CLASSES
+        self.motion: np.ndarray = arrays["motion"]
+        self.period: np.ndarray = arrays["period"]
+        self.stops_per_cycle: np.ndarray = arrays["stops_per_cycle"]
+        self.gain: np.ndarray = arrays["gain"]
+        self.symmetric: np.ndarray = arrays["symmetric"]
+        self.periods_to_settle: np.ndarray = arrays["periods_to_settle"]
+
+    FIELDS = ("motion", "period", "stops_per_cycle", "gain", "symmetric", "periods_to_settle")
+
+    @property
+    def shape(self) -> Tuple[int, ...]:
+        return self.motion.shape
+
+    def motion_labels(self) -> np.ndarray:
+        """The class of every point as a label."""
+        return np.asarray(self.labels)[self.motion]
+
+    def counts(self) -> Dict[str, int]:
+        """How many points of each class."""
+        return {label: int(np.sum(self.motion == k)) for k, label in enumerate(self.labels)}
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with one dimension per parameter (named after it; coordinates
+        with ``units`` and ``long_name``), ``motion`` with the CF ``flag_values`` and
+        ``flag_meanings``, ``period`` (-1: none found; written to netCDF with -1 as its
+        ``_FillValue``), and the fixed inputs, the options and the package version as
+        attributes. Needs xarray (``pip install xarray``)."""
+        import xarray as xr
+
+        coords = {d: _coordinate(d, self.coords[d]) for d in self.dims}
+        data = {
+            "motion": (self.dims, self.motion, _motion_attributes()),
+            "period": (self.dims, self.period, dict(_PERIOD_ATTRIBUTES)),
+            "stops_per_cycle": (self.dims, self.stops_per_cycle,
+                                {"long_name": "stops of non-zero duration per drive period",
+                                 "units": "1"}),
+            "gain": (self.dims, self.gain,
+                     {"long_name": "gain (y_max - y_min)/(2 beta)", "units": "1"}),
+            "symmetric": (self.dims, self.symmetric.astype(np.int8),
+                          {"long_name": "whether the cycle is symmetric",
+                           "flag_values": np.array([0, 1], dtype=np.int8),
+                           "flag_meanings": "asymmetric symmetric"}),
+            "periods_to_settle": (self.dims, self.periods_to_settle,
+                                  {"long_name": "drive periods run before the cycle was found",
+                                   "units": "1"}),
+        }
+        attrs = _fixed_attributes(self.experiment, self.dims)
+        attrs["steady_options"] = json.dumps(self.options)
+        ds = xr.Dataset(data, coords=coords, attrs=attrs)
+        ds["period"].encoding["_FillValue"] = np.int16(-1)
+        return ds
+
+    def __repr__(self) -> str:
+        axes = " × ".join(f"{d} ({len(self.coords[d])})" for d in self.dims)
+        counts = ", ".join(f"{k} {v}" for k, v in self.counts().items() if v)
+        return f"<stickslip.PhaseDiagram {axes}: {counts}>"
+
+
+def simulate(experiment: Experiment, periods: float, samples_per_period: int = 200, *,
+             model: Optional[str] = None, progress: Progress = None) -> Trajectory:
+    """Run the experiment from its initial state and sample the motion.
+
+    The exact event-driven solver (or the stiff solver with Shockley diodes) runs for
+    ``periods`` drive periods; the motion is sampled at τ_k = k·(periods·T)/n, k = 0 … n,
+    with T = 2π/w and n = ⌈periods × samples_per_period⌉ (n + 1 samples), exactly as
+    ``stickslip simulate`` writes its CSV.
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with its drive (w and β) given.
+        periods: drive periods to run (> 0).
+        samples_per_period: samples per drive period (≥ 1; default 200).
+        model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own
+            (Shockley diodes need a circuit).
+        progress: optional callable ``progress(done, total)`` (drive periods), called from
+            the calling thread about every 50 ms.
+
+    Returns:
+        A ``Trajectory`` with numpy arrays tau, y, v, drive, phase (and t_s, uc_V, i_A, u_V for
+        a circuit) and the structured array ``events`` (tau, y, kind).
+
+    Raises:
+        ValueError: bad input or a missing drive, with the library's message.
+        KeyboardInterrupt: Ctrl-C stops a long run.
+
+    Example:
+        >>> import stickslip
+        >>> run = stickslip.simulate(stickslip.Experiment.paper(w=0.7, beta=1.2), periods=30)
+        >>> len(run), run.columns[-1]
+        (6001, 'u_V')
+    """
+    experiment = _with_model(experiment, model)
+    data = _core.simulate(experiment, float(periods), int(samples_per_period), progress)
+    return Trajectory(experiment, data)
+
+
+def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) -> SteadyState:
+    """The steady motion reached from the initial state.
+
+    The state once per drive period is followed until it repeats with a period p ≤ 16 drive
+    periods, then p whole periods are recorded, classified from the exact event log and
+    analysed by a real FFT (exactly as ``stickslip steady``).
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with its drive given.
+        model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
+        **options: tolerance (relative, of the once-per-period repetition; default 1e-10, or
+            the stiff solver's 1e-6 with Shockley diodes), max_periods (5000), max_period (16,
+            at most 64), min_stop_fraction (1e-8 of a period), accelerate (True: extrapolate
+            the stroboscopic map to its fixed point), harmonics (16), samples_per_period (None:
+            chosen from the event log; else a power of two from 16).
+
+    Returns:
+        A ``SteadyState``; ``to_dict()`` equals ``stickslip steady --json``.
+
+    Example:
+        >>> s = stickslip.steady(stickslip.Experiment.paper(w=0.7, beta=1.2))
+        >>> s.motion, s.period, s.stops_per_cycle
+        ('periodic-stick', 1, 2.0)
+    """
+    experiment = _with_model(experiment, model)
+    return SteadyState(experiment, _core.steady(experiment, options))
+
+
+def theory(experiment: Experiment) -> Dict[str, Any]:
+    """The paper's series solution (its eqs. 11 and 13) and the exact periodic solution at the
+    experiment's (ζ, w, β, μs): the dict that ``stickslip theory --json`` prints, with
+    ``params``, ``paper`` (A1, A3, A5, phi0, gain, beta_c) and ``exact`` (exists, peak, A1,
+    A3, A5, phase, gain, beta_c, spectral_radius); a value that does not exist is None and
+    ``note`` says why. Phases in radians. The initial state is not used. The theory is that of
+    the piecewise-linear model (no Shockley diodes).
+
+    Example:
+        >>> t = stickslip.theory(stickslip.Experiment(zeta=0.0468, w=0.9, beta=2.0))
+        >>> t["exact"]["exists"]
+        True
+    """
+    _with_model(experiment, None)
+    return _core.theory(experiment)
+
+
+def boundary(zeta: Any, w: Any, mu_s: Any = 1.0) -> Tuple[np.ndarray, np.ndarray]:
+    """The stick-slip boundary β_c: the paper's (eq. 13, which takes μs = 1) and the exact one
+    (the smallest β at which the symmetric sliding orbit exists without sticking), vectorised.
+
+    Args:
+        zeta: damping ratio(s) ζ ≥ 0.
+        w: drive frequency(ies) w = Ω/ω0 > 0, any shape.
+        mu_s: static-to-kinetic friction ratio(s) μs ≥ 1 (default 1).
+        The three broadcast against each other.
+
+    Returns:
+        ``(beta_c_paper, beta_c_exact)``: float64 arrays of the broadcast shape, NaN where no
+        boundary exists (as the empty cells of ``stickslip theory --curve boundary``).
+
+    Example:
+        >>> paper, exact = stickslip.boundary(0.0468, [0.7, 1.5])
+        >>> round(float(paper[0]), 2), round(float(exact[0]), 3)
+        (1.75, 1.556)
+    """
+    z, ww, m = np.broadcast_arrays(np.asarray(zeta, dtype=np.float64),
+                                   np.asarray(w, dtype=np.float64),
+                                   np.asarray(mu_s, dtype=np.float64))
+    shape = ww.shape
+    flat = [np.require(a.ravel(), np.float64, ["C", "A"]) for a in (z, ww, m)]
+    if ww.size == 0:
+        return np.empty(shape), np.empty(shape)
+    paper, exact = _core.boundary(*flat)
+    return paper.reshape(shape), exact.reshape(shape)
+
+
+def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both", *,
+          model: Optional[str] = None, progress: Progress = None,
+          **options: Any) -> SweepResult:
+    """Sweep one parameter with the others fixed, each step starting from the state where the
+    step before ended (as when turning a knob), so hysteresis and coexisting motions show.
+
+    Args:
+        experiment: a ``stickslip.Experiment``; it needs no value of the swept parameter.
+        over: 'w', 'beta', 'zeta' or 'mu_s'.
+        values: the swept values, in order (any array-like of floats).
+        direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
+            where the up leg ended; the default).
+        model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
+        progress: optional callable ``progress(done, total)`` (steps).
+        **options: as for ``steady``.
+
+    Returns:
+        A ``SweepResult`` (numpy arrays per step; ``to_xarray()``).
+
+    Raises:
+        ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
+
+    Example:
+        >>> import numpy as np
+        >>> exp = stickslip.Experiment.paper(beta=3.61)
+        >>> s = stickslip.sweep(exp, over="w", values=np.linspace(0.5, 1.5, 11))
+        >>> print(len(s), s.leg[0], s.leg[-1])
+        22 up down
+    """
+    experiment = _with_model(experiment, model)
+    data = _core.sweep(experiment, over, _values("values", values), direction, options, progress)
+    return SweepResult(experiment, over, dict(options), data)
+
+
+def _axes(kwargs: Dict[str, Any], count: Sequence[int], caller: str
+          ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
+    """Split keyword arguments into parameter arrays (in the order given) and options."""
+    axes = {k: _values(k, v) for k, v in kwargs.items() if k in PARAMETERS}
+    options = {k: v for k, v in kwargs.items() if k not in PARAMETERS}
+    if len(axes) not in count:
+        wanted = " or ".join(str(c) for c in count)
+        got = ", ".join(axes) or "none"
+        raise TypeError(
+            f"{caller} takes {wanted} parameter arrays as keywords (of zeta, w, beta, mu_s), "
+            f"e.g. w=np.linspace(0.1, 2.5, 400), beta=np.linspace(0.5, 4, 400); got {got}"
+        )
+    return axes, options
+
+
+def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
+                  threads: Optional[int] = None, progress: Progress = None,
+                  **axes_and_options: Any) -> PhaseDiagram:
+    """Classify the steady motion on a grid of two parameters, every point started from the
+    experiment's initial state (rest, as in the paper's Fig. 7), in parallel.
+
+    Give the two parameters as keyword arrays, any two of ``zeta``, ``w``, ``beta``,
+    ``mu_s``; the first keyword is the first axis (rows), the second the second (columns).
+
+    Args:
+        experiment: a ``stickslip.Experiment``; it needs no value of either parameter.
+        model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
+        threads: compute on a pool of this many threads (default: one per core). Results are
+            the same for any number.
+        progress: optional callable ``progress(done, total)`` (points), called from the
+            calling thread about every 50 ms (e.g. a tqdm bar's update).
+        **axes_and_options: the two parameter arrays, then options as for ``steady``
+            (tolerance, max_periods, max_period, min_stop_fraction, accelerate).
+
+    Returns:
+        A ``PhaseDiagram``: ``motion`` (int8 codes into ``labels``), ``period`` (-1: none
+        found), ``stops_per_cycle``, ``gain``, ... each of shape (len(first), len(second)),
+        and ``to_xarray()``.
+
+    Raises:
+        ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
+
+    Example:
+        >>> import numpy as np
+        >>> m = stickslip.phase_diagram(stickslip.Experiment.paper(),
+        ...                             w=np.linspace(0.1, 2.5, 60), beta=np.linspace(0.5, 4, 40))
+        >>> m.motion.shape, m.labels[m.motion[59, 39]]
+        ((60, 40), 'sliding')
+    """
+    experiment = _with_model(experiment, model)
+    axes, options = _axes(axes_and_options, (2,), "phase_diagram")
+    (first, v1), (second, v2) = axes.items()
+    data = _core.grid(experiment, first, v1, second, v2, options, threads, None, None, progress)
+    return PhaseDiagram(experiment, (first, second), axes, options, _reshape(data, (len(v1), len(v2))))
+
+
+def _reshape(data: Mapping[str, np.ndarray], shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
+    return {name: data[name].reshape(shape) for name in PhaseDiagram.FIELDS}

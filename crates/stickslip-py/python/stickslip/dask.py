@@ -1,0 +1,246 @@
+"""Stick-slip maps as Dask tasks, on a laptop or on a cluster.
+
+``phase_diagram`` computes the same map as ``stickslip.phase_diagram`` and ``sweep_grid`` a
+stack of maps (one for each value of one or more outer parameters), split into rectangular
+blocks of grid points, one Dask task per block. Each task rebuilds the experiment from its
+JSON, computes its block with the library's ``Grid::run_block`` on one thread, and returns
+small numpy arrays; the blocks are put together on the client. Every point is computed on its
+own, the same way whichever worker runs it, so the result is bit-identical to the local call.
+
+- **Cluster**: whatever ``client`` points at (``distributed.Client("tcp://host:8786")``), or,
+  with ``client=None``, Dask's current default: a ``distributed.Client`` if one was created,
+  else the local threaded scheduler.
+- **No oversubscription**: a task uses one thread (``threads=1``), so a worker computes as many
+  blocks at once as it has threads: start workers with ``--nthreads`` equal to their cores
+  (``dask worker ... --nthreads 8``), or one single-threaded worker process per core.
+- **Task size**: ``chunks="auto"`` (the default) times a few points of the grid on the client
+  (one thread) and sizes blocks to take about ``TASK_SECONDS`` (one second) each, and smaller
+  when that would leave fewer than four tasks per worker thread; or give
+  ``chunks=(rows, columns)`` per block, or an int (rows per block, all columns).
+
+Needs ``dask[distributed]`` (``pip install "stickslip[dask]"``).
+
+Example::
+
+    import numpy as np
+    from distributed import Client
+    import stickslip, stickslip.dask
+
+    client = Client("tcp://127.0.0.1:8786")            # or Client(n_workers=2, threads_per_worker=1)
+    m = stickslip.dask.phase_diagram(stickslip.Experiment.paper(), client=client,
+                                     w=np.linspace(0.1, 2.5, 1000), beta=np.linspace(0.5, 4, 1000))
+    stack = stickslip.dask.sweep_grid(stickslip.Experiment.paper(), client=client,
+                                      mu_s=[1.0, 1.2, 1.5], w=np.linspace(0.1, 2.5, 200),
+                                      beta=np.linspace(0.5, 4, 200))
+    stack.to_xarray()                                 # dims (mu_s, w, beta)
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import time
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._api import PhaseDiagram, _axes, _with_model
+from ._core import Experiment
+
+__all__ = ["phase_diagram", "sweep_grid", "TASK_SECONDS"]
+
+#: How long a task of ``chunks="auto"`` should take, in seconds (as timed on the client).
+TASK_SECONDS = 1.0
+
+_DTYPES = {
+    "motion": np.int8,
+    "period": np.int16,
+    "stops_per_cycle": np.float64,
+    "gain": np.float64,
+    "symmetric": np.bool_,
+    "periods_to_settle": np.int64,
+}
+
+Chunks = Union[str, int, Tuple[int, int]]
+
+
+def _block_task(experiment_json: str, first: str, first_values: np.ndarray, second: str,
+                second_values: np.ndarray, block: Tuple[int, int, int, int],
+                options: Dict[str, Any], fixed: List[Tuple[str, float]]) -> Dict[str, np.ndarray]:
+    """One Dask task: the block (row start, row end, column start, column end) of the grid,
+    on one thread."""
+    experiment = Experiment.from_json(experiment_json)
+    # Arrays unpickled from pickle-5 buffers may be misaligned; the core reads aligned ones.
+    first_values = np.require(first_values, np.float64, ["C", "A"])
+    second_values = np.require(second_values, np.float64, ["C", "A"])
+    data = _core.grid(experiment, first, first_values, second, second_values, options, 1,
+                      block, fixed, None)
+    return {name: data[name] for name in _DTYPES}
+
+
+def _block_shape(chunks: Chunks, experiment: Experiment, first: str, v1: np.ndarray,
+                 second: str, v2: np.ndarray, options: Dict[str, Any],
+                 fixed: List[Tuple[str, float]], outer: int, threads: int) -> Tuple[int, int]:
+    """Rows and columns per block; checks every input once on the client."""
+    n1, n2 = len(v1), len(v2)
+    # Builds the grid (checking the experiment, both axes and the options) and computes
+    # nothing: bad input fails here, with the library's message, before any task runs.
+    _core.grid(experiment, first, v1, second, v2, options, 1, (0, 0, 0, 0), fixed, None)
+    if isinstance(chunks, str):
+        if chunks != "auto":
+            raise ValueError(f"invalid chunks {chunks!r}: 'auto', rows per block, or (rows, columns)")
+        rows = np.unique(np.linspace(0, n1 - 1, min(n1, 4)).round().astype(int))
+        cols = np.unique(np.linspace(0, n2 - 1, min(n2, 4)).round().astype(int))
+        started = time.perf_counter()
+        _core.grid(experiment, first, np.ascontiguousarray(v1[rows]), second,
+                   np.ascontiguousarray(v2[cols]), options, 1, None, fixed, None)
+        per_point = max((time.perf_counter() - started) / (len(rows) * len(cols)), 1e-7)
+        # About TASK_SECONDS each, and at least four tasks per worker thread (so that the last
+        # tasks, which finish at different times, are a small part of the whole).
+        points = max(1, min(int(TASK_SECONDS / per_point),
+                            (outer * n1 * n2) // (4 * max(threads, 1))))
+        if points >= n2:
+            return min(n1, points // n2), n2
+        return 1, points
+    if isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool):
+        shape = (int(chunks), n2)
+    elif isinstance(chunks, tuple) and len(chunks) == 2:
+        shape = (int(chunks[0]), int(chunks[1]))
+    else:
+        raise TypeError(f"chunks must be 'auto', an int or a (rows, columns) tuple, not {chunks!r}")
+    if min(shape) < 1:
+        raise ValueError(f"invalid chunks {chunks!r}: a block has at least one row and one column")
+    return min(shape[0], n1), min(shape[1], n2)
+
+
+def _worker_threads(client: Any) -> int:
+    """Threads of the cluster that will compute: the client's (or the default client's)
+    workers, else this machine's cores (Dask's local threads)."""
+    if client is None:
+        try:
+            from distributed import default_client
+
+            client = default_client()
+        except (ImportError, ValueError):
+            return os.cpu_count() or 1
+    return sum(client.nthreads().values()) or 1
+
+
+def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str, np.ndarray],
+           options: Dict[str, Any], chunks: Chunks, client: Any) -> PhaseDiagram:
+    import dask
+
+    (first, v1), (second, v2) = grid.items()
+    n1, n2 = len(v1), len(v2)
+    outer_names = list(outer)
+    outer_shape = tuple(len(v) for v in outer.values())
+    combinations = list(itertools.product(*(range(n) for n in outer_shape)))
+
+    def fixed_at(index: Sequence[int]) -> List[Tuple[str, float]]:
+        return [(name, float(outer[name][k])) for name, k in zip(outer_names, index)]
+
+    middle = combinations[len(combinations) // 2]
+    rows, cols = _block_shape(chunks, experiment, first, v1, second, v2, options,
+                              fixed_at(middle), len(combinations), _worker_threads(client))
+    for index in combinations:
+        if index != middle:
+            # Checks each outer value (the grid is built, nothing is computed).
+            _core.grid(experiment, first, v1, second, v2, options, 1, (0, 0, 0, 0),
+                       fixed_at(index), None)
+
+    text = dask.delayed(experiment.to_json(), pure=True)
+    first_values = dask.delayed(v1, pure=True)
+    second_values = dask.delayed(v2, pure=True)
+    task = dask.delayed(_block_task, pure=True)
+    blocks = []
+    tasks = []
+    for index in combinations:
+        for r0 in range(0, n1, rows):
+            for c0 in range(0, n2, cols):
+                block = (r0, min(r0 + rows, n1), c0, min(c0 + cols, n2))
+                blocks.append((index, block))
+                tasks.append(task(text, first, first_values, second, second_values, block,
+                                  options, fixed_at(index)))
+    if client is None:
+        results = dask.compute(*tasks)
+    else:
+        futures = client.compute(tasks)
+        try:
+            results = client.gather(futures)
+        except BaseException:
+            client.cancel(futures)
+            raise
+
+    shape = outer_shape + (n1, n2)
+    arrays: Dict[str, np.ndarray] = {
+        name: np.empty(shape, dtype=dtype) for name, dtype in _DTYPES.items()
+    }
+    for (index, (r0, r1, c0, c1)), result in zip(blocks, results):
+        for name, array in arrays.items():
+            array[index + (slice(r0, r1), slice(c0, c1))] = result[name].reshape(r1 - r0, c1 - c0)
+    coords = dict(outer)
+    coords.update(grid)
+    return PhaseDiagram(experiment, outer_names + [first, second], coords, options, arrays)
+
+
+def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: Any = None,
+                  model: Optional[str] = None, **axes_and_options: Any) -> PhaseDiagram:
+    """``stickslip.phase_diagram`` computed as Dask tasks, bit-identical to it.
+
+    Args:
+        experiment: a ``stickslip.Experiment``; it needs no value of either parameter.
+        chunks: 'auto' (blocks of about one second each, timed on the client), rows per
+            block (all columns), or (rows, columns) per block.
+        client: a ``distributed.Client``; None: Dask's default scheduler (a client created
+            earlier, or local threads).
+        model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
+        **axes_and_options: two parameter arrays (any two of zeta, w, beta, mu_s; the first
+            keyword is the first axis), then options as for ``stickslip.steady`` (tolerance,
+            max_periods, max_period, min_stop_fraction, accelerate).
+
+    Returns:
+        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)).
+
+    Example:
+        >>> import numpy as np, stickslip, stickslip.dask
+        >>> m = stickslip.dask.phase_diagram(stickslip.Experiment.paper(), chunks=(10, 40),
+        ...                                  w=np.linspace(0.1, 2.5, 60), beta=np.linspace(0.5, 4, 40))
+        >>> m.motion.shape
+        (60, 40)
+    """
+    experiment = _with_model(experiment, model)
+    axes, options = _axes(axes_and_options, (2,), "stickslip.dask.phase_diagram")
+    return _stack(experiment, {}, axes, options, chunks, client)
+
+
+def sweep_grid(experiment: Experiment, *, chunks: Chunks = "auto", client: Any = None,
+               model: Optional[str] = None, **axes_and_options: Any) -> PhaseDiagram:
+    """A map of the last two parameters for each value of the others, as Dask tasks: for
+    example a (w, β) map for each of 50 values of μs (three keyword arrays), or for each of 50
+    values of μs and 20 of ζ (four). Each map equals ``stickslip.phase_diagram`` of the
+    experiment with the outer values set.
+
+    Args:
+        experiment: a ``stickslip.Experiment``; it needs no value of the varied parameters.
+        chunks, client, model: as for ``phase_diagram``.
+        **axes_and_options: three or four parameter arrays (of zeta, w, beta, mu_s) in the
+            order of the result's dimensions, outer ones first, then options as for
+            ``stickslip.steady``.
+
+    Returns:
+        A ``stickslip.PhaseDiagram`` whose arrays have one dimension per parameter, e.g.
+        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them.
+
+    Example:
+        >>> s = stickslip.dask.sweep_grid(stickslip.Experiment.paper(), mu_s=[1.0, 1.5],
+        ...                               w=np.linspace(0.1, 2.5, 30), beta=np.linspace(0.5, 4, 20))
+        >>> s.dims, s.motion.shape
+        (('mu_s', 'w', 'beta'), (2, 30, 20))
+    """
+    experiment = _with_model(experiment, model)
+    axes, options = _axes(axes_and_options, (3, 4), "stickslip.dask.sweep_grid")
+    names = list(axes)
+    outer = {name: axes[name] for name in names[:-2]}
+    grid = {name: axes[name] for name in names[-2:]}
+    return _stack(experiment, outer, grid, options, chunks, client)

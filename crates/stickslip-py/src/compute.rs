@@ -1,0 +1,486 @@
+//! The computations: simulate, steady, theory, boundary, sweep and grid. Each takes the
+//! library's types from its arguments, runs without the GIL and returns numpy arrays (in a
+//! dict, for the Python layer to wrap) or the library's serialised report.
+
+use crate::experiment::PyExperiment;
+use crate::runner::run;
+use crate::{error, json_value};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::time::Instant;
+use stickslip::scan::{Axis, Grid, Sweep, SweepDirection, SweepLeg};
+use stickslip::steady::{MotionClass, SteadyOptions, SteadyReport};
+use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
+use stickslip::theory::TheoryReport;
+use stickslip::{DiodeModel, Error, EventKind, Experiment, Parameter, Params, Phase, Unsupported};
+
+/// Options of the steady-state search that every computation takes.
+const SEARCH_OPTIONS: [&str; 5] = [
+    "tolerance",
+    "max_periods",
+    "max_period",
+    "min_stop_fraction",
+    "accelerate",
+];
+/// Options of the spectrum (steady states and sweeps; a map computes none).
+const SPECTRUM_OPTIONS: [&str; 2] = ["harmonics", "samples_per_period"];
+
+/// A whole number ≥ 0 for option `name`.
+fn count(name: &str, value: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let v: i64 = value
+        .extract()
+        .map_err(|_| PyTypeError::new_err(format!("{name} must be a whole number")))?;
+    usize::try_from(v)
+        .map_err(|_| PyValueError::new_err(format!("invalid {name} = {v}: must be >= 1")))
+}
+
+/// `base` with the caller's options over it (names as the fields of
+/// [`SteadyOptions`]), validated by the library.
+fn steady_options(
+    base: SteadyOptions,
+    options: Option<&Bound<'_, PyDict>>,
+    spectrum: bool,
+) -> PyResult<SteadyOptions> {
+    let mut o = base;
+    let Some(options) = options else {
+        return Ok(o);
+    };
+    for (k, v) in options.iter() {
+        let name: String = k.extract()?;
+        let known = SEARCH_OPTIONS.contains(&name.as_str())
+            || (spectrum && SPECTRUM_OPTIONS.contains(&name.as_str()));
+        if !known {
+            let mut names = SEARCH_OPTIONS.to_vec();
+            if spectrum {
+                names.extend(SPECTRUM_OPTIONS);
+            }
+            return Err(PyTypeError::new_err(format!(
+                "unknown option '{name}': the options are {}",
+                names.join(", ")
+            )));
+        }
+        if v.is_none() {
+            continue;
+        }
+        match name.as_str() {
+            "tolerance" => o.tolerance = v.extract()?,
+            "max_periods" => o.max_periods = count(&name, &v)?,
+            "max_period" => o.max_period = count(&name, &v)?,
+            "min_stop_fraction" => o.min_stop_fraction = v.extract()?,
+            "accelerate" => o.accelerate = v.extract()?,
+            "harmonics" => o.harmonics = count(&name, &v)?,
+            "samples_per_period" => o.samples_per_period = Some(count(&name, &v)?),
+            _ => unreachable!("checked above"),
+        }
+    }
+    o.validate().map_err(error)
+}
+
+/// The values of a contiguous, aligned float64 array (the Python layer makes them so).
+fn values(name: &str, array: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
+    array.as_slice().map(<[f64]>::to_vec).map_err(|_| {
+        PyValueError::new_err(format!(
+            "{name} must be a contiguous, aligned float64 array (np.require(a, np.float64, ['C', 'A']))"
+        ))
+    })
+}
+
+/// The parameter named `name`.
+fn parameter(name: &str) -> PyResult<Parameter> {
+    Parameter::from_label(name).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "unknown parameter '{name}': sweeps and maps vary zeta, w, beta or mu_s"
+        ))
+    })
+}
+
+/// The motion class's code: its index in `MotionClass::ALL` (`MOTION_CLASSES`).
+fn class_code(class: MotionClass) -> i8 {
+    MotionClass::ALL
+        .iter()
+        .position(|&c| c == class)
+        .expect("every class is in ALL") as i8
+}
+
+/// The period's code: the period in drive periods, -1 when none was found.
+fn period_code(period: Option<usize>) -> i16 {
+    period.map_or(-1, |p| p as i16)
+}
+
+fn event_code(kind: EventKind) -> i8 {
+    match kind {
+        EventKind::Turn => 0,
+        EventKind::Stick => 1,
+        EventKind::Slip => 2,
+    }
+}
+
+fn phase_code(phase: Phase) -> i8 {
+    phase.sign() as i8
+}
+
+/// Set `name` of `out` to a numpy array that takes over `data` (no copy).
+fn put<T: numpy::Element>(out: &Bound<'_, PyDict>, name: &str, data: Vec<T>) -> PyResult<()> {
+    out.set_item(name, PyArray1::from_vec(out.py(), data))
+}
+
+/// One run of an experiment from its initial state; see `stickslip.simulate`.
+#[pyfunction]
+#[pyo3(signature = (experiment, periods, samples_per_period, progress=None))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    periods: f64,
+    samples_per_period: i64,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let samples = usize::try_from(samples_per_period).map_err(|_| {
+        error(Error::InvalidParameter {
+            name: "samples_per_period",
+            value: samples_per_period as f64,
+            allowed: "must be at least 1",
+        })
+    })?;
+    let e: Experiment = experiment.experiment().clone();
+    let (trajectory, physical, computed) = run(py, progress.as_ref(), |monitor| {
+        let started = Instant::now();
+        let t = e.simulate(periods, samples, monitor)?;
+        let computed = started.elapsed().as_secs_f64();
+        let physical = e.units().map(|u| {
+            let mut columns: [Vec<f64>; 4] = Default::default();
+            for c in &mut columns {
+                c.reserve_exact(t.len());
+            }
+            for k in 0..t.len() {
+                let row = u.convert(t.tau[k], t.y[k], t.v[k], t.drive[k]);
+                for (c, x) in columns.iter_mut().zip(row) {
+                    c.push(x);
+                }
+            }
+            (u.columns(), columns)
+        });
+        Ok((t, physical, computed))
+    })?;
+    let converting = Instant::now();
+    let out = PyDict::new(py);
+    let phase = trajectory.phase.iter().map(|&p| phase_code(p)).collect();
+    let events = &trajectory.events;
+    put(&out, "event_tau", events.iter().map(|e| e.tau).collect())?;
+    put(&out, "event_y", events.iter().map(|e| e.y).collect())?;
+    put(
+        &out,
+        "event_kind",
+        events.iter().map(|e| event_code(e.kind)).collect(),
+    )?;
+    put(&out, "tau", trajectory.tau)?;
+    put(&out, "y", trajectory.y)?;
+    put(&out, "v", trajectory.v)?;
+    put(&out, "drive", trajectory.drive)?;
+    put::<i8>(&out, "phase", phase)?;
+    let names = pyo3::types::PyList::empty(py);
+    if let Some((columns, data)) = physical {
+        for (name, column) in columns.into_iter().zip(data) {
+            put(&out, name, column)?;
+            names.append(name)?;
+        }
+    }
+    out.set_item("physical", names)?;
+    // For the benchmark of returning a trajectory (bench/python): seconds spent in the
+    // library's run and in handing its result to numpy.
+    out.set_item("_seconds", (computed, converting.elapsed().as_secs_f64()))?;
+    Ok(out)
+}
+
+/// The steady state reached from the initial state; see `stickslip.steady`.
+#[pyfunction]
+#[pyo3(signature = (experiment, options=None))]
+pub fn steady<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let e = experiment.experiment().clone();
+    let options = steady_options(e.steady_options(), options, true)?;
+    e.params().map_err(error)?;
+    let s = py.detach(|| e.steady_with(&options)).map_err(error)?;
+    let out = PyDict::new(py);
+    out.set_item("report", json_value(py, &SteadyReport::from(&s))?)?;
+    let (drive, y): (Vec<f64>, Vec<f64>) = s.xy().into_iter().unzip();
+    put(&out, "xy_drive", drive)?;
+    put(&out, "xy_y", y)?;
+    put(&out, "trace_tau", s.trace.iter().map(|p| p.tau).collect())?;
+    put(&out, "trace_y", s.trace.iter().map(|p| p.y).collect())?;
+    put(&out, "trace_v", s.trace.iter().map(|p| p.v).collect())?;
+    put(
+        &out,
+        "trace_phase",
+        s.trace
+            .iter()
+            .map(|p| phase_code(p.phase))
+            .collect::<Vec<i8>>(),
+    )?;
+    put(&out, "event_tau", s.events.iter().map(|e| e.tau).collect())?;
+    put(&out, "event_y", s.events.iter().map(|e| e.y).collect())?;
+    put(
+        &out,
+        "event_kind",
+        s.events
+            .iter()
+            .map(|e| event_code(e.kind))
+            .collect::<Vec<i8>>(),
+    )?;
+    out.set_item("start", s.start)?;
+    out.set_item("recorded_periods", s.recorded_periods)?;
+    out.set_item("y_min", s.y_min)?;
+    out.set_item("y_max", s.y_max)?;
+    out.set_item("longest_stop", s.longest_stop)?;
+    out.set_item("stops", s.stops)?;
+    Ok(out)
+}
+
+/// The experiment, which must use the piecewise-linear law.
+fn pwl(experiment: &Experiment) -> PyResult<()> {
+    if experiment.diode_model() == DiodeModel::Shockley {
+        return Err(error(Error::Unsupported(Unsupported::TheoryNeedsPwl)));
+    }
+    Ok(())
+}
+
+/// Both theories at the experiment's point; see `stickslip.theory`.
+#[pyfunction]
+pub fn theory<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let e = experiment.experiment().clone();
+    pwl(&e)?;
+    let params = e.params().map_err(error)?;
+    let report = py.detach(|| TheoryReport::new(&params)).map_err(error)?;
+    json_value(py, &report)
+}
+
+/// Two float64 arrays.
+type Pair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// The paper's and the exact stick-slip boundary β_c at each (ζ, w, μs) of three arrays of
+/// one length; NaN where none exists. See `stickslip.boundary`.
+#[pyfunction]
+pub fn boundary<'py>(
+    py: Python<'py>,
+    zeta: PyReadonlyArray1<'py, f64>,
+    w: PyReadonlyArray1<'py, f64>,
+    mu_s: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Pair<'py>> {
+    let (zeta, w, mu_s) = (
+        values("zeta", &zeta)?,
+        values("w", &w)?,
+        values("mu_s", &mu_s)?,
+    );
+    if zeta.len() != w.len() || mu_s.len() != w.len() {
+        return Err(PyValueError::new_err(
+            "zeta, w and mu_s must have one length",
+        ));
+    }
+    let (paper, exact) = py
+        .detach(|| -> stickslip::Result<(Vec<f64>, Vec<f64>)> {
+            let mut paper = Vec::with_capacity(w.len());
+            let mut exact = Vec::with_capacity(w.len());
+            for k in 0..w.len() {
+                let p = Params::new(zeta[k], w[k], 0.0)?.with_mu_s(mu_s[k])?;
+                let at = |t| theory_value(t, TheoryQuantity::Boundary, &p).unwrap_or(f64::NAN);
+                paper.push(at(Theory::Paper));
+                exact.push(at(Theory::Exact));
+            }
+            Ok((paper, exact))
+        })
+        .map_err(error)?;
+    Ok((PyArray1::from_vec(py, paper), PyArray1::from_vec(py, exact)))
+}
+
+/// A sweep with continuation; see `stickslip.sweep`.
+#[pyfunction]
+#[pyo3(signature = (experiment, over, values, direction, options=None, progress=None))]
+pub fn sweep<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    over: &str,
+    values: PyReadonlyArray1<'py, f64>,
+    direction: &str,
+    options: Option<&Bound<'py, PyDict>>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let e = experiment.experiment().clone();
+    let direction = match direction {
+        "up" => SweepDirection::Up,
+        "down" => SweepDirection::Down,
+        "both" => SweepDirection::Both,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "invalid direction '{direction}': must be 'up', 'down' or 'both'"
+            )))
+        }
+    };
+    let axis = Axis::new(parameter(over)?, self::values("values", &values)?).map_err(error)?;
+    let options = steady_options(e.steady_options(), options, true)?;
+    let sweep = Sweep::new(&e, axis)
+        .map_err(error)?
+        .direction(direction)
+        .options(options)
+        .map_err(error)?;
+    let points = run(py, progress.as_ref(), |monitor| sweep.run(monitor))?;
+    let h = options.harmonics;
+    let out = PyDict::new(py);
+    let column = |f: &dyn Fn(&stickslip::scan::SweepPoint) -> f64| -> Vec<f64> {
+        points.iter().map(f).collect()
+    };
+    put(&out, "value", column(&|p| p.value))?;
+    put(&out, "w", column(&|p| p.params.w))?;
+    put(&out, "beta", column(&|p| p.params.beta))?;
+    put(&out, "zeta", column(&|p| p.params.zeta))?;
+    put(&out, "mu_s", column(&|p| p.params.mu_s))?;
+    put(&out, "gain", column(&|p| p.steady.gain))?;
+    put(&out, "peak", column(&|p| p.steady.peak))?;
+    put(
+        &out,
+        "stops_per_cycle",
+        column(&|p| p.steady.stops_per_period),
+    )?;
+    put(
+        &out,
+        "phase_lag",
+        column(&|p| p.steady.phase_lag().unwrap_or(f64::NAN)),
+    )?;
+    let leg = |l: SweepLeg| if l == SweepLeg::Up { 0i8 } else { 1 };
+    put(
+        &out,
+        "leg",
+        points.iter().map(|p| leg(p.leg)).collect::<Vec<i8>>(),
+    )?;
+    put(
+        &out,
+        "motion",
+        points
+            .iter()
+            .map(|p| class_code(p.steady.class))
+            .collect::<Vec<i8>>(),
+    )?;
+    put(
+        &out,
+        "period",
+        points
+            .iter()
+            .map(|p| period_code(p.steady.period))
+            .collect::<Vec<i16>>(),
+    )?;
+    put(
+        &out,
+        "symmetric",
+        points
+            .iter()
+            .map(|p| p.steady.symmetric)
+            .collect::<Vec<bool>>(),
+    )?;
+    put(
+        &out,
+        "periods_to_settle",
+        points
+            .iter()
+            .map(|p| p.steady.periods_to_settle as i64)
+            .collect::<Vec<i64>>(),
+    )?;
+    let harmonics = points
+        .iter()
+        .flat_map(|p| (1..=h).map(|k| p.steady.harmonic(k).unwrap_or(f64::NAN)))
+        .collect();
+    put(&out, "harmonics", harmonics)?;
+    out.set_item("harmonic_count", h)?;
+    Ok(out)
+}
+
+/// A block of a grid of two parameters, every point from the initial state; see
+/// `stickslip.phase_diagram` and `stickslip.dask`. `block` = (row start, row end, column
+/// start, column end), the whole grid by default; `fixed` = values of other parameters set
+/// before the grid is built (the outer parameters of a stack of maps); `threads`: a pool of its own of that many threads (default:
+/// rayon's global pool, one thread per core).
+#[pyfunction]
+#[pyo3(signature = (experiment, first, first_values, second, second_values, options=None, threads=None, block=None, fixed=None, progress=None))]
+pub fn grid<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    first: &str,
+    first_values: PyReadonlyArray1<'py, f64>,
+    second: &str,
+    second_values: PyReadonlyArray1<'py, f64>,
+    options: Option<&Bound<'py, PyDict>>,
+    threads: Option<usize>,
+    block: Option<(usize, usize, usize, usize)>,
+    fixed: Option<Vec<(String, f64)>>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut e = experiment.experiment().clone();
+    for (name, value) in fixed.unwrap_or_default() {
+        e = e.with_parameter(parameter(&name)?, value).map_err(error)?;
+    }
+    let first = Axis::new(parameter(first)?, values(first, &first_values)?).map_err(error)?;
+    let second = Axis::new(parameter(second)?, values(second, &second_values)?).map_err(error)?;
+    let (rows, cols) = (first.len(), second.len());
+    let options = steady_options(e.steady_options().with_spectrum(false), options, false)?;
+    let mut grid = Grid::new(&e, first, second)
+        .map_err(error)?
+        .options(options)
+        .map_err(error)?;
+    if let Some(n) = threads {
+        grid = grid.threads(n).map_err(error)?;
+    }
+    let (r0, r1, c0, c1) = block.unwrap_or((0, rows, 0, cols));
+    let points = run(py, progress.as_ref(), |monitor| {
+        grid.run_block(r0..r1, c0..c1, monitor)
+    })?;
+    let out = PyDict::new(py);
+    put(
+        &out,
+        "motion",
+        points
+            .iter()
+            .map(|p| class_code(p.class))
+            .collect::<Vec<i8>>(),
+    )?;
+    put(
+        &out,
+        "period",
+        points
+            .iter()
+            .map(|p| period_code(p.period))
+            .collect::<Vec<i16>>(),
+    )?;
+    put(
+        &out,
+        "stops_per_cycle",
+        points
+            .iter()
+            .map(|p| p.stops_per_period)
+            .collect::<Vec<f64>>(),
+    )?;
+    put(
+        &out,
+        "gain",
+        points.iter().map(|p| p.gain).collect::<Vec<f64>>(),
+    )?;
+    put(
+        &out,
+        "symmetric",
+        points.iter().map(|p| p.symmetric).collect::<Vec<bool>>(),
+    )?;
+    put(
+        &out,
+        "periods_to_settle",
+        points
+            .iter()
+            .map(|p| p.periods_to_settle as i64)
+            .collect::<Vec<i64>>(),
+    )?;
+    out.set_item("shape", (r1.saturating_sub(r0), c1.saturating_sub(c0)))?;
+    Ok(out)
+}

@@ -1,0 +1,575 @@
+//! `stickslip.Experiment`: the library's [`ExperimentSpec`] (what the user gave, key by key)
+//! and the [`Experiment`] it builds.
+
+use crate::{error, json_value};
+use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString, PyTuple};
+use std::path::PathBuf;
+use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
+use stickslip::System;
+
+/// One experiment: a dimensionless model, a circuit with PWL or Shockley diodes, or a
+/// mechanical oscillator; a drive; the friction ratio μs; an initial state.
+///
+/// Everything is dimensionless inside (τ = ω0·t):
+///     y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)   while sliding,
+///     y' = 0 and |β cos(w τ + φ) − y| ≤ μs          while stuck.
+///
+/// Build one with ``Experiment(zeta=, w=, beta=)`` (dimensionless),
+/// ``Experiment.paper(w=, beta=)`` (the paper's circuit), ``Experiment.circuit(...)``,
+/// ``Experiment.shockley(...)``, ``Experiment.mechanics(...)`` or
+/// ``Experiment.from_toml(path)``; change values with ``.replace(**changes)``, which returns a
+/// new experiment. The drive (w and β) may be left out when a sweep or a phase diagram sets
+/// it. Keyword names are those of the TOML experiment file: zeta w beta phi mu_s y0 v0, L C R
+/// U_t R_D, m k gamma F0, U (or F) f omega, uc0 i0, Is n Rs temperature, diode, preset.
+/// Physical values may be numbers in SI units or strings with an SI prefix ("11.5m").
+///
+/// Experiments are immutable, comparable and picklable (through their JSON, ``to_json``).
+///
+/// ``Experiment(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0)`` is the
+/// dimensionless model:
+///
+/// Args:
+///     zeta: damping ratio ζ ≥ 0 (default: the paper's circuit, 0.046816).
+///     w: drive frequency w = Ω/ω0 > 0 (None: set later by a sweep or a map).
+///     beta: drive amplitude β ≥ 0 in units of the kinetic friction force (None: set
+///         later).
+///     phi: drive phase φ at τ = 0, radians (default 0).
+///     mu_s: static-to-kinetic friction ratio μs ≥ 1 (default 1, as in the paper).
+///     y0: initial position (default 0).
+///     v0: initial velocity (default 0).
+///
+/// Raises:
+///     ValueError: a value out of range, or a description that is incomplete or contradicts
+///         itself, with the library's one-line message.
+///     TypeError: an unknown keyword.
+///
+/// Example:
+///     >>> import stickslip
+///     >>> Experiment(zeta=0.05, w=0.7, beta=1.2).mu_s
+///     1.0
+///     >>> exp = stickslip.Experiment.paper(w=0.95, beta=2.14)
+///     >>> round(exp.zeta, 6)
+///     0.046816
+///     >>> exp.replace(beta=1.2).beta
+///     1.2
+#[pyclass(module = "stickslip", name = "Experiment", frozen)]
+pub struct PyExperiment {
+    spec: ExperimentSpec,
+    experiment: Experiment,
+}
+
+impl PyExperiment {
+    /// Build the experiment of `spec`.
+    fn build(spec: ExperimentSpec) -> PyResult<Self> {
+        let experiment = spec.build().map_err(error)?;
+        Ok(Self { spec, experiment })
+    }
+
+    /// The built experiment as JSON: what equality and hashing compare.
+    fn identity(&self) -> String {
+        serde_json::to_string(&self.experiment).unwrap_or_default()
+    }
+
+    /// The library's experiment.
+    pub(crate) fn experiment(&self) -> &Experiment {
+        &self.experiment
+    }
+}
+
+/// The diode law named `name`.
+fn diode(name: &str) -> PyResult<DiodeModel> {
+    match name {
+        "pwl" => Ok(DiodeModel::Pwl),
+        "shockley" => Ok(DiodeModel::Shockley),
+        _ => Err(PyValueError::new_err(format!(
+            "invalid diode '{name}': must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
+        ))),
+    }
+}
+
+/// Every key name, for messages.
+fn key_names() -> String {
+    let mut names: Vec<&str> = Key::ALL.iter().map(|k| k.name()).collect();
+    names.push("F");
+    names.join(", ")
+}
+
+/// Add `name = value` to `spec`; `None` removes the quantity (for `replace`).
+fn put(
+    spec: &mut ExperimentSpec,
+    unset: &mut Vec<Key>,
+    name: &str,
+    value: &Bound<'_, PyAny>,
+) -> PyResult<()> {
+    let key = Key::from_name(name).ok_or_else(|| {
+        PyTypeError::new_err(format!(
+            "unknown experiment keyword '{name}': the keywords are {}",
+            key_names()
+        ))
+    })?;
+    if value.is_none() {
+        unset.push(key);
+        return Ok(());
+    }
+    match key {
+        Key::Diode => {
+            let text: String = value
+                .extract()
+                .map_err(|_| PyTypeError::new_err("diode must be a string: 'pwl' or 'shockley'"))?;
+            spec.set_diode(diode(&text)?);
+        }
+        Key::Preset => match value.extract::<String>().as_deref() {
+            Ok("paper") => {
+                spec.set_preset(Preset::Paper);
+            }
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "invalid preset {}: the only preset is 'paper'",
+                    value.repr()?
+                )))
+            }
+        },
+        _ => {
+            let number = if let Ok(text) = value.cast::<PyString>() {
+                let text = text.to_cow()?;
+                stickslip::units::parse_si(&text)
+                    .map_err(|e| PyValueError::new_err(format!("invalid {name}: {e}")))?
+            } else if value.is_instance_of::<pyo3::types::PyBool>() {
+                return Err(PyTypeError::new_err(format!(
+                    "{name} must be a number, not a bool"
+                )));
+            } else {
+                value.extract::<f64>().map_err(|_| {
+                    PyTypeError::new_err(format!(
+                        "{name} must be a number (or a string with an SI prefix such as \"20n\"), not {}",
+                        value.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+                    ))
+                })?
+            };
+            spec.set(key, number).map_err(error)?;
+        }
+    }
+    Ok(())
+}
+
+/// A layer of keys from keyword arguments given one by one and as `**keys`.
+fn layer(
+    named: &[(&str, Option<&Bound<'_, PyAny>>)],
+    keys: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(ExperimentSpec, Vec<Key>)> {
+    let mut spec = ExperimentSpec::new();
+    let mut unset = Vec::new();
+    for (name, value) in named {
+        if let Some(v) = value {
+            put(&mut spec, &mut unset, name, v)?;
+        }
+    }
+    if let Some(keys) = keys {
+        for (k, v) in keys.iter() {
+            let name: String = k.extract()?;
+            put(&mut spec, &mut unset, &name, &v)?;
+        }
+    }
+    Ok((spec, unset))
+}
+
+/// A new experiment from keyword arguments over `base`, keys given as `None` removed.
+fn from_layer(
+    base: ExperimentSpec,
+    named: &[(&str, Option<&Bound<'_, PyAny>>)],
+    keys: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyExperiment> {
+    let (top, unset) = layer(named, keys)?;
+    let mut spec = base;
+    for key in unset {
+        spec.unset_quantity(key);
+    }
+    PyExperiment::build(spec.overlay(&top))
+}
+
+fn preset_paper() -> ExperimentSpec {
+    let mut spec = ExperimentSpec::new();
+    spec.set_preset(Preset::Paper);
+    spec
+}
+
+#[pymethods]
+impl PyExperiment {
+    /// A dimensionless experiment (documented on the class: Python shows the class's docstring).
+    #[new]
+    #[pyo3(signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None))]
+    fn new(
+        zeta: Option<&Bound<'_, PyAny>>,
+        w: Option<&Bound<'_, PyAny>>,
+        beta: Option<&Bound<'_, PyAny>>,
+        phi: Option<&Bound<'_, PyAny>>,
+        mu_s: Option<&Bound<'_, PyAny>>,
+        y0: Option<&Bound<'_, PyAny>>,
+        v0: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let named = [
+            ("zeta", zeta),
+            ("w", w),
+            ("beta", beta),
+            ("phi", phi),
+            ("mu_s", mu_s),
+            ("y0", y0),
+            ("v0", v0),
+        ];
+        from_layer(ExperimentSpec::new(), &named, None)
+    }
+
+    /// The paper's circuit: L = 11.5 mH, C = 0.02 µF, R = 68 Ω, PWL diodes U_t = 0.7 V,
+    /// R_D = 3 Ω (ζ = 0.046816, f0 = 10494.37 Hz).
+    ///
+    /// Args:
+    ///     w: drive frequency w = Ω/ω0 (or give f in Hz, or omega in rad/s).
+    ///     beta: drive amplitude β = U/U_t (or give U in volts).
+    ///     **keys: any other experiment key, e.g. U=1.498, f=9.97e3, diode="shockley",
+    ///         R=100 (to change a part), mu_s, phi, y0, v0, uc0 (V), i0 (A).
+    ///
+    /// Example:
+    ///     >>> exp = Experiment.paper(f=9.97e3, U=1.498)
+    ///     >>> round(exp.w, 4), round(exp.beta, 4)
+    ///     (0.95, 2.14)
+    #[classmethod]
+    #[pyo3(signature = (w=None, beta=None, **keys))]
+    fn paper(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        w: Option<&Bound<'_, PyAny>>,
+        beta: Option<&Bound<'_, PyAny>>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        from_layer(preset_paper(), &[("w", w), ("beta", beta)], keys)
+    }
+
+    /// A series RLC circuit damped by two anti-parallel PWL diodes (U_t sgn(i) + R_D i).
+    ///
+    /// Args:
+    ///     L: inductance in henry (> 0).
+    ///     C: capacitance in farad (> 0).
+    ///     R: series resistance in ohms without the diodes (≥ 0).
+    ///     U_t: diode turn-on voltage in volts (> 0); the unit of y and β.
+    ///     R_D: diode resistance in ohms (≥ 0).
+    ///     U: drive amplitude in volts (or beta=).
+    ///     f: drive frequency in hertz (or w=, or omega= in rad/s).
+    ///     **keys: any other experiment key (phi, mu_s, uc0, i0, ...).
+    ///
+    /// Example:
+    ///     >>> exp = Experiment.circuit(L="11.5m", C="20n", R=68, U_t=0.7, R_D=3, U=1.498, f=9.97e3)
+    ///     >>> round(exp.beta, 2)
+    ///     2.14
+    #[classmethod]
+    #[pyo3(signature = (L=None, C=None, R=None, U_t=None, R_D=None, U=None, f=None, **keys))]
+    #[allow(non_snake_case)]
+    fn circuit(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        L: Option<&Bound<'_, PyAny>>,
+        C: Option<&Bound<'_, PyAny>>,
+        R: Option<&Bound<'_, PyAny>>,
+        U_t: Option<&Bound<'_, PyAny>>,
+        R_D: Option<&Bound<'_, PyAny>>,
+        U: Option<&Bound<'_, PyAny>>,
+        f: Option<&Bound<'_, PyAny>>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let named = [
+            ("L", L),
+            ("C", C),
+            ("R", R),
+            ("U_t", U_t),
+            ("R_D", R_D),
+            ("U", U),
+            ("f", f),
+        ];
+        from_layer(ExperimentSpec::new(), &named, keys)
+    }
+
+    /// A series RLC circuit damped by two anti-parallel Shockley diodes,
+    /// U_D(i) = n·V_T·asinh(i/2I_s) + R_s·i, solved by the stiff (Radau IIA) solver.
+    ///
+    /// Args:
+    ///     L, C, R: as for ``circuit`` (henry, farad, ohms).
+    ///     U_t: reference voltage in volts (> 0): the unit of y and β (0.7 V in the paper).
+    ///     U: drive amplitude in volts (or beta=).
+    ///     f: drive frequency in hertz (or w=, or omega=).
+    ///     Is: saturation current in amperes (default 4.352 nA, 1N4148).
+    ///     n: emission coefficient (default 1.906).
+    ///     Rs: series resistance in ohms (default 0.6458).
+    ///     temperature: diode temperature in °C (default 27).
+    ///     **keys: any other experiment key.
+    ///
+    /// The paper's circuit with Shockley diodes is ``Experiment.paper(diode="shockley")``.
+    ///
+    /// Example:
+    ///     >>> Experiment.shockley(L=11.5e-3, C=20e-9, R=68, U_t=0.7, w=0.95, beta=2.14).model
+    ///     'shockley'
+    #[classmethod]
+    #[pyo3(signature = (L=None, C=None, R=None, U_t=None, U=None, f=None, Is=None, n=None, Rs=None, temperature=None, **keys))]
+    #[allow(non_snake_case)]
+    fn shockley(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        L: Option<&Bound<'_, PyAny>>,
+        C: Option<&Bound<'_, PyAny>>,
+        R: Option<&Bound<'_, PyAny>>,
+        U_t: Option<&Bound<'_, PyAny>>,
+        U: Option<&Bound<'_, PyAny>>,
+        f: Option<&Bound<'_, PyAny>>,
+        Is: Option<&Bound<'_, PyAny>>,
+        n: Option<&Bound<'_, PyAny>>,
+        Rs: Option<&Bound<'_, PyAny>>,
+        temperature: Option<&Bound<'_, PyAny>>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let mut base = ExperimentSpec::new();
+        base.set_diode(DiodeModel::Shockley);
+        let named = [
+            ("L", L),
+            ("C", C),
+            ("R", R),
+            ("U_t", U_t),
+            ("U", U),
+            ("f", f),
+            ("Is", Is),
+            ("n", n),
+            ("Rs", Rs),
+            ("temperature", temperature),
+        ];
+        from_layer(base, &named, keys)
+    }
+
+    /// A mass on a spring with viscous damping and dry (Coulomb) friction, driven by a
+    /// harmonic force.
+    ///
+    /// Args:
+    ///     m: mass in kg (> 0).
+    ///     k: spring constant in N/m (> 0).
+    ///     gamma: viscous damping in N·s/m (≥ 0).
+    ///     F0: kinetic friction force in N (> 0): the unit of β.
+    ///     F: drive amplitude in newtons (or beta=).
+    ///     omega: drive angular frequency in rad/s (or w=, or f= in Hz).
+    ///     **keys: any other experiment key (mu_s, phi, uc0 = r(0) in m, i0 = ṙ(0) in m/s).
+    ///
+    /// Example:
+    ///     >>> exp = Experiment.mechanics(m=2, k=8, gamma=0.4, F0=0.5, F=1, omega=1.8)
+    ///     >>> exp.w, exp.beta
+    ///     (0.9, 2.0)
+    #[classmethod]
+    #[pyo3(signature = (m=None, k=None, gamma=None, F0=None, F=None, omega=None, **keys))]
+    #[allow(non_snake_case)]
+    fn mechanics(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        m: Option<&Bound<'_, PyAny>>,
+        k: Option<&Bound<'_, PyAny>>,
+        gamma: Option<&Bound<'_, PyAny>>,
+        F0: Option<&Bound<'_, PyAny>>,
+        F: Option<&Bound<'_, PyAny>>,
+        omega: Option<&Bound<'_, PyAny>>,
+        keys: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let named = [
+            ("m", m),
+            ("k", k),
+            ("gamma", gamma),
+            ("F0", F0),
+            ("F", F),
+            ("omega", omega),
+        ];
+        from_layer(ExperimentSpec::new(), &named, keys)
+    }
+
+    /// The experiment described by a TOML file (sections [circuit] or [mechanics], [drive],
+    /// [model], [shockley]; see the README), the same file ``stickslip --config`` reads.
+    ///
+    /// Raises:
+    ///     OSError: the file cannot be read.
+    ///     ValueError: the file is not a valid description; the message names the file, the
+    ///         line and the key.
+    ///
+    /// Example:
+    ///     >>> exp = Experiment.from_toml("exp.toml")  # doctest: +SKIP
+    #[classmethod]
+    fn from_toml(_cls: &Bound<'_, pyo3::types::PyType>, path: PathBuf) -> PyResult<Self> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| PyOSError::new_err(format!("cannot read experiment file {name}: {e}")))?;
+        Self::build(ExperimentSpec::from_toml(&text, &name).map_err(error)?)
+    }
+
+    /// The experiment of a dict of keys, as ``to_dict`` returns it.
+    ///
+    /// Example:
+    ///     >>> Experiment.from_dict({"preset": "paper", "w": 0.7}).w
+    ///     0.7
+    #[classmethod]
+    fn from_dict(
+        _cls: &Bound<'_, pyo3::types::PyType>,
+        keys: &Bound<'_, PyDict>,
+    ) -> PyResult<Self> {
+        from_layer(ExperimentSpec::new(), &[], Some(keys))
+    }
+
+    /// The experiment of its JSON text (``to_json``).
+    #[classmethod]
+    fn from_json(_cls: &Bound<'_, pyo3::types::PyType>, text: &str) -> PyResult<Self> {
+        let spec: ExperimentSpec = serde_json::from_str(text)
+            .map_err(|e| PyValueError::new_err(format!("not an experiment's JSON: {e}")))?;
+        Self::build(spec)
+    }
+
+    /// A new experiment with some keys changed (any experiment keyword; ``None`` removes a
+    /// value). A value given in another form replaces the old one: ``replace(f=1e4)`` replaces
+    /// w.
+    ///
+    /// Example:
+    ///     >>> Experiment.paper(w=0.7, beta=1.2).replace(w=0.9).w
+    ///     0.9
+    #[pyo3(signature = (**changes))]
+    fn replace(&self, changes: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        from_layer(self.spec.clone(), &[], changes)
+    }
+
+    /// The keys as given, as a dict (``from_dict`` takes it back).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let out = PyDict::new(py);
+        if let Some(p) = self.spec.preset() {
+            out.set_item("preset", p.label())?;
+        }
+        if let Some(d) = self.spec.diode() {
+            out.set_item("diode", d.label())?;
+        }
+        for key in Key::ALL {
+            if let Some(v) = self.spec.get(key) {
+                out.set_item(key.name(), v)?;
+            }
+        }
+        Ok(out)
+    }
+
+    /// The description as JSON text, for storage (``from_json`` reads it back).
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.spec)
+            .map_err(|e| PyValueError::new_err(format!("cannot serialise the experiment: {e}")))
+    }
+
+    /// What a physical description means in the dimensionless model: the dict that
+    /// ``stickslip convert --json`` prints, with omega0 (rad/s), f0 (Hz), alpha (1/s),
+    /// zeta, Q, and w and beta when the drive is given.
+    ///
+    /// Raises:
+    ///     ValueError: for a dimensionless experiment, or a drive with only one of w, β.
+    ///
+    /// Example:
+    ///     >>> round(Experiment.paper().convert()["f0"], 2)
+    ///     10494.37
+    fn convert<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let e = &self.experiment;
+        if e.w().is_some() != e.beta().is_some() {
+            let key = if e.w().is_none() { Key::W } else { Key::Beta };
+            return Err(error(SpecError::MissingDrive { key }.into()));
+        }
+        let Some(conversion) = e.conversion() else {
+            return Err(PyValueError::new_err(
+                "convert needs a physical description: Experiment.paper(), .circuit(), \
+                 .shockley(), .mechanics() or .from_toml()",
+            ));
+        };
+        json_value(py, &conversion)
+    }
+
+    /// Damping ratio ζ (ζ_R, of the resistance only, with Shockley diodes).
+    #[getter]
+    fn zeta(&self) -> f64 {
+        self.experiment.zeta()
+    }
+
+    /// Drive frequency w = Ω/ω0, or None when not given.
+    #[getter]
+    fn w(&self) -> Option<f64> {
+        self.experiment.w()
+    }
+
+    /// Drive amplitude β (U/U_t or F/F0), or None when not given.
+    #[getter]
+    fn beta(&self) -> Option<f64> {
+        self.experiment.beta()
+    }
+
+    /// Drive phase φ at τ = 0 (radians).
+    #[getter]
+    fn phi(&self) -> f64 {
+        self.experiment.phi()
+    }
+
+    /// Static-to-kinetic friction ratio μs.
+    #[getter]
+    fn mu_s(&self) -> f64 {
+        self.experiment.mu_s()
+    }
+
+    /// Initial position y0 (dimensionless).
+    #[getter]
+    fn y0(&self) -> f64 {
+        self.experiment.initial().y
+    }
+
+    /// Initial velocity v0 (dimensionless).
+    #[getter]
+    fn v0(&self) -> f64 {
+        self.experiment.initial().v
+    }
+
+    /// The diode law and so the solver: 'pwl' (exact) or 'shockley' (stiff).
+    #[getter]
+    fn model(&self) -> &'static str {
+        self.experiment.diode_model().label()
+    }
+
+    /// 'dimensionless', 'circuit' or 'mechanics'.
+    #[getter]
+    fn system(&self) -> &'static str {
+        match self.experiment.system() {
+            None => "dimensionless",
+            Some(System::Circuit(_)) => "circuit",
+            Some(System::Mechanics(_)) => "mechanics",
+        }
+    }
+
+    /// One line: the description, its natural frequency and drive in physical units, and the
+    /// dimensionless numbers (what the command-line tool prints on standard error).
+    fn __str__(&self) -> String {
+        self.experiment.to_string()
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
+            "stickslip.Experiment.from_dict({})",
+            self.to_dict(py)?.repr()?
+        ))
+    }
+
+    /// Experiments are equal when they build the same experiment (the same system, values and
+    /// origin), compared through their JSON so that equality and hashing agree.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<PyExperiment>()
+            .is_ok_and(|o| o.get().identity() == self.identity())
+    }
+
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.identity().hash(&mut h);
+        h.finish()
+    }
+
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let from_json = slf.get_type().getattr("from_json")?;
+        let json = slf.get().to_json()?;
+        Ok((from_json, PyTuple::new(slf.py(), [json])?))
+    }
+}

@@ -1,0 +1,190 @@
+"""stickslip.dask: the same maps as Dask tasks, bit-identical to the local call, on Dask's
+local threads, on a LocalCluster of worker processes, and on a real cluster: a `dask
+scheduler` and two `dask worker` processes started as a deployment would start them."""
+
+from __future__ import annotations
+
+import pathlib
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import stickslip
+import stickslip.dask
+from stickslip import Experiment
+
+distributed = pytest.importorskip("distributed", reason="the Dask tests need dask[distributed]")
+
+W = np.linspace(0.1, 2.5, 30)
+BETA = np.linspace(0.5, 4.0, 20)
+
+
+def assert_identical(a: stickslip.PhaseDiagram, b: stickslip.PhaseDiagram) -> None:
+    assert a.dims == b.dims and a.shape == b.shape
+    for name in stickslip.PhaseDiagram.FIELDS:
+        x, y = getattr(a, name), getattr(b, name)
+        assert x.dtype == y.dtype, name
+        # Bit-identical, not merely close.
+        assert x.tobytes() == y.tobytes(), name
+    for d in a.dims:
+        assert np.array_equal(a.coords[d], b.coords[d])
+
+
+@pytest.fixture(scope="module")
+def local_map():
+    return stickslip.phase_diagram(Experiment.paper(), w=W, beta=BETA)
+
+
+def test_threaded_scheduler_without_a_client(local_map):
+    for chunks in [(7, 9), 4, "auto", (30, 20), (1, 1)]:
+        m = stickslip.dask.phase_diagram(Experiment.paper(), chunks=chunks, w=W, beta=BETA)
+        assert_identical(m, local_map)
+
+
+def test_inputs_are_checked_before_any_task():
+    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and > 0$"):
+        stickslip.dask.phase_diagram(Experiment.paper(), chunks=(2, 2), w=[0.0, 1.0], beta=[1.0])
+    with pytest.raises(ValueError, match="^invalid chunks"):
+        stickslip.dask.phase_diagram(Experiment.paper(), chunks=(0, 3), w=W, beta=BETA)
+    with pytest.raises(TypeError, match="takes 3 or 4 parameter arrays"):
+        stickslip.dask.sweep_grid(Experiment.paper(), w=W, beta=BETA)
+    with pytest.raises(ValueError, match=r"^invalid mu_s = 0.5: must be finite and >= 1$"):
+        stickslip.dask.sweep_grid(Experiment.paper(), mu_s=[1.0, 0.5], w=W, beta=BETA)
+
+
+@pytest.fixture(scope="module")
+def local_cluster():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, host="127.0.0.1") as cluster:
+        with distributed.Client(cluster) as client:
+            yield client
+
+
+def test_local_cluster(local_cluster, local_map):
+    m = stickslip.dask.phase_diagram(Experiment.paper(), chunks=(4, 20), client=local_cluster,
+                                     w=W, beta=BETA)
+    assert_identical(m, local_map)
+    # With the client as Dask's default (client=None).
+    m = stickslip.dask.phase_diagram(Experiment.paper(), w=W, beta=BETA)
+    assert_identical(m, local_map)
+
+
+def test_sweep_grid_is_a_map_per_outer_value(local_cluster):
+    mu_s = np.array([1.0, 1.3, 2.0])
+    stack = stickslip.dask.sweep_grid(Experiment.paper(), chunks=(8, 8), client=local_cluster,
+                                      mu_s=mu_s, w=W, beta=BETA)
+    assert stack.dims == ("mu_s", "w", "beta") and stack.shape == (3, 30, 20)
+    for k, m in enumerate(mu_s):
+        local = stickslip.phase_diagram(Experiment.paper(mu_s=m), w=W, beta=BETA)
+        for name in stickslip.PhaseDiagram.FIELDS:
+            assert np.array_equal(getattr(stack, name)[k], getattr(local, name)), name
+    # Static friction above kinetic changes the map.
+    assert not np.array_equal(stack.motion[0], stack.motion[2])
+    ds = stack.to_xarray()
+    assert ds["motion"].dims == ("mu_s", "w", "beta")
+    assert ds["mu_s"].attrs["long_name"] == stickslip.PARAMETERS["mu_s"]
+    assert "mu_s" not in ds.attrs
+
+
+def test_sweep_grid_over_two_outer_parameters(local_cluster):
+    zeta, mu_s = np.array([0.02, 0.1]), np.array([1.0, 1.5])
+    stack = stickslip.dask.sweep_grid(Experiment(), client=local_cluster, zeta=zeta, mu_s=mu_s,
+                                      w=W[::3], beta=BETA[::2])
+    assert stack.shape == (2, 2, 10, 10)
+    for i, z in enumerate(zeta):
+        for j, m in enumerate(mu_s):
+            local = stickslip.phase_diagram(Experiment(zeta=z, mu_s=m), w=W[::3], beta=BETA[::2])
+            assert np.array_equal(stack.motion[i, j], local.motion)
+            assert np.array_equal(stack.gain[i, j], local.gain)
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def real_cluster(tmp_path_factory):
+    """`dask scheduler` and two single-threaded `dask worker` processes on 127.0.0.1, each a
+    process of its own started from the command line, as on machines started by hand."""
+    dask_cli = pathlib.Path(sys.executable).parent / "dask"
+    if not dask_cli.is_file():
+        pytest.fail(f"the dask command is missing next to {sys.executable}: pip install 'dask[distributed]'")
+    logs = tmp_path_factory.mktemp("cluster")
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    processes = []
+
+    def start(name, *args):
+        log = open(logs / f"{name}.log", "w")
+        processes.append((subprocess.Popen([str(dask_cli), *args], stdout=log,
+                                           stderr=subprocess.STDOUT), log))
+
+    start("scheduler", "scheduler", "--host", "127.0.0.1", "--port", str(port),
+          "--dashboard-address", ":0", "--no-show")
+    for k in range(2):
+        start(f"worker{k}", "worker", address, "--host", "127.0.0.1", "--nthreads", "1",
+              "--nworkers", "1", "--no-dashboard", "--name", f"worker{k}")
+    client = None
+    try:
+        deadline = time.monotonic() + 60
+        while client is None:
+            try:
+                client = distributed.Client(address, timeout=5, set_as_default=False)
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.5)
+        client.wait_for_workers(2, timeout=60)
+        yield client
+    except Exception:
+        for name in ["scheduler", "worker0", "worker1"]:
+            print(f"--- {name}.log\n{(logs / f'{name}.log').read_text()}")
+        raise
+    finally:
+        if client is not None:
+            # Asks the scheduler to close the workers and itself, as `dask` would be shut down.
+            client.shutdown()
+            client.close()
+        for proc, log in reversed(processes):
+            if proc.poll() is None:
+                try:
+                    proc.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    proc.terminate()
+        for proc, log in reversed(processes):
+            try:
+                proc.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+            log.close()
+
+
+def test_real_cluster(real_cluster, local_map):
+    workers = real_cluster.scheduler_info()["workers"]
+    assert len(workers) == 2
+    assert all(w["nthreads"] == 1 for w in workers.values())
+    # Small blocks, so that both workers compute some.
+    m = stickslip.dask.phase_diagram(Experiment.paper(), chunks=(3, 20), client=real_cluster,
+                                     w=W, beta=BETA)
+    assert_identical(m, local_map)
+    # Both workers computed blocks.
+    blocks = real_cluster.run(
+        lambda dask_worker: sum(1 for entry in dask_worker.state.log
+                                if "_block_task" in str(entry[0]) and entry[1:3] == ("executing", "memory"))
+    )
+    assert len(blocks) == 2 and all(n > 0 for n in blocks.values()), blocks
+    assert sum(blocks.values()) == 10
+    stack = stickslip.dask.sweep_grid(Experiment.paper(), client=real_cluster,
+                                      mu_s=[1.0, 1.5], w=W, beta=BETA)
+    assert_identical(
+        stickslip.PhaseDiagram(stack.experiment, ("w", "beta"), stack.coords, stack.options,
+                               {n: getattr(stack, n)[0] for n in stickslip.PhaseDiagram.FIELDS}),
+        local_map,
+    )

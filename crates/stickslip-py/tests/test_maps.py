@@ -1,0 +1,361 @@
+"""stickslip.sweep against `stickslip sweep`, stickslip.phase_diagram against `stickslip
+phase-diagram`; misaligned inputs; xarray; Ctrl-C; the GIL."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import stickslip
+from stickslip import Experiment, _core
+
+from conftest import assert_same, numbers, read_csv
+
+
+def misaligned(values) -> np.ndarray:
+    """A float64 array whose data starts one byte past an 8-byte boundary, as numpy arrays
+    unpickled from pickle-5 buffers may on Dask workers."""
+    values = np.asarray(values, dtype=np.float64)
+    raw = np.zeros(values.nbytes + 16, dtype=np.uint8)
+    start = 1 if raw.ctypes.data % 8 == 0 else 9 - raw.ctypes.data % 8
+    a = raw[start:start + values.nbytes].view(np.float64)
+    a[:] = values
+    assert not a.flags.aligned
+    return a
+
+
+@pytest.mark.parametrize("over", ["w", "mu_s"])
+def test_sweep_is_the_tools_csv(cli, tmp_path, over):
+    out = tmp_path / "sweep.csv"
+    if over == "w":
+        flags = ["--preset", "paper", "--beta", 3.61, "--over", "w", "--from", 0.5, "--to", 1.5,
+                 "--steps", 21]
+        experiment = Experiment.paper(beta=3.61)
+    else:
+        flags = ["--zeta", 0.05, "--w", 0.7, "--beta", 1.3, "--over", "mu-s", "--from", 1.0,
+                 "--to", 2.0, "--steps", 11]
+        experiment = Experiment(zeta=0.05, w=0.7, beta=1.3)
+    cli.run("sweep", *flags, "--direction", "both", "--out", out)
+    table = read_csv(out)
+    values = numbers(table[over])[: len(table[over]) // 2]
+    # The tool reports A1 and A3 and so asks for 3 harmonics (the count sets the spectrum's
+    # sampling, so the same count gives the same numbers).
+    s = stickslip.sweep(experiment, over, values, direction="both", harmonics=3)
+    assert len(s) == len(table["w"]) == 2 * len(values)
+    assert list(s.leg) == table["direction"]
+    assert list(s.motion_labels()) == table["class"]
+    for name in ("w", "beta", "gain", "stops_per_cycle"):
+        assert_same(getattr(s, name), numbers(table[name]), name)
+    assert_same(s.harmonics[:, 0], numbers(table["A1"]), "A1")
+    assert_same(s.harmonics[:, 2], numbers(table["A3"]), "A3")
+    assert_same(s.value, numbers(table[over]), over)
+
+
+def test_sweep_directions_and_xarray():
+    values = np.linspace(0.5, 1.5, 9)
+    both = stickslip.sweep(Experiment.paper(beta=3.61), "w", values)
+    up = stickslip.sweep(Experiment.paper(beta=3.61), "w", values, direction="up")
+    down = stickslip.sweep(Experiment.paper(beta=3.61), "w", values, direction="down")
+    assert_same(both.gain[:9], up.gain, "up leg")
+    assert list(down.value) == list(values[::-1])
+    ds = both.to_xarray()
+    assert ds["gain"].dims == ("leg", "w") and list(ds["leg"].values) == ["up", "down"]
+    # The down leg is put in the order of the values.
+    assert_same(ds["gain"].sel(leg="down").values, both.gain[9:][::-1], "down leg")
+    assert_same(ds["w"].values, values, "w")
+    assert ds["w"].attrs["long_name"] == stickslip.PARAMETERS["w"] and ds["w"].attrs["units"] == "1"
+    assert ds["harmonics"].dims == ("leg", "w", "harmonic")
+    assert ds.attrs["beta"] == 3.61 and ds.attrs["stickslip_version"] == stickslip.__version__
+    with pytest.raises(ValueError, match="^invalid direction 'sideways'"):
+        stickslip.sweep(Experiment.paper(beta=3.61), "w", values, direction="sideways")
+    with pytest.raises(ValueError, match="^unknown parameter 'phi'"):
+        stickslip.sweep(Experiment.paper(beta=3.61), "phi", values)
+    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and > 0$"):
+        stickslip.sweep(Experiment.paper(beta=3.61), "w", [0.5, 0.0])
+
+
+W60 = ["--w-min", 0.1, "--w-max", 2.5, "--w-steps", 60]
+BETA40 = ["--beta-min", 0.5, "--beta-max", 4, "--beta-steps", 40]
+
+
+@pytest.fixture(scope="module")
+def tool_map(cli, tmp_path_factory):
+    """The tool's 60 × 40 map of the paper's circuit: its axes and its columns."""
+    out = tmp_path_factory.mktemp("map") / "map.csv"
+    cli.run("phase-diagram", "--preset", "paper", *W60, *BETA40, "--out", out)
+    table = read_csv(out)
+    w = numbers(table["w"]).reshape(60, 40)
+    beta = numbers(table["beta"]).reshape(60, 40)
+    return w[:, 0].copy(), beta[0].copy(), table
+
+
+def test_map_is_the_tools_csv(tool_map):
+    w, beta, table = tool_map
+    m = stickslip.phase_diagram(Experiment.paper(), w=w, beta=beta)
+    assert m.dims == ("w", "beta") and m.motion.shape == (60, 40) and m.motion.dtype == np.int8
+    # Same classes at every point of the 60 × 40 map.
+    assert list(m.motion_labels().ravel()) == table["class"]
+    period = np.array([int(p) if p else -1 for p in table["period"]]).reshape(60, 40)
+    assert np.array_equal(m.period, period)
+    assert_same(m.stops_per_cycle, numbers(table["stops_per_cycle"]).reshape(60, 40), "stops")
+    assert_same(m.gain, numbers(table["gain"]).reshape(60, 40), "gain")
+    assert set(m.counts().values()) != {0} and sum(m.counts().values()) == 2400
+    # Several classes occur: the comparison means something.
+    assert sum(1 for v in m.counts().values() if v) >= 3
+
+
+def test_keyword_order_gives_the_axes(tool_map):
+    w, beta, _ = tool_map
+    a = stickslip.phase_diagram(Experiment.paper(), w=w[:12], beta=beta[:9])
+    b = stickslip.phase_diagram(Experiment.paper(), beta=beta[:9], w=w[:12])
+    assert b.dims == ("beta", "w") and b.motion.shape == (9, 12)
+    for name in stickslip.PhaseDiagram.FIELDS:
+        assert np.array_equal(getattr(a, name), getattr(b, name).T), name
+
+
+def test_any_two_parameters_agree_with_steady_states():
+    e = Experiment(w=0.8, beta=1.6)
+    zeta = np.array([0.01, 0.05, 0.2])
+    mu_s = np.array([1.0, 1.3, 2.0, 3.0])
+    m = stickslip.phase_diagram(e, zeta=zeta, mu_s=mu_s, threads=1)
+    for i, z in enumerate(zeta):
+        for j, mu in enumerate(mu_s):
+            s = stickslip.steady(e.replace(zeta=z, mu_s=mu))
+            assert m.labels[m.motion[i, j]] == s.motion
+            assert m.gain[i, j] == s.gain and m.stops_per_cycle[i, j] == s.stops_per_cycle
+            assert m.period[i, j] == (-1 if s.period is None else s.period)
+
+
+def test_misaligned_and_strided_inputs_give_the_same_results():
+    w = np.linspace(0.3, 2.0, 7)
+    beta = np.linspace(0.8, 3.0, 5)
+    reference = stickslip.phase_diagram(Experiment.paper(), w=w, beta=beta)
+    for w_in, beta_in in [
+        (misaligned(w), misaligned(beta)),
+        (np.repeat(w, 2)[::2], beta[::-1][::-1]),  # strided views
+        (list(w), tuple(beta)),
+    ]:
+        m = stickslip.phase_diagram(Experiment.paper(), w=w_in, beta=beta_in)
+        for name in stickslip.PhaseDiagram.FIELDS:
+            assert np.array_equal(getattr(m, name), getattr(reference, name)), name
+        assert_same(m.coords["w"], w, "coordinates")
+    s = stickslip.sweep(Experiment.paper(beta=2.0), "w", misaligned(w))
+    assert_same(s.gain, stickslip.sweep(Experiment.paper(beta=2.0), "w", w).gain, "sweep")
+    paper, exact = stickslip.boundary(misaligned([0.05, 0.05]), misaligned([0.7, 1.5]))
+    assert_same(exact, stickslip.boundary(0.05, [0.7, 1.5])[1], "boundary")
+    # The compiled core itself refuses misaligned arrays rather than misread them: the
+    # package's np.require is what makes them work.
+    with pytest.raises(ValueError, match="must be a contiguous, aligned float64 array"):
+        _core.grid(Experiment.paper(), "w", misaligned(w), "beta", beta)
+
+
+def test_map_to_xarray(tool_map):
+    w, beta, _ = tool_map
+    m = stickslip.phase_diagram(Experiment.paper(mu_s=1.2), w=w[:10], beta=beta[:8],
+                                max_period=8)
+    ds = m.to_xarray()
+    assert ds["motion"].dims == ("w", "beta") and ds["motion"].dtype == np.int8
+    assert list(ds["motion"].attrs["flag_values"]) == [0, 1, 2, 3]
+    assert ds["motion"].attrs["flag_meanings"] == "sliding periodic-stick nonperiodic-stick static"
+    for name in ("w", "beta"):
+        assert ds[name].attrs == {"units": "1", "long_name": stickslip.PARAMETERS[name]}
+    assert ds["period"].encoding["_FillValue"] == -1
+    assert np.array_equal(ds["gain"].values, m.gain)
+    assert ds.attrs["mu_s"] == 1.2 and "w" not in ds.attrs and "beta" not in ds.attrs
+    assert ds.attrs["zeta"] == Experiment.paper().zeta
+    assert ds.attrs["stickslip_version"] == stickslip.__version__
+    assert ds.attrs["model"] == "pwl" and ds.attrs["experiment"].startswith("circuit (preset paper)")
+    assert '"max_period": 8' in ds.attrs["steady_options"]
+    assert Experiment.from_json(ds.attrs["experiment_json"]) == Experiment.paper(mu_s=1.2)
+
+
+def test_map_errors():
+    e = Experiment.paper()
+    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and > 0$"):
+        stickslip.phase_diagram(e, w=[0.0, 1.0], beta=[1.0])
+    with pytest.raises(TypeError, match="takes 2 parameter arrays"):
+        stickslip.phase_diagram(e, w=[1.0])
+    with pytest.raises(TypeError, match="takes 2 parameter arrays"):
+        stickslip.phase_diagram(e, w=[1.0], beta=[1.0], mu_s=[1.0])
+    with pytest.raises(TypeError, match="unknown option 'harmonics'"):
+        stickslip.phase_diagram(e, w=[1.0], beta=[1.0], harmonics=3)
+    with pytest.raises(ValueError, match=r"^invalid threads = 0: must be at least 1$"):
+        stickslip.phase_diagram(e, w=[1.0], beta=[1.0], threads=0)
+    with pytest.raises(ValueError, match="must be a one-dimensional array"):
+        stickslip.phase_diagram(e, w=[[1.0]], beta=[1.0])
+    with pytest.raises(ValueError, match="^missing drive amplitude"):
+        stickslip.phase_diagram(e, w=[1.0], zeta=[0.1])
+
+
+# A map far too long to finish during the test: 2000 × 2000 points (minutes on any machine).
+LONG = dict(w=np.linspace(0.1, 2.5, 2000), beta=np.linspace(0.5, 4.0, 2000))
+
+
+def interrupt_after(seconds: float) -> threading.Timer:
+    """Send SIGINT (Ctrl-C) to this process after `seconds`."""
+    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    return timer
+
+
+@pytest.mark.parametrize("what", ["map", "sweep", "simulate"])
+def test_ctrl_c_stops_a_long_computation(what):
+    assert threading.current_thread() is threading.main_thread()
+    started = time.perf_counter()
+    timer = interrupt_after(0.5)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            if what == "map":
+                stickslip.phase_diagram(Experiment.paper(), **LONG)
+            elif what == "sweep":
+                stickslip.sweep(Experiment.paper(beta=2.0), "w", np.linspace(0.1, 2.5, 100000))
+            else:
+                # The stiff solver: minutes for 10^5 periods, in little memory.
+                stickslip.simulate(Experiment.paper(diode="shockley", w=0.95, beta=2.14), 1e5, 10)
+    finally:
+        timer.cancel()
+    elapsed = time.perf_counter() - started
+    # Stopped soon after the signal (the computation alone would take minutes).
+    assert elapsed < 5.0, f"took {elapsed:.1f} s to stop"
+    # Everything still works afterwards.
+    assert stickslip.phase_diagram(Experiment.paper(), w=[0.9], beta=[1.6]).motion.shape == (1, 1)
+
+
+def test_progress_callback_and_its_exceptions_stop_the_map():
+    seen = []
+    stickslip.phase_diagram(Experiment.paper(), w=np.linspace(0.2, 2, 30),
+                            beta=np.linspace(0.5, 4, 30),
+                            progress=lambda done, total: seen.append((done, total)))
+    assert seen[-1] == (900, 900)
+
+    def stop(done, total):
+        raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        stickslip.phase_diagram(Experiment.paper(), progress=stop, **LONG)
+
+
+# The GIL. A computation waits for its result without the GIL, so other Python threads run
+# meanwhile. Three checks, the first two independent of the machine's load:
+# 1. while one thread computes a map of about a second, the main thread keeps running Python
+#    code: it ticks every millisecond, and the longest gap between ticks stays far below the
+#    map's duration (it would span the whole map if the GIL were held);
+# 2. two maps started together in two threads progress together: when the first finishes,
+#    the second has done most of its points (none, if the GIL serialised them); this holds
+#    on a loaded machine too, where both merely go slower;
+# 3. (the issue's check) two threads run two single-threaded maps in about the time of one:
+#    below 0.75 of the serial time measured in the same test. On a machine whose cores are
+#    busy with other work that cannot hold: the scheduler shares the cores between process
+#    groups, and two threads of ours get no more time than one. So each attempt also measures
+#    what two independent processes gain from running together at that moment (pure Python
+#    busy loops, no GIL between them), as the control; see the test for the rule.
+SECOND = dict(w=np.linspace(0.2, 2.4, 160), beta=np.linspace(0.6, 3.9, 160))
+
+
+def test_other_python_threads_run_during_a_map():
+    result = {}
+
+    def work():
+        started = time.perf_counter()
+        result["map"] = stickslip.phase_diagram(Experiment.paper(), threads=1, **SECOND)
+        result["seconds"] = time.perf_counter() - started
+
+    worker = threading.Thread(target=work)
+    ticks = [time.perf_counter()]
+    worker.start()
+    while worker.is_alive():
+        time.sleep(0.001)
+        ticks.append(time.perf_counter())
+    worker.join()
+    gap = float(np.max(np.diff(ticks)))
+    assert result["seconds"] > 0.2, "the map is too short to show anything"
+    assert gap < 0.25 * result["seconds"], (
+        f"the main thread stalled {gap:.3f} s of a {result['seconds']:.3f} s map"
+    )
+
+
+def test_two_maps_in_two_threads_progress_together():
+    log = {0: [], 1: []}
+
+    def work(k):
+        def progress(done, total):
+            log[k].append((time.perf_counter(), done / total))
+
+        stickslip.phase_diagram(Experiment.paper(), threads=1, progress=progress, **SECOND)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in (0, 1)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    first = min((0, 1), key=lambda k: log[k][-1][0])
+    finished = log[first][-1][0]
+    other = max((f for t, f in log[1 - first] if t <= finished), default=0.0)
+    assert other > 0.4, f"when the first map finished, the second had done {other:.0%}"
+
+
+def _busy_processes(count: int, concurrent: bool) -> float:
+    """Seconds for `count` Python processes, each a fixed busy loop, run together or one
+    after the other."""
+    loop = "x = 0\nfor i in range(3_000_000):\n    x += i\n"
+    started = time.perf_counter()
+    if concurrent:
+        procs = [subprocess.Popen([sys.executable, "-c", loop]) for _ in range(count)]
+        for p in procs:
+            assert p.wait() == 0
+    else:
+        for _ in range(count):
+            subprocess.run([sys.executable, "-c", loop], check=True)
+    return time.perf_counter() - started
+
+
+def test_two_threads_run_two_maps_in_about_the_time_of_one():
+    cores = len(os.sched_getaffinity(0))
+    if cores < 2:
+        pytest.skip(f"this machine gives the process {cores} core: two maps cannot overlap")
+
+    def one_map():
+        return stickslip.phase_diagram(Experiment.paper(), threads=1, **SECOND)
+
+    def two_maps_in_threads() -> float:
+        threads = [threading.Thread(target=one_map) for _ in range(2)]
+        started = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        return time.perf_counter() - started
+
+    def two_maps_one_after_the_other() -> float:
+        started = time.perf_counter()
+        one_map()
+        one_map()
+        return time.perf_counter() - started
+
+    # Each attempt measures, in close succession, what two independent processes gain from
+    # running together (the machine's share of parallelism at that moment) and what two maps
+    # in two threads gain. An attempt passes when the maps take under 0.75 of their serial
+    # time, or gain as much as the processes (within 0.15) while the processes gain something.
+    # It fails when the processes gain clearly (under 0.7) and the maps do not (0.25 more):
+    # with the GIL held the maps gain nothing. Five attempts: one passing attempt passes;
+    # three failing ones fail; else the machine was too busy to tell, and the test says so.
+    attempts = []
+    for _ in range(5):
+        machine = _busy_processes(2, True) / _busy_processes(2, False)
+        maps = two_maps_in_threads() / two_maps_one_after_the_other()
+        attempts.append((round(maps, 2), round(machine, 2)))
+        if maps < 0.75 or (machine < 0.85 and maps < machine + 0.15):
+            return
+    report = (f"(maps, processes) concurrent/serial time ratios {attempts}, load average "
+              f"{os.getloadavg()[0]:.1f} on {cores} cores")
+    failing = sum(1 for maps, machine in attempts if machine < 0.7 and maps > machine + 0.25)
+    if failing >= 3:
+        pytest.fail(f"two maps in two threads did not run side by side: {report}")
+    pytest.skip(f"the machine is too busy to show parallelism: {report}")
