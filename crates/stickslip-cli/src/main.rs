@@ -5,6 +5,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 mod commands;
+mod diagrams;
 mod flags;
 mod model;
 mod output;

@@ -54,6 +54,9 @@ pub enum Style {
     Squares(u32),
     /// Vertical bars from y = 0, of this width in data units.
     Bars(f64),
+    /// Filled squares of this side in pixels, for clouds of many points (bifurcation
+    /// diagrams).
+    Dots(u32),
 }
 
 /// One data series.
@@ -203,6 +206,63 @@ impl Figure {
     }
 }
 
+/// Panels stacked in one column, each with its own height (a main chart over a narrow one
+/// sharing its x axis, say).
+#[derive(Debug, Clone)]
+pub struct Stack {
+    /// Panels from top to bottom, with their heights in pixels.
+    pub panels: Vec<(Panel, u32)>,
+    /// Width in pixels.
+    pub width: u32,
+}
+
+impl Stack {
+    /// Render to `path` (`.png` or `.svg`), atomically.
+    pub fn render(&self, path: &Path) -> Result<()> {
+        register_font();
+        let height: u32 = self.panels.iter().map(|(_, h)| h).sum();
+        let size = (self.width, height.max(1));
+        let file = AtomicFile::create(path)?;
+        let temp = file.temp_path().to_path_buf();
+        let svg = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        if svg {
+            let root = SVGBackend::new(&temp, size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().context("cannot write SVG")?;
+        } else {
+            let root = BitMapBackend::new(&temp, size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().context("cannot write PNG")?;
+        }
+        file.commit()
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let top = self.panels.first().map_or(0, |(_, h)| *h);
+        let font = (self.width.min(top) / 22).clamp(11, 20);
+        let mut rest = root.clone();
+        for (i, (panel, h)) in self.panels.iter().enumerate() {
+            let area = if i + 1 == self.panels.len() {
+                rest.clone()
+            } else {
+                let (top, bottom) = rest.split_vertically(*h);
+                rest = bottom;
+                top
+            };
+            draw_panel_with_font(panel, &area, font)
+                .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?;
+        }
+        Ok(())
+    }
+}
+
 /// Data range of the panel's series and cells, padded.
 fn ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     let mut xs = (f64::INFINITY, f64::NEG_INFINITY);
@@ -248,9 +308,21 @@ fn draw_panel<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let (xr, yr) = ranges(panel);
     let (w, h) = area.dim_in_pixel();
-    let font = (w.min(h) / 22).clamp(11, 20);
+    draw_panel_with_font(panel, area, (w.min(h) / 22).clamp(11, 20))
+}
+
+/// [`draw_panel`] with a given font size (panels of a [`Stack`] share one, so that their
+/// plotting areas line up).
+fn draw_panel_with_font<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let (xr, yr) = ranges(panel);
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, (FAMILY, font + 2))
         .margin(8)
@@ -332,6 +404,14 @@ where
                     }))
                     .map_err(|e| e.to_string())?;
             }
+            Style::Dots(side) => {
+                let side = side.max(1) as i32;
+                chart
+                    .draw_series(finite().map(|p| {
+                        EmptyElement::at(p) + Rectangle::new([(0, 0), (side, side)], color.filled())
+                    }))
+                    .map_err(|e| e.to_string())?;
+            }
             Style::Bars(width) => {
                 chart
                     .draw_series(finite().map(|(x, y)| {
@@ -372,6 +452,9 @@ where
                     }
                     Style::Bars(_) => {
                         Rectangle::new([(x + 4, y - 5), (x + 16, y + 5)], color.filled()).into_dyn()
+                    }
+                    Style::Dots(_) => {
+                        Rectangle::new([(x + 7, y - 3), (x + 13, y + 3)], color.filled()).into_dyn()
                     }
                 });
         }

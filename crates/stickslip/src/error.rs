@@ -216,6 +216,9 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
     /// model.
     TheoryNeedsPwl,
+    /// Bifurcation diagrams, basins and continuation rest on the exact solver's tangent
+    /// dynamics, which the piecewise-linear model has.
+    StabilityNeedsPwl,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -230,6 +233,10 @@ impl std::fmt::Display for Unsupported {
             Unsupported::TheoryNeedsPwl => {
                 "the theory covers the piecewise-linear diode (Coulomb friction) model, not \
                  Shockley diodes"
+            }
+            Unsupported::StabilityNeedsPwl => {
+                "bifurcation diagrams, basins and continuation need the exact solver of the \
+                 piecewise-linear diode (Coulomb friction) model, not Shockley diodes"
             }
         })
     }

@@ -33,10 +33,20 @@
 //! - [`stability`]: the exact tangent dynamics (segment and saltation matrices), periodic
 //!   orbits by Newton's method with their Floquet multipliers, Lyapunov exponents, and chaos
 //!   told from quasi-periodic motion.
+//! - [`attractor`]: what a motion settles on, from its strobe points and the exponent along
+//!   them ([`attractor::AttractorKind`]: periodic, static, chaotic, quasi-periodic).
+//! - [`bifurcation`]: bifurcation diagrams (strobe points against a parameter, state carried
+//!   from value to value, up and down); [`basins`]: basins of attraction on a grid of initial
+//!   states; [`continuation`]: branches of periodic orbits by pseudo-arclength continuation,
+//!   through changes of the event sequence, with folds, period doublings and grazings.
 //!
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
+pub mod attractor;
+pub mod basins;
+pub mod bifurcation;
 mod certify;
+pub mod continuation;
 pub mod error;
 pub mod exact;
 pub mod experiment;

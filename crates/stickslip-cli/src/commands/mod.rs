@@ -2,6 +2,9 @@
 
 use clap::Subcommand;
 
+pub mod basins;
+pub mod bifurcation;
+pub mod continuation;
 pub mod convert;
 pub mod lab;
 pub mod netlist;
@@ -31,6 +34,12 @@ pub enum Command {
     /// Regenerate every figure and table of the paper with an HTML report.
     Reproduce(reproduce::Args),
     Lab(lab::Args),
+    /// Bifurcation diagram: strobe points and the Lyapunov exponent against a parameter.
+    Bifurcation(bifurcation::Args),
+    /// Basins of attraction: the attractor reached from each initial state of a grid.
+    Basins(basins::Args),
+    /// Continue a branch of periodic orbits through folds and changes of the event sequence.
+    Continue(continuation::Args),
 }
 
 /// Run one subcommand.
@@ -45,5 +54,8 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Netlist(a) => netlist::run(a),
         Command::Reproduce(a) => reproduce::run(a),
         Command::Lab(a) => lab::run(a),
+        Command::Bifurcation(a) => bifurcation::run(a),
+        Command::Basins(a) => basins::run(a),
+        Command::Continue(a) => continuation::run(a),
     }
 }

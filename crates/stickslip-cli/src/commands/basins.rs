@@ -1,0 +1,287 @@
+//! `stickslip basins`: the attractor reached from each initial state of a grid.
+
+use crate::model::{finite, flag_name, ModelArgs};
+use crate::output::{check_plot_path, usage, Sink};
+use anyhow::Result;
+use serde_json::json;
+use std::io::Write;
+use std::path::PathBuf;
+use stickslip::attractor::AttractorKind;
+use stickslip::basins::{BasinMap, BasinOptions, Basins};
+use stickslip::experiment::Key;
+use stickslip::scan::ParameterRange;
+
+/// Basins of attraction: which motion the oscillator settles on from each initial state
+/// (y0, y0') of a grid, given at drive phase --phase, in parallel. The attractors are found
+/// and numbered in the order of the cells (rows of y0, then y0'): a periodic orbit by its
+/// period and its fixed point (refined by Newton's method), rest by never moving again,
+/// chaos by a positive largest Lyapunov exponent and its strobe set, quasi-periodic motion by
+/// an exponent within its error of zero. Cells that settle on nothing within the caps are
+/// unsettled.
+///
+/// Output CSV columns: y0,v0,attractor,kind,period
+/// (attractor = its number, empty when unsettled; kind = periodic|static|chaotic|
+/// quasiperiodic|unsettled; period in drive periods, empty without one).
+/// --json prints a summary: the model, the grid, and "attractors", each with id, kind,
+/// period (null without one), fraction (of the grid), cells, state (a representative state
+/// at the strobe: the fixed point of a periodic orbit), strobes (its strobe points, at most
+/// 64), exponent (largest Lyapunov exponent per unit τ), multipliers ([re, im] pairs, periodic
+/// only), rest_range ([min, max] of the rest positions, rest only); and "unsettled".
+///
+/// Example: stickslip basins --zeta 0 --mu-s 3 --w 0.6 --beta 3.269 --y0-min -8 --y0-max 8 \
+///          --v0-min -8 --v0-max 8 --steps 200 --plot basins.png --json
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Smallest initial position y0.
+    #[arg(long = "y0-min", value_parser = finite, allow_hyphen_values = true)]
+    y0_min: f64,
+    /// Largest initial position y0.
+    #[arg(long = "y0-max", value_parser = finite, allow_hyphen_values = true)]
+    y0_max: f64,
+    /// Smallest initial velocity y0'.
+    #[arg(long = "v0-min", value_parser = finite, allow_hyphen_values = true)]
+    v0_min: f64,
+    /// Largest initial velocity y0'.
+    #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
+    v0_max: f64,
+    /// Grid points along each axis (the map has --steps × --steps cells).
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    steps: i64,
+    /// Drive phase φ (radians) at which the initial states are given (the same as --phi)
+    /// [default: 0].
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    phase: Option<f64>,
+    /// Drive periods run at most to find a period.
+    #[arg(
+        long = "max-periods",
+        default_value_t = 1000,
+        allow_hyphen_values = true
+    )]
+    max_periods: i64,
+    /// Longest period looked for, in drive periods (1 to 64).
+    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    max_period: i64,
+    /// Drive periods over which the exponent of a motion without a period is measured.
+    #[arg(
+        long = "lyapunov-periods",
+        default_value_t = 1000,
+        allow_hyphen_values = true
+    )]
+    lyapunov_periods: i64,
+    /// CSV file [default: standard output, unless --json].
+    #[arg(long, short)]
+    out: Option<PathBuf>,
+    /// Map of the basins (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// Print the summary as JSON on standard output.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Run `stickslip basins`.
+pub fn run(args: Args) -> Result<()> {
+    let y0 = crate::flags::range_from_flags(
+        "y0",
+        ("y0-min", args.y0_min),
+        ("y0-max", args.y0_max),
+        ("steps", args.steps),
+    )?;
+    let v0 = crate::flags::range_from_flags(
+        "v0",
+        ("v0-min", args.v0_min),
+        ("v0-max", args.v0_max),
+        ("steps", args.steps),
+    )?;
+    if args.steps > 2000 {
+        usage!("invalid --steps {}: must be from 1 to 2000", args.steps);
+    }
+    if !(1..=100_000_000).contains(&args.max_periods) {
+        usage!(
+            "invalid --max-periods {}: must be from 1 to 1e8",
+            args.max_periods
+        );
+    }
+    if !(1..=64).contains(&args.max_period) {
+        usage!(
+            "invalid --max-period {}: must be from 1 to 64",
+            args.max_period
+        );
+    }
+    if !(8..=10_000_000).contains(&args.lyapunov_periods) {
+        usage!(
+            "invalid --lyapunov-periods {}: must be from 8 to 1e7",
+            args.lyapunov_periods
+        );
+    }
+    for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
+        if args.model.given(key) {
+            usage!(
+                "basins sets the initial state from its grid: drop {}",
+                flag_name(key)
+            );
+        }
+    }
+    if args.phase.is_some() && args.model.given(Key::Phi) {
+        usage!("give the drive phase once: --phase or --phi, not both");
+    }
+    if let Some(p) = &args.plot {
+        check_plot_path(p)?;
+    }
+    Sink::check(args.out.as_deref())?;
+    let mut experiment = args.model.experiment()?;
+    if let Some(phase) = args.phase {
+        experiment = experiment.with_phi(phase)?;
+    }
+    let options = BasinOptions {
+        max_periods: args.max_periods as usize,
+        max_period: args.max_period as usize,
+        lyapunov_periods: args.lyapunov_periods as usize,
+        sample_points: 64.min(args.lyapunov_periods as usize),
+        ..BasinOptions::default()
+    };
+    let basins = Basins::new(&experiment, &y0, &v0)?.options(options)?;
+    eprintln!(
+        "basins: {experiment}; grid {} × {} of initial states (y0 {}–{}, y0' {}–{}) at drive phase {}",
+        y0.steps(),
+        v0.steps(),
+        y0.from(),
+        y0.to(),
+        v0.from(),
+        v0.to(),
+        experiment.phi()
+    );
+    let (rows, cols) = basins.shape();
+    let total = rows * cols;
+    let started = std::time::Instant::now();
+    let bar = crate::output::progress(total as u64, "basins");
+    let result = basins.run(&|_: usize, _: usize| {
+        bar.inc(1);
+        !crate::output::interrupted()
+    });
+    bar.finish_and_clear();
+    crate::output::check_interrupt()?;
+    let map = result?;
+    let seconds = started.elapsed().as_secs_f64();
+
+    if args.out.is_some() || !args.json {
+        let mut sink = Sink::open(args.out.as_deref())?;
+        write_csv(&mut sink, &map)?;
+        sink.finish()?;
+    }
+    if let Some(path) = &args.plot {
+        let title = format!(
+            "basins of attraction at ζ = {}, w = {}, β = {}, μs = {}, φ = {}",
+            short(map.params.zeta),
+            short(map.params.w),
+            short(map.params.beta),
+            short(map.params.mu_s),
+            short(map.params.phi)
+        );
+        crate::plot::Figure::single(crate::diagrams::basin_panel(&map, &title), (900, 760))
+            .render(path)?;
+    }
+    if args.json {
+        let text = serde_json::to_string_pretty(&summary(&map, &y0, &v0))?;
+        let mut out = std::io::stdout().lock();
+        writeln!(out, "{text}")?;
+    }
+    eprintln!(
+        "basins: {total} cells in {seconds:.2} s ({:.1} µs per cell): {}",
+        seconds * 1e6 / total as f64,
+        describe(&map)
+    );
+    Ok(())
+}
+
+fn short(x: f64) -> String {
+    crate::commands::bifurcation::short(x)
+}
+
+/// The CSV of the map, one row per cell.
+pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
+    writeln!(out, "y0,v0,attractor,kind,period")?;
+    let n = map.v0.len();
+    for (k, a) in map.cells.iter().enumerate() {
+        let (y, v) = (map.y0[k / n], map.v0[k % n]);
+        match a.map(|i| &map.attractors[i]) {
+            Some(a) => writeln!(
+                out,
+                "{y},{v},{},{},{}",
+                a.id,
+                a.kind.label(),
+                a.period.map(|p| p.to_string()).unwrap_or_default()
+            )?,
+            None => writeln!(out, "{y},{v},,{},", AttractorKind::Unsettled.label())?,
+        }
+    }
+    Ok(())
+}
+
+/// The JSON summary (see the command's help).
+pub fn summary(map: &BasinMap, y0: &ParameterRange, v0: &ParameterRange) -> serde_json::Value {
+    let state = |s: &stickslip::State| json!({ "y": s.y, "v": s.v });
+    let attractors: Vec<serde_json::Value> = map
+        .attractors
+        .iter()
+        .map(|a| {
+            json!({
+                "id": a.id,
+                "kind": a.kind.label(),
+                "period": a.period,
+                "fraction": a.fraction,
+                "cells": a.cells,
+                "state": state(&a.state),
+                "strobes": a.strobes.iter().take(64).map(state).collect::<Vec<_>>(),
+                "exponent": finite_or_null(a.exponent),
+                "multipliers": a.multipliers.map(|m| m.iter().map(|x| [x.re, x.im]).collect::<Vec<_>>()),
+                "rest_range": a.rest_range.map(|(lo, hi)| [lo, hi]),
+                "first_cell": [a.first_cell.0, a.first_cell.1],
+            })
+        })
+        .collect();
+    json!({
+        "model": {
+            "zeta": map.params.zeta,
+            "w": map.params.w,
+            "beta": map.params.beta,
+            "phi": map.params.phi,
+            "mu_s": map.params.mu_s,
+        },
+        "grid": {
+            "y0_min": y0.from(), "y0_max": y0.to(),
+            "v0_min": v0.from(), "v0_max": v0.to(),
+            "steps": y0.steps(),
+        },
+        "attractors": attractors,
+        "unsettled": map.unsettled,
+        "unsettled_fraction": map.unsettled as f64 / map.cells.len() as f64,
+    })
+}
+
+fn finite_or_null(x: f64) -> serde_json::Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        serde_json::Value::Null
+    }
+}
+
+/// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 unsettled".
+pub fn describe(map: &BasinMap) -> String {
+    let list: Vec<String> = map
+        .attractors
+        .iter()
+        .map(crate::diagrams::attractor_label)
+        .collect();
+    format!(
+        "{} attractor{}: {}; {} unsettled",
+        map.attractors.len(),
+        if map.attractors.len() == 1 { "" } else { "s" },
+        list.join(", "),
+        map.unsettled
+    )
+}

@@ -1,0 +1,331 @@
+//! `stickslip continue`: a branch of periodic orbits by pseudo-arclength continuation.
+
+use crate::commands::sweep::Over;
+use crate::flags::reject_swept_flags;
+use crate::model::{finite, ModelArgs};
+use crate::output::{check_plot_path, usage, Sink};
+use anyhow::Result;
+use serde_json::json;
+use std::io::Write;
+use std::path::PathBuf;
+use stickslip::continuation::{
+    continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle, Side,
+};
+
+/// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
+/// --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
+/// at --from (from the initial state), refined by Newton's method, and continues the fixed
+/// point of the p-fold strobe map in (y, y', parameter) by pseudo-arclength steps, so it goes
+/// round folds. The exact solver finds the events of every orbit afresh, so the branch goes
+/// on where a stop appears or disappears. Special points, each located to 1e-9 in arclength:
+/// fold (a multiplier through +1, the branch turns back), branch point (through +1 without
+/// turning), period doubling (through −1), grazing (the turning points or stops per period
+/// change), each with the stability on either side.
+///
+/// Output CSV columns: <param>,y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,
+/// mu2_re,mu2_im,stable,arclength
+/// (y, v = the strobe point (fixed point of the p-fold map); amplitude = (max y − min y)/2;
+/// turns = turning points per orbit period; mu = Floquet multipliers, the larger first;
+/// stable = true when the larger has modulus below 1; arclength in (y, y', parameter)).
+/// Special points go to standard error, and with --json a summary goes to standard output:
+/// parameter, period, points, begin and end (why the branch ends there), special (kind,
+/// value, y, v, width, before and after: value, stops, turns, multipliers, stable).
+///
+/// Example: stickslip continue --preset paper --mu-s 1.5 --w 0.9 --over beta --from 1.45 \
+///          --to 1.2 --out branch.csv --plot branch.png
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// The continued parameter (the others come from the model flags).
+    #[arg(long, value_enum)]
+    over: Over,
+    /// Start value: the orbit the motion settles on here is continued.
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    from: f64,
+    /// Value to continue towards (above or below --from); the branch stays between the two.
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    to: f64,
+    /// Most points of the branch.
+    #[arg(
+        long = "max-points",
+        default_value_t = 5000,
+        allow_hyphen_values = true
+    )]
+    max_points: i64,
+    /// Largest step of arclength in (y, y', parameter).
+    #[arg(long = "max-step", default_value_t = 0.1, value_parser = finite, allow_hyphen_values = true)]
+    max_step: f64,
+    /// CSV file [default: standard output, unless --json].
+    #[arg(long, short)]
+    out: Option<PathBuf>,
+    /// Plot of the branch: amplitude (stable solid, unstable dashed) with its special points,
+    /// and the largest multiplier below (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// Print a summary as JSON on standard output.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Run `stickslip continue`.
+pub fn run(args: Args) -> Result<()> {
+    let parameter = args.over.parameter();
+    if args.from == args.to {
+        usage!("invalid --to {}: must differ from --from", args.to);
+    }
+    if !(2..=1_000_000).contains(&args.max_points) {
+        usage!(
+            "invalid --max-points {}: must be from 2 to 1000000",
+            args.max_points
+        );
+    }
+    if !(args.max_step > 0.0 && args.max_step <= 10.0) {
+        usage!(
+            "invalid --max-step {}: must be > 0 and <= 10",
+            args.max_step
+        );
+    }
+    reject_swept_flags(&args.model, parameter, "--over")?;
+    if let Some(p) = &args.plot {
+        check_plot_path(p)?;
+    }
+    Sink::check(args.out.as_deref())?;
+    let experiment = args
+        .model
+        .experiment()?
+        .with_parameter(parameter, args.from)?;
+    parameter.set(experiment.params()?, args.to)?;
+    eprintln!(
+        "continue: {experiment}; from the orbit settled on at {} = {}, towards {}",
+        parameter.label(),
+        args.from,
+        args.to
+    );
+    let (params, orbit) = settled_orbit(&experiment)?;
+    if orbit.events.is_empty() {
+        let start = experiment.initial();
+        usage!(
+            "from y0 = {}, v0 = {} the motion comes to rest at {} = {}: nothing to continue; \
+             start from a moving state (--y0, --v0) or at another --from",
+            start.y,
+            start.v,
+            parameter.label(),
+            args.from
+        );
+    }
+    eprintln!(
+        "continue: start orbit of period {}, {} stops and {} events per orbit period, multipliers {}",
+        orbit.period,
+        orbit.stops.len(),
+        orbit.events.len(),
+        multipliers(&orbit.multipliers)
+    );
+    let options = ContinuationOptions {
+        max_points: args.max_points as usize,
+        max_step: args.max_step,
+        initial_step: ContinuationOptions::default()
+            .initial_step
+            .min(args.max_step),
+        ..ContinuationOptions::default()
+    };
+    let started = std::time::Instant::now();
+    let bar = crate::output::progress(options.max_points as u64, "continue");
+    let result = continue_orbit(
+        &params,
+        parameter,
+        &orbit,
+        args.to,
+        &options,
+        &|done: usize, _: usize| {
+            bar.set_position(done as u64);
+            !crate::output::interrupted()
+        },
+    );
+    bar.finish_and_clear();
+    crate::output::check_interrupt()?;
+    let branch = result?;
+
+    if args.out.is_some() || !args.json {
+        let mut sink = Sink::open(args.out.as_deref())?;
+        write_csv(&mut sink, &branch)?;
+        sink.finish()?;
+    }
+    if let Some(path) = &args.plot {
+        let title = format!(
+            "branch of period-{} orbits at {}",
+            branch.period,
+            fixed(&branch)
+        );
+        crate::diagrams::branch_figure(&branch, &title).render(path)?;
+    }
+    if args.json {
+        let text = serde_json::to_string_pretty(&summary(&branch))?;
+        writeln!(std::io::stdout().lock(), "{text}")?;
+    }
+    eprintln!(
+        "continue: {} points in {:.2} s, {} from {} to {}; ends: {}",
+        branch.points.len(),
+        started.elapsed().as_secs_f64(),
+        parameter.label(),
+        branch.points.first().map_or(f64::NAN, |p| p.value),
+        branch.points.last().map_or(f64::NAN, |p| p.value),
+        end_text(&branch.end)
+    );
+    for s in &branch.special {
+        eprintln!(
+            "continue: {} at {} = {:.10} (±{:.1e}): {} → {}",
+            s.kind.label(),
+            parameter.label(),
+            s.value,
+            s.width,
+            side_text(&s.before),
+            side_text(&s.after)
+        );
+    }
+    Ok(())
+}
+
+fn multipliers(m: &[stickslip::stability::Multiplier; 2]) -> String {
+    let one = |x: &stickslip::stability::Multiplier| {
+        if x.im == 0.0 {
+            format!("{:.6}", x.re)
+        } else {
+            format!("{:.6}{:+.6}i", x.re, x.im)
+        }
+    };
+    format!("{}, {}", one(&m[0]), one(&m[1]))
+}
+
+fn side_text(s: &Side) -> String {
+    format!(
+        "{} (μ = {}, {} turns, {} stops per orbit period)",
+        if s.multipliers[0].modulus() < 1.0 {
+            "stable"
+        } else {
+            "unstable"
+        },
+        multipliers(&s.multipliers),
+        s.turns,
+        s.stops
+    )
+}
+
+/// Why a branch ends, in words.
+pub fn end_text(end: &BranchEnd) -> String {
+    let near = |o: &Obstacle| {
+        match o {
+        Obstacle::TurnAtStaticLimit { margin, .. } => format!(
+            "; a turning point is {margin:.1e} (relative) from the static friction limit, where it would become a stop"
+        ),
+        Obstacle::TangentialRelease { rate, .. } => format!(
+            "; a release happens where the drive's force hardly changes (|F'|/βw = {rate:.1e}): it is becoming tangential"
+        ),
+        _ => String::new(),
+    }
+    };
+    match end {
+        BranchEnd::Start => "the start orbit".into(),
+        BranchEnd::Boundary { value } => format!("the end of the range at {value}"),
+        BranchEnd::MaxPoints => "the most points (--max-points)".into(),
+        BranchEnd::Closed => "back at its first point (a closed branch)".into(),
+        BranchEnd::Rest { value } => format!("the orbit comes to rest at {value}"),
+        BranchEnd::Stalled {
+            value,
+            multiplier,
+            obstacle,
+        } => format!(
+            "no progress near {value:.8} (largest multiplier modulus {multiplier:.3e}){}",
+            near(obstacle)
+        ),
+        BranchEnd::Failed { value, obstacle } => format!(
+            "no orbit could be corrected past {value:.8}: the strobe map breaks there{}",
+            near(obstacle)
+        ),
+    }
+}
+
+/// The fixed parameters of a branch, for titles: "ζ = 0, w = 0.9, μs = 1.5".
+fn fixed(branch: &Branch) -> String {
+    use stickslip::Parameter;
+    [
+        (Parameter::Zeta, "ζ"),
+        (Parameter::W, "w"),
+        (Parameter::Beta, "β"),
+        (Parameter::MuS, "μs"),
+    ]
+    .iter()
+    .filter(|(q, _)| *q != branch.parameter)
+    .map(|(q, name)| {
+        format!(
+            "{name} = {}",
+            crate::commands::bifurcation::short(q.get(&branch.params))
+        )
+    })
+    .collect::<Vec<_>>()
+    .join(", ")
+}
+
+/// The CSV of a branch, one row per point.
+pub fn write_csv(out: &mut dyn Write, branch: &Branch) -> Result<()> {
+    writeln!(
+        out,
+        "{},y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,stable,arclength",
+        branch.parameter.label()
+    )?;
+    for p in &branch.points {
+        let m = &p.orbit.multipliers;
+        writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            p.value,
+            p.orbit.state.y,
+            p.orbit.state.v,
+            p.amplitude(),
+            p.orbit.period,
+            p.stops_per_period(),
+            p.turns,
+            m[0].re,
+            m[0].im,
+            m[1].re,
+            m[1].im,
+            m[0].modulus() < 1.0,
+            p.arclength
+        )?;
+    }
+    Ok(())
+}
+
+/// The JSON summary (see the command's help).
+pub fn summary(branch: &Branch) -> serde_json::Value {
+    let side = |s: &Side| {
+        json!({
+            "value": s.value,
+            "y": s.state.y,
+            "v": s.state.v,
+            "stops": s.stops,
+            "turns": s.turns,
+            "multipliers": s.multipliers.iter().map(|x| [x.re, x.im]).collect::<Vec<_>>(),
+            "stable": s.multipliers[0].modulus() < 1.0,
+        })
+    };
+    json!({
+        "parameter": branch.parameter.label(),
+        "period": branch.period,
+        "points": branch.points.len(),
+        "begin": branch.begin,
+        "end": branch.end,
+        "end_text": end_text(&branch.end),
+        "special": branch.special.iter().map(|s| json!({
+            "kind": s.kind.label(),
+            "value": s.value,
+            "y": s.state.y,
+            "v": s.state.v,
+            "width": s.width,
+            "located": s.located,
+            "before": side(&s.before),
+            "after": side(&s.after),
+        })).collect::<Vec<_>>(),
+    })
+}

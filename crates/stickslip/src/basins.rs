@@ -1,0 +1,603 @@
+//! Basins of attraction: which attractor the motion settles on from each initial state of a
+//! grid, and the attractors identified and numbered.
+//!
+//! Every cell (y0, y0') of the grid starts the exact solver at τ = 0 (drive phase φ of the
+//! experiment) and runs it to its steady state ([`crate::steady::steady_state_from`], at most
+//! [`BasinOptions::max_periods`] drive periods, extrapolating the strobe map where it
+//! converges linearly). Then:
+//!
+//! - a motion that repeats after p periods is a **periodic** orbit; its fixed point of P^p is
+//!   refined by Newton's method ([`crate::stability::find_periodic_orbit`]), so every cell of
+//!   its basin carries the exact orbit (to 1e-12), and cells are matched by period and by
+//!   their fixed point lying within [`BasinOptions::match_tolerance`] of one of the p strobe
+//!   points of an orbit found before (a period-p orbit is one attractor whichever of its strobe
+//!   points a cell lands on);
+//! - a motion that repeats without a single event is **rest** (static): the rest positions
+//!   form a continuum, and all of them together are one attractor, kind
+//!   [`AttractorKind::Static`];
+//! - a motion without a period gets its largest Lyapunov exponent measured over
+//!   [`BasinOptions::lyapunov_periods`] more periods ([`crate::attractor::record_strobes`]):
+//!   **chaotic** when it is positive beyond [`BasinOptions::significance`] standard errors,
+//!   **quasi-periodic** when it is within them of 0, and unsettled (no attractor) when it is
+//!   negative (a periodic orbit not reached within the cap) or a late period shows. Chaotic
+//!   and quasi-periodic cells of one attractor are told apart from those of another by their
+//!   strobe sets: a cell belongs to an attractor found before when at least 90 % of its
+//!   [`BasinOptions::sample_points`] strobe points lie within 10 % of that attractor's extent
+//!   of the attractor's strobe points.
+//!
+//! Cells are computed in parallel, each on its own; attractors are identified afterwards in
+//! the order of the cells, so the map and the numbering are the same for any number of
+//! threads and for a map computed in blocks of rows ([`Basins::run_rows`],
+//! [`Basins::identify`]).
+//!
+//! ```
+//! use stickslip::basins::Basins;
+//! use stickslip::attractor::AttractorKind;
+//! use stickslip::scan::ParameterRange;
+//! use stickslip::Experiment;
+//! // The paper's ζ with μs = 1.5 at (w, β) = (0.9, 1.4): rest and a stick-slip orbit coexist.
+//! let experiment = Experiment::dimensionless(0.046816, 0.9, 1.4).unwrap().with_mu_s(1.5).unwrap();
+//! let y0 = ParameterRange::new("y0", -3.0, 3.0, 5).unwrap();
+//! let v0 = ParameterRange::new("v0", -3.0, 3.0, 5).unwrap();
+//! let map = Basins::new(&experiment, &y0, &v0).unwrap().run(&()).unwrap();
+//! let kinds: Vec<AttractorKind> = map.attractors.iter().map(|a| a.kind).collect();
+//! assert!(kinds.contains(&AttractorKind::Static) && kinds.contains(&AttractorKind::Periodic));
+//! ```
+
+use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, RecordOptions};
+use crate::error::{Error, Result, Unsupported};
+use crate::exact::ExactSolver;
+use crate::experiment::{DiodeModel, Experiment};
+use crate::params::{Params, State};
+use crate::scan::{Monitor, ParameterRange};
+use crate::solver::{run_until, Solver};
+use crate::stability::{find_periodic_orbit, Multiplier, NewtonOptions};
+use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::ops::{ControlFlow, Range};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Options of a [`Basins`] map.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BasinOptions {
+    /// Drive periods run at most to find a period. Default 1000.
+    pub max_periods: usize,
+    /// Longest period looked for, in drive periods (1 to 64). Default 16.
+    pub max_period: usize,
+    /// Relative tolerance of the repetition of the strobe map. Default 1e-10.
+    pub tolerance: f64,
+    /// Drive periods over which the exponent of a motion without a period is measured.
+    /// Default 1000.
+    pub lyapunov_periods: usize,
+    /// Standard errors that make an exponent significant. Default 4.
+    pub significance: f64,
+    /// Relative distance within which two fixed points are one orbit. Default 1e-6.
+    pub match_tolerance: f64,
+    /// Strobe points kept of a motion without a period, for telling its attractor. Default
+    /// 64.
+    pub sample_points: usize,
+}
+
+impl Default for BasinOptions {
+    fn default() -> Self {
+        Self {
+            max_periods: 1000,
+            max_period: 16,
+            tolerance: 1e-10,
+            lyapunov_periods: 1000,
+            significance: 4.0,
+            match_tolerance: 1e-6,
+            sample_points: 64,
+        }
+    }
+}
+
+impl BasinOptions {
+    /// Check every field.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the first bad field.
+    pub fn validate(self) -> Result<Self> {
+        let bad = |name, value: f64, allowed| {
+            Err(Error::InvalidParameter {
+                name,
+                value,
+                allowed,
+            })
+        };
+        self.steady_options()?;
+        if !(8..=10_000_000).contains(&self.lyapunov_periods) {
+            return bad(
+                "lyapunov_periods",
+                self.lyapunov_periods as f64,
+                "must be from 8 to 1e7",
+            );
+        }
+        if !(self.significance > 0.0 && self.significance.is_finite()) {
+            return bad("significance", self.significance, "must be finite and > 0");
+        }
+        if !(self.match_tolerance > 0.0 && self.match_tolerance < 1e-2) {
+            return bad(
+                "match_tolerance",
+                self.match_tolerance,
+                "must be > 0 and < 1e-2",
+            );
+        }
+        if !(1..=self.lyapunov_periods).contains(&self.sample_points) {
+            return bad(
+                "sample_points",
+                self.sample_points as f64,
+                "must be from 1 to lyapunov_periods",
+            );
+        }
+        Ok(self)
+    }
+
+    fn steady_options(&self) -> Result<SteadyOptions> {
+        SteadyOptions::default()
+            .with_spectrum(false)
+            .with_tolerance(self.tolerance)?
+            .with_max_periods(self.max_periods)?
+            .with_max_period(self.max_period)
+    }
+}
+
+/// What one cell of the grid settled on, before the attractors are identified.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Cell {
+    /// The verdict.
+    pub kind: AttractorKind,
+    /// The period in drive periods (periodic and static cells).
+    pub period: Option<usize>,
+    /// Periodic: the p strobe points of the orbit, from its fixed point refined by Newton's
+    /// method; static: the rest state; otherwise up to [`BasinOptions::sample_points`]
+    /// strobe points of the motion.
+    pub strobes: Vec<State>,
+    /// The largest Lyapunov exponent per unit τ: ln|μ|/(pT) of the orbit for a periodic cell
+    /// (−∞ when both multipliers vanish), measured for a motion without a period, 0 at rest.
+    pub exponent: f64,
+    /// Drive periods simulated for this cell.
+    pub periods: usize,
+}
+
+/// An attractor of a basin map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Attractor {
+    /// Its number, from 0, in the order of the first cell that reached it.
+    pub id: usize,
+    /// What it is.
+    pub kind: AttractorKind,
+    /// Period in drive periods (periodic only).
+    pub period: Option<usize>,
+    /// Cells that reached it.
+    pub cells: usize,
+    /// Their fraction of the grid.
+    pub fraction: f64,
+    /// A representative state at a strobe: the fixed point of a periodic orbit (refined by
+    /// Newton's method), the first rest state found, or a strobe point of the motion.
+    pub state: State,
+    /// Its strobe points: the p points of a periodic orbit, or up to 1024 points of the
+    /// strobe set of a chaotic or quasi-periodic attractor; the rest state for rest.
+    pub strobes: Vec<State>,
+    /// Largest Lyapunov exponent per unit τ (of the orbit, of the first cell's motion, or 0).
+    pub exponent: f64,
+    /// Floquet multipliers of a periodic orbit.
+    pub multipliers: Option<[Multiplier; 2]>,
+    /// The smallest and the largest rest position of the cells at rest (static only).
+    pub rest_range: Option<(f64, f64)>,
+    /// The first cell (row, column) that reached it.
+    pub first_cell: (usize, usize),
+}
+
+/// A finished basin map: the grid, the attractor of every cell, and the attractors.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BasinMap {
+    /// The parameters of the model (φ is the drive phase of the initial states).
+    pub params: Params,
+    /// Initial positions y0 (rows).
+    pub y0: Vec<f64>,
+    /// Initial velocities y0' (columns).
+    pub v0: Vec<f64>,
+    /// The attractor of each cell (an index into `attractors`), `None` when unsettled;
+    /// row-major: `cells[i·n + j]` is (y0_i, v0_j), n = `v0.len()`.
+    pub cells: Vec<Option<usize>>,
+    /// The attractors, numbered in the order of their first cell.
+    pub attractors: Vec<Attractor>,
+    /// Cells without an attractor.
+    pub unsettled: usize,
+}
+
+impl BasinMap {
+    /// The attractor of the cell (y0_i, v0_j).
+    ///
+    /// # Panics
+    /// When i or j is out of range.
+    pub fn at(&self, i: usize, j: usize) -> Option<&Attractor> {
+        assert!(
+            i < self.y0.len() && j < self.v0.len(),
+            "cell out of the grid"
+        );
+        self.cells[i * self.v0.len() + j].map(|k| &self.attractors[k])
+    }
+}
+
+/// A basin map of an experiment over a grid of initial states (see the module
+/// documentation).
+#[derive(Debug, Clone)]
+pub struct Basins {
+    params: Params,
+    y0: Vec<f64>,
+    v0: Vec<f64>,
+    options: BasinOptions,
+    threads: Option<usize>,
+}
+
+impl Basins {
+    /// The map of `experiment` (its parameters, drive phase φ included) over the initial
+    /// positions `y0` and velocities `v0`.
+    ///
+    /// # Errors
+    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value.
+    pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
+        if experiment.diode_model() != DiodeModel::Pwl {
+            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
+        }
+        Ok(Self {
+            params: experiment.params()?,
+            y0: y0.values(),
+            v0: v0.values(),
+            options: BasinOptions::default(),
+            threads: None,
+        })
+    }
+
+    /// Use these options.
+    ///
+    /// # Errors
+    /// When the options are invalid.
+    pub fn options(mut self, options: BasinOptions) -> Result<Self> {
+        self.options = options.validate()?;
+        Ok(self)
+    }
+
+    /// Compute on a pool of `threads` threads of its own instead of rayon's global pool
+    /// (the map is the same for any number).
+    ///
+    /// # Errors
+    /// When `threads` is 0.
+    pub fn threads(mut self, threads: usize) -> Result<Self> {
+        if threads == 0 {
+            return Err(Error::InvalidParameter {
+                name: "threads",
+                value: 0.0,
+                allowed: "must be at least 1",
+            });
+        }
+        self.threads = Some(threads);
+        Ok(self)
+    }
+
+    /// The parameters of the model.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The options used.
+    pub fn basin_options(&self) -> &BasinOptions {
+        &self.options
+    }
+
+    /// Rows (initial positions) and columns (initial velocities).
+    pub fn shape(&self) -> (usize, usize) {
+        (self.y0.len(), self.v0.len())
+    }
+
+    /// The cell (y0_i, v0_j), computed alone.
+    ///
+    /// # Errors
+    /// Whatever the solver reports.
+    ///
+    /// # Panics
+    /// When i or j is out of range.
+    pub fn cell(&self, i: usize, j: usize) -> Result<Cell> {
+        let start = State::new(self.y0[i], self.v0[j])?;
+        let options = self.options;
+        let steady = steady_state_from(
+            &exact_solver,
+            &self.params,
+            start,
+            &options.steady_options()?,
+        )?;
+        let mut periods = steady.periods_to_settle + steady.recorded_periods;
+        if let Some(period) = steady.period {
+            let at = steady.strobes[0];
+            if steady.events.is_empty() {
+                return Ok(Cell {
+                    kind: AttractorKind::Static,
+                    period: Some(period),
+                    strobes: vec![at],
+                    exponent: 0.0,
+                    periods,
+                });
+            }
+            return self.periodic_cell(at, period, periods);
+        }
+        let record = record_strobes(
+            &self.params,
+            steady.final_state(),
+            &RecordOptions {
+                transient_periods: 0,
+                points: options.lyapunov_periods,
+                max_period: options.max_period,
+                tolerance: options.tolerance.max(1e-12),
+                significance: options.significance,
+            },
+        )?;
+        periods += options.lyapunov_periods;
+        match record.kind {
+            AttractorKind::Periodic => {
+                let period = record.period.expect("periodic");
+                self.periodic_cell(record.final_state(), period, periods)
+            }
+            kind => Ok(Cell {
+                kind,
+                period: record.period,
+                strobes: record
+                    .strobes
+                    .iter()
+                    .rev()
+                    .take(options.sample_points)
+                    .rev()
+                    .copied()
+                    .collect(),
+                exponent: record.exponent,
+                periods,
+            }),
+        }
+    }
+
+    /// A periodic cell: the orbit refined by Newton's method from the strobe point `at`, with
+    /// its p strobe points (the points as simulated when Newton's method fails).
+    fn periodic_cell(&self, at: State, period: usize, periods: usize) -> Result<Cell> {
+        let drive_period = self.params.drive_period();
+        let (start, exponent) =
+            match find_periodic_orbit(&self.params, at, period, &NewtonOptions::default()) {
+                Ok(orbit) => (orbit.state, orbit.exponent()),
+                Err(Error::Stability(_)) => (at, f64::NAN),
+                Err(e) => return Err(e),
+            };
+        let mut solver = ExactSolver::new(self.params, start);
+        let mut strobes = vec![start];
+        for k in 1..period {
+            run_until(&mut solver, k as f64 * drive_period, |_| {})?;
+            strobes.push(solver.state());
+        }
+        Ok(Cell {
+            kind: AttractorKind::Periodic,
+            period: Some(period),
+            strobes,
+            exponent,
+            periods,
+        })
+    }
+
+    /// Compute the cells of `rows` (all columns), row-major; `monitor` sees every finished
+    /// cell (counted within the block) and can stop the work. The cells do not depend on the
+    /// number of threads nor on the blocks.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for rows outside the grid; [`Error::Cancelled`]; the first
+    /// solver failure.
+    pub fn run_rows(&self, rows: Range<usize>, monitor: &dyn Monitor) -> Result<Vec<Cell>> {
+        let (nr, nc) = self.shape();
+        if rows.start > rows.end || rows.end > nr {
+            return Err(Error::InvalidParameter {
+                name: "rows",
+                value: rows.end as f64,
+                allowed: "the rows must lie inside the grid",
+            });
+        }
+        let total = rows.len() * nc;
+        let stop = AtomicBool::new(false);
+        let done = AtomicUsize::new(0);
+        let work = || -> Result<Vec<Cell>> {
+            (0..total)
+                .into_par_iter()
+                .map(|k| {
+                    if stop.load(Ordering::Relaxed) {
+                        return Err(Error::Cancelled {
+                            done: done.load(Ordering::Relaxed),
+                            total,
+                        });
+                    }
+                    let cell = self.cell(rows.start + k / nc, k % nc)?;
+                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if monitor.step(finished, total) == ControlFlow::Break(()) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(Error::Cancelled {
+                            done: finished,
+                            total,
+                        });
+                    }
+                    Ok(cell)
+                })
+                .collect()
+        };
+        match self.threads {
+            None => work(),
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|_| Error::InvalidParameter {
+                    name: "threads",
+                    value: n as f64,
+                    allowed: "a thread pool of this size could not be started",
+                })?
+                .install(work),
+        }
+    }
+
+    /// Compute the whole map; `monitor` sees every finished cell and can stop the work.
+    ///
+    /// # Errors
+    /// [`Error::Cancelled`]; the first solver failure.
+    pub fn run(&self, monitor: &dyn Monitor) -> Result<BasinMap> {
+        let cells = self.run_rows(0..self.y0.len(), monitor)?;
+        self.identify(&cells)
+    }
+
+    /// Identify and number the attractors of `cells` (all cells of the grid, row-major, as
+    /// [`Basins::run_rows`] gives them), in the order of the cells.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when the number of cells is not that of the grid.
+    pub fn identify(&self, cells: &[Cell]) -> Result<BasinMap> {
+        let (nr, nc) = self.shape();
+        if cells.len() != nr * nc {
+            return Err(Error::InvalidParameter {
+                name: "cells",
+                value: cells.len() as f64,
+                allowed: "must be one per cell of the grid",
+            });
+        }
+        let mut attractors: Vec<Attractor> = Vec::new();
+        let mut assigned = Vec::with_capacity(cells.len());
+        let tolerance = self.options.match_tolerance;
+        for (k, cell) in cells.iter().enumerate() {
+            let found = match cell.kind {
+                AttractorKind::Unsettled => {
+                    assigned.push(None);
+                    continue;
+                }
+                AttractorKind::Static => attractors
+                    .iter()
+                    .position(|a| a.kind == AttractorKind::Static),
+                AttractorKind::Periodic => {
+                    let x = cell.strobes[0];
+                    let limit = tolerance * scale_of(&[x]);
+                    attractors.iter().position(|a| {
+                        a.kind == AttractorKind::Periodic
+                            && a.period == cell.period
+                            && a.strobes.iter().any(|s| distance(*s, x) <= limit)
+                    })
+                }
+                kind => attractors
+                    .iter()
+                    .position(|a| a.kind == kind && overlaps(&a.strobes, &cell.strobes)),
+            };
+            let index = match found {
+                Some(index) => index,
+                None => {
+                    attractors.push(Attractor {
+                        id: attractors.len(),
+                        kind: cell.kind,
+                        period: (cell.kind == AttractorKind::Periodic)
+                            .then_some(cell.period)
+                            .flatten(),
+                        cells: 0,
+                        fraction: 0.0,
+                        state: cell.strobes[0],
+                        strobes: Vec::new(),
+                        exponent: cell.exponent,
+                        multipliers: None,
+                        rest_range: None,
+                        first_cell: (k / nc, k % nc),
+                    });
+                    attractors.len() - 1
+                }
+            };
+            let a = &mut attractors[index];
+            a.cells += 1;
+            match cell.kind {
+                AttractorKind::Periodic => {
+                    if a.strobes.is_empty() {
+                        a.strobes = cell.strobes.clone();
+                    }
+                }
+                AttractorKind::Static => {
+                    let y = cell.strobes[0].y;
+                    a.rest_range = Some(match a.rest_range {
+                        Some((lo, hi)) => (lo.min(y), hi.max(y)),
+                        None => (y, y),
+                    });
+                    if a.strobes.is_empty() {
+                        a.strobes = cell.strobes.clone();
+                    }
+                }
+                _ => {
+                    let room = 1024usize.saturating_sub(a.strobes.len());
+                    a.strobes.extend(cell.strobes.iter().take(room));
+                }
+            }
+            assigned.push(Some(index));
+        }
+        let total = cells.len() as f64;
+        for a in &mut attractors {
+            a.fraction = a.cells as f64 / total;
+            if a.kind == AttractorKind::Periodic {
+                let period = a.period.expect("periodic");
+                a.multipliers =
+                    find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
+                        .ok()
+                        .map(|o| o.multipliers);
+            }
+        }
+        let unsettled = assigned.iter().filter(|a| a.is_none()).count();
+        Ok(BasinMap {
+            params: self.params,
+            y0: self.y0.clone(),
+            v0: self.v0.clone(),
+            cells: assigned,
+            attractors,
+            unsettled,
+        })
+    }
+}
+
+/// Whether the strobe points `sample` lie on the strobe set `reference`: at least 90 % of
+/// them within 10 % of the set's extent of one of its points.
+fn overlaps(reference: &[State], sample: &[State]) -> bool {
+    if reference.is_empty() || sample.is_empty() {
+        return false;
+    }
+    let (mut ylo, mut yhi, mut vlo, mut vhi) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for s in reference {
+        (ylo, yhi, vlo, vhi) = (ylo.min(s.y), yhi.max(s.y), vlo.min(s.v), vhi.max(s.v));
+    }
+    let radius = 0.1 * (yhi - ylo).max(vhi - vlo).max(1e-9 * scale_of(reference));
+    let near = sample
+        .iter()
+        .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
+        .count();
+    near * 10 >= sample.len() * 9
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strobe_sets_overlap_when_they_share_their_region() {
+        let circle = |n: usize, r: f64, shift: f64| -> Vec<State> {
+            (0..n)
+                .map(|k| {
+                    let a = k as f64 * 2.399;
+                    State {
+                        y: r * a.cos() + shift,
+                        v: r * a.sin(),
+                    }
+                })
+                .collect()
+        };
+        let reference = circle(200, 1.0, 0.0);
+        assert!(overlaps(&reference, &circle(30, 1.0, 0.0)));
+        assert!(!overlaps(&reference, &circle(30, 1.0, 5.0)));
+        assert!(!overlaps(&[], &circle(3, 1.0, 0.0)));
+    }
+}
