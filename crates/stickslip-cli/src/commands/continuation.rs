@@ -106,7 +106,7 @@ pub fn run(args: Args) -> Result<()> {
     let (params, orbit) = settled_orbit(&experiment)?;
     if orbit.events.is_empty() {
         let start = experiment.initial();
-        usage!(
+        anyhow::bail!(
             "from y0 = {}, v0 = {} the motion comes to rest at {} = {}: nothing to continue; \
              start from a moving state (--y0, --v0) or at another --from",
             start.y,

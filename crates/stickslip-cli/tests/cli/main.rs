@@ -4,6 +4,7 @@
 mod common;
 
 mod convert;
+mod dynamics;
 mod lab;
 mod netlist;
 mod phase_diagram;

@@ -1,0 +1,490 @@
+//! Tests of `stickslip bifurcation`, `stickslip basins` and `stickslip continue`.
+
+use crate::common::*;
+use stickslip::attractor::RecordOptions;
+use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
+use stickslip::scan::{Axis, ParameterRange, SweepDirection};
+use stickslip::{Experiment, Parameter};
+
+const CHAOS: [&str; 6] = ["--zeta", "0", "--mu-s", "3", "--beta", "9"];
+
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[test]
+fn bifurcation_csv_is_the_library_s_diagram() {
+    let mut args = vec!["bifurcation"];
+    args.extend(CHAOS);
+    args.extend([
+        "--over",
+        "w",
+        "--from",
+        "0.33",
+        "--to",
+        "0.42",
+        "--steps",
+        "4",
+        "--points",
+        "30",
+        "--transient",
+        "100",
+        "--out",
+        "bif.csv",
+        "--plot",
+        "bif.png",
+    ]);
+    let (dir, out) = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("bif.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "w,y,v,direction,lambda,class,period"
+    );
+    let rows = csv_rows(&csv);
+    assert_eq!(rows.len(), 4 * 2 * 30);
+    // The same numbers, bit for bit, as the library's diagram.
+    let e = Experiment::dimensionless(0.0, 0.3, 9.0)
+        .unwrap()
+        .with_mu_s(3.0)
+        .unwrap();
+    let steps = Bifurcation::new(
+        &e,
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.33, 0.42, 4).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap()
+    .direction(SweepDirection::Both)
+    .options(BifurcationOptions {
+        record: RecordOptions {
+            points: 30,
+            transient_periods: 100,
+            ..RecordOptions::default()
+        },
+        ..BifurcationOptions::default()
+    })
+    .unwrap()
+    .run(&())
+    .unwrap();
+    let mut k = 0;
+    for s in &steps {
+        for x in &s.record.strobes {
+            let r = &rows[k];
+            assert_eq!(r[0].parse::<f64>().unwrap(), s.value);
+            assert_eq!(r[1].parse::<f64>().unwrap(), x.y);
+            assert_eq!(r[2].parse::<f64>().unwrap(), x.v);
+            assert_eq!(r[3], s.leg.label());
+            assert_eq!(r[4].parse::<f64>().unwrap(), s.record.exponent);
+            assert_eq!(r[5], s.record.kind.label());
+            k += 1;
+        }
+    }
+    // w = 0.33 is chaotic, w = 0.42 a period-3 orbit: three distinct points.
+    let at = |w: &str| {
+        rows.iter()
+            .filter(|r| r[0] == w && r[3] == "up")
+            .collect::<Vec<_>>()
+    };
+    assert!(at("0.33")
+        .iter()
+        .all(|r| r[5] == "chaotic" && r[6].is_empty()));
+    assert!(at("0.42").iter().all(|r| r[5] == "periodic" && r[6] == "3"));
+    let png = std::fs::read(dir.path().join("bif.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert!(stderr(&out).contains("branches of periodic orbits continued"));
+}
+
+#[test]
+fn bifurcation_plot_draws_branches_and_special_points() {
+    let (dir, out) = run(&[
+        "bifurcation",
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--beta",
+        "3.269",
+        "--over",
+        "w",
+        "--from",
+        "0.6",
+        "--to",
+        "0.66",
+        "--steps",
+        "13",
+        "--direction",
+        "up",
+        "--first-transient",
+        "3000",
+        "--out",
+        "bif.csv",
+        "--plot",
+        "bif.svg",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(dir.path().join("bif.svg")).unwrap();
+    for text in [
+        "stable orbit (continuation)",
+        "unstable orbit (continuation)",
+        "period doubling",
+        "largest Lyapunov exponent",
+    ] {
+        assert!(svg.contains(text), "'{text}' not in the plot");
+    }
+    assert!(
+        stderr(&out).contains("period-doubling at 0.6411"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn basins_find_the_mirror_pair() {
+    let (dir, out) = run(&[
+        "basins",
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--w",
+        "0.6",
+        "--beta",
+        "3.269",
+        "--y0-min",
+        "-8",
+        "--y0-max",
+        "8",
+        "--v0-min",
+        "-8",
+        "--v0-max",
+        "8",
+        "--steps",
+        "12",
+        "--json",
+        "--out",
+        "basins.csv",
+        "--plot",
+        "basins.png",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let attractors = summary["attractors"].as_array().unwrap();
+    assert_eq!(attractors.len(), 2);
+    let mut total = 0.0;
+    for a in attractors {
+        assert_eq!(a["kind"], "periodic");
+        assert_eq!(a["period"], 1);
+        total += a["fraction"].as_f64().unwrap();
+        assert!(a["state"]["y"].is_f64() && a["state"]["v"].is_f64());
+        assert_eq!(a["multipliers"].as_array().unwrap().len(), 2);
+    }
+    assert!((total - 1.0).abs() < 1e-12);
+    assert_eq!(summary["unsettled"], 0);
+    let csv = std::fs::read_to_string(dir.path().join("basins.csv")).unwrap();
+    assert_eq!(csv.lines().next().unwrap(), "y0,v0,attractor,kind,period");
+    let rows = csv_rows(&csv);
+    assert_eq!(rows.len(), 144);
+    let zeros = rows.iter().filter(|r| r[2] == "0").count() as f64;
+    assert!((zeros / 144.0 - attractors[0]["fraction"].as_f64().unwrap()).abs() < 1e-12);
+    let png = std::fs::read(dir.path().join("basins.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+}
+
+#[test]
+fn continue_finds_the_grazing_and_the_fold() {
+    let (dir, out) = run(&[
+        "continue",
+        "--zeta",
+        "0.046816",
+        "--mu-s",
+        "1.5",
+        "--w",
+        "0.9",
+        "--y0",
+        "0.25",
+        "--v0",
+        "2.1",
+        "--over",
+        "beta",
+        "--from",
+        "1.45",
+        "--to",
+        "1.2",
+        "--json",
+        "--out",
+        "branch.csv",
+        "--plot",
+        "branch.png",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let special = summary["special"].as_array().unwrap();
+    let kinds: Vec<&str> = special
+        .iter()
+        .map(|s| s["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["grazing", "fold"]);
+    let grazing = &special[0];
+    assert!((grazing["value"].as_f64().unwrap() - 1.41329).abs() < 1e-5);
+    assert_eq!(
+        (
+            grazing["before"]["stops"].as_u64(),
+            grazing["after"]["stops"].as_u64()
+        ),
+        (Some(0), Some(2))
+    );
+    let fold = &special[1];
+    assert!((fold["value"].as_f64().unwrap() - 1.30382).abs() < 1e-5);
+    assert_eq!(fold["before"]["stable"], true);
+    assert_eq!(fold["after"]["stable"], false);
+    assert_eq!(summary["end"]["reason"], "stalled");
+    let csv = std::fs::read_to_string(dir.path().join("branch.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "beta,y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,stable,arclength"
+    );
+    let rows = csv_rows(&csv);
+    assert_eq!(rows.len() as u64, summary["points"].as_u64().unwrap());
+    assert!(rows.iter().any(|r| r[11] == "false") && rows.iter().any(|r| r[11] == "true"));
+    let png = std::fs::read(dir.path().join("branch.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert!(
+        stderr(&out).contains("fold at beta = 1.30382"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn bad_input_gives_one_line_and_exit_code_2() {
+    let chaos = |extra: &[&'static str]| {
+        let mut v: Vec<&'static str> = vec!["--zeta", "0", "--mu-s", "3", "--beta", "9"];
+        v.extend_from_slice(extra);
+        v
+    };
+    let cases: Vec<(&str, Vec<&str>, &str)> = vec![
+        (
+            "bifurcation",
+            chaos(&[
+                "--over", "w", "--from", "0.4", "--to", "0.3", "--steps", "5",
+            ]),
+            "--from",
+        ),
+        (
+            "bifurcation",
+            chaos(&[
+                "--over", "w", "--from", "0.3", "--to", "0.4", "--steps", "0",
+            ]),
+            "--steps",
+        ),
+        (
+            "bifurcation",
+            chaos(&[
+                "--over", "w", "--from", "0.3", "--to", "0.4", "--steps", "5", "--points", "0",
+            ]),
+            "--points",
+        ),
+        (
+            "bifurcation",
+            chaos(&[
+                "--over",
+                "w",
+                "--from",
+                "0.3",
+                "--to",
+                "0.4",
+                "--steps",
+                "5",
+                "--transient",
+                "-1",
+            ]),
+            "--transient",
+        ),
+        (
+            "bifurcation",
+            chaos(&[
+                "--over", "w", "--w", "0.3", "--from", "0.3", "--to", "0.4", "--steps", "5",
+            ]),
+            "--w",
+        ),
+        (
+            "bifurcation",
+            chaos(&["--over", "w", "--from", "-1", "--to", "0.4", "--steps", "5"]),
+            "w",
+        ),
+        (
+            "bifurcation",
+            chaos(&[
+                "--over", "w", "--from", "0.3", "--to", "0.4", "--steps", "5", "--plot", "a.bmp",
+            ]),
+            "a.bmp",
+        ),
+        (
+            "bifurcation",
+            vec![
+                "--preset", "paper", "--model", "shockley", "--beta", "2", "--over", "w", "--from",
+                "0.3", "--to", "0.4", "--steps", "5",
+            ],
+            "Shockley",
+        ),
+        (
+            "basins",
+            vec![
+                "--w", "0.6", "--beta", "3", "--y0-min", "1", "--y0-max", "0", "--v0-min", "0",
+                "--v0-max", "1",
+            ],
+            "--y0-min",
+        ),
+        (
+            "basins",
+            vec![
+                "--w", "0.6", "--beta", "3", "--y0-min", "0", "--y0-max", "1", "--v0-min", "0",
+                "--v0-max", "1", "--steps", "0",
+            ],
+            "--steps",
+        ),
+        (
+            "basins",
+            vec![
+                "--w", "0.6", "--beta", "3", "--y0", "1", "--y0-min", "0", "--y0-max", "1",
+                "--v0-min", "0", "--v0-max", "1",
+            ],
+            "--y0",
+        ),
+        (
+            "basins",
+            vec![
+                "--w", "0.6", "--beta", "3", "--phi", "1", "--phase", "1", "--y0-min", "0",
+                "--y0-max", "1", "--v0-min", "0", "--v0-max", "1",
+            ],
+            "--phase",
+        ),
+        (
+            "basins",
+            vec![
+                "--beta", "3", "--y0-min", "0", "--y0-max", "1", "--v0-min", "0", "--v0-max", "1",
+            ],
+            "w",
+        ),
+        (
+            "continue",
+            vec![
+                "--w", "0.9", "--beta", "1.4", "--over", "beta", "--from", "1.4", "--to", "1.3",
+            ],
+            "--beta",
+        ),
+        (
+            "continue",
+            vec![
+                "--w", "0.9", "--over", "beta", "--from", "1.4", "--to", "1.4",
+            ],
+            "--to",
+        ),
+        (
+            "continue",
+            vec![
+                "--w", "0.9", "--over", "mu_s", "--beta", "2", "--from", "1", "--to", "0.5",
+            ],
+            "mu_s",
+        ),
+    ];
+    for (command, args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = vec![command];
+        full.extend(args.iter().copied());
+        full.extend(["--out", "x.csv"]);
+        let out = run_in(dir.path(), &full);
+        assert_usage_error(dir.path(), &out, needle);
+    }
+}
+
+#[test]
+fn continue_from_rest_says_what_to_do() {
+    let (dir, out) = run(&[
+        "continue", "--w", "0.9", "--mu-s", "1.5", "--over", "beta", "--from", "1.4", "--to",
+        "1.3", "--out", "x.csv",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("comes to rest at beta = 1.4: nothing to continue"));
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+}
+
+#[test]
+fn ctrl_c_leaves_no_output_file() {
+    for args in [
+        vec![
+            "bifurcation",
+            "--zeta",
+            "0",
+            "--mu-s",
+            "3",
+            "--beta",
+            "9",
+            "--over",
+            "w",
+            "--from",
+            "0.2",
+            "--to",
+            "0.55",
+            "--steps",
+            "100000",
+            "--points",
+            "10",
+            "--out",
+            "bif.csv",
+            "--plot",
+            "bif.png",
+        ],
+        vec![
+            "basins",
+            "--zeta",
+            "0",
+            "--mu-s",
+            "3",
+            "--w",
+            "0.33",
+            "--beta",
+            "9",
+            "--y0-min",
+            "-8",
+            "--y0-max",
+            "8",
+            "--v0-min",
+            "-8",
+            "--v0-max",
+            "8",
+            "--steps",
+            "2000",
+            "--out",
+            "basins.csv",
+            "--plot",
+            "basins.png",
+        ],
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(&args)
+            .current_dir(dir.path())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(700));
+        let status = std::process::Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let out = child.wait_with_output().unwrap();
+        assert!(!out.status.success(), "{}", args[0]);
+        assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert!(left.is_empty(), "files left behind: {left:?}");
+    }
+}
