@@ -1,6 +1,7 @@
 //! `stickslip reproduce`: every figure and table of the paper from the paper's circuit, as PNG
 //! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`.
 
+mod beyond;
 mod figures;
 mod report;
 
@@ -68,6 +69,9 @@ pub fn run(args: Args) -> Result<()> {
         ("Fig. 6", figures::fig6),
         ("Fig. 7", figures::fig7),
         ("accuracy", figures::accuracy),
+        ("bifurcation diagram in w", beyond::bifurcation_w),
+        ("basins of attraction", beyond::basins_mirror),
+        ("a branch and its stability", beyond::branch_fold),
     ];
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \

@@ -97,6 +97,17 @@ impl Report {
         Ok(())
     }
 
+    /// Write a stacked figure as `stem.png` and `stem.svg`.
+    pub fn stack(&mut self, stem: &str, stack: &crate::plot::Stack) -> Result<()> {
+        check_interrupt()?;
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}.{ext}");
+            stack.render(&self.staging.join(&name))?;
+            self.files.push(name);
+        }
+        Ok(())
+    }
+
     /// Write `index.html` and `summary.json`, then move every file into the target directory.
     pub fn finish(mut self) -> Result<PathBuf> {
         check_interrupt()?;
