@@ -3,11 +3,15 @@
 
 mod common;
 
+mod checkpoint;
 mod convert;
+mod determinism;
+mod limits;
 mod netlist;
 mod phase_diagram;
 mod reproduce;
 mod simulate;
 mod steady;
+mod streaming;
 mod sweep;
 mod theory;
