@@ -172,7 +172,7 @@ fn physical_values_are_checked_through_their_images() {
         ),
         "{err:?}"
     );
-    assert_refused(Err::<(), _>(err), "invalid f = ", "gives w = 1.0000");
+    assert_refused(Err::<(), _>(err), "invalid f = ", "it gives w = 100000.000");
     let (inside, outside) = above(limits::W_MIN * omega0);
     paper(&[(Key::Omega, inside), (Key::Beta, 1.0)]).unwrap();
     assert_refused(
