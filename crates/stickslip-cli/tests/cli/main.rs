@@ -6,6 +6,7 @@ mod common;
 mod checkpoint;
 mod convert;
 mod determinism;
+mod fuzz_props;
 mod limits;
 mod netlist;
 mod phase_diagram;
