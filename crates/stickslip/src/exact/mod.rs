@@ -332,13 +332,16 @@ impl Solver for ExactSolver {
         let trig = drive.unwrap_or_else(|| sin_cos(theta));
         let force = self.params.beta * trig.1 - y;
         let onward = force.signum() == sign;
+        // Rounding of the force β cos − y at the edge ±μs.
+        let edge = 4.0 * f64::EPSILON * (self.params.beta + y.abs() + self.params.mu_s);
         if force.abs() <= self.params.mu_s
             || (t == 0.0 && onward)
-            || (self.repeats >= MAX_REPEATS && onward)
+            || (onward && (self.repeats >= MAX_REPEATS || force.abs() <= self.params.mu_s + edge))
         {
             // (At t = 0 a slide that cannot start is a stop, even when rounding puts the
-            // force a hair beyond μs; and so is a slide that keeps ending where it started,
-            // the force at μs to rounding: a tangency at the friction edge.)
+            // force a hair beyond μs; and so is a velocity zero with the force onward but at
+            // μs to rounding, or a slide that keeps ending where it started: a tangency at
+            // the friction edge. Going on would restart the slide at ever shorter intervals.)
             self.start_stick(tau, theta, y);
             self.event(tau, y, EventKind::Stick)
         } else if force.signum() != sign {
@@ -501,6 +504,29 @@ mod tests {
         assert!(events.len() < 40, "{events:?}");
         assert!(events.iter().any(|e| e.kind == EventKind::Stick));
         assert!(solver.state().y.abs() < 1e-6, "{:?}", solver.state());
+    }
+
+    /// The fuzz target `solvers` found it: at ζ = 1, w = 1, β = 1 + 4e-16 = μs + 4e-16, after
+    /// a stop the slide starts where the force touches μs; its velocity vanished again and
+    /// again with the force μs + 4e-16 onward, each slide half as long as the one before,
+    /// without end. A velocity zero with the force at μs to rounding is now a stop.
+    #[test]
+    fn regression_no_zeno_restarts_with_the_force_at_the_edge() {
+        let params = Params {
+            zeta: 1.0,
+            w: 1.0,
+            beta: 1.000_000_000_000_000_4,
+            phi: 2.511_453_442_477_732_6,
+            mu_s: 1.0,
+        };
+        let mut solver = ExactSolver::new(params, State::default());
+        let mut events = Vec::new();
+        crate::solver::run_until(&mut solver, 10.0 * params.drive_period(), |e| {
+            events.push(*e)
+        })
+        .unwrap();
+        assert!(events.len() < 60, "{} events", events.len());
+        assert!(solver.stats().evaluations < 10_000, "{:?}", solver.stats());
     }
 
     /// The predicted search needs far fewer evaluations than the careful one (at least 2×
