@@ -25,7 +25,8 @@ pub struct CheckpointFlags {
     /// it belongs to other parameters or is damaged, and removed once the output is written.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    /// Seconds between two saves of the checkpoint at most (0: after every finished unit).
+    /// Least time between two saves of the checkpoint, in seconds (0: after every finished
+    /// row or step); a save also waits twenty times as long as the last one took.
     #[arg(
         long = "checkpoint-every",
         value_name = "SECONDS",
