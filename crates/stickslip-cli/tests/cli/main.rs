@@ -3,12 +3,17 @@
 
 mod common;
 
+mod checkpoint;
 mod convert;
+mod determinism;
+mod fuzz_props;
 mod lab;
+mod limits;
 mod netlist;
 mod phase_diagram;
 mod reproduce;
 mod simulate;
 mod steady;
+mod streaming;
 mod sweep;
 mod theory;
