@@ -53,8 +53,8 @@ fn streamed_output_is_the_librarys_sampling() {
     );
 }
 
-/// Peak resident memory (kB) of `stickslip simulate` over `periods` drive periods, all
-/// output to /dev/null but the events, written to a file (as in the report).
+/// Peak resident memory (kB) of `stickslip simulate` over `periods` drive periods, with
+/// the samples sent down a pipe that is drained and discarded, the events to a file.
 fn peak_memory_kb(periods: &str) -> u64 {
     let time = std::path::Path::new("/usr/bin/time");
     assert!(
@@ -62,7 +62,7 @@ fn peak_memory_kb(periods: &str) -> u64 {
         "GNU time is missing: /usr/bin/time measures the peak memory (apt-get install time)"
     );
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::new(time)
+    let mut child = Command::new(time)
         .args(["-f", "%M"])
         .arg(env!("CARGO_BIN_EXE_stickslip"))
         .args([
@@ -81,9 +81,17 @@ fn peak_memory_kb(periods: &str) -> u64 {
             "trace.png",
         ])
         .current_dir(dir.path())
-        .stdout(Stdio::null())
-        .output()
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
         .expect("GNU time runs");
+    // The samples go down a pipe that this test drains and discards (not to /dev/null, which
+    // is a regular file on some machines and would grow by the whole CSV).
+    let mut samples = child.stdout.take().unwrap();
+    let drain = std::thread::spawn(move || std::io::copy(&mut samples, &mut std::io::sink()));
+    let out = child.wait_with_output().unwrap();
+    let bytes = drain.join().unwrap().unwrap();
+    assert!(bytes > 0, "no samples on stdout");
     let err = stderr(&out);
     assert!(out.status.success(), "{err}");
     assert!(dir.path().join("events.csv").is_file() && dir.path().join("trace.png").is_file());
@@ -166,15 +174,16 @@ fn a_closed_pipe_ends_the_tool_quietly() {
         &["theory", "--w", "0.9", "--beta", "1.6", "--json"][..],
         &["convert", "--preset", "paper"][..],
     ] {
-        let child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        // A pipe whose read end is closed before the child starts, so that its first write
+        // meets no reader whatever the timing.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
             .args(args)
-            .stdout(Stdio::piped())
+            .stdout(writer)
             .stderr(Stdio::piped())
-            .spawn()
+            .output()
             .unwrap();
-        let mut child = child;
-        drop(child.stdout.take());
-        let out = child.wait_with_output().unwrap();
         assert_eq!(out.status.signal(), Some(13), "{args:?}: {}", stderr(&out));
         assert!(
             !stderr(&out).contains("error"),
