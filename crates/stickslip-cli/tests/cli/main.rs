@@ -3,13 +3,18 @@
 
 mod common;
 
+mod checkpoint;
 mod convert;
+mod determinism;
 mod dynamics;
+mod fuzz_props;
 mod lab;
+mod limits;
 mod netlist;
 mod phase_diagram;
 mod reproduce;
 mod simulate;
 mod steady;
+mod streaming;
 mod sweep;
 mod theory;
