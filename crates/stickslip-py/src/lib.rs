@@ -10,6 +10,7 @@
 //! `KeyboardInterrupt` (see the `runner` module).
 
 mod compute;
+mod dynamics;
 mod experiment;
 mod runner;
 
@@ -57,5 +58,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compute::boundary, m)?)?;
     m.add_function(wrap_pyfunction!(compute::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compute::grid, m)?)?;
+    m.add("ATTRACTOR_KINDS", dynamics::attractor_kinds())?;
+    m.add_function(wrap_pyfunction!(dynamics::bifurcation, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::basins, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics::continuation, m)?)?;
     Ok(())
 }

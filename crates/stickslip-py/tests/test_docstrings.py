@@ -9,6 +9,7 @@ import pytest
 
 import stickslip
 import stickslip._api
+import stickslip._dynamics
 import stickslip.dask
 from stickslip import Experiment
 
@@ -21,6 +22,7 @@ def _examples(obj, name):
 
 TESTS = (
     _examples(stickslip._api, "stickslip")
+    + _examples(stickslip._dynamics, "stickslip")
     + _examples(stickslip.dask, "stickslip.dask")
     + _examples(Experiment, "stickslip.Experiment")
 )
@@ -29,7 +31,7 @@ TESTS = (
 def test_every_public_function_and_constructor_has_an_example():
     named = {t.name.split(".")[-1] for t in TESTS if t.examples}
     for name in ["simulate", "steady", "theory", "boundary", "sweep", "phase_diagram",
-                 "sweep_grid", "paper", "circuit", "shockley", "mechanics", "from_toml",
+                 "sweep_grid", "bifurcation", "basins", "continuation", "paper", "circuit", "shockley", "mechanics", "from_toml",
                  "replace", "convert", "from_dict", "Experiment"]:
         assert name in named, f"{name} has no example in its docstring"
 

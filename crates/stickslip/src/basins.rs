@@ -94,6 +94,14 @@ impl Default for BasinOptions {
 }
 
 impl BasinOptions {
+    /// These options with the exponent measured over `periods` drive periods, keeping at most
+    /// that many sample points ([`BasinOptions::sample_points`] is lowered to fit).
+    pub fn with_lyapunov_periods(mut self, periods: usize) -> Self {
+        self.lyapunov_periods = periods;
+        self.sample_points = self.sample_points.min(periods);
+        self
+    }
+
     /// Check every field.
     ///
     /// # Errors
@@ -576,6 +584,137 @@ fn overlaps(reference: &[State], sample: &[State]) -> bool {
         .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
         .count();
     near * 10 >= sample.len() * 9
+}
+
+/// What a basin map reports: exactly what `stickslip basins --json` prints and what the
+/// Python package's `basins` returns as its summary. Build it with `BasinReport::from(&map)`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BasinReport {
+    /// The model's parameters (φ: the drive phase at which the initial states are given).
+    pub model: BasinModel,
+    /// The grid of initial states.
+    pub grid: BasinGrid,
+    /// The attractors, numbered in the order of their first cell.
+    pub attractors: Vec<AttractorReport>,
+    /// Cells without an attractor.
+    pub unsettled: usize,
+    /// Their fraction of the grid.
+    pub unsettled_fraction: f64,
+}
+
+/// The model's parameters in a [`BasinReport`] (dimensionless; φ in radians).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BasinModel {
+    /// Damping ratio ζ.
+    pub zeta: f64,
+    /// Drive frequency w = Ω/ω0.
+    pub w: f64,
+    /// Drive amplitude β.
+    pub beta: f64,
+    /// Drive phase φ of the initial states (radians).
+    pub phi: f64,
+    /// Static-to-kinetic friction ratio μs.
+    pub mu_s: f64,
+}
+
+/// The grid of a [`BasinReport`]: the ends of both axes and the number of values of each.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BasinGrid {
+    /// Smallest initial position.
+    pub y0_min: f64,
+    /// Largest initial position.
+    pub y0_max: f64,
+    /// Smallest initial velocity.
+    pub v0_min: f64,
+    /// Largest initial velocity.
+    pub v0_max: f64,
+    /// Initial positions (rows).
+    pub steps: usize,
+    /// Initial velocities (columns).
+    pub v0_steps: usize,
+}
+
+/// One attractor in a [`BasinReport`]: [`Attractor`] with plain numbers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AttractorReport {
+    /// Its number, from 0.
+    pub id: usize,
+    /// `periodic`, `static`, `chaotic` or `quasiperiodic`.
+    pub kind: AttractorKind,
+    /// Period in drive periods (periodic and static), else `None`.
+    pub period: Option<usize>,
+    /// Its fraction of the grid.
+    pub fraction: f64,
+    /// Cells that reached it.
+    pub cells: usize,
+    /// A representative state at the strobe (the fixed point of a periodic orbit).
+    pub state: State,
+    /// Its strobe points, at most [`AttractorReport::MAX_STROBES`].
+    pub strobes: Vec<State>,
+    /// Largest Lyapunov exponent per unit τ; `None` where it is not finite (−∞ when both
+    /// multipliers of an orbit vanish).
+    pub exponent: Option<f64>,
+    /// Floquet multipliers of a periodic orbit as [re, im] pairs, the larger first.
+    pub multipliers: Option<[[f64; 2]; 2]>,
+    /// [min, max] of the rest positions (static only).
+    pub rest_range: Option<[f64; 2]>,
+    /// The first cell [row, column] that reached it.
+    pub first_cell: [usize; 2],
+}
+
+impl AttractorReport {
+    /// The most strobe points a report lists per attractor.
+    pub const MAX_STROBES: usize = 64;
+}
+
+impl From<&Attractor> for AttractorReport {
+    fn from(a: &Attractor) -> Self {
+        Self {
+            id: a.id,
+            kind: a.kind,
+            period: a.period,
+            fraction: a.fraction,
+            cells: a.cells,
+            state: a.state,
+            strobes: a.strobes.iter().take(Self::MAX_STROBES).copied().collect(),
+            exponent: Some(a.exponent).filter(|x| x.is_finite()),
+            multipliers: a
+                .multipliers
+                .map(|m| [[m[0].re, m[0].im], [m[1].re, m[1].im]]),
+            rest_range: a.rest_range.map(|(lo, hi)| [lo, hi]),
+            first_cell: [a.first_cell.0, a.first_cell.1],
+        }
+    }
+}
+
+impl From<&BasinMap> for BasinReport {
+    fn from(map: &BasinMap) -> Self {
+        let end = |v: &[f64], last: bool| {
+            (if last { v.last() } else { v.first() })
+                .copied()
+                .unwrap_or(f64::NAN)
+        };
+        Self {
+            model: BasinModel {
+                zeta: map.params.zeta,
+                w: map.params.w,
+                beta: map.params.beta,
+                phi: map.params.phi,
+                mu_s: map.params.mu_s,
+            },
+            grid: BasinGrid {
+                y0_min: end(&map.y0, false),
+                y0_max: end(&map.y0, true),
+                v0_min: end(&map.v0, false),
+                v0_max: end(&map.v0, true),
+                steps: map.y0.len(),
+                v0_steps: map.v0.len(),
+            },
+            attractors: map.attractors.iter().map(AttractorReport::from).collect(),
+            unsettled: map.unsettled,
+            unsettled_fraction: map.unsettled as f64 / map.cells.len().max(1) as f64,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -4,11 +4,11 @@
 //! and coexisting rest and motion with the paper's ζ, μs = 1.5, w = 0.9.
 
 use stickslip::attractor::{record_strobes, AttractorKind, RecordOptions};
-use stickslip::basins::{BasinOptions, Basins};
+use stickslip::basins::{BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::{
-    continue_both_ways, continue_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
-    SpecialKind,
+    continue_both_ways, continue_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions,
+    Obstacle, SpecialKind,
 };
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 use stickslip::solver::run_until;
@@ -725,4 +725,70 @@ fn bad_input_is_refused_with_its_name() {
         Bifurcation::new(&shockley, Axis::new(Parameter::W, vec![0.9]).unwrap()),
         Err(stickslip::Error::Unsupported(_))
     ));
+}
+
+#[test]
+fn reports_hold_what_front_ends_print() {
+    // A basin map: the report lists every attractor with its share of the grid.
+    let map = mirror_pair().run(&()).unwrap();
+    let report = BasinReport::from(&map);
+    assert_eq!(report.attractors.len(), map.attractors.len());
+    let shares: f64 = report.attractors.iter().map(|a| a.fraction).sum();
+    assert!((shares + report.unsettled_fraction - 1.0).abs() < 1e-12);
+    assert_eq!(
+        (report.grid.y0_min, report.grid.y0_max, report.grid.steps),
+        (-8.0, 8.0, 24)
+    );
+    for (a, r) in map.attractors.iter().zip(&report.attractors) {
+        assert_eq!(
+            (r.id, r.kind, r.period, r.state),
+            (a.id, a.kind, a.period, a.state)
+        );
+        let m = a.multipliers.unwrap();
+        assert_eq!(r.multipliers.unwrap()[0], [m[0].re, m[0].im]);
+        assert!(r.strobes.len() <= 64 && r.exponent.unwrap() < 0.0);
+    }
+    let json = serde_json::to_value(&report).unwrap();
+    assert_eq!(json["attractors"][0]["kind"], "periodic");
+    assert_eq!(json["model"]["mu_s"], 3.0);
+    // A branch: its special points with the stability on either side, its end in words.
+    let (pr, orbit) = fold_start();
+    let branch = continue_orbit(
+        &pr,
+        Parameter::Beta,
+        &orbit,
+        1.2,
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .unwrap();
+    let report = BranchReport::from(&branch);
+    assert_eq!(report.parameter, "beta");
+    assert_eq!(report.points, branch.points.len());
+    let kinds: Vec<SpecialKind> = report.special.iter().map(|s| s.kind).collect();
+    assert_eq!(kinds, [SpecialKind::Grazing, SpecialKind::Fold]);
+    let fold = &report.special[1];
+    assert!(fold.before.stable && !fold.after.stable);
+    assert!(report.end_text.starts_with("no progress near 1.37"));
+    assert!(report.end_text.contains("becoming tangential"));
+    let stable: Vec<bool> = branch.points.iter().map(|p| p.stable()).collect();
+    assert!(stable[0] && !stable[stable.len() - 1]);
+    assert_eq!(
+        BranchEnd::Boundary { value: 0.5 }.to_string(),
+        "the end of the range at 0.5"
+    );
+}
+
+#[test]
+fn option_helpers_keep_the_options_consistent() {
+    let o = BasinOptions::default().with_lyapunov_periods(20);
+    assert_eq!((o.lyapunov_periods, o.sample_points), (20, 20));
+    assert!(o.validate().is_ok());
+    let o = BasinOptions::default().with_lyapunov_periods(5000);
+    assert_eq!(o.sample_points, BasinOptions::default().sample_points);
+    let o = ContinuationOptions::default().with_max_step(1e-4);
+    assert_eq!((o.max_step, o.initial_step), (1e-4, 1e-4));
+    assert!(o.validate().is_ok());
+    let o = ContinuationOptions::default().with_max_step(0.5);
+    assert_eq!(o.initial_step, ContinuationOptions::default().initial_step);
 }

@@ -3,13 +3,11 @@
 use crate::model::{finite, flag_name, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
-use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::attractor::AttractorKind;
-use stickslip::basins::{BasinMap, BasinOptions, Basins};
+use stickslip::basins::{BasinMap, BasinOptions, BasinReport, Basins};
 use stickslip::experiment::Key;
-use stickslip::scan::ParameterRange;
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase, in parallel. The attractors are found
@@ -139,10 +137,9 @@ pub fn run(args: Args) -> Result<()> {
     let options = BasinOptions {
         max_periods: args.max_periods as usize,
         max_period: args.max_period as usize,
-        lyapunov_periods: args.lyapunov_periods as usize,
-        sample_points: 64.min(args.lyapunov_periods as usize),
         ..BasinOptions::default()
-    };
+    }
+    .with_lyapunov_periods(args.lyapunov_periods as usize);
     let basins = Basins::new(&experiment, &y0, &v0)?.options(options)?;
     eprintln!(
         "basins: {experiment}; grid {} × {} of initial states (y0 {}–{}, y0' {}–{}) at drive phase {}",
@@ -185,7 +182,7 @@ pub fn run(args: Args) -> Result<()> {
             .render(path)?;
     }
     if args.json {
-        let text = serde_json::to_string_pretty(&summary(&map, &y0, &v0))?;
+        let text = serde_json::to_string_pretty(&BasinReport::from(&map))?;
         let mut out = std::io::stdout().lock();
         writeln!(out, "{text}")?;
     }
@@ -219,55 +216,6 @@ pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The JSON summary (see the command's help).
-pub fn summary(map: &BasinMap, y0: &ParameterRange, v0: &ParameterRange) -> serde_json::Value {
-    let state = |s: &stickslip::State| json!({ "y": s.y, "v": s.v });
-    let attractors: Vec<serde_json::Value> = map
-        .attractors
-        .iter()
-        .map(|a| {
-            json!({
-                "id": a.id,
-                "kind": a.kind.label(),
-                "period": a.period,
-                "fraction": a.fraction,
-                "cells": a.cells,
-                "state": state(&a.state),
-                "strobes": a.strobes.iter().take(64).map(state).collect::<Vec<_>>(),
-                "exponent": finite_or_null(a.exponent),
-                "multipliers": a.multipliers.map(|m| m.iter().map(|x| [x.re, x.im]).collect::<Vec<_>>()),
-                "rest_range": a.rest_range.map(|(lo, hi)| [lo, hi]),
-                "first_cell": [a.first_cell.0, a.first_cell.1],
-            })
-        })
-        .collect();
-    json!({
-        "model": {
-            "zeta": map.params.zeta,
-            "w": map.params.w,
-            "beta": map.params.beta,
-            "phi": map.params.phi,
-            "mu_s": map.params.mu_s,
-        },
-        "grid": {
-            "y0_min": y0.from(), "y0_max": y0.to(),
-            "v0_min": v0.from(), "v0_max": v0.to(),
-            "steps": y0.steps(),
-        },
-        "attractors": attractors,
-        "unsettled": map.unsettled,
-        "unsettled_fraction": map.unsettled as f64 / map.cells.len() as f64,
-    })
-}
-
-fn finite_or_null(x: f64) -> serde_json::Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        serde_json::Value::Null
-    }
 }
 
 /// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 unsettled".

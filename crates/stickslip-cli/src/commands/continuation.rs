@@ -5,11 +5,10 @@ use crate::flags::reject_swept_flags;
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
-use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::continuation::{
-    continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle, Side,
+    continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
 
 /// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
@@ -124,12 +123,9 @@ pub fn run(args: Args) -> Result<()> {
     );
     let options = ContinuationOptions {
         max_points: args.max_points as usize,
-        max_step: args.max_step,
-        initial_step: ContinuationOptions::default()
-            .initial_step
-            .min(args.max_step),
         ..ContinuationOptions::default()
-    };
+    }
+    .with_max_step(args.max_step);
     let started = std::time::Instant::now();
     let bar = crate::output::progress(options.max_points as u64, "continue");
     let result = continue_orbit(
@@ -161,7 +157,7 @@ pub fn run(args: Args) -> Result<()> {
         crate::diagrams::branch_figure(&branch, &title).render(path)?;
     }
     if args.json {
-        let text = serde_json::to_string_pretty(&summary(&branch))?;
+        let text = serde_json::to_string_pretty(&BranchReport::from(&branch))?;
         writeln!(std::io::stdout().lock(), "{text}")?;
     }
     eprintln!(
@@ -212,37 +208,11 @@ fn side_text(s: &Side) -> String {
     )
 }
 
-/// Why a branch ends, in words.
+/// Why a branch ends, in words (the library's text, naming the flag where one applies).
 pub fn end_text(end: &BranchEnd) -> String {
-    let near = |o: &Obstacle| {
-        match o {
-        Obstacle::TurnAtStaticLimit { margin, .. } => format!(
-            "; a turning point is {margin:.1e} (relative) from the static friction limit, where it would become a stop"
-        ),
-        Obstacle::TangentialRelease { rate, .. } => format!(
-            "; a release happens where the drive's force hardly changes (|F'|/βw = {rate:.1e}): it is becoming tangential"
-        ),
-        _ => String::new(),
-    }
-    };
     match end {
-        BranchEnd::Start => "the start orbit".into(),
-        BranchEnd::Boundary { value } => format!("the end of the range at {value}"),
         BranchEnd::MaxPoints => "the most points (--max-points)".into(),
-        BranchEnd::Closed => "back at its first point (a closed branch)".into(),
-        BranchEnd::Rest { value } => format!("the orbit comes to rest at {value}"),
-        BranchEnd::Stalled {
-            value,
-            multiplier,
-            obstacle,
-        } => format!(
-            "no progress near {value:.8} (largest multiplier modulus {multiplier:.3e}){}",
-            near(obstacle)
-        ),
-        BranchEnd::Failed { value, obstacle } => format!(
-            "no orbit could be corrected past {value:.8}: the strobe map breaks there{}",
-            near(obstacle)
-        ),
+        other => other.to_string(),
     }
 }
 
@@ -290,42 +260,9 @@ pub fn write_csv(out: &mut dyn Write, branch: &Branch) -> Result<()> {
             m[0].im,
             m[1].re,
             m[1].im,
-            m[0].modulus() < 1.0,
+            p.stable(),
             p.arclength
         )?;
     }
     Ok(())
-}
-
-/// The JSON summary (see the command's help).
-pub fn summary(branch: &Branch) -> serde_json::Value {
-    let side = |s: &Side| {
-        json!({
-            "value": s.value,
-            "y": s.state.y,
-            "v": s.state.v,
-            "stops": s.stops,
-            "turns": s.turns,
-            "multipliers": s.multipliers.iter().map(|x| [x.re, x.im]).collect::<Vec<_>>(),
-            "stable": s.multipliers[0].modulus() < 1.0,
-        })
-    };
-    json!({
-        "parameter": branch.parameter.label(),
-        "period": branch.period,
-        "points": branch.points.len(),
-        "begin": branch.begin,
-        "end": branch.end,
-        "end_text": end_text(&branch.end),
-        "special": branch.special.iter().map(|s| json!({
-            "kind": s.kind.label(),
-            "value": s.value,
-            "y": s.state.y,
-            "v": s.state.v,
-            "width": s.width,
-            "located": s.located,
-            "before": side(&s.before),
-            "after": side(&s.after),
-        })).collect::<Vec<_>>(),
-    })
 }

@@ -16,6 +16,10 @@ For the circuit y = u_C/U_t, 2ζ = (R + R_D)√(C/L), β = U/U_t, w = Ω/ω0.
   boundary β_c.
 - ``sweep``: one parameter up and down with continuation (hysteresis).
 - ``phase_diagram``: motion classes on a grid of two parameters, in parallel; ``to_xarray()``.
+- ``bifurcation``: strobe points and the largest Lyapunov exponent against a parameter.
+- ``basins``: the attractor reached from each initial state of a grid, attractors numbered.
+- ``continuation``: a branch of periodic orbits with its stability, folds, period doublings
+  and grazings.
 - ``stickslip.dask``: the same maps as Dask tasks on any cluster.
 
 Every computation releases the GIL; Ctrl-C stops a long sweep, map or run; bad input raises
@@ -51,8 +55,24 @@ from ._api import (
     theory,
 )
 from ._core import Experiment, __version__
+from ._dynamics import (
+    ATTRACTOR_KINDS,
+    BasinMap,
+    BifurcationDiagram,
+    Branch,
+    basins,
+    bifurcation,
+    continuation,
+)
 
 __all__ = [
+    "ATTRACTOR_KINDS",
+    "BasinMap",
+    "BifurcationDiagram",
+    "Branch",
+    "basins",
+    "bifurcation",
+    "continuation",
     "EVENT_DTYPE",
     "EVENT_KINDS",
     "Experiment",

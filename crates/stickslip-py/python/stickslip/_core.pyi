@@ -10,11 +10,15 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "ATTRACTOR_KINDS",
     "Experiment",
     "MOTION_CLASSES",
     "PARAMETER_LONG_NAMES",
     "__version__",
+    "basins",
+    "bifurcation",
     "boundary",
+    "continuation",
     "grid",
     "simulate",
     "steady",
@@ -23,6 +27,7 @@ __all__ = [
 ]
 __version__: str
 MOTION_CLASSES: List[str]
+ATTRACTOR_KINDS: List[str]
 PARAMETER_LONG_NAMES: Dict[str, str]
 
 _Value = Union[float, int, str, None]
@@ -142,5 +147,37 @@ def grid(
     threads: Optional[int] = None,
     block: Optional[Tuple[int, int, int, int]] = None,
     fixed: Optional[Sequence[Tuple[str, float]]] = None,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def bifurcation(
+    experiment: Experiment,
+    over: str,
+    values: _FloatArray,
+    direction: str,
+    points: int,
+    transient: int,
+    first_transient: int,
+    max_period: int,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def basins(
+    experiment: Experiment,
+    y0: Tuple[float, float],
+    v0: Tuple[float, float],
+    steps: Tuple[int, int],
+    phase: Optional[float],
+    max_periods: int,
+    max_period: int,
+    lyapunov_periods: int,
+    threads: Optional[int] = None,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def continuation(
+    experiment: Experiment,
+    over: str,
+    start: float,
+    to: float,
+    max_points: int,
+    max_step: float,
     progress: _Progress = None,
 ) -> Dict[str, Any]: ...

@@ -124,6 +124,14 @@ impl Default for ContinuationOptions {
 }
 
 impl ContinuationOptions {
+    /// These options with the largest step of arclength `step`; the first step is lowered to
+    /// fit.
+    pub fn with_max_step(mut self, step: f64) -> Self {
+        self.max_step = step;
+        self.initial_step = self.initial_step.min(step);
+        self
+    }
+
     /// Check every field.
     ///
     /// # Errors
@@ -222,6 +230,11 @@ impl BranchPoint {
     /// Stops per drive period.
     pub fn stops_per_period(&self) -> f64 {
         self.stops as f64 / self.orbit.period as f64
+    }
+
+    /// Whether the orbit is stable: its larger Floquet multiplier has modulus below 1.
+    pub fn stable(&self) -> bool {
+        self.orbit.multipliers[0].modulus() < 1.0
     }
 }
 
@@ -409,6 +422,154 @@ pub struct Branch {
     pub begin: BranchEnd,
     /// How the branch ends after its last point.
     pub end: BranchEnd,
+}
+
+impl std::fmt::Display for Obstacle {
+    /// "; a turning point is 1.2e-3 (relative) from the static friction limit, …", or
+    /// nothing when no event is close to a switch.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Obstacle::TurnAtStaticLimit { margin, .. } => write!(
+                f,
+                "; a turning point is {margin:.1e} (relative) from the static friction limit, \
+                 where it would become a stop"
+            ),
+            Obstacle::TangentialRelease { rate, .. } => write!(
+                f,
+                "; a release happens where the drive's force hardly changes \
+                 (|F'|/βw = {rate:.1e}): it is becoming tangential"
+            ),
+            Obstacle::None => Ok(()),
+        }
+    }
+}
+
+impl std::fmt::Display for BranchEnd {
+    /// Why the branch ends, in words (one line).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BranchEnd::Start => f.write_str("the start orbit"),
+            BranchEnd::Boundary { value } => write!(f, "the end of the range at {value}"),
+            BranchEnd::MaxPoints => f.write_str("the most points allowed (max points)"),
+            BranchEnd::Closed => f.write_str("back at its first point (a closed branch)"),
+            BranchEnd::Rest { value } => write!(f, "the orbit comes to rest at {value}"),
+            BranchEnd::Stalled {
+                value,
+                multiplier,
+                obstacle,
+            } => write!(
+                f,
+                "no progress near {value:.8} (largest multiplier modulus {multiplier:.3e}){obstacle}"
+            ),
+            BranchEnd::Failed { value, obstacle } => write!(
+                f,
+                "no orbit could be corrected past {value:.8}: the strobe map breaks there{obstacle}"
+            ),
+        }
+    }
+}
+
+/// What a branch reports besides its points: exactly what `stickslip continue --json` prints
+/// and what the Python package's `continuation` returns as its summary. Build it with
+/// `BranchReport::from(&branch)`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BranchReport {
+    /// The continued parameter (`w`, `beta`, `zeta` or `mu_s`).
+    pub parameter: &'static str,
+    /// Period of the orbits in drive periods.
+    pub period: usize,
+    /// Number of points of the branch.
+    pub points: usize,
+    /// How the branch ends before its first point.
+    pub begin: BranchEnd,
+    /// How it ends after its last point.
+    pub end: BranchEnd,
+    /// `end` in words.
+    pub end_text: String,
+    /// The special points in order along the branch.
+    pub special: Vec<SpecialReport>,
+}
+
+/// A special point in a [`BranchReport`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpecialReport {
+    /// `fold`, `branch-point`, `period-doubling`, `neimark-sacker` or `grazing`.
+    pub kind: SpecialKind,
+    /// The parameter's value.
+    pub value: f64,
+    /// The strobe point (y, y').
+    pub y: f64,
+    /// See `y`.
+    pub v: f64,
+    /// Width of the final bracket in arclength (bounds the error of `value`).
+    pub width: f64,
+    /// Whether the bracket reached the locating tolerance.
+    pub located: bool,
+    /// The orbit at the end of the bracket before it.
+    pub before: SideReport,
+    /// The orbit at the end of the bracket after it.
+    pub after: SideReport,
+}
+
+/// One side of a special point in a [`BranchReport`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SideReport {
+    /// The parameter's value.
+    pub value: f64,
+    /// The strobe point (y, y').
+    pub y: f64,
+    /// See `y`.
+    pub v: f64,
+    /// Stops per orbit period.
+    pub stops: usize,
+    /// Turning points per orbit period.
+    pub turns: usize,
+    /// Floquet multipliers as [re, im] pairs, the larger first.
+    pub multipliers: [[f64; 2]; 2],
+    /// Whether the larger multiplier has modulus below 1.
+    pub stable: bool,
+}
+
+impl From<&Side> for SideReport {
+    fn from(s: &Side) -> Self {
+        let m = &s.multipliers;
+        Self {
+            value: s.value,
+            y: s.state.y,
+            v: s.state.v,
+            stops: s.stops,
+            turns: s.turns,
+            multipliers: [[m[0].re, m[0].im], [m[1].re, m[1].im]],
+            stable: m[0].modulus() < 1.0,
+        }
+    }
+}
+
+impl From<&Branch> for BranchReport {
+    fn from(branch: &Branch) -> Self {
+        Self {
+            parameter: branch.parameter.label(),
+            period: branch.period,
+            points: branch.points.len(),
+            begin: branch.begin.clone(),
+            end: branch.end.clone(),
+            end_text: branch.end.to_string(),
+            special: branch
+                .special
+                .iter()
+                .map(|s| SpecialReport {
+                    kind: s.kind,
+                    value: s.value,
+                    y: s.state.y,
+                    v: s.state.v,
+                    width: s.width,
+                    located: s.located,
+                    before: SideReport::from(&s.before),
+                    after: SideReport::from(&s.after),
+                })
+                .collect(),
+        }
+    }
 }
 
 /// The p strobe points of an orbit and its extremes in y.

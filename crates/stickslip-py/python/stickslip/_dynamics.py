@@ -1,0 +1,448 @@
+"""Bifurcation diagrams, basins of attraction and branches of periodic orbits (see
+``stickslip/__init__.py``): the package's side of ``stickslip bifurcation``, ``stickslip
+basins`` and ``stickslip continue``."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._api import Progress, _coordinate, _fixed_attributes, _values, _with_model
+from ._core import Experiment
+
+#: What a motion settles on, in the order of the codes in ``kind`` arrays: 'periodic',
+#: 'static' (rest), 'chaotic', 'quasiperiodic', 'unsettled' (no verdict).
+ATTRACTOR_KINDS: Tuple[str, ...] = tuple(_core.ATTRACTOR_KINDS)
+
+
+def _kind_attributes() -> Dict[str, Any]:
+    return {
+        "long_name": "what the motion settled on",
+        "flag_values": np.arange(len(ATTRACTOR_KINDS), dtype=np.int8),
+        "flag_meanings": " ".join(ATTRACTOR_KINDS),
+    }
+
+
+def _whole(name: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be a whole number, got {value!r}")
+    return int(value)
+
+
+class BifurcationDiagram:
+    """Strobe points and the largest Lyapunov exponent against a parameter
+    (``stickslip.bifurcation``): one entry per value, in the order run.
+
+    Attributes:
+        over: the stepped parameter ('w', 'beta', 'zeta' or 'mu_s').
+        value: float64 array (values,): the parameter at each value run.
+        leg: array of 'up' or 'down', the leg of each value.
+        y, v: float64 arrays (values, points): the strobe points (y, y') once per drive period
+            at drive phase φ, after the transient.
+        exponent: float64 array: the largest Lyapunov exponent per unit τ over the recorded
+            periods (the CSV's ``lambda``); exponent_error: its standard error (NaN with
+            fewer than 8 points).
+        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS`` (the CSV's ``class``).
+        period: int16, the period in drive periods, -1 without one.
+        events, stops: int64, events and stops while recording.
+        experiment, options: what was run.
+    """
+
+    def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
+                 data: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self.over = over
+        self.options = options
+        self.labels: Tuple[str, ...] = ATTRACTOR_KINDS
+        self.value: np.ndarray = data["value"]
+        self.leg = np.asarray(["up", "down"])[data["leg"]]
+        points = int(data["points"])
+        self.y: np.ndarray = data["y"].reshape(len(self.value), points)
+        self.v: np.ndarray = data["v"].reshape(len(self.value), points)
+        self.exponent: np.ndarray = data["exponent"]
+        self.exponent_error: np.ndarray = data["exponent_error"]
+        self.kind: np.ndarray = data["kind"]
+        self.period: np.ndarray = data["period"]
+        self.events: np.ndarray = data["events"]
+        self.stops: np.ndarray = data["stops"]
+
+    def __len__(self) -> int:
+        return len(self.value)
+
+    @property
+    def points(self) -> int:
+        """Strobe points per value."""
+        return self.y.shape[1]
+
+    def kind_labels(self) -> np.ndarray:
+        """What each value settled on, as a label."""
+        return np.asarray(self.labels)[self.kind]
+
+    def rows(self) -> Dict[str, np.ndarray]:
+        """The rows of ``stickslip bifurcation``'s CSV as columns, one per strobe point:
+        ``<over>``, ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period`` (-1 where
+        the CSV's cell is empty)."""
+        n = self.points
+        return {
+            self.over: np.repeat(self.value, n),
+            "y": self.y.ravel(),
+            "v": self.v.ravel(),
+            "direction": np.repeat(self.leg, n),
+            "lambda": np.repeat(self.exponent, n),
+            "class": np.repeat(self.kind_labels(), n),
+            "period": np.repeat(self.period, n),
+        }
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run), the
+        stepped parameter (the down leg reordered to match the up leg) and ``point`` (the
+        strobe points): ``y``, ``v`` (leg, parameter, point), ``exponent``,
+        ``exponent_error``, ``kind`` (CF flags), ``period`` (-1: none), ``events``,
+        ``stops``. Needs xarray (``pip install xarray``)."""
+        import xarray as xr
+
+        legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
+
+        def table(column: np.ndarray) -> np.ndarray:
+            rows = []
+            for leg in legs:
+                part = column[self.leg == leg]
+                rows.append(part[::-1] if leg == "down" else part)
+            return np.stack(rows)
+
+        values = table(self.value)[0]
+        dims = ("leg", self.over)
+        coords = {
+            "leg": ("leg", np.asarray(legs), {"long_name": "direction of the leg"}),
+            self.over: _coordinate(self.over, values),
+            "point": ("point", np.arange(self.points),
+                      {"long_name": "index of the strobe point after the transient"}),
+        }
+        data = {
+            "y": (dims + ("point",), table(self.y),
+                  {"long_name": "position y at the strobe (drive phase phi)", "units": "1"}),
+            "v": (dims + ("point",), table(self.v),
+                  {"long_name": "velocity y' at the strobe (drive phase phi)", "units": "1"}),
+            "exponent": (dims, table(self.exponent),
+                         {"long_name": "largest Lyapunov exponent per unit tau over the "
+                                       "recorded periods", "units": "1"}),
+            "exponent_error": (dims, table(self.exponent_error),
+                               {"long_name": "standard error of the exponent", "units": "1"}),
+            "kind": (dims, table(self.kind), _kind_attributes()),
+            "period": (dims, table(self.period),
+                       {"long_name": "period in drive periods (-1: none found)", "units": "1"}),
+            "events": (dims, table(self.events),
+                       {"long_name": "events while recording", "units": "1"}),
+            "stops": (dims, table(self.stops),
+                      {"long_name": "stops while recording", "units": "1"}),
+        }
+        attrs = _fixed_attributes(self.experiment, [self.over])
+        attrs["title"] = "stickslip: bifurcation diagram of the forced oscillator with dry friction"
+        for name, value in self.options.items():
+            attrs[name] = value
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{label} {int(np.sum(self.kind == k))}"
+                           for k, label in enumerate(self.labels) if np.any(self.kind == k))
+        return (f"<stickslip.BifurcationDiagram over {self.over}: {len(self)} values × "
+                f"{self.points} strobe points; {counts}>")
+
+
+class BasinMap:
+    """Which attractor the motion settles on from each initial state of a grid
+    (``stickslip.basins``).
+
+    Attributes:
+        y0, v0: float64 arrays, the initial positions (rows) and velocities (columns).
+        attractor: int32 array (len(y0), len(v0)): the number of the attractor reached, -1
+            where the motion settled on nothing within the caps (unsettled).
+        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS``, per cell.
+        period: int16, period of the cell's attractor in drive periods, -1 without one.
+        attractors: list of dicts, one per attractor as ``stickslip basins --json`` lists
+            them: id, kind, period, fraction, cells, state {y, v}, strobes (at most 64),
+            exponent (per unit τ; None where not finite), multipliers ([re, im] pairs,
+            periodic only), rest_range (static only), first_cell.
+        unsettled: cells without an attractor.
+        experiment: what was run (φ = the drive phase of the initial states).
+    """
+
+    def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self._report: Dict[str, Any] = data["report"]
+        shape = tuple(data["shape"])
+        self.labels: Tuple[str, ...] = ATTRACTOR_KINDS
+        self.y0: np.ndarray = data["y0"]
+        self.v0: np.ndarray = data["v0"]
+        self.attractor: np.ndarray = data["attractor"].reshape(shape)
+        self.kind: np.ndarray = data["kind"].reshape(shape)
+        self.period: np.ndarray = data["period"].reshape(shape)
+        self.attractors: List[Dict[str, Any]] = copy.deepcopy(self._report["attractors"])
+        self.unsettled: int = self._report["unsettled"]
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        return self.attractor.shape  # type: ignore[return-value]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The summary as ``stickslip basins --json`` prints it (model, grid, attractors,
+        unsettled, unsettled_fraction; a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def kind_labels(self) -> np.ndarray:
+        """What each cell settled on, as a label."""
+        return np.asarray(self.labels)[self.kind]
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dimensions ``y0`` and ``v0``: ``attractor`` (-1:
+        unsettled), ``kind`` (CF flags), ``period`` (-1: none), the model's parameters and the
+        summary (JSON) as attributes. Needs xarray (``pip install xarray``)."""
+        import json
+
+        import xarray as xr
+
+        dims = ("y0", "v0")
+        coords = {
+            "y0": ("y0", self.y0, {"long_name": "initial position y0", "units": "1"}),
+            "v0": ("v0", self.v0, {"long_name": "initial velocity y0'", "units": "1"}),
+        }
+        data = {
+            "attractor": (dims, self.attractor,
+                          {"long_name": "number of the attractor reached (-1: unsettled)"}),
+            "kind": (dims, self.kind, _kind_attributes()),
+            "period": (dims, self.period,
+                       {"long_name": "period in drive periods (-1: none)", "units": "1"}),
+        }
+        attrs = _fixed_attributes(self.experiment, ["y0", "v0"])
+        attrs["title"] = "stickslip: basins of attraction of the forced oscillator with dry friction"
+        attrs["summary_json"] = json.dumps(self._report)
+        ds = xr.Dataset(data, coords=coords, attrs=attrs)
+        ds["attractor"].encoding["_FillValue"] = np.int32(-1)
+        return ds
+
+    def __repr__(self) -> str:
+        parts = []
+        for a in self.attractors:
+            period = f" period {a['period']}" if a["period"] is not None else ""
+            parts.append(f"#{a['id']} {a['kind']}{period} ({100 * a['fraction']:.1f} %)")
+        return (f"<stickslip.BasinMap {self.shape[0]} × {self.shape[1]}: "
+                f"{len(self.attractors)} attractors: {', '.join(parts)}; "
+                f"{self.unsettled} unsettled>")
+
+
+class Branch:
+    """A branch of periodic orbits (``stickslip.continuation``), one entry per point in order
+    along the branch: the columns of ``stickslip continue``'s CSV.
+
+    Attributes:
+        over: the continued parameter.
+        value: float64, the parameter at each point.
+        y, v: float64, the strobe point (fixed point of the p-fold strobe map).
+        amplitude: float64, (max y − min y)/2 of the orbit.
+        period: int64, period p in drive periods; stops_per_period: float64; turns: int64,
+            turning points per orbit period.
+        mu1_re, mu1_im, mu2_re, mu2_im: float64, the Floquet multipliers, the larger first;
+            ``multipliers``: the same as a complex (points, 2) array.
+        stable: bool, the larger multiplier has modulus below 1.
+        arclength: float64, arclength in (y, y', parameter) from the first point.
+        special: list of dicts (kind 'fold', 'branch-point', 'period-doubling',
+            'neimark-sacker' or 'grazing'; value, y, v, width, located, before, after).
+        begin, end: dicts saying why the branch ends there (``reason`` and details);
+            end_text: the end in words.
+        start: (y, v, period, stops) of the orbit settled on at the start value.
+        experiment: what was run.
+    """
+
+    COLUMNS = ("value", "y", "v", "amplitude", "period", "stops_per_period", "turns",
+               "mu1_re", "mu1_im", "mu2_re", "mu2_im", "stable", "arclength")
+
+    def __init__(self, experiment: Experiment, over: str, data: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self.over = over
+        self._report: Dict[str, Any] = data["report"]
+        for name in self.COLUMNS:
+            setattr(self, name, data[name])
+        self.multipliers = np.stack([data["mu1_re"] + 1j * data["mu1_im"],
+                                     data["mu2_re"] + 1j * data["mu2_im"]], axis=-1)
+        self.special: List[Dict[str, Any]] = copy.deepcopy(self._report["special"])
+        self.begin: Dict[str, Any] = dict(self._report["begin"])
+        self.end: Dict[str, Any] = dict(self._report["end"])
+        self.end_text: str = self._report["end_text"]
+        self.start: Tuple[float, float, int, int] = tuple(data["start"])  # type: ignore[assignment]
+
+    def __len__(self) -> int:
+        return len(self.value)  # type: ignore[attr-defined]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The summary as ``stickslip continue --json`` prints it (parameter, period, points,
+        begin, end, end_text, special; a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def __repr__(self) -> str:
+        special = ", ".join(f"{s['kind']} at {s['value']:.6g}" for s in self.special) or "none"
+        return (f"<stickslip.Branch of period-{self._report['period']} orbits over {self.over}: "
+                f"{len(self)} points from {self.value[0]:.6g} to {self.value[-1]:.6g}; "  # type: ignore[attr-defined]
+                f"special points: {special}; ends: {self.end_text}>")
+
+
+def bifurcation(experiment: Experiment, over: str, values: Any, direction: str = "both", *,
+                points: int = 100, transient: int = 200, first_transient: int = 2000,
+                max_period: int = 32, progress: Progress = None) -> BifurcationDiagram:
+    """A bifurcation diagram: at each value of one parameter, after a transient, the strobe
+    points (y, y') once per drive period at drive phase φ, the largest Lyapunov exponent over
+    them and what the motion settled on (as ``stickslip bifurcation``). Each value starts from
+    the state where the value before ended, as when turning a knob, so the two directions show
+    coexisting branches. A period-p orbit gives p distinct points; chaos a cloud and λ > 0.
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with the piecewise-linear law (the exact solver);
+            it needs no value of the stepped parameter. The first value starts from its
+            initial state.
+        over: 'w', 'beta', 'zeta' or 'mu_s'.
+        values: the parameter's values, in order (any array-like of floats; dimensionless).
+        direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
+            where the up leg ended; the default).
+        points: strobe points recorded at each value (drive periods; default 100).
+        transient: drive periods run at each value before recording (default 200).
+        first_transient: drive periods of transient at the first value (default 2000).
+        max_period: longest period looked for in the recorded points (drive periods; 32).
+        progress: optional callable ``progress(done, total)`` (values).
+
+    Returns:
+        A ``BifurcationDiagram``: ``y``, ``v`` (values × points), ``exponent``, ``kind``,
+        ``period`` per value; ``rows()`` = the CSV of ``stickslip bifurcation``;
+        ``to_xarray()``.
+
+    Raises:
+        ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
+
+    Example:
+        >>> import numpy as np
+        >>> exp = stickslip.Experiment(zeta=0.0, beta=9.0, mu_s=3.0)
+        >>> d = stickslip.bifurcation(exp, "w", [0.25, 0.33], direction="up", points=60)
+        >>> d.kind_labels().tolist(), int(d.period[0]), len(np.unique(d.y[0].round(6)))
+        (['periodic', 'chaotic'], 1, 1)
+        >>> bool(d.exponent[1] > 0), len(np.unique(d.y[1].round(6))) > 30
+        (True, True)
+    """
+    experiment = _with_model(experiment, None)
+    options = {"points": _whole("points", points), "transient": _whole("transient", transient),
+               "first_transient": _whole("first_transient", first_transient),
+               "max_period": _whole("max_period", max_period)}
+    data = _core.bifurcation(experiment, over, _values("values", values), direction,
+                             options["points"], options["transient"],
+                             options["first_transient"], options["max_period"], progress)
+    return BifurcationDiagram(experiment, over, options, data)
+
+
+def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, float],
+           steps: Union[int, Tuple[int, int]] = 100, *, phase: Optional[float] = None,
+           max_periods: int = 1000, max_period: int = 16, lyapunov_periods: int = 1000,
+           threads: Optional[int] = None, progress: Progress = None) -> BasinMap:
+    """Basins of attraction: which motion the oscillator settles on from each initial state
+    (y0, y0') of a grid given at drive phase φ, in parallel (as ``stickslip basins``). The
+    attractors are numbered in the order of the cells (rows of y0, then y0'): a periodic orbit
+    by its period and its fixed point (refined by Newton's method), rest, chaos by a positive
+    largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
+    its error of zero. The result is the same for any number of threads.
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with its drive, the piecewise-linear law; its
+            initial state is not used (the grid sets it).
+        y0: (smallest, largest) initial position (dimensionless, units of y).
+        v0: (smallest, largest) initial velocity y0'.
+        steps: values along each axis, both ends included (an int, or (rows, columns);
+            default 100).
+        phase: drive phase φ (radians) at which the initial states are given (default: the
+            experiment's φ).
+        max_periods: drive periods run at most per cell to find a period (default 1000).
+        max_period: longest period looked for, 1 to 64 drive periods (default 16).
+        lyapunov_periods: drive periods over which the exponent of a motion without a period
+            is measured (default 1000).
+        threads: a pool of this many threads (default: one per core).
+        progress: optional callable ``progress(done, total)`` (cells).
+
+    Returns:
+        A ``BasinMap``: ``attractor``, ``kind``, ``period`` per cell (the CSV of ``stickslip
+        basins``), ``attractors`` and ``to_dict()`` (its ``--json``), ``to_xarray()``.
+
+    Raises:
+        ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
+
+    Example:
+        >>> exp = stickslip.Experiment(zeta=0.0, w=0.6, beta=3.269, mu_s=3.0)
+        >>> m = stickslip.basins(exp, y0=(-8, 8), v0=(-8, 8), steps=12)
+        >>> [(a["kind"], a["period"]) for a in m.attractors]
+        [('periodic', 1), ('periodic', 1)]
+        >>> m.attractor.shape, int((m.attractor == -1).sum())
+        ((12, 12), 0)
+    """
+    experiment = _with_model(experiment, None)
+    rows, cols = (steps, steps) if not isinstance(steps, (tuple, list)) else steps
+    data = _core.basins(experiment, (float(y0[0]), float(y0[1])), (float(v0[0]), float(v0[1])),
+                        (_whole("steps", rows), _whole("steps", cols)),
+                        None if phase is None else float(phase),
+                        _whole("max_periods", max_periods), _whole("max_period", max_period),
+                        _whole("lyapunov_periods", lyapunov_periods), threads, progress)
+    if phase is not None:
+        experiment = experiment.replace(phi=float(phase))
+    return BasinMap(experiment, data)
+
+
+def continuation(experiment: Experiment, over: str, start: float, to: float, *,
+                 max_points: int = 5000, max_step: float = 0.1,
+                 progress: Progress = None) -> Branch:
+    """Follow a branch of periodic orbits as one parameter goes from ``start`` to ``to``,
+    stable and unstable alike (as ``stickslip continue``). It starts from the periodic orbit
+    the motion settles on at ``start`` (from the experiment's initial state), refined by
+    Newton's method, and continues the fixed point of the p-fold strobe map in (y, y',
+    parameter) by pseudo-arclength steps, so it goes round folds. The exact solver finds the
+    events of every orbit afresh, so the branch goes on where a stop appears or disappears.
+    Special points, each located to 1e-9 in arclength: fold (a multiplier through +1, the
+    branch turns back), branch point, period doubling (through −1), grazing (the turning
+    points or stops per period change), each with the orbit on either side.
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with the piecewise-linear law; the other
+            parameters and the initial state come from it.
+        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s'.
+        start: the start value (dimensionless).
+        to: the value to continue towards; the branch stays between the two.
+        max_points: most points of the branch (default 5000).
+        max_step: largest step of arclength in (y, y', parameter) (default 0.1).
+        progress: optional callable ``progress(done, total)`` (points, of max_points).
+
+    Returns:
+        A ``Branch``: the CSV's columns as numpy arrays, ``special``, ``end`` and
+        ``to_dict()`` (= ``stickslip continue --json``).
+
+    Raises:
+        ValueError: bad input, a start at rest (start from a moving state: y0, v0), no orbit
+            found; with the library's message. KeyboardInterrupt: Ctrl-C.
+
+    Example:
+        >>> exp = stickslip.Experiment.paper(mu_s=1.5, w=0.9, y0=0.25, v0=2.1)
+        >>> b = stickslip.continuation(exp, "beta", start=1.45, to=1.25)
+        >>> [s["kind"] for s in b.special]
+        ['grazing', 'fold']
+        >>> bool(b.stable[0]), bool(b.stable[-1])
+        (True, False)
+    """
+    experiment = _with_model(experiment, None)
+    data = _core.continuation(experiment, over, float(start), float(to),
+                              _whole("max_points", max_points), float(max_step), progress)
+    return Branch(experiment, over, data)
+
+
+__all__: Sequence[str] = (
+    "ATTRACTOR_KINDS",
+    "BasinMap",
+    "BifurcationDiagram",
+    "Branch",
+    "basins",
+    "bifurcation",
+    "continuation",
+)
