@@ -18,7 +18,11 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     let basins = Basins::new(&experiment, &range, &range)?;
     let started = std::time::Instant::now();
     let map = basins.run(&|_: usize, _: usize| !crate::output::interrupted())?;
-    let seconds = started.elapsed().as_secs_f64();
+    // The time goes to standard error: the report itself is the same on every run.
+    eprintln!(
+        "reproduce: {n} × {n} basin map in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
     crate::output::check_interrupt()?;
     let title = "basins of attraction at ζ = 0, μs = 3, w = 0.6, β = 3.269 (drive phase 0)";
     report.figure(
@@ -73,7 +77,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
             "zeta": 0.0, "mu_s": 3.0, "w": 0.6, "beta": 3.269,
             "grid": n, "y0_range": [-8.0, 8.0], "v0_range": [-8.0, 8.0],
             "attractors": attractors, "unsettled": map.unsettled,
-            "mirror_gap": mirror_gap, "seconds": (seconds * 100.0).round() / 100.0,
+            "mirror_gap": mirror_gap,
         }),
     );
     let describe = |i: usize| {
@@ -101,7 +105,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
          period cannot be symmetric, so the orbit comes in a pair). Their basins wind round \
          each other in arms. Each cell runs to its steady state (the strobe map extrapolated \
          where it converges linearly), its orbit refined by Newton's method and matched by \
-         its fixed point; {} cells unsettled. Computed in {:.2} s. <code>stickslip basins \
+         its fixed point; {} cells unsettled. <code>stickslip basins \
          --zeta 0 --mu-s 3 --w 0.6 --beta 3.269 --y0-min -8 --y0-max 8 --v0-min -8 --v0-max 8 \
          --steps {n} --plot basins.png --json</code>.",
         map.attractors.len(),
@@ -109,7 +113,6 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
         describe(1),
         mirror_gap,
         map.unsettled,
-        seconds
     );
     report.sections.push(Section {
         id: "beyond-basins".into(),
