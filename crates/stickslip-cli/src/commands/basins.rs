@@ -1,13 +1,17 @@
 //! `stickslip basins`: the attractor reached from each initial state of a grid.
 
+use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::model::{finite, flag_name, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::attractor::AttractorKind;
-use stickslip::basins::{BasinMap, BasinOptions, BasinReport, Basins};
-use stickslip::experiment::Key;
+use stickslip::basins::{BasinMap, BasinOptions, BasinReport, Basins, Cell};
+use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
+use stickslip::experiment::{Experiment, Key, Origin};
+use stickslip::scan::ParameterRange;
+use stickslip::State;
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase, in parallel. The attractors are found
@@ -78,6 +82,8 @@ pub struct Args {
     /// Print the summary as JSON on standard output.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    checkpoint: CheckpointFlags,
 }
 
 /// Run `stickslip basins`.
@@ -130,6 +136,7 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
+    args.checkpoint.check()?;
     let mut experiment = args.model.experiment()?;
     if let Some(phase) = args.phase {
         experiment = experiment.with_phi(phase)?;
@@ -141,6 +148,11 @@ pub fn run(args: Args) -> Result<()> {
     }
     .with_lyapunov_periods(args.lyapunov_periods as usize);
     let basins = Basins::new(&experiment, &y0, &v0)?.options(options)?;
+    // A checkpoint of other parameters, or a damaged one, is refused before any work.
+    let checkpoint = args.checkpoint.open(
+        identity(&experiment, &y0, &v0, basins.basin_options())?,
+        y0.steps(),
+    )?;
     eprintln!(
         "basins: {experiment}; grid {} × {} of initial states (y0 {}–{}, y0' {}–{}) at drive phase {}",
         y0.steps(),
@@ -155,13 +167,29 @@ pub fn run(args: Args) -> Result<()> {
     let total = rows * cols;
     let started = std::time::Instant::now();
     let bar = crate::output::progress(total as u64, "basins");
-    let result = basins.run(&|_: usize, _: usize| {
-        bar.inc(1);
-        !crate::output::interrupted()
-    });
-    bar.finish_and_clear();
-    crate::output::check_interrupt()?;
-    let map = result?;
+    let mut checkpoint_file = None;
+    let (map, computed) = match checkpoint {
+        None => {
+            let result = basins.run(&|_: usize, _: usize| {
+                bar.inc(1);
+                !crate::output::interrupted()
+            });
+            bar.finish_and_clear();
+            crate::output::check_interrupt()?;
+            (result?, total)
+        }
+        Some(mut file) => {
+            let computed = run_rows(&basins, &mut file, &bar);
+            bar.finish_and_clear();
+            // Whatever happened, the rows finished so far are saved for the rerun.
+            file.save()?;
+            crate::output::check_interrupt()?;
+            let computed = computed?;
+            let map = basins.identify(&rows_to_cells(&basins, file.checkpoint())?)?;
+            checkpoint_file = Some(file);
+            (map, computed)
+        }
+    };
     let seconds = started.elapsed().as_secs_f64();
 
     if args.out.is_some() || !args.json {
@@ -186,12 +214,135 @@ pub fn run(args: Args) -> Result<()> {
         let mut out = std::io::stdout().lock();
         writeln!(out, "{text}")?;
     }
+    if let Some(file) = checkpoint_file {
+        file.remove()?;
+    }
     eprintln!(
-        "basins: {total} cells in {seconds:.2} s ({:.1} µs per cell): {}",
-        seconds * 1e6 / total as f64,
+        "basins: {total} cells ({computed} computed) in {seconds:.2} s ({:.1} µs per computed cell): {}",
+        seconds * 1e6 / computed.max(1) as f64,
         describe(&map)
     );
     Ok(())
+}
+
+/// Everything that determines the map: the experiment (whatever file or flags described it,
+/// with the drive phase of the initial states), both axes, the options.
+fn identity(
+    experiment: &Experiment,
+    y0: &ParameterRange,
+    v0: &ParameterRange,
+    options: &BasinOptions,
+) -> Result<Identity> {
+    let experiment = experiment.clone().with_origin(Origin::Parts);
+    let axis = |r: &ParameterRange| format!("{:?} {:?} {}", r.from(), r.to(), r.steps());
+    Ok(Identity::new("basins")
+        .with("experiment", serde_json::to_string(&experiment)?)
+        .with("y0", axis(y0))
+        .with("v0", axis(v0))
+        .with("options", serde_json::to_string(options)?))
+}
+
+/// Rows per block handed to the map at once: enough cells to keep every thread busy.
+fn block_rows(columns: usize) -> usize {
+    (4 * 16 * rayon::current_num_threads())
+        .div_ceil(columns)
+        .max(1)
+}
+
+/// Compute the rows the checkpoint lacks, block by block, saving each finished row; returns
+/// the number of cells computed.
+fn run_rows(
+    basins: &Basins,
+    file: &mut CheckpointFile,
+    bar: &indicatif::ProgressBar,
+) -> Result<usize> {
+    let (_, columns) = basins.shape();
+    let done = file.checkpoint().done();
+    if done > 0 {
+        eprintln!(
+            "basins: resuming from {}: {} of {} rows reused",
+            file.path().display(),
+            done,
+            file.checkpoint().total()
+        );
+        bar.inc((done * columns) as u64);
+    }
+    let missing: Vec<usize> = file.checkpoint().missing().collect();
+    let mut computed = 0;
+    for block in missing.chunk_by(|a, b| b == &(a + 1)) {
+        for rows in block.chunks(block_rows(columns)) {
+            let (first, last) = (rows[0], rows[rows.len() - 1]);
+            let cells = basins.run_rows(first..last + 1, &|_: usize, _: usize| {
+                bar.inc(1);
+                !crate::output::interrupted()
+            })?;
+            for (row, chunk) in rows.iter().zip(cells.chunks(columns)) {
+                file.insert(*row, encode_row(chunk))?;
+            }
+            computed += cells.len();
+        }
+    }
+    Ok(computed)
+}
+
+/// A row of cells as a checkpoint unit: per cell its kind, period (0: none), exponent,
+/// periods simulated, and its strobe points (count, then y and y' of each).
+fn encode_row(cells: &[Cell]) -> Vec<u8> {
+    let mut unit = UnitWriter::new();
+    for c in cells {
+        let kind = AttractorKind::ALL
+            .iter()
+            .position(|&k| k == c.kind)
+            .expect("a kind of ALL");
+        unit.u8(kind as u8)
+            .u64(c.period.map_or(0, |p| p as u64))
+            .f64(c.exponent)
+            .u64(c.periods as u64)
+            .u64(c.strobes.len() as u64);
+        for x in &c.strobes {
+            unit.f64(x.y).f64(x.v);
+        }
+    }
+    unit.finish()
+}
+
+/// Every cell of the grid, row-major, from the rows of a complete checkpoint.
+fn rows_to_cells(basins: &Basins, checkpoint: &Checkpoint) -> Result<Vec<Cell>> {
+    let (rows, columns) = basins.shape();
+    let mut cells = Vec::with_capacity(rows * columns);
+    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
+    for i in 0..rows {
+        let mut r = UnitReader::new(checkpoint.unit(i).ok_or_else(damaged)?);
+        for _ in 0..columns {
+            let kind = *AttractorKind::ALL
+                .get(r.u8().ok_or_else(damaged)? as usize)
+                .ok_or_else(damaged)?;
+            let period = r.u64().ok_or_else(damaged)?;
+            let exponent = r.f64().ok_or_else(damaged)?;
+            let periods = r.u64().ok_or_else(damaged)? as usize;
+            let n = r.u64().ok_or_else(damaged)?;
+            if n > 1 << 20 {
+                return Err(damaged());
+            }
+            let mut strobes = Vec::with_capacity(n as usize);
+            for _ in 0..n {
+                let y = r.f64().ok_or_else(damaged)?;
+                let v = r.f64().ok_or_else(damaged)?;
+                strobes.push(State { y, v });
+            }
+            cells.push(Cell {
+                kind,
+                period: (period > 0).then_some(period as usize),
+                strobes,
+                exponent,
+                periods,
+            });
+        }
+        if !r.is_empty() {
+            return Err(damaged());
+        }
+    }
+    Ok(cells)
 }
 
 fn short(x: f64) -> String {

@@ -285,3 +285,86 @@ fn bad_checkpoint_flags_give_one_line_and_exit_code_2() {
         assert_usage_error(dir.path(), &out, needle);
     }
 }
+
+/// A basin map whose every cell is chaotic (the costliest kind), short caps.
+const BASINS: &[&str] = &[
+    "basins",
+    "--zeta",
+    "0",
+    "--mu-s",
+    "3",
+    "--w",
+    "0.33",
+    "--beta",
+    "9",
+    "--y0-min",
+    "-8",
+    "--y0-max",
+    "8",
+    "--v0-min",
+    "-8",
+    "--v0-max",
+    "8",
+    "--steps",
+    "40",
+    "--max-periods",
+    "300",
+    "--lyapunov-periods",
+    "300",
+    "--out",
+    "basins.csv",
+    "--plot",
+    "basins.png",
+    "--json",
+];
+
+/// Bytes of a saved row of that map: 40 chaotic cells with 64 strobe points each, index
+/// and length.
+const BASIN_ROW: u64 = 40 * (1 + 4 * 8 + 64 * 16) + 16;
+
+#[test]
+fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
+    let reference = tempfile::tempdir().unwrap();
+    let first = run_in(reference.path(), BASINS);
+    assert!(first.status.success(), "{}", stderr(&first));
+    assert_eq!(
+        number_after(&stderr(&first), "cells ("),
+        1600,
+        "all computed"
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    let args = with_checkpoint(BASINS);
+    kill_part_way(dir.path(), &args, 4, BASIN_ROW);
+    assert!(!dir.path().join("basins.csv").exists(), "no output yet");
+    let saved = std::fs::read(dir.path().join("run.ckpt")).unwrap();
+
+    // Another drive phase is another map: refused before any work.
+    let mut other = args.clone();
+    other.extend(["--phase", "0.5"]);
+    let out = run_in(dir.path(), &other);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("cannot resume from checkpoint run.ckpt"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(std::fs::read(dir.path().join("run.ckpt")).unwrap() == saved);
+
+    let out = run_in(dir.path(), &args);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    let reused = number_after(&err, "resuming from run.ckpt: ");
+    assert!((4..40).contains(&reused), "{reused} rows reused: {err}");
+    assert_eq!(number_after(&err, "cells ("), (40 - reused) * 40, "{err}");
+    assert!(out.stdout == first.stdout, "the JSON summary differs");
+    for file in ["basins.csv", "basins.png"] {
+        let a = std::fs::read(reference.path().join(file)).unwrap();
+        let b = std::fs::read(dir.path().join(file)).unwrap();
+        assert!(a == b, "{file} differs from the uninterrupted run's");
+    }
+    assert!(
+        !dir.path().join("run.ckpt").exists(),
+        "removed after success"
+    );
+}
