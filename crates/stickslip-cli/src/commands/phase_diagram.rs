@@ -3,7 +3,7 @@
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
-use crate::plot::{class_color, Cell, Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -14,13 +14,25 @@ use stickslip::{DiodeModel, Experiment, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
 /// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
-/// nonperiodic-stick or static (the paper's Figs. 6 and 7).
+/// nonperiodic-stick or static (the paper's Figs. 6 and 7), and chaotic: a motion that does
+/// not repeat and whose largest Lyapunov exponent is positive beyond 4 standard errors
+/// (exact PWL model; see `stickslip steady --help`).
 ///
-/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain
-/// (period empty when none ≤ --max-period was found).
+/// With --color lyapunov every point also gets its largest Lyapunov exponent λ1 per unit
+/// τ = ω0·t: exactly, ln|μ1|/(pT) from the Floquet multiplier μ1 of its periodic orbit
+/// (refined by Newton's method) where the motion repeats, and measured over
+/// --lyapunov-periods where it does not; the plot maps λ1 (red: chaos, blue: contraction,
+/// white: 0, e.g. rest).
+///
+/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain, and with --color lyapunov
+/// also lambda,lambda_error (λ1 and its standard error per unit τ; 0 error for an exact
+/// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
+/// --max-period was found.
 ///
 /// Example: stickslip phase-diagram --preset paper --w-steps 200 --beta-steps 200 \
 ///          --out map.csv --plot map.png
+///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
+///          --beta-min 6 --beta-max 12 --color lyapunov --plot lyapunov.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -53,6 +65,19 @@ pub struct Args {
     /// boundary where they exist inside the β range (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
+    /// every point, and written to the CSV as lambda,lambda_error).
+    #[arg(long, value_enum, default_value_t = Color::Class)]
+    color: Color,
+}
+
+/// What the cells of the map show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Color {
+    /// The motion class.
+    Class,
+    /// The largest Lyapunov exponent per unit τ.
+    Lyapunov,
 }
 
 /// Run `stickslip phase-diagram`.
@@ -91,14 +116,21 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
+    let lyapunov = args.color == Color::Lyapunov;
+    if lyapunov && args.steady.lyapunov_periods == 0 {
+        usage!("--color lyapunov measures motions that do not repeat: --lyapunov-periods must not be 0");
+    }
     let experiment = args.model.experiment()?;
     let options = args.steady.options(&experiment)?;
-    let grid = Grid::new(
+    let mut grid = Grid::new(
         &experiment,
         Axis::range(Parameter::W, &w)?,
         Axis::range(Parameter::Beta, &beta)?,
     )?
     .options(options)?;
+    if let (true, Some(measure)) = (lyapunov, options.lyapunov) {
+        grid = grid.lyapunov(measure)?;
+    }
     eprintln!(
         "phase-diagram: {experiment}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
         w.steps(),
@@ -122,9 +154,14 @@ pub fn run(args: Args) -> Result<()> {
     let elapsed = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
-    writeln!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
+    write!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
+    writeln!(
+        sink,
+        "{}",
+        if lyapunov { ",lambda,lambda_error" } else { "" }
+    )?;
     for p in &points {
-        writeln!(
+        write!(
             sink,
             "{},{},{},{},{},{}",
             p.params.w,
@@ -134,10 +171,33 @@ pub fn run(args: Args) -> Result<()> {
             p.stops_per_period,
             p.gain
         )?;
+        if lyapunov {
+            match p.lyapunov {
+                Some(l) => write!(sink, ",{},{}", l.per_tau, l.error_per_tau)?,
+                None => write!(sink, ",,")?,
+            }
+        }
+        writeln!(sink)?;
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&points, &w, &beta, &experiment, path)?;
+        plot(&points, &w, &beta, &experiment, lyapunov, path)?;
+    }
+    if lyapunov {
+        let top = points
+            .iter()
+            .filter_map(|p| p.lyapunov.map(|l| (p, l)))
+            .max_by(|a, b| a.1.per_tau.total_cmp(&b.1.per_tau));
+        if let Some((p, l)) = top {
+            eprintln!(
+                "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at (w, β) = ({}, {}), {}",
+                l.per_tau,
+                l.error_per_tau,
+                p.params.w,
+                p.params.beta,
+                p.class.label()
+            );
+        }
     }
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     eprintln!(
@@ -159,6 +219,7 @@ fn plot(
     w: &ParameterRange,
     beta: &ParameterRange,
     experiment: &Experiment,
+    lyapunov: bool,
     path: &std::path::Path,
 ) -> Result<()> {
     // Cells centred on the grid points; a single row or column gets a unit-less width.
@@ -170,19 +231,27 @@ fn plot(
         }
     };
     let (hw, hb) = (half(w), half(beta));
+    let color_bar = lyapunov.then(|| exponent_bar(points));
     let cells = points
         .iter()
         .map(|p| Cell {
             x: (p.params.w - hw, p.params.w + hw),
             y: (p.params.beta - hb, p.params.beta + hb),
-            color: class_color(p.class),
+            color: match &color_bar {
+                Some(bar) => bar.color(p.lyapunov.map_or(f64::NAN, |l| l.per_tau)),
+                None => class_color(p.class),
+            },
         })
         .collect();
-    let cell_legend = MotionClass::ALL
-        .iter()
-        .filter(|&&c| points.iter().any(|p| p.class == c))
-        .map(|&c| (c.label().to_string(), class_color(c)))
-        .collect();
+    let cell_legend = if lyapunov {
+        Vec::new()
+    } else {
+        MotionClass::ALL
+            .iter()
+            .filter(|&&c| points.iter().any(|p| p.class == c))
+            .map(|&c| (c.label().to_string(), class_color(c)))
+            .collect()
+    };
     // The boundaries of the piecewise-linear theory, where they exist inside the β range,
     // across the cells' full width (but w > 0).
     let (beta_lo, beta_hi) = (beta.from() - hb, beta.to() + hb);
@@ -221,12 +290,14 @@ fn plot(
             Style::Line(2),
         ));
     }
+    let what = if lyapunov {
+        "largest Lyapunov exponent"
+    } else {
+        "motion classes"
+    };
     let panel = Panel {
         series,
-        title: format!(
-            "motion classes from rest, ζ = {:.4}, μs = {}",
-            base.zeta, base.mu_s
-        ),
+        title: format!("{what} from rest, ζ = {:.4}, μs = {}", base.zeta, base.mu_s),
         x_label: "w = Ω/ω0".into(),
         y_label: "β = U/U_t".into(),
         cells,
@@ -234,6 +305,17 @@ fn plot(
         x_range: Some((w.from() - hw, w.to() + hw)),
         y_range: Some((beta.from() - hb, beta.to() + hb)),
         legend: Some(Legend::UpperRight),
+        color_bar,
     };
-    Figure::single(panel, (900, 700)).render(path)
+    let width = if lyapunov { 1040 } else { 900 };
+    Figure::single(panel, (width, 700)).render(path)
+}
+
+/// The colour bar of a map of exponents (see [`ColorBar::for_values`]).
+fn exponent_bar(points: &[GridPoint]) -> ColorBar {
+    let values: Vec<f64> = points
+        .iter()
+        .filter_map(|p| p.lyapunov.map(|l| l.per_tau))
+        .collect();
+    ColorBar::for_values("λ1 per unit τ (ω0·t)", &values)
 }

@@ -5,7 +5,9 @@ mod common;
 
 mod convert;
 mod lab;
+mod lyapunov;
 mod netlist;
+mod orbit;
 mod phase_diagram;
 mod reproduce;
 mod simulate;

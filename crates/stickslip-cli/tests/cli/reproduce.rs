@@ -69,7 +69,13 @@ fn writes_every_figure_table_and_the_report() {
     let fig6 = summary["fig6"].as_array().expect("fig6 classes");
     assert_eq!(fig6.len(), 4);
     let classes: Vec<&str> = fig6.iter().map(|p| p["class"].as_str().unwrap()).collect();
-    let allowed = ["sliding", "periodic-stick", "nonperiodic-stick", "static"];
+    let allowed = [
+        "sliding",
+        "periodic-stick",
+        "nonperiodic-stick",
+        "static",
+        "chaotic",
+    ];
     assert!(classes.iter().all(|c| allowed.contains(c)), "{classes:?}");
     // The first and last of the paper's points are unambiguous.
     assert_eq!(classes[0], "sliding");

@@ -1,6 +1,8 @@
 //! `stickslip reproduce`: every figure and table of the paper from the paper's circuit, as PNG
-//! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`.
+//! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`; then the
+//! chapter "Beyond the paper".
 
+mod beyond;
 mod figures;
 mod report;
 
@@ -11,7 +13,8 @@ use std::path::PathBuf;
 use stickslip::experiment::Experiment;
 use stickslip::{Circuit, Diode, PwlDiode, Scales};
 
-/// Regenerate every figure and table of the paper, with an HTML report.
+/// Regenerate every figure and table of the paper, with an HTML report, and the chapter
+/// "Beyond the paper" (chaos with static friction above kinetic, Lyapunov exponents).
 ///
 /// Writes DIR/index.html (opens from disk), DIR/summary.json (key numbers), and for each
 /// figure DIR/figN.png, DIR/figN.svg and the CSV data behind it.
@@ -68,6 +71,10 @@ pub fn run(args: Args) -> Result<()> {
         ("Fig. 6", figures::fig6),
         ("Fig. 7", figures::fig7),
         ("accuracy", figures::accuracy),
+        ("Beyond the paper", beyond::chapter),
+        ("chaos: λ1 against w", beyond::chaos_sweep),
+        ("chaos: (w, β) map", beyond::chaos_map),
+        ("the paper's non-periodic class", beyond::paper_exponents),
     ];
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \
