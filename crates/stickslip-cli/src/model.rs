@@ -246,9 +246,12 @@ impl ModelArgs {
         for (key, value) in self.values() {
             if let Some(v) = value {
                 if let Err(stickslip::Error::InvalidParameter { allowed, .. }) = flags.set(key, v) {
-                    return Err(
-                        UsageError(format!("invalid {} {v}: {allowed}", flag_name(key))).into(),
-                    );
+                    return Err(UsageError(format!(
+                        "invalid {} {}: {allowed}",
+                        flag_name(key),
+                        stickslip::Number(v)
+                    ))
+                    .into());
                 }
             }
         }

@@ -26,6 +26,34 @@ macro_rules! usage {
 }
 pub(crate) use usage;
 
+/// Append one line to a `String` of text output (`writeln!` that cannot fail).
+macro_rules! outln {
+    ($text:expr, $($arg:tt)*) => {{
+        use std::fmt::Write as _;
+        let _ = writeln!($text, $($arg)*);
+    }};
+}
+pub(crate) use outln;
+
+/// Write `text` to standard output, reporting errors (a closed pipe among them, which
+/// `main` turns into a quiet exit) instead of panicking as `print!` does.
+pub fn print(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Whether an error comes from writing to a pipe whose reader has gone (`head` after its
+/// first lines, say): the tool then stops quietly, as command-line tools do.
+pub fn is_broken_pipe(err: &anyhow::Error) -> bool {
+    err.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
 /// Make Ctrl-C set a flag that long computations poll (see [`check_interrupt`]), so they stop
@@ -127,8 +155,8 @@ impl Drop for AtomicFile {
 pub enum Sink {
     /// A file written atomically.
     File(AtomicFile),
-    /// Standard output.
-    Stdout(std::io::StdoutLock<'static>),
+    /// Standard output, buffered.
+    Stdout(BufWriter<std::io::StdoutLock<'static>>),
 }
 
 impl Sink {
@@ -136,7 +164,10 @@ impl Sink {
     pub fn open(path: Option<&Path>) -> Result<Self> {
         match path {
             Some(p) if p != Path::new("-") => Ok(Sink::File(AtomicFile::create(p)?)),
-            _ => Ok(Sink::Stdout(std::io::stdout().lock())),
+            _ => Ok(Sink::Stdout(BufWriter::with_capacity(
+                1 << 16,
+                std::io::stdout().lock(),
+            ))),
         }
     }
 

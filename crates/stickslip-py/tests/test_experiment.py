@@ -106,9 +106,9 @@ def test_values_with_si_prefixes():
 
 def test_errors_are_value_errors_with_the_library_message():
     cases = [
-        (lambda: Experiment(w=-1), "invalid w = -1: must be finite and > 0"),
-        (lambda: Experiment(mu_s=0.5), "invalid mu_s = 0.5: must be finite and >= 1"),
-        (lambda: Experiment(zeta=float("nan")), "invalid zeta = NaN: must be finite and >= 0"),
+        (lambda: Experiment(w=-1), "invalid w = -1: must be finite and from 1e-5 to 1e5 (docs/limits.md)"),
+        (lambda: Experiment(mu_s=0.5), "invalid mu_s = 0.5: must be finite and from 1 to 1e9 (docs/limits.md)"),
+        (lambda: Experiment(zeta=float("nan")), "invalid zeta = NaN: must be finite and from 0 to 1e4 (docs/limits.md)"),
         (lambda: Experiment.circuit(L=1e-3, C=1e-9, R=1, U_t=0.7),
          "a circuit description needs R_D (or use the preset paper)"),
         (lambda: Experiment.paper(zeta=0.1),

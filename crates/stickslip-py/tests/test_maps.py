@@ -77,7 +77,7 @@ def test_sweep_directions_and_xarray():
         stickslip.sweep(Experiment.paper(beta=3.61), "w", values, direction="sideways")
     with pytest.raises(ValueError, match="^unknown parameter 'phi'"):
         stickslip.sweep(Experiment.paper(beta=3.61), "phi", values)
-    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and > 0$"):
+    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and from 1e-5 to 1e5 \(docs/limits\.md\)$"):
         stickslip.sweep(Experiment.paper(beta=3.61), "w", [0.5, 0.0])
 
 
@@ -179,7 +179,7 @@ def test_map_to_xarray(tool_map):
 
 def test_map_errors():
     e = Experiment.paper()
-    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and > 0$"):
+    with pytest.raises(ValueError, match=r"^invalid w = 0: must be finite and from 1e-5 to 1e5 \(docs/limits\.md\)$"):
         stickslip.phase_diagram(e, w=[0.0, 1.0], beta=[1.0])
     with pytest.raises(TypeError, match="takes 2 parameter arrays"):
         stickslip.phase_diagram(e, w=[1.0])

@@ -122,7 +122,7 @@ def test_boundary_broadcasts():
         assert_same(p2[k], paper_k, "broadcast ζ, paper")
         assert_same(e2[k], exact_k, "broadcast ζ, exact")
     assert not np.array_equal(e2[0], e2[2])
-    with pytest.raises(ValueError, match=r"^invalid w = -1: must be finite and > 0$"):
+    with pytest.raises(ValueError, match=r"^invalid w = -1: must be finite and from 1e-5 to 1e5 \(docs/limits\.md\)$"):
         stickslip.boundary(0.05, [0.5, -1.0])
-    with pytest.raises(ValueError, match=r"^invalid mu_s = 0.5: must be finite and >= 1$"):
+    with pytest.raises(ValueError, match=r"^invalid mu_s = 0.5: must be finite and from 1 to 1e9 \(docs/limits\.md\)$"):
         stickslip.boundary(0.05, 1.0, mu_s=0.5)

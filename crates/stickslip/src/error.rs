@@ -13,7 +13,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum Error {
     /// A parameter is NaN, infinite or outside its allowed range.
-    #[error("invalid {name} = {value}: {allowed}")]
+    #[error("invalid {name} = {}: {allowed}", Number(*value))]
     InvalidParameter {
         /// Name of the parameter as the user knows it (e.g. `zeta`, `L`).
         name: &'static str,
@@ -37,6 +37,59 @@ pub enum Error {
         tau: f64,
         /// What failed.
         reason: &'static str,
+    },
+    /// The exact solver's search for the velocity zero that ends a slide (a turn or a stop)
+    /// used up its step budget: the motion lies outside what the solver resolves.
+    #[error(
+        "the search for the velocity zero (turn or stop) ending the slide in the {direction} \
+         direction that started at tau = {start:.6e} gave up at tau = {tau:.6e} after {steps} \
+         steps: lower beta, |y0|, |v0| or zeta, or shorten the run (docs/limits.md)"
+    )]
+    SlideSearch {
+        /// Time (dimensionless τ) at which the slide started.
+        start: f64,
+        /// Time (dimensionless τ) up to which the slide was searched.
+        tau: f64,
+        /// Direction of the slide, `+` or `-`.
+        direction: char,
+        /// Search steps taken on the slide.
+        steps: u64,
+    },
+    /// A run longer than the time range the solvers resolve ([`crate::limits::max_periods`]).
+    #[error(
+        "a run of {} drive periods at w = {} is too long: the time and the drive phase must \
+         stay below 2^32, where their rounding is 1e-6; at most {} periods at this w \
+         (docs/limits.md)",
+        Number(*periods),
+        Number(*w),
+        Number(max_periods.floor())
+    )]
+    HorizonTooLong {
+        /// Drive periods asked for.
+        periods: f64,
+        /// The drive frequency w.
+        w: f64,
+        /// The most drive periods allowed at this w.
+        max_periods: f64,
+    },
+    /// A physical value whose dimensionless image lies outside the range the solvers
+    /// support ([`crate::limits`]).
+    #[error(
+        "invalid {key} = {}: it gives {image} = {}, which {allowed}",
+        Number(*value),
+        Number(*image_value)
+    )]
+    ImageOutOfRange {
+        /// The physical value (e.g. `f`, `U`, `R`).
+        key: crate::experiment::Key,
+        /// The physical value.
+        value: f64,
+        /// The dimensionless quantity it gives (e.g. `w`, `beta`, `zeta`).
+        image: &'static str,
+        /// Its value.
+        image_value: f64,
+        /// The dimensionless quantity's range, in words.
+        allowed: &'static str,
     },
     /// The stiff integrator's step size fell below what the time's rounding allows.
     #[error("integrator failed at tau = {tau}: step size underflow (h = {step:e})")]
@@ -240,6 +293,22 @@ impl std::fmt::Display for Unsupported {
                  not Shockley diodes"
             }
         })
+    }
+}
+
+/// A number for a message: as Rust writes it (shortest text that reads back the same) from
+/// 10⁻⁴ to 10¹⁵, in exponent form beyond (never 300 digits).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
     }
 }
 

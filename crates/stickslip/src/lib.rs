@@ -28,6 +28,10 @@
 //! - [`scan`]: sweeps of ζ, w, β or μs with hysteresis ([`scan::Sweep`]) and grids of any two
 //!   ([`scan::Grid`]), with progress and cancellation, deterministic for any number of
 //!   threads.
+//! - [`limits`]: the ranges of parameters, initial states and run lengths in which the
+//!   solvers keep their accuracy, enforced wherever values enter the library.
+//! - [`checkpoint`]: a resumable record of finished work (rows of a map, steps of a sweep),
+//!   with its parameters and a checksum, for front ends that save long runs as they go.
 //! - [`theory`]: the paper's series solution, the exact periodic solution, both stick-slip
 //!   boundaries, and their curves.
 //! - [`stability`]: the exact tangent dynamics (segment and saltation matrices), periodic
@@ -37,9 +41,11 @@
 //! The library does no I/O and prints nothing; the `stickslip` command-line tool is the glue.
 
 mod certify;
+pub mod checkpoint;
 pub mod error;
 pub mod exact;
 pub mod experiment;
+pub mod limits;
 mod linear;
 pub mod params;
 pub mod physical;
@@ -54,7 +60,7 @@ pub mod theory;
 mod trig;
 pub mod units;
 
-pub use error::{Error, NoSolutionReason, Quantity, Result, Unsupported};
+pub use error::{Error, NoSolutionReason, Number, Quantity, Result, Unsupported};
 pub use exact::ExactSolver;
 pub use experiment::{DiodeModel, Experiment, ExperimentSpec};
 pub use params::{Parameter, Params, State};

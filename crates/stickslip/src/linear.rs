@@ -29,6 +29,8 @@ pub(crate) struct Damping {
     inv_omega: f64,
     /// (1 − ζ)(1 + ζ).
     one_minus_zeta2: f64,
+    /// Decay rate ζ + κ of the fast mode (overdamped only, else 0).
+    fast: f64,
 }
 
 impl Damping {
@@ -42,6 +44,7 @@ impl Damping {
                 s_cap: 1.0 / omega,
                 inv_omega: 1.0 / omega,
                 one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
+                fast: 0.0,
             }
         } else if zeta == 1.0 {
             Self {
@@ -51,6 +54,7 @@ impl Damping {
                 s_cap: f64::INFINITY,
                 inv_omega: f64::NAN,
                 one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
+                fast: 0.0,
             }
         } else {
             let kappa = ((zeta - 1.0) * (zeta + 1.0)).sqrt();
@@ -61,6 +65,7 @@ impl Damping {
                 s_cap: 0.5 / kappa,
                 inv_omega: f64::NAN,
                 one_minus_zeta2: (1.0 - zeta) * (1.0 + zeta),
+                fast: zeta + kappa,
             }
         }
     }
@@ -96,6 +101,11 @@ impl Damping {
         (q - z * p, -self.one_minus_zeta2 * p - z * q)
     }
 }
+
+/// From this ζ on, overdamped segments are evaluated mode by mode (see
+/// `LinearSegment::modes`); below it the basis EC, ES, whose coefficients then grow at most
+/// 16-fold, is accurate, and also near ζ = 1, where the two modes merge.
+const MODE_FORM_ZETA: f64 = 2.0;
 
 /// Number of derivatives of y kept per segment: y, y', y'', y''', y''''.
 const ORDERS: usize = 5;
@@ -188,6 +198,12 @@ pub(crate) struct LinearSegment {
     /// Complex amplitudes of the homogeneous mode (p_k − i q_k/ω_d) in orders 3 and 4
     /// (underdamped segments only).
     hom_phasors: [(f64, f64); 2],
+    /// Segments with ζ ≥ [`MODE_FORM_ZETA`] only: the homogeneous part as its two decaying modes,
+    /// A e^{−ρ_s t} + B e^{−ρ_f t} (ρ_s = 1/(ζ + κ), ρ_f = ζ + κ), and of each derivative:
+    /// (A(−ρ_s)ᵏ, B(−ρ_f)ᵏ). In the basis EC, ES the coefficients of order k grow like ζᵏ
+    /// while the slow mode's derivatives shrink like ζ⁻ᵏ, so there the rounding would swamp
+    /// them; mode by mode every term is exact to rounding.
+    modes: [(f64, f64); ORDERS],
     /// y, y', …, y'''' at local time 0, from the initial state and the equation itself.
     start: Derivatives,
 }
@@ -225,6 +241,7 @@ impl LinearSegment {
             hom: [(0.0, 0.0); ORDERS],
             mode_amplitude: f64::INFINITY,
             hom_phasors: [(0.0, 0.0); 2],
+            modes: [(0.0, 0.0); ORDERS],
             start: Derivatives {
                 d: [0.0; ORDERS],
                 envelope: 1.0,
@@ -262,7 +279,12 @@ impl LinearSegment {
         let u0 = y0 - yp0;
         let u1 = v0 - vp0;
         self.hom[0] = (u0, u1 + zeta * u0);
-        for k in 1..ORDERS {
+        // The velocity's coefficients straight from (u0, u1): through `derive`, the first
+        // would be (u1 + ζu0) − ζu0, rounded to ε·ζ·|u0|, an error of the velocity that the
+        // noise estimate of `eval` does not see (at ζ = 1, u0 = 1e9 it put a velocity zero
+        // 2.5e-10 after a start with acceleration 124).
+        self.hom[1] = (u1, -u0 - zeta * u1);
+        for k in 2..ORDERS {
             self.hom[k] = f.damping.derive(self.hom[k - 1]);
         }
         if zeta < 1.0 {
@@ -273,6 +295,15 @@ impl LinearSegment {
                 (self.hom[3].0, -self.hom[3].1 * inv),
                 (self.hom[4].0, -self.hom[4].1 * inv),
             ];
+        } else if zeta >= MODE_FORM_ZETA {
+            // u = A e^{−ρ_s t} + B e^{−ρ_f t} with u(0) = u0, u'(0) = u1.
+            let (slow, fast) = (f.damping.decay, f.damping.fast);
+            let gap = fast - slow;
+            let (mut a, mut b) = ((fast * u0 + u1) / gap, -(slow * u0 + u1) / gap);
+            for k in 0..ORDERS {
+                self.modes[k] = (a, b);
+                (a, b) = (-slow * a, -fast * b);
+            }
         }
         self.theta = theta;
         self.offset = -c;
@@ -287,6 +318,9 @@ impl LinearSegment {
     /// y, y', …, y'''' at local time t.
     #[inline]
     pub(crate) fn eval(&self, t: f64) -> Derivatives {
+        if self.forcing.damping.zeta >= MODE_FORM_ZETA {
+            return self.eval_overdamped(t);
+        }
         let (ec, es, envelope, e_sin) = self.forcing.damping.basis(t);
         let (s, c) = sin_cos(self.forcing.w * t + self.theta);
         // Drive: derivatives of P c + Q s rotate (P, Q) → (wQ, −wP).
@@ -320,6 +354,34 @@ impl LinearSegment {
             envelope,
             velocity_noise: 8.0 * f64::EPSILON * (hom_v + drive_v + d[1].abs()),
             trig: [ec, e_sin, c, s],
+        }
+    }
+
+    /// [`LinearSegment::eval`] of a segment with ζ ≥ [`MODE_FORM_ZETA`], mode by mode.
+    fn eval_overdamped(&self, t: f64) -> Derivatives {
+        let damping = &self.forcing.damping;
+        let slow = (-damping.decay * t).exp();
+        let fast = (-damping.fast * t).exp();
+        let (s, c) = sin_cos(self.forcing.w * t + self.theta);
+        let (mut p, mut q) = (self.forcing.drive_p, self.forcing.drive_q);
+        let mut d = [0.0; ORDERS];
+        let (mut hom_v, mut drive_v) = (0.0, 0.0);
+        for (k, dk) in d.iter_mut().enumerate() {
+            let (a, b) = self.modes[k];
+            let f = p * c + q * s;
+            if k == 1 {
+                hom_v = (a * slow).abs() + (b * fast).abs();
+                drive_v = f.abs() + (p * c).abs() + (q * s).abs();
+            }
+            *dk = a * slow + b * fast + f;
+            (p, q) = (self.forcing.w * q, -self.forcing.w * p);
+        }
+        d[0] += self.offset;
+        Derivatives {
+            d,
+            envelope: slow,
+            velocity_noise: 8.0 * f64::EPSILON * (hom_v + drive_v + d[1].abs()),
+            trig: [0.0, 0.0, c, s],
         }
     }
 
@@ -375,6 +437,10 @@ impl LinearSegment {
     /// (y, y') at local time t.
     #[inline]
     pub(crate) fn state(&self, t: f64) -> (f64, f64) {
+        if self.forcing.damping.zeta >= MODE_FORM_ZETA {
+            let d = self.eval_overdamped(t).d;
+            return (d[0], d[1]);
+        }
         let (ec, es, _, _) = self.forcing.damping.basis(t);
         let (s, c) = sin_cos(self.forcing.w * t + self.theta);
         let (p, q) = (self.forcing.drive_p, self.forcing.drive_q);
@@ -401,11 +467,24 @@ impl LinearSegment {
         let [ec, e_sin, c, s] = at.trig;
         let underdamped = self.forcing.damping.zeta < 1.0 && self.forcing.secular == 0.0;
         let detune = (self.forcing.w - self.forcing.damping.omega).abs();
+        let damping = &self.forcing.damping;
+        // Overdamped: each mode decays from a on at its own rate (a relative slack covers
+        // the rounding of A, B and the rates).
+        let modes = if damping.zeta >= MODE_FORM_ZETA {
+            let fast_envelope = (-damping.fast * a).exp();
+            [3, 4].map(|k| {
+                let (a_k, b_k) = self.modes[k];
+                (a_k.abs() * at.envelope + b_k.abs() * fast_envelope) * (1.0 + 1e-12)
+            })
+        } else {
+            [f64::INFINITY; 2]
+        };
         let mut out = [0.0; 2];
         for (i, o) in out.iter_mut().enumerate() {
             let (p, q) = self.hom[i + 3];
-            let hom = (p.abs() + q.abs() * reach).min(self.mode_amplitude);
-            *o = hom * at.envelope + self.forcing.drive_bound[i];
+            let hom =
+                ((p.abs() + q.abs() * reach).min(self.mode_amplitude) * at.envelope).min(modes[i]);
+            *o = hom + self.forcing.drive_bound[i];
             if self.forcing.secular != 0.0 {
                 *o += self.forcing.secular * (a + span + (i + 3) as f64);
             }
@@ -433,7 +512,9 @@ mod tests {
     /// Residual of the ODE and the initial conditions, checked in every damping regime.
     #[test]
     fn closed_form_satisfies_the_equation() {
-        for &zeta in &[0.0, 0.05, 0.7, 0.999_999, 1.0, 1.000_001, 1.5, 12.0] {
+        for &zeta in &[
+            0.0, 0.05, 0.7, 0.999_999, 1.0, 1.000_001, 1.5, 2.0, 12.0, 1e4,
+        ] {
             for &w in &[0.3, 1.0, 2.7] {
                 let (beta, theta, c, y0, v0) = (1.7, 0.4, -1.0, 0.3, -0.8);
                 let seg = LinearSegment::new(Damping::new(zeta), w, beta, theta, c, y0, v0);
@@ -462,7 +543,7 @@ mod tests {
 
     #[test]
     fn derivative_bounds_hold_on_a_fine_grid() {
-        for &zeta in &[0.0, 0.2, 1.0, 3.0] {
+        for &zeta in &[0.0, 0.2, 1.0, 3.0, 40.0, 1e3] {
             for &w in &[0.5, 1.0, 1.9] {
                 let seg = LinearSegment::new(Damping::new(zeta), w, 2.0, 1.1, 1.0, -0.5, 0.2);
                 for &a in &[0.0, 0.5, 3.0] {

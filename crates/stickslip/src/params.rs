@@ -12,6 +12,7 @@
 //! static to kinetic friction (the paper takes μs = 1).
 
 use crate::error::{check, Result};
+use crate::limits;
 use serde::{Deserialize, Serialize};
 
 /// Parameters of the dimensionless model. Build with [`Params::new`] (validated) and the
@@ -34,12 +35,13 @@ impl Params {
     /// Validated parameters with φ = 0 and μs = 1.
     ///
     /// # Errors
-    /// [`crate::Error::InvalidParameter`] when ζ < 0, w ≤ 0, β < 0 or any value is not finite.
+    /// [`crate::Error::InvalidParameter`] when a value is not finite or outside the range the
+    /// solvers support ([`crate::limits`]): 0 ≤ ζ ≤ 1e4, 1e-5 ≤ w ≤ 1e5, 0 ≤ β ≤ 1e9.
     pub fn new(zeta: f64, w: f64, beta: f64) -> Result<Self> {
         Ok(Self {
-            zeta: check("zeta", zeta, zeta >= 0.0, "must be finite and >= 0")?,
-            w: check("w", w, w > 0.0, "must be finite and > 0")?,
-            beta: check("beta", beta, beta >= 0.0, "must be finite and >= 0")?,
+            zeta: check("zeta", zeta, limits::zeta_ok(zeta), limits::ZETA_ALLOWED)?,
+            w: check("w", w, limits::w_ok(w), limits::W_ALLOWED)?,
+            beta: check("beta", beta, limits::beta_ok(beta), limits::BETA_ALLOWED)?,
             phi: 0.0,
             mu_s: 1.0,
         })
@@ -48,18 +50,18 @@ impl Params {
     /// Set the drive phase φ (radians).
     ///
     /// # Errors
-    /// [`crate::Error::InvalidParameter`] when φ is not finite.
+    /// [`crate::Error::InvalidParameter`] when φ is not finite or |φ| > 1e6.
     pub fn with_phi(mut self, phi: f64) -> Result<Self> {
-        self.phi = check("phi", phi, true, "must be finite")?;
+        self.phi = check("phi", phi, limits::phi_ok(phi), limits::PHI_ALLOWED)?;
         Ok(self)
     }
 
     /// Set the static-to-kinetic friction ratio μs.
     ///
     /// # Errors
-    /// [`crate::Error::InvalidParameter`] when μs < 1 or not finite.
+    /// [`crate::Error::InvalidParameter`] when μs < 1, μs > 1e9 or not finite.
     pub fn with_mu_s(mut self, mu_s: f64) -> Result<Self> {
-        self.mu_s = check("mu_s", mu_s, mu_s >= 1.0, "must be finite and >= 1")?;
+        self.mu_s = check("mu_s", mu_s, limits::mu_s_ok(mu_s), limits::MU_S_ALLOWED)?;
         Ok(self)
     }
 
@@ -151,8 +153,8 @@ impl Parameter {
     /// `params` with this parameter set to `value`, validated.
     ///
     /// # Errors
-    /// [`crate::Error::InvalidParameter`] when the value is out of range (ζ < 0, w ≤ 0,
-    /// β < 0, μs < 1, or not finite).
+    /// [`crate::Error::InvalidParameter`] when the value is out of range
+    /// ([`crate::limits`]).
     pub fn set(self, params: Params, value: f64) -> Result<Params> {
         let mut p = params;
         match self {
@@ -181,7 +183,8 @@ pub struct State {
 }
 
 impl State {
-    /// A state from position and velocity.
+    /// A state from position and velocity (any finite values: an initial state given by a
+    /// user is checked against the supported range by [`crate::limits::check_state`]).
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] when either value is not finite.
@@ -243,8 +246,15 @@ mod tests {
 
     #[test]
     fn accepts_edge_values() {
-        let p = Params::new(0.0, 1e-3, 0.0).unwrap().with_mu_s(1.0).unwrap();
+        let p = Params::new(0.0, 1e-5, 0.0).unwrap().with_mu_s(1.0).unwrap();
         assert_eq!(p.mu_s, 1.0);
+        let p = Params::new(1e4, 1e5, 1e9)
+            .unwrap()
+            .with_mu_s(1e9)
+            .unwrap()
+            .with_phi(-1e6)
+            .unwrap();
+        assert!(p.validate().is_ok());
         assert!(p.validate().is_ok());
     }
 }

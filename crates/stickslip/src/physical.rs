@@ -150,7 +150,7 @@ impl Circuit {
     /// # Errors
     /// When L ≤ 0, C ≤ 0, R < 0, the diode is invalid, or any value is not finite.
     pub fn new(inductance: f64, capacitance: f64, resistance: f64, diode: Diode) -> Result<Self> {
-        Ok(Self {
+        Self {
             inductance: check(
                 "L",
                 inductance,
@@ -170,7 +170,19 @@ impl Circuit {
                 "must be finite and >= 0 (ohms)",
             )?,
             diode: diode.validate()?,
-        })
+        }
+        .with_finite_scales()
+    }
+
+    /// This circuit, if its scales are finite and positive numbers.
+    fn with_finite_scales(self) -> Result<Self> {
+        check(
+            "L",
+            self.inductance,
+            self.scales().finite(),
+            "with this C gives no finite ω0 = 1/√(LC) or impedance √(L/C) (henry)",
+        )?;
+        Ok(self)
     }
 
     /// Re-check all fields (for values built by struct literal or deserialised).
@@ -289,7 +301,7 @@ impl Mechanics {
     /// # Errors
     /// When m ≤ 0, k ≤ 0, γ < 0, F0 ≤ 0 or any value is not finite.
     pub fn new(mass: f64, stiffness: f64, damping: f64, friction: f64) -> Result<Self> {
-        Ok(Self {
+        Self {
             mass: check("m", mass, mass > 0.0, "must be finite and > 0 (kg)")?,
             stiffness: check(
                 "k",
@@ -304,7 +316,19 @@ impl Mechanics {
                 "must be finite and >= 0 (N s/m)",
             )?,
             friction: check("F0", friction, friction > 0.0, "must be finite and > 0 (N)")?,
-        })
+        }
+        .with_finite_scales()
+    }
+
+    /// This oscillator, if its scales are finite and positive numbers.
+    fn with_finite_scales(self) -> Result<Self> {
+        check(
+            "m",
+            self.mass,
+            self.scales().finite(),
+            "with this k, gamma and F0 gives no finite ω0 = √(k/m), α = γ/m or F0/k (kg)",
+        )?;
+        Ok(self)
     }
 
     /// Re-check all fields (for values built by struct literal or deserialised).
@@ -367,6 +391,18 @@ pub struct Scales {
 }
 
 impl Scales {
+    /// Whether every scale is a finite positive number (α finite and ≥ 0), as conversions
+    /// both ways need.
+    fn finite(&self) -> bool {
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        positive(self.omega0)
+            && positive(self.position)
+            && positive(self.velocity)
+            && positive(self.force)
+            && self.alpha.is_finite()
+            && self.alpha >= 0.0
+    }
+
     /// Natural frequency f0 = ω0/2π in Hz.
     pub fn f0(&self) -> f64 {
         self.omega0 / std::f64::consts::TAU

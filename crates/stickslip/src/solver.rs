@@ -214,7 +214,138 @@ pub fn grid(from: f64, to: f64, count: usize) -> Vec<f64> {
     if count == 0 {
         return vec![from];
     }
-    (0..=count)
-        .map(|k| from + (to - from) * (k as f64 / count as f64))
-        .collect()
+    (0..=count).map(|k| grid_time(from, to, count, k)).collect()
+}
+
+/// The k-th of the `count + 1` times of [`grid`].
+fn grid_time(from: f64, to: f64, count: usize, k: usize) -> f64 {
+    if count == 0 {
+        from
+    } else {
+        from + (to - from) * (k as f64 / count as f64)
+    }
+}
+
+/// One item of a [`Stream`]: a sample of the motion or an event, in time order.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Record {
+    /// The state at one of the requested times.
+    Sample(Sample),
+    /// A switching event, handed out before the samples that follow it.
+    Event(Event),
+}
+
+/// The motion sampled at evenly spaced times, and its events, computed as they are asked
+/// for: memory stays the same however long the run (see [`stream`]).
+///
+/// The samples are those of [`sample_at`] on [`grid`]`(from, to, count)`, bit for bit, and
+/// every event comes before the first sample after it. After an error the stream ends.
+pub struct Stream<'a, S: Solver + ?Sized> {
+    solver: &'a mut S,
+    from: f64,
+    to: f64,
+    count: usize,
+    /// Index of the next sample.
+    next: usize,
+    /// Whether the solver has started advancing towards the next sample.
+    advancing: bool,
+    /// Whether an error ended the stream.
+    ended: bool,
+}
+
+/// Stream `count + 1` samples at evenly spaced times from `from` to `to` (both included)
+/// and the events between them, advancing `solver` piece by piece (see [`Stream`]).
+///
+/// ```
+/// use stickslip::solver::{stream, Record};
+/// use stickslip::{ExactSolver, Params, State};
+/// let params = Params::new(0.0468, 0.7, 1.2).unwrap();
+/// let mut solver = ExactSolver::new(params, State::default());
+/// let (mut samples, mut events) = (0, 0);
+/// for record in stream(&mut solver, 0.0, 30.0 * params.drive_period(), 6000).unwrap() {
+///     match record.unwrap() {
+///         Record::Sample(_) => samples += 1,
+///         Record::Event(_) => events += 1,
+///     }
+/// }
+/// assert_eq!(samples, 6001);
+/// assert!(events > 60);
+/// ```
+///
+/// # Errors
+/// [`Error::TimeBeforeCurrent`] when `from` lies before the solver's time or `to` before
+/// `from`; [`Error::HorizonTooLong`] when `to` lies beyond the time range the solvers
+/// resolve ([`crate::limits::check_horizon`]). Solver failures come as items of the stream.
+pub fn stream<S: Solver + ?Sized>(
+    solver: &mut S,
+    from: f64,
+    to: f64,
+    count: usize,
+) -> Result<Stream<'_, S>> {
+    if !(from >= solver.time()) {
+        return Err(Error::TimeBeforeCurrent {
+            requested: from,
+            current: solver.time(),
+        });
+    }
+    if !(to >= from) {
+        return Err(Error::TimeBeforeCurrent {
+            requested: to,
+            current: from,
+        });
+    }
+    crate::limits::check_time(solver.params(), to)?;
+    Ok(Stream {
+        solver,
+        from,
+        to,
+        count,
+        next: 0,
+        advancing: false,
+        ended: false,
+    })
+}
+
+impl<S: Solver + ?Sized> Stream<'_, S> {
+    /// The solver (its time is that of the last record handed out).
+    pub fn solver(&self) -> &S {
+        self.solver
+    }
+}
+
+impl<S: Solver + ?Sized> Iterator for Stream<'_, S> {
+    type Item = Result<Record>;
+
+    fn next(&mut self) -> Option<Result<Record>> {
+        if self.ended || self.next > self.count {
+            return None;
+        }
+        let tau = grid_time(self.from, self.to, self.count, self.next);
+        // As `sample_at`: a sample at the solver's own time is its state; otherwise advance,
+        // one event at a time, and sample the interval that reaches the time.
+        if !self.advancing && tau == self.solver.time() {
+            self.next += 1;
+            let s = self.solver.state();
+            return Some(Ok(Record::Sample(Sample {
+                tau,
+                y: s.y,
+                v: s.v,
+                phase: self.solver.phase(),
+            })));
+        }
+        self.advancing = true;
+        while self.solver.time() < tau {
+            match self.solver.advance(tau) {
+                Ok(Some(event)) => return Some(Ok(Record::Event(event))),
+                Ok(None) => {}
+                Err(e) => {
+                    self.ended = true;
+                    return Some(Err(e));
+                }
+            }
+        }
+        self.advancing = false;
+        self.next += 1;
+        Some(Ok(Record::Sample(self.solver.dense(tau))))
+    }
 }

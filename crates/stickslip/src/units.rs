@@ -15,6 +15,21 @@ pub enum NumberError {
     NotFinite(String),
 }
 
+/// The text as a message shows it: control characters (a line break in a quoted value, say)
+/// escaped, so that the message stays one line.
+fn shown(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect()
+}
+
 /// Units that may follow a number (stripped, not checked).
 const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
 
@@ -60,8 +75,8 @@ pub fn parse_si(text: &str) -> Result<f64, NumberError> {
     }
     match body.trim().parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x * scale),
-        Ok(_) => Err(NumberError::NotFinite(text.to_string())),
-        Err(_) => Err(NumberError::NotANumber(text.to_string())),
+        Ok(_) => Err(NumberError::NotFinite(shown(text))),
+        Err(_) => Err(NumberError::NotANumber(shown(text))),
     }
 }
 
@@ -72,8 +87,8 @@ pub fn parse_si(text: &str) -> Result<f64, NumberError> {
 pub fn parse_plain(text: &str) -> Result<f64, NumberError> {
     match text.trim().parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        Ok(_) => Err(NumberError::NotFinite(text.to_string())),
-        Err(_) => Err(NumberError::NotFinite(text.to_string())),
+        Ok(_) => Err(NumberError::NotFinite(shown(text))),
+        Err(_) => Err(NumberError::NotFinite(shown(text))),
     }
 }
 
@@ -92,6 +107,18 @@ mod tests {
         assert!(matches!(parse_si("abc"), Err(NumberError::NotANumber(_))));
         assert!(parse_si("nan").is_err());
         assert!(matches!(parse_si("1e400"), Err(NumberError::NotFinite(_))));
+    }
+
+    /// The fuzz target `toml_experiment` found it: a value with a line break made a
+    /// two-line message.
+    #[test]
+    fn regression_messages_stay_one_line() {
+        let e = parse_si("\n!1.5m").unwrap_err().to_string();
+        assert!(e.starts_with("'\\n!1.5m' is not a number"), "{e}");
+        assert!(!parse_plain("1\r\n2")
+            .unwrap_err()
+            .to_string()
+            .contains('\n'));
     }
 
     #[test]

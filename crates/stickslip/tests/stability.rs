@@ -922,8 +922,10 @@ fn failures_are_typed() {
         &NewtonOptions::default(),
     ) {
         Err(Error::Stability(StabilityError::OnDiscontinuity { y, v, net_force })) => {
+            // The iterates creep onto y' = 0 by halved steps; they are reported on the jump
+            // once y' is no larger than the residual (about 1e-10 after the 30 steps).
             assert!(
-                v.abs() < 1e-12 && net_force > 1.0 && net_force < 3.0,
+                v.abs() < 1e-9 && net_force > 1.0 && net_force < 3.0,
                 "{y} {v}"
             );
             let stuck = strobe_map(&params, State { y, v: 0.0 }, 2).unwrap();

@@ -1,7 +1,7 @@
 //! `stickslip convert`: a physical description's dimensionless parameters.
 
 use crate::model::ModelArgs;
-use crate::output::usage;
+use crate::output::{outln, usage};
 use anyhow::Result;
 use stickslip::experiment::{Key, SpecError};
 
@@ -32,26 +32,33 @@ pub fn run(args: Args) -> Result<()> {
     let Some(c) = experiment.conversion() else {
         usage!("convert needs a physical description: --preset paper, --config FILE, or --inductance --capacitance --resistance --ut --rd (or --mass --stiffness --damping --friction)");
     };
+    let mut text = String::new();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&c)?);
+        outln!(text, "{}", serde_json::to_string_pretty(&c)?);
     } else {
         let description = experiment.to_string();
-        println!(
+        outln!(
+            text,
             "{}",
             description.split("; dimensionless").next().unwrap_or("")
         );
-        println!("omega0 = {:.1} rad/s   (1/sqrt(LC) or sqrt(k/m))", c.omega0);
-        println!("f0     = {:.3} Hz", c.f0);
-        println!(
+        outln!(
+            text,
+            "omega0 = {:.1} rad/s   (1/sqrt(LC) or sqrt(k/m))",
+            c.omega0
+        );
+        outln!(text, "f0     = {:.3} Hz", c.f0);
+        outln!(
+            text,
             "alpha  = {:.1} 1/s     (the paper's alpha = 2 zeta omega0)",
             c.alpha
         );
-        println!("zeta   = {:.6}", c.zeta);
-        println!("Q      = {:.4}", c.q);
+        outln!(text, "zeta   = {:.6}", c.zeta);
+        outln!(text, "Q      = {:.4}", c.q);
         if let (Some(w), Some(beta)) = (c.w, c.beta) {
-            println!("w      = {w:.6}  (Omega/omega0)");
-            println!("beta   = {beta:.6}  (drive amplitude / friction)");
+            outln!(text, "w      = {w:.6}  (Omega/omega0)");
+            outln!(text, "beta   = {beta:.6}  (drive amplitude / friction)");
         }
     }
-    Ok(())
+    crate::output::print(&text)
 }

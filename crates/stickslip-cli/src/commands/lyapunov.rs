@@ -81,6 +81,7 @@ pub fn run(args: Args) -> Result<()> {
     .validate()?;
     let experiment = args.model.experiment()?;
     let params = experiment.exact_params()?;
+    options.check_horizon(&params)?;
     eprintln!(
         "lyapunov: {experiment}; {} periods of transient, {} measured in {} blocks",
         options.transient_periods,

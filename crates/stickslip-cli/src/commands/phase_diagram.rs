@@ -1,5 +1,6 @@
 //! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
 
+use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
@@ -7,7 +8,10 @@ use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, St
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
+use stickslip::experiment::Origin;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
 use stickslip::{DiodeModel, Experiment, Parameter};
@@ -69,6 +73,8 @@ pub struct Args {
     /// every point, and written to the CSV as lambda,lambda_error).
     #[arg(long, value_enum, default_value_t = Color::Class)]
     color: Color,
+    #[command(flatten)]
+    checkpoint: CheckpointFlags,
 }
 
 /// What the cells of the map show.
@@ -120,6 +126,8 @@ pub fn run(args: Args) -> Result<()> {
     if lyapunov && args.steady.lyapunov_periods == 0 {
         usage!("--color lyapunov measures motions that do not repeat: --lyapunov-periods must not be 0");
     }
+    args.checkpoint.check()?;
+    let mut checkpoint_file = None;
     let experiment = args.model.experiment()?;
     let options = args.steady.options(&experiment)?;
     let mut grid = Grid::new(
@@ -131,6 +139,8 @@ pub fn run(args: Args) -> Result<()> {
     if let (true, Some(measure)) = (lyapunov, options.lyapunov) {
         grid = grid.lyapunov(measure)?;
     }
+    // A checkpoint of other parameters, or a damaged one, is refused before any work.
+    let checkpoint = args.checkpoint.open(identity(&grid)?, w.steps())?;
     eprintln!(
         "phase-diagram: {experiment}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
         w.steps(),
@@ -144,13 +154,28 @@ pub fn run(args: Args) -> Result<()> {
     let total = w.steps() * beta.steps();
     let bar = crate::output::progress(total as u64, "phase diagram");
     let started = std::time::Instant::now();
-    let result = grid.run(&|_: usize, _: usize| {
-        bar.inc(1);
-        !crate::output::interrupted()
-    });
-    bar.finish_and_clear();
-    crate::output::check_interrupt()?;
-    let points = result?.points;
+    let (points, computed) = match checkpoint {
+        None => {
+            let result = grid.run(&|_: usize, _: usize| {
+                bar.inc(1);
+                !crate::output::interrupted()
+            });
+            bar.finish_and_clear();
+            crate::output::check_interrupt()?;
+            (result?.points, total)
+        }
+        Some(mut file) => {
+            let points = run_rows(&grid, &mut file, &bar);
+            bar.finish_and_clear();
+            // Whatever happened, the rows finished so far are saved for the rerun.
+            file.save()?;
+            crate::output::check_interrupt()?;
+            let computed = points?;
+            let points = rows_to_points(&grid, file.checkpoint())?;
+            checkpoint_file = Some(file);
+            (points, computed)
+        }
+    };
     let elapsed = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
@@ -199,12 +224,16 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
     }
+    if let Some(file) = checkpoint_file {
+        file.remove()?;
+    }
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     eprintln!(
-        "phase-diagram: {} points in {:.2} s ({:.1} µs per point): {}",
+        "phase-diagram: {} points ({} computed) in {:.2} s ({:.1} µs per computed point): {}",
         total,
+        computed,
         elapsed,
-        elapsed * 1e6 / total as f64,
+        elapsed * 1e6 / computed.max(1) as f64,
         MotionClass::ALL
             .iter()
             .map(|&c| format!("{} {}", c.label(), count(c)))
@@ -212,6 +241,130 @@ pub fn run(args: Args) -> Result<()> {
             .join(", ")
     );
     Ok(())
+}
+
+/// Everything that determines the map: the experiment (whatever file or flags described
+/// it), both axes, the steady-state options, and with --color lyapunov the options of the
+/// exponents (a map of classes and one of exponents never share a checkpoint).
+fn identity(grid: &Grid) -> Result<Identity> {
+    let experiment = grid.experiment().clone().with_origin(Origin::Parts);
+    let identity = Identity::new("phase-diagram")
+        .with("experiment", serde_json::to_string(&experiment)?)
+        .with("rows", serde_json::to_string(grid.first())?)
+        .with("columns", serde_json::to_string(grid.second())?)
+        .with("options", serde_json::to_string(grid.steady_options())?);
+    Ok(match grid.lyapunov_options() {
+        Some(l) => identity.with("lyapunov", serde_json::to_string(l)?),
+        None => identity,
+    })
+}
+
+/// Rows per block handed to the grid at once: enough points to keep every thread busy.
+fn block_rows(columns: usize) -> usize {
+    (4 * 64 * rayon::current_num_threads())
+        .div_ceil(columns)
+        .max(1)
+}
+
+/// Compute the rows the checkpoint lacks, block by block, saving each finished row; returns
+/// the number of points computed.
+fn run_rows(grid: &Grid, file: &mut CheckpointFile, bar: &indicatif::ProgressBar) -> Result<usize> {
+    let (_, columns) = grid.shape();
+    let done = file.checkpoint().done();
+    if done > 0 {
+        eprintln!(
+            "phase-diagram: resuming from {}: {} of {} rows reused",
+            file.path().display(),
+            done,
+            file.checkpoint().total()
+        );
+        bar.inc((done * columns) as u64);
+    }
+    let missing: Vec<usize> = file.checkpoint().missing().collect();
+    let mut computed = 0;
+    for block in missing.chunk_by(|a, b| b == &(a + 1)) {
+        for rows in block.chunks(block_rows(columns)) {
+            let (first, last) = (rows[0], rows[rows.len() - 1]);
+            let points = grid.run_block(first..last + 1, 0..columns, &|_: usize, _: usize| {
+                bar.inc(1);
+                !crate::output::interrupted()
+            })?;
+            for (row, chunk) in rows.iter().zip(points.chunks(columns)) {
+                file.insert(*row, encode_row(chunk, grid.lyapunov_options().is_some()))?;
+            }
+            computed += points.len();
+        }
+    }
+    Ok(computed)
+}
+
+/// A row of points as a checkpoint unit: per point its class, period (0: none), stops per
+/// period, gain, symmetry and periods to settle (the parameters follow from the grid), and in
+/// a map of exponents whether the point has one (1) or not (0), then its four numbers.
+fn encode_row(points: &[GridPoint], exponents: bool) -> Vec<u8> {
+    let mut unit = UnitWriter::new();
+    for p in points {
+        let class = MotionClass::ALL
+            .iter()
+            .position(|&c| c == p.class)
+            .expect("a class of ALL");
+        unit.u8(class as u8)
+            .u64(p.period.map_or(0, |p| p as u64))
+            .f64(p.stops_per_period)
+            .f64(p.gain)
+            .u8(u8::from(p.symmetric))
+            .u64(p.periods_to_settle as u64);
+        if let Some(l) = p.lyapunov {
+            unit.u8(1)
+                .f64(l.per_tau)
+                .f64(l.error_per_tau)
+                .f64(l.per_period)
+                .f64(l.error_per_period);
+        } else if exponents {
+            unit.u8(0);
+        }
+    }
+    unit.finish()
+}
+
+/// Every point of the grid, from the rows of a complete checkpoint.
+fn rows_to_points(grid: &Grid, checkpoint: &Checkpoint) -> Result<Vec<GridPoint>> {
+    let (rows, columns) = grid.shape();
+    let exponents = grid.lyapunov_options().is_some();
+    let mut points = Vec::with_capacity(rows * columns);
+    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
+    for i in 0..rows {
+        let mut r = UnitReader::new(checkpoint.unit(i).ok_or_else(damaged)?);
+        for j in 0..columns {
+            let class = *MotionClass::ALL
+                .get(r.u8().ok_or_else(damaged)? as usize)
+                .ok_or_else(damaged)?;
+            let period = r.u64().ok_or_else(damaged)?;
+            points.push(GridPoint {
+                params: grid.params(i, j)?,
+                class,
+                period: (period > 0).then_some(period as usize),
+                stops_per_period: r.f64().ok_or_else(damaged)?,
+                gain: r.f64().ok_or_else(damaged)?,
+                symmetric: r.u8().ok_or_else(damaged)? != 0,
+                periods_to_settle: r.u64().ok_or_else(damaged)? as usize,
+                lyapunov: if exponents && r.u8().ok_or_else(damaged)? != 0 {
+                    Some(Estimate {
+                        per_tau: r.f64().ok_or_else(damaged)?,
+                        error_per_tau: r.f64().ok_or_else(damaged)?,
+                        per_period: r.f64().ok_or_else(damaged)?,
+                        error_per_period: r.f64().ok_or_else(damaged)?,
+                    })
+                } else {
+                    None
+                },
+            });
+        }
+        if !r.is_empty() {
+            return Err(damaged());
+        }
+    }
+    Ok(points)
 }
 
 fn plot(

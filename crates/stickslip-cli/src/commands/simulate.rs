@@ -6,6 +6,8 @@ use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::solver::{stream, Record};
+use stickslip::EventKind;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
 ///
@@ -65,46 +67,69 @@ pub fn run(args: Args) -> Result<()> {
     }
     let experiment = args.model.experiment()?;
     let params = experiment.params()?;
+    // Before any work: a run longer than the solvers resolve is refused (exit code 2).
+    stickslip::limits::check_horizon(&params, args.periods)?;
     eprintln!("simulate: {experiment}");
 
-    let run = experiment.simulate(args.periods, args.samples_per_period as usize, &|_, _| {
-        !crate::output::interrupted()
-    });
-    crate::output::check_interrupt()?;
-    let run = run?;
-
+    let mut solver = experiment.solver()?;
+    let period = params.drive_period();
+    let t_end = args.periods * period;
     let units = experiment.units();
+
+    // Samples and events are written as they are computed: memory stays flat however long
+    // the run. Both files are temporary until the run has finished.
     let mut sink = Sink::open(args.out.as_deref())?;
-    let mut w = csv::Writer::from_writer(&mut sink);
+    let mut events_file = args.events.as_deref().map(AtomicFile::create).transpose()?;
     let mut header = vec!["tau", "y", "v", "drive", "phase"];
     if let Some(u) = &units {
         header.extend(u.columns());
     }
-    w.write_record(&header)?;
-    for k in 0..run.len() {
-        let (tau, y, v, drive) = (run.tau[k], run.y[k], run.v[k], run.drive[k]);
-        let mut row = vec![
-            fmt(tau),
-            fmt(y),
-            fmt(v),
-            fmt(drive),
-            run.phase[k].label().to_string(),
-        ];
-        if let Some(u) = &units {
-            row.extend(u.convert(tau, y, v, drive).map(fmt));
-        }
-        w.write_record(&row)?;
-    }
-    w.flush()?;
-    drop(w);
-    sink.finish()?;
-
-    if let Some(path) = &args.events {
-        let mut file = AtomicFile::create(path)?;
+    writeln!(sink, "{}", header.join(","))?;
+    if let Some(file) = &mut events_file {
         writeln!(file, "tau,y,kind")?;
-        for e in &run.events {
-            writeln!(file, "{},{},{}", fmt(e.tau), fmt(e.y), e.kind.label())?;
+    }
+    let mut trace = args.plot.as_ref().map(|_| PlotTrace::new(t_end));
+    let (mut samples, mut events) = (0u64, 0u64);
+    let mut records = stream(solver.as_mut(), 0.0, t_end, total as usize)?;
+    while let Some(record) = records.next() {
+        if (samples + events) % 4096 == 0 {
+            crate::output::check_interrupt()?;
         }
+        match record? {
+            Record::Sample(s) => {
+                samples += 1;
+                let drive = records.solver().drive(s.tau);
+                write!(
+                    sink,
+                    "{},{},{},{},{}",
+                    s.tau,
+                    s.y,
+                    s.v,
+                    drive,
+                    s.phase.label()
+                )?;
+                if let Some(u) = &units {
+                    let [a, b, c, d] = u.convert(s.tau, s.y, s.v, drive);
+                    write!(sink, ",{a},{b},{c},{d}")?;
+                }
+                writeln!(sink)?;
+                if let Some(t) = &mut trace {
+                    t.sample(s.tau, s.y, drive);
+                }
+            }
+            Record::Event(e) => {
+                events += 1;
+                if let Some(file) = &mut events_file {
+                    writeln!(file, "{},{},{}", e.tau, e.y, e.kind.label())?;
+                }
+                if let (Some(t), EventKind::Stick) = (&mut trace, e.kind) {
+                    t.stop(e.tau, e.y);
+                }
+            }
+        }
+    }
+    sink.finish()?;
+    if let Some(file) = events_file {
         file.commit()?;
     }
 
@@ -124,20 +149,15 @@ pub fn run(args: Args) -> Result<()> {
             ),
             None => (1.0, 1.0, "τ = ω0 t", "y, drive"),
         };
-        let scaled = |column: &[f64]| -> Vec<(f64, f64)> {
-            run.tau
-                .iter()
-                .zip(column)
-                .map(|(tau, x)| (tau * tx, x * yx))
-                .collect()
+        let trace = trace.expect("kept for the plot");
+        let scale = |points: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
+            points.into_iter().map(|(t, y)| (t * tx, y * yx)).collect()
         };
-        let (trace, drive) = (scaled(&run.y), scaled(&run.drive));
-        let stops: Vec<(f64, f64)> = run
-            .events
-            .iter()
-            .filter(|e| e.kind == stickslip::EventKind::Stick)
-            .map(|e| (e.tau * tx, e.y * yx))
-            .collect();
+        let (drive, stops, trace) = (
+            scale(trace.drive.points()),
+            scale(trace.stops.points()),
+            scale(trace.y.points()),
+        );
         let circuit = units.is_some_and(|u| u.circuit);
         let panel = Panel {
             title: format!(
@@ -168,9 +188,9 @@ pub fn run(args: Args) -> Result<()> {
     }
     eprintln!(
         "simulate: {} samples over {} drive periods, {} events{}",
-        run.len(),
+        samples,
         args.periods,
-        run.events.len(),
+        events,
         args.out
             .as_ref()
             .map(|p| format!(", trajectory in {}", p.display()))
@@ -179,7 +199,104 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-/// Shortest text that reads back as the same f64.
-pub fn fmt(x: f64) -> String {
-    format!("{x}")
+/// Most points of a plotted curve kept as they are; a longer curve is drawn from the
+/// smallest and the largest value in each of `MAX_PLOT_POINTS / 2` equal stretches of time,
+/// which at the plot's resolution draws the same picture, with memory that does not grow.
+const MAX_PLOT_POINTS: usize = 200_000;
+
+/// A point (τ, value) of a plotted curve.
+type Point = (f64, f64);
+
+/// A curve for the plot: every point while there are at most [`MAX_PLOT_POINTS`], else the
+/// extremes of each stretch of time.
+struct Curve {
+    /// Every point, until there are too many.
+    all: Vec<(f64, f64)>,
+    /// Per stretch of time, the points of smallest and largest value (empty while `all`
+    /// holds every point).
+    buckets: Vec<Option<(Point, Point)>>,
+    /// Stretches per unit of τ.
+    per_tau: f64,
+}
+
+impl Curve {
+    fn new(t_end: f64) -> Self {
+        Self {
+            all: Vec::new(),
+            buckets: Vec::new(),
+            per_tau: if t_end > 0.0 {
+                (MAX_PLOT_POINTS / 2) as f64 / t_end
+            } else {
+                0.0
+            },
+        }
+    }
+
+    fn push(&mut self, t: f64, value: f64) {
+        if self.buckets.is_empty() {
+            if self.all.len() < MAX_PLOT_POINTS {
+                self.all.push((t, value));
+                return;
+            }
+            self.buckets = vec![None; MAX_PLOT_POINTS / 2];
+            for (t, value) in std::mem::take(&mut self.all) {
+                self.bucket(t, value);
+            }
+        }
+        self.bucket(t, value);
+    }
+
+    fn bucket(&mut self, t: f64, value: f64) {
+        let i = ((t * self.per_tau) as usize).min(self.buckets.len() - 1);
+        let slot = &mut self.buckets[i];
+        match slot {
+            None => *slot = Some(((t, value), (t, value))),
+            Some((low, high)) => {
+                if value < low.1 {
+                    *low = (t, value);
+                }
+                if value > high.1 {
+                    *high = (t, value);
+                }
+            }
+        }
+    }
+
+    /// The points in time order.
+    fn points(self) -> Vec<(f64, f64)> {
+        if self.buckets.is_empty() {
+            return self.all;
+        }
+        self.buckets
+            .into_iter()
+            .flatten()
+            .flat_map(|(a, b)| if a.0 <= b.0 { [a, b] } else { [b, a] })
+            .collect()
+    }
+}
+
+/// What the plot of a run needs: y, the drive and the stops, each a [`Curve`].
+struct PlotTrace {
+    y: Curve,
+    drive: Curve,
+    stops: Curve,
+}
+
+impl PlotTrace {
+    fn new(t_end: f64) -> Self {
+        Self {
+            y: Curve::new(t_end),
+            drive: Curve::new(t_end),
+            stops: Curve::new(t_end),
+        }
+    }
+
+    fn sample(&mut self, tau: f64, y: f64, drive: f64) {
+        self.y.push(tau, y);
+        self.drive.push(tau, drive);
+    }
+
+    fn stop(&mut self, tau: f64, y: f64) {
+        self.stops.push(tau, y);
+    }
 }

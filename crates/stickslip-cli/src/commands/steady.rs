@@ -2,7 +2,7 @@
 
 use crate::flags::SteadyFlags;
 use crate::model::ModelArgs;
-use crate::output::{check_plot_path, usage, AtomicFile};
+use crate::output::{check_plot_path, outln, usage, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
@@ -70,20 +70,21 @@ pub fn run(args: Args) -> Result<()> {
         crate::output::check_output_path(p)?;
     }
     let experiment = args.model.experiment()?;
-    experiment.params()?;
+    let params = experiment.params()?;
     let options = args
         .steady
         .options(&experiment)?
         .with_harmonics(args.harmonics as usize)?;
+    stickslip::steady::check_horizon(&params, &options, 0.0)?;
     eprintln!("steady: {experiment}");
     let steady = experiment.steady_with(&options)?;
     crate::output::check_interrupt()?;
 
     if args.json {
         let report = SteadyReport::from(&steady);
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        crate::output::print(&format!("{}\n", serde_json::to_string_pretty(&report)?))?;
     } else {
-        print_text(&steady);
+        crate::output::print(&text(&steady))?;
     }
     if let Some(path) = &args.xy {
         let mut file = AtomicFile::create(path)?;
@@ -106,49 +107,68 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-fn print_text(steady: &SteadyState) {
+/// The steady state as text.
+fn text(steady: &SteadyState) -> String {
+    let mut text = String::new();
     let params = &steady.params;
     let period = steady
         .period
         .map(|p| p.to_string())
         .unwrap_or_else(|| "none found".into());
-    println!("class             {}", steady.class.label());
-    println!("period            {period} (drive periods)");
-    println!("stops per period  {}", steady.stops_per_period);
-    println!("symmetric         {}", steady.symmetric);
-    println!("peak |y|          {:.10}", steady.peak);
-    println!("gain              {:.10}", steady.gain);
+    outln!(text, "class             {}", steady.class.label());
+    outln!(text, "period            {period} (drive periods)");
+    outln!(text, "stops per period  {}", steady.stops_per_period);
+    outln!(text, "symmetric         {}", steady.symmetric);
+    outln!(text, "peak |y|          {:.10}", steady.peak);
+    outln!(text, "gain              {:.10}", steady.gain);
     match steady.phase_lag() {
-        Some(lag) => println!(
+        Some(lag) => outln!(
+            text,
             "phase lag         {:.10} rad ({:.4}°)",
             lag,
             lag.to_degrees()
         ),
-        None => println!("phase lag         none (no fundamental)"),
+        None => outln!(text, "phase lag         none (no fundamental)"),
     }
-    println!("periods to settle {}", steady.periods_to_settle);
+    outln!(text, "periods to settle {}", steady.periods_to_settle);
     if let Some(c) = &steady.lyapunov {
         let l = c.exponents.largest;
-        println!(
+        outln!(
+            text,
             "Lyapunov λ1       {:+.6e} ± {:.1e} per unit τ ({:+.6e} ± {:.1e} per drive period), \
              over {} more periods",
-            l.per_tau, l.error_per_tau, l.per_period, l.error_per_period, c.exponents.periods
+            l.per_tau,
+            l.error_per_tau,
+            l.per_period,
+            l.error_per_period,
+            c.exponents.periods
         );
-        println!("verdict           {}", verdict_text(c));
+        outln!(text, "verdict           {}", verdict_text(c));
     }
     if let Some(s) = &steady.spectrum {
-        println!(
+        outln!(
+            text,
             "harmonics of y (N = {} samples per period, mean {:.3e}, subharmonic {:.3e}):",
-            s.samples_per_period, s.mean, s.subharmonic
+            s.samples_per_period,
+            s.mean,
+            s.subharmonic
         );
-        println!("  k  amplitude A_k          phase θ_k (rad)   current k·w·A_k");
+        outln!(
+            text,
+            "  k  amplitude A_k          phase θ_k (rad)   current k·w·A_k"
+        );
         for (h, d) in s.harmonics.iter().zip(s.derivative(params.w)) {
-            println!(
+            outln!(
+                text,
                 "{:3}  {:<22.15e} {:>+.10}   {:.6e}",
-                h.order, h.amplitude, h.phase, d.amplitude
+                h.order,
+                h.amplitude,
+                h.phase,
+                d.amplitude
             );
         }
     }
+    text
 }
 
 /// What the exponent of a motion that does not repeat says, in words.

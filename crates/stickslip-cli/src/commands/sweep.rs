@@ -1,17 +1,22 @@
 //! `stickslip sweep`: w, β, ζ or μs swept up and/or down with continuation (hysteresis).
 
+use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
+use std::ops::ControlFlow;
 use std::path::PathBuf;
+use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
+use stickslip::experiment::Origin;
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg, SweepPoint};
+use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{
     abscissae, theory_curve, Theory as TheoryKind, TheoryCurve, TheoryQuantity,
 };
-use stickslip::{DiodeModel, Experiment, Parameter};
+use stickslip::{DiodeModel, Experiment, Parameter, Params, State};
 
 /// The swept parameter, as typed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -88,6 +93,8 @@ pub struct Args {
     /// (the paper's A1/β and the exact sliding orbit's peak/β) where it exists (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    #[command(flatten)]
+    checkpoint: CheckpointFlags,
 }
 
 /// Run `stickslip sweep`.
@@ -104,6 +111,7 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
+    args.checkpoint.check()?;
     let experiment = args.model.experiment()?;
     let options = args.steady.options(&experiment)?.with_harmonics(3)?;
     let direction = match args.direction {
@@ -114,6 +122,10 @@ pub fn run(args: Args) -> Result<()> {
     let sweep = Sweep::new(&experiment, Axis::range(parameter, &range)?)?
         .direction(direction)
         .options(options)?;
+    // A checkpoint of other parameters, or a damaged one, is refused before any work.
+    let mut file = args
+        .checkpoint
+        .open(identity(&sweep)?, sweep.plan().len())?;
     eprintln!(
         "sweep: {experiment}; over {} from {} to {} in {} steps, {}",
         parameter.label(),
@@ -126,14 +138,28 @@ pub fn run(args: Args) -> Result<()> {
             Direction::Both => "up and down",
         }
     );
-    let bar = crate::output::progress(sweep.plan().len() as u64, "sweep");
-    let result = sweep.run(&|_: usize, _: usize| {
-        bar.inc(1);
-        !crate::output::interrupted()
-    });
-    bar.finish_and_clear();
-    crate::output::check_interrupt()?;
-    let points = result?;
+    let total = sweep.plan().len();
+    let bar = crate::output::progress(total as u64, "sweep");
+    let points = match &mut file {
+        None => {
+            let result = sweep.run(&|_: usize, _: usize| {
+                bar.inc(1);
+                !crate::output::interrupted()
+            });
+            bar.finish_and_clear();
+            crate::output::check_interrupt()?;
+            result?.iter().map(Row::from).collect::<Vec<_>>()
+        }
+        Some(file) => {
+            let result = run_steps(&sweep, file, &bar);
+            bar.finish_and_clear();
+            // Whatever happened, the steps finished so far are saved for the rerun.
+            file.save()?;
+            crate::output::check_interrupt()?;
+            result?;
+            steps_to_rows(&sweep, file.checkpoint())?
+        }
+    };
 
     let extra = matches!(parameter, Parameter::Zeta | Parameter::MuS);
     let mut sink = Sink::open(args.out.as_deref())?;
@@ -142,7 +168,6 @@ pub fn run(args: Args) -> Result<()> {
     }
     writeln!(sink, "w,beta,direction,gain,A1,A3,class,stops_per_cycle")?;
     for p in &points {
-        let s = &p.steady;
         if extra {
             write!(sink, "{},", p.value)?;
         }
@@ -152,11 +177,11 @@ pub fn run(args: Args) -> Result<()> {
             p.params.w,
             p.params.beta,
             p.leg.label(),
-            s.gain,
-            s.harmonic(1).unwrap_or(f64::NAN),
-            s.harmonic(3).unwrap_or(f64::NAN),
-            s.class.label(),
-            s.stops_per_period
+            p.gain,
+            p.a1,
+            p.a3,
+            p.class.label(),
+            p.stops_per_period
         )?;
     }
     sink.finish()?;
@@ -169,6 +194,9 @@ pub fn run(args: Args) -> Result<()> {
             theory.paper.x.len()
         );
         plot(&points, parameter, &theory, path)?;
+    }
+    if let Some(file) = file {
+        file.remove()?;
     }
     let differ = branches_differ(&points);
     eprintln!(
@@ -184,18 +212,165 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// Values at which the up and the down leg found different motions (gain or class).
-fn branches_differ(points: &[SweepPoint]) -> usize {
-    let up: Vec<&SweepPoint> = points.iter().filter(|p| p.leg == SweepLeg::Up).collect();
-    let down: Vec<&SweepPoint> = points.iter().filter(|p| p.leg == SweepLeg::Down).collect();
+fn branches_differ(points: &[Row]) -> usize {
+    let up: Vec<&Row> = points.iter().filter(|p| p.leg == SweepLeg::Up).collect();
+    let down: Vec<&Row> = points.iter().filter(|p| p.leg == SweepLeg::Down).collect();
     up.iter()
         .filter(|u| {
             down.iter().any(|d| {
                 d.value == u.value
-                    && (d.steady.class != u.steady.class
-                        || (d.steady.gain - u.steady.gain).abs() > 1e-6 * u.steady.gain.abs())
+                    && (d.class != u.class || (d.gain - u.gain).abs() > 1e-6 * u.gain.abs())
             })
         })
         .count()
+}
+
+/// What the output of a sweep step needs (the CSV, the plot, the summary), and the state
+/// the next step starts from.
+#[derive(Debug, Clone, PartialEq)]
+struct Row {
+    params: Params,
+    value: f64,
+    leg: SweepLeg,
+    gain: f64,
+    a1: f64,
+    a3: f64,
+    class: MotionClass,
+    stops_per_period: f64,
+    stops: usize,
+    final_state: State,
+}
+
+impl From<&SweepPoint> for Row {
+    fn from(p: &SweepPoint) -> Self {
+        let s = &p.steady;
+        Self {
+            params: p.params,
+            value: p.value,
+            leg: p.leg,
+            gain: s.gain,
+            a1: s.harmonic(1).unwrap_or(f64::NAN),
+            a3: s.harmonic(3).unwrap_or(f64::NAN),
+            class: s.class,
+            stops_per_period: s.stops_per_period,
+            stops: s.stops,
+            final_state: s.final_state(),
+        }
+    }
+}
+
+impl Row {
+    /// The row as a checkpoint unit (its parameters, value and leg follow from the sweep).
+    fn encode(&self) -> Vec<u8> {
+        let class = MotionClass::ALL
+            .iter()
+            .position(|&c| c == self.class)
+            .expect("a class of ALL");
+        UnitWriter::new()
+            .f64(self.gain)
+            .f64(self.a1)
+            .f64(self.a3)
+            .u8(class as u8)
+            .f64(self.stops_per_period)
+            .u64(self.stops as u64)
+            .f64(self.final_state.y)
+            .f64(self.final_state.v)
+            .finish()
+    }
+
+    /// The row of step `index` from its checkpoint unit.
+    fn decode(sweep: &Sweep, index: usize, unit: &[u8]) -> Result<Self> {
+        let damaged = || anyhow::anyhow!("checkpoint holds a malformed sweep step");
+        let mut r = UnitReader::new(unit);
+        let (value, leg) = sweep.plan()[index];
+        let row = Self {
+            params: sweep.params(index)?,
+            value,
+            leg,
+            gain: r.f64().ok_or_else(damaged)?,
+            a1: r.f64().ok_or_else(damaged)?,
+            a3: r.f64().ok_or_else(damaged)?,
+            class: *MotionClass::ALL
+                .get(r.u8().ok_or_else(damaged)? as usize)
+                .ok_or_else(damaged)?,
+            stops_per_period: r.f64().ok_or_else(damaged)?,
+            stops: r.u64().ok_or_else(damaged)? as usize,
+            final_state: State {
+                y: r.f64().ok_or_else(damaged)?,
+                v: r.f64().ok_or_else(damaged)?,
+            },
+        };
+        if !r.is_empty() {
+            return Err(damaged());
+        }
+        Ok(row)
+    }
+}
+
+/// Everything that determines the sweep: the experiment (whatever file or flags described
+/// it), the axis, the direction, the steady-state options.
+fn identity(sweep: &Sweep) -> Result<Identity> {
+    let experiment = sweep.experiment().clone().with_origin(Origin::Parts);
+    Ok(Identity::new("sweep")
+        .with("experiment", serde_json::to_string(&experiment)?)
+        .with("axis", serde_json::to_string(sweep.axis())?)
+        .with("plan", serde_json::to_string(&sweep.plan())?)
+        .with("options", serde_json::to_string(sweep.steady_options())?))
+}
+
+/// Run the steps the checkpoint lacks (a sweep resumes after its last saved step, from the
+/// state that step ended in), saving each finished step.
+fn run_steps(sweep: &Sweep, file: &mut CheckpointFile, bar: &indicatif::ProgressBar) -> Result<()> {
+    let checkpoint = file.checkpoint();
+    let start = checkpoint.missing().next().unwrap_or(checkpoint.total());
+    if checkpoint.missing().any(|i| i < start) || checkpoint.done() != start {
+        anyhow::bail!(
+            "checkpoint {} holds steps out of order",
+            file.path().display()
+        );
+    }
+    if start == checkpoint.total() {
+        return Ok(());
+    }
+    let state = if start == 0 {
+        sweep.experiment().initial()
+    } else {
+        let unit = checkpoint.unit(start - 1).expect("saved step");
+        Row::decode(sweep, start - 1, unit)?.final_state
+    };
+    if start > 0 {
+        eprintln!(
+            "sweep: resuming from {}: {} of {} steps reused",
+            file.path().display(),
+            start,
+            checkpoint.total()
+        );
+        bar.inc(start as u64);
+    }
+    let mut saved: Result<()> = Ok(());
+    let result = sweep.run_from(start, state, &mut |i, point| {
+        bar.inc(1);
+        saved = file.insert(i, Row::from(&point).encode());
+        if saved.is_err() || crate::output::interrupted() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    });
+    saved?;
+    Ok(result?)
+}
+
+/// Every step of the sweep, from a complete checkpoint.
+fn steps_to_rows(sweep: &Sweep, checkpoint: &Checkpoint) -> Result<Vec<Row>> {
+    (0..checkpoint.total())
+        .map(|i| {
+            let unit = checkpoint
+                .unit(i)
+                .ok_or_else(|| anyhow::anyhow!("checkpoint lacks step {i}"))?;
+            Row::decode(sweep, i, unit)
+        })
+        .collect()
 }
 
 /// The theory's gain curves over the swept range, at the sweep's fixed parameters (also
@@ -232,7 +407,7 @@ impl Theory {
 }
 
 fn plot(
-    points: &[SweepPoint],
+    points: &[Row],
     parameter: Parameter,
     theory: &Theory,
     path: &std::path::Path,
@@ -241,14 +416,14 @@ fn plot(
         points
             .iter()
             .filter(|p| p.leg == which)
-            .map(|p| (p.value, p.steady.gain))
+            .map(|p| (p.value, p.gain))
             .collect()
     };
     let stick = |which: SweepLeg| -> Vec<(f64, f64)> {
         points
             .iter()
-            .filter(|p| p.leg == which && p.steady.stops > 0)
-            .map(|p| (p.value, p.steady.gain))
+            .filter(|p| p.leg == which && p.stops > 0)
+            .map(|p| (p.value, p.gain))
             .collect()
     };
     let title = match points.first().map(|p| p.params) {

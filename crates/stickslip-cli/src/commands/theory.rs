@@ -121,8 +121,7 @@ fn point(args: &Args) -> Result<()> {
     eprintln!("theory: {experiment}");
     let report = TheoryReport::new(&params)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-        return Ok(());
+        return crate::output::print(&format!("{}\n", serde_json::to_string_pretty(&report)?));
     }
     let (paper, exact) = (&report.paper, &report.exact);
     let cell = |v: Option<f64>| v.map_or_else(|| "—".to_string(), |x| format!("{x:.6}"));
@@ -176,8 +175,7 @@ fn point(args: &Args) -> Result<()> {
         "paper: eqs. (11) and (13) of the paper with ω0 = 1, Ω = w, α = 2ζ; \
          exact: Den Hartog's matching, damped\n",
     );
-    print!("{text}");
-    Ok(())
+    crate::output::print(&text)
 }
 
 fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {

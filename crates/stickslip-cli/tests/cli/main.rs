@@ -3,8 +3,12 @@
 
 mod common;
 
+mod checkpoint;
 mod convert;
+mod determinism;
+mod fuzz_props;
 mod lab;
+mod limits;
 mod lyapunov;
 mod netlist;
 mod orbit;
@@ -12,5 +16,6 @@ mod phase_diagram;
 mod reproduce;
 mod simulate;
 mod steady;
+mod streaming;
 mod sweep;
 mod theory;

@@ -23,6 +23,10 @@ use crate::trig::sin_cos;
 use search::{slide_kind, Zero, ZeroSearch};
 use std::f64::consts::TAU;
 
+/// Segments in a row that end where they started before a stop is taken as final (see
+/// `ExactSolver::advance`).
+const MAX_REPEATS: u32 = 4;
+
 /// Motion during one segment.
 #[derive(Debug, Clone, Copy)]
 #[allow(clippy::large_enum_variant)]
@@ -183,7 +187,7 @@ impl ExactSolver {
     }
 
     fn start_stick(&mut self, tau0: f64, theta: f64, y: f64) {
-        let (exit, exit_sign) = self.stick_exit(theta, y, self.repeats < 4);
+        let (exit, exit_sign) = self.stick_exit(theta, y, self.repeats < MAX_REPEATS);
         self.begin(tau0, theta, Segment::Stick { y, exit, exit_sign });
     }
 
@@ -225,9 +229,10 @@ impl ExactSolver {
         (best.0 / p.w, best.1)
     }
 
-    /// Track consecutive zero-length segments.
-    fn count_repeat(&mut self, local_time: f64) {
-        if local_time == 0.0 {
+    /// Track consecutive segments that end where they started: of zero length, or shorter
+    /// than the rounding of the absolute time (`stalled`).
+    fn count_repeat(&mut self, stalled: bool) {
+        if stalled {
             self.repeats += 1;
         } else {
             self.repeats = 0;
@@ -319,8 +324,8 @@ impl Solver for ExactSolver {
                 }
                 let tau = self.tau0 + exit;
                 let theta = self.phase_at(exit);
+                self.count_repeat(tau == self.tau0);
                 self.close(from, tau);
-                self.count_repeat(exit);
                 self.start_slide(tau, theta, sin_cos(theta), y, 0.0, exit_sign);
                 return self.event(tau, y, EventKind::Slip);
             }
@@ -336,13 +341,21 @@ impl Solver for ExactSolver {
         };
         let tau = self.tau0 + t;
         let theta = self.phase_at(t);
+        self.count_repeat(tau == self.tau0);
         self.close(from, tau);
         let trig = drive.unwrap_or_else(|| sin_cos(theta));
         let force = self.params.beta * trig.1 - y;
-        self.count_repeat(t);
-        if force.abs() <= self.params.mu_s || (t == 0.0 && force.signum() == sign) {
+        let onward = force.signum() == sign;
+        // Rounding of the force β cos − y at the edge ±μs.
+        let edge = 4.0 * f64::EPSILON * (self.params.beta + y.abs() + self.params.mu_s);
+        if force.abs() <= self.params.mu_s
+            || (t == 0.0 && onward)
+            || (onward && (self.repeats >= MAX_REPEATS || force.abs() <= self.params.mu_s + edge))
+        {
             // (At t = 0 a slide that cannot start is a stop, even when rounding puts the
-            // force a hair beyond μs.)
+            // force a hair beyond μs; and so is a velocity zero with the force onward but at
+            // μs to rounding, or a slide that keeps ending where it started: a tangency at
+            // the friction edge. Going on would restart the slide at ever shorter intervals.)
             self.start_stick(tau, theta, y);
             self.event(tau, y, EventKind::Stick)
         } else if force.signum() != sign {
@@ -479,6 +492,55 @@ mod tests {
             predicted > u64::from(segments) / 2,
             "the predicted search decided most of them: {predicted} of {segments}"
         );
+    }
+
+    /// The fuzz target `solvers` found it: from rest at φ = 0 with β = μs + 4e-16, the slide
+    /// starts with an acceleration at the rounding of y, rounding puts y at −1e-16, and the
+    /// search found a velocity zero 4e-46 after the start, the force still a hair past μs:
+    /// the slide went on in the same direction from the same instant, for ever. A slide that
+    /// keeps ending where it started is now a stop (the drive is at its maximum there, so the
+    /// stop lasts until the next one).
+    #[test]
+    fn regression_no_endless_restart_at_a_tangency_with_the_friction_edge() {
+        let params = Params {
+            zeta: 0.000_134_594_862_100_542_65,
+            w: 1.676_238_386_013_629_6,
+            beta: 1.000_000_000_000_000_4,
+            phi: 0.0,
+            mu_s: 1.0,
+        };
+        let mut solver = ExactSolver::new(params, State::default());
+        let mut events = Vec::new();
+        crate::solver::run_until(&mut solver, 5.0 * params.drive_period(), |e| {
+            events.push(*e)
+        })
+        .unwrap();
+        assert!(events.len() < 40, "{events:?}");
+        assert!(events.iter().any(|e| e.kind == EventKind::Stick));
+        assert!(solver.state().y.abs() < 1e-6, "{:?}", solver.state());
+    }
+
+    /// The fuzz target `solvers` found it: at ζ = 1, w = 1, β = 1 + 4e-16 = μs + 4e-16, after
+    /// a stop the slide starts where the force touches μs; its velocity vanished again and
+    /// again with the force μs + 4e-16 onward, each slide half as long as the one before,
+    /// without end. A velocity zero with the force at μs to rounding is now a stop.
+    #[test]
+    fn regression_no_zeno_restarts_with_the_force_at_the_edge() {
+        let params = Params {
+            zeta: 1.0,
+            w: 1.0,
+            beta: 1.000_000_000_000_000_4,
+            phi: 2.511_453_442_477_732_6,
+            mu_s: 1.0,
+        };
+        let mut solver = ExactSolver::new(params, State::default());
+        let mut events = Vec::new();
+        crate::solver::run_until(&mut solver, 10.0 * params.drive_period(), |e| {
+            events.push(*e)
+        })
+        .unwrap();
+        assert!(events.len() < 60, "{} events", events.len());
+        assert!(solver.stats().evaluations < 10_000, "{:?}", solver.stats());
     }
 
     /// The predicted search needs far fewer evaluations than the careful one (at least 2×

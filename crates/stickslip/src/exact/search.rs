@@ -35,6 +35,9 @@ use crate::solver::Stats;
 /// Largest number of search steps on one segment before the search reports failure.
 const MAX_SEARCH_STEPS: u64 = 1_000_000;
 
+/// Shortest length over which the careful search takes its derivative bounds.
+const MIN_SPAN: f64 = 2.0;
+
 /// Kinds of slide told apart for prediction (see [`slide_kind`]).
 const KINDS: usize = 4;
 
@@ -109,7 +112,7 @@ impl ZeroSearch {
     /// only labels errors.
     ///
     /// # Errors
-    /// [`Error::EventSearch`] when the careful search does not converge.
+    /// [`Error::SlideSearch`] when the careful search does not converge.
     pub(super) fn first_zero(
         &mut self,
         sign: f64,
@@ -265,11 +268,18 @@ impl ZeroSearch {
             linear.eval(a)
         };
         let mut steps = 0u64;
+        // Length over which the derivative bounds are taken: 2, doubled after every step
+        // that the span alone limited (a slide creeping on for a long time, or a velocity
+        // decayed to nothing, crosses any length in logarithmically many steps), back to 2
+        // after any other step.
+        let mut span = MIN_SPAN;
         loop {
             if steps > MAX_SEARCH_STEPS {
-                return Err(Error::EventSearch {
+                return Err(Error::SlideSearch {
+                    start: tau0,
                     tau: tau0 + a,
-                    reason: "velocity-zero search did not converge",
+                    direction: if sign > 0.0 { '+' } else { '-' },
+                    steps,
                 });
             }
             let g = sign * e.d[1];
@@ -291,7 +301,6 @@ impl ZeroSearch {
                 };
                 return Ok(Some((a + newton, e.d[0])));
             }
-            let span = 2.0;
             let (m2, m3) = linear.derivative_bounds(a, span, &e);
             let g = g.max(0.0);
             // Taylor steps: rigorous lower bounds of the first zero.
@@ -343,7 +352,9 @@ impl ZeroSearch {
                     return Ok(Some(self.polish(sign, linear, a, b, eb)));
                 }
             }
+            let by_span = h >= span;
             h = h.min(span);
+            span = if by_span { 2.0 * span } else { MIN_SPAN };
             if !(h > 0.0) || a + h == a {
                 // Stalled on a double zero (g and g' both at rounding level): that is the event.
                 if a > 0.0 {

@@ -59,7 +59,15 @@ impl ConfigError {
         if let Some(key) = &self.key {
             s.push_str(&format!(", {key}"));
         }
-        format!("{s}: {}", self.message)
+        // One line, whatever the parser's message holds.
+        let message: String = self
+            .message
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        format!("{s}: {message}")
     }
 }
 
@@ -365,5 +373,17 @@ mod tests {
         assert!(err("[drive]\nU = 1\nF = 2\n").contains("[drive] F: give the drive amplitude once"));
         let text = err("[circuit\nL = 1\n");
         assert!(text.starts_with("x.toml, line 1"), "{text}");
+    }
+
+    /// The fuzz target `toml_experiment` found it: a quoted value with a line break gave a
+    /// message of two lines.
+    #[test]
+    fn regression_a_line_break_in_a_value_keeps_the_message_on_one_line() {
+        let text = err("[circuit]\nL = \"\\n!1.5m\"\nC = 0.02e-6\n");
+        assert_eq!(text.lines().count(), 1, "{text}");
+        assert!(
+            text.starts_with("x.toml, line 2, [circuit] L: '\\n!1.5m' is not a number"),
+            "{text}"
+        );
     }
 }

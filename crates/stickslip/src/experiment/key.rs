@@ -1,6 +1,7 @@
 //! The named values of an experiment description, with their units and allowed ranges.
 
 use crate::error::{check, Result};
+use crate::limits;
 use crate::shockley::diode::ZERO_CELSIUS;
 use serde::{Deserialize, Serialize};
 
@@ -173,19 +174,22 @@ impl Key {
     }
 
     /// Check a value of this key on its own: the same ranges as the types it builds (e.g.
-    /// L > 0, R ≥ 0, μs ≥ 1), with the same messages.
+    /// L > 0, R ≥ 0, 1 ≤ μs ≤ 1e9), with the same messages. Dimensionless values must lie in
+    /// the range the solvers support ([`crate::limits`]); physical values are checked against
+    /// it through their dimensionless images when the experiment is built
+    /// ([`crate::Error::ImageOutOfRange`]).
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming the value and what is allowed.
     pub fn check(self, value: f64) -> Result<f64> {
         let (name, ok, allowed): (&'static str, bool, &'static str) = match self {
-            Key::Zeta => ("zeta", value >= 0.0, "must be finite and >= 0"),
-            Key::W => ("w", value > 0.0, "must be finite and > 0"),
-            Key::Beta => ("beta", value >= 0.0, "must be finite and >= 0"),
-            Key::Phi => ("phi", true, "must be finite"),
-            Key::MuS => ("mu_s", value >= 1.0, "must be finite and >= 1"),
-            Key::Y0 => ("y0", true, "must be finite"),
-            Key::V0 => ("v0", true, "must be finite"),
+            Key::Zeta => ("zeta", limits::zeta_ok(value), limits::ZETA_ALLOWED),
+            Key::W => ("w", limits::w_ok(value), limits::W_ALLOWED),
+            Key::Beta => ("beta", limits::beta_ok(value), limits::BETA_ALLOWED),
+            Key::Phi => ("phi", limits::phi_ok(value), limits::PHI_ALLOWED),
+            Key::MuS => ("mu_s", limits::mu_s_ok(value), limits::MU_S_ALLOWED),
+            Key::Y0 => ("y0", limits::state_ok(value), limits::STATE_ALLOWED),
+            Key::V0 => ("v0", limits::state_ok(value), limits::STATE_ALLOWED),
             Key::Inductance => ("L", value > 0.0, "must be finite and > 0 (henry)"),
             Key::Capacitance => ("C", value > 0.0, "must be finite and > 0 (farad)"),
             Key::Resistance => ("R", value >= 0.0, "must be finite and >= 0 (ohms)"),

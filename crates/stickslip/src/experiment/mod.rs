@@ -159,9 +159,13 @@ impl Experiment {
     /// When the circuit is invalid.
     pub fn circuit(circuit: Circuit) -> Result<Self> {
         let c = circuit.validate()?;
+        let zeta = spec::image(
+            (Key::Resistance, c.resistance, c.scales().zeta()),
+            Key::Zeta,
+        )?;
         Ok(Self::with_system(
             Some(System::Circuit(c)),
-            c.scales().zeta(),
+            zeta,
             Origin::Parts,
         ))
     }
@@ -172,9 +176,10 @@ impl Experiment {
     /// When the oscillator is invalid.
     pub fn mechanics(mechanics: Mechanics) -> Result<Self> {
         let m = mechanics.validate()?;
+        let zeta = spec::image((Key::Damping, m.damping, m.scales().zeta()), Key::Zeta)?;
         Ok(Self::with_system(
             Some(System::Mechanics(m)),
-            m.scales().zeta(),
+            zeta,
             Origin::Parts,
         ))
     }
@@ -245,9 +250,9 @@ impl Experiment {
     /// Set the dimensionless initial state (y0, v0) at τ = 0.
     ///
     /// # Errors
-    /// When a value is not finite.
+    /// When a value is not finite or outside ±1e9 ([`crate::limits::check_state`]).
     pub fn with_initial(mut self, initial: State) -> Result<Self> {
-        self.initial = State::new(initial.y, initial.v)?;
+        self.initial = crate::limits::check_state(initial.y, initial.v)?;
         Ok(self)
     }
 
@@ -258,7 +263,8 @@ impl Experiment {
     pub fn with_frequency(self, hertz: f64) -> Result<Self> {
         let hertz = Key::Frequency.check(hertz)?;
         let s = self.physical_scales(Key::Frequency)?;
-        self.with_w(hertz * TAU / s.omega0)
+        let w = spec::image((Key::Frequency, hertz, hertz * TAU / s.omega0), Key::W)?;
+        self.with_w(w)
     }
 
     /// Set the drive angular frequency Ω in rad/s (physical systems).
@@ -268,7 +274,8 @@ impl Experiment {
     pub fn with_omega(self, omega: f64) -> Result<Self> {
         let omega = Key::Omega.check(omega)?;
         let s = self.physical_scales(Key::Omega)?;
-        self.with_w(omega / s.omega0)
+        let w = spec::image((Key::Omega, omega, omega / s.omega0), Key::W)?;
+        self.with_w(w)
     }
 
     /// Set the drive amplitude U in volts (circuit) or F in newtons (mechanics).
@@ -279,7 +286,8 @@ impl Experiment {
     pub fn with_amplitude(self, amplitude: f64) -> Result<Self> {
         let amplitude = Key::Amplitude.check(amplitude)?;
         let s = self.physical_scales(Key::Amplitude)?;
-        self.with_beta(amplitude / s.force)
+        let beta = spec::image((Key::Amplitude, amplitude, amplitude / s.force), Key::Beta)?;
+        self.with_beta(beta)
     }
 
     /// Use Shockley diodes in the circuit (U_t kept as the reference voltage, R_D dropped).
@@ -291,8 +299,11 @@ impl Experiment {
             return Err(Error::Unsupported(crate::Unsupported::ShockleyNeedsCircuit));
         };
         let c = c.with_shockley(pair).validate()?;
+        self.zeta = spec::image(
+            (Key::Resistance, c.resistance, c.scales().zeta()),
+            Key::Zeta,
+        )?;
         self.system = Some(System::Circuit(c));
-        self.zeta = c.scales().zeta();
         Ok(self)
     }
 

@@ -4,8 +4,7 @@
 use super::key::Key;
 use super::{DiodeModel, Experiment, Origin, Preset};
 use crate::error::{Error, Result, Unsupported};
-use crate::params::State;
-use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System};
+use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
 use crate::shockley::{DiodePair, ShockleyOptions};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -138,6 +137,24 @@ impl SpecError {
                 name(Key::Preset)
             ),
         }
+    }
+}
+
+/// Check the dimensionless value `image` that the value `value` of `key` gives against the
+/// range of `target` ([`Key::check`]); out of range, the error names the key the user gave
+/// ([`Error::ImageOutOfRange`] when that is a physical value).
+pub(super) fn image((key, value, image): (Key, f64, f64), target: Key) -> Result<f64> {
+    match target.check(image) {
+        Err(Error::InvalidParameter { allowed, .. }) if key != target => {
+            Err(Error::ImageOutOfRange {
+                key,
+                value,
+                image: target.name(),
+                image_value: image,
+                allowed,
+            })
+        }
+        other => other,
     }
 }
 
@@ -340,6 +357,13 @@ impl ExperimentSpec {
             }
         }
         let scales = system.map(|s| s.scales());
+        // Each dimensionless value, with the key it came from (to name a physical value whose
+        // image is out of range).
+        let zeta_from = match system {
+            Some(System::Circuit(c)) => (Key::Resistance, c.resistance),
+            Some(System::Mechanics(m)) => (Key::Damping, m.damping),
+            None => (Key::Zeta, 0.0),
+        };
         let zeta = match (scales, self.get(Key::Zeta)) {
             (Some(_), Some(_)) => return Err(SpecError::ZetaWithPhysical.into()),
             (Some(s), None) => s.zeta(),
@@ -347,54 +371,41 @@ impl ExperimentSpec {
             (None, None) => Circuit::paper().scales().zeta(),
         };
         // Physical values convert with the scales; without scales they were rejected above.
-        let to_w = |omega: f64| scales.map(|s| omega / s.omega0);
-        let w = match (
-            self.get(Key::W),
-            self.get(Key::Frequency),
-            self.get(Key::Omega),
-        ) {
-            (Some(w), _, _) => Some(w),
-            (None, Some(f), _) => to_w(f * TAU),
-            (None, None, Some(omega)) => to_w(omega),
-            (None, None, None) => None,
+        let convert = |key: Key, scale: fn(&Scales) -> f64| {
+            self.get(key)
+                .map(|x| (key, x, scales.map_or(x, |s| x / scale(&s))))
         };
-        let beta = match (self.get(Key::Beta), self.get(Key::Amplitude)) {
-            (Some(b), _) => Some(b),
-            (None, Some(u)) => scales.map(|s| u / s.force),
-            (None, None) => None,
-        };
-        let y0 = match (self.get(Key::Y0), self.get(Key::Uc0)) {
-            (Some(y), _) => y,
-            (None, Some(u)) => scales.map_or(u, |s| u / s.position),
-            (None, None) => 0.0,
-        };
-        let v0 = match (self.get(Key::V0), self.get(Key::I0)) {
-            (Some(v), _) => v,
-            (None, Some(i)) => scales.map_or(i, |s| i / s.velocity),
-            (None, None) => 0.0,
-        };
+        let given = |key: Key| self.get(key).map(|x| (key, x, x));
+        let w = given(Key::W)
+            .or_else(|| convert(Key::Frequency, |s| s.omega0 / TAU))
+            .or_else(|| convert(Key::Omega, |s| s.omega0));
+        let beta = given(Key::Beta).or_else(|| convert(Key::Amplitude, |s| s.force));
+        let y0 = given(Key::Y0).or_else(|| convert(Key::Uc0, |s| s.position));
+        let v0 = given(Key::V0).or_else(|| convert(Key::I0, |s| s.velocity));
         let origin = match (system, self.preset, &self.source) {
             (None, _, _) => Origin::Parameters,
             (Some(_), Some(p), _) => Origin::Preset(p),
             (Some(_), None, Some(file)) => Origin::File(file.clone()),
             (Some(_), None, None) => Origin::Parts,
         };
+        let y0 = y0.map_or(Ok(0.0), |v| image(v, Key::Y0))?;
+        let v0 = v0.map_or(Ok(0.0), |v| image(v, Key::V0))?;
         let mut experiment = Experiment {
             system,
-            zeta: Key::Zeta.check(zeta)?,
+            zeta: image((zeta_from.0, zeta_from.1, zeta), Key::Zeta)?,
             w: None,
             beta: None,
             phi: self.get(Key::Phi).unwrap_or(0.0),
             mu_s: self.get(Key::MuS).unwrap_or(1.0),
-            initial: State::new(y0, v0)?,
+            initial: crate::limits::check_state(y0, v0)?,
             origin,
             shockley: ShockleyOptions::default(),
         };
         if let Some(w) = w {
-            experiment.w = Some(Key::W.check(w)?);
+            experiment.w = Some(image(w, Key::W)?);
         }
         if let Some(beta) = beta {
-            experiment.beta = Some(Key::Beta.check(beta)?);
+            experiment.beta = Some(image(beta, Key::Beta)?);
         }
         Ok(experiment)
     }

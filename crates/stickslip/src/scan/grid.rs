@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
 use crate::stability::{steady_exponent, Estimate, LyapunovOptions};
-use crate::steady::{steady_state_from, MotionClass, SolverFactory, SteadyOptions};
+use crate::steady::{check_horizon, steady_state_from, MotionClass, SolverFactory, SteadyOptions};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::{ControlFlow, Range};
@@ -97,7 +97,9 @@ impl Grid {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] when both axes vary the same parameter; a value out of
-    /// range for the model; a drive value missing that the grid does not set.
+    /// range for the model; a drive value missing that the grid does not set;
+    /// [`Error::HorizonTooLong`] when the steady-state cap reaches beyond the time range the
+    /// solvers resolve at some w of the grid.
     pub fn new(experiment: &Experiment, first: Axis, second: Axis) -> Result<Self> {
         if first.parameter() == second.parameter() {
             return Err(Error::InvalidParameter {
@@ -113,7 +115,7 @@ impl Grid {
         for &b in second.values() {
             experiment.params_with(&[(p, first.values()[0]), (q, b)])?;
         }
-        Ok(Self {
+        let grid = Self {
             options: experiment.steady_options().with_spectrum(false),
             factory: Arc::new(experiment.factory()),
             experiment: experiment.clone(),
@@ -121,7 +123,21 @@ impl Grid {
             second,
             threads: None,
             lyapunov: None,
-        })
+        };
+        grid.check_horizons()?;
+        Ok(grid)
+    }
+
+    /// Check that every point's longest run stays within the time range the solvers resolve
+    /// ([`crate::steady::check_horizon`]): on the axes' edges, which hold every value of w.
+    fn check_horizons(&self) -> Result<()> {
+        for i in 0..self.first.len() {
+            check_horizon(&self.params(i, 0)?, &self.options, 0.0)?;
+        }
+        for j in 0..self.second.len() {
+            check_horizon(&self.params(0, j)?, &self.options, 0.0)?;
+        }
+        Ok(())
     }
 
     /// Build solvers with `factory` instead of the experiment's own (for another solver of the
@@ -134,9 +150,10 @@ impl Grid {
     /// Use these steady-state options (the spectrum is never computed).
     ///
     /// # Errors
-    /// When the options are invalid.
+    /// When the options are invalid; [`Error::HorizonTooLong`] as [`Grid::new`].
     pub fn options(mut self, options: SteadyOptions) -> Result<Self> {
         self.options = options.validate()?.with_spectrum(false);
+        self.check_horizons()?;
         Ok(self)
     }
 
@@ -166,18 +183,34 @@ impl Grid {
     ///
     /// # Errors
     /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are
-    /// those of the exact piecewise-linear model).
+    /// those of the exact piecewise-linear model); [`Error::HorizonTooLong`] when the
+    /// measurement reaches beyond the time range the solvers resolve at some w of the grid.
     pub fn lyapunov(mut self, options: LyapunovOptions) -> Result<Self> {
         if self.experiment.diode_model() != DiodeModel::Pwl {
             return Err(Error::Unsupported(crate::Unsupported::StabilityNeedsPwl));
         }
-        self.lyapunov = Some(options.validate()?);
+        let options = options.validate()?;
+        // The measurement starts again at τ = 0 from the end of the steady-state search; the
+        // axes' edges hold every value of w.
+        for i in 0..self.first.len() {
+            options.check_horizon(&self.params(i, 0)?)?;
+        }
+        for j in 0..self.second.len() {
+            options.check_horizon(&self.params(0, j)?)?;
+        }
+        self.lyapunov = Some(options);
         Ok(self)
     }
 
     /// The steady-state options used.
     pub fn steady_options(&self) -> &SteadyOptions {
         &self.options
+    }
+
+    /// The options of the Lyapunov exponents, when the grid was asked for them
+    /// ([`Grid::lyapunov`]).
+    pub fn lyapunov_options(&self) -> Option<&LyapunovOptions> {
+        self.lyapunov.as_ref()
     }
 
     /// The first axis (rows).
@@ -195,6 +228,27 @@ impl Grid {
         (self.first.len(), self.second.len())
     }
 
+    /// The parameters of the point (first_i, second_j), as [`Grid::point`] computes it with
+    /// (for front ends that rebuild points they saved, e.g. in a
+    /// [`crate::checkpoint::Checkpoint`]).
+    ///
+    /// # Errors
+    /// A value out of range (never for a grid built by [`Grid::new`]).
+    ///
+    /// # Panics
+    /// When i or j is out of range.
+    pub fn params(&self, i: usize, j: usize) -> Result<Params> {
+        self.experiment.params_with(&[
+            (self.first.parameter(), self.first.values()[i]),
+            (self.second.parameter(), self.second.values()[j]),
+        ])
+    }
+
+    /// The experiment the grid varies.
+    pub fn experiment(&self) -> &Experiment {
+        &self.experiment
+    }
+
     /// The point at (first_i, second_j), computed alone.
     ///
     /// # Errors
@@ -203,10 +257,7 @@ impl Grid {
     /// # Panics
     /// When i or j is out of range.
     pub fn point(&self, i: usize, j: usize) -> Result<GridPoint> {
-        let params = self.experiment.params_with(&[
-            (self.first.parameter(), self.first.values()[i]),
-            (self.second.parameter(), self.second.values()[j]),
-        ])?;
+        let params = self.params(i, j)?;
         let s = steady_state_from(
             self.factory.as_ref(),
             &params,

@@ -10,8 +10,8 @@ use super::axis::Axis;
 use super::monitor::Monitor;
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
-use crate::params::{Parameter, Params};
-use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
+use crate::params::{Parameter, Params, State};
+use crate::steady::{check_horizon, steady_state_from, SolverFactory, SteadyOptions, SteadyState};
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -107,13 +107,25 @@ impl Sweep {
         for &v in axis.values() {
             experiment.params_with(&[(axis.parameter(), v)])?;
         }
-        Ok(Self {
+        let sweep = Self {
             options: experiment.steady_options(),
             factory: Arc::new(experiment.factory()),
             experiment: experiment.clone(),
             axis,
             direction: SweepDirection::Both,
-        })
+        };
+        sweep.check_horizons()?;
+        Ok(sweep)
+    }
+
+    /// Check that every step's longest run stays within the time range the solvers resolve
+    /// ([`crate::steady::check_horizon`]).
+    fn check_horizons(&self) -> Result<()> {
+        for &v in self.axis.values() {
+            let params = self.experiment.params_with(&[(self.axis.parameter(), v)])?;
+            check_horizon(&params, &self.options, 0.0)?;
+        }
+        Ok(())
     }
 
     /// Sweep up, down or both ways.
@@ -135,6 +147,7 @@ impl Sweep {
     /// When the options are invalid.
     pub fn options(mut self, options: SteadyOptions) -> Result<Self> {
         self.options = options.validate()?;
+        self.check_horizons()?;
         Ok(self)
     }
 
@@ -166,27 +179,68 @@ impl Sweep {
     /// # Errors
     /// [`Error::Cancelled`]; whatever the solvers report.
     pub fn run(&self, monitor: &dyn Monitor) -> Result<Vec<SweepPoint>> {
+        let total = self.plan().len();
+        let mut out = Vec::with_capacity(total);
+        self.run_from(0, self.experiment.initial(), &mut |i, point| {
+            out.push(point);
+            monitor.step(i + 1, total)
+        })?;
+        Ok(out)
+    }
+
+    /// The parameters of step `index` of the [`Sweep::plan`].
+    ///
+    /// # Errors
+    /// A value out of range (never for a sweep built by [`Sweep::new`]).
+    ///
+    /// # Panics
+    /// When `index` is past the plan.
+    pub fn params(&self, index: usize) -> Result<Params> {
+        let (value, _) = self.plan()[index];
+        self.experiment
+            .params_with(&[(self.axis.parameter(), value)])
+    }
+
+    /// The experiment the sweep varies.
+    pub fn experiment(&self) -> &Experiment {
+        &self.experiment
+    }
+
+    /// Run the steps `start..` of the [`Sweep::plan`], the first from `state` (the experiment's
+    /// initial state for `start` = 0, else the [`SteadyState::final_state`] of step
+    /// `start − 1`), handing each finished step and its index to `each`, which may stop the
+    /// sweep. A sweep resumed this way gives the same steps, bit for bit, as one run at once:
+    /// front ends that save steps as they go (in a [`crate::checkpoint::Checkpoint`]) resume
+    /// from the final state of the last step saved.
+    ///
+    /// # Errors
+    /// [`Error::Cancelled`] when `each` stops the sweep; whatever the solvers report.
+    pub fn run_from(
+        &self,
+        start: usize,
+        state: State,
+        each: &mut dyn FnMut(usize, SweepPoint) -> ControlFlow<()>,
+    ) -> Result<()> {
         let factory = self.factory.as_ref();
         let parameter: Parameter = self.axis.parameter();
         let plan = self.plan();
         let total = plan.len();
-        let mut state = self.experiment.initial();
-        let mut out = Vec::with_capacity(total);
-        for (i, (value, leg)) in plan.into_iter().enumerate() {
+        let mut state = State::new(state.y, state.v)?;
+        for (i, (value, leg)) in plan.into_iter().enumerate().skip(start) {
             let params = self.experiment.params_with(&[(parameter, value)])?;
             let mut steady = steady_state_from(factory, &params, state, &self.options)?;
             state = steady.final_state();
             steady.trace = Vec::new();
-            out.push(SweepPoint {
+            let point = SweepPoint {
                 params,
                 value,
                 leg,
                 steady,
-            });
-            if monitor.step(i + 1, total) == ControlFlow::Break(()) {
+            };
+            if each(i, point) == ControlFlow::Break(()) {
                 return Err(Error::Cancelled { done: i + 1, total });
             }
         }
-        Ok(out)
+        Ok(())
     }
 }

@@ -99,6 +99,25 @@ impl LyapunovOptions {
         }
         Ok(self)
     }
+
+    /// Check that the transient and the measurement, one run from τ = 0, stay within the time
+    /// range the solvers resolve at these parameters ([`crate::limits::check_horizon`]).
+    ///
+    /// ```
+    /// use stickslip::stability::LyapunovOptions;
+    /// use stickslip::Params;
+    /// let p = Params::new(0.0, 0.33, 9.0).unwrap();
+    /// assert!(LyapunovOptions::default().check_horizon(&p).is_ok());
+    /// let long = LyapunovOptions { periods: 1_000_000_000, ..Default::default() };
+    /// assert!(long.check_horizon(&p).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::HorizonTooLong`].
+    pub fn check_horizon(&self, params: &Params) -> Result<()> {
+        let measured = self.periods / self.blocks.max(1) * self.blocks;
+        crate::limits::check_horizon(params, (self.transient_periods + measured) as f64)
+    }
 }
 
 /// An exponent with its statistical error, per unit τ and per drive period. Dimensionless
@@ -224,6 +243,8 @@ pub(super) fn halves_agree(means: &[f64], significance: f64) -> bool {
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for invalid parameters, state or options;
+/// [`Error::HorizonTooLong`] when the transient and the measurement reach beyond the time
+/// range the solvers resolve ([`crate::limits::max_periods`]);
 /// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
 /// reports.
 pub fn lyapunov_exponents(
@@ -251,6 +272,8 @@ pub fn lyapunov_exponents_monitored(
     let initial = State::new(initial.y, initial.v)?;
     let period = params.drive_period();
     let per_block = options.periods / options.blocks;
+    // One solver runs the transient and the measurement.
+    options.check_horizon(&params)?;
     let length = per_block as f64 * period;
     let mut progress = Progress {
         monitor,

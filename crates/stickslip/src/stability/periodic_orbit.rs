@@ -38,7 +38,8 @@
 //!   along the net force. The map jumps there: a state with y' = 0 stays stuck, one with y' a
 //!   hair along the force slides away. Newton's iterates can converge (linearly, by halved
 //!   steps) to such a point, which is no orbit: the motion that returns there would stop.
-//!   This ends in [`StabilityError::OnDiscontinuity`].
+//!   This ends in [`StabilityError::OnDiscontinuity`], also when the steps run out while the
+//!   iterates creep onto the jump (y' no larger than the residual).
 //!
 //! The iteration stops when max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|):
 //! the map is evaluated to rounding, which the Jacobian amplifies by up to max|M_ij| for an
@@ -212,8 +213,30 @@ pub fn find_periodic_orbit(
     let (mut norm, mut r) = residual(&image, x);
     let mut residuals = vec![norm];
     let mut iterations = 0;
+    // Iterates on the jump of the map: y' = 0 (to `within`) with the net force in the band
+    // between kinetic and static friction and y' along it (see the module documentation).
+    let on_jump = |x: State, image: &StrobeImage, within: f64| {
+        let net_force = params.beta * params.phi.cos() - x.y;
+        !image.stuck_at_start
+            && x.v * net_force >= 0.0
+            && net_force.abs() > 1.0
+            && net_force.abs() <= params.mu_s
+            && x.v.abs() <= within
+    };
+    let jump = |x: State| {
+        Error::from(StabilityError::OnDiscontinuity {
+            y: x.y,
+            v: x.v,
+            net_force: params.beta * params.phi.cos() - x.y,
+        })
+    };
     while !converged(norm, x, &image.jacobian, options.tolerance) {
         if iterations == options.max_iterations {
+            // Out of steps while creeping onto the jump (each step halved, y' shrinking with
+            // the residual): the jump is why, not the step budget.
+            if iterations > 0 && on_jump(x, &image, norm) {
+                return Err(jump(x));
+            }
             let scale = 1f64.max(x.y.abs()).max(x.v.abs());
             return Err(StabilityError::NoConvergence {
                 iterations,
@@ -255,19 +278,10 @@ pub fn find_periodic_orbit(
         iterations += 1;
         residuals.push(norm);
     }
-    let net_force = params.beta * params.phi.cos() - x.y;
-    if !image.stuck_at_start
-        && x.v * net_force >= 0.0
-        && net_force.abs() > 1.0
-        && net_force.abs() <= params.mu_s
-        && converged(x.v.abs(), x, &image.jacobian, options.tolerance)
-    {
-        return Err(StabilityError::OnDiscontinuity {
-            y: x.y,
-            v: x.v,
-            net_force,
-        }
-        .into());
+    let within =
+        options.tolerance * 1f64.max(x.y.abs()).max(x.v.abs()) * image.jacobian.max_abs().max(1.0);
+    if on_jump(x, &image, within) {
+        return Err(jump(x));
     }
     let multipliers = image.jacobian.eigenvalues();
     let modulus = multipliers[0].modulus();

@@ -585,6 +585,24 @@ fn run_to_cycle<H: Holder>(
 /// Most extrapolations of the stroboscopic map in one run.
 const MAX_RESTARTS: usize = 6;
 
+/// Check that the longest run the options allow, from time `start` (at most
+/// `max_periods` periods to settle and `max_period` to record), and the Lyapunov measurement
+/// of a motion that does not repeat ([`SteadyOptions::lyapunov`], a run of its own from τ = 0)
+/// stay within the time range the solvers resolve ([`crate::limits::check_horizon`]).
+///
+/// # Errors
+/// [`Error::HorizonTooLong`].
+pub fn check_horizon(params: &Params, options: &SteadyOptions, start: f64) -> Result<()> {
+    let periods = (options.max_periods + options.max_period + 1) as f64
+        + (start / params.drive_period()).ceil();
+    crate::limits::check_horizon(params, periods)?;
+    // The measurement of a motion that does not repeat starts again at τ = 0.
+    match options.lyapunov {
+        Some(l) => l.check_horizon(params),
+        None => Ok(()),
+    }
+}
+
 /// Run `solver` to its steady state and record one cycle.
 ///
 /// The solver's own parameters ([`Solver::params`]) define the strobes (drive frequency and
@@ -605,13 +623,16 @@ const MAX_RESTARTS: usize = 6;
 /// ```
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] for invalid options; whatever the solver reports.
+/// [`Error::InvalidParameter`] for invalid options; [`Error::HorizonTooLong`] when
+/// `max_periods` drive periods reach beyond the time range the solvers resolve
+/// ([`crate::limits`]); whatever the solver reports.
 pub fn steady_state<S: Solver + ?Sized>(
     solver: &mut S,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
     let options = options.validate()?;
     let params = *solver.params();
+    check_horizon(&params, &options, solver.time())?;
     let mut holder = Plain(solver);
     let settled = run_to_cycle(&mut holder, &params, &options, false)?;
     let exact = holder.0.is_exact();
@@ -628,8 +649,8 @@ pub fn steady_state<S: Solver + ?Sized>(
 /// `periods_to_settle` counts every period simulated.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] for invalid options or parameters; whatever the solvers
-/// report.
+/// [`Error::InvalidParameter`] for invalid options or parameters; [`Error::HorizonTooLong`]
+/// as [`steady_state`]; whatever the solvers report.
 pub fn steady_state_from<F: SolverFactory + ?Sized>(
     factory: &F,
     params: &Params,
@@ -637,6 +658,7 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
     let options = options.validate()?;
+    check_horizon(params, &options, 0.0)?;
     let mut holder = FromFactory {
         factory,
         params: *params,

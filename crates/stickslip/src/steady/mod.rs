@@ -23,7 +23,7 @@ mod report;
 mod spectrum;
 
 pub use classify::{classify, Classification, MotionClass};
-pub use cycle::{steady_state, steady_state_from, SteadyOptions, SteadyState};
+pub use cycle::{check_horizon, steady_state, steady_state_from, SteadyOptions, SteadyState};
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
 

@@ -372,7 +372,8 @@ mod tests {
         assert_eq!(err.status, StatusCode::BAD_REQUEST);
         assert_eq!(err.field.as_deref(), Some("w"));
         assert!(
-            err.message.contains("invalid w -1: must be finite and > 0"),
+            err.message
+                .contains("invalid w -1: must be finite and from 1e-5 to 1e5"),
             "{}",
             err.message
         );

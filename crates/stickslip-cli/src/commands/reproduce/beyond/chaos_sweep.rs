@@ -3,7 +3,7 @@
 
 use super::super::report::{sig, Report, Section};
 use super::super::Context;
-use super::{frequency, literature, marker_color, seconds, threads};
+use super::{frequency, literature, marker_color};
 use crate::plot::{Figure, Legend, Panel, Series, Style};
 use anyhow::Result;
 use plotters::style::RGBColor;
@@ -31,7 +31,11 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
     .lyapunov(measure)?
     .run(&|_: usize, _: usize| !crate::output::interrupted())?
     .points;
-    let elapsed = started.elapsed().as_secs_f64();
+    // The time goes to standard error: the report itself is the same on every run.
+    eprintln!(
+        "reproduce: chaos sweep of {steps} frequencies in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
     let lambda = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.per_tau);
     let error = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.error_per_tau);
 
@@ -191,7 +195,6 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "lambda_chaotic": [lo, hi],
             "largest": {"w": top.params.w, "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
             "periods": periods,
-            "seconds": elapsed,
         }),
     );
     let list = windows
@@ -226,7 +229,7 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
              with λ1 from {} to {} per unit τ, and repeats at the others (periods {periods}), \
              where λ1 is negative, down to {} at w = {}.{unsettled} (b) shows λ1 above \
              {ZOOM_BELOW}, where the chaotic exponents lie ({zoomed_out} points fall below \
-             it). {} s on a grid of {steps} × 1 points ({}).",
+             it).",
             chaotic.len(),
             sig(lo, 3),
             sig(hi, 3),
@@ -245,8 +248,6 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
                     .min_by(|a, b| lambda(a).total_cmp(&lambda(b)))
                     .map_or(f64::NAN, |p| p.params.w)
             ),
-            seconds(elapsed),
-            threads(),
         ),
         figures: vec!["chaos-sweep".into()],
         data: vec!["chaos-sweep.csv".into()],

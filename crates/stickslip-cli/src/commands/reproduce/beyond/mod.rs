@@ -50,17 +50,6 @@ fn marker_color(class: MotionClass) -> RGBColor {
     }
 }
 
-/// Seconds, rounded to what a caption shows.
-fn seconds(s: f64) -> f64 {
-    (s * 100.0).round() / 100.0
-}
-
-/// The threads a grid runs on (rayon's global pool: one per core), for captions.
-fn threads() -> String {
-    let n = std::thread::available_parallelism().map_or(1, |n| n.get());
-    format!("{n} thread{}", if n == 1 { "" } else { "s" })
-}
-
 /// A drive frequency of a grid for a caption: 4 decimals at most, no trailing zeros.
 fn frequency(w: f64) -> String {
     let text = format!("{w:.4}");

@@ -1,0 +1,170 @@
+//! The ranges of the dimensionless parameters, initial states and run lengths in which the
+//! solvers keep their accuracy, and their checks.
+//!
+//! Every bound follows from one requirement: the rounding of double precision (ε = 2⁻⁵²
+//! ≈ 2.2·10⁻¹⁶) must stay below about 10⁻⁶ of what it decides, so that the friction force, the
+//! natural period and the drive phase keep their meaning. `docs/limits.md` of the repository
+//! derives each bound; in short:
+//!
+//! | value | range | what breaks outside |
+//! |---|---|---|
+//! | β, μs, \|y0\|, \|v0\| | β ≤ 10⁹, 1 ≤ μs ≤ 10⁹, \|y0\|, \|v0\| ≤ 10⁹ | the friction force (1) falls below the rounding ε·X of forces and positions of size X: at 10⁹ it is resolved to 2·10⁻⁷ |
+//! | ζ | 0 ≤ ζ ≤ 10⁴ | overdamped: the slow mode's velocity (≈ 1/2ζ of the position) is a difference of terms 2ζ times larger; its relative rounding grows like ε·4ζ², 10⁻⁷ at 10⁴ |
+//! | w | 10⁻⁵ ≤ w ≤ 10⁵ | below: a drive period holds up to 4/w events, and 5000 periods (the steady-state cap) reach τ = 2³²; above: the careful search resolves every drive period of a slide |
+//! | \|φ\| | ≤ 10⁶ | the drive phase wτ + φ is rounded to ε·\|φ\| |
+//! | run length | τ ≤ 2³² and w·τ ≤ 2³² | time and drive phase are rounded to ulp(2³²) = 2⁻²⁰ ≈ 10⁻⁶ |
+//!
+//! [`crate::Params`], [`crate::State`] (through [`check_state`]), [`crate::experiment::Key::check`]
+//! and the experiment builders enforce the ranges; [`check_horizon`] and [`check_time`] the run
+//! length.
+
+use crate::error::{Error, Result};
+use crate::params::Params;
+use std::f64::consts::TAU;
+
+/// Largest damping ratio ζ.
+pub const ZETA_MAX: f64 = 1e4;
+/// Smallest drive frequency w = Ω/ω0.
+pub const W_MIN: f64 = 1e-5;
+/// Largest drive frequency w = Ω/ω0.
+pub const W_MAX: f64 = 1e5;
+/// Largest drive amplitude β.
+pub const BETA_MAX: f64 = 1e9;
+/// Largest static-to-kinetic friction ratio μs.
+pub const MU_S_MAX: f64 = 1e9;
+/// Largest |φ| (radians).
+pub const PHI_MAX: f64 = 1e6;
+/// Largest |y0| and |v0| of an initial state.
+pub const STATE_MAX: f64 = 1e9;
+/// Largest time τ, and largest drive phase w·τ, of a run: 2³², where the rounding of a time
+/// or a phase is 2⁻²⁰ ≈ 9.5·10⁻⁷.
+pub const TAU_MAX: f64 = 4_294_967_296.0;
+
+/// What [`ZETA_MAX`] allows, in words.
+pub(crate) const ZETA_ALLOWED: &str = "must be finite and from 0 to 1e4 (docs/limits.md)";
+/// What [`W_MIN`] and [`W_MAX`] allow, in words.
+pub(crate) const W_ALLOWED: &str = "must be finite and from 1e-5 to 1e5 (docs/limits.md)";
+/// What [`BETA_MAX`] allows, in words.
+pub(crate) const BETA_ALLOWED: &str = "must be finite and from 0 to 1e9 (docs/limits.md)";
+/// What [`MU_S_MAX`] allows, in words.
+pub(crate) const MU_S_ALLOWED: &str = "must be finite and from 1 to 1e9 (docs/limits.md)";
+/// What [`PHI_MAX`] allows, in words.
+pub(crate) const PHI_ALLOWED: &str = "must be finite and from -1e6 to 1e6 (docs/limits.md)";
+/// What [`STATE_MAX`] allows, in words.
+pub(crate) const STATE_ALLOWED: &str = "must be finite and from -1e9 to 1e9 (docs/limits.md)";
+
+/// Whether ζ is in its range.
+pub(crate) fn zeta_ok(zeta: f64) -> bool {
+    (0.0..=ZETA_MAX).contains(&zeta)
+}
+
+/// Whether w is in its range.
+pub(crate) fn w_ok(w: f64) -> bool {
+    (W_MIN..=W_MAX).contains(&w)
+}
+
+/// Whether β is in its range.
+pub(crate) fn beta_ok(beta: f64) -> bool {
+    (0.0..=BETA_MAX).contains(&beta)
+}
+
+/// Whether μs is in its range.
+pub(crate) fn mu_s_ok(mu_s: f64) -> bool {
+    (1.0..=MU_S_MAX).contains(&mu_s)
+}
+
+/// Whether φ is in its range.
+pub(crate) fn phi_ok(phi: f64) -> bool {
+    phi.abs() <= PHI_MAX
+}
+
+/// Whether a component of an initial state is in its range.
+pub(crate) fn state_ok(x: f64) -> bool {
+    x.abs() <= STATE_MAX
+}
+
+/// Check an initial state (y0, v0) given by a user: finite and within ±[`STATE_MAX`].
+///
+/// States the solvers reach themselves (the end of a sweep step, say) may grow beyond it and
+/// are only required to be finite ([`crate::State::new`]).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `y0` or `v0`.
+pub fn check_state(y0: f64, v0: f64) -> Result<crate::State> {
+    crate::error::check("y0", y0, state_ok(y0), STATE_ALLOWED)?;
+    crate::error::check("v0", v0, state_ok(v0), STATE_ALLOWED)?;
+    Ok(crate::State { y: y0, v: v0 })
+}
+
+/// The most drive periods a run from τ = 0 may last at these parameters: the end time τ and
+/// the drive phase w·τ both within [`TAU_MAX`], i.e. 2³²/(2π)·min(1, w) periods.
+pub fn max_periods(params: &Params) -> f64 {
+    TAU_MAX / TAU * params.w.min(1.0)
+}
+
+/// Check that a run of `periods` drive periods from τ = 0 stays within the time range the
+/// solvers resolve ([`max_periods`]).
+///
+/// # Errors
+/// [`Error::HorizonTooLong`] with the largest number of periods allowed.
+pub fn check_horizon(params: &Params, periods: f64) -> Result<()> {
+    let max = max_periods(params);
+    if periods <= max {
+        Ok(())
+    } else {
+        Err(Error::HorizonTooLong {
+            periods,
+            w: params.w,
+            max_periods: max,
+        })
+    }
+}
+
+/// Check that the time τ (from τ = 0) lies within the time range the solvers resolve: τ and
+/// w·τ at most [`TAU_MAX`].
+///
+/// # Errors
+/// [`Error::HorizonTooLong`] as [`check_horizon`] for τ/T periods.
+pub fn check_time(params: &Params, tau: f64) -> Result<()> {
+    if tau <= TAU_MAX && params.w * tau <= TAU_MAX {
+        Ok(())
+    } else {
+        Err(Error::HorizonTooLong {
+            periods: tau / params.drive_period(),
+            w: params.w,
+            max_periods: max_periods(params),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_horizon_is_in_time_and_in_phase() {
+        let slow = Params::new(0.05, 0.01, 1.0).unwrap();
+        let fast = Params::new(0.05, 100.0, 1.0).unwrap();
+        let max_fast = TAU_MAX / TAU;
+        assert!((max_periods(&fast) - max_fast).abs() < 1e-6 * max_fast);
+        assert!((max_periods(&slow) - 0.01 * max_fast).abs() < 1e-6 * max_fast);
+        assert!(check_horizon(&slow, 0.99 * 0.01 * max_fast).is_ok());
+        match check_horizon(&slow, 1.01 * 0.01 * max_fast) {
+            Err(Error::HorizonTooLong { max_periods, .. }) => {
+                assert!((max_periods - 0.01 * max_fast).abs() < 1e-6 * max_fast)
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(check_time(&slow, 0.99 * TAU_MAX).is_ok());
+        assert!(check_time(&slow, 1.01 * TAU_MAX).is_err());
+        assert!(check_time(&fast, 0.99 * TAU_MAX / 100.0).is_ok());
+        assert!(check_time(&fast, 1.01 * TAU_MAX / 100.0).is_err());
+        assert!(check_time(&fast, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn the_default_steady_cap_fits_at_the_lowest_frequency() {
+        let p = Params::new(0.05, W_MIN, 1.0).unwrap();
+        assert!(check_horizon(&p, 5000.0).is_ok());
+    }
+}
