@@ -143,7 +143,7 @@ def test_lyapunov_verdicts_and_errors(cli):
         stickslip.lyapunov(Experiment(**CHAOTIC), periods=10)
     with pytest.raises(ValueError, match="^invalid transient = -1"):
         stickslip.lyapunov(Experiment(**CHAOTIC), transient=-1)
-    with pytest.raises(ValueError, match="^a run of 1e9 drive periods at w = 0.33 is too long"):
+    with pytest.raises(ValueError, match="^a run of 1000001000 drive periods at w = 0.33 is too long"):
         stickslip.lyapunov(Experiment(**CHAOTIC), periods=10**9)
     message = cli.error("lyapunov", "--preset", "paper", "--model", "shockley", "--w", 0.7,
                         "--beta", 1.2)

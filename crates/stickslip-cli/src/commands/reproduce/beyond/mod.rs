@@ -1,25 +1,34 @@
 //! The chapter "Beyond the paper": what the exact solver and its stability analysis
 //! (`stickslip::stability`) find in the same oscillator that the paper could not. One
-//! function per figure; the chapter's heading comes first in the job list.
+//! module and one function per figure; [`JOBS`] lists them in the report's order, the
+//! chapter's heading first. A new figure is a module here and a line in [`JOBS`].
 
 mod chaos_map;
 mod chaos_sweep;
 mod paper_exponents;
 
 use super::report::Report;
-use super::Context;
+use super::{Context, Job};
 use crate::plot::class_color;
 use anyhow::Result;
 use plotters::style::RGBColor;
 use stickslip::steady::MotionClass;
 use stickslip::Experiment;
 
-pub use chaos_map::chaos_map;
-pub use chaos_sweep::chaos_sweep;
-pub use paper_exponents::paper_exponents;
+use chaos_map::chaos_map;
+use chaos_sweep::chaos_sweep;
+use paper_exponents::paper_exponents;
+
+/// The chapter's jobs, in the report's order: (progress label, function).
+pub const JOBS: &[Job] = &[
+    ("Beyond the paper", chapter),
+    ("chaos: λ1 against w", chaos_sweep),
+    ("chaos: (w, β) map", chaos_map),
+    ("the paper's non-periodic class", paper_exponents),
+];
 
 /// The chapter's heading and introduction.
-pub fn chapter(report: &mut Report, _ctx: &Context) -> Result<()> {
+fn chapter(report: &mut Report, _ctx: &Context) -> Result<()> {
     report.chapter(
         "beyond",
         "Beyond the paper",
