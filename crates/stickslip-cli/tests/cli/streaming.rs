@@ -166,14 +166,16 @@ fn a_closed_pipe_ends_the_tool_quietly() {
         &["theory", "--w", "0.9", "--beta", "1.6", "--json"][..],
         &["convert", "--preset", "paper"][..],
     ] {
+        // A pipe whose reader is closed before the child starts: a short computation cannot
+        // write into the pipe's buffer before the reader goes.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
         let child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
             .args(args)
-            .stdout(Stdio::piped())
+            .stdout(writer)
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        let mut child = child;
-        drop(child.stdout.take());
         let out = child.wait_with_output().unwrap();
         assert_eq!(out.status.signal(), Some(13), "{args:?}: {}", stderr(&out));
         assert!(
