@@ -57,5 +57,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compute::boundary, m)?)?;
     m.add_function(wrap_pyfunction!(compute::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compute::grid, m)?)?;
+    m.add_function(wrap_pyfunction!(compute::orbit, m)?)?;
+    m.add_function(wrap_pyfunction!(compute::lyapunov, m)?)?;
     Ok(())
 }

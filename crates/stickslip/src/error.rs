@@ -269,6 +269,9 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
     /// model.
     TheoryNeedsPwl,
+    /// The stability analysis (periodic orbits, Floquet multipliers, Lyapunov exponents)
+    /// differentiates the exact piecewise-linear model.
+    StabilityNeedsPwl,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -283,6 +286,11 @@ impl std::fmt::Display for Unsupported {
             Unsupported::TheoryNeedsPwl => {
                 "the theory covers the piecewise-linear diode (Coulomb friction) model, not \
                  Shockley diodes"
+            }
+            Unsupported::StabilityNeedsPwl => {
+                "the stability analysis (periodic orbits, Floquet multipliers, Lyapunov \
+                 exponents) is of the exact piecewise-linear diode (Coulomb friction) model, \
+                 not Shockley diodes"
             }
         })
     }
