@@ -268,9 +268,18 @@ test('with Shockley diodes the page says it computes, stays responsive and drops
   await page.click('[data-action="sweep"]');
   const during = await page.$eval('[data-sweep="status"]', (e) => [e.dataset.state, e.textContent]);
   assert.deepEqual(during, ['computing', 'computing…']);
+  // The browser reports the dropped request on its own schedule, possibly after the page
+  // shows the second sweep: wait for the report itself.
+  const dropped = page.waitForEvent('requestfailed', {
+    predicate: (request) => request.url().includes('/api/sweep'),
+    timeout: 60000,
+  });
   await page.fill('input[name="sweep-to"]', '1.9');
   await page.click('[data-action="sweep"]');
   await page.waitForFunction(() => document.querySelector('[data-sweep="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+  const first = await dropped;
+  assert.match(first.failure()?.errorText || '', /ABORTED/);
+  assert.match(first.url(), /to=2&/);
   assert.equal(aborted.length, 1, `aborted sweeps: ${aborted.length}`);
   assert.match(aborted[0], /to=2&/);
   page.off('requestfailed', listener);

@@ -440,6 +440,9 @@ impl Solver for Counted {
     fn stats(&self) -> Stats {
         self.inner.stats()
     }
+    fn is_exact(&self) -> bool {
+        self.inner.is_exact()
+    }
 }
 
 fn phase_diagram(args: PhaseDiagramArgs) -> Result<Value> {

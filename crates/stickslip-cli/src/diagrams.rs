@@ -413,6 +413,7 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
         x_range: Some(y_range),
         y_range: Some(v_range),
         legend: Some(Legend::UpperRight),
+        color_bar: None,
     }
 }
 

@@ -7,6 +7,7 @@ use crate::output::usage;
 use anyhow::Result;
 use stickslip::experiment::Key;
 use stickslip::scan::ParameterRange;
+use stickslip::stability::LyapunovOptions;
 use stickslip::steady::SteadyOptions;
 use stickslip::{Experiment, Parameter};
 
@@ -31,6 +32,15 @@ pub struct SteadyFlags {
     /// Never extrapolate the stroboscopic map to its fixed point (slower; finds the same cycle).
     #[arg(long = "no-extrapolation")]
     pub no_extrapolation: bool,
+    /// Drive periods over which a motion that does not repeat is measured by its largest
+    /// Lyapunov exponent (exact PWL model; after 100 periods that align the tangent, in 20
+    /// blocks): chaotic when it is positive beyond 4 standard errors. 0: not measured.
+    #[arg(
+        long = "lyapunov-periods",
+        default_value_t = 5000,
+        allow_hyphen_values = true
+    )]
+    pub lyapunov_periods: i64,
 }
 
 impl SteadyFlags {
@@ -58,7 +68,23 @@ impl SteadyFlags {
             .with_tolerance(tolerance)?
             .with_max_periods(self.max_periods as usize)?
             .with_max_period(self.max_period as usize)?
-            .with_accelerate(!self.no_extrapolation))
+            .with_accelerate(!self.no_extrapolation)
+            .with_lyapunov(self.lyapunov()?)?)
+    }
+
+    /// The measurement of motions that do not repeat (`None` for `--lyapunov-periods 0`).
+    pub fn lyapunov(&self) -> Result<Option<LyapunovOptions>> {
+        let periods = self.lyapunov_periods;
+        if periods == 0 {
+            return Ok(None);
+        }
+        if !(20..=100_000_000).contains(&periods) {
+            usage!("invalid --lyapunov-periods {periods}: must be 0 (off) or from 20 to 1e8");
+        }
+        Ok(Some(LyapunovOptions {
+            periods: periods as usize,
+            ..SteadyOptions::DEFAULT_LYAPUNOV
+        }))
     }
 }
 

@@ -121,6 +121,84 @@ pub struct Panel {
     pub y_range: Option<(f64, f64)>,
     /// Where the legend goes (None: no legend).
     pub legend: Option<Legend>,
+    /// A colour bar at the right of the chart, for cells coloured by a value (None: none).
+    pub color_bar: Option<ColorBar>,
+}
+
+/// The scale of cells coloured by a signed value, drawn as a bar beside the chart: white at
+/// 0, blue below down to the bottom of the range, red above up to its top, each side on its
+/// own linear scale (so that small positive values stay visible beside large negative ones).
+#[derive(Debug, Clone)]
+pub struct ColorBar {
+    /// What the colour means, with units.
+    pub label: String,
+    /// The values at the bottom (≤ 0) and the top (≥ 0) of the bar; values beyond take the
+    /// end colours.
+    pub range: (f64, f64),
+}
+
+impl ColorBar {
+    /// A bar for `values`: from the 2nd percentile of the negative ones (a long tail of
+    /// strongly negative values is clipped to the end colour) to the largest; non-finite
+    /// values are left out. Always includes 0.
+    pub fn for_values(label: &str, values: &[f64]) -> Self {
+        let mut negative: Vec<f64> = values
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite() && *v < 0.0)
+            .collect();
+        negative.sort_by(f64::total_cmp);
+        let lo = negative.get(negative.len() / 50).copied().unwrap_or(0.0);
+        let hi = values
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max);
+        let range = if lo == 0.0 && hi == 0.0 {
+            (-1.0, 1.0)
+        } else {
+            (lo, hi)
+        };
+        Self {
+            label: label.to_string(),
+            range,
+        }
+    }
+
+    /// The colour of `value` on this bar's [`diverging`] scale (grey for NaN).
+    pub fn color(&self, value: f64) -> RGBColor {
+        let (lo, hi) = self.range;
+        if value.is_nan() {
+            RGBColor(160, 160, 160)
+        } else if value < 0.0 {
+            diverging(if lo < 0.0 { value / -lo } else { -1.0 })
+        } else if value > 0.0 {
+            diverging(if hi > 0.0 { value / hi } else { 1.0 })
+        } else {
+            diverging(0.0)
+        }
+    }
+}
+
+/// A diverging colour scale for signed values: t = −1 deep blue, 0 white, +1 deep red (the
+/// ends of ColorBrewer's RdBu), clamped outside [−1, 1]; readable by colour-blind viewers.
+pub fn diverging(t: f64) -> RGBColor {
+    const STOPS: [(f64, (f64, f64, f64)); 5] = [
+        (-1.0, (5.0, 48.0, 97.0)),
+        (-0.5, (67.0, 147.0, 195.0)),
+        (0.0, (247.0, 247.0, 247.0)),
+        (0.5, (214.0, 96.0, 77.0)),
+        (1.0, (103.0, 0.0, 31.0)),
+    ];
+    let t = t.clamp(-1.0, 1.0);
+    let k = STOPS
+        .windows(2)
+        .position(|w| t <= w[1].0)
+        .unwrap_or(STOPS.len() - 2);
+    let ((t0, a), (t1, b)) = (STOPS[k], STOPS[k + 1]);
+    let f = (t - t0) / (t1 - t0);
+    let mix = |x: f64, y: f64| (x + (y - x) * f).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
 /// Corner of a panel that holds its legend.
@@ -130,6 +208,8 @@ pub enum Legend {
     UpperLeft,
     /// Upper right.
     UpperRight,
+    /// Lower right.
+    LowerRight,
     /// The corner where the legend covers the fewest data points (upper right on a tie).
     Best,
 }
@@ -142,8 +222,13 @@ pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
         MotionClass::PeriodicStick => PALETTE[0],
         MotionClass::NonperiodicStick => PALETTE[1],
         MotionClass::Static => PALETTE[2],
+        MotionClass::Chaotic => CHAOTIC,
     }
 }
+
+/// The colour of the chaotic class: a purple apart from the Okabe–Ito colours of the other
+/// classes and of the boundary curves.
+const CHAOTIC: RGBColor = RGBColor(117, 112, 179);
 
 /// Panels on a grid.
 #[derive(Debug, Clone)]
@@ -323,7 +408,16 @@ where
     DB::ErrorType: 'static,
 {
     let (xr, yr) = ranges(panel);
-    let mut chart = ChartBuilder::on(area)
+    let (w, _) = area.dim_in_pixel();
+    let area = match &panel.color_bar {
+        Some(bar) => {
+            let (main, side) = area.split_horizontally(w.saturating_sub(font * 8));
+            draw_color_bar(bar, &side, font)?;
+            main
+        }
+        None => area.clone(),
+    };
+    let mut chart = ChartBuilder::on(&area)
         .caption(&panel.title, (FAMILY, font + 2))
         .margin(8)
         // Room for the last tick label, centred on the right edge.
@@ -336,6 +430,8 @@ where
         .configure_mesh()
         .x_desc(&panel.x_label)
         .y_desc(&panel.y_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .label_style((FAMILY, font))
         .axis_desc_style((FAMILY, font))
         .light_line_style(RGBColor(235, 235, 235))
@@ -463,6 +559,7 @@ where
         let position = match position {
             Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
             Legend::UpperRight => SeriesLabelPosition::UpperRight,
+            Legend::LowerRight => SeriesLabelPosition::LowerRight,
             Legend::Best => best_corner(panel, &chart, font),
         };
         chart
@@ -474,6 +571,59 @@ where
             .draw()
             .map_err(|e| e.to_string())?;
     }
+    Ok(())
+}
+
+/// A tick label as plotters writes it, without the sign of a zero that rounding left
+/// negative ("-0.0" for a tick at −3e-17).
+fn tick(value: &f64) -> String {
+    use plotters::coord::ranged1d::ValueFormatter;
+    let text = RangedCoordf64::format(value);
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
+}
+
+/// The colour bar of `bar` in `area` (a narrow strip), labelled on its right.
+fn draw_color_bar<DB: DrawingBackend>(
+    bar: &ColorBar,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let (lo, hi) = bar.range;
+    let mut chart = ChartBuilder::on(area)
+        // As the chart beside it: the caption's height on top, the x labels' at the bottom.
+        .margin(8)
+        .margin_top(8 + font + 2 + 5)
+        .margin_bottom(8 + font * 3)
+        .set_label_area_size(LabelAreaPosition::Right, font * 5)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(|e| e.to_string())?;
+    let steps = 120;
+    let cells = (0..steps).map(|k| {
+        let (a, b) = (
+            lo + (hi - lo) * k as f64 / steps as f64,
+            lo + (hi - lo) * (k + 1) as f64 / steps as f64,
+        );
+        Rectangle::new([(0.0, a), (1.0, b)], bar.color(0.5 * (a + b)).filled())
+    });
+    chart.draw_series(cells).map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .disable_y_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&tick)
+        .y_desc(&bar.label)
+        .label_style((FAMILY, font))
+        .axis_desc_style((FAMILY, font))
+        .y_labels(7)
+        .draw()
+        .map_err(|e| e.to_string())?;
     Ok(())
 }
 

@@ -1,6 +1,6 @@
-//! The computations: simulate, steady, theory, boundary, sweep and grid. Each takes the
-//! library's types from its arguments, runs without the GIL and returns numpy arrays (in a
-//! dict, for the Python layer to wrap) or the library's serialised report.
+//! The computations: simulate, steady, theory, boundary, sweep, grid, orbit and lyapunov.
+//! Each takes the library's types from its arguments, runs without the GIL and returns numpy
+//! arrays (in a dict, for the Python layer to wrap) or the library's serialised report.
 
 use crate::experiment::PyExperiment;
 use crate::runner::run;
@@ -11,18 +11,20 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
 use stickslip::scan::{Axis, Grid, Sweep, SweepDirection, SweepLeg};
+use stickslip::stability::{LyapunovOptions, LyapunovReport, NewtonOptions, OrbitReport};
 use stickslip::steady::{MotionClass, SteadyOptions, SteadyReport};
 use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
 use stickslip::{DiodeModel, Error, EventKind, Experiment, Parameter, Params, Phase, Unsupported};
 
 /// Options of the steady-state search that every computation takes.
-const SEARCH_OPTIONS: [&str; 5] = [
+const SEARCH_OPTIONS: [&str; 6] = [
     "tolerance",
     "max_periods",
     "max_period",
     "min_stop_fraction",
     "accelerate",
+    "lyapunov_periods",
 ];
 /// Options of the spectrum (steady states and sweeps; a map computes none).
 const SPECTRUM_OPTIONS: [&str; 2] = ["harmonics", "samples_per_period"];
@@ -70,6 +72,21 @@ fn steady_options(
             "max_period" => o.max_period = count(&name, &v)?,
             "min_stop_fraction" => o.min_stop_fraction = v.extract()?,
             "accelerate" => o.accelerate = v.extract()?,
+            "lyapunov_periods" => {
+                // As the tool's --lyapunov-periods: 0 turns the measurement off.
+                o.lyapunov = match count(&name, &v)? {
+                    0 => None,
+                    periods @ 1..20 => {
+                        return Err(PyValueError::new_err(format!(
+                            "invalid lyapunov_periods = {periods}: must be 0 (off) or at least 20"
+                        )))
+                    }
+                    periods => Some(LyapunovOptions {
+                        periods,
+                        ..SteadyOptions::DEFAULT_LYAPUNOV
+                    }),
+                }
+            }
             "harmonics" => o.harmonics = count(&name, &v)?,
             "samples_per_period" => o.samples_per_period = Some(count(&name, &v)?),
             _ => unreachable!("checked above"),
@@ -405,7 +422,7 @@ pub fn sweep<'py>(
 /// before the grid is built (the outer parameters of a stack of maps); `threads`: a pool of its own of that many threads (default:
 /// rayon's global pool, one thread per core).
 #[pyfunction]
-#[pyo3(signature = (experiment, first, first_values, second, second_values, options=None, threads=None, block=None, fixed=None, progress=None))]
+#[pyo3(signature = (experiment, first, first_values, second, second_values, options=None, threads=None, block=None, fixed=None, progress=None, lyapunov=false))]
 pub fn grid<'py>(
     py: Python<'py>,
     experiment: PyRef<'py, PyExperiment>,
@@ -418,6 +435,7 @@ pub fn grid<'py>(
     block: Option<(usize, usize, usize, usize)>,
     fixed: Option<Vec<(String, f64)>>,
     progress: Option<Bound<'py, PyAny>>,
+    lyapunov: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut e = experiment.experiment().clone();
     for (name, value) in fixed.unwrap_or_default() {
@@ -433,6 +451,15 @@ pub fn grid<'py>(
         .map_err(error)?;
     if let Some(n) = threads {
         grid = grid.threads(n).map_err(error)?;
+    }
+    if lyapunov {
+        // As the tool's --color lyapunov: the measurement of the steady-state options.
+        let Some(measure) = options.lyapunov else {
+            return Err(PyValueError::new_err(
+                "lyapunov=True measures the motions that do not repeat: lyapunov_periods must not be 0",
+            ));
+        };
+        grid = grid.lyapunov(measure).map_err(error)?;
     }
     let (r0, r1, c0, c1) = block.unwrap_or((0, rows, 0, cols));
     let points = run(py, progress.as_ref(), |monitor| {
@@ -481,6 +508,91 @@ pub fn grid<'py>(
             .map(|p| p.periods_to_settle as i64)
             .collect::<Vec<i64>>(),
     )?;
+    if lyapunov {
+        let (value, error): (Vec<f64>, Vec<f64>) = points
+            .iter()
+            .map(|p| {
+                p.lyapunov
+                    .map_or((f64::NAN, f64::NAN), |l| (l.per_tau, l.error_per_tau))
+            })
+            .unzip();
+        put(&out, "lyapunov", value)?;
+        put(&out, "lyapunov_error", error)?;
+    }
     out.set_item("shape", (r1.saturating_sub(r0), c1.saturating_sub(c0)))?;
     Ok(out)
+}
+
+/// A whole number ≥ 0 from a Python int, for `name`, checked by the library afterwards.
+fn whole(name: &'static str, value: i64) -> PyResult<usize> {
+    usize::try_from(value).map_err(|_| {
+        error(Error::InvalidParameter {
+            name,
+            value: value as f64,
+            allowed: "must be a whole number >= 0",
+        })
+    })
+}
+
+/// A periodic orbit by Newton's method; see `stickslip.orbit`. Returns the dict that
+/// `stickslip orbit --json` prints.
+#[pyfunction]
+#[pyo3(signature = (experiment, period=None, transient=0, options=None, tolerance=1e-12, max_iterations=30, progress=None))]
+pub fn orbit<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    period: Option<i64>,
+    transient: i64,
+    options: Option<&Bound<'py, PyDict>>,
+    tolerance: f64,
+    max_iterations: i64,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let e = experiment.experiment().clone();
+    let period = period.map(|p| whole("period", p)).transpose()?;
+    let transient = whole("transient", transient)?;
+    let steady = steady_options(e.steady_options(), options, false)?;
+    let newton = NewtonOptions {
+        tolerance,
+        max_iterations: whole("max_iterations", max_iterations)?,
+        ..NewtonOptions::default()
+    }
+    .validate()
+    .map_err(error)?;
+    let report = run(py, progress.as_ref(), |monitor| {
+        let params = e.exact_params()?;
+        let orbit = e.periodic_orbit(period, transient, &steady, &newton, monitor)?;
+        OrbitReport::new(&orbit, &params)
+    })?;
+    json_value(py, &report)
+}
+
+/// The Lyapunov exponents from the initial state; see `stickslip.lyapunov`. Returns the dict
+/// that `stickslip lyapunov --json` prints.
+#[pyfunction]
+#[pyo3(signature = (experiment, transient=1000, periods=20000, blocks=20, significance=4.0, progress=None))]
+pub fn lyapunov<'py>(
+    py: Python<'py>,
+    experiment: PyRef<'py, PyExperiment>,
+    transient: i64,
+    periods: i64,
+    blocks: i64,
+    significance: f64,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let e = experiment.experiment().clone();
+    let options = LyapunovOptions {
+        transient_periods: whole("transient", transient)?,
+        periods: whole("periods", periods)?,
+        blocks: whole("blocks", blocks)?,
+        significance,
+    }
+    .validate()
+    .map_err(error)?;
+    let report = run(py, progress.as_ref(), |monitor| {
+        let params = e.exact_params()?;
+        let c = e.lyapunov(&options, monitor)?;
+        Ok(LyapunovReport::new(&c, &options, &params))
+    })?;
+    json_value(py, &report)
 }

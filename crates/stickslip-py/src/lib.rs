@@ -58,6 +58,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compute::boundary, m)?)?;
     m.add_function(wrap_pyfunction!(compute::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compute::grid, m)?)?;
+    m.add_function(wrap_pyfunction!(compute::orbit, m)?)?;
+    m.add_function(wrap_pyfunction!(compute::lyapunov, m)?)?;
     m.add("ATTRACTOR_KINDS", dynamics::attractor_kinds())?;
     m.add_function(wrap_pyfunction!(dynamics::bifurcation, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::basins, m)?)?;

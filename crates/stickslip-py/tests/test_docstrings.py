@@ -30,8 +30,9 @@ TESTS = (
 
 def test_every_public_function_and_constructor_has_an_example():
     named = {t.name.split(".")[-1] for t in TESTS if t.examples}
-    for name in ["simulate", "steady", "theory", "boundary", "sweep", "phase_diagram",
-                 "sweep_grid", "bifurcation", "basins", "continuation", "paper", "circuit", "shockley", "mechanics", "from_toml",
+    for name in ["simulate", "steady", "theory", "boundary", "sweep", "phase_diagram", "orbit",
+                 "lyapunov", "bifurcation", "basins", "continuation",
+                 "sweep_grid", "paper", "circuit", "shockley", "mechanics", "from_toml",
                  "replace", "convert", "from_dict", "Experiment"]:
         assert name in named, f"{name} has no example in its docstring"
 

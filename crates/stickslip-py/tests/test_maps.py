@@ -162,8 +162,9 @@ def test_map_to_xarray(tool_map):
                                 max_period=8)
     ds = m.to_xarray()
     assert ds["motion"].dims == ("w", "beta") and ds["motion"].dtype == np.int8
-    assert list(ds["motion"].attrs["flag_values"]) == [0, 1, 2, 3]
-    assert ds["motion"].attrs["flag_meanings"] == "sliding periodic-stick nonperiodic-stick static"
+    assert list(ds["motion"].attrs["flag_values"]) == [0, 1, 2, 3, 4]
+    assert (ds["motion"].attrs["flag_meanings"]
+            == "sliding periodic-stick nonperiodic-stick static chaotic")
     for name in ("w", "beta"):
         assert ds[name].attrs == {"units": "1", "long_name": stickslip.PARAMETERS[name]}
     assert ds["period"].encoding["_FillValue"] == -1

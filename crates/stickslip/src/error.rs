@@ -269,8 +269,9 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
     /// model.
     TheoryNeedsPwl,
-    /// Bifurcation diagrams, basins and continuation rest on the exact solver's tangent
-    /// dynamics, which the piecewise-linear model has.
+    /// The stability analysis (periodic orbits, Floquet multipliers, Lyapunov exponents,
+    /// bifurcation diagrams, basins, continuation) differentiates the exact piecewise-linear
+    /// model.
     StabilityNeedsPwl,
 }
 
@@ -288,7 +289,8 @@ impl std::fmt::Display for Unsupported {
                  Shockley diodes"
             }
             Unsupported::StabilityNeedsPwl => {
-                "bifurcation diagrams, basins and continuation need the exact solver of the \
+                "the stability analysis (periodic orbits, Floquet multipliers, Lyapunov \
+                 exponents, bifurcation diagrams, basins, continuation) is of the exact \
                  piecewise-linear diode (Coulomb friction) model, not Shockley diodes"
             }
         })

@@ -133,6 +133,15 @@ pub trait Solver {
 
     /// Work counters so far.
     fn stats(&self) -> Stats;
+
+    /// Whether the solver follows the exact piecewise-linear model, the one whose tangent
+    /// dynamics [`crate::stability`] knows, so that its motions can be measured by Lyapunov
+    /// exponents (see [`crate::steady::SteadyOptions::lyapunov`]). False unless a solver says
+    /// otherwise: [`crate::ExactSolver`] does, and a wrapper around a solver says what the
+    /// solver it wraps says.
+    fn is_exact(&self) -> bool {
+        false
+    }
 }
 
 /// Advance `solver` to `t_end`, handing every event to `on_event`.

@@ -4,9 +4,11 @@
 
 use stickslip::experiment::{ExperimentSpec, Key, Preset};
 use stickslip::limits::{self, TAU_MAX};
+use stickslip::scan::{Axis, Grid};
 use stickslip::solver::{run_until, stream, Record};
+use stickslip::stability::{lyapunov_exponents, LyapunovOptions};
 use stickslip::steady::SteadyOptions;
-use stickslip::{Error, ExactSolver, Experiment, Params, Solver, State};
+use stickslip::{Error, ExactSolver, Experiment, Parameter, Params, Solver, State};
 
 /// Just inside and just outside a lower bound > 0.
 fn above(bound: f64) -> (f64, f64) {
@@ -263,6 +265,55 @@ fn runs_end_before_time_or_phase_lose_their_resolution() {
     let slow = Experiment::dimensionless(0.05, limits::W_MIN, 1.6).unwrap();
     let options = SteadyOptions::default().with_max_periods(10_000).unwrap();
     let err = slow.steady_with(&options).unwrap_err();
+    assert!(matches!(err, Error::HorizonTooLong { .. }), "{err:?}");
+}
+
+/// The Lyapunov measurement runs one solver through its transient and its periods: a
+/// measurement past the time range is refused before any work, alone, in a steady state
+/// (which measures a motion that does not repeat from τ = 0 again) and in a map.
+#[test]
+fn lyapunov_measurements_end_before_time_loses_its_resolution() {
+    let p = params(0.0, 0.33, 9.0).unwrap().with_mu_s(3.0).unwrap();
+    let max = limits::max_periods(&p).floor() as usize;
+    let fits = LyapunovOptions {
+        transient_periods: 0,
+        periods: max / 20 * 20,
+        ..LyapunovOptions::default()
+    };
+    assert!(fits.check_horizon(&p).is_ok());
+    let long = LyapunovOptions {
+        transient_periods: 20,
+        ..fits
+    };
+    assert!(long.check_horizon(&p).is_err());
+    let err = lyapunov_exponents(&p, State::default(), &long).unwrap_err();
+    assert!(matches!(err, Error::HorizonTooLong { .. }), "{err:?}");
+
+    // A steady state at the lowest w: the default measurement fits, a longer one does not.
+    let slow = Experiment::dimensionless(0.0, limits::W_MIN, 9.0)
+        .unwrap()
+        .with_mu_s(3.0)
+        .unwrap();
+    let slow_params = slow.params().unwrap();
+    assert!(SteadyOptions::DEFAULT_LYAPUNOV
+        .check_horizon(&slow_params)
+        .is_ok());
+    let measure = LyapunovOptions {
+        periods: 10_000,
+        ..SteadyOptions::DEFAULT_LYAPUNOV
+    };
+    let options = SteadyOptions::default()
+        .with_lyapunov(Some(measure))
+        .unwrap();
+    let err = slow.steady_with(&options).unwrap_err();
+    assert!(matches!(err, Error::HorizonTooLong { .. }), "{err:?}");
+    let grid = Grid::new(
+        &slow,
+        Axis::new(Parameter::W, vec![limits::W_MIN, 0.3]).unwrap(),
+        Axis::new(Parameter::Beta, vec![9.0]).unwrap(),
+    )
+    .unwrap();
+    let err = grid.lyapunov(measure).unwrap_err();
     assert!(matches!(err, Error::HorizonTooLong { .. }), "{err:?}");
 }
 

@@ -1140,7 +1140,7 @@
     }
   }
 
-  const CLASS_COLORS = { sliding: '#ebebeb', 'periodic-stick': '#0072b2', 'nonperiodic-stick': '#d55e00', static: '#009e73' };
+  const CLASS_COLORS = { sliding: '#ebebeb', 'periodic-stick': '#0072b2', 'nonperiodic-stick': '#d55e00', static: '#009e73', chaotic: '#7570b3' };
   function drawMap() {
     const canvas = $('#map-plot');
     const m = state.map;
@@ -1174,7 +1174,9 @@
       polyline(o, b.w.map((w, i) => [X(w), b.exact[i] === null ? NaN : Y(b.exact[i])]), '#000', 1.5);
       o.restore();
       let lx = box.l + 6;
-      for (const c of m.classes) {
+      // The classes found on this map, in the library's order.
+      const found = new Set(m.class);
+      for (const c of m.classes.filter((_, k) => found.has(k))) {
         o.fillStyle = CLASS_COLORS[c];
         o.fillRect(lx, box.b + 40, 10, 10);
         o.strokeStyle = '#999';

@@ -7,7 +7,9 @@ pub mod bifurcation;
 pub mod continuation;
 pub mod convert;
 pub mod lab;
+pub mod lyapunov;
 pub mod netlist;
+pub mod orbit;
 pub mod phase_diagram;
 pub mod reproduce;
 pub mod simulate;
@@ -27,8 +29,12 @@ pub enum Command {
     Steady(steady::Args),
     /// Sweep w or β up and/or down, each step starting where the last ended (hysteresis).
     Sweep(sweep::Args),
-    /// Classify the motion on a (w, β) grid: sliding, periodic or non-periodic stick, static.
+    /// Classify the motion on a (w, β) grid: sliding, periodic or non-periodic stick, static, chaotic.
     PhaseDiagram(phase_diagram::Args),
+    /// A periodic orbit by Newton's method, with its Floquet multipliers and stability.
+    Orbit(orbit::Args),
+    /// The Lyapunov exponents of a motion, from the exact tangent dynamics: chaos or not.
+    Lyapunov(lyapunov::Args),
     /// Write the circuit as a SPICE netlist (Shockley diodes) for ngspice or any SPICE.
     Netlist(netlist::Args),
     /// Regenerate every figure and table of the paper with an HTML report.
@@ -51,6 +57,8 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Steady(a) => steady::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::PhaseDiagram(a) => phase_diagram::run(a),
+        Command::Orbit(a) => orbit::run(a),
+        Command::Lyapunov(a) => lyapunov::run(a),
         Command::Netlist(a) => netlist::run(a),
         Command::Reproduce(a) => reproduce::run(a),
         Command::Lab(a) => lab::run(a),

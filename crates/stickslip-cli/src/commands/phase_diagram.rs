@@ -4,26 +4,39 @@ use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
-use crate::plot::{class_color, Cell, Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::Origin;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
 use stickslip::{DiodeModel, Experiment, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
 /// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
-/// nonperiodic-stick or static (the paper's Figs. 6 and 7).
+/// nonperiodic-stick or static (the paper's Figs. 6 and 7), and chaotic: a motion that does
+/// not repeat and whose largest Lyapunov exponent is positive beyond 4 standard errors
+/// (exact PWL model; see `stickslip steady --help`).
 ///
-/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain
-/// (period empty when none ≤ --max-period was found).
+/// With --color lyapunov every point also gets its largest Lyapunov exponent λ1 per unit
+/// τ = ω0·t: exactly, ln|μ1|/(pT) from the Floquet multiplier μ1 of its periodic orbit
+/// (refined by Newton's method) where the motion repeats, and measured over
+/// --lyapunov-periods where it does not; the plot maps λ1 (red: chaos, blue: contraction,
+/// white: 0, e.g. rest).
+///
+/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain, and with --color lyapunov
+/// also lambda,lambda_error (λ1 and its standard error per unit τ; 0 error for an exact
+/// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
+/// --max-period was found.
 ///
 /// Example: stickslip phase-diagram --preset paper --w-steps 200 --beta-steps 200 \
 ///          --out map.csv --plot map.png
+///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
+///          --beta-min 6 --beta-max 12 --color lyapunov --plot lyapunov.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -56,8 +69,21 @@ pub struct Args {
     /// boundary where they exist inside the β range (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
+    /// every point, and written to the CSV as lambda,lambda_error).
+    #[arg(long, value_enum, default_value_t = Color::Class)]
+    color: Color,
     #[command(flatten)]
     checkpoint: CheckpointFlags,
+}
+
+/// What the cells of the map show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Color {
+    /// The motion class.
+    Class,
+    /// The largest Lyapunov exponent per unit τ.
+    Lyapunov,
 }
 
 /// Run `stickslip phase-diagram`.
@@ -96,16 +122,23 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
+    let lyapunov = args.color == Color::Lyapunov;
+    if lyapunov && args.steady.lyapunov_periods == 0 {
+        usage!("--color lyapunov measures motions that do not repeat: --lyapunov-periods must not be 0");
+    }
     args.checkpoint.check()?;
     let mut checkpoint_file = None;
     let experiment = args.model.experiment()?;
     let options = args.steady.options(&experiment)?;
-    let grid = Grid::new(
+    let mut grid = Grid::new(
         &experiment,
         Axis::range(Parameter::W, &w)?,
         Axis::range(Parameter::Beta, &beta)?,
     )?
     .options(options)?;
+    if let (true, Some(measure)) = (lyapunov, options.lyapunov) {
+        grid = grid.lyapunov(measure)?;
+    }
     // A checkpoint of other parameters, or a damaged one, is refused before any work.
     let checkpoint = args.checkpoint.open(identity(&grid)?, w.steps())?;
     eprintln!(
@@ -146,9 +179,14 @@ pub fn run(args: Args) -> Result<()> {
     let elapsed = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
-    writeln!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
+    write!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
+    writeln!(
+        sink,
+        "{}",
+        if lyapunov { ",lambda,lambda_error" } else { "" }
+    )?;
     for p in &points {
-        writeln!(
+        write!(
             sink,
             "{},{},{},{},{},{}",
             p.params.w,
@@ -158,10 +196,33 @@ pub fn run(args: Args) -> Result<()> {
             p.stops_per_period,
             p.gain
         )?;
+        if lyapunov {
+            match p.lyapunov {
+                Some(l) => write!(sink, ",{},{}", l.per_tau, l.error_per_tau)?,
+                None => write!(sink, ",,")?,
+            }
+        }
+        writeln!(sink)?;
     }
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&points, &w, &beta, &experiment, path)?;
+        plot(&points, &w, &beta, &experiment, lyapunov, path)?;
+    }
+    if lyapunov {
+        let top = points
+            .iter()
+            .filter_map(|p| p.lyapunov.map(|l| (p, l)))
+            .max_by(|a, b| a.1.per_tau.total_cmp(&b.1.per_tau));
+        if let Some((p, l)) = top {
+            eprintln!(
+                "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at (w, β) = ({}, {}), {}",
+                l.per_tau,
+                l.error_per_tau,
+                p.params.w,
+                p.params.beta,
+                p.class.label()
+            );
+        }
     }
     if let Some(file) = checkpoint_file {
         file.remove()?;
@@ -183,14 +244,19 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// Everything that determines the map: the experiment (whatever file or flags described
-/// it), both axes, the steady-state options.
+/// it), both axes, the steady-state options, and with --color lyapunov the options of the
+/// exponents (a map of classes and one of exponents never share a checkpoint).
 fn identity(grid: &Grid) -> Result<Identity> {
     let experiment = grid.experiment().clone().with_origin(Origin::Parts);
-    Ok(Identity::new("phase-diagram")
+    let identity = Identity::new("phase-diagram")
         .with("experiment", serde_json::to_string(&experiment)?)
         .with("rows", serde_json::to_string(grid.first())?)
         .with("columns", serde_json::to_string(grid.second())?)
-        .with("options", serde_json::to_string(grid.steady_options())?))
+        .with("options", serde_json::to_string(grid.steady_options())?);
+    Ok(match grid.lyapunov_options() {
+        Some(l) => identity.with("lyapunov", serde_json::to_string(l)?),
+        None => identity,
+    })
 }
 
 /// Rows per block handed to the grid at once: enough points to keep every thread busy.
@@ -224,7 +290,7 @@ fn run_rows(grid: &Grid, file: &mut CheckpointFile, bar: &indicatif::ProgressBar
                 !crate::output::interrupted()
             })?;
             for (row, chunk) in rows.iter().zip(points.chunks(columns)) {
-                file.insert(*row, encode_row(chunk))?;
+                file.insert(*row, encode_row(chunk, grid.lyapunov_options().is_some()))?;
             }
             computed += points.len();
         }
@@ -233,8 +299,9 @@ fn run_rows(grid: &Grid, file: &mut CheckpointFile, bar: &indicatif::ProgressBar
 }
 
 /// A row of points as a checkpoint unit: per point its class, period (0: none), stops per
-/// period, gain, symmetry and periods to settle (the parameters follow from the grid).
-fn encode_row(points: &[GridPoint]) -> Vec<u8> {
+/// period, gain, symmetry and periods to settle (the parameters follow from the grid), and in
+/// a map of exponents whether the point has one (1) or not (0), then its four numbers.
+fn encode_row(points: &[GridPoint], exponents: bool) -> Vec<u8> {
     let mut unit = UnitWriter::new();
     for p in points {
         let class = MotionClass::ALL
@@ -247,6 +314,15 @@ fn encode_row(points: &[GridPoint]) -> Vec<u8> {
             .f64(p.gain)
             .u8(u8::from(p.symmetric))
             .u64(p.periods_to_settle as u64);
+        if let Some(l) = p.lyapunov {
+            unit.u8(1)
+                .f64(l.per_tau)
+                .f64(l.error_per_tau)
+                .f64(l.per_period)
+                .f64(l.error_per_period);
+        } else if exponents {
+            unit.u8(0);
+        }
     }
     unit.finish()
 }
@@ -254,6 +330,7 @@ fn encode_row(points: &[GridPoint]) -> Vec<u8> {
 /// Every point of the grid, from the rows of a complete checkpoint.
 fn rows_to_points(grid: &Grid, checkpoint: &Checkpoint) -> Result<Vec<GridPoint>> {
     let (rows, columns) = grid.shape();
+    let exponents = grid.lyapunov_options().is_some();
     let mut points = Vec::with_capacity(rows * columns);
     let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
     for i in 0..rows {
@@ -271,6 +348,16 @@ fn rows_to_points(grid: &Grid, checkpoint: &Checkpoint) -> Result<Vec<GridPoint>
                 gain: r.f64().ok_or_else(damaged)?,
                 symmetric: r.u8().ok_or_else(damaged)? != 0,
                 periods_to_settle: r.u64().ok_or_else(damaged)? as usize,
+                lyapunov: if exponents && r.u8().ok_or_else(damaged)? != 0 {
+                    Some(Estimate {
+                        per_tau: r.f64().ok_or_else(damaged)?,
+                        error_per_tau: r.f64().ok_or_else(damaged)?,
+                        per_period: r.f64().ok_or_else(damaged)?,
+                        error_per_period: r.f64().ok_or_else(damaged)?,
+                    })
+                } else {
+                    None
+                },
             });
         }
         if !r.is_empty() {
@@ -285,6 +372,7 @@ fn plot(
     w: &ParameterRange,
     beta: &ParameterRange,
     experiment: &Experiment,
+    lyapunov: bool,
     path: &std::path::Path,
 ) -> Result<()> {
     // Cells centred on the grid points; a single row or column gets a unit-less width.
@@ -296,19 +384,27 @@ fn plot(
         }
     };
     let (hw, hb) = (half(w), half(beta));
+    let color_bar = lyapunov.then(|| exponent_bar(points));
     let cells = points
         .iter()
         .map(|p| Cell {
             x: (p.params.w - hw, p.params.w + hw),
             y: (p.params.beta - hb, p.params.beta + hb),
-            color: class_color(p.class),
+            color: match &color_bar {
+                Some(bar) => bar.color(p.lyapunov.map_or(f64::NAN, |l| l.per_tau)),
+                None => class_color(p.class),
+            },
         })
         .collect();
-    let cell_legend = MotionClass::ALL
-        .iter()
-        .filter(|&&c| points.iter().any(|p| p.class == c))
-        .map(|&c| (c.label().to_string(), class_color(c)))
-        .collect();
+    let cell_legend = if lyapunov {
+        Vec::new()
+    } else {
+        MotionClass::ALL
+            .iter()
+            .filter(|&&c| points.iter().any(|p| p.class == c))
+            .map(|&c| (c.label().to_string(), class_color(c)))
+            .collect()
+    };
     // The boundaries of the piecewise-linear theory, where they exist inside the β range,
     // across the cells' full width (but w > 0).
     let (beta_lo, beta_hi) = (beta.from() - hb, beta.to() + hb);
@@ -347,12 +443,14 @@ fn plot(
             Style::Line(2),
         ));
     }
+    let what = if lyapunov {
+        "largest Lyapunov exponent"
+    } else {
+        "motion classes"
+    };
     let panel = Panel {
         series,
-        title: format!(
-            "motion classes from rest, ζ = {:.4}, μs = {}",
-            base.zeta, base.mu_s
-        ),
+        title: format!("{what} from rest, ζ = {:.4}, μs = {}", base.zeta, base.mu_s),
         x_label: "w = Ω/ω0".into(),
         y_label: "β = U/U_t".into(),
         cells,
@@ -360,6 +458,17 @@ fn plot(
         x_range: Some((w.from() - hw, w.to() + hw)),
         y_range: Some((beta.from() - hb, beta.to() + hb)),
         legend: Some(Legend::UpperRight),
+        color_bar,
     };
-    Figure::single(panel, (900, 700)).render(path)
+    let width = if lyapunov { 1040 } else { 900 };
+    Figure::single(panel, (width, 700)).render(path)
+}
+
+/// The colour bar of a map of exponents (see [`ColorBar::for_values`]).
+fn exponent_bar(points: &[GridPoint]) -> ColorBar {
+    let values: Vec<f64> = points
+        .iter()
+        .filter_map(|p| p.lyapunov.map(|l| l.per_tau))
+        .collect();
+    ColorBar::for_values("λ1 per unit τ (ω0·t)", &values)
 }

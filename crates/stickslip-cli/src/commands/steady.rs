@@ -7,6 +7,7 @@ use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::stability::{NonperiodicClassification, NonperiodicVerdict};
 use stickslip::steady::{SteadyReport, SteadyState};
 
 /// Run to the steady state from the initial state and report it.
@@ -17,10 +18,20 @@ use stickslip::steady::{SteadyReport, SteadyState};
 /// harmonics A_k of y from a real FFT of the recorded periods; gain = (max y − min y)/(2β);
 /// phase_lag = lag of the fundamental behind the drive (radians).
 ///
+/// A motion that does not repeat within --max-periods is then measured (exact PWL model):
+/// its largest Lyapunov exponent λ1 over --lyapunov-periods more periods, with a standard
+/// error σ from 20 blocks. λ1 > 4σ: nearby motions separate exponentially, the class is
+/// `chaotic`. Otherwise the class stays (nonperiodic-stick, or sliding without stops) and
+/// the exponent says why: λ1 < −4σ contracting onto a periodic motion not yet reached (or of
+/// a period above --max-period), |λ1| ≤ 4σ quasi-periodic, halves disagreeing: undecided.
+///
 /// JSON keys: class, period (null if none), stops_per_cycle (stops per drive period),
 /// symmetric, peak (max |y|), gain, phase_lag, harmonics [A1, A2, ...], harmonic_phases,
 /// current_harmonics (of y' = current or velocity, dimensionless), subharmonic, mean,
-/// periods_to_settle, samples_per_period.
+/// periods_to_settle, samples_per_period; for a motion that does not repeat also
+/// lambda_per_tau, error_per_tau, lambda_per_period, error_per_period (λ1 and σ per unit
+/// τ = ω0·t and per drive period), lambda_periods, lambda_converged and verdict (chaotic,
+/// quasi-periodic, contracting or undecided).
 ///
 /// Example: stickslip steady --preset paper --w 0.6 --beta 1.2 --json --plot steady.png
 #[derive(Debug, clap::Args)]
@@ -120,6 +131,20 @@ fn text(steady: &SteadyState) -> String {
         None => outln!(text, "phase lag         none (no fundamental)"),
     }
     outln!(text, "periods to settle {}", steady.periods_to_settle);
+    if let Some(c) = &steady.lyapunov {
+        let l = c.exponents.largest;
+        outln!(
+            text,
+            "Lyapunov λ1       {:+.6e} ± {:.1e} per unit τ ({:+.6e} ± {:.1e} per drive period), \
+             over {} more periods",
+            l.per_tau,
+            l.error_per_tau,
+            l.per_period,
+            l.error_per_period,
+            c.exponents.periods
+        );
+        outln!(text, "verdict           {}", verdict_text(c));
+    }
     if let Some(s) = &steady.spectrum {
         outln!(
             text,
@@ -144,6 +169,28 @@ fn text(steady: &SteadyState) -> String {
         }
     }
     text
+}
+
+/// What the exponent of a motion that does not repeat says, in words.
+fn verdict_text(c: &NonperiodicClassification) -> String {
+    let k = stickslip::SteadyOptions::DEFAULT_LYAPUNOV.significance;
+    match c.verdict {
+        NonperiodicVerdict::Chaotic => {
+            format!("chaotic: λ1 > {k}σ, nearby motions separate by e^(λ1 τ)")
+        }
+        NonperiodicVerdict::Contracting => format!(
+            "contracting (λ1 < −{k}σ): the motion settles onto a periodic one not reached \
+             within the cap, or of a longer period than --max-period; not chaos"
+        ),
+        NonperiodicVerdict::QuasiPeriodic => format!(
+            "quasi-periodic (|λ1| ≤ {k}σ): neither growth nor decay of perturbations; not chaos"
+        ),
+        NonperiodicVerdict::Undecided => {
+            "undecided: the two halves of the measurement disagree (a transient, or chaos \
+             that ends); try more --lyapunov-periods or --max-periods"
+                .to_string()
+        }
+    }
 }
 
 fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {

@@ -175,6 +175,77 @@ fn a_killed_sweep_resumes_to_the_same_bytes_with_less_work() {
     assert!(!dir.path().join("run.ckpt").exists());
 }
 
+/// A map of exponents at μs = 3 (chaos, periodic orbits and rest): its rows carry λ1.
+const EXPONENT_MAP: &[&str] = &[
+    "phase-diagram",
+    "--zeta",
+    "0",
+    "--mu-s",
+    "3",
+    "--w-min",
+    "0.2",
+    "--w-max",
+    "0.55",
+    "--w-steps",
+    "40",
+    "--beta-min",
+    "3",
+    "--beta-max",
+    "14",
+    "--beta-steps",
+    "45",
+    "--max-periods",
+    "2000",
+    "--lyapunov-periods",
+    "2000",
+    "--color",
+    "lyapunov",
+    "--out",
+    "map.csv",
+    "--plot",
+    "map.png",
+];
+
+#[test]
+fn a_killed_map_of_exponents_resumes_to_the_same_bytes() {
+    let reference = tempfile::tempdir().unwrap();
+    let out = run_in(reference.path(), EXPONENT_MAP);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(reference.path().join("map.csv")).unwrap();
+    assert!(csv.contains(",chaotic,"), "the map holds chaos");
+
+    let dir = tempfile::tempdir().unwrap();
+    let args = with_checkpoint(EXPONENT_MAP);
+    // A row without exponents is 45 × 35 + 16 bytes, with them 45 × 67 + 16: at least 4 rows.
+    kill_part_way(dir.path(), &args, 4, 45 * 35 + 16);
+    let out = run_in(dir.path(), &args);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    let reused = number_after(&err, "resuming from run.ckpt: ");
+    assert!((2..40).contains(&reused), "{reused} rows reused: {err}");
+    for file in ["map.csv", "map.png"] {
+        let a = std::fs::read(reference.path().join(file)).unwrap();
+        let b = std::fs::read(dir.path().join(file)).unwrap();
+        assert!(a == b, "{file} differs from the uninterrupted run's");
+    }
+
+    // A checkpoint of the map of classes is not one of the map of exponents.
+    let dir = tempfile::tempdir().unwrap();
+    let classes: Vec<&str> = args
+        .iter()
+        .copied()
+        .filter(|a| *a != "--color" && *a != "lyapunov")
+        .collect();
+    kill_part_way(dir.path(), &classes, 0, 45 * 34 + 16);
+    let out = run_in(dir.path(), &args);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("lyapunov"),
+        "names the difference: {}",
+        stderr(&out)
+    );
+}
+
 /// A checkpoint left by an interrupted small map.
 fn interrupted_checkpoint(dir: &Path, args: &[&str]) {
     kill_part_way(dir, args, 0, ROW);

@@ -175,3 +175,102 @@ fn plot_carries_the_boundaries_inside_the_beta_range() {
     assert!(svg.contains("PWL theory: paper boundary, eq. (13)"));
     assert!(svg.contains("PWL theory: exact boundary β_c"));
 }
+
+#[test]
+fn a_map_of_the_largest_exponent_with_the_chaotic_class() {
+    let (dir, out) = run(&[
+        "phase-diagram",
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--w-min",
+        "0.25",
+        "--w-max",
+        "0.40",
+        "--w-steps",
+        "4",
+        "--beta-min",
+        "2",
+        "--beta-max",
+        "9",
+        "--beta-steps",
+        "2",
+        "--color",
+        "lyapunov",
+        "--out",
+        "map.csv",
+        "--plot",
+        "map.svg",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("map.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "w,beta,class,period,stops_per_cycle,gain,lambda,lambda_error"
+    );
+    assert_eq!(lines.len(), 9);
+    for line in &lines[1..] {
+        let cells: Vec<&str> = line.split(',').collect();
+        let (class, lambda, error) = (
+            cells[2],
+            cells[6].parse::<f64>().unwrap(),
+            cells[7].parse::<f64>().unwrap(),
+        );
+        match class {
+            // β = 2 < μs: rest, exponent 0 exactly.
+            "static" => assert_eq!(lambda, 0.0, "{line}"),
+            "chaotic" => assert!(lambda > 4.0 * error && error > 0.0, "{line}"),
+            "periodic-stick" => assert!(lambda < 0.0 && error == 0.0, "{line}"),
+            other => panic!("unexpected class {other}: {line}"),
+        }
+    }
+    assert!(lines.iter().any(|l| l.contains(",chaotic,")), "{csv}");
+    // The classes are those of the plain map.
+    let (dir2, out) = run(&[
+        "phase-diagram",
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--w-min",
+        "0.25",
+        "--w-max",
+        "0.40",
+        "--w-steps",
+        "4",
+        "--beta-min",
+        "2",
+        "--beta-max",
+        "9",
+        "--beta-steps",
+        "2",
+        "--out",
+        "plain.csv",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let plain = std::fs::read_to_string(dir2.path().join("plain.csv")).unwrap();
+    for (a, b) in plain.lines().zip(csv.lines()).skip(1) {
+        assert!(b.starts_with(a), "{a} against {b}");
+    }
+    let svg = std::fs::read_to_string(dir.path().join("map.svg")).unwrap();
+    assert!(svg.contains("largest Lyapunov exponent") && svg.contains("λ1 per unit τ"));
+    assert!(plain.contains(",chaotic,"), "{plain}");
+}
+
+#[test]
+fn the_exponent_map_needs_the_exact_model_and_a_measurement() {
+    let dir = tempfile::tempdir().unwrap();
+    let small = ["--w-steps", "2", "--beta-steps", "2", "--color", "lyapunov"];
+    let mut args = vec!["phase-diagram", "--preset", "paper", "--model", "shockley"];
+    args.extend_from_slice(&small);
+    let out = run_in(dir.path(), &args);
+    assert_usage_error(dir.path(), &out, "piecewise-linear");
+    let mut args = vec!["phase-diagram", "--lyapunov-periods", "0"];
+    args.extend_from_slice(&small);
+    let out = run_in(dir.path(), &args);
+    assert_usage_error(dir.path(), &out, "--lyapunov-periods");
+    let out = run_in(dir.path(), &["phase-diagram", "--color", "rainbow"]);
+    assert_usage_error(dir.path(), &out, "rainbow");
+}

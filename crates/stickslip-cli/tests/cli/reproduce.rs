@@ -25,7 +25,20 @@ fn writes_every_figure_table_and_the_report() {
     let (dir, out) = run(&["reproduce", "--quick", "--out", "report"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let report = dir.path().join("report");
-    let figures = ["fig1", "fig3", "fig4", "fig5", "fig6", "fig7"];
+    let figures = [
+        "fig1",
+        "fig3",
+        "fig4",
+        "fig5",
+        "fig6",
+        "fig7",
+        "chaos-sweep",
+        "chaos-map",
+        "paper-exponents",
+        "beyond-bifurcation",
+        "beyond-basins",
+        "beyond-branch",
+    ];
     let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
     for f in figures {
         for ext in ["png", "svg"] {
@@ -69,11 +82,61 @@ fn writes_every_figure_table_and_the_report() {
     let fig6 = summary["fig6"].as_array().expect("fig6 classes");
     assert_eq!(fig6.len(), 4);
     let classes: Vec<&str> = fig6.iter().map(|p| p["class"].as_str().unwrap()).collect();
-    let allowed = ["sliding", "periodic-stick", "nonperiodic-stick", "static"];
+    let allowed = [
+        "sliding",
+        "periodic-stick",
+        "nonperiodic-stick",
+        "static",
+        "chaotic",
+    ];
     assert!(classes.iter().all(|c| allowed.contains(c)), "{classes:?}");
     // The first and last of the paper's points are unambiguous.
     assert_eq!(classes[0], "sliding");
     assert_eq!(classes[3], "static");
+    // The chapter "Beyond the paper": chaos at μs = 3, none on the paper's map (μs = 1).
+    assert!(html.contains("Beyond the paper"));
+    let sweep = &summary["beyond_chaos_sweep"];
+    assert!(sweep["chaotic"].as_u64().unwrap() > 0, "{sweep}");
+    assert!(
+        sweep["lambda_chaotic"][0].as_f64().unwrap() > 0.0,
+        "{sweep}"
+    );
+    let map = &summary["beyond_chaos_map"];
+    assert!(map["chaotic"].as_u64().unwrap() > 0, "{map}");
+    assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
+    let paper = &summary["beyond_paper_exponents"];
+    assert_eq!(paper["positive"], 0, "{paper}");
+    assert_eq!(paper["nonperiodic"], 0, "{paper}");
+    assert!(paper["largest_moving"]["lambda_per_tau"].as_f64().unwrap() < 0.0);
+    // The diagram in w at μs = 3 has periodic and chaotic values and branches found by
+    // continuation; the basin map two coexisting orbits that are mirror images; the branch
+    // a grazing above its fold.
+    let bif = &summary["beyond_bifurcation_w"];
+    assert!(bif["up_chaotic"].as_u64().unwrap() > 0, "{bif}");
+    assert!(bif["up_periodic"].as_u64().unwrap() > 0, "{bif}");
+    assert!(bif["branches"].as_u64().unwrap() > 0, "{bif}");
+    let basins = &summary["beyond_basins"];
+    let attractors = basins["attractors"].as_array().unwrap();
+    assert_eq!(attractors.len(), 2, "{basins}");
+    assert!(attractors.iter().all(|a| a["period"] == 1), "{basins}");
+    assert!(basins["mirror_gap"].as_f64().unwrap() < 1e-9, "{basins}");
+    let branch = &summary["beyond_branch"];
+    let (graze, fold) = (
+        branch["grazing_beta"].as_f64().unwrap(),
+        branch["fold_beta"].as_f64().unwrap(),
+    );
+    assert!(1.25 < fold && fold < graze && graze < 1.6, "{branch}");
+    for id in ["beyond-bifurcation", "beyond-basins", "beyond-branch"] {
+        assert!(html.contains(&format!("id=\"{id}\"")), "no section {id}");
+    }
+    // The report is the same on every run: no timings in it.
+    assert!(!html.contains(" s on "), "a timing in index.html");
+    assert!(
+        !std::fs::read_to_string(report.join("summary.json"))
+            .unwrap()
+            .contains("\"seconds\""),
+        "a timing in summary.json"
+    );
     // No staging directory is left behind.
     let left: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()

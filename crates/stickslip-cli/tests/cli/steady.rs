@@ -131,3 +131,90 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         assert_usage_error(dir.path(), &out, needle);
     }
 }
+
+#[test]
+fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
+    // ζ = 0, μs = 3, β = 9, w = 0.33: chaos.
+    let v = json(&["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"]);
+    assert_eq!(v["class"], "chaotic");
+    assert_eq!(v["verdict"], "chaotic");
+    assert_eq!(v["period"], serde_json::Value::Null);
+    let (lambda, error) = (
+        v["lambda_per_tau"].as_f64().unwrap(),
+        v["error_per_tau"].as_f64().unwrap(),
+    );
+    assert!(lambda > 4.0 * error, "{lambda} ± {error}");
+    assert_eq!(v["lambda_periods"], 5000);
+    assert!(v["lambda_per_period"].as_f64().unwrap() > 0.0);
+    // Fewer periods measured: the same verdict.
+    let short = json(&[
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--w",
+        "0.33",
+        "--beta",
+        "9",
+        "--lyapunov-periods",
+        "1000",
+    ]);
+    assert_eq!(
+        (short["class"].clone(), short["lambda_periods"].clone()),
+        ("chaotic".into(), 1000.into())
+    );
+    // Not measured: the class from the event log alone, and no exponent keys.
+    let off = json(&[
+        "--zeta",
+        "0",
+        "--mu-s",
+        "3",
+        "--w",
+        "0.33",
+        "--beta",
+        "9",
+        "--lyapunov-periods",
+        "0",
+    ]);
+    assert_eq!(off["class"], "nonperiodic-stick");
+    assert!(off.get("lambda_per_tau").is_none() && off.get("verdict").is_none());
+    // A periodic motion has no exponent keys at all.
+    let periodic = json(&["--zeta", "0", "--mu-s", "3", "--w", "0.25", "--beta", "9"]);
+    assert_eq!(periodic["class"], "periodic-stick");
+    assert!(periodic.get("lambda_per_tau").is_none());
+    // The point: no period within the cap, not chaotic either.
+    let v = json(&[
+        "--zeta", "0", "--mu-s", "2.5", "--w", "0.4227", "--beta", "3.627",
+    ]);
+    assert_eq!(v["class"], "nonperiodic-stick");
+    assert_ne!(v["verdict"], "chaotic");
+    assert!(v["lambda_per_tau"].as_f64().unwrap() < 0.0);
+}
+
+#[test]
+fn text_report_of_a_chaotic_motion_gives_the_exponent() {
+    let (_dir, out) = run(&[
+        "steady", "--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("class             chaotic"), "{text}");
+    assert!(text.contains("Lyapunov λ1"), "{text}");
+    assert!(text.contains("nearby motions separate"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    for bad in ["-1", "10", "x"] {
+        let out = run_in(
+            dir.path(),
+            &[
+                "steady",
+                "--w",
+                "0.7",
+                "--beta",
+                "1.2",
+                "--lyapunov-periods",
+                bad,
+            ],
+        );
+        assert_usage_error(dir.path(), &out, "--lyapunov-periods");
+    }
+}

@@ -15,7 +15,10 @@ For the circuit y = u_C/U_t, 2ζ = (R + R_D)√(C/L), β = U/U_t, w = Ω/ω0.
 - ``theory`` and ``boundary``: the paper's series solution and the exact one; the stick-slip
   boundary β_c.
 - ``sweep``: one parameter up and down with continuation (hysteresis).
-- ``phase_diagram``: motion classes on a grid of two parameters, in parallel; ``to_xarray()``.
+- ``phase_diagram``: motion classes on a grid of two parameters, in parallel; ``to_xarray()``;
+  with ``lyapunov=True`` the largest Lyapunov exponent of every point.
+- ``orbit``: a periodic orbit by Newton's method, with its Floquet multipliers (stable or not).
+- ``lyapunov``: the Lyapunov exponents of a motion: chaotic or not.
 - ``bifurcation``: strobe points and the largest Lyapunov exponent against a parameter.
 - ``basins``: the attractor reached from each initial state of a grid, attractors numbered.
 - ``continuation``: a branch of periodic orbits with its stability, folds, period doublings
@@ -43,11 +46,16 @@ from ._api import (
     MOTION_CLASSES,
     PARAMETERS,
     PHASE_LABELS,
+    STOP_DTYPE,
+    LyapunovResult,
+    PeriodicOrbit,
     PhaseDiagram,
     SteadyState,
     SweepResult,
     Trajectory,
     boundary,
+    lyapunov,
+    orbit,
     phase_diagram,
     simulate,
     steady,
@@ -79,12 +87,17 @@ __all__ = [
     "MOTION_CLASSES",
     "PARAMETERS",
     "PHASE_LABELS",
+    "STOP_DTYPE",
+    "LyapunovResult",
+    "PeriodicOrbit",
     "PhaseDiagram",
     "SteadyState",
     "SweepResult",
     "Trajectory",
     "__version__",
     "boundary",
+    "lyapunov",
+    "orbit",
     "phase_diagram",
     "simulate",
     "steady",

@@ -11,7 +11,9 @@ import numpy as np
 from . import _core
 from ._core import Experiment
 
-#: The four kinds of steady motion, in the order of their codes in ``motion`` arrays.
+#: The kinds of steady motion, in the order of their codes in ``motion`` arrays: 'sliding',
+#: 'periodic-stick', 'nonperiodic-stick', 'static' (the paper's four) and 'chaotic' (a
+#: motion that does not repeat, with a largest Lyapunov exponent positive beyond its error).
 MOTION_CLASSES: Tuple[str, ...] = tuple(_core.MOTION_CLASSES)
 #: The parameters that sweeps and maps vary, with their long names (units: dimensionless).
 PARAMETERS: Dict[str, str] = dict(_core.PARAMETER_LONG_NAMES)
@@ -153,11 +155,19 @@ class SteadyState:
     ``to_dict()`` is exactly the JSON of ``stickslip steady --json`` for the same input (same
     keys, same numbers): class, period (None: none found), stops_per_cycle, symmetric, peak,
     gain, phase_lag (radians), harmonics, harmonic_phases, current_harmonics, subharmonic,
-    mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s. Each is also an
-    attribute (``motion`` for the class), the lists as numpy arrays.
+    mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s; and for a motion that
+    does not repeat (measured with the exact PWL model) lambda_per_tau, error_per_tau,
+    lambda_per_period, error_per_period, lambda_periods, lambda_converged and verdict. Each
+    is also an attribute (``motion`` for the class), the lists as numpy arrays; the exponent's
+    attributes are None for a motion that repeats.
 
     Attributes:
-        motion: 'sliding', 'periodic-stick', 'nonperiodic-stick' or 'static'.
+        motion: 'sliding', 'periodic-stick', 'nonperiodic-stick', 'static' or 'chaotic' (no
+            period, and the largest Lyapunov exponent positive beyond 4 standard errors).
+        lambda_per_tau, error_per_tau: the largest Lyapunov exponent λ1 of a motion that does
+            not repeat and its standard error, per unit τ = ω0·t (None otherwise);
+            lambda_per_period, error_per_period: the same per drive period; verdict:
+            'chaotic', 'quasi-periodic', 'contracting' or 'undecided'.
         harmonics, harmonic_phases, current_harmonics: float64 arrays: A_k of y, their phases
             θ_k (radians), and k·w·A_k (the harmonics of y'), for k = 1, 2, ...
         trace: the recorded cycle sampled for the spectrum, an object with float64 arrays
@@ -190,6 +200,11 @@ class SteadyState:
         self.beta: float = r["beta"]
         self.zeta: float = r["zeta"]
         self.mu_s: float = r["mu_s"]
+        self.lambda_per_tau: Optional[float] = r.get("lambda_per_tau")
+        self.error_per_tau: Optional[float] = r.get("error_per_tau")
+        self.lambda_per_period: Optional[float] = r.get("lambda_per_period")
+        self.error_per_period: Optional[float] = r.get("error_per_period")
+        self.verdict: Optional[str] = r.get("verdict")
         tau = data["trace_tau"]
         drive = data["xy_drive"]
         self.trace = _Trace(tau, data["trace_y"], data["trace_v"], drive, data["trace_phase"])
@@ -336,12 +351,17 @@ class PhaseDiagram:
         coords: dict from each parameter to its float64 values.
         motion: int8 array of shape ``tuple(len(coords[d]) for d in dims)``: codes into
             ``labels`` = ``MOTION_CLASSES`` = ('sliding', 'periodic-stick',
-            'nonperiodic-stick', 'static').
+            'nonperiodic-stick', 'static', 'chaotic').
         period: int16 array, the period in drive periods, **-1 where none was found** (up to
             the ``max_period`` option, 16 by default).
         stops_per_cycle: float64 array, stops of non-zero duration per drive period.
         gain: float64 array, (y_max − y_min)/(2β) (inf at β = 0 with motion).
         symmetric: bool array; periods_to_settle: int64 array.
+        lyapunov, lyapunov_error: float64 arrays of the largest Lyapunov exponent λ1 per unit
+            τ and its standard error, with ``phase_diagram(..., lyapunov=True)`` (None
+            otherwise): exactly ln|μ1|/(pT) from the Floquet multiplier of the orbit where the
+            motion repeats (error 0), measured where it does not; -inf where both multipliers
+            vanish, NaN where the flow has no derivative.
         experiment, options: what was run.
     """
 
@@ -359,8 +379,12 @@ class PhaseDiagram:
         self.gain: np.ndarray = arrays["gain"]
         self.symmetric: np.ndarray = arrays["symmetric"]
         self.periods_to_settle: np.ndarray = arrays["periods_to_settle"]
+        self.lyapunov: Optional[np.ndarray] = arrays.get("lyapunov")
+        self.lyapunov_error: Optional[np.ndarray] = arrays.get("lyapunov_error")
 
     FIELDS = ("motion", "period", "stops_per_cycle", "gain", "symmetric", "periods_to_settle")
+    #: Fields of a map asked for its exponents.
+    EXPONENT_FIELDS = ("lyapunov", "lyapunov_error")
 
     @property
     def shape(self) -> Tuple[int, ...]:
@@ -399,6 +423,13 @@ class PhaseDiagram:
                                   {"long_name": "drive periods run before the cycle was found",
                                    "units": "1"}),
         }
+        if self.lyapunov is not None and self.lyapunov_error is not None:
+            data["lambda"] = (self.dims, self.lyapunov,
+                              {"long_name": "largest Lyapunov exponent per unit tau",
+                               "units": "1"})
+            data["lambda_error"] = (self.dims, self.lyapunov_error,
+                                    {"long_name": "standard error of the largest Lyapunov "
+                                                  "exponent per unit tau", "units": "1"})
         attrs = _fixed_attributes(self.experiment, self.dims)
         attrs["steady_options"] = json.dumps(self.options)
         ds = xr.Dataset(data, coords=coords, attrs=attrs)
@@ -462,7 +493,9 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
             the stiff solver's 1e-6 with Shockley diodes), max_periods (5000), max_period (16,
             at most 64), min_stop_fraction (1e-8 of a period), accelerate (True: extrapolate
             the stroboscopic map to its fixed point), harmonics (16), samples_per_period (None:
-            chosen from the event log; else a power of two from 16).
+            chosen from the event log; else a power of two from 16), lyapunov_periods (5000:
+            drive periods over which a motion that does not repeat is measured by its largest
+            Lyapunov exponent, with the exact PWL model; 0: not measured).
 
     Returns:
         A ``SteadyState``; ``to_dict()`` equals ``stickslip steady --json``.
@@ -574,7 +607,7 @@ def _axes(kwargs: Dict[str, Any], count: Sequence[int], caller: str
 
 def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
                   threads: Optional[int] = None, progress: Progress = None,
-                  **axes_and_options: Any) -> PhaseDiagram:
+                  lyapunov: bool = False, **axes_and_options: Any) -> PhaseDiagram:
     """Classify the steady motion on a grid of two parameters, every point started from the
     experiment's initial state (rest, as in the paper's Fig. 7), in parallel.
 
@@ -588,8 +621,12 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
             the same for any number.
         progress: optional callable ``progress(done, total)`` (points), called from the
             calling thread about every 50 ms (e.g. a tqdm bar's update).
+        lyapunov: also the largest Lyapunov exponent of every point (exact PWL model; as
+            ``stickslip phase-diagram --color lyapunov``): arrays ``lyapunov`` and
+            ``lyapunov_error`` per unit τ.
         **axes_and_options: the two parameter arrays, then options as for ``steady``
-            (tolerance, max_periods, max_period, min_stop_fraction, accelerate).
+            (tolerance, max_periods, max_period, min_stop_fraction, accelerate,
+            lyapunov_periods).
 
     Returns:
         A ``PhaseDiagram``: ``motion`` (int8 codes into ``labels``), ``period`` (-1: none
@@ -609,9 +646,227 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
     experiment = _with_model(experiment, model)
     axes, options = _axes(axes_and_options, (2,), "phase_diagram")
     (first, v1), (second, v2) = axes.items()
-    data = _core.grid(experiment, first, v1, second, v2, options, threads, None, None, progress)
+    data = _core.grid(experiment, first, v1, second, v2, options, threads, None, None, progress,
+                      bool(lyapunov))
     return PhaseDiagram(experiment, (first, second), axes, options, _reshape(data, (len(v1), len(v2))))
 
 
 def _reshape(data: Mapping[str, np.ndarray], shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
-    return {name: data[name].reshape(shape) for name in PhaseDiagram.FIELDS}
+    names = PhaseDiagram.FIELDS + tuple(n for n in PhaseDiagram.EXPONENT_FIELDS if n in data)
+    return {name: data[name].reshape(shape) for name in names}
+
+
+def _exponent(value: Any) -> float:
+    """An exponent of a report: a number, or the text "-inf" for −∞."""
+    return float("-inf") if value == "-inf" else float(value)
+
+
+#: The structured dtype of an orbit's stops.
+STOP_DTYPE = np.dtype([("start", np.float64), ("duration", np.float64)])
+
+
+class PeriodicOrbit:
+    """A periodic orbit found by Newton's method, with its Floquet multipliers
+    (``stickslip.orbit``).
+
+    ``to_dict()`` is exactly the JSON of ``stickslip orbit --json`` for the same input.
+    Everything is dimensionless (times in τ = ω0·t).
+
+    Attributes:
+        period: p in drive periods, as asked for (or found); least_period: the divisor of p
+            after which the orbit repeats (Newton's method asked for p = 2 may land on an
+            orbit of period 1).
+        drive_period: T = 2π/w.
+        state: (y, y') at the orbit's strobe (τ = 0 mod pT); stuck_at_strobe: bool.
+        multipliers: complex128 array of the two Floquet multipliers, the larger modulus
+            first (one is 0 when the orbit stops: a stop erases the velocity perturbation);
+            moduli: their |μ|.
+        stable: whether every perturbation decays (|μ1| < 1); stability: 'stable',
+            'unstable' or 'neutral'.
+        exponent_per_tau, exponent_per_period: ln|μ1|/(pT) and ln|μ1|/p (-inf when both
+            multipliers vanish).
+        monodromy: 2×2 float64 array M = ∂P^p/∂(y, y').
+        iterations: Newton steps; residuals: float64 array, max(|Δy|, |Δy'|) of P^p(x) − x
+            at the guess and after every step.
+        events: structured array (tau, y, kind) over one orbit period, times from the strobe;
+            stops: structured array (start, duration); stops_per_period: stops longer than
+            1e-8 drive periods per drive period.
+        experiment: the experiment.
+    """
+
+    def __init__(self, experiment: Experiment, report: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self._report = report
+        r = report
+        self.period: int = r["period"]
+        self.least_period: int = r["least_period"]
+        self.drive_period: float = r["drive_period"]
+        self.state: Tuple[float, float] = (r["y"], r["v"])
+        self.stuck_at_strobe: bool = r["stuck_at_strobe"]
+        self.multipliers = np.array([complex(m["re"], m["im"]) for m in r["multipliers"]])
+        self.moduli = np.asarray(r["moduli"], dtype=np.float64)
+        self.stable: bool = r["stable"]
+        self.stability: str = r["stability"]
+        self.exponent_per_tau: float = _exponent(r["exponent_per_tau"])
+        self.exponent_per_period: float = _exponent(r["exponent_per_period"])
+        self.monodromy = np.asarray(r["monodromy"], dtype=np.float64)
+        self.iterations: int = r["iterations"]
+        self.residuals = np.asarray(r["residuals"], dtype=np.float64)
+        self.stops_per_period: float = r["stops_per_period"]
+        events = r["events"]
+        self.events = np.empty(len(events), dtype=EVENT_DTYPE)
+        self.events["tau"] = [e["tau"] for e in events]
+        self.events["y"] = [e["y"] for e in events]
+        self.events["kind"] = [e["kind"] for e in events]
+        self.stops = np.array([(s["start"], s["duration"]) for s in r["stops"]],
+                              dtype=STOP_DTYPE)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The report as ``stickslip orbit --json`` prints it (a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def __repr__(self) -> str:
+        mu = ", ".join(f"{m:.6g}" for m in self.multipliers)
+        return (f"<stickslip.PeriodicOrbit period {self.period}: {self.stability}, "
+                f"multipliers {mu}, {self.iterations} Newton steps>")
+
+
+class LyapunovResult:
+    """The Lyapunov exponents of a motion and what they say (``stickslip.lyapunov``).
+
+    ``to_dict()`` is exactly the JSON of ``stickslip lyapunov --json`` for the same input.
+    Rates are per unit τ = ω0·t (``*_per_period``: per drive period).
+
+    Attributes:
+        lambda_per_tau, error_per_tau: the largest exponent λ1 and its standard error (from
+            the block means); lambda_per_period, error_per_period: the same per drive period.
+        motion_class: 'chaotic' (λ1 > kσ), 'quasi-periodic' (|λ1| ≤ kσ), 'contracting'
+            (λ1 < −kσ: a periodic attractor, reached or not) or 'undecided' (the two halves of
+            the measurement disagree), with k = ``significance`` (the JSON's ``class``).
+        converged: whether the two halves agree.
+        lambda2_per_tau, lambda2_per_period: the second exponent (-inf once the motion stops:
+            a stop erases the velocity perturbation; ``lambda2_reason`` says so).
+        stops_per_period: stops longer than 1e-8 drive periods per drive period.
+        block_means: float64 array of λ1 per block, in time order.
+        transient_periods, periods, blocks, significance: how it was measured.
+        final_state: (y, y') at the end of the measurement (a strobe).
+        experiment: the experiment.
+    """
+
+    def __init__(self, experiment: Experiment, report: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self._report = report
+        r = report
+        self.lambda_per_tau: float = r["lambda_per_tau"]
+        self.error_per_tau: float = r["error_per_tau"]
+        self.lambda_per_period: float = r["lambda_per_period"]
+        self.error_per_period: float = r["error_per_period"]
+        self.motion_class: str = r["class"]
+        self.converged: bool = r["converged"]
+        self.lambda2_per_tau: float = _exponent(r["lambda2_per_tau"])
+        self.lambda2_error_per_tau: Optional[float] = r["lambda2_error_per_tau"]
+        self.lambda2_per_period: float = _exponent(r["lambda2_per_period"])
+        self.lambda2_reason: Optional[str] = r["lambda2_reason"]
+        self.stops_per_period: float = r["stops_per_period"]
+        self.block_means = np.asarray(r["block_means"], dtype=np.float64)
+        self.transient_periods: int = r["transient_periods"]
+        self.periods: int = r["periods"]
+        self.blocks: int = r["blocks"]
+        self.significance: float = r["significance"]
+        self.drive_period: float = r["drive_period"]
+        self.final_state: Tuple[float, float] = (r["final_y"], r["final_v"])
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The report as ``stickslip lyapunov --json`` prints it (a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def __repr__(self) -> str:
+        return (f"<stickslip.LyapunovResult {self.motion_class}: λ1 = {self.lambda_per_tau:+.4e} "
+                f"± {self.error_per_tau:.1e} per unit τ over {self.periods} periods>")
+
+
+def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: int = 0,
+          tolerance: float = 1e-12, max_iterations: int = 30, progress: Progress = None,
+          **options: Any) -> PeriodicOrbit:
+    """A periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
+    (the state once every p drive periods), with the exact Jacobian: its Floquet
+    multipliers say whether it is stable and how fast perturbations grow or decay (as
+    ``stickslip orbit``).
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with its drive given (PWL diodes or Coulomb
+            friction; Shockley diodes raise ``ValueError``).
+        period: p in drive periods. None (the default): the motion from the initial state is
+            run to its steady state, which gives p and the guess.
+        transient: with a period, drive periods run from the initial state before Newton's
+            method starts (0: from the initial state y0, v0 itself, which can aim at an
+            unstable orbit).
+        tolerance: relative tolerance of Newton's method (default 1e-12).
+        max_iterations: most Newton steps (default 30).
+        progress: optional callable ``progress(done, total)`` (drive periods of the transient).
+        **options: of the steady-state search without a period: max_periods (5000),
+            max_period (16), tolerance is Newton's (above).
+
+    Returns:
+        A ``PeriodicOrbit``; ``to_dict()`` equals ``stickslip orbit --json``.
+
+    Raises:
+        ValueError: bad input, Shockley diodes, no period found, Newton's method failing,
+            with the library's message. KeyboardInterrupt: Ctrl-C stops a long transient.
+
+    Example:
+        >>> o = stickslip.orbit(stickslip.Experiment.paper(w=0.7, beta=1.2))
+        >>> o.period, o.stable, round(float(o.moduli[0]), 6), o.stops_per_period
+        (1, True, 0.626452, 2.0)
+        >>> u = stickslip.orbit(stickslip.Experiment(zeta=0, mu_s=3, w=0.33, beta=9),
+        ...                     period=1, transient=2000)
+        >>> u.stability, round(u.exponent_per_tau, 5)
+        ('unstable', 0.01747)
+    """
+    experiment = _with_model(experiment, None)
+    unknown = set(options) - {"max_periods", "max_period"}
+    if unknown:
+        raise TypeError(f"unknown option {sorted(unknown)[0]!r}: the options are max_periods, "
+                        "max_period")
+    report = _core.orbit(experiment, period, int(transient), options, float(tolerance),
+                         int(max_iterations), progress)
+    return PeriodicOrbit(experiment, report)
+
+
+def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20000,
+             blocks: int = 20, significance: float = 4.0,
+             progress: Progress = None) -> LyapunovResult:
+    """The Lyapunov exponents of the motion from the initial state, by the exact tangent
+    dynamics of the PWL model (as ``stickslip lyapunov``).
+
+    The 2×2 Jacobian of the exact flow is carried along the trajectory; after ``transient``
+    drive periods the largest exponent λ1 is averaged over ``periods`` more, cut into
+    ``blocks`` blocks whose spread gives its standard error σ. Two motions that start δ
+    apart are about e^(λ1 τ)·δ apart later (τ = ω0·t).
+
+    Args:
+        experiment: a ``stickslip.Experiment`` with its drive given (not Shockley diodes).
+        transient: drive periods run before measuring (default 1000).
+        periods: drive periods measured (default 20000; rounded down to a multiple of
+            ``blocks``).
+        blocks: even, at least 4 (default 20).
+        significance: k, the standard errors that make λ1 significant (default 4).
+        progress: optional callable ``progress(done, total)`` (drive periods).
+
+    Returns:
+        A ``LyapunovResult``; ``to_dict()`` equals ``stickslip lyapunov --json``.
+
+    Raises:
+        ValueError: bad input or Shockley diodes, with the library's message.
+        KeyboardInterrupt: Ctrl-C stops a long measurement.
+
+    Example:
+        >>> c = stickslip.lyapunov(stickslip.Experiment(zeta=0, mu_s=3, w=0.33, beta=9),
+        ...                        transient=500, periods=2000)
+        >>> c.motion_class, c.lambda_per_tau > 4 * c.error_per_tau, c.lambda2_per_tau
+        ('chaotic', True, -inf)
+    """
+    experiment = _with_model(experiment, None)
+    report = _core.lyapunov(experiment, int(transient), int(periods), int(blocks),
+                            float(significance), progress)
+    return LyapunovResult(experiment, report)

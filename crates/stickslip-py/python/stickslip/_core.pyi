@@ -20,6 +20,8 @@ __all__ = [
     "boundary",
     "continuation",
     "grid",
+    "lyapunov",
+    "orbit",
     "simulate",
     "steady",
     "sweep",
@@ -147,6 +149,24 @@ def grid(
     threads: Optional[int] = None,
     block: Optional[Tuple[int, int, int, int]] = None,
     fixed: Optional[Sequence[Tuple[str, float]]] = None,
+    progress: _Progress = None,
+    lyapunov: bool = False,
+) -> Dict[str, Any]: ...
+def orbit(
+    experiment: Experiment,
+    period: Optional[int] = None,
+    transient: int = 0,
+    options: Optional[Dict[str, Any]] = None,
+    tolerance: float = 1e-12,
+    max_iterations: int = 30,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def lyapunov(
+    experiment: Experiment,
+    transient: int = 1000,
+    periods: int = 20000,
+    blocks: int = 20,
+    significance: float = 4.0,
     progress: _Progress = None,
 ) -> Dict[str, Any]: ...
 def bifurcation(

@@ -282,6 +282,10 @@ impl Solver for ExactSolver {
         &self.params
     }
 
+    fn is_exact(&self) -> bool {
+        true
+    }
+
     fn time(&self) -> f64 {
         self.time
     }

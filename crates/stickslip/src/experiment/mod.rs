@@ -26,6 +26,7 @@
 mod file;
 mod key;
 mod spec;
+mod stability;
 mod trajectory;
 
 pub use file::ConfigError;

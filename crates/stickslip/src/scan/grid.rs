@@ -4,8 +4,9 @@
 use super::axis::Axis;
 use super::monitor::Monitor;
 use crate::error::{Error, Result};
-use crate::experiment::Experiment;
+use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
+use crate::stability::{steady_exponent, Estimate, LyapunovOptions};
 use crate::steady::{check_horizon, steady_state_from, MotionClass, SolverFactory, SteadyOptions};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -30,6 +31,10 @@ pub struct GridPoint {
     pub symmetric: bool,
     /// Drive periods run before the cycle was recognised.
     pub periods_to_settle: usize,
+    /// The largest Lyapunov exponent of the motion, when the grid was asked for it
+    /// ([`Grid::lyapunov`]; `None` otherwise, or where the flow has no derivative).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lyapunov: Option<Estimate>,
 }
 
 /// A finished grid: its two axes and its points, first-axis-major: `points[i·n + j]` holds
@@ -66,6 +71,7 @@ impl std::fmt::Debug for Grid {
             .field("second", &self.second)
             .field("options", &self.options)
             .field("threads", &self.threads)
+            .field("lyapunov", &self.lyapunov)
             .finish_non_exhaustive()
     }
 }
@@ -82,6 +88,7 @@ pub struct Grid {
     second: Axis,
     options: SteadyOptions,
     threads: Option<usize>,
+    lyapunov: Option<LyapunovOptions>,
 }
 
 impl Grid {
@@ -115,6 +122,7 @@ impl Grid {
             first,
             second,
             threads: None,
+            lyapunov: None,
         };
         grid.check_horizons()?;
         Ok(grid)
@@ -166,9 +174,43 @@ impl Grid {
         Ok(self)
     }
 
+    /// Also find the largest Lyapunov exponent of every point ([`GridPoint::lyapunov`], by
+    /// [`steady_exponent`]): exactly, from the Floquet multipliers of the periodic orbit, where
+    /// the motion repeats (a Newton step or two from the recorded cycle), and measured with
+    /// `options` where it does not (unless the steady-state search measured it already, with
+    /// [`SteadyOptions::lyapunov`]). Points still differ only by what they compute, so the map
+    /// stays the same for any number of threads.
+    ///
+    /// # Errors
+    /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are
+    /// those of the exact piecewise-linear model); [`Error::HorizonTooLong`] when the
+    /// measurement reaches beyond the time range the solvers resolve at some w of the grid.
+    pub fn lyapunov(mut self, options: LyapunovOptions) -> Result<Self> {
+        if self.experiment.diode_model() != DiodeModel::Pwl {
+            return Err(Error::Unsupported(crate::Unsupported::StabilityNeedsPwl));
+        }
+        let options = options.validate()?;
+        // The measurement starts again at τ = 0 from the end of the steady-state search; the
+        // axes' edges hold every value of w.
+        for i in 0..self.first.len() {
+            options.check_horizon(&self.params(i, 0)?)?;
+        }
+        for j in 0..self.second.len() {
+            options.check_horizon(&self.params(0, j)?)?;
+        }
+        self.lyapunov = Some(options);
+        Ok(self)
+    }
+
     /// The steady-state options used.
     pub fn steady_options(&self) -> &SteadyOptions {
         &self.options
+    }
+
+    /// The options of the Lyapunov exponents, when the grid was asked for them
+    /// ([`Grid::lyapunov`]).
+    pub fn lyapunov_options(&self) -> Option<&LyapunovOptions> {
+        self.lyapunov.as_ref()
     }
 
     /// The first axis (rows).
@@ -222,6 +264,10 @@ impl Grid {
             self.experiment.initial(),
             &self.options,
         )?;
+        let lyapunov = match &self.lyapunov {
+            Some(options) => steady_exponent(&s, options)?,
+            None => None,
+        };
         Ok(GridPoint {
             params,
             class: s.class,
@@ -230,6 +276,7 @@ impl Grid {
             gain: s.gain,
             symmetric: s.symmetric,
             periods_to_settle: s.periods_to_settle,
+            lyapunov,
         })
     }
 

@@ -38,7 +38,10 @@ use super::error::StabilityError;
 use super::tangent::TangentSolver;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
+use crate::scan::Monitor;
+use crate::solver::{Event, EventKind, Phase};
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// Options of [`lyapunov_exponents`], [`super::two_trajectory_exponent`] and
 /// [`super::classify_nonperiodic`].
@@ -95,6 +98,25 @@ impl LyapunovOptions {
             return bad("significance", self.significance, "must be finite and > 0");
         }
         Ok(self)
+    }
+
+    /// Check that the transient and the measurement, one run from τ = 0, stay within the time
+    /// range the solvers resolve at these parameters ([`crate::limits::check_horizon`]).
+    ///
+    /// ```
+    /// use stickslip::stability::LyapunovOptions;
+    /// use stickslip::Params;
+    /// let p = Params::new(0.0, 0.33, 9.0).unwrap();
+    /// assert!(LyapunovOptions::default().check_horizon(&p).is_ok());
+    /// let long = LyapunovOptions { periods: 1_000_000_000, ..Default::default() };
+    /// assert!(long.check_horizon(&p).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::HorizonTooLong`].
+    pub fn check_horizon(&self, params: &Params) -> Result<()> {
+        let measured = self.periods / self.blocks.max(1) * self.blocks;
+        crate::limits::check_horizon(params, (self.transient_periods + measured) as f64)
     }
 }
 
@@ -164,6 +186,16 @@ pub struct LyapunovExponents {
     pub drive_period: f64,
     /// The state at the end of the measurement (at a strobe).
     pub final_state: State,
+    /// Stops longer than 10⁻⁸ drive periods while measured (a stop running over the end of
+    /// the measurement is not counted; being stuck throughout is no stop).
+    pub stops: usize,
+}
+
+impl LyapunovExponents {
+    /// Stops of non-zero duration per drive period while measured.
+    pub fn stops_per_period(&self) -> f64 {
+        self.stops as f64 / self.periods.max(1) as f64
+    }
 }
 
 /// Mean and standard error of the block means `means`.
@@ -211,6 +243,8 @@ pub(super) fn halves_agree(means: &[f64], significance: f64) -> bool {
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for invalid parameters, state or options;
+/// [`Error::HorizonTooLong`] when the transient and the measurement reach beyond the time
+/// range the solvers resolve ([`crate::limits::max_periods`]);
 /// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
 /// reports.
 pub fn lyapunov_exponents(
@@ -218,24 +252,39 @@ pub fn lyapunov_exponents(
     initial: State,
     options: &LyapunovOptions,
 ) -> Result<LyapunovExponents> {
+    lyapunov_exponents_monitored(params, initial, options, &())
+}
+
+/// [`lyapunov_exponents`], watched by `monitor`: it is told the drive periods run (transient
+/// and measurement) after every block of them, and can stop the run.
+///
+/// # Errors
+/// As [`lyapunov_exponents`]; [`Error::Cancelled`] (counting drive periods) when the monitor
+/// stops the run.
+pub fn lyapunov_exponents_monitored(
+    params: &Params,
+    initial: State,
+    options: &LyapunovOptions,
+    monitor: &dyn Monitor,
+) -> Result<LyapunovExponents> {
     let options = options.validate()?;
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
     let period = params.drive_period();
     let per_block = options.periods / options.blocks;
+    // One solver runs the transient and the measurement.
+    options.check_horizon(&params)?;
     let length = per_block as f64 * period;
-    // `periods` drive periods from the current strobe, the clock restarted first (see
-    // `TangentSolver::restart_clock`); the growth ln‖J‖ over them, J renormalised at the end.
-    let run = |tangent: &mut TangentSolver, periods: usize| -> Result<f64> {
-        tangent.restart_clock();
-        tangent.run_until(periods as f64 * period, |_| {})?;
-        Ok(tangent.renormalize())
+    let mut progress = Progress {
+        monitor,
+        done: 0,
+        total: options.transient_periods + per_block * options.blocks,
     };
     let mut tangent = TangentSolver::new(params, initial);
     let mut left = options.transient_periods;
     while left > 0 {
         let chunk = left.min(per_block);
-        run(&mut tangent, chunk)?;
+        run(&mut tangent, chunk, period, &mut progress, &mut |_| {})?;
         left -= chunk;
         if tangent.grazing().is_some() {
             // (Only the measurement needs a finite Jacobian: start it afresh.)
@@ -244,11 +293,15 @@ pub fn lyapunov_exponents(
     }
     // Keep the aligned J; restart ln|det J| and the stop count for the measurement.
     tangent.reset_log_det();
+    let mut stops = StopCount::new(tangent.phase() == Phase::Stick, MIN_STOP_FRACTION * period);
     let mut block_means = Vec::with_capacity(options.blocks);
     let mut second_means = Vec::with_capacity(options.blocks);
     let mut last_log_det = Some(0.0);
-    for _ in 0..options.blocks {
-        let growth = run(&mut tangent, per_block)?;
+    for block in 0..options.blocks {
+        let offset = block as f64 * length;
+        let growth = run(&mut tangent, per_block, period, &mut progress, &mut |e| {
+            stops.event(offset, e)
+        })?;
         if let Some(tau) = tangent.grazing() {
             return Err(StabilityError::NonFiniteJacobian { tau }.into());
         }
@@ -276,5 +329,94 @@ pub fn lyapunov_exponents(
         periods: per_block * options.blocks,
         drive_period: period,
         final_state: tangent.state(),
+        stops: stops.count,
     })
+}
+
+/// Most drive periods run between two reports to the monitor.
+const REPORT_EVERY: usize = 1000;
+
+/// The monitor of a run and the drive periods done.
+struct Progress<'a> {
+    monitor: &'a dyn Monitor,
+    done: usize,
+    total: usize,
+}
+
+impl Progress<'_> {
+    /// `periods` more are done.
+    fn step(&mut self, periods: usize) -> Result<()> {
+        self.done += periods;
+        if self.monitor.step(self.done, self.total) == ControlFlow::Break(()) {
+            return Err(Error::Cancelled {
+                done: self.done,
+                total: self.total,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// `periods` drive periods of length `period` from the current strobe, the clock restarted
+/// first (see `TangentSolver::restart_clock`); the growth ln‖J‖ over them, J renormalised at
+/// the end. The monitor hears every [`REPORT_EVERY`] periods (the solver stops there, which
+/// a stretch of at most that many periods never needs).
+fn run(
+    tangent: &mut TangentSolver,
+    periods: usize,
+    period: f64,
+    progress: &mut Progress<'_>,
+    on_event: &mut dyn FnMut(&Event),
+) -> Result<f64> {
+    tangent.restart_clock();
+    let mut at = 0;
+    while at < periods {
+        let next = (at + REPORT_EVERY).min(periods);
+        tangent.run_until(next as f64 * period, &mut *on_event)?;
+        progress.step(next - at)?;
+        at = next;
+    }
+    Ok(tangent.renormalize())
+}
+
+/// Shortest stop counted in [`LyapunovExponents::stops`], as a fraction of the drive period
+/// (as [`crate::steady::SteadyOptions::min_stop_fraction`] by default: a stop of zero duration
+/// is a turn on the static limit).
+const MIN_STOP_FRACTION: f64 = 1e-8;
+
+/// Stops of non-zero duration along a measurement made of blocks whose clocks restart at 0.
+struct StopCount {
+    /// Measured time at which the current stop began.
+    since: Option<f64>,
+    /// Shortest stop that counts (dimensionless time).
+    shortest: f64,
+    count: usize,
+}
+
+impl StopCount {
+    fn new(stuck: bool, shortest: f64) -> Self {
+        Self {
+            since: stuck.then_some(0.0),
+            shortest,
+            count: 0,
+        }
+    }
+
+    /// An event at time `offset + e.tau` of the measurement. A stop counts when it ends, so
+    /// that a stop running over the start and one running over the end of a periodic motion
+    /// make one.
+    fn event(&mut self, offset: f64, e: &Event) {
+        let tau = offset + e.tau;
+        match e.kind {
+            EventKind::Stick => self.since = Some(tau),
+            EventKind::Slip => {
+                if let Some(since) = self.since.take() {
+                    if tau - since > self.shortest {
+                        self.count += 1;
+                    }
+                }
+            }
+            EventKind::Turn => {}
+        }
+    }
 }

@@ -49,29 +49,38 @@
 //! the second exponent from ln|det J| (−∞ once the motion stops: a stop erases the velocity
 //! perturbation). [`two_trajectory_exponent`] is the classical two-trajectory estimate on the
 //! same solver, an independent check. [`classify_nonperiodic`] tells chaos from
-//! quasi-periodic and contracting motion by the sign of the exponent beyond its error.
+//! quasi-periodic and contracting motion by the sign of the exponent beyond its error; the
+//! steady-state analysis does so for every motion that does not repeat
+//! ([`crate::steady::SteadyOptions::lyapunov`], [`crate::MotionClass::Chaotic`]), and
+//! [`steady_exponent`] gives the largest exponent of any steady motion (maps of it:
+//! [`crate::scan::Grid::lyapunov`]).
 
 mod error;
 pub mod lyapunov;
 mod matrix;
 pub mod nonperiodic;
 pub mod periodic_orbit;
+pub mod report;
 pub mod saltation;
 pub mod segment;
+mod steady;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
 
 pub use error::StabilityError;
 pub use lyapunov::{
-    lyapunov_exponents, Estimate, LyapunovExponents, LyapunovOptions, SecondExponent,
+    lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
+    SecondExponent,
 };
 pub use matrix::{Matrix2, Multiplier};
 pub use nonperiodic::{classify_nonperiodic, NonperiodicClassification, NonperiodicVerdict};
 pub use periodic_orbit::{
     find_periodic_orbit, periodic_orbit_from_steady, NewtonOptions, PeriodicOrbit, Stability, Stop,
 };
+pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
+pub use steady::steady_exponent;
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};

@@ -54,16 +54,39 @@ pub fn classify_nonperiodic(
     options: &LyapunovOptions,
 ) -> Result<NonperiodicClassification> {
     let exponents = lyapunov_exponents(params, state, options)?;
-    let k = options.significance;
-    let (lambda, sigma) = (exponents.largest.per_tau, exponents.largest.error_per_tau);
-    let verdict = if !exponents.converged {
-        NonperiodicVerdict::Undecided
-    } else if lambda > k * sigma {
-        NonperiodicVerdict::Chaotic
-    } else if lambda < -k * sigma {
-        NonperiodicVerdict::Contracting
-    } else {
-        NonperiodicVerdict::QuasiPeriodic
-    };
-    Ok(NonperiodicClassification { verdict, exponents })
+    Ok(NonperiodicClassification::new(
+        exponents,
+        options.significance,
+    ))
+}
+
+impl NonperiodicClassification {
+    /// The verdict on measured `exponents`, with `significance` = k standard errors (see
+    /// [`NonperiodicVerdict`]).
+    pub fn new(exponents: LyapunovExponents, significance: f64) -> Self {
+        let k = significance;
+        let (lambda, sigma) = (exponents.largest.per_tau, exponents.largest.error_per_tau);
+        let verdict = if !exponents.converged {
+            NonperiodicVerdict::Undecided
+        } else if lambda > k * sigma {
+            NonperiodicVerdict::Chaotic
+        } else if lambda < -k * sigma {
+            NonperiodicVerdict::Contracting
+        } else {
+            NonperiodicVerdict::QuasiPeriodic
+        };
+        Self { verdict, exponents }
+    }
+}
+
+impl NonperiodicVerdict {
+    /// The label used in JSON: `chaotic`, `quasi-periodic`, `contracting`, `undecided`.
+    pub fn label(self) -> &'static str {
+        match self {
+            NonperiodicVerdict::Chaotic => "chaotic",
+            NonperiodicVerdict::QuasiPeriodic => "quasi-periodic",
+            NonperiodicVerdict::Contracting => "contracting",
+            NonperiodicVerdict::Undecided => "undecided",
+        }
+    }
 }

@@ -1,4 +1,5 @@
-//! Motion classes (the paper's Fig. 6), decided from the exact event log.
+//! Motion classes (the paper's Fig. 6), decided from the exact event log, and `chaotic`, decided
+//! from the largest Lyapunov exponent of a motion that does not repeat.
 //!
 //! A *stop* is a Stick event followed by a Slip event (or the end of the record); it counts
 //! only when it lasts longer than a tiny fraction of the drive period
@@ -11,7 +12,14 @@
 use crate::solver::{Event, EventKind};
 use serde::{Deserialize, Serialize};
 
-/// The four kinds of steady motion of the paper's Fig. 6.
+/// The four kinds of steady motion of the paper's Fig. 6, and chaos.
+///
+/// [`classify`] decides the first four from the event log. A motion that does not repeat is
+/// then measured by its largest Lyapunov exponent λ₁ (with the exact model, see
+/// [`super::SteadyOptions::lyapunov`]): it is [`MotionClass::Chaotic`] when λ₁ is positive
+/// beyond its error, and otherwise keeps its class from the event log
+/// ([`MotionClass::NonperiodicStick`] with stops, [`MotionClass::Sliding`] without), with λ₁
+/// reported beside it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MotionClass {
@@ -23,25 +31,31 @@ pub enum MotionClass {
     NonperiodicStick,
     /// Amplitude of y at most β/100 (for example never leaves rest).
     Static,
+    /// No period found, and the largest Lyapunov exponent is positive beyond its error
+    /// (nearby motions separate exponentially): chaos.
+    Chaotic,
 }
 
 impl MotionClass {
-    /// All classes, in the order used for legends and colours.
-    pub const ALL: [MotionClass; 4] = [
+    /// All classes, in the order used for legends and colours. The index of a class here is
+    /// its code in the Python package's `motion` arrays, so a new class is always added last.
+    pub const ALL: [MotionClass; 5] = [
         MotionClass::Sliding,
         MotionClass::PeriodicStick,
         MotionClass::NonperiodicStick,
         MotionClass::Static,
+        MotionClass::Chaotic,
     ];
 
     /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `nonperiodic-stick`,
-    /// `static`.
+    /// `static`, `chaotic`.
     pub fn label(self) -> &'static str {
         match self {
             MotionClass::Sliding => "sliding",
             MotionClass::PeriodicStick => "periodic-stick",
             MotionClass::NonperiodicStick => "nonperiodic-stick",
             MotionClass::Static => "static",
+            MotionClass::Chaotic => "chaotic",
         }
     }
 
@@ -66,7 +80,8 @@ pub struct Classification {
     pub longest_stop: f64,
 }
 
-/// Classify a record of `periods` drive periods from τ = `start` to τ = `end`.
+/// Classify a record of `periods` drive periods from τ = `start` to τ = `end` from its events
+/// (never [`MotionClass::Chaotic`], which takes the Lyapunov exponent).
 ///
 /// - `events`: the events inside the record, in order;
 /// - `stuck_at_start`: whether the oscillator was stuck at `start`;
@@ -147,6 +162,22 @@ mod tests {
             assert_eq!(MotionClass::from_label(c.label()), Some(c));
         }
         assert_eq!(MotionClass::from_label("none"), None);
+    }
+
+    #[test]
+    fn codes_of_the_paper_classes_stay_put() {
+        // The Python package's int8 `motion` codes are indices into ALL: chaos came last.
+        let labels: Vec<&str> = MotionClass::ALL.iter().map(|c| c.label()).collect();
+        assert_eq!(
+            labels,
+            [
+                "sliding",
+                "periodic-stick",
+                "nonperiodic-stick",
+                "static",
+                "chaotic"
+            ]
+        );
     }
 
     #[test]

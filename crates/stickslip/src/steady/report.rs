@@ -5,10 +5,13 @@ use super::cycle::SteadyState;
 use serde::Serialize;
 
 /// The numbers of a [`SteadyState`], dimensionless (y in units of the friction force over the
-/// stiffness; phases in radians).
+/// stiffness; phases in radians). A motion that did not repeat and was measured
+/// ([`SteadyState::lyapunov`]) has the keys of its largest Lyapunov exponent too; a motion
+/// that repeats has none of them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SteadyReport {
-    /// Motion class label: `sliding`, `periodic-stick`, `nonperiodic-stick` or `static`.
+    /// Motion class label: `sliding`, `periodic-stick`, `nonperiodic-stick`, `static` or
+    /// `chaotic`.
     pub class: &'static str,
     /// Period in drive periods (`None`: none found within the cap).
     pub period: Option<usize>,
@@ -44,12 +47,35 @@ pub struct SteadyReport {
     pub zeta: f64,
     /// Static-to-kinetic friction ratio μs.
     pub mu_s: f64,
+    /// Largest Lyapunov exponent per unit τ (motions that do not repeat only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_per_tau: Option<f64>,
+    /// Its standard error per unit τ.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_per_tau: Option<f64>,
+    /// Largest Lyapunov exponent per drive period.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_per_period: Option<f64>,
+    /// Its standard error per drive period.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_per_period: Option<f64>,
+    /// Drive periods measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_periods: Option<usize>,
+    /// Whether the two halves of the measurement agree.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_converged: Option<bool>,
+    /// What the exponent says: `chaotic`, `quasi-periodic`, `contracting` or `undecided`
+    /// ([`crate::stability::NonperiodicVerdict`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdict: Option<&'static str>,
 }
 
 impl From<&SteadyState> for SteadyReport {
     fn from(steady: &SteadyState) -> Self {
         let spectrum = steady.spectrum.as_ref();
         let p = &steady.params;
+        let lyapunov = steady.lyapunov.as_ref();
         let of = |f: fn(&super::Harmonic) -> f64| -> Vec<f64> {
             spectrum
                 .map(|s| s.harmonics.iter().map(f).collect())
@@ -76,6 +102,13 @@ impl From<&SteadyState> for SteadyReport {
             beta: p.beta,
             zeta: p.zeta,
             mu_s: p.mu_s,
+            lambda_per_tau: lyapunov.map(|l| l.exponents.largest.per_tau),
+            error_per_tau: lyapunov.map(|l| l.exponents.largest.error_per_tau),
+            lambda_per_period: lyapunov.map(|l| l.exponents.largest.per_period),
+            error_per_period: lyapunov.map(|l| l.exponents.largest.error_per_period),
+            lambda_periods: lyapunov.map(|l| l.exponents.periods),
+            lambda_converged: lyapunov.map(|l| l.exponents.converged),
+            verdict: lyapunov.map(|l| l.verdict.label()),
         }
     }
 }

@@ -212,6 +212,7 @@ fn steady_options(q: &mut Query, e: &Experiment) -> Result<SteadyOptions, ApiErr
         max_periods: max_periods as i64,
         max_period: max_period as i64,
         no_extrapolation: false,
+        lyapunov_periods: stickslip::SteadyOptions::DEFAULT_LYAPUNOV.periods as i64,
     };
     flags
         .options(e)

@@ -141,6 +141,9 @@ impl Solver for Limited {
     fn stats(&self) -> Stats {
         self.inner.stats()
     }
+    fn is_exact(&self) -> bool {
+        self.inner.is_exact()
+    }
 }
 
 /// A factory whose solvers are [`Limited`] by one budget.

@@ -486,3 +486,52 @@ async fn a_dropped_request_stops_its_computation() {
         "the computation kept running after its client went away"
     );
 }
+
+#[tokio::test]
+async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_its_own() {
+    // ζ = 0, μs = 3, β = 9: chaotic at w = 0.33, periodic at 0.25 and 0.40.
+    let (status, answer) = get(
+        "/api/map?zeta=0&mu-s=3&w-min=0.25&w-max=0.40&w-steps=3&beta-min=9&beta-max=9&beta-steps=1",
+    )
+    .await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let classes = answer["classes"].as_array().unwrap();
+    let labels: Vec<&str> = answer["class"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| classes[k.as_u64().unwrap() as usize].as_str().unwrap())
+        .collect();
+    let e = Experiment::dimensionless(0.0, 0.325, 9.0)
+        .unwrap()
+        .with_mu_s(3.0)
+        .unwrap();
+    let expected: Vec<&str> = [0.25, 0.325, 0.40]
+        .iter()
+        .map(|&w| e.clone().with_w(w).unwrap().steady().unwrap().class.label())
+        .collect();
+    assert_eq!(labels, expected);
+    assert_eq!(labels[1], "chaotic");
+    // The steady state says so too, with the exponent, as `stickslip steady --json`.
+    let (status, answer) = get("/api/steady?zeta=0&mu-s=3&w=0.325&beta=9").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let report = serde_json::to_value(SteadyReport::from(&e.steady().unwrap())).unwrap();
+    assert_eq!(answer["class"], "chaotic");
+    for key in ["lambda_per_tau", "error_per_tau", "verdict"] {
+        assert_eq!(answer[key], report[key], "{key}");
+    }
+    // The page has a colour for every class the library can answer.
+    let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab.js").await;
+    let script = String::from_utf8(script).unwrap();
+    let colours = script
+        .lines()
+        .find(|l| l.contains("const CLASS_COLORS"))
+        .expect("the class colours");
+    for class in stickslip::steady::MotionClass::ALL {
+        let label = class.label();
+        assert!(
+            colours.contains(&format!("'{label}':")) || colours.contains(&format!(" {label}:")),
+            "no colour for {label} in {colours}"
+        );
+    }
+}

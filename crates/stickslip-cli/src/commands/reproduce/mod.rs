@@ -1,5 +1,6 @@
 //! `stickslip reproduce`: every figure and table of the paper from the paper's circuit, as PNG
-//! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`.
+//! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`; then the
+//! chapter "Beyond the paper".
 
 mod beyond;
 mod figures;
@@ -12,7 +13,8 @@ use std::path::PathBuf;
 use stickslip::experiment::Experiment;
 use stickslip::{Circuit, Diode, PwlDiode, Scales};
 
-/// Regenerate every figure and table of the paper, with an HTML report.
+/// Regenerate every figure and table of the paper, with an HTML report, and the chapter
+/// "Beyond the paper" (chaos with static friction above kinetic, Lyapunov exponents).
 ///
 /// Writes DIR/index.html (opens from disk), DIR/summary.json (key numbers), and for each
 /// figure DIR/figN.png, DIR/figN.svg and the CSV data behind it.
@@ -44,7 +46,7 @@ pub struct Context {
     pub quick: bool,
 }
 
-type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
+pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
 
 /// Run `stickslip reproduce`.
 pub fn run(args: Args) -> Result<()> {
@@ -60,7 +62,7 @@ pub fn run(args: Args) -> Result<()> {
         scales: circuit.scales(),
         quick: args.quick,
     };
-    let jobs: Vec<Job> = vec![
+    let mut jobs: Vec<Job> = vec![
         ("Table 1", figures::table1),
         ("Fig. 1", figures::fig1),
         ("Fig. 3", figures::fig3),
@@ -69,10 +71,9 @@ pub fn run(args: Args) -> Result<()> {
         ("Fig. 6", figures::fig6),
         ("Fig. 7", figures::fig7),
         ("accuracy", figures::accuracy),
-        ("bifurcation diagram in w", beyond::bifurcation_w),
-        ("basins of attraction", beyond::basins_mirror),
-        ("a branch and its stability", beyond::branch_fold),
     ];
+    // The chapter "Beyond the paper": its heading, then its figures.
+    jobs.extend_from_slice(beyond::JOBS);
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \
          U_t = 0.7 V, R_D = 3.0 Ω; writing {}",

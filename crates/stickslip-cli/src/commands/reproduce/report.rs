@@ -28,6 +28,19 @@ pub struct Section {
     pub tables: Vec<(Vec<String>, Vec<Vec<String>>)>,
 }
 
+/// A chapter heading of the report, shown before the section at index `before`.
+#[derive(Debug, Default)]
+pub struct Chapter {
+    /// Index in [`Report::sections`] of the chapter's first section.
+    pub before: usize,
+    /// Anchor.
+    pub id: String,
+    /// Heading.
+    pub title: String,
+    /// Introduction (HTML allowed: it is our own text).
+    pub intro: String,
+}
+
 /// A report being written.
 pub struct Report {
     target: PathBuf,
@@ -35,6 +48,8 @@ pub struct Report {
     files: Vec<String>,
     /// The sections, in order.
     pub sections: Vec<Section>,
+    /// Chapter headings between the sections (the paper's figures come first, without one).
+    pub chapters: Vec<Chapter>,
     /// Key numbers for `summary.json`.
     pub summary: Map<String, Value>,
 }
@@ -68,8 +83,19 @@ impl Report {
             staging,
             files: Vec::new(),
             sections: Vec::new(),
+            chapters: Vec::new(),
             summary: Map::new(),
         })
+    }
+
+    /// Start a chapter: the sections added from now on belong to it.
+    pub fn chapter(&mut self, id: &str, title: &str, intro: &str) {
+        self.chapters.push(Chapter {
+            before: self.sections.len(),
+            id: id.into(),
+            title: title.into(),
+            intro: intro.into(),
+        });
     }
 
     /// Write a figure as `stem.png` and `stem.svg`.
@@ -150,11 +176,23 @@ impl Report {
              the stiff solver (Shockley diodes); where they differ from the paper's series \
              formula, the caption says so.</p>\n<nav>",
         );
-        for s in &self.sections {
+        for (k, s) in self.sections.iter().enumerate() {
+            for c in self.chapters.iter().filter(|c| c.before == k) {
+                let _ = write!(h, "| <a href=\"#{}\"><b>{}</b></a>", c.id, escape(&c.title));
+            }
             let _ = write!(h, "<a href=\"#{}\">{}</a>", s.id, s.id);
         }
         h.push_str("</nav>\n");
-        for s in &self.sections {
+        for (k, s) in self.sections.iter().enumerate() {
+            for c in self.chapters.iter().filter(|c| c.before == k) {
+                let _ = write!(
+                    h,
+                    "<h1 id=\"{}\">{}</h1>\n<p>{}</p>\n",
+                    c.id,
+                    escape(&c.title),
+                    c.intro
+                );
+            }
             let _ = write!(
                 h,
                 "<section id=\"{}\">\n<h2>{}</h2>\n",

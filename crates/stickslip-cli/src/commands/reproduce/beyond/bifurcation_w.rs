@@ -9,14 +9,15 @@ use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::{ContinuationOptions, SpecialKind};
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
-use stickslip::{Experiment, Parameter};
+use stickslip::Parameter;
 
 /// The diagram over w from 0.2 to 0.55, up and down, and its branches.
 pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
     let steps_n = if ctx.quick { 90 } else { 250 };
     let points = if ctx.quick { 40 } else { 80 };
     let w = ParameterRange::new("w", 0.2, 0.55, steps_n)?;
-    let experiment = Experiment::dimensionless(0.0, 0.3, 9.0)?.with_mu_s(3.0)?;
+    // The setting of the chaos figures above.
+    let experiment = super::literature()?;
     let diagram = Bifurcation::new(&experiment, Axis::range(Parameter::W, &w)?)?
         .direction(SweepDirection::Both)
         .options(BifurcationOptions {

@@ -19,3 +19,4 @@ pub use fig5::fig5;
 pub use fig6::fig6;
 pub use fig7::fig7;
 pub use table1::table1;
+pub use theory_curves::boundary_curves;

@@ -1,0 +1,165 @@
+//! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
+
+use crate::model::ModelArgs;
+use crate::output::{check_interrupt, interrupted, progress, usage};
+use anyhow::Result;
+use stickslip::stability::{
+    LyapunovOptions, LyapunovReport, NonperiodicClassification, NonperiodicVerdict, SecondExponent,
+};
+
+/// The largest Lyapunov exponent λ1 of the motion from the initial state, with a standard
+/// error, and the second exponent λ2, by the exact tangent dynamics of the PWL model: the
+/// 2×2 Jacobian of the exact flow (segment matrices and the saltation matrices of turns,
+/// stops and releases) carried along the trajectory and renormalised every block.
+///
+/// λ1 is the mean rate at which two nearby motions separate: their distance grows like
+/// e^(λ1 τ), τ = ω0·t. After --transient drive periods (the tangent is carried and aligned,
+/// not recorded) it is averaged over --periods more, cut into --blocks blocks whose spread
+/// gives the error σ. The class: chaotic (λ1 > kσ, k = --significance), contracting
+/// (λ1 < −kσ: a periodic attractor, reached or not), quasi-periodic (|λ1| ≤ kσ), or undecided
+/// (the two halves of the measurement disagree: a transient). λ2 is −∞ once the motion stops:
+/// a stop erases the velocity perturbation.
+///
+/// JSON keys: lambda_per_tau, error_per_tau, lambda_per_period, error_per_period, class,
+/// converged, lambda2_per_tau (a number or "-inf"), lambda2_error_per_tau, lambda2_per_period,
+/// lambda2_reason (why λ2 = −∞, or null), stops_per_period, transient_periods, periods,
+/// blocks, significance, block_means, drive_period, final_y, final_v, w, beta, zeta, mu_s, phi.
+///
+/// Example: stickslip lyapunov --zeta 0 --mu-s 3 --w 0.33 --beta 9 --json
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Drive periods run before measuring (0 to 1e9).
+    #[arg(long, default_value_t = 1000, allow_hyphen_values = true)]
+    transient: i64,
+    /// Drive periods measured (rounded down to a multiple of --blocks; up to 1e9).
+    #[arg(long, default_value_t = 20_000, allow_hyphen_values = true)]
+    periods: i64,
+    /// Blocks the measured periods are cut into for the error (even, 4 to 10000).
+    #[arg(long, default_value_t = 20, allow_hyphen_values = true)]
+    blocks: i64,
+    /// Standard errors k that make λ1 significantly positive or negative.
+    #[arg(long, default_value_t = 4.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    significance: f64,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Run `stickslip lyapunov`.
+pub fn run(args: Args) -> Result<()> {
+    if !(0..=1_000_000_000).contains(&args.transient) {
+        usage!(
+            "invalid --transient {}: must be from 0 to 1e9",
+            args.transient
+        );
+    }
+    if !(4..=10_000).contains(&args.blocks) || args.blocks % 2 != 0 {
+        usage!(
+            "invalid --blocks {}: must be even and from 4 to 10000",
+            args.blocks
+        );
+    }
+    if !(args.blocks..=1_000_000_000).contains(&args.periods) {
+        usage!(
+            "invalid --periods {}: must be from --blocks ({}) to 1e9",
+            args.periods,
+            args.blocks
+        );
+    }
+    if !(args.significance > 0.0) {
+        usage!("invalid --significance {}: must be > 0", args.significance);
+    }
+    let options = LyapunovOptions {
+        transient_periods: args.transient as usize,
+        periods: args.periods as usize,
+        blocks: args.blocks as usize,
+        significance: args.significance,
+    }
+    .validate()?;
+    let experiment = args.model.experiment()?;
+    let params = experiment.exact_params()?;
+    options.check_horizon(&params)?;
+    eprintln!(
+        "lyapunov: {experiment}; {} periods of transient, {} measured in {} blocks",
+        options.transient_periods,
+        options.periods / options.blocks * options.blocks,
+        options.blocks
+    );
+    let total = options.transient_periods + options.periods / options.blocks * options.blocks;
+    let bar = progress(total as u64, "lyapunov");
+    let result = experiment.lyapunov(&options, &|done: usize, _: usize| {
+        bar.set_position(done as u64);
+        !interrupted()
+    });
+    bar.finish_and_clear();
+    check_interrupt()?;
+    let c = result?;
+    let report = LyapunovReport::new(&c, &options, &params);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        let per_second = experiment.scales().map(|s| s.omega0);
+        print_text(&c, &options, per_second);
+    }
+    Ok(())
+}
+
+fn print_text(c: &NonperiodicClassification, options: &LyapunovOptions, omega0: Option<f64>) {
+    let e = &c.exponents;
+    let l = e.largest;
+    let k = options.significance;
+    println!(
+        "largest exponent  λ1 = {:+.6e} ± {:.1e} per unit τ ({:+.6e} ± {:.1e} per drive period)",
+        l.per_tau, l.error_per_tau, l.per_period, l.error_per_period
+    );
+    if let Some(omega0) = omega0 {
+        println!(
+            "                  {:+.6e} ± {:.1e} per second (λ1·ω0)",
+            l.per_tau * omega0,
+            l.error_per_tau * omega0
+        );
+    }
+    let class = match c.verdict {
+        NonperiodicVerdict::Chaotic => format!(
+            "chaotic: λ1 > {k}σ, two motions that start δ apart are e^(λ1 τ)·δ apart later \
+             (a factor e every {:.4} drive periods)",
+            1.0 / l.per_period
+        ),
+        NonperiodicVerdict::Contracting => format!(
+            "contracting: λ1 < −{k}σ, nearby motions converge; the motion is periodic or \
+             settles onto a periodic motion (see `stickslip orbit`)"
+        ),
+        NonperiodicVerdict::QuasiPeriodic => format!(
+            "quasi-periodic: |λ1| ≤ {k}σ, perturbations neither grow nor decay (a torus, or \
+             rest)"
+        ),
+        NonperiodicVerdict::Undecided => "undecided: the first and the second half of the \
+             measurement disagree (a transient, or chaos that ends): more --transient or \
+             --periods"
+            .to_string(),
+    };
+    println!("class             {class}");
+    match e.second {
+        SecondExponent::Finite(s) => println!(
+            "second exponent   λ2 = {:+.6e} ± {:.1e} per unit τ (λ1 + λ2 is the rate of \
+             phase-area change: −2ζ while sliding, and each turn contracts)",
+            s.per_tau, s.error_per_tau
+        ),
+        SecondExponent::MinusInfinity { stops } => println!(
+            "second exponent   λ2 = −∞: the motion stopped {stops} times while measured, and \
+             a stop erases the velocity perturbation (det J = 0)"
+        ),
+    }
+    println!("stops per period  {}", e.stops_per_period());
+    println!(
+        "measured over     {} drive periods in {} blocks after {} of transient; halves agree: \
+         {}",
+        e.periods,
+        options.blocks,
+        options.transient_periods,
+        if e.converged { "yes" } else { "no" }
+    );
+}

@@ -1,0 +1,300 @@
+//! `stickslip orbit`: a periodic orbit by Newton's method, with its Floquet multipliers.
+
+use crate::model::ModelArgs;
+use crate::output::{check_interrupt, interrupted, progress, usage};
+use anyhow::Result;
+use stickslip::stability::{
+    Multiplier, NewtonOptions, OrbitReport, PeriodicOrbit, Stability, StabilityError,
+};
+use stickslip::{Error, EventKind};
+
+/// Find a periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
+/// (the state once every p drive periods), with the exact Jacobian, and report its Floquet
+/// multipliers: whether it is stable, and how fast perturbations grow or decay.
+///
+/// Without --period the motion from the initial state is run to its steady state (as
+/// `stickslip steady`), which gives the period p and the guess. With --period P, Newton's
+/// method starts from the state --transient drive periods after the initial state (0: the
+/// initial state --y0 --v0 itself), so it also finds unstable orbits, which no simulation
+/// settles on.
+///
+/// JSON keys: period (drive periods), drive_period (T = 2π/w, dimensionless time),
+/// y, v (the state at the orbit's strobe, τ = 0 mod pT), stuck_at_strobe, multipliers
+/// [{"re", "im"}, ...] (larger modulus first), moduli, stable, stability (stable, unstable,
+/// neutral), exponent_per_tau and exponent_per_period (ln|μ1|/(pT) and ln|μ1|/p, or "-inf"),
+/// monodromy [[a, b], [c, d]], iterations, residuals, stops_per_period, events
+/// [{"tau", "y", "kind"}] and stops [{"start", "duration"}] over one orbit period (times
+/// from the strobe), w, beta, zeta, mu_s, phi.
+///
+/// Examples: stickslip orbit --preset paper --w 0.7 --beta 1.2
+///           stickslip orbit --zeta 0 --mu-s 3 --w 0.33 --beta 9 --period 1 --transient 2000 --json
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Period p of the orbit in drive periods (1 to 1000) [default: that of the steady state].
+    #[arg(long, allow_hyphen_values = true)]
+    period: Option<i64>,
+    /// With --period: drive periods run from the initial state before Newton's method starts.
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
+    transient: i64,
+    /// Without --period: drive periods run at most to find the steady state's period.
+    #[arg(
+        long = "max-periods",
+        default_value_t = 5000,
+        allow_hyphen_values = true
+    )]
+    max_periods: i64,
+    /// Without --period: longest period looked for (1 to 64).
+    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    max_period: i64,
+    /// Relative tolerance of Newton's method on max(|Δy|, |Δy'|) of P^p(x) − x.
+    #[arg(long = "newton-tolerance", default_value_t = 1e-12, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    newton_tolerance: f64,
+    /// Most Newton steps (1 to 1000).
+    #[arg(
+        long = "max-iterations",
+        default_value_t = 30,
+        allow_hyphen_values = true
+    )]
+    max_iterations: i64,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Run `stickslip orbit`.
+pub fn run(args: Args) -> Result<()> {
+    if let Some(p) = args.period {
+        if !(1..=1000).contains(&p) {
+            usage!("invalid --period {p}: must be from 1 to 1000 drive periods");
+        }
+    }
+    if !(0..=100_000_000).contains(&args.transient) {
+        usage!(
+            "invalid --transient {}: must be from 0 to 1e8",
+            args.transient
+        );
+    }
+    if args.transient > 0 && args.period.is_none() {
+        usage!("--transient needs --period (without it the steady state gives the guess)");
+    }
+    if !(1..=100_000_000).contains(&args.max_periods) {
+        usage!(
+            "invalid --max-periods {}: must be from 1 to 1e8",
+            args.max_periods
+        );
+    }
+    if !(1..=64).contains(&args.max_period) {
+        usage!(
+            "invalid --max-period {}: must be from 1 to 64",
+            args.max_period
+        );
+    }
+    if !(args.newton_tolerance > 0.0 && args.newton_tolerance < 1e-3) {
+        usage!(
+            "invalid --newton-tolerance {}: must be > 0 and < 1e-3",
+            args.newton_tolerance
+        );
+    }
+    if !(1..=1000).contains(&args.max_iterations) {
+        usage!(
+            "invalid --max-iterations {}: must be from 1 to 1000",
+            args.max_iterations
+        );
+    }
+    let experiment = args.model.experiment()?;
+    let params = experiment.exact_params()?;
+    let steady = experiment
+        .steady_options()
+        .with_max_periods(args.max_periods as usize)?
+        .with_max_period(args.max_period as usize)?;
+    let newton = NewtonOptions {
+        tolerance: args.newton_tolerance,
+        max_iterations: args.max_iterations as usize,
+        ..NewtonOptions::default()
+    };
+    eprintln!("orbit: {experiment}");
+    let transient = args.transient as usize;
+    let bar = progress(transient as u64, "transient");
+    let result = experiment.periodic_orbit(
+        args.period.map(|p| p as usize),
+        transient,
+        &steady,
+        &newton,
+        &|done: usize, _: usize| {
+            bar.set_position(done as u64);
+            !interrupted()
+        },
+    );
+    bar.finish_and_clear();
+    check_interrupt()?;
+    let orbit = match result {
+        Err(Error::Stability(StabilityError::NoPeriod { periods_run })) => anyhow::bail!(
+            "the motion from the initial state did not repeat within {periods_run} drive \
+             periods (with a period up to {}), so there is no orbit to start from: give \
+             --period P (and --transient N) to look for an orbit of period P, or see \
+             `stickslip lyapunov` (the motion may be chaotic)",
+            args.max_period
+        ),
+        other => other?,
+    };
+    let report = OrbitReport::new(&orbit, &params)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print_text(&orbit, &report);
+    }
+    Ok(())
+}
+
+/// A multiplier as text: `+0.62645`, `+5.5e-18` or `+0.3 + 0.4i`.
+fn multiplier(m: &Multiplier) -> String {
+    let number = |x: f64| {
+        if x != 0.0 && x.abs() < 1e-4 {
+            format!("{x:+.3e}")
+        } else {
+            format!("{x:+.10}")
+        }
+    };
+    if m.is_real() {
+        number(m.re)
+    } else {
+        format!(
+            "{} {} {}i",
+            number(m.re),
+            if m.im < 0.0 { "−" } else { "+" },
+            number(m.im.abs()).trim_start_matches('+')
+        )
+    }
+}
+
+fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport) {
+    let p = orbit.period;
+    let plural =
+        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    println!(
+        "periodic orbit of period {} (T = 2π/w = {:.6} in τ = ω0·t), found by Newton's method \
+         in {}",
+        plural(p, "drive period", "drive periods"),
+        orbit.drive_period,
+        plural(orbit.iterations, "step", "steps")
+    );
+    if r.least_period < p {
+        println!(
+            "                  (it repeats after {} already: the orbit of period {} taken {} \
+             times; the multipliers below are those of {p} drive periods)",
+            plural(r.least_period, "drive period", "drive periods"),
+            r.least_period,
+            p / r.least_period
+        );
+    }
+    let residuals: Vec<String> = orbit.residuals.iter().map(|x| format!("{x:.1e}")).collect();
+    println!("residuals         {}", residuals.join(" → "));
+    println!(
+        "strobe state      y = {:.12}, y' = {:.12}{}",
+        orbit.state.y,
+        orbit.state.v,
+        if orbit.stuck_at_strobe {
+            " (stuck there)"
+        } else {
+            ""
+        }
+    );
+    let count = |kind| orbit.events.iter().filter(|e| e.kind == kind).count();
+    println!(
+        "events per orbit  {} turns, {} stops, {} releases",
+        count(EventKind::Turn),
+        count(EventKind::Stick),
+        count(EventKind::Slip)
+    );
+    let stops: Vec<String> = orbit
+        .stops
+        .iter()
+        .map(|s| format!("at τ = {:.6} for {:.6}", s.start, s.duration))
+        .collect();
+    if stops.is_empty() {
+        println!("stops             none (the orbit slides throughout)");
+    } else {
+        println!(
+            "stops             {} per drive period: {}",
+            r.stops_per_period,
+            stops.join("; ")
+        );
+    }
+    let m = orbit.monodromy.0;
+    println!(
+        "monodromy M       [[{:+.6e}, {:+.6e}], [{:+.6e}, {:+.6e}]]",
+        m[0][0], m[0][1], m[1][0], m[1][1]
+    );
+    let [mu1, mu2] = orbit.multipliers;
+    println!(
+        "multipliers       μ1 = {} (|μ1| = {:.10}), μ2 = {} (|μ2| = {:.3e})",
+        multiplier(&mu1),
+        mu1.modulus(),
+        multiplier(&mu2),
+        mu2.modulus()
+    );
+    let exponent = orbit.exponent();
+    println!(
+        "exponent          ln|μ1|/(pT) = {:+.6e} per unit τ ({:+.6e} per drive period)",
+        exponent,
+        exponent * orbit.drive_period
+    );
+    println!("stability         {}", stability_label(orbit.stability));
+    println!();
+    println!(
+        "What the multipliers say: a small change δ of the state (y, y') at the strobe comes \
+         back {} later as M·δ, and along an eigenvector of M it is multiplied by its \
+         multiplier μ.",
+        plural(p, "drive period", "drive periods")
+    );
+    let modulus = mu1.modulus();
+    match orbit.stability {
+        Stability::Stable => {
+            println!(
+            "Here |μ1| = {modulus:.6} < 1: every perturbation shrinks, by at least that factor \
+             per orbit, so the orbit attracts the motions near it{}.",
+            if modulus > 0.0 {
+                format!(" (a perturbation halves every {:.3} orbits)", -(2f64.ln()) / modulus.ln())
+            } else {
+                String::new()
+            }
+        )
+        }
+        Stability::Unstable => println!(
+            "Here |μ1| = {modulus:.6} > 1: a perturbation along the first eigenvector grows by \
+             that factor per orbit, so a simulation never settles on this orbit; its stable \
+             neighbours or chaos do."
+        ),
+        Stability::Neutral => println!(
+            "Here |μ1| is 1 within 1e-9: neutral (a bifurcation, or a continuum of orbits, as \
+             rest is: the oscillator stays wherever it stopped)."
+        ),
+    }
+    if !mu1.is_real() {
+        println!(
+            "The multipliers are a complex pair: perturbations spiral around the orbit, turning \
+             by {:.4} rad per orbit.",
+            mu1.im.atan2(mu1.re).abs()
+        );
+    } else if mu1.re < 0.0 {
+        println!("μ1 < 0: a perturbation changes sign from one orbit to the next.");
+    }
+    if mu2.modulus() < 1e-12 * modulus.max(1.0) && !orbit.stops.is_empty() {
+        println!(
+            "μ2 = 0 because the orbit stops: a stop erases the velocity perturbation, so the \
+             strobe map is one-dimensional there (M has rank one)."
+        );
+    }
+}
+
+/// A stability verdict in words.
+fn stability_label(stability: Stability) -> &'static str {
+    match stability {
+        Stability::Stable => "stable",
+        Stability::Unstable => "unstable",
+        Stability::Neutral => "neutral",
+    }
+}

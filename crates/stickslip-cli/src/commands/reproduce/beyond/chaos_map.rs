@@ -1,0 +1,238 @@
+//! The largest Lyapunov exponent and the motion classes on a (w, β) map at ζ = 0, μs = 3.
+
+use super::super::report::{sig, Report, Section};
+use super::super::Context;
+use super::{frequency, literature};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, Style};
+use anyhow::Result;
+use plotters::style::RGBColor;
+use serde_json::json;
+use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::stability::LyapunovOptions;
+use stickslip::steady::MotionClass;
+use stickslip::theory::curves::{abscissae, theory_curve, theory_value, Theory, TheoryQuantity};
+use stickslip::{Parameter, SteadyOptions};
+
+/// Drive periods of the steady-state search, and measured, at every point of the map.
+const PERIODS: usize = 2000;
+
+/// The map of λ1 and of the classes over w 0.2–0.6, β 3–14, from rest.
+pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
+    let (nw, nb) = if ctx.quick { (21, 23) } else { (41, 45) };
+    let w = ParameterRange::new("w", 0.2, 0.6, nw)?;
+    let beta = ParameterRange::new("beta", 3.0, 14.0, nb)?;
+    let measure = LyapunovOptions {
+        periods: PERIODS,
+        ..SteadyOptions::DEFAULT_LYAPUNOV
+    };
+    let options = SteadyOptions::default()
+        .with_spectrum(false)
+        .with_max_periods(PERIODS)?
+        .with_lyapunov(Some(measure))?;
+    let started = std::time::Instant::now();
+    let points = Grid::new(
+        &literature()?,
+        Axis::range(Parameter::W, &w)?,
+        Axis::range(Parameter::Beta, &beta)?,
+    )?
+    .options(options)?
+    .lyapunov(measure)?
+    .run(&|_: usize, _: usize| !crate::output::interrupted())?
+    .points;
+    // The time goes to standard error: the report itself is the same on every run.
+    eprintln!(
+        "reproduce: chaos map {nw} × {nb} in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
+    let lambda = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.per_tau);
+    let error = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.error_per_tau);
+
+    let values: Vec<f64> = points.iter().map(lambda).collect();
+    let bar = ColorBar::for_values("λ1 per unit τ", &values);
+    let (dw, db) = (0.5 * w.spacing(), 0.5 * beta.spacing());
+    let cells = |color: &dyn Fn(&GridPoint) -> RGBColor| -> Vec<Cell> {
+        points
+            .iter()
+            .map(|p| Cell {
+                x: (p.params.w - dw, p.params.w + dw),
+                y: (p.params.beta - db, p.params.beta + db),
+                color: color(p),
+            })
+            .collect()
+    };
+    // The exact stick-slip boundary at μs = 3: above it the symmetric sliding orbit exists.
+    let base = literature()?.params()?;
+    let boundary = theory_curve(
+        Theory::Exact,
+        TheoryQuantity::Boundary,
+        &base,
+        Parameter::W,
+        &abscissae(w.from() - dw, w.to() + dw, 300),
+    )
+    .within(beta.from() - db, beta.to() + db)
+    .points();
+    let boundary = || {
+        Series::new(
+            "exact β_c: sliding above",
+            boundary.clone(),
+            RGBColor(0, 0, 0),
+            Style::Line(2),
+        )
+    };
+    let frame = |title: &str| Panel {
+        title: title.into(),
+        x_label: "w = Ω/ω0".into(),
+        y_label: "β".into(),
+        x_range: Some((w.from() - dw, w.to() + dw)),
+        y_range: Some((beta.from() - db, beta.to() + db)),
+        // (The upper left is uniformly periodic: nothing to hide there.)
+        legend: Some(Legend::UpperLeft),
+        series: vec![boundary()],
+        ..Default::default()
+    };
+    let exponents = Panel {
+        cells: cells(&|p| bar.color(lambda(p))),
+        color_bar: Some(bar.clone()),
+        ..frame("(b) largest Lyapunov exponent λ1, ζ = 0, μs = 3")
+    };
+    let mut present: Vec<MotionClass> = MotionClass::ALL
+        .into_iter()
+        .filter(|&c| points.iter().any(|p| p.class == c))
+        .collect();
+    present.sort_by_key(|&c| MotionClass::ALL.iter().position(|&k| k == c));
+    // The legend of the classes where it hides least (the boundary's entry is in (b)).
+    let mut line = boundary();
+    line.label.clear();
+    let classes = Panel {
+        cells: cells(&|p| class_color(p.class)),
+        cell_legend: present
+            .iter()
+            .map(|&c| (c.label().to_string(), class_color(c)))
+            .collect(),
+        series: vec![line],
+        legend: Some(Legend::LowerRight),
+        ..frame("(a) motion classes from rest, ζ = 0, μs = 3")
+    };
+    report.figure(
+        "chaos-map",
+        &Figure {
+            // The colour bar of (b) at the right edge of the figure.
+            panels: vec![classes, exponents],
+            columns: 2,
+            panel_size: (760, 600),
+        },
+    )?;
+    let rows: Vec<Vec<String>> = points
+        .iter()
+        .map(|p| {
+            vec![
+                format!("{}", p.params.w),
+                format!("{}", p.params.beta),
+                p.class.label().into(),
+                p.period.map(|x| x.to_string()).unwrap_or_default(),
+                format!("{}", p.stops_per_period),
+                format!("{}", lambda(p)),
+                format!("{}", error(p)),
+            ]
+        })
+        .collect();
+    report.csv(
+        "chaos-map.csv",
+        &[
+            "w",
+            "beta",
+            "class",
+            "period",
+            "stops_per_cycle",
+            "lambda",
+            "lambda_error",
+        ],
+        &rows,
+    )?;
+    let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
+    let top = points
+        .iter()
+        .max_by(|a, b| lambda(a).total_cmp(&lambda(b)))
+        .expect("points");
+    let positive_periodic = points
+        .iter()
+        .filter(|p| p.period.is_some() && lambda(p) > 0.0)
+        .count();
+    let chaotic: Vec<&GridPoint> = points
+        .iter()
+        .filter(|p| p.class == MotionClass::Chaotic)
+        .collect();
+    let sticking = chaotic.iter().filter(|p| p.stops_per_period > 0.0).count();
+    // Below the exact boundary: no symmetric sliding orbit at that β (NaN: none at any β).
+    let below = chaotic
+        .iter()
+        .filter(|p| {
+            let beta_c = theory_value(Theory::Exact, TheoryQuantity::Boundary, &p.params)
+                .unwrap_or(f64::NAN);
+            !(p.params.beta >= beta_c)
+        })
+        .count();
+    report.summary.insert(
+        "beyond_chaos_map".into(),
+        json!({
+            "zeta": 0.0, "mu_s": 3.0,
+            "w": [w.from(), w.to()], "beta": [beta.from(), beta.to()],
+            "grid": [nw, nb],
+            "max_periods": PERIODS, "lyapunov_periods": PERIODS,
+            "sliding": count(MotionClass::Sliding),
+            "periodic_stick": count(MotionClass::PeriodicStick),
+            "nonperiodic_stick": count(MotionClass::NonperiodicStick),
+            "static": count(MotionClass::Static),
+            "chaotic": count(MotionClass::Chaotic),
+            "periodic_with_positive_exponent": positive_periodic,
+            "chaotic_with_stops": sticking,
+            "chaotic_below_exact_boundary": below,
+            "largest": {"w": top.params.w, "beta": top.params.beta,
+                        "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
+        }),
+    );
+    report.sections.push(Section {
+        id: "chaos-map".into(),
+        title: "Chaos at ζ = 0, μs = 3: the (w, β) map of the largest Lyapunov exponent".into(),
+        caption: format!(
+            "(a) The motion class and (b) the largest Lyapunov exponent λ1 at every point of a \
+             {nw} × {nb} grid (w from 0.2 to 0.6, β from 3 to 14), each from rest. Every point is run to its steady state (a \
+             period up to 16 within {PERIODS} drive periods); where it repeats, λ1 is the \
+             exact ln|μ1|/(pT) of its orbit's largest Floquet multiplier; where it does not, λ1 \
+             is measured over {PERIODS} more periods, and the point is chaotic when λ1 exceeds \
+             4 standard errors. Red: chaos (λ1 > 0); blue: contraction onto a periodic motion \
+             (the bar's lower end is the 2nd percentile of the negative values, lower ones take \
+             its colour); white: λ1 = 0, rest (β ≤ μs never moves from rest). {} of the {} \
+             points are chaotic, {} do not repeat without being chaotic (they contract onto a \
+             periodic motion not reached, or are undecided), and {}. The largest exponent, {} \
+             ± {} per unit τ, is at (w, β) = ({}, {}). {} of the {} chaotic motions stick, and \
+             {} lie below the exact stick-slip boundary (black; above it the symmetric sliding \
+             orbit exists) ({}).",
+            count(MotionClass::Chaotic),
+            points.len(),
+            count(MotionClass::NonperiodicStick),
+            if positive_periodic == 0 {
+                "every periodic orbit found has λ1 &lt; 0 (it attracts: it was reached from rest)"
+                    .to_string()
+            } else {
+                format!("{positive_periodic} periodic orbits have λ1 > 0")
+            },
+            sig(lambda(top), 3),
+            sig(error(top), 2),
+            frequency(top.params.w),
+            sig(top.params.beta, 3),
+            sticking,
+            chaotic.len(),
+            below,
+            if ctx.quick {
+                "--quick: a coarser grid than the full report's 41 × 45"
+            } else {
+                "--quick uses 21 × 23"
+            }
+        ),
+        figures: vec!["chaos-map".into()],
+        data: vec!["chaos-map.csv".into()],
+        tables: vec![],
+    });
+    Ok(())
+}

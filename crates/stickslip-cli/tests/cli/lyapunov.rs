@@ -1,0 +1,173 @@
+//! Tests of `stickslip lyapunov`.
+
+use crate::common::*;
+use stickslip::experiment::Experiment;
+use stickslip::stability::{LyapunovOptions, LyapunovReport};
+
+const CHAOTIC: [&str; 8] = ["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"];
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let mut full = vec!["lyapunov", "--json"];
+    full.extend_from_slice(args);
+    let (_dir, out) = run(&full);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("valid JSON")
+}
+
+#[test]
+fn a_chaotic_point_has_a_positive_exponent_beyond_its_error() {
+    let mut args = CHAOTIC.to_vec();
+    args.extend(["--transient", "500", "--periods", "4000", "--blocks", "10"]);
+    let v = json(&args);
+    for key in [
+        "lambda_per_tau",
+        "lambda_per_period",
+        "error_per_tau",
+        "class",
+        "stops_per_period",
+        "lambda2_per_tau",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}: {v}");
+    }
+    assert_eq!(v["class"], "chaotic");
+    let (lambda, error) = (
+        v["lambda_per_tau"].as_f64().unwrap(),
+        v["error_per_tau"].as_f64().unwrap(),
+    );
+    assert!(lambda > 4.0 * error && lambda > 1e-3, "{lambda} ± {error}");
+    // It stops, so λ2 = −∞, written "-inf" with the reason.
+    assert_eq!(v["lambda2_per_tau"], "-inf");
+    assert!(v["lambda2_reason"].as_str().unwrap().contains("stopped"));
+    assert!(v["stops_per_period"].as_f64().unwrap() > 1.0);
+    assert_eq!(v["block_means"].as_array().unwrap().len(), 10);
+    // The library's report for the same input, bit for bit.
+    let e = Experiment::dimensionless(0.0, 0.33, 9.0)
+        .unwrap()
+        .with_mu_s(3.0)
+        .unwrap();
+    let options = LyapunovOptions {
+        transient_periods: 500,
+        periods: 4000,
+        blocks: 10,
+        significance: 4.0,
+    };
+    let c = e.lyapunov(&options, &()).unwrap();
+    let report = LyapunovReport::new(&c, &options, &e.params().unwrap());
+    assert_eq!(v, serde_json::to_value(&report).unwrap());
+}
+
+#[test]
+fn a_sliding_motion_contracts_with_a_finite_second_exponent() {
+    let v = json(&[
+        "--preset",
+        "paper",
+        "--w",
+        "0.9",
+        "--beta",
+        "1.6",
+        "--transient",
+        "200",
+        "--periods",
+        "400",
+    ]);
+    assert_eq!(v["class"], "contracting");
+    assert_eq!(v["stops_per_period"], 0.0);
+    let l2 = v["lambda2_per_tau"].as_f64().expect("a number");
+    assert!(l2 < v["lambda_per_tau"].as_f64().unwrap());
+    assert_eq!(v["lambda2_reason"], serde_json::Value::Null);
+}
+
+#[test]
+fn text_output_says_what_the_exponent_means() {
+    let mut args = vec!["lyapunov"];
+    args.extend_from_slice(&CHAOTIC);
+    args.extend(["--transient", "200", "--periods", "2000"]);
+    let (_dir, out) = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    for needle in [
+        "λ1 =",
+        "chaotic",
+        "λ2 = −∞",
+        "stops per period",
+        "halves agree: yes",
+    ] {
+        assert!(text.contains(needle), "'{needle}' not in {text}");
+    }
+    // With a physical description, the rate per second too.
+    let (_dir, out) = run(&[
+        "lyapunov",
+        "--preset",
+        "paper",
+        "--w",
+        "0.7",
+        "--beta",
+        "1.2",
+        "--periods",
+        "400",
+        "--transient",
+        "100",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("per second"), "{}", stdout(&out));
+}
+
+#[test]
+fn bad_input_gives_one_line_and_exit_code_2() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["--blocks", "3"], "--blocks"),
+        (&["--blocks", "2"], "--blocks"),
+        (&["--periods", "10"], "--periods"),
+        (&["--periods", "0"], "--periods"),
+        (&["--transient", "-5"], "--transient"),
+        (&["--significance", "0"], "--significance"),
+        (&["--significance", "nan"], "--significance"),
+        (&["--beta", "-1"], "beta"),
+        // Beyond the time range the solvers resolve (2^32/(2π)·w periods at w < 1).
+        (&["--periods", "1000000000"], "too long"),
+    ];
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = vec!["lyapunov"];
+        full.extend_from_slice(&CHAOTIC);
+        full.extend_from_slice(args);
+        let out = run_in(dir.path(), &full);
+        assert_usage_error(dir.path(), &out, needle);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "lyapunov", "--preset", "paper", "--model", "shockley", "--w", "0.7", "--beta", "1.2",
+        ],
+    );
+    assert_usage_error(dir.path(), &out, "piecewise-linear");
+    // A missing drive is named.
+    let out = run_in(dir.path(), &["lyapunov", "--zeta", "0.1", "--w", "0.7"]);
+    assert_usage_error(dir.path(), &out, "--beta");
+}
+
+#[test]
+fn ctrl_c_stops_a_long_measurement() {
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .arg("lyapunov")
+        .args(CHAOTIC)
+        .args(["--periods", "100000000", "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let started = std::time::Instant::now();
+    let out = child.wait_with_output().unwrap();
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    assert!(out.stdout.is_empty());
+    // It stops within 1000 periods, not at the end of 1e8 periods.
+    assert!(started.elapsed() < std::time::Duration::from_secs(20));
+}

@@ -1,0 +1,155 @@
+//! Tests of `stickslip orbit`.
+
+use crate::common::*;
+use stickslip::experiment::Experiment;
+use stickslip::stability::{NewtonOptions, OrbitReport};
+use stickslip::SteadyOptions;
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let mut full = vec!["orbit", "--json"];
+    full.extend_from_slice(args);
+    let (_dir, out) = run(&full);
+    assert!(out.status.success(), "{}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("valid JSON")
+}
+
+#[test]
+fn json_is_the_librarys_report_with_the_keys_of_the_issue() {
+    let v = json(&["--preset", "paper", "--w", "0.7", "--beta", "1.2"]);
+    for key in [
+        "period",
+        "multipliers",
+        "stable",
+        "iterations",
+        "residuals",
+        "events",
+        "stops",
+        "monodromy",
+        "exponent_per_tau",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}: {v}");
+    }
+    assert_eq!(
+        (v["period"].as_u64(), v["least_period"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert_eq!(v["stable"], true);
+    assert_eq!(v["stops_per_period"], 2.0);
+    assert!(v["iterations"].as_u64().unwrap() <= 6);
+    let mu = &v["multipliers"];
+    assert!(mu[0]["re"].as_f64().unwrap() > 0.0 && mu[0]["im"] == 0.0);
+    // The same numbers as the library, bit for bit.
+    let e = Experiment::paper()
+        .with_w(0.7)
+        .unwrap()
+        .with_beta(1.2)
+        .unwrap();
+    let orbit = e
+        .periodic_orbit(
+            None,
+            0,
+            &SteadyOptions::default(),
+            &NewtonOptions::default(),
+            &(),
+        )
+        .unwrap();
+    let report = OrbitReport::new(&orbit, &e.params().unwrap()).unwrap();
+    assert_eq!(v, serde_json::to_value(&report).unwrap());
+}
+
+#[test]
+fn an_unstable_orbit_in_a_chaotic_window_is_found_with_a_period_and_a_guess() {
+    let chaotic = ["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"];
+    // Without --period the motion does not repeat: a clear error, no output.
+    let mut args = vec!["orbit"];
+    args.extend_from_slice(&chaotic);
+    let (_dir, out) = run(&args);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains("did not repeat") && err.contains("--period"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty());
+    // With it, from the state after a transient: the unstable period-1 orbit.
+    let mut args = chaotic.to_vec();
+    args.extend(["--period", "1", "--transient", "2000"]);
+    let v = json(&args);
+    assert_eq!(v["stable"], false);
+    assert_eq!(v["stability"], "unstable");
+    assert!(v["moduli"][0].as_f64().unwrap() > 1.0);
+    assert!(v["exponent_per_tau"].as_f64().unwrap() > 0.0);
+    // Asked for period 2, the same orbit twice: the report says it repeats after 1.
+    let mut args = chaotic.to_vec();
+    args.extend(["--period", "2", "--transient", "2000"]);
+    let twice = json(&args);
+    assert_eq!(
+        (twice["period"].as_u64(), twice["least_period"].as_u64()),
+        (Some(2), Some(1))
+    );
+    let square = v["moduli"][0].as_f64().unwrap().powi(2);
+    assert!((twice["moduli"][0].as_f64().unwrap() - square).abs() < 1e-8 * square);
+}
+
+#[test]
+fn text_output_explains_the_multipliers() {
+    let (_dir, out) = run(&["orbit", "--preset", "paper", "--w", "0.7", "--beta", "1.2"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    for needle in [
+        "periodic orbit of period 1 drive period",
+        "multipliers",
+        "stable",
+        "attracts",
+        "a stop erases the velocity perturbation",
+    ] {
+        assert!(text.contains(needle), "'{needle}' not in {text}");
+    }
+    // The description of the experiment goes to standard error.
+    assert!(stderr(&out).contains("preset paper"));
+    // Physical flags work as everywhere: the paper's circuit at 7346.056 Hz, 0.84 V.
+    let v = json(&[
+        "--preset",
+        "paper",
+        "--freq",
+        "7346.056",
+        "--amplitude",
+        "0.84",
+    ]);
+    assert_eq!(v["stable"], true);
+}
+
+#[test]
+fn bad_input_gives_one_line_and_exit_code_2() {
+    let point = ["--zeta", "0.05", "--w", "0.7", "--beta", "1.2"];
+    let cases: &[(&[&str], &str)] = &[
+        (&["--period", "0"], "--period"),
+        (&["--period", "1001"], "--period"),
+        (&["--period", "x"], "--period"),
+        (&["--transient", "10"], "--transient needs --period"),
+        (&["--period", "1", "--transient", "-1"], "--transient"),
+        (&["--max-periods", "0"], "--max-periods"),
+        (&["--max-period", "65"], "--max-period"),
+        (&["--newton-tolerance", "0"], "--newton-tolerance"),
+        (&["--newton-tolerance", "nan"], "--newton-tolerance"),
+        (&["--max-iterations", "0"], "--max-iterations"),
+        (&["--mu-s", "0.5"], "mu"),
+    ];
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = vec!["orbit"];
+        full.extend_from_slice(&point);
+        full.extend_from_slice(args);
+        let out = run_in(dir.path(), &full);
+        assert_usage_error(dir.path(), &out, needle);
+    }
+    // Shockley diodes: the stability analysis is that of the exact PWL model.
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "orbit", "--preset", "paper", "--model", "shockley", "--w", "0.7", "--beta", "1.2",
+        ],
+    );
+    assert_usage_error(dir.path(), &out, "piecewise-linear");
+}

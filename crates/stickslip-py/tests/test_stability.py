@@ -1,0 +1,258 @@
+"""stickslip.orbit against `stickslip orbit --json`, stickslip.lyapunov against `stickslip
+lyapunov --json`, chaos in steady states and maps against the tool, errors, Ctrl-C."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import stickslip
+from stickslip import Experiment
+
+from conftest import assert_same, numbers, read_csv
+
+CHAOTIC = dict(zeta=0, mu_s=3, w=0.33, beta=9)
+
+
+def interrupt_after(seconds: float) -> threading.Timer:
+    """Send SIGINT (Ctrl-C) to this process after `seconds`."""
+    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    return timer
+
+CHAOTIC_FLAGS = ["--zeta", 0, "--mu-s", 3, "--w", 0.33, "--beta", 9]
+
+ORBITS = [
+    # Automatically, from the steady state: the paper's circuit, two stops per period.
+    (Experiment.paper(w=0.7, beta=1.2), {}, ["--preset", "paper", "--w", 0.7, "--beta", 1.2]),
+    # A sliding orbit with a complex pair of multipliers, dimensionless.
+    (Experiment(zeta=0.0468, w=0.9, beta=1.6), {}, ["--zeta", 0.0468, "--w", 0.9, "--beta", 1.6]),
+    # Unstable orbits in a chaotic window, from a guess after a transient; period 2 lands on
+    # the period-1 orbit.
+    (Experiment(**CHAOTIC), dict(period=1, transient=2000),
+     CHAOTIC_FLAGS + ["--period", 1, "--transient", 2000]),
+    (Experiment(**CHAOTIC), dict(period=2, transient=2000),
+     CHAOTIC_FLAGS + ["--period", 2, "--transient", 2000]),
+    # The period-3 orbit at w = 0.40 with other search settings.
+    (Experiment(zeta=0, mu_s=3, w=0.4, beta=9), dict(max_period=8, max_periods=4000),
+     ["--zeta", 0, "--mu-s", 3, "--w", 0.4, "--beta", 9, "--max-period", 8, "--max-periods",
+      4000]),
+]
+
+
+@pytest.mark.parametrize("case", range(len(ORBITS)))
+def test_orbit_is_the_tools_json(cli, case):
+    experiment, arguments, flags = ORBITS[case]
+    expected = cli.json("orbit", *flags)
+    o = stickslip.orbit(experiment, **arguments)
+    assert o.to_dict() == expected
+    assert list(o.to_dict()) == list(expected)
+    # Attributes: numpy arrays of the same numbers.
+    assert o.period == expected["period"] and o.least_period == expected["least_period"]
+    mu = np.array([complex(m["re"], m["im"]) for m in expected["multipliers"]])
+    assert_same(o.multipliers.real, mu.real, "re")
+    assert_same(o.multipliers.imag, mu.imag, "im")
+    assert_same(o.moduli, np.abs(mu), "moduli")
+    assert o.monodromy.shape == (2, 2)
+    assert_same(o.monodromy, expected["monodromy"], "monodromy")
+    assert o.stable == (o.stability == "stable") == (abs(o.multipliers[0]) < 1)
+    assert list(o.events["kind"]) == [e["kind"] for e in expected["events"]]
+    assert_same(o.events["tau"], [e["tau"] for e in expected["events"]], "event times")
+    assert_same(o.stops["duration"], [s["duration"] for s in expected["stops"]], "stops")
+    # The exponent is that of the largest multiplier.
+    assert math.isclose(o.exponent_per_tau,
+                        math.log(o.moduli[0]) / (o.period * o.drive_period), rel_tol=1e-12)
+
+
+def test_orbit_facts():
+    unstable = stickslip.orbit(Experiment(**CHAOTIC), 1, transient=2000)
+    assert unstable.stability == "unstable" and unstable.exponent_per_tau > 0
+    twice = stickslip.orbit(Experiment(**CHAOTIC), 2, transient=2000)
+    assert (twice.period, twice.least_period) == (2, 1)
+    assert math.isclose(twice.moduli[0], unstable.moduli[0] ** 2, rel_tol=1e-8)
+    # The orbit that stops has a multiplier 0 (to rounding).
+    stick = stickslip.orbit(Experiment.paper(w=0.7, beta=1.2))
+    assert stick.moduli[1] < 1e-12 and stick.stops_per_period == 2.0
+    assert len(stick.stops) == 2 and stick.stops.dtype == stickslip.STOP_DTYPE
+
+
+def test_orbit_errors(cli):
+    shockley = Experiment.paper(diode="shockley", w=0.7, beta=1.2)
+    message = cli.error("orbit", "--preset", "paper", "--model", "shockley", "--w", 0.7,
+                        "--beta", 1.2)
+    with pytest.raises(ValueError) as e:
+        stickslip.orbit(shockley)
+    assert str(e.value) == message
+    assert "piecewise-linear" in message
+    with pytest.raises(ValueError, match="^the steady state found no period in 5000"):
+        stickslip.orbit(Experiment(**CHAOTIC))
+    with pytest.raises(ValueError, match="^invalid period = 0: must be at least 1$"):
+        stickslip.orbit(Experiment(**CHAOTIC), 0)
+    with pytest.raises(ValueError, match="^invalid transient = -1"):
+        stickslip.orbit(Experiment(**CHAOTIC), 1, transient=-1)
+    with pytest.raises(ValueError, match="^invalid tolerance = 0"):
+        stickslip.orbit(Experiment(**CHAOTIC), 1, tolerance=0)
+    with pytest.raises(TypeError, match="unknown option 'tol'"):
+        stickslip.orbit(Experiment(**CHAOTIC), tol=1)
+    with pytest.raises(ValueError, match="^missing drive amplitude"):
+        stickslip.orbit(Experiment.paper(w=0.7))
+
+
+LYAPUNOV = [
+    (Experiment(**CHAOTIC), dict(transient=500, periods=4000, blocks=10),
+     CHAOTIC_FLAGS + ["--transient", 500, "--periods", 4000, "--blocks", 10]),
+    (Experiment.paper(w=0.9, beta=1.6), dict(transient=200, periods=400),
+     ["--preset", "paper", "--w", 0.9, "--beta", 1.6, "--transient", 200, "--periods", 400]),
+    (Experiment.paper(w=0.7, beta=1.2), dict(transient=100, periods=1000, significance=3),
+     ["--preset", "paper", "--w", 0.7, "--beta", 1.2, "--transient", 100, "--periods", 1000,
+      "--significance", 3]),
+]
+
+
+@pytest.mark.parametrize("case", range(len(LYAPUNOV)))
+def test_lyapunov_is_the_tools_json(cli, case):
+    experiment, arguments, flags = LYAPUNOV[case]
+    expected = cli.json("lyapunov", *flags)
+    c = stickslip.lyapunov(experiment, **arguments)
+    assert c.to_dict() == expected
+    assert list(c.to_dict()) == list(expected)
+    assert c.motion_class == expected["class"]
+    assert_same(c.block_means, expected["block_means"], "block means")
+    assert c.lambda_per_tau == expected["lambda_per_tau"]
+    if expected["lambda2_per_tau"] == "-inf":
+        assert c.lambda2_per_tau == -math.inf and "stopped" in c.lambda2_reason
+    else:
+        assert c.lambda2_per_tau == expected["lambda2_per_tau"] and c.lambda2_reason is None
+
+
+def test_lyapunov_verdicts_and_errors(cli):
+    chaotic = stickslip.lyapunov(Experiment(**CHAOTIC), transient=500, periods=2000)
+    assert chaotic.motion_class == "chaotic"
+    assert chaotic.lambda_per_tau > 4 * chaotic.error_per_tau
+    sliding = stickslip.lyapunov(Experiment.paper(w=0.9, beta=1.6), transient=200, periods=400)
+    assert sliding.motion_class == "contracting" and sliding.stops_per_period == 0.0
+    with pytest.raises(ValueError, match="^invalid blocks = 3: must be even and at least 4$"):
+        stickslip.lyapunov(Experiment(**CHAOTIC), blocks=3)
+    with pytest.raises(ValueError, match="^invalid periods = 10"):
+        stickslip.lyapunov(Experiment(**CHAOTIC), periods=10)
+    with pytest.raises(ValueError, match="^invalid transient = -1"):
+        stickslip.lyapunov(Experiment(**CHAOTIC), transient=-1)
+    with pytest.raises(ValueError, match="^a run of 1000001000 drive periods at w = 0.33 is too long"):
+        stickslip.lyapunov(Experiment(**CHAOTIC), periods=10**9)
+    message = cli.error("lyapunov", "--preset", "paper", "--model", "shockley", "--w", 0.7,
+                        "--beta", 1.2)
+    with pytest.raises(ValueError) as e:
+        stickslip.lyapunov(Experiment.paper(diode="shockley", w=0.7, beta=1.2))
+    assert str(e.value) == message
+
+
+def test_lyapunov_reports_progress_in_drive_periods():
+    seen = []
+    stickslip.lyapunov(Experiment(**CHAOTIC), transient=0, periods=200000, blocks=20,
+                       progress=lambda done, total: seen.append((done, total)))
+    assert seen[-1] == (200000, 200000)
+    assert all(a[0] < b[0] for a, b in zip(seen, seen[1:]))
+
+
+def test_ctrl_c_stops_a_long_measurement():
+    assert threading.current_thread() is threading.main_thread()
+    started = time.perf_counter()
+    timer = interrupt_after(0.5)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            # 10^8 periods: minutes.
+            stickslip.lyapunov(Experiment(**CHAOTIC), periods=10**8)
+    finally:
+        timer.cancel()
+    assert time.perf_counter() - started < 5.0
+    # A long transient before Newton's method stops too.
+    timer = interrupt_after(0.5)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            stickslip.orbit(Experiment(**CHAOTIC), 1, transient=10**9)
+    finally:
+        timer.cancel()
+
+
+def test_the_measurement_runs_without_the_gil():
+    result = {}
+
+    def work():
+        started = time.perf_counter()
+        result["c"] = stickslip.lyapunov(Experiment(**CHAOTIC), transient=0, periods=300000)
+        result["seconds"] = time.perf_counter() - started
+
+    worker = threading.Thread(target=work)
+    ticks = [time.perf_counter()]
+    worker.start()
+    while worker.is_alive():
+        time.sleep(0.001)
+        ticks.append(time.perf_counter())
+    worker.join()
+    gap = float(np.max(np.diff(ticks)))
+    assert result["seconds"] > 0.2, "the measurement is too short to show anything"
+    assert gap < 0.25 * result["seconds"], f"the main thread stalled {gap:.3f} s"
+
+
+def test_steady_reports_chaos_as_the_tool_does(cli):
+    for experiment, flags, motion in [
+        (Experiment(**CHAOTIC), CHAOTIC_FLAGS, "chaotic"),
+        (Experiment(zeta=0, mu_s=2.5, w=0.4227, beta=3.627),
+         ["--zeta", 0, "--mu-s", 2.5, "--w", 0.4227, "--beta", 3.627], "nonperiodic-stick"),
+    ]:
+        expected = cli.json("steady", *flags, "--harmonics", 9)
+        s = stickslip.steady(experiment, harmonics=9)
+        assert s.to_dict() == expected
+        assert s.motion == motion
+        assert s.lambda_per_tau == expected["lambda_per_tau"]
+        assert s.verdict == expected["verdict"]
+    # Not measured, and a periodic motion: no exponent.
+    off = stickslip.steady(Experiment(**CHAOTIC), lyapunov_periods=0)
+    assert off.motion == "nonperiodic-stick" and off.lambda_per_tau is None
+    assert "lambda_per_tau" not in off.to_dict()
+    assert stickslip.steady(Experiment.paper(w=0.7, beta=1.2)).verdict is None
+    with pytest.raises(ValueError, match="^invalid lyapunov_periods = 10"):
+        stickslip.steady(Experiment(**CHAOTIC), lyapunov_periods=10)
+
+
+def test_map_of_exponents_is_the_tools_csv(cli, tmp_path):
+    out = tmp_path / "map.csv"
+    cli.run("phase-diagram", "--zeta", 0, "--mu-s", 3, "--w-min", 0.25, "--w-max", 0.4,
+            "--w-steps", 4, "--beta-min", 2, "--beta-max", 9, "--beta-steps", 2, "--color",
+            "lyapunov", "--out", out)
+    table = read_csv(out)
+    # The tool's own axis values (a chaotic point's exponent depends on the last bit of w).
+    w = np.unique(numbers(table["w"]))
+    beta = np.unique(numbers(table["beta"]))
+    m = stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=w, beta=beta, lyapunov=True)
+    assert list(m.motion_labels().ravel()) == table["class"]
+    assert "chaotic" in table["class"]
+    assert_same(m.lyapunov.ravel(), numbers(table["lambda"]), "lambda")
+    assert_same(m.lyapunov_error.ravel(), numbers(table["lambda_error"]), "lambda_error")
+    assert stickslip.MOTION_CLASSES[-1] == "chaotic"
+    assert m.counts()["chaotic"] == table["class"].count("chaotic")
+    # Without the option, the same classes and no exponents.
+    plain = stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=w, beta=beta)
+    assert plain.lyapunov is None
+    np.testing.assert_array_equal(plain.motion, m.motion)
+    with pytest.raises(ValueError, match="piecewise-linear"):
+        stickslip.phase_diagram(Experiment.paper(diode="shockley"), w=[0.9], beta=[2.0],
+                                lyapunov=True)
+    with pytest.raises(ValueError, match="lyapunov_periods must not be 0"):
+        stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=w, beta=beta, lyapunov=True,
+                                lyapunov_periods=0)
+
+
+def test_map_exponents_in_xarray():
+    m = stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=[0.25, 0.33], beta=[9.0],
+                                lyapunov=True)
+    ds = m.to_xarray()
+    assert ds["lambda"].shape == (2, 1)
+    assert ds["motion"].attrs["flag_meanings"].split()[-1] == "chaotic"
+    assert ds["lambda"].values[1, 0] > 0 > ds["lambda"].values[0, 0]

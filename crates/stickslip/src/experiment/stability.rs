@@ -1,0 +1,142 @@
+//! The stability analysis of an experiment: its periodic orbits by Newton's method and its
+//! Lyapunov exponents, with the exact piecewise-linear model ([`crate::stability`]).
+
+use super::{DiodeModel, Experiment};
+use crate::error::{Error, Result};
+use crate::params::{Params, State};
+use crate::scan::Monitor;
+use crate::stability::{
+    find_periodic_orbit, lyapunov_exponents_monitored, periodic_orbit_from_steady, LyapunovOptions,
+    NewtonOptions, NonperiodicClassification, PeriodicOrbit,
+};
+use crate::steady::SteadyOptions;
+use crate::{ExactSolver, Solver, Unsupported};
+use std::ops::ControlFlow;
+
+/// Drive periods between two reports to the monitor of a transient run.
+const CHUNK: usize = 1000;
+
+impl Experiment {
+    /// The dimensionless parameters of the exact model, which the stability analysis
+    /// differentiates.
+    ///
+    /// # Errors
+    /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive.
+    pub fn exact_params(&self) -> Result<Params> {
+        if self.diode_model() != DiodeModel::Pwl {
+            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
+        }
+        self.params()
+    }
+
+    /// A periodic orbit of the experiment by Newton's method on the p-fold strobe map
+    /// ([`crate::stability::find_periodic_orbit`]), with its Floquet multipliers.
+    ///
+    /// - `period: None`: the steady state reached from the initial state (with `steady`, no
+    ///   spectrum, no Lyapunov measurement) gives the period p and the guess, its first
+    ///   strobe ([`periodic_orbit_from_steady`]); `transient` is not used.
+    /// - `period: Some(p)`: Newton's method starts from the state `transient` drive periods
+    ///   after the initial state (0: the initial state itself, which can aim at an unstable
+    ///   orbit). `monitor` is told the transient's progress in drive periods.
+    ///
+    /// ```
+    /// use stickslip::experiment::Experiment;
+    /// use stickslip::stability::{NewtonOptions, Stability};
+    /// use stickslip::SteadyOptions;
+    /// let e = Experiment::paper().with_w(0.7).unwrap().with_beta(1.2).unwrap();
+    /// let orbit = e
+    ///     .periodic_orbit(None, 0, &SteadyOptions::default(), &NewtonOptions::default(), &())
+    ///     .unwrap();
+    /// assert_eq!((orbit.period, orbit.stability), (1, Stability::Stable));
+    /// ```
+    ///
+    /// # Errors
+    /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive;
+    /// [`crate::stability::StabilityError::NoPeriod`] when the steady state does not repeat;
+    /// [`Error::InvalidParameter`] for p = 0; [`Error::Cancelled`]; the failures of
+    /// [`find_periodic_orbit`].
+    pub fn periodic_orbit(
+        &self,
+        period: Option<usize>,
+        transient: usize,
+        steady: &SteadyOptions,
+        newton: &NewtonOptions,
+        monitor: &dyn Monitor,
+    ) -> Result<PeriodicOrbit> {
+        let params = self.exact_params()?;
+        let newton = newton.validate()?;
+        match period {
+            None => {
+                let options = steady.with_spectrum(false).with_lyapunov(None)?;
+                let settled = self.steady_with(&options)?;
+                periodic_orbit_from_steady(&params, &settled, &newton)
+            }
+            Some(p) => {
+                if p == 0 {
+                    return Err(Error::InvalidParameter {
+                        name: "period",
+                        value: 0.0,
+                        allowed: "must be at least 1",
+                    });
+                }
+                let guess = self.after_transient(&params, transient, monitor)?;
+                find_periodic_orbit(&params, guess, p, &newton)
+            }
+        }
+    }
+
+    /// The state `periods` drive periods after the initial state, by the exact solver.
+    fn after_transient(
+        &self,
+        params: &Params,
+        periods: usize,
+        monitor: &dyn Monitor,
+    ) -> Result<State> {
+        let mut state = self.initial();
+        let mut done = 0;
+        while done < periods {
+            let chunk = CHUNK.min(periods - done);
+            // A solver per chunk, started at τ = 0 at a strobe: absolute times stay small.
+            let mut solver = ExactSolver::new(*params, state);
+            crate::solver::run_until(&mut solver, chunk as f64 * params.drive_period(), |_| {})?;
+            state = solver.state();
+            done += chunk;
+            if monitor.step(done, periods) == ControlFlow::Break(()) {
+                return Err(Error::Cancelled {
+                    done,
+                    total: periods,
+                });
+            }
+        }
+        Ok(state)
+    }
+
+    /// The Lyapunov exponents of the motion from the initial state, and what they say about
+    /// it ([`crate::stability::lyapunov_exponents`], [`NonperiodicClassification`]).
+    /// `monitor` is told the drive periods run (transient and measurement).
+    ///
+    /// ```
+    /// use stickslip::experiment::Experiment;
+    /// use stickslip::stability::{LyapunovOptions, NonperiodicVerdict};
+    /// let e = Experiment::dimensionless(0.0, 0.33, 9.0).unwrap().with_mu_s(3.0).unwrap();
+    /// let options = LyapunovOptions { transient_periods: 500, periods: 2000, ..Default::default() };
+    /// let c = e.lyapunov(&options, &()).unwrap();
+    /// assert_eq!(c.verdict, NonperiodicVerdict::Chaotic);
+    /// ```
+    ///
+    /// # Errors
+    /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive; invalid
+    /// options; [`Error::Cancelled`]; the failures of the measurement.
+    pub fn lyapunov(
+        &self,
+        options: &LyapunovOptions,
+        monitor: &dyn Monitor,
+    ) -> Result<NonperiodicClassification> {
+        let params = self.exact_params()?;
+        let exponents = lyapunov_exponents_monitored(&params, self.initial(), options, monitor)?;
+        Ok(NonperiodicClassification::new(
+            exponents,
+            options.significance,
+        ))
+    }
+}

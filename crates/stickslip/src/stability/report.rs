@@ -1,0 +1,265 @@
+//! Periodic orbits and Lyapunov exponents as flat records of numbers: what `stickslip orbit
+//! --json` and `stickslip lyapunov --json` print, and what the Python package's
+//! `orbit(...).to_dict()` and `lyapunov(...).to_dict()` return.
+
+use super::lyapunov::{LyapunovOptions, SecondExponent};
+use super::matrix::Multiplier;
+use super::nonperiodic::NonperiodicClassification;
+use super::periodic_orbit::{PeriodicOrbit, Stability, Stop};
+use crate::error::Result;
+use crate::exact::ExactSolver;
+use crate::params::Params;
+use crate::solver::{run_until, Solver};
+use serde::Serialize;
+
+/// An exponent in JSON: a number, or the string `"-inf"` (JSON has no infinity).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum ExponentValue {
+    /// A finite exponent.
+    Finite(f64),
+    /// −∞, written `"-inf"`.
+    Text(&'static str),
+}
+
+impl From<f64> for ExponentValue {
+    fn from(x: f64) -> Self {
+        if x == f64::NEG_INFINITY {
+            ExponentValue::Text("-inf")
+        } else {
+            ExponentValue::Finite(x)
+        }
+    }
+}
+
+/// An event of an orbit: time from the orbit's strobe, position, and kind (`turn`, `stick` or
+/// `slip`, as in the command-line tool's event CSV).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EventRecord {
+    /// Dimensionless time from the strobe.
+    pub tau: f64,
+    /// Position y.
+    pub y: f64,
+    /// `turn`, `stick` or `slip`.
+    pub kind: &'static str,
+}
+
+/// The numbers of a [`PeriodicOrbit`] (dimensionless; see its fields).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OrbitReport {
+    /// Period p in drive periods, as asked for.
+    pub period: usize,
+    /// The least period of the orbit in drive periods, a divisor of p: a fixed point of the
+    /// p-fold strobe map may repeat sooner (asked for p = 3, Newton's method may land on an
+    /// orbit of period 1). The multipliers are those of p drive periods.
+    pub least_period: usize,
+    /// The drive period T = 2π/w (dimensionless time).
+    pub drive_period: f64,
+    /// Position y at the orbit's strobe (τ = 0 mod pT, drive phase φ).
+    pub y: f64,
+    /// Velocity y' at the strobe.
+    pub v: f64,
+    /// Whether the orbit is stuck at its strobe.
+    pub stuck_at_strobe: bool,
+    /// The Floquet multipliers (eigenvalues of the monodromy matrix), the larger modulus
+    /// first, each as `{"re", "im"}`.
+    pub multipliers: [Multiplier; 2],
+    /// Their moduli |μ|.
+    pub moduli: [f64; 2],
+    /// Whether every perturbation decays (|μ₁| < 1 − 10⁻⁹).
+    pub stable: bool,
+    /// `stable`, `unstable` or `neutral` (|μ₁| within 10⁻⁹ of 1).
+    pub stability: Stability,
+    /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ₁|/(pT) (`"-inf"` when both
+    /// multipliers vanish).
+    pub exponent_per_tau: ExponentValue,
+    /// The same per drive period, ln|μ₁|/p.
+    pub exponent_per_period: ExponentValue,
+    /// The monodromy matrix ∂P^p/∂(y, y') as rows [[a, b], [c, d]].
+    pub monodromy: [[f64; 2]; 2],
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// The residual max(|Δy|, |Δy'|) of P^p(x) − x at the guess and after every step.
+    pub residuals: Vec<f64>,
+    /// Stops longer than 10⁻⁸ drive periods per drive period.
+    pub stops_per_period: f64,
+    /// The events over one orbit period.
+    pub events: Vec<EventRecord>,
+    /// The stops over one orbit period (zero-duration stops included, with duration 0).
+    pub stops: Vec<Stop>,
+    /// Drive frequency w.
+    pub w: f64,
+    /// Drive amplitude β.
+    pub beta: f64,
+    /// Damping ratio ζ.
+    pub zeta: f64,
+    /// Static-to-kinetic friction ratio μs.
+    pub mu_s: f64,
+    /// Drive phase φ (radians).
+    pub phi: f64,
+}
+
+impl OrbitReport {
+    /// The report of `orbit`, an orbit of the model with `params`.
+    ///
+    /// # Errors
+    /// Whatever the solver reports while it looks for the least period.
+    pub fn new(orbit: &PeriodicOrbit, params: &Params) -> Result<Self> {
+        let least_period = least_period(orbit, params)?;
+        let exponent = orbit.exponent();
+        let shortest = 1e-8 * orbit.drive_period;
+        let stops = orbit.stops.iter().filter(|s| s.duration > shortest).count();
+        Ok(Self {
+            period: orbit.period,
+            least_period,
+            drive_period: orbit.drive_period,
+            y: orbit.state.y,
+            v: orbit.state.v,
+            stuck_at_strobe: orbit.stuck_at_strobe,
+            multipliers: orbit.multipliers,
+            moduli: orbit.multipliers.map(|m| m.modulus()),
+            stable: orbit.stability == Stability::Stable,
+            stability: orbit.stability,
+            exponent_per_tau: exponent.into(),
+            exponent_per_period: (exponent * orbit.drive_period).into(),
+            monodromy: orbit.monodromy.0,
+            iterations: orbit.iterations,
+            residuals: orbit.residuals.clone(),
+            stops_per_period: stops as f64 / orbit.period as f64,
+            events: orbit
+                .events
+                .iter()
+                .map(|e| EventRecord {
+                    tau: e.tau,
+                    y: e.y,
+                    kind: e.kind.label(),
+                })
+                .collect(),
+            stops: orbit.stops.clone(),
+            w: params.w,
+            beta: params.beta,
+            zeta: params.zeta,
+            mu_s: params.mu_s,
+            phi: params.phi,
+        })
+    }
+}
+
+/// The least d dividing the orbit's period p after which the orbit's strobe state comes back
+/// (to 10⁻⁸ relative: far below the distance between distinct strobe states of one orbit,
+/// far above the rounding of a converged orbit, which an unstable orbit amplifies by its
+/// multiplier over d < p periods).
+fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
+    let p = orbit.period;
+    let x = orbit.state;
+    let scale = 1f64.max(x.y.abs()).max(x.v.abs());
+    for d in (1..p).filter(|d| p % d == 0) {
+        let mut solver = ExactSolver::new(*params, x);
+        run_until(&mut solver, d as f64 * orbit.drive_period, |_| {})?;
+        let y = solver.state();
+        if (y.y - x.y).abs().max((y.v - x.v).abs()) <= 1e-8 * scale {
+            return Ok(d);
+        }
+    }
+    Ok(p)
+}
+
+/// The numbers of a Lyapunov measurement and its verdict (dimensionless: rates per unit τ
+/// or per drive period).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LyapunovReport {
+    /// The largest exponent λ₁ per unit τ.
+    pub lambda_per_tau: f64,
+    /// Its standard error per unit τ (from the block means).
+    pub error_per_tau: f64,
+    /// λ₁ per drive period, λ₁T.
+    pub lambda_per_period: f64,
+    /// Its standard error per drive period.
+    pub error_per_period: f64,
+    /// What λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ), `contracting`
+    /// (λ₁ < −kσ: a periodic attractor, reached or not) or `undecided` (the halves of the
+    /// measurement disagree), with σ the error and k the significance.
+    pub class: &'static str,
+    /// Whether the two halves of the measurement agree.
+    pub converged: bool,
+    /// The second exponent λ₂ per unit τ, or `"-inf"` when the motion stopped.
+    pub lambda2_per_tau: ExponentValue,
+    /// Its standard error per unit τ (`None` when λ₂ = −∞).
+    pub lambda2_error_per_tau: Option<f64>,
+    /// λ₂ per drive period, or `"-inf"`.
+    pub lambda2_per_period: ExponentValue,
+    /// Why λ₂ = −∞ (`None` when it is finite).
+    pub lambda2_reason: Option<String>,
+    /// Stops longer than 10⁻⁸ drive periods per drive period while measured.
+    pub stops_per_period: f64,
+    /// Drive periods run before measuring.
+    pub transient_periods: usize,
+    /// Drive periods measured.
+    pub periods: usize,
+    /// Blocks of the measurement.
+    pub blocks: usize,
+    /// Standard errors that make a difference significant (k).
+    pub significance: f64,
+    /// The block means of λ₁ per unit τ, in time order.
+    pub block_means: Vec<f64>,
+    /// The drive period T = 2π/w (dimensionless time).
+    pub drive_period: f64,
+    /// Position y at the end of the measurement (a strobe).
+    pub final_y: f64,
+    /// Velocity y' at the end of the measurement.
+    pub final_v: f64,
+    /// Drive frequency w.
+    pub w: f64,
+    /// Drive amplitude β.
+    pub beta: f64,
+    /// Damping ratio ζ.
+    pub zeta: f64,
+    /// Static-to-kinetic friction ratio μs.
+    pub mu_s: f64,
+    /// Drive phase φ (radians).
+    pub phi: f64,
+}
+
+impl LyapunovReport {
+    /// The report of the measurement `c`, made with `options` on the model with `params`.
+    pub fn new(c: &NonperiodicClassification, options: &LyapunovOptions, params: &Params) -> Self {
+        let e = &c.exponents;
+        let (lambda2, error2, reason) = match e.second {
+            SecondExponent::Finite(s) => (s.per_tau, Some(s.error_per_tau), None),
+            SecondExponent::MinusInfinity { stops } => (
+                f64::NEG_INFINITY,
+                None,
+                Some(format!(
+                    "the motion stopped {stops} times while measured: a stop erases the \
+                     velocity perturbation (det J = 0)"
+                )),
+            ),
+        };
+        Self {
+            lambda_per_tau: e.largest.per_tau,
+            error_per_tau: e.largest.error_per_tau,
+            lambda_per_period: e.largest.per_period,
+            error_per_period: e.largest.error_per_period,
+            class: c.verdict.label(),
+            converged: e.converged,
+            lambda2_per_tau: lambda2.into(),
+            lambda2_error_per_tau: error2,
+            lambda2_per_period: (lambda2 * e.drive_period).into(),
+            lambda2_reason: reason,
+            stops_per_period: e.stops_per_period(),
+            transient_periods: options.transient_periods,
+            periods: e.periods,
+            blocks: options.blocks,
+            significance: options.significance,
+            block_means: e.block_means.clone(),
+            drive_period: e.drive_period,
+            final_y: e.final_state.y,
+            final_v: e.final_state.v,
+            w: params.w,
+            beta: params.beta,
+            zeta: params.zeta,
+            mu_s: params.mu_s,
+            phi: params.phi,
+        }
+    }
+}
