@@ -158,6 +158,28 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         .collect::<Vec<_>>()
         .join(" and ");
     let n_branches = branches.len();
+    let clauses: Vec<String> = [
+        ("folds (squares, a multiplier through +1)", &folds),
+        ("period doublings (a multiplier through −1)", &doublings),
+        ("branch points", &branch_points),
+        (
+            "grazings (the stops per period change and the continuation goes on by itself)",
+            &grazings,
+        ),
+    ]
+    .iter()
+    .filter(|(_, at)| !at.is_empty())
+    .map(|(what, at)| format!("{what} at w = {}", list(at)))
+    .collect();
+    let special_text = if clauses.is_empty() {
+        "No special point on these branches.".to_string()
+    } else {
+        let mut text = format!("Special points: {}.", clauses.join("; "));
+        if grazings.is_empty() {
+            text.push_str(" No stop appears or disappears along these branches.");
+        }
+        text
+    };
     let caption = format!(
         "The motion's strobe points (y once per drive period, at drive phase 0) against the \
          drive frequency w, at ζ = 0, μs = 3, β = 9, the setting in which the stability analysis \
@@ -171,9 +193,8 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
          values: coexisting motions. The lines are {n_branches} branches of periodic orbits \
          continued from the periodic values by pseudo-arclength continuation \
          (<code>stickslip continue</code>), stable solid and unstable dashed: the unstable \
-         orbits are what the simulation cannot show. Folds (squares) at w = {}; grazings, \
-         where the number of stops per period changes and the continuation goes on by itself, \
-         at w = {}; branch points at w = {}. Most periodic windows end where the strobe map \
+         orbits are what the simulation cannot show. {special_text} Most periodic windows end \
+         where the strobe map \
          breaks: a turning point reaches the static friction limit and would become a long \
          stop. Classes here come from {points} periods only; the chaos figures above measure \
          at length. \
@@ -186,9 +207,6 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             .map(|p| p.to_string())
             .collect::<Vec<_>>()
             .join(", "),
-        or_none(&list(&folds)),
-        or_none(&list(&grazings)),
-        or_none(&list(&branch_points)),
     );
     report.sections.push(Section {
         id: "beyond-bifurcation".into(),
@@ -202,14 +220,6 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         ..Default::default()
     });
     Ok(())
-}
-
-fn or_none(text: &str) -> String {
-    if text.is_empty() {
-        "none".into()
-    } else {
-        text.into()
-    }
 }
 
 /// The stretches of consecutive chaotic values: (first, last).

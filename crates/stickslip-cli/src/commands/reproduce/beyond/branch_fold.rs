@@ -133,12 +133,17 @@ pub fn branch_fold(report: &mut Report, ctx: &Context) -> Result<()> {
     let find = |kind: SpecialKind| branch.special.iter().find(|s| s.kind == kind);
     let fold = find(SpecialKind::Fold);
     let grazing = find(SpecialKind::Grazing);
-    let end = match &branch.end {
-        BranchEnd::Stalled {
-            value, multiplier, ..
-        } => (Some(*value), Some(*multiplier)),
-        _ => (None, None),
-    };
+    // Where the unstable side stops: at either end of the joined branch.
+    let end = [&branch.begin, &branch.end]
+        .into_iter()
+        .find_map(|e| match e {
+            BranchEnd::Stalled {
+                value, multiplier, ..
+            } => Some((Some(*value), Some(*multiplier))),
+            BranchEnd::Failed { value, .. } => Some((Some(*value), None)),
+            _ => None,
+        })
+        .unwrap_or((None, None));
     report.summary.insert(
         "beyond_branch".into(),
         json!({
