@@ -53,10 +53,8 @@ use crate::scan::{Monitor, ParameterRange};
 use crate::solver::{run_until, Solver};
 use crate::stability::{find_periodic_orbit, Multiplier, NewtonOptions};
 use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::ops::{ControlFlow, Range};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::ops::Range;
 
 /// Options of a [`Basins`] map.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -407,43 +405,9 @@ impl Basins {
             });
         }
         let total = rows.len() * nc;
-        let stop = AtomicBool::new(false);
-        let done = AtomicUsize::new(0);
-        let work = || -> Result<Vec<Cell>> {
-            (0..total)
-                .into_par_iter()
-                .map(|k| {
-                    if stop.load(Ordering::Relaxed) {
-                        return Err(Error::Cancelled {
-                            done: done.load(Ordering::Relaxed),
-                            total,
-                        });
-                    }
-                    let cell = self.cell(rows.start + k / nc, k % nc)?;
-                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if monitor.step(finished, total) == ControlFlow::Break(()) {
-                        stop.store(true, Ordering::Relaxed);
-                        return Err(Error::Cancelled {
-                            done: finished,
-                            total,
-                        });
-                    }
-                    Ok(cell)
-                })
-                .collect()
-        };
-        match self.threads {
-            None => work(),
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|_| Error::InvalidParameter {
-                    name: "threads",
-                    value: n as f64,
-                    allowed: "a thread pool of this size could not be started",
-                })?
-                .install(work),
-        }
+        crate::scan::run_parallel(total, self.threads, monitor, |k| {
+            self.cell(rows.start + k / nc, k % nc)
+        })
     }
 
     /// Compute the whole map; `monitor` sees every finished cell and can stop the work.

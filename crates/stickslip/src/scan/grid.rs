@@ -8,10 +8,9 @@ use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
 use crate::stability::{steady_exponent, Estimate, LyapunovOptions};
 use crate::steady::{check_horizon, steady_state_from, MotionClass, SolverFactory, SteadyOptions};
-use rayon::prelude::*;
+
 use serde::{Deserialize, Serialize};
-use std::ops::{ControlFlow, Range};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::ops::Range;
 use std::sync::Arc;
 
 /// One point of a grid.
@@ -317,42 +316,8 @@ impl Grid {
         }
         let width = cols.len();
         let total = rows.len() * width;
-        let stop = AtomicBool::new(false);
-        let done = AtomicUsize::new(0);
-        let work = || -> Result<Vec<GridPoint>> {
-            (0..total)
-                .into_par_iter()
-                .map(|k| {
-                    if stop.load(Ordering::Relaxed) {
-                        return Err(Error::Cancelled {
-                            done: done.load(Ordering::Relaxed),
-                            total,
-                        });
-                    }
-                    let point = self.point(rows.start + k / width, cols.start + k % width)?;
-                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if monitor.step(finished, total) == ControlFlow::Break(()) {
-                        stop.store(true, Ordering::Relaxed);
-                        return Err(Error::Cancelled {
-                            done: finished,
-                            total,
-                        });
-                    }
-                    Ok(point)
-                })
-                .collect()
-        };
-        match self.threads {
-            None => work(),
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|_| Error::InvalidParameter {
-                    name: "threads",
-                    value: n as f64,
-                    allowed: "a thread pool of this size could not be started",
-                })?
-                .install(work),
-        }
+        super::run_parallel(total, self.threads, monitor, |k| {
+            self.point(rows.start + k / width, cols.start + k % width)
+        })
     }
 }

@@ -45,6 +45,7 @@ mod sweep;
 
 pub use axis::Axis;
 pub use grid::{Grid, GridMap, GridPoint};
+pub(crate) use monitor::run_parallel;
 pub use monitor::Monitor;
 pub use range::ParameterRange;
 pub use sweep::{Sweep, SweepDirection, SweepLeg, SweepPoint};
