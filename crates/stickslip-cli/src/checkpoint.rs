@@ -162,6 +162,55 @@ impl CheckpointFile {
         Ok(())
     }
 
+    /// Compute the rows of a map that the checkpoint lacks and store each finished row;
+    /// returns the number of cells computed. `command` names the work in the resume message;
+    /// `per_thread` is the number of cells per thread handed to `compute` at once (enough to
+    /// keep every thread busy); `compute(rows, monitor)` computes whole rows, row-major,
+    /// and `encode` turns one row into a checkpoint unit. The bar counts cells; Ctrl-C stops
+    /// the work (what is finished stays saved).
+    pub fn fill_rows<T>(
+        &mut self,
+        command: &str,
+        columns: usize,
+        per_thread: usize,
+        bar: &indicatif::ProgressBar,
+        compute: impl Fn(
+            std::ops::Range<usize>,
+            &dyn stickslip::scan::Monitor,
+        ) -> stickslip::Result<Vec<T>>,
+        encode: impl Fn(&[T]) -> Vec<u8>,
+    ) -> Result<usize> {
+        let done = self.checkpoint.done();
+        if done > 0 {
+            eprintln!(
+                "{command}: resuming from {}: {} of {} rows reused",
+                self.path.display(),
+                done,
+                self.checkpoint.total()
+            );
+            bar.inc((done * columns) as u64);
+        }
+        let block_rows = (per_thread * rayon::current_num_threads())
+            .div_ceil(columns.max(1))
+            .max(1);
+        let missing: Vec<usize> = self.checkpoint.missing().collect();
+        let mut computed = 0;
+        for block in missing.chunk_by(|a, b| b == &(a + 1)) {
+            for rows in block.chunks(block_rows) {
+                let (first, last) = (rows[0], rows[rows.len() - 1]);
+                let cells = compute(first..last + 1, &|_: usize, _: usize| {
+                    bar.inc(1);
+                    !crate::output::interrupted()
+                })?;
+                for (row, chunk) in rows.iter().zip(cells.chunks(columns)) {
+                    self.insert(*row, encode(chunk))?;
+                }
+                computed += cells.len();
+            }
+        }
+        Ok(computed)
+    }
+
     /// The output is written: remove the checkpoint.
     pub fn remove(self) -> Result<()> {
         let _ = std::fs::remove_file(&self.temp);

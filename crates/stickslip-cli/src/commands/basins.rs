@@ -1,6 +1,6 @@
 //! `stickslip basins`: the attractor reached from each initial state of a grid.
 
-use crate::checkpoint::{CheckpointFile, CheckpointFlags};
+use crate::checkpoint::CheckpointFlags;
 use crate::model::{finite, flag_name, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
@@ -179,7 +179,14 @@ pub fn run(args: Args) -> Result<()> {
             (result?, total)
         }
         Some(mut file) => {
-            let computed = run_rows(&basins, &mut file, &bar);
+            let computed = file.fill_rows(
+                "basins",
+                basins.shape().1,
+                4 * 16,
+                &bar,
+                |rows, monitor| basins.run_rows(rows, monitor),
+                encode_row,
+            );
             bar.finish_and_clear();
             // Whatever happened, the rows finished so far are saved for the rerun.
             file.save()?;
@@ -240,49 +247,6 @@ fn identity(
         .with("y0", axis(y0))
         .with("v0", axis(v0))
         .with("options", serde_json::to_string(options)?))
-}
-
-/// Rows per block handed to the map at once: enough cells to keep every thread busy.
-fn block_rows(columns: usize) -> usize {
-    (4 * 16 * rayon::current_num_threads())
-        .div_ceil(columns)
-        .max(1)
-}
-
-/// Compute the rows the checkpoint lacks, block by block, saving each finished row; returns
-/// the number of cells computed.
-fn run_rows(
-    basins: &Basins,
-    file: &mut CheckpointFile,
-    bar: &indicatif::ProgressBar,
-) -> Result<usize> {
-    let (_, columns) = basins.shape();
-    let done = file.checkpoint().done();
-    if done > 0 {
-        eprintln!(
-            "basins: resuming from {}: {} of {} rows reused",
-            file.path().display(),
-            done,
-            file.checkpoint().total()
-        );
-        bar.inc((done * columns) as u64);
-    }
-    let missing: Vec<usize> = file.checkpoint().missing().collect();
-    let mut computed = 0;
-    for block in missing.chunk_by(|a, b| b == &(a + 1)) {
-        for rows in block.chunks(block_rows(columns)) {
-            let (first, last) = (rows[0], rows[rows.len() - 1]);
-            let cells = basins.run_rows(first..last + 1, &|_: usize, _: usize| {
-                bar.inc(1);
-                !crate::output::interrupted()
-            })?;
-            for (row, chunk) in rows.iter().zip(cells.chunks(columns)) {
-                file.insert(*row, encode_row(chunk))?;
-            }
-            computed += cells.len();
-        }
-    }
-    Ok(computed)
 }
 
 /// A row of cells as a checkpoint unit: per cell its kind, period (0: none), exponent,

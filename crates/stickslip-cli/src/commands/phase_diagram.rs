@@ -1,6 +1,6 @@
 //! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
 
-use crate::checkpoint::{CheckpointFile, CheckpointFlags};
+use crate::checkpoint::CheckpointFlags;
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
@@ -165,7 +165,14 @@ pub fn run(args: Args) -> Result<()> {
             (result?.points, total)
         }
         Some(mut file) => {
-            let points = run_rows(&grid, &mut file, &bar);
+            let points = file.fill_rows(
+                "phase-diagram",
+                grid.shape().1,
+                4 * 64,
+                &bar,
+                |rows, monitor| grid.run_block(rows, 0..grid.shape().1, monitor),
+                |row| encode_row(row, grid.lyapunov_options().is_some()),
+            );
             bar.finish_and_clear();
             // Whatever happened, the rows finished so far are saved for the rerun.
             file.save()?;
@@ -257,45 +264,6 @@ fn identity(grid: &Grid) -> Result<Identity> {
         Some(l) => identity.with("lyapunov", serde_json::to_string(l)?),
         None => identity,
     })
-}
-
-/// Rows per block handed to the grid at once: enough points to keep every thread busy.
-fn block_rows(columns: usize) -> usize {
-    (4 * 64 * rayon::current_num_threads())
-        .div_ceil(columns)
-        .max(1)
-}
-
-/// Compute the rows the checkpoint lacks, block by block, saving each finished row; returns
-/// the number of points computed.
-fn run_rows(grid: &Grid, file: &mut CheckpointFile, bar: &indicatif::ProgressBar) -> Result<usize> {
-    let (_, columns) = grid.shape();
-    let done = file.checkpoint().done();
-    if done > 0 {
-        eprintln!(
-            "phase-diagram: resuming from {}: {} of {} rows reused",
-            file.path().display(),
-            done,
-            file.checkpoint().total()
-        );
-        bar.inc((done * columns) as u64);
-    }
-    let missing: Vec<usize> = file.checkpoint().missing().collect();
-    let mut computed = 0;
-    for block in missing.chunk_by(|a, b| b == &(a + 1)) {
-        for rows in block.chunks(block_rows(columns)) {
-            let (first, last) = (rows[0], rows[rows.len() - 1]);
-            let points = grid.run_block(first..last + 1, 0..columns, &|_: usize, _: usize| {
-                bar.inc(1);
-                !crate::output::interrupted()
-            })?;
-            for (row, chunk) in rows.iter().zip(points.chunks(columns)) {
-                file.insert(*row, encode_row(chunk, grid.lyapunov_options().is_some()))?;
-            }
-            computed += points.len();
-        }
-    }
-    Ok(computed)
 }
 
 /// A row of points as a checkpoint unit: per point its class, period (0: none), stops per
