@@ -7,7 +7,9 @@
 //! the process is stopped (even by SIGKILL). Saves come at most every `--checkpoint-every`
 //! seconds, and never more often than twenty times the last save took, so that saving costs
 //! at most about 5 % of the time. The checkpoint is removed once the command's output is
-//! written; it stays when the command fails or is interrupted, for the rerun.
+//! written; it stays when the command fails or is interrupted, for the rerun. A run holds a
+//! lock on `.NAME.lock` beside the checkpoint, so that a second run on the same file is
+//! refused with one line instead of mixing its rows in.
 
 use crate::output::{usage, UsageError};
 use anyhow::{Context, Result};
@@ -62,6 +64,7 @@ impl CheckpointFlags {
         let Some(path) = &self.checkpoint else {
             return Ok(None);
         };
+        let lock = lock(path)?;
         let checkpoint = match std::fs::read(path) {
             Ok(bytes) => {
                 let checkpoint = Checkpoint::from_bytes(&bytes, &identity).map_err(|e| {
@@ -88,6 +91,7 @@ impl CheckpointFlags {
             }
         };
         Ok(Some(CheckpointFile {
+            lock,
             temp: temp_path(path),
             path: path.clone(),
             checkpoint,
@@ -102,15 +106,65 @@ impl CheckpointFlags {
 /// `.NAME.partial` beside `path`: always the same name, so that a save cut short by a kill
 /// is overwritten by the next one.
 fn temp_path(path: &Path) -> PathBuf {
+    beside(path, "partial")
+}
+
+/// `.NAME.SUFFIX` beside `path`.
+fn beside(path: &Path, suffix: &str) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "checkpoint".into());
-    path.with_file_name(format!(".{name}.partial"))
+    path.with_file_name(format!(".{name}.{suffix}"))
+}
+
+/// Take the lock of the checkpoint at `path` (an exclusive advisory lock on `.NAME.lock`
+/// beside it), so that two runs never fill one checkpoint. The system releases the lock when
+/// the process ends, however it ends (a SIGKILL too), so a stopped run never blocks the
+/// rerun.
+fn lock(path: &Path) -> Result<LockFile> {
+    let lock_path = beside(path, "lock");
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(|e| {
+            UsageError(format!(
+                "cannot lock checkpoint {}: {}: {e}",
+                path.display(),
+                lock_path.display()
+            ))
+        })?;
+    match file.try_lock() {
+        Ok(()) => Ok(LockFile {
+            path: lock_path,
+            _file: file,
+        }),
+        Err(std::fs::TryLockError::WouldBlock) => usage!(
+            "checkpoint {} is in use by another run, which holds the lock {}; wait for that \
+             run to end or give another file",
+            path.display(),
+            lock_path.display()
+        ),
+        Err(std::fs::TryLockError::Error(e)) => Err(UsageError(format!(
+            "cannot lock checkpoint {}: {}: {e}",
+            path.display(),
+            lock_path.display()
+        ))
+        .into()),
+    }
+}
+
+/// The held lock of a checkpoint (see [`lock`]); released when dropped.
+struct LockFile {
+    path: PathBuf,
+    _file: std::fs::File,
 }
 
 /// A checkpoint being filled and saved (see the module documentation).
 pub struct CheckpointFile {
+    lock: LockFile,
     path: PathBuf,
     temp: PathBuf,
     checkpoint: Checkpoint,
@@ -214,6 +268,8 @@ impl CheckpointFile {
     /// The output is written: remove the checkpoint.
     pub fn remove(self) -> Result<()> {
         let _ = std::fs::remove_file(&self.temp);
+        // Removed while still held: a run that starts now creates and locks a new one.
+        let _ = std::fs::remove_file(&self.lock.path);
         match std::fs::remove_file(&self.path) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
                 Err(e).with_context(|| format!("cannot remove checkpoint {}", self.path.display()))

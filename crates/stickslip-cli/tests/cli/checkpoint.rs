@@ -439,3 +439,56 @@ fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
         "removed after success"
     );
 }
+
+/// A second run on a checkpoint that a running run fills is refused with one line (exit code
+/// 2) and changes nothing; the first run then finishes as if alone.
+#[test]
+fn a_checkpoint_in_use_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = with_checkpoint(MAP);
+    let mut first = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(&args)
+        .env("RAYON_NUM_THREADS", "1")
+        .current_dir(dir.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let ckpt = dir.path().join("run.ckpt");
+    let started = Instant::now();
+    while !ckpt.exists() {
+        assert!(
+            first.try_wait().unwrap().is_none(),
+            "the first run ended before its first save"
+        );
+        assert!(started.elapsed() < Duration::from_secs(300), "no save");
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let second = run_in(dir.path(), &args);
+    let err = stderr(&second);
+    assert!(
+        first.try_wait().unwrap().is_none(),
+        "the first run ended before the second started; make it longer"
+    );
+    assert_eq!(second.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(err.contains("in use by another run"), "{err}");
+    assert!(second.stdout.is_empty());
+
+    let out = first.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let reference = tempfile::tempdir().unwrap();
+    let alone = run_in(reference.path(), MAP);
+    assert!(alone.status.success(), "{}", stderr(&alone));
+    for file in ["map.csv", "map.png"] {
+        let a = std::fs::read(reference.path().join(file)).unwrap();
+        let b = std::fs::read(dir.path().join(file)).unwrap();
+        assert!(a == b, "{file} differs from a run alone");
+    }
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.starts_with('.') || n == "run.ckpt")
+        .collect();
+    assert!(left.is_empty(), "checkpoint files left: {left:?}");
+}

@@ -127,7 +127,7 @@ impl Solver for Limited {
     }
     fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
         self.calls = self.calls.wrapping_add(1);
-        if self.calls % CALLS_PER_CHECK == 0 && self.budget.spent() {
+        if self.calls.is_multiple_of(CALLS_PER_CHECK) && self.budget.spent() {
             return Err(Error::Cancelled { done: 0, total: 1 });
         }
         self.inner.advance(t_end)
