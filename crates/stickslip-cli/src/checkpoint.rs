@@ -307,6 +307,10 @@ mod tests {
             resumed.checkpoint().missing().collect::<Vec<_>>(),
             vec![0, 2]
         );
+        // A second run while this one holds the checkpoint.
+        let err = flags(&path, 0.0).open(id(), 3).err().unwrap().to_string();
+        assert!(err.contains("is in use by another run"), "{err}");
+        drop(resumed);
 
         let other = Identity::new("test").with("grid", "4 rows");
         let err = flags(&path, 0.0).open(other, 3).err().unwrap().to_string();
@@ -324,8 +328,15 @@ mod tests {
         let err = flags(&path, 0.0).open(id(), 3).err().unwrap().to_string();
         assert!(err.contains("damaged checkpoint"), "{err}");
 
-        resumed.remove().unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let fresh = flags(&path, 0.0).open(id(), 3).unwrap().unwrap();
+        assert!(fresh.checkpoint().missing().eq(0..3), "a new checkpoint");
+        fresh.remove().unwrap();
         assert!(!path.exists());
+        assert!(
+            !beside(&path, "lock").exists(),
+            "the lock is removed with it"
+        );
     }
 
     #[test]
