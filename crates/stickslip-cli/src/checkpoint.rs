@@ -124,18 +124,19 @@ fn beside(path: &Path, suffix: &str) -> PathBuf {
 /// rerun.
 fn lock(path: &Path) -> Result<LockFile> {
     let lock_path = beside(path, "lock");
+    let cannot = |e: std::io::Error| {
+        UsageError(format!(
+            "cannot lock checkpoint {}: {}: {e}",
+            path.display(),
+            lock_path.display()
+        ))
+    };
     let file = std::fs::OpenOptions::new()
         .create(true)
         .truncate(false)
         .write(true)
         .open(&lock_path)
-        .map_err(|e| {
-            UsageError(format!(
-                "cannot lock checkpoint {}: {}: {e}",
-                path.display(),
-                lock_path.display()
-            ))
-        })?;
+        .map_err(cannot)?;
     match file.try_lock() {
         Ok(()) => Ok(LockFile {
             path: lock_path,
@@ -147,12 +148,7 @@ fn lock(path: &Path) -> Result<LockFile> {
             path.display(),
             lock_path.display()
         ),
-        Err(std::fs::TryLockError::Error(e)) => Err(UsageError(format!(
-            "cannot lock checkpoint {}: {}: {e}",
-            path.display(),
-            lock_path.display()
-        ))
-        .into()),
+        Err(std::fs::TryLockError::Error(e)) => Err(cannot(e).into()),
     }
 }
 

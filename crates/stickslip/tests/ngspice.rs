@@ -14,7 +14,7 @@
 //!
 //! Without ngspice on the PATH each test writes to standard error (past the test harness's
 //! capture) that it is skipped and why, and passes; with the environment variable
-//! `STICKSLIP_REQUIRE_NGSPICE=1` (set by `.ci/run`, which installs ngspice) a missing ngspice
+//! `STICKSLIP_REQUIRE_NGSPICE=1` (set by `scripts/test`, which installs ngspice first) a missing ngspice
 //! fails the test instead. `cargo test --test ngspice -- --nocapture` shows the deviations.
 
 use std::io::Write;
