@@ -62,9 +62,14 @@ impl ApiError {
                     ..Self::bad(spec.render(&api_name))
                 }
             }
-            Error::InvalidParameter { .. } | Error::Config(_) | Error::Unsupported(_) => {
-                Self::bad(err.to_string())
-            }
+            Error::ImageOutOfRange { key, .. } => Self {
+                field: Some(api_name(*key)),
+                ..Self::bad(err.to_string())
+            },
+            Error::InvalidParameter { .. }
+            | Error::HorizonTooLong { .. }
+            | Error::Config(_)
+            | Error::Unsupported(_) => Self::bad(err.to_string()),
             _ => Self::status(StatusCode::INTERNAL_SERVER_ERROR, err.to_string()),
         }
     }
@@ -364,6 +369,16 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(e, flags.experiment().unwrap());
+    }
+
+    #[test]
+    fn a_physical_value_outside_the_limits_is_a_bad_request() {
+        // Found by the random-query test: an initial current whose image v0 lies outside the
+        // documented range is the request's fault (400, naming the key), not the server's.
+        let err = query("preset=paper&i0=8.e23p").experiment().unwrap_err();
+        assert_eq!(err.status, StatusCode::BAD_REQUEST, "{}", err.message);
+        assert_eq!(err.field.as_deref(), Some("i0"));
+        assert!(err.message.contains("invalid i0"), "{}", err.message);
     }
 
     #[test]
