@@ -244,10 +244,21 @@ impl Basins {
     /// positions `y0` and velocities `v0`.
     ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value.
+    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value;
+    /// [`Error::InvalidParameter`] for more than [`crate::limits::MAX_BASIN_STEPS`] values
+    /// along an axis.
     pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
         if experiment.diode_model() != DiodeModel::Pwl {
             return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
+        }
+        for range in [y0, v0] {
+            if range.steps() > crate::limits::MAX_BASIN_STEPS {
+                return Err(Error::InvalidParameter {
+                    name: "steps",
+                    value: range.steps() as f64,
+                    allowed: "must be from 1 to 2000 along each axis (docs/limits.md)",
+                });
+            }
         }
         Ok(Self {
             params: experiment.params()?,

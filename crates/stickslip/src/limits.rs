@@ -14,6 +14,10 @@
 //! | \|φ\| | ≤ 10⁶ | the drive phase wτ + φ is rounded to ε·\|φ\| |
 //! | run length | τ ≤ 2³² and w·τ ≤ 2³² | time and drive phase are rounded to ulp(2³²) = 2⁻²⁰ ≈ 10⁻⁶ |
 //!
+//! Sizes are capped too, so that a mistyped size is refused before any work instead of
+//! filling the memory: [`MAX_GRID_POINTS`] points of a map, [`MAX_BASIN_STEPS`] initial states
+//! along each axis of a basin map.
+//!
 //! [`crate::Params`], [`crate::State`] (through [`check_state`]), [`crate::experiment::Key::check`]
 //! and the experiment builders enforce the ranges; [`check_horizon`] and [`check_time`] the run
 //! length.
@@ -36,6 +40,12 @@ pub const MU_S_MAX: f64 = 1e9;
 pub const PHI_MAX: f64 = 1e6;
 /// Largest |y0| and |v0| of an initial state.
 pub const STATE_MAX: f64 = 1e9;
+/// Most points of a grid of two parameters ([`crate::scan::Grid`]): 4·10⁶, a 2000 × 2000
+/// map (its result alone is about 100 MB; a larger one is computed as several).
+pub const MAX_GRID_POINTS: usize = 4_000_000;
+/// Most initial states along each axis of a basin map ([`crate::basins::Basins`]): a
+/// 2000 × 2000 map, each cell run to its steady state.
+pub const MAX_BASIN_STEPS: usize = 2000;
 /// Largest time τ, and largest drive phase w·τ, of a run: 2³², where the rounding of a time
 /// or a phase is 2⁻²⁰ ≈ 9.5·10⁻⁷.
 pub const TAU_MAX: f64 = 4_294_967_296.0;

@@ -266,6 +266,51 @@ fn runs_end_before_time_or_phase_lose_their_resolution() {
     let options = SteadyOptions::default().with_max_periods(10_000).unwrap();
     let err = slow.steady_with(&options).unwrap_err();
     assert!(matches!(err, Error::HorizonTooLong { .. }), "{err:?}");
+    // A sampled run past the range is refused before any work (the Python package's
+    // `simulate` and the command line's both go through `Experiment::simulate`'s check).
+    let slow = Experiment::dimensionless(0.05, limits::W_MIN, 1.2).unwrap();
+    let max = limits::max_periods(&slow.params().unwrap());
+    let err = slow.simulate(7000.0, 1, &()).unwrap_err();
+    match err {
+        Error::HorizonTooLong { max_periods, .. } => assert_eq!(max_periods, max),
+        other => panic!("{other:?}"),
+    }
+    let stopped = slow.simulate(max.floor(), 1, &stop_at_once).unwrap_err();
+    assert!(matches!(stopped, Error::Cancelled { .. }), "{stopped:?}");
+}
+
+/// A monitor that stops the run at its first report.
+fn stop_at_once(_done: usize, _total: usize) -> bool {
+    false
+}
+
+/// Sizes past the caps are refused before any work: a map of more than 4e6 points, a basin
+/// map of more than 2000 initial states along an axis; the caps themselves are accepted.
+#[test]
+fn sizes_are_capped_before_any_work() {
+    let e = Experiment::dimensionless(0.05, 0.7, 1.2).unwrap();
+    let axis = |p: Parameter, n: usize, from: f64| {
+        Axis::new(p, (0..n).map(|k| from + k as f64 * 1e-6).collect()).unwrap()
+    };
+    let at_cap = Grid::new(
+        &e,
+        axis(Parameter::W, 2000, 0.5),
+        axis(Parameter::Beta, 2000, 1.0),
+    );
+    assert!(at_cap.is_ok());
+    let err = Grid::new(
+        &e,
+        axis(Parameter::W, 2001, 0.5),
+        axis(Parameter::Beta, 2000, 1.0),
+    )
+    .unwrap_err();
+    assert_refused::<()>(Err(err), "points", "at most 4e6 points");
+    let range = |n| stickslip::scan::ParameterRange::new("y0", -1.0, 1.0, n).unwrap();
+    assert!(stickslip::basins::Basins::new(&e, &range(2000), &range(2)).is_ok());
+    for (y, v) in [(2001, 2), (2, 2001), (1_000_000, 1_000_000)] {
+        let err = stickslip::basins::Basins::new(&e, &range(y), &range(v)).unwrap_err();
+        assert_refused::<()>(Err(err), "steps", "from 1 to 2000 along each axis");
+    }
 }
 
 /// The Lyapunov measurement runs one solver through its transient and its periods: a

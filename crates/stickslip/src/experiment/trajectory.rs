@@ -63,7 +63,9 @@ impl Experiment {
     /// # Errors
     /// [`Error::InvalidParameter`] when `periods` is not finite and > 0, `samples_per_period`
     /// is 0, or the run would hold more than [`Trajectory::MAX_SAMPLES`] samples; a missing
-    /// drive ([`Experiment::params`]); [`Error::Cancelled`]; whatever the solver reports.
+    /// drive ([`Experiment::params`]); [`Error::HorizonTooLong`] for a run longer than the
+    /// solvers resolve ([`crate::limits::check_horizon`]), before any work;
+    /// [`Error::Cancelled`]; whatever the solver reports.
     pub fn simulate(
         &self,
         periods: f64,
@@ -93,6 +95,7 @@ impl Experiment {
             });
         }
         let params = self.params()?;
+        crate::limits::check_horizon(&params, periods)?;
         let mut solver = self.solver()?;
         let times = grid(0.0, periods * params.drive_period(), count as usize);
         let n = times.len();

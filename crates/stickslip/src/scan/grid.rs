@@ -95,7 +95,8 @@ impl Grid {
     /// parameter.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] when both axes vary the same parameter; a value out of
+    /// [`Error::InvalidParameter`] when both axes vary the same parameter or the grid holds
+    /// more than [`crate::limits::MAX_GRID_POINTS`] points; a value out of
     /// range for the model; a drive value missing that the grid does not set;
     /// [`Error::HorizonTooLong`] when the steady-state cap reaches beyond the time range the
     /// solvers resolve at some w of the grid.
@@ -105,6 +106,14 @@ impl Grid {
                 name: first.parameter().label(),
                 value: f64::NAN,
                 allowed: "a grid needs two different parameters",
+            });
+        }
+        let points = first.len().saturating_mul(second.len());
+        if points > crate::limits::MAX_GRID_POINTS {
+            return Err(Error::InvalidParameter {
+                name: "points",
+                value: points as f64,
+                allowed: "a grid holds at most 4e6 points (e.g. 2000 × 2000; docs/limits.md)",
             });
         }
         let (p, q) = (first.parameter(), second.parameter());
