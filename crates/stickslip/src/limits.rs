@@ -40,9 +40,10 @@ pub const MU_S_MAX: f64 = 1e9;
 pub const PHI_MAX: f64 = 1e6;
 /// Largest |y0| and |v0| of an initial state.
 pub const STATE_MAX: f64 = 1e9;
-/// Most points of a grid of two parameters ([`crate::scan::Grid`]): 4·10⁶, a 2000 × 2000
-/// map (its result alone is about 100 MB; a larger one is computed as several).
-pub const MAX_GRID_POINTS: usize = 4_000_000;
+/// Most points of a grid of two parameters ([`crate::scan::Grid`]): 10⁸, a 10⁴ × 10⁴ map
+/// (about a day of one core per millisecond a point, and gigabytes of results: a cluster's
+/// job). The command-line tool allows 4·10⁶ (2000 × 2000).
+pub const MAX_GRID_POINTS: usize = 100_000_000;
 /// Most initial states along each axis of a basin map ([`crate::basins::Basins`]): a
 /// 2000 × 2000 map, each cell run to its steady state.
 pub const MAX_BASIN_STEPS: usize = 2000;

@@ -113,7 +113,7 @@ impl Grid {
             return Err(Error::InvalidParameter {
                 name: "points",
                 value: points as f64,
-                allowed: "a grid holds at most 4e6 points (e.g. 2000 × 2000; docs/limits.md)",
+                allowed: "a grid holds at most 1e8 points (e.g. 10000 × 10000; docs/limits.md)",
             });
         }
         let (p, q) = (first.parameter(), second.parameter());
