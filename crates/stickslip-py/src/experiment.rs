@@ -2,7 +2,10 @@
 //! and the [`Experiment`] it builds.
 
 use crate::{error, json_value};
-use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
+use pyo3::exceptions::{
+    PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyTypeError,
+    PyValueError,
+};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use std::path::PathBuf;
@@ -384,7 +387,8 @@ impl PyExperiment {
     /// [model], [shockley]; see the README), the same file ``stickslip --config`` reads.
     ///
     /// Raises:
-    ///     OSError: the file cannot be read.
+    ///     FileNotFoundError: no such file; PermissionError, IsADirectoryError or another
+    ///         OSError: the file cannot be read (as Python's ``open`` raises them).
     ///     ValueError: the file is not a valid description; the message names the file, the
     ///         line and the key.
     ///
@@ -393,8 +397,16 @@ impl PyExperiment {
     #[classmethod]
     fn from_toml(_cls: &Bound<'_, pyo3::types::PyType>, path: PathBuf) -> PyResult<Self> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| PyOSError::new_err(format!("cannot read experiment file {name}: {e}")))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            let message = format!("cannot read experiment file {name}: {e}");
+            // The OSError subclass that Python's own open() raises for the same failure.
+            match e.kind() {
+                std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(message),
+                std::io::ErrorKind::PermissionDenied => PyPermissionError::new_err(message),
+                std::io::ErrorKind::IsADirectory => PyIsADirectoryError::new_err(message),
+                _ => PyOSError::new_err(message),
+            }
+        })?;
         Self::build(ExperimentSpec::from_toml(&text, &name).map_err(error)?)
     }
 
@@ -477,6 +489,40 @@ impl PyExperiment {
             ));
         };
         json_value(py, &conversion)
+    }
+
+    /// The scales from the dimensionless model to physical units, or None for a
+    /// dimensionless experiment: a dict with ``omega0`` (rad/s), ``f0`` = ω0/2π (Hz: a drive
+    /// frequency f = w·f0), ``position`` (V of u_C, or m, per unit of y), ``velocity`` (A,
+    /// or m/s, per unit of y'), ``force`` (V of the drive U, or N of F, per unit of β), and
+    /// the units of the last three: ``position_unit``, ``velocity_unit``, ``force_unit``.
+    ///
+    /// Example:
+    ///     >>> s = Experiment.paper().scales()
+    ///     >>> round(s["f0"], 2), s["force_unit"]
+    ///     (10494.37, 'V')
+    ///     >>> Experiment(w=1, beta=2).scales() is None
+    ///     True
+    fn scales<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(units) = self.experiment.units() else {
+            return Ok(None);
+        };
+        let s = units.scales;
+        let (position, velocity, force) = if units.circuit {
+            ("V", "A", "V")
+        } else {
+            ("m", "m/s", "N")
+        };
+        let out = PyDict::new(py);
+        out.set_item("omega0", s.omega0)?;
+        out.set_item("f0", s.f0())?;
+        out.set_item("position", s.position)?;
+        out.set_item("velocity", s.velocity)?;
+        out.set_item("force", s.force)?;
+        out.set_item("position_unit", position)?;
+        out.set_item("velocity_unit", velocity)?;
+        out.set_item("force_unit", force)?;
+        Ok(Some(out))
     }
 
     /// Damping ratio ζ (ζ_R, of the resistance only, with Shockley diodes).

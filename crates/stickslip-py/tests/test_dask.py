@@ -5,6 +5,7 @@ scheduler` and two `dask worker` processes started as a deployment would start t
 from __future__ import annotations
 
 import pathlib
+import signal
 import socket
 import subprocess
 import sys
@@ -188,3 +189,59 @@ def test_real_cluster(real_cluster, local_map):
                                {n: getattr(stack, n)[0] for n in stickslip.PhaseDiagram.FIELDS}),
         local_map,
     )
+
+
+# A map that runs for minutes, in blocks of a few seconds each: Ctrl-C comes mid-way.
+CTRL_C_SCRIPT = """
+import sys
+import numpy as np
+import dask, distributed  # imported before the map starts
+import stickslip, stickslip.dask
+
+def run(client):
+    print("started", flush=True)
+    stickslip.dask.phase_diagram(stickslip.Experiment.paper(), client=client, chunks=(5, 400),
+                                 w=np.linspace(0.1, 2.5, 400), beta=np.linspace(0.5, 4, 400))
+
+if __name__ == "__main__":
+    if sys.argv[1] == "cluster":
+        with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=True,
+                                      dashboard_address=None, host="127.0.0.1") as cluster, \\
+                distributed.Client(cluster) as client:
+            run(client)
+    else:
+        run(None)
+"""
+
+
+@pytest.mark.parametrize("scheduler", ["cluster", "threads"])
+def test_ctrl_c_raises_one_keyboard_interrupt_and_prints_nothing_else(tmp_path, scheduler):
+    """Ctrl-C (SIGINT, as a terminal sends it) during stickslip.dask.phase_diagram on a
+    LocalCluster and on Dask's local threads: one KeyboardInterrupt traceback on stderr and
+    nothing else (before, asyncio printed a traceback per task, 'Task exception was never
+    retrieved ... AllExit'), within a bounded time; the workers are idle when the cluster
+    closes, so no worker reports a task cut short."""
+    script = tmp_path / "ctrl_c.py"
+    script.write_text(CTRL_C_SCRIPT)
+    child = subprocess.Popen([sys.executable, str(script), scheduler], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    try:
+        assert child.stdout is not None
+        assert child.stdout.readline() == "started\n"
+        time.sleep(3.0)  # the blocks are computing
+        assert child.poll() is None, "the map ended before Ctrl-C"
+        child.send_signal(signal.SIGINT)
+        interrupted = time.perf_counter()
+        _, stderr = child.communicate(timeout=120)
+        took = time.perf_counter() - interrupted
+    finally:
+        child.kill()
+        child.wait()
+    assert child.returncode in (-signal.SIGINT, 128 + signal.SIGINT), (child.returncode, stderr)
+    lines = stderr.strip().splitlines()
+    assert stderr.count("Traceback") == 1 and lines[-1] == "KeyboardInterrupt", stderr
+    for noise in ("Task exception was never retrieved", "AllExit", "WARNING", "ERROR",
+                  "Exception"):
+        assert noise not in stderr, stderr
+    # A block lasts a few seconds here; the cluster's shutdown a few more.
+    assert took < 60, f"{took:.1f} s from Ctrl-C to the end"

@@ -92,7 +92,7 @@ def test_orbit_errors(cli):
     assert "piecewise-linear" in message
     with pytest.raises(ValueError, match="^the steady state found no period in 5000"):
         stickslip.orbit(Experiment(**CHAOTIC))
-    with pytest.raises(ValueError, match="^invalid period = 0: must be at least 1$"):
+    with pytest.raises(ValueError, match="^invalid period = 0: must be from 1 to 1000$"):
         stickslip.orbit(Experiment(**CHAOTIC), 0)
     with pytest.raises(ValueError, match="^invalid transient = -1"):
         stickslip.orbit(Experiment(**CHAOTIC), 1, transient=-1)
@@ -137,7 +137,7 @@ def test_lyapunov_verdicts_and_errors(cli):
     assert chaotic.lambda_per_tau > 4 * chaotic.error_per_tau
     sliding = stickslip.lyapunov(Experiment.paper(w=0.9, beta=1.6), transient=200, periods=400)
     assert sliding.motion_class == "contracting" and sliding.stops_per_period == 0.0
-    with pytest.raises(ValueError, match="^invalid blocks = 3: must be even and at least 4$"):
+    with pytest.raises(ValueError, match=r"^invalid blocks = 3: must be even and from 4 to 10000$"):
         stickslip.lyapunov(Experiment(**CHAOTIC), blocks=3)
     with pytest.raises(ValueError, match="^invalid periods = 10"):
         stickslip.lyapunov(Experiment(**CHAOTIC), periods=10)
@@ -175,7 +175,7 @@ def test_ctrl_c_stops_a_long_measurement():
     timer = interrupt_after(0.5)
     try:
         with pytest.raises(KeyboardInterrupt):
-            stickslip.orbit(Experiment(**CHAOTIC), 1, transient=10**9)
+            stickslip.orbit(Experiment(**CHAOTIC), 1, transient=10**8)
     finally:
         timer.cancel()
 
@@ -253,6 +253,6 @@ def test_map_exponents_in_xarray():
     m = stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=[0.25, 0.33], beta=[9.0],
                                 lyapunov=True)
     ds = m.to_xarray()
-    assert ds["lambda"].shape == (2, 1)
+    assert ds.lyapunov.shape == (2, 1)
     assert ds["motion"].attrs["flag_meanings"].split()[-1] == "chaotic"
-    assert ds["lambda"].values[1, 0] > 0 > ds["lambda"].values[0, 0]
+    assert ds.lyapunov.values[1, 0] > 0 > ds.lyapunov.values[0, 0]

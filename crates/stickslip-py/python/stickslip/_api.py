@@ -4,16 +4,25 @@ from __future__ import annotations
 
 import copy
 import json
-from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple
+from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Sequence,
+                    Tuple)
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 from ._core import Experiment
+
+if TYPE_CHECKING:
+    import pandas
+    import xarray
 
 #: The kinds of steady motion, in the order of their codes in ``motion`` arrays: 'sliding',
 #: 'periodic-stick', 'nonperiodic-stick', 'static' (the paper's four) and 'chaotic' (a
 #: motion that does not repeat, with a largest Lyapunov exponent positive beyond its error).
+#: 'static' is the paper's rule: a motion whose amplitude (y_max − y_min)/2 is below β/100,
+#: whether or not it stops; it can hold a motion that stops twice a drive period (at
+#: (w, β) = (2.0, 1.1) of the paper's circuit), so ``stops_per_cycle`` is returned beside
+#: every class.
 MOTION_CLASSES: Tuple[str, ...] = tuple(_core.MOTION_CLASSES)
 #: The parameters that sweeps and maps vary, with their long names (units: dimensionless).
 PARAMETERS: Dict[str, str] = dict(_core.PARAMETER_LONG_NAMES)
@@ -27,18 +36,11 @@ EVENT_DTYPE = np.dtype([("tau", np.float64), ("y", np.float64), ("kind", "U5")])
 Progress = Optional[Callable[[int, int], Any]]
 
 
-def _values(name: str, values: Any) -> np.ndarray:
-    """``values`` as a one-dimensional, C-contiguous, aligned float64 array (what the compiled
-    core reads without a copy). Arrays that arrive misaligned (numpy arrays unpickled from
-    pickle-5 buffers on Dask workers, or views into packed records) are copied aligned."""
-    a = np.asarray(values, dtype=np.float64)
-    if a.ndim == 0:
-        a = a.reshape(1)
-    if a.ndim != 1:
-        raise ValueError(f"{name} must be a one-dimensional array of values, got shape {a.shape}")
-    if a.size == 0:
-        raise ValueError(f"{name} must hold at least one value")
-    return np.require(a, np.float64, ["C", "A"])
+_values = _checks.values
+
+#: The documented ``static`` rule, repeated in the docstrings that return a class.
+STATIC_RULE = ("'static' is the paper's rule, an amplitude (y_max − y_min)/2 below β/100, "
+               "whether or not the motion stops")
 
 
 def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
@@ -79,7 +81,43 @@ def _fixed_attributes(experiment: Experiment, varied: Sequence[str]) -> Dict[str
         value = getattr(experiment, name)
         if name not in varied and value is not None:
             attrs[name] = value
+    scales = experiment.scales()
+    if scales is not None:
+        attrs["f0_Hz"] = scales["f0"]
+        for name in ("w", "beta"):
+            value = getattr(experiment, name)
+            if name not in varied and value is not None:
+                physical, factor, _ = _physical_parameter(name, scales)
+                attrs[physical] = value * factor
     return attrs
+
+
+def _physical_parameter(name: str, scales: Mapping[str, Any]) -> Tuple[str, float, Dict[str, str]]:
+    """The physical value beside a dimensionless parameter of a physical experiment: its name,
+    the factor from the parameter to it, and its attributes (w → f_Hz; β → U_V or F_N)."""
+    if name == "w":
+        return "f_Hz", float(scales["f0"]), {"units": "Hz", "long_name": "drive frequency f = w f0"}
+    unit = scales["force_unit"]
+    if unit == "V":
+        return "U_V", float(scales["force"]), {"units": "V",
+                                               "long_name": "drive amplitude U = beta U_t"}
+    return "F_N", float(scales["force"]), {"units": "N",
+                                           "long_name": "drive amplitude F = beta F0"}
+
+
+def _physical_coordinates(experiment: Experiment, dims: Sequence[str],
+                          values: Mapping[str, np.ndarray]) -> Dict[str, Any]:
+    """Coordinates in physical units beside the dimensionless ones of a physical experiment:
+    the drive frequency in Hz beside w, the drive amplitude in V (or N) beside β."""
+    scales = experiment.scales()
+    coords: Dict[str, Any] = {}
+    if scales is None:
+        return coords
+    for d in dims:
+        if d in ("w", "beta"):
+            name, factor, attrs = _physical_parameter(d, scales)
+            coords[name] = (d, values[d] * factor, attrs)
+    return coords
 
 
 def _coordinate(name: str, values: np.ndarray) -> Tuple[str, np.ndarray, Dict[str, str]]:
@@ -100,6 +138,23 @@ _PERIOD_ATTRIBUTES = {
 }
 
 
+#: Units and long names of the physical columns of a trajectory.
+_COLUMN_ATTRIBUTES: Dict[str, Dict[str, str]] = {
+    "tau": {"units": "1", "long_name": "dimensionless time tau = omega0 t"},
+    "y": {"units": "1", "long_name": "position y (u_C/U_t for a circuit)"},
+    "v": {"units": "1", "long_name": "velocity y' (dy/dtau)"},
+    "drive": {"units": "1", "long_name": "drive beta cos(w tau + phi)"},
+    "phase": {"long_name": "phase of the motion", "flag_meanings": "slip- stick slip+"},
+    "t_s": {"units": "s", "long_name": "time t"},
+    "uc_V": {"units": "V", "long_name": "capacitor voltage u_C"},
+    "i_A": {"units": "A", "long_name": "current i"},
+    "u_V": {"units": "V", "long_name": "drive voltage u"},
+    "r_m": {"units": "m", "long_name": "displacement r"},
+    "rdot_m_s": {"units": "m/s", "long_name": "velocity dr/dt"},
+    "F_N": {"units": "N", "long_name": "drive force F"},
+}
+
+
 class Trajectory:
     """One run from the initial state, sampled evenly (``stickslip.simulate``).
 
@@ -115,7 +170,24 @@ class Trajectory:
             volts, amperes, volts) or for a mechanical oscillator t_s, r_m, rdot_m_s, F_N,
             each also an attribute.
         experiment: the experiment that ran.
+
+    ``to_xarray()`` and ``to_pandas()`` give the samples as a dataset or a data frame.
     """
+
+    #: Time t in seconds (circuits and mechanical oscillators only; AttributeError otherwise).
+    t_s: np.ndarray
+    #: Capacitor voltage u_C in volts (circuits only).
+    uc_V: np.ndarray
+    #: Current i in amperes (circuits only).
+    i_A: np.ndarray
+    #: Drive voltage u in volts (circuits only).
+    u_V: np.ndarray
+    #: Displacement r in metres (mechanical oscillators only).
+    r_m: np.ndarray
+    #: Velocity dr/dt in m/s (mechanical oscillators only).
+    rdot_m_s: np.ndarray
+    #: Drive force F in newtons (mechanical oscillators only).
+    F_N: np.ndarray
 
     def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
         self.experiment = experiment
@@ -142,6 +214,47 @@ class Trajectory:
         """The phase of every sample as 'slip+', 'slip-' or 'stick'."""
         return np.asarray(["stick", "slip+", "slip-"])[self.phase]
 
+    def to_xarray(self) -> "xarray.Dataset":
+        """An ``xarray.Dataset`` of the samples along the dimension ``tau`` (dimensionless
+        time, the coordinate; ``t_s`` in seconds beside it for a physical experiment): ``y``,
+        ``v``, ``drive``, ``phase`` (CF flags: -1 slip-, 0 stick, +1 slip+) and the physical
+        columns (``uc_V``, ``i_A``, ``u_V`` or ``r_m``, ``rdot_m_s``, ``F_N``), each with
+        ``units`` and ``long_name``; the events along the dimension ``event``
+        (``event_tau``, ``event_y``, ``event_kind``); the experiment as attributes.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
+        xr = _checks.optional_module("xarray", "xarray", "Trajectory.to_xarray()")
+        coords: Dict[str, Any] = {"tau": ("tau", self.tau, dict(_COLUMN_ATTRIBUTES["tau"]))}
+        data: Dict[str, Any] = {}
+        for name in self.columns[1:]:
+            attrs: Dict[str, Any] = dict(_COLUMN_ATTRIBUTES[name])
+            if name == "phase":
+                attrs["flag_values"] = np.array([-1, 0, 1], dtype=np.int8)
+            target = coords if name == "t_s" else data
+            target[name] = ("tau", self[name], attrs)
+        data["event_tau"] = ("event", self.events["tau"], {"units": "1",
+                                                            "long_name": "time tau of the event"})
+        data["event_y"] = ("event", self.events["y"], {"units": "1",
+                                                        "long_name": "position y at the event"})
+        data["event_kind"] = ("event", self.events["kind"].astype(str),
+                              {"long_name": "kind of the event: turn, stick or slip"})
+        attrs = _fixed_attributes(self.experiment, [])
+        attrs["title"] = "stickslip: a run of the forced oscillator with dry friction"
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def to_pandas(self) -> "pandas.DataFrame":
+        """A ``pandas.DataFrame`` of the samples, one row each, with the columns of the
+        command-line tool's CSV in its order (``columns``: tau, y, v, drive, phase, then the
+        physical ones); the events stay in ``events``.
+
+        Raises:
+            ModuleNotFoundError: without pandas (``pip install 'stickslip[pandas]'``).
+        """
+        pd = _checks.optional_module("pandas", "pandas", "Trajectory.to_pandas()")
+        return pd.DataFrame({name: self[name] for name in self.columns})
+
     def __repr__(self) -> str:
         return (
             f"<stickslip.Trajectory: {len(self)} samples, τ from {self.tau[0]:g} to "
@@ -164,6 +277,10 @@ class SteadyState:
     Attributes:
         motion: 'sliding', 'periodic-stick', 'nonperiodic-stick', 'static' or 'chaotic' (no
             period, and the largest Lyapunov exponent positive beyond 4 standard errors).
+            'static' is the paper's rule, an amplitude (y_max − y_min)/2 below β/100, whether
+            or not the motion stops (at (w, β) = (2.0, 1.1) of the paper's circuit it holds a
+            motion that stops twice a period): read ``stops_per_cycle`` beside it.
+        stops_per_cycle: stops of non-zero duration per drive period.
         lambda_per_tau, error_per_tau: the largest Lyapunov exponent λ1 of a motion that does
             not repeat and its standard error, per unit τ = ω0·t (None otherwise);
             lambda_per_period, error_per_period: the same per drive period; verdict:
@@ -232,7 +349,8 @@ class SteadyState:
 class _Trace:
     """Samples of a recorded cycle."""
 
-    def __init__(self, tau, y, v, drive, phase) -> None:
+    def __init__(self, tau: np.ndarray, y: np.ndarray, v: np.ndarray, drive: np.ndarray,
+                 phase: np.ndarray) -> None:
         self.tau, self.y, self.v, self.drive, self.phase = tau, y, v, drive, phase
 
     def __len__(self) -> int:
@@ -250,16 +368,20 @@ class SweepResult:
         value: float64 array, the swept parameter's value at each step.
         leg: array of 'up' or 'down' (the direction of the leg each step belongs to).
         w, beta, zeta, mu_s: float64 arrays, the parameters of each step.
-        motion: int8 codes into ``labels`` (``MOTION_CLASSES``).
+        motion: int8 codes into ``labels`` (``MOTION_CLASSES``); 'static' is the paper's
+            rule, an amplitude below β/100 whether or not the motion stops: read
+            ``stops_per_cycle`` beside it.
         period: int16, period in drive periods, -1 where none was found.
-        stops_per_cycle, gain, peak: float64 arrays.
+        stops_per_cycle: float64, stops of non-zero duration per drive period.
+        gain, peak: float64 arrays (peak: the largest |y|).
         phase_lag: float64, lag of the fundamental behind the drive (radians; NaN without one).
         harmonics: float64 array (steps × harmonics): A_1, A_2, ... of y (NaN where absent).
         symmetric: bool array; periods_to_settle: int64 array.
         experiment, options: what was run.
     """
 
-    def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any], data) -> None:
+    def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
+                 data: Dict[str, Any]) -> None:
         self.experiment = experiment
         self.over = over
         self.options = options
@@ -287,13 +409,25 @@ class SweepResult:
         """The class of every step as a label."""
         return np.asarray(self.labels)[self.motion]
 
-    def to_xarray(self):
+    def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run) and the swept
         parameter (its values in the given order; the down leg is reordered to match), and a
         ``harmonic`` dimension for the harmonics. Coordinates carry ``units`` and
-        ``long_name``, ``motion`` the CF ``flag_values``/``flag_meanings``, the dataset the
-        fixed inputs and the package version. Needs xarray (``pip install xarray``)."""
-        import xarray as xr
+        ``long_name``, ``motion`` the CF ``flag_values``/``flag_meanings`` (with
+        ``stops_per_cycle`` beside it: 'static' is the paper's rule, an amplitude below
+        β/100), the dataset the
+        fixed inputs and the package version.
+
+        For a physical experiment (a circuit or a mechanical oscillator) the physical values
+        stand beside the dimensionless ones: ``f_Hz`` (drive frequency in Hz) beside ``w``,
+        ``U_V`` (drive amplitude in V; ``F_N`` in N for a mechanical oscillator) beside
+        ``beta``, as coordinates of the swept parameter or variables of the others, and
+        ``peak_V`` (``peak_m``) beside ``peak``.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
+        xr = _checks.optional_module("xarray", "xarray", "SweepResult.to_xarray()")
 
         legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
 
@@ -306,13 +440,13 @@ class SweepResult:
 
         values = table(self.value)[0]
         dims = ("leg", self.over)
-        coords = {
+        coords: Dict[str, Any] = {
             "leg": ("leg", np.asarray(legs), {"long_name": "direction of the sweep leg"}),
             self.over: _coordinate(self.over, values),
             "harmonic": ("harmonic", np.arange(1, self.harmonics.shape[1] + 1),
                          {"long_name": "order k of the drive harmonic", "units": "1"}),
         }
-        data = {
+        data: Dict[str, Any] = {
             "motion": (dims, table(self.motion), _motion_attributes()),
             "period": (dims, table(self.period), dict(_PERIOD_ATTRIBUTES)),
             "stops_per_cycle": (dims, table(self.stops_per_cycle),
@@ -333,6 +467,17 @@ class SweepResult:
         for name in ("w", "beta", "zeta", "mu_s"):
             if name != self.over:
                 data.setdefault(name, (dims, table(getattr(self, name)), _coordinate(name, values)[2]))
+        scales = self.experiment.scales()
+        if scales is not None:
+            coords.update(_physical_coordinates(self.experiment, [self.over], {self.over: values}))
+            for name in ("w", "beta"):
+                if name != self.over:
+                    physical, factor, attrs = _physical_parameter(name, scales)
+                    data[physical] = (dims, table(getattr(self, name)) * factor, attrs)
+            unit = scales["position_unit"]
+            data[f"peak_{unit}"] = (dims, table(self.peak) * float(scales["position"]),
+                                    {"long_name": "largest |u_C|" if unit == "V"
+                                     else "largest |r|", "units": unit})
         attrs = _fixed_attributes(self.experiment, [self.over])
         attrs["steady_options"] = json.dumps(self.options)
         return xr.Dataset(data, coords=coords, attrs=attrs)
@@ -351,7 +496,10 @@ class PhaseDiagram:
         coords: dict from each parameter to its float64 values.
         motion: int8 array of shape ``tuple(len(coords[d]) for d in dims)``: codes into
             ``labels`` = ``MOTION_CLASSES`` = ('sliding', 'periodic-stick',
-            'nonperiodic-stick', 'static', 'chaotic').
+            'nonperiodic-stick', 'static', 'chaotic'). 'static' is the paper's rule, an
+            amplitude (y_max − y_min)/2 below β/100, whether or not the motion stops (at
+            (w, β) = (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a
+            period): read ``stops_per_cycle`` beside it.
         period: int16 array, the period in drive periods, **-1 where none was found** (up to
             the ``max_period`` option, 16 by default).
         stops_per_cycle: float64 array, stops of non-zero duration per drive period.
@@ -398,16 +546,32 @@ class PhaseDiagram:
         """How many points of each class."""
         return {label: int(np.sum(self.motion == k)) for k, label in enumerate(self.labels)}
 
-    def to_xarray(self):
+    def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with one dimension per parameter (named after it; coordinates
         with ``units`` and ``long_name``), ``motion`` with the CF ``flag_values`` and
-        ``flag_meanings``, ``period`` (-1: none found; written to netCDF with -1 as its
-        ``_FillValue``), and the fixed inputs, the options and the package version as
-        attributes. Needs xarray (``pip install xarray``)."""
-        import xarray as xr
+        ``flag_meanings`` ('static' is the paper's rule, an amplitude below β/100:
+        ``stops_per_cycle`` says whether such a motion stops), ``period`` (-1: none found; written to netCDF with -1 as
+        its ``_FillValue``), ``stops_per_cycle``, ``gain``, ``symmetric``,
+        ``periods_to_settle``, with ``lyapunov=True`` also ``lyapunov`` and
+        ``lyapunov_error`` (per unit τ: ``ds.lyapunov`` works; the names before were
+        ``lambda`` and ``lambda_error``, which ``ds.<name>`` cannot reach: ``lambda`` is a
+        Python keyword), and the fixed inputs, the options and the package version as
+        attributes.
 
-        coords = {d: _coordinate(d, self.coords[d]) for d in self.dims}
-        data = {
+        For a physical experiment (a circuit or a mechanical oscillator) the physical values
+        stand beside the dimensionless axes as coordinates: ``f_Hz`` (drive frequency in Hz)
+        beside ``w``, ``U_V`` (drive amplitude in V; ``F_N`` in N for a mechanical
+        oscillator) beside ``beta``; ``f0_Hz`` and the fixed drive in physical units are
+        attributes.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
+        xr = _checks.optional_module("xarray", "xarray", "PhaseDiagram.to_xarray()")
+
+        coords: Dict[str, Any] = {d: _coordinate(d, self.coords[d]) for d in self.dims}
+        coords.update(_physical_coordinates(self.experiment, self.dims, self.coords))
+        data: Dict[str, Any] = {
             "motion": (self.dims, self.motion, _motion_attributes()),
             "period": (self.dims, self.period, dict(_PERIOD_ATTRIBUTES)),
             "stops_per_cycle": (self.dims, self.stops_per_cycle,
@@ -424,10 +588,10 @@ class PhaseDiagram:
                                    "units": "1"}),
         }
         if self.lyapunov is not None and self.lyapunov_error is not None:
-            data["lambda"] = (self.dims, self.lyapunov,
-                              {"long_name": "largest Lyapunov exponent per unit tau",
-                               "units": "1"})
-            data["lambda_error"] = (self.dims, self.lyapunov_error,
+            data["lyapunov"] = (self.dims, self.lyapunov,
+                                {"long_name": "largest Lyapunov exponent per unit tau",
+                                 "units": "1"})
+            data["lyapunov_error"] = (self.dims, self.lyapunov_error,
                                     {"long_name": "standard error of the largest Lyapunov "
                                                   "exponent per unit tau", "units": "1"})
         attrs = _fixed_attributes(self.experiment, self.dims)
@@ -453,8 +617,11 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
 
     Args:
         experiment: a ``stickslip.Experiment`` with its drive (w and β) given.
-        periods: drive periods to run (> 0).
-        samples_per_period: samples per drive period (≥ 1; default 200).
+        periods: drive periods to run (> 0; a number, whole or not). The run must end
+            within the time range the solvers resolve: τ ≤ 2³² and w·τ ≤ 2³², i.e. at most
+            6.8·10⁸·min(1, w) periods (``docs/limits.md``), checked before any work.
+        samples_per_period: samples per drive period (an integer from 1; default 200); at
+            most 5·10⁷ samples in all.
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own
             (Shockley diodes need a circuit).
         progress: optional callable ``progress(done, total)`` (drive periods), called from
@@ -465,7 +632,8 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
         a circuit) and the structured array ``events`` (tau, y, kind).
 
     Raises:
-        ValueError: bad input or a missing drive, with the library's message.
+        ValueError: bad input, a missing drive or a run too long, with the library's message.
+        TypeError: an argument of the wrong type (samples_per_period=2.5).
         KeyboardInterrupt: Ctrl-C stops a long run.
 
     Example:
@@ -475,7 +643,11 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
         (6001, 'u_V')
     """
     experiment = _with_model(experiment, model)
-    data = _core.simulate(experiment, float(periods), int(samples_per_period), progress)
+    periods = _checks.number("periods", periods)
+    samples = _checks.integer("samples_per_period", samples_per_period, 1, 50_000_000,
+                              "must be from 1 to 5e7 (and periods × samples_per_period at most "
+                              "5e7)")
+    data = _core.simulate(experiment, periods, samples, progress)
     return Trajectory(experiment, data)
 
 
@@ -490,15 +662,25 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
         experiment: a ``stickslip.Experiment`` with its drive given.
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
         **options: tolerance (relative, of the once-per-period repetition; default 1e-10, or
-            the stiff solver's 1e-6 with Shockley diodes), max_periods (5000), max_period (16,
-            at most 64), min_stop_fraction (1e-8 of a period), accelerate (True: extrapolate
-            the stroboscopic map to its fixed point), harmonics (16), samples_per_period (None:
-            chosen from the event log; else a power of two from 16), lyapunov_periods (5000:
-            drive periods over which a motion that does not repeat is measured by its largest
-            Lyapunov exponent, with the exact PWL model; 0: not measured).
+            the stiff solver's 1e-6 with Shockley diodes), max_periods (5000; 1 to 1e8),
+            max_period (16; 1 to 64), min_stop_fraction (1e-8 of a period), accelerate (True:
+            extrapolate the stroboscopic map to its fixed point), harmonics (16; 1 to 256),
+            samples_per_period (None: chosen from the event log; else a power of two from 16
+            to 2²⁰), lyapunov_periods (5000: drive periods over which a motion that does not
+            repeat is measured by its largest Lyapunov exponent, with the exact PWL model; 0:
+            not measured; else 20 to 1e8). Counts are integers (``int`` or numpy integers;
+            a float such as 100.0 is refused).
 
     Returns:
-        A ``SteadyState``; ``to_dict()`` equals ``stickslip steady --json``.
+        A ``SteadyState``; ``to_dict()`` equals ``stickslip steady --json``. Its class
+        (``motion``) is one of ``MOTION_CLASSES``: 'static' is the paper's rule, an amplitude
+        (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
+        (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a period), so
+        read ``stops_per_cycle`` beside it.
+
+    Raises:
+        ValueError: bad input, with the library's message. TypeError: an unknown option or
+        one of the wrong type.
 
     Example:
         >>> s = stickslip.steady(stickslip.Experiment.paper(w=0.7, beta=1.2))
@@ -506,6 +688,7 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
         ('periodic-stick', 1, 2.0)
     """
     experiment = _with_model(experiment, model)
+    options = _checks.steady_options(options, True, "steady")
     return SteadyState(experiment, _core.steady(experiment, options))
 
 
@@ -545,9 +728,8 @@ def boundary(zeta: Any, w: Any, mu_s: Any = 1.0) -> Tuple[np.ndarray, np.ndarray
         >>> round(float(paper[0]), 2), round(float(exact[0]), 3)
         (1.75, 1.556)
     """
-    z, ww, m = np.broadcast_arrays(np.asarray(zeta, dtype=np.float64),
-                                   np.asarray(w, dtype=np.float64),
-                                   np.asarray(mu_s, dtype=np.float64))
+    z, ww, m = np.broadcast_arrays(*(_checks.array(name, value) for name, value in
+                                     (("zeta", zeta), ("w", w), ("mu_s", mu_s))))
     shape = ww.shape
     flat = [np.require(a.ravel(), np.float64, ["C", "A"]) for a in (z, ww, m)]
     if ww.size == 0:
@@ -573,7 +755,9 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
         **options: as for ``steady``.
 
     Returns:
-        A ``SweepResult`` (numpy arrays per step; ``to_xarray()``).
+        A ``SweepResult`` (numpy arrays per step; ``to_xarray()``): ``motion`` (codes into
+        ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100 whether or
+        not the motion stops) with ``stops_per_cycle`` beside it.
 
     Raises:
         ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
@@ -586,15 +770,23 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
         22 up down
     """
     experiment = _with_model(experiment, model)
+    options = _checks.steady_options(options, True, "sweep")
     data = _core.sweep(experiment, over, _values("values", values), direction, options, progress)
     return SweepResult(experiment, over, dict(options), data)
 
 
 def _axes(kwargs: Dict[str, Any], count: Sequence[int], caller: str
           ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]:
-    """Split keyword arguments into parameter arrays (in the order given) and options."""
+    """Split keyword arguments into parameter arrays (in the order given) and options, each
+    checked; an unknown keyword is named first (``gamma=`` is not an option misread)."""
+    options_known = _checks.option_names(spectrum=False)
+    for k in kwargs:
+        if k not in PARAMETERS and k not in options_known:
+            _checks.unknown_keyword(caller, k, [("the parameters", PARAMETERS),
+                                                ("the options", options_known)])
     axes = {k: _values(k, v) for k, v in kwargs.items() if k in PARAMETERS}
-    options = {k: v for k, v in kwargs.items() if k not in PARAMETERS}
+    options = _checks.steady_options({k: v for k, v in kwargs.items() if k not in PARAMETERS},
+                                     False, caller)
     if len(axes) not in count:
         wanted = " or ".join(str(c) for c in count)
         got = ", ".join(axes) or "none"
@@ -617,8 +809,8 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
     Args:
         experiment: a ``stickslip.Experiment``; it needs no value of either parameter.
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
-        threads: compute on a pool of this many threads (default: one per core). Results are
-            the same for any number.
+        threads: compute on a pool of this many threads (an integer from 1 to 1024;
+            default: one per core). Results are the same for any number.
         progress: optional callable ``progress(done, total)`` (points), called from the
             calling thread about every 50 ms (e.g. a tqdm bar's update).
         lyapunov: also the largest Lyapunov exponent of every point (exact PWL model; as
@@ -629,12 +821,15 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
             lyapunov_periods).
 
     Returns:
-        A ``PhaseDiagram``: ``motion`` (int8 codes into ``labels``), ``period`` (-1: none
-        found), ``stops_per_cycle``, ``gain``, ... each of shape (len(first), len(second)),
-        and ``to_xarray()``.
+        A ``PhaseDiagram``: ``motion`` (int8 codes into ``labels``; 'static' is the paper's
+        rule, an amplitude below β/100 whether or not the motion stops), ``stops_per_cycle``
+        beside it, ``period`` (-1: none found), ``gain``, ... each of shape (len(first),
+        len(second)), and ``to_xarray()``.
 
     Raises:
-        ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
+        ValueError: bad input, with the library's message; a grid of more than 10⁸ points
+        (``docs/limits.md``), before any work. TypeError: an unknown keyword (named), or an
+        argument of the wrong type. KeyboardInterrupt: Ctrl-C.
 
     Example:
         >>> import numpy as np
@@ -646,8 +841,8 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
     experiment = _with_model(experiment, model)
     axes, options = _axes(axes_and_options, (2,), "phase_diagram")
     (first, v1), (second, v2) = axes.items()
-    data = _core.grid(experiment, first, v1, second, v2, options, threads, None, None, progress,
-                      bool(lyapunov))
+    data = _core.grid(experiment, first, v1, second, v2, options, _checks.threads(threads), None,
+                      None, progress, _checks.flag("lyapunov", lyapunov))
     return PhaseDiagram(experiment, (first, second), axes, options, _reshape(data, (len(v1), len(v2))))
 
 
@@ -796,13 +991,13 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
     Args:
         experiment: a ``stickslip.Experiment`` with its drive given (PWL diodes or Coulomb
             friction; Shockley diodes raise ``ValueError``).
-        period: p in drive periods. None (the default): the motion from the initial state is
-            run to its steady state, which gives p and the guess.
+        period: p in drive periods (1 to 1000). None (the default): the motion from the
+            initial state is run to its steady state, which gives p and the guess.
         transient: with a period, drive periods run from the initial state before Newton's
-            method starts (0: from the initial state y0, v0 itself, which can aim at an
-            unstable orbit).
+            method starts (0 to 1e8; 0: from the initial state y0, v0 itself, which can aim
+            at an unstable orbit).
         tolerance: relative tolerance of Newton's method (default 1e-12).
-        max_iterations: most Newton steps (default 30).
+        max_iterations: most Newton steps (1 to 1000; default 30).
         progress: optional callable ``progress(done, total)`` (drive periods of the transient).
         **options: of the steady-state search without a period: max_periods (5000),
             max_period (16), tolerance is Newton's (above).
@@ -826,10 +1021,14 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
     experiment = _with_model(experiment, None)
     unknown = set(options) - {"max_periods", "max_period"}
     if unknown:
-        raise TypeError(f"unknown option {sorted(unknown)[0]!r}: the options are max_periods, "
-                        "max_period")
-    report = _core.orbit(experiment, period, int(transient), options, float(tolerance),
-                         int(max_iterations), progress)
+        raise TypeError(f"orbit() got an unknown option {sorted(unknown)[0]!r}: the options are "
+                        "max_periods, max_period")
+    options = _checks.steady_options(options, False, "orbit")
+    if period is not None:
+        period = _checks.integer("period", period, 1, 1000)
+    report = _core.orbit(experiment, period, _checks.integer("transient", transient, 0, 10**8),
+                         options, _checks.number("tolerance", tolerance),
+                         _checks.integer("max_iterations", max_iterations, 1, 1000), progress)
     return PeriodicOrbit(experiment, report)
 
 
@@ -846,10 +1045,10 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
 
     Args:
         experiment: a ``stickslip.Experiment`` with its drive given (not Shockley diodes).
-        transient: drive periods run before measuring (default 1000).
-        periods: drive periods measured (default 20000; rounded down to a multiple of
-            ``blocks``).
-        blocks: even, at least 4 (default 20).
+        transient: drive periods run before measuring (0 to 1e9; default 1000).
+        periods: drive periods measured (``blocks`` to 1e9; default 20000; rounded down to a
+            multiple of ``blocks``).
+        blocks: even, from 4 to 10000 (default 20).
         significance: k, the standard errors that make λ1 significant (default 4).
         progress: optional callable ``progress(done, total)`` (drive periods).
 
@@ -867,6 +1066,11 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
         ('chaotic', True, -inf)
     """
     experiment = _with_model(experiment, None)
-    report = _core.lyapunov(experiment, int(transient), int(periods), int(blocks),
-                            float(significance), progress)
+    blocks = _checks.integer("blocks", blocks, 4, 10_000, "must be even and from 4 to 10000")
+    if blocks % 2:
+        raise ValueError(f"invalid blocks = {blocks}: must be even and from 4 to 10000")
+    report = _core.lyapunov(experiment, _checks.integer("transient", transient, 0, 10**9),
+                            _checks.integer("periods", periods, blocks, 10**9,
+                                            f"must be from blocks ({blocks}) to 1e9"), blocks,
+                            _checks.number("significance", significance), progress)
     return LyapunovResult(experiment, report)

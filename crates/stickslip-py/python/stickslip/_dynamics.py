@@ -5,16 +5,22 @@ basins`` and ``stickslip continue``."""
 from __future__ import annotations
 
 import copy
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
-from ._api import Progress, _coordinate, _fixed_attributes, _values, _with_model
+from . import _checks, _core
+from ._api import (Progress, _coordinate, _fixed_attributes, _physical_coordinates, _values,
+                   _with_model)
 from ._core import Experiment
 
+if TYPE_CHECKING:
+    import xarray
+
 #: What a motion settles on, in the order of the codes in ``kind`` arrays: 'periodic',
-#: 'static' (rest), 'chaotic', 'quasiperiodic', 'unsettled' (no verdict).
+#: 'static' (rest: the motion stops for good; not the steady-state class 'static' of
+#: ``MOTION_CLASSES``, which is the paper's amplitude rule), 'chaotic', 'quasiperiodic',
+#: 'unsettled' (no verdict).
 ATTRACTOR_KINDS: Tuple[str, ...] = tuple(_core.ATTRACTOR_KINDS)
 
 
@@ -24,12 +30,6 @@ def _kind_attributes() -> Dict[str, Any]:
         "flag_values": np.arange(len(ATTRACTOR_KINDS), dtype=np.int8),
         "flag_meanings": " ".join(ATTRACTOR_KINDS),
     }
-
-
-def _whole(name: str, value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be a whole number, got {value!r}")
-    return int(value)
 
 
 class BifurcationDiagram:
@@ -45,7 +45,8 @@ class BifurcationDiagram:
         exponent: float64 array: the largest Lyapunov exponent per unit τ over the recorded
             periods (the CSV's ``lambda``); exponent_error: its standard error (NaN with
             fewer than 8 points).
-        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS`` (the CSV's ``class``).
+        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS`` (the CSV's ``class``;
+            'static' is rest: the motion stopped for good); stops: the stops beside it.
         period: int16, the period in drive periods, -1 without one.
         events, stops: int64, events and stops while recording.
         experiment, options: what was run.
@@ -96,13 +97,18 @@ class BifurcationDiagram:
             "period": np.repeat(self.period, n),
         }
 
-    def to_xarray(self):
+    def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run), the
         stepped parameter (the down leg reordered to match the up leg) and ``point`` (the
         strobe points): ``y``, ``v`` (leg, parameter, point), ``exponent``,
         ``exponent_error``, ``kind`` (CF flags), ``period`` (-1: none), ``events``,
-        ``stops``. Needs xarray (``pip install xarray``)."""
-        import xarray as xr
+        ``stops``. For a physical experiment, ``f_Hz`` (Hz) or ``U_V`` (V; ``F_N`` in N)
+        stands beside a stepped ``w`` or ``beta`` as a coordinate.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
+        xr = _checks.optional_module("xarray", "xarray", "BifurcationDiagram.to_xarray()")
 
         legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
 
@@ -115,12 +121,13 @@ class BifurcationDiagram:
 
         values = table(self.value)[0]
         dims = ("leg", self.over)
-        coords = {
+        coords: Dict[str, Any] = {
             "leg": ("leg", np.asarray(legs), {"long_name": "direction of the leg"}),
             self.over: _coordinate(self.over, values),
             "point": ("point", np.arange(self.points),
                       {"long_name": "index of the strobe point after the transient"}),
         }
+        coords.update(_physical_coordinates(self.experiment, [self.over], {self.over: values}))
         data = {
             "y": (dims + ("point",), table(self.y),
                   {"long_name": "position y at the strobe (drive phase phi)", "units": "1"}),
@@ -160,7 +167,8 @@ class BasinMap:
         y0, v0: float64 arrays, the initial positions (rows) and velocities (columns).
         attractor: int32 array (len(y0), len(v0)): the number of the attractor reached, -1
             where the motion settled on nothing within the caps (unsettled).
-        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS``, per cell.
+        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS``, per cell ('static' is rest:
+            the motion stopped for good).
         period: int16, period of the cell's attractor in drive periods, -1 without one.
         attractors: list of dicts, one per attractor as ``stickslip basins --json`` lists
             them: id, kind, period, fraction, cells, state {y, v}, strobes (at most 64),
@@ -196,13 +204,17 @@ class BasinMap:
         """What each cell settled on, as a label."""
         return np.asarray(self.labels)[self.kind]
 
-    def to_xarray(self):
+    def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with dimensions ``y0`` and ``v0``: ``attractor`` (-1:
         unsettled), ``kind`` (CF flags), ``period`` (-1: none), the model's parameters and the
-        summary (JSON) as attributes. Needs xarray (``pip install xarray``)."""
+        summary (JSON) as attributes.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
         import json
 
-        import xarray as xr
+        xr = _checks.optional_module("xarray", "xarray", "BasinMap.to_xarray()")
 
         dims = ("y0", "v0")
         coords = {
@@ -259,6 +271,20 @@ class Branch:
     COLUMNS = ("value", "y", "v", "amplitude", "period", "stops_per_period", "turns",
                "mu1_re", "mu1_im", "mu2_re", "mu2_im", "stable", "arclength")
 
+    value: np.ndarray
+    y: np.ndarray
+    v: np.ndarray
+    amplitude: np.ndarray
+    period: np.ndarray
+    stops_per_period: np.ndarray
+    turns: np.ndarray
+    mu1_re: np.ndarray
+    mu1_im: np.ndarray
+    mu2_re: np.ndarray
+    mu2_im: np.ndarray
+    stable: np.ndarray
+    arclength: np.ndarray
+
     def __init__(self, experiment: Experiment, over: str, data: Dict[str, Any]) -> None:
         self.experiment = experiment
         self.over = over
@@ -274,7 +300,7 @@ class Branch:
         self.start: Tuple[float, float, int, int] = tuple(data["start"])  # type: ignore[assignment]
 
     def __len__(self) -> int:
-        return len(self.value)  # type: ignore[attr-defined]
+        return len(self.value)
 
     def to_dict(self) -> Dict[str, Any]:
         """The summary as ``stickslip continue --json`` prints it (parameter, period, points,
@@ -284,7 +310,7 @@ class Branch:
     def __repr__(self) -> str:
         special = ", ".join(f"{s['kind']} at {s['value']:.6g}" for s in self.special) or "none"
         return (f"<stickslip.Branch of period-{self._report['period']} orbits over {self.over}: "
-                f"{len(self)} points from {self.value[0]:.6g} to {self.value[-1]:.6g}; "  # type: ignore[attr-defined]
+                f"{len(self)} points from {self.value[0]:.6g} to {self.value[-1]:.6g}; "
                 f"special points: {special}; ends: {self.end_text}>")
 
 
@@ -305,10 +331,12 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
         values: the parameter's values, in order (any array-like of floats; dimensionless).
         direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
             where the up leg ended; the default).
-        points: strobe points recorded at each value (drive periods; default 100).
-        transient: drive periods run at each value before recording (default 200).
-        first_transient: drive periods of transient at the first value (default 2000).
-        max_period: longest period looked for in the recorded points (drive periods; 32).
+        points: strobe points recorded at each value (drive periods; 1 to 10⁶; default 100).
+        transient: drive periods run at each value before recording (0 to 1e8; default 200).
+        first_transient: drive periods of transient at the first value (0 to 1e8; default
+            2000).
+        max_period: longest period looked for in the recorded points (drive periods; 1 to
+            1000; default 32).
         progress: optional callable ``progress(done, total)`` (values).
 
     Returns:
@@ -329,10 +357,14 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
         (True, True)
     """
     experiment = _with_model(experiment, None)
-    options = {"points": _whole("points", points), "transient": _whole("transient", transient),
-               "first_transient": _whole("first_transient", first_transient),
-               "max_period": _whole("max_period", max_period)}
-    data = _core.bifurcation(experiment, over, _values("values", values), direction,
+    options = {"points": _checks.integer("points", points, 1, 10**6),
+               "transient": _checks.integer("transient", transient, 0, 10**8,
+                                            "must be from 0 to 1e8 drive periods"),
+               "first_transient": _checks.integer("first_transient", first_transient, 0, 10**8,
+                                                  "must be from 0 to 1e8 drive periods"),
+               "max_period": _checks.integer("max_period", max_period, 1, 1000)}
+    values = _values("values", values)
+    data = _core.bifurcation(experiment, over, values, direction,
                              options["points"], options["transient"],
                              options["first_transient"], options["max_period"], progress)
     return BifurcationDiagram(experiment, over, options, data)
@@ -354,15 +386,16 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
             initial state is not used (the grid sets it).
         y0: (smallest, largest) initial position (dimensionless, units of y).
         v0: (smallest, largest) initial velocity y0'.
-        steps: values along each axis, both ends included (an int, or (rows, columns);
-            default 100).
+        steps: values along each axis, both ends included (an integer from 1 to 2000, or
+            (rows, columns); default 100), checked before any work.
         phase: drive phase φ (radians) at which the initial states are given (default: the
             experiment's φ).
-        max_periods: drive periods run at most per cell to find a period (default 1000).
+        max_periods: drive periods run at most per cell to find a period (1 to 1e8; default
+            1000).
         max_period: longest period looked for, 1 to 64 drive periods (default 16).
         lyapunov_periods: drive periods over which the exponent of a motion without a period
-            is measured (default 1000).
-        threads: a pool of this many threads (default: one per core).
+            is measured (8 to 1e7; default 1000).
+        threads: a pool of this many threads (1 to 1024; default: one per core).
         progress: optional callable ``progress(done, total)`` (cells).
 
     Returns:
@@ -381,12 +414,21 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
         ((12, 12), 0)
     """
     experiment = _with_model(experiment, None)
-    rows, cols = (steps, steps) if not isinstance(steps, (tuple, list)) else steps
-    data = _core.basins(experiment, (float(y0[0]), float(y0[1])), (float(v0[0]), float(v0[1])),
-                        (_whole("steps", rows), _whole("steps", cols)),
-                        None if phase is None else float(phase),
-                        _whole("max_periods", max_periods), _whole("max_period", max_period),
-                        _whole("lyapunov_periods", lyapunov_periods), threads, progress)
+    if isinstance(steps, (tuple, list)):
+        if len(steps) != 2:
+            raise TypeError(f"steps must be an integer or a (rows, columns) pair, got {steps!r}")
+        rows, cols = steps
+    else:
+        rows, cols = steps, steps
+    data = _core.basins(experiment, _checks.pair("y0", y0), _checks.pair("v0", v0),
+                        (_checks.integer("steps", rows, 1, 2000),
+                         _checks.integer("steps", cols, 1, 2000)),
+                        None if phase is None else _checks.number("phase", phase),
+                        _checks.integer("max_periods", max_periods, 1, _checks.MAX_PERIODS),
+                        _checks.integer("max_period", max_period, 1, 64),
+                        _checks.integer("lyapunov_periods", lyapunov_periods, 8, 10**7,
+                                        "must be from 8 to 1e7"),
+                        _checks.threads(threads), progress)
     if phase is not None:
         experiment = experiment.replace(phi=float(phase))
     return BasinMap(experiment, data)
@@ -411,7 +453,7 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
         over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s'.
         start: the start value (dimensionless).
         to: the value to continue towards; the branch stays between the two.
-        max_points: most points of the branch (default 5000).
+        max_points: most points of the branch (2 to 10⁷; default 5000).
         max_step: largest step of arclength in (y, y', parameter) (default 0.1).
         progress: optional callable ``progress(done, total)`` (points, of max_points).
 
@@ -432,8 +474,10 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
         (True, False)
     """
     experiment = _with_model(experiment, None)
-    data = _core.continuation(experiment, over, float(start), float(to),
-                              _whole("max_points", max_points), float(max_step), progress)
+    data = _core.continuation(experiment, over, _checks.number("start", start),
+                              _checks.number("to", to),
+                              _checks.integer("max_points", max_points, 2, 10**7),
+                              _checks.number("max_step", max_step), progress)
     return Branch(experiment, over, data)
 
 

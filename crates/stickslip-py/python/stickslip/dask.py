@@ -39,12 +39,13 @@ from __future__ import annotations
 
 import itertools
 import os
+import sys
 import time
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Set, Tuple, Union
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 from ._api import PhaseDiagram, _axes, _with_model
 from ._core import Experiment
 
@@ -106,25 +107,84 @@ def _block_shape(chunks: Chunks, experiment: Experiment, first: str, v1: np.ndar
     if isinstance(chunks, (int, np.integer)) and not isinstance(chunks, bool):
         shape = (int(chunks), n2)
     elif isinstance(chunks, tuple) and len(chunks) == 2:
+        for k in chunks:
+            if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+                raise TypeError(f"chunks must be 'auto', an integer or a (rows, columns) tuple "
+                                f"of integers, not {chunks!r}")
         shape = (int(chunks[0]), int(chunks[1]))
     else:
-        raise TypeError(f"chunks must be 'auto', an int or a (rows, columns) tuple, not {chunks!r}")
+        raise TypeError(f"chunks must be 'auto', an integer or a (rows, columns) tuple of "
+                        f"integers, not {chunks!r}")
     if min(shape) < 1:
         raise ValueError(f"invalid chunks {chunks!r}: a block has at least one row and one column")
     return min(shape[0], n1), min(shape[1], n2)
 
 
-def _worker_threads(client: Any) -> int:
-    """Threads of the cluster that will compute: the client's (or the default client's)
-    workers, else this machine's cores (Dask's local threads)."""
-    if client is None:
-        try:
-            from distributed import default_client
+def _default_client() -> Any:
+    """Dask's default ``distributed.Client``, or None (Dask's local threads compute)."""
+    if "distributed" not in sys.modules:
+        return None  # no client can have been made (and importing it takes a second)
+    try:
+        from distributed import default_client
 
-            client = default_client()
-        except (ImportError, ValueError):
-            return os.cpu_count() or 1
+        return default_client()
+    except (ImportError, ValueError):
+        return None
+
+
+def _worker_threads(client: Any) -> int:
+    """Threads of the cluster that will compute: the client's workers, else this machine's
+    cores (Dask's local threads)."""
+    if client is None:
+        return os.cpu_count() or 1
     return sum(client.nthreads().values()) or 1
+
+
+#: How often the calling thread looks whether the tasks are done (and lets Ctrl-C in).
+_POLL_SECONDS = 0.05
+
+
+def _gather(client: Any, futures: List[Any]) -> List[Any]:
+    """The futures' results. The calling thread waits in ``time.sleep``, which Ctrl-C
+    interrupts cleanly: the tasks are then cancelled and the one ``KeyboardInterrupt``
+    propagates. (Waiting inside ``client.gather`` instead, the interrupted gather leaves one
+    asyncio task per future whose ``AllExit`` exception is never retrieved, and asyncio
+    prints a traceback for each.)"""
+    try:
+        pending = futures
+        while pending:
+            pending = [f for f in pending if not f.done()]
+            if pending:
+                time.sleep(_POLL_SECONDS)
+        results: List[Any] = client.gather(futures)
+        return results
+    except BaseException:
+        client.cancel(futures)
+        _wait_for_running(client, {f.key for f in futures})
+        raise
+
+
+def _executing_keys(dask_worker: Any) -> List[Any]:
+    """The keys of the tasks a worker is running (``client.run`` calls it on each)."""
+    return [ts.key for ts in dask_worker.state.executing]
+
+
+def _wait_for_running(client: Any, keys: Set[Any], timeout: float = 60.0) -> None:
+    """Wait until no task of ``keys`` runs on a worker any more (a block cannot be stopped
+    half-way on a worker; it takes about ``TASK_SECONDS`` with ``chunks="auto"``), so that
+    the workers are idle when the caller goes on, and a cluster closed right after (a
+    ``with LocalCluster()`` block left by the ``KeyboardInterrupt``) closes no worker in the
+    middle of a task, which the worker would report on stderr. A second Ctrl-C, or a worker
+    that does not answer, ends the wait early."""
+    deadline = time.monotonic() + timeout
+    try:
+        while time.monotonic() < deadline:
+            running = client.run(_executing_keys)
+            if not any(key in keys for worker in running.values() for key in worker):
+                return
+            time.sleep(_POLL_SECONDS)
+    except BaseException:  # noqa: BLE001 - the first interrupt is the one that propagates
+        return
 
 
 def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str, np.ndarray],
@@ -140,6 +200,8 @@ def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str,
     def fixed_at(index: Sequence[int]) -> List[Tuple[str, float]]:
         return [(name, float(outer[name][k])) for name, k in zip(outer_names, index)]
 
+    if client is None:
+        client = _default_client()
     middle = combinations[len(combinations) // 2]
     rows, cols = _block_shape(chunks, experiment, first, v1, second, v2, options,
                               fixed_at(middle), len(combinations), _worker_threads(client))
@@ -165,12 +227,7 @@ def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str,
     if client is None:
         results = dask.compute(*tasks)
     else:
-        futures = client.compute(tasks)
-        try:
-            results = client.gather(futures)
-        except BaseException:
-            client.cancel(futures)
-            raise
+        results = _gather(client, client.compute(tasks))
 
     shape = outer_shape + (n1, n2)
     arrays: Dict[str, np.ndarray] = {
@@ -200,7 +257,15 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
             max_periods, max_period, min_stop_fraction, accelerate).
 
     Returns:
-        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)).
+        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)): ``motion`` (codes
+        into ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100
+        whether or not the motion stops) with ``stops_per_cycle`` beside it.
+
+    Raises:
+        ValueError: bad input (checked on the client before any task), a map of more than
+            10⁸ points. TypeError: an unknown keyword (named) or an argument of the wrong
+            type. KeyboardInterrupt: Ctrl-C cancels the tasks and raises once, with nothing
+            else on stderr.
 
     Example:
         >>> import numpy as np, stickslip, stickslip.dask
@@ -230,7 +295,9 @@ def sweep_grid(experiment: Experiment, *, chunks: Chunks = "auto", client: Any =
 
     Returns:
         A ``stickslip.PhaseDiagram`` whose arrays have one dimension per parameter, e.g.
-        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them.
+        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them. ``motion``: codes into
+        ``MOTION_CLASSES`` ('static' is the paper's rule, an amplitude below β/100 whether or
+        not the motion stops), with ``stops_per_cycle`` beside it.
 
     Example:
         >>> s = stickslip.dask.sweep_grid(stickslip.Experiment.paper(), mu_s=[1.0, 1.5],
