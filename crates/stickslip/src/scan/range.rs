@@ -93,10 +93,12 @@ impl ParameterRange {
 }
 
 /// The i-th of `intervals + 1` evenly spaced values from `from` to `to` (both ends exact),
-/// without float noise: of the decimals within a few rounding errors of
-/// from + (to − from)·i/intervals, the one with the fewest significant digits, so that a grid
-/// of round values prints round (0.425, not 0.42500000000000004). The value moves by at most
-/// 8 ε·max(|from|, |to|), the size of the rounding error it removes.
+/// without float noise: when a decimal of at most 12 significant digits lies within a few
+/// rounding errors of from + (to − from)·i/intervals, that decimal (the shortest one), so
+/// that a grid of round values prints round (0.425, not 0.42500000000000004); otherwise the
+/// computed value itself (a value such as 1 + 7/36 has no short decimal, and a longer one
+/// would not be closer to it). The value moves by at most 8 ε·max(|from|, |to|), the size of
+/// the rounding error it removes.
 pub fn grid_value(from: f64, to: f64, i: usize, intervals: usize) -> f64 {
     if intervals == 0 || i == 0 {
         return from;
@@ -109,13 +111,13 @@ pub fn grid_value(from: f64, to: f64, i: usize, intervals: usize) -> f64 {
     shortest_decimal_near(raw, tolerance)
 }
 
-/// The decimal with the fewest significant digits within `tolerance` of `value` (`value`
-/// itself when none shorter is).
+/// The decimal with the fewest significant digits, at most 12, within `tolerance` of `value`
+/// (`value` itself when there is none).
 fn shortest_decimal_near(value: f64, tolerance: f64) -> f64 {
     if !value.is_finite() || value == 0.0 {
         return value;
     }
-    for digits in 1..17 {
+    for digits in 1..=12 {
         let text = format!("{value:.*e}", digits - 1);
         if let Ok(rounded) = text.parse::<f64>() {
             if (rounded - value).abs() <= tolerance {
@@ -167,6 +169,13 @@ mod tests {
             }
         }
         assert_eq!(grid_value(0.0, 1.0, 1, 3), 1.0 / 3.0);
+        // A value with no short decimal keeps all its digits (fig5.csv's β grid).
+        let raw = 1.0 + 14.0 * (1.0 / 72.0);
+        assert_eq!(grid_value(1.0, 15.0, 1, 72), raw);
+        assert_eq!(
+            grid_value(1.0, 15.0, 1, 72).to_string(),
+            "1.1944444444444444"
+        );
         // Monotone on a fine grid.
         let values: Vec<f64> = (0..=1000).map(|i| grid_value(0.1, 2.5, i, 1000)).collect();
         assert!(values.windows(2).all(|w| w[0] < w[1]));
