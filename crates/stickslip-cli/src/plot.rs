@@ -544,8 +544,8 @@ pub fn font_size(width: u32, panel: (u32, u32)) -> u32 {
     (width / 80).max(panel.0.min(panel.1) / 22).clamp(13, 22)
 }
 
-/// The space above a chart's plotting area: the caption and half a tick label (the top
-/// tick label is centred on the top edge and must not touch the title).
+/// The space between a panel's title and its plotting area: half a tick label and more (the
+/// top tick label is centred on the top edge and must not touch the title).
 fn top_margin(font: u32) -> u32 {
     8 + font / 2
 }
@@ -645,16 +645,17 @@ fn split_for_bar<DB: DrawingBackend>(
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-/// The chart of `panel` on `area` (its caption drawn), with `reserve` pixels kept free on
-/// the right of the plotting area for a legend.
-fn build_chart<'a, DB: DrawingBackend>(
+/// Draw the title of `panel` across the top of its whole `area` (colour bar and legend room
+/// included) and return the area below it. A title wider than the panel is set smaller
+/// rather than cut.
+fn titled<DB: DrawingBackend>(
     panel: &Panel,
-    area: &'a DrawingArea<DB, Shift>,
+    area: &DrawingArea<DB, Shift>,
     font: u32,
-    reserve: u32,
-) -> Result<Chart<'a, DB>, String> {
-    let (xr, yr) = ranges(panel);
-    // A title wider than its chart is set smaller rather than cut.
+) -> Result<DrawingArea<DB, Shift>, String> {
+    if panel.title.is_empty() {
+        return Ok(area.clone());
+    }
     let width = area.dim_in_pixel().0.saturating_sub(16);
     let mut title_font = font + 2;
     while title_font > 10
@@ -667,8 +668,20 @@ fn build_chart<'a, DB: DrawingBackend>(
     {
         title_font -= 1;
     }
+    area.titled(&panel.title, (FAMILY, title_font))
+        .map_err(|e| e.to_string())
+}
+
+/// The chart of `panel` on `area` (below its title), with `reserve` pixels kept free on the
+/// right of the plotting area for a legend.
+fn build_chart<'a, DB: DrawingBackend>(
+    panel: &Panel,
+    area: &'a DrawingArea<DB, Shift>,
+    font: u32,
+    reserve: u32,
+) -> Result<Chart<'a, DB>, String> {
+    let (xr, yr) = ranges(panel);
     ChartBuilder::on(area)
-        .caption(&panel.title, (FAMILY, title_font))
         .margin(8)
         .margin_top(top_margin(font))
         // Room for the last tick label, centred on the right edge (and for a legend).
@@ -787,9 +800,10 @@ fn data_mask(
     let mut buffer = vec![255u8; w as usize * h as usize * 3];
     let rect = {
         let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
-        let (main, _) = split_for_bar(panel, &root, font);
+        let body = titled(panel, &root, font)?;
+        let (main, _) = split_for_bar(panel, &body, font);
         let mut chart = build_chart(panel, &main, font, reserve)?;
-        let rect = plot_rect(&chart, &main);
+        let rect = plot_rect(&chart, &root);
         draw_data(panel, &mut chart)?;
         root.present().map_err(|e| e.to_string())?;
         rect
@@ -1010,7 +1024,8 @@ where
     let entries = legend_entries(panel);
     let (legend, reserve) = plan_legend(panel, area, font, floor)?;
 
-    let (main, side) = split_for_bar(panel, area, font);
+    let body = titled(panel, area, font)?;
+    let (main, side) = split_for_bar(panel, &body, font);
     if let (Some(bar), Some(side)) = (&panel.color_bar, &side) {
         draw_color_bar(bar, side, font)?;
     }
@@ -1040,7 +1055,7 @@ where
     draw_data(panel, &mut chart)?;
     Ok(match legend {
         Some((rect, plot, outside, overlap)) => {
-            draw_legend(&main, &entries, rect, font)?;
+            draw_legend(area, &entries, rect, font)?;
             Some(LegendPlacement {
                 panel: panel.title.clone(),
                 rect,
@@ -1101,7 +1116,7 @@ where
     let mut chart = ChartBuilder::on(area)
         // As the chart beside it: the caption's height on top, the x labels' at the bottom.
         .margin(8)
-        .margin_top(top_margin(font) + font + 2 + 5)
+        .margin_top(top_margin(font))
         .margin_bottom(8 + font * 3)
         .set_label_area_size(LabelAreaPosition::Right, font * 5)
         .build_cartesian_2d(0.0..1.0, lo..hi)
