@@ -39,8 +39,8 @@ pub fn stable(multipliers: &[Multiplier; 2]) -> bool {
 /// Colour of the points of each leg of a diagram.
 fn leg_color(leg: SweepLeg) -> RGBColor {
     match leg {
-        SweepLeg::Up => PALETTE[0],
-        SweepLeg::Down => PALETTE[1],
+        SweepLeg::Up => crate::plot::Quantity::SweepUp.color(),
+        SweepLeg::Down => crate::plot::Quantity::SweepDown.color(),
     }
 }
 
@@ -238,7 +238,7 @@ pub fn diagram_figure(
         title: title.to_string(),
         x_label: String::new(),
         y_label: "y at the strobe (drive phase φ)".into(),
-        y_range: headroom(&series, x_range, 0.07 * legend_lines(&series) as f64),
+        y_range: headroom(&series, x_range),
         series,
         x_range,
         legend: Some(Legend::UpperLeft),
@@ -277,14 +277,9 @@ pub fn diagram_figure(
     }
 }
 
-/// Legend entries of `series`.
-fn legend_lines(series: &[Series]) -> usize {
-    series.iter().filter(|s| !s.label.is_empty()).count()
-}
-
-/// The y range of `series` within `x_range`, with `room` times its span added on top for the
-/// legend (a diagram fills its whole width, so the legend goes above the data).
-fn headroom(series: &[Series], x_range: Option<(f64, f64)>, room: f64) -> Option<(f64, f64)> {
+/// The y range of `series` within `x_range`, with a margin of 4 % of its span (the legend
+/// finds its own place: a free corner, or outside the plotting area).
+fn headroom(series: &[Series], x_range: Option<(f64, f64)>) -> Option<(f64, f64)> {
     let (x0, x1) = x_range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
     let (lo, hi) = series
         .iter()
@@ -297,7 +292,7 @@ fn headroom(series: &[Series], x_range: Option<(f64, f64)>, room: f64) -> Option
         return None;
     }
     let span = (hi - lo).max(1e-9 * hi.abs().max(1.0));
-    Some((lo - 0.04 * span, hi + (0.04 + room) * span))
+    Some((lo - 0.04 * span, hi + 0.04 * span))
 }
 
 /// Light colours of the basins, by attractor number; the marker colours are the palette's.
@@ -413,7 +408,7 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
         x_range: Some(y_range),
         y_range: Some(v_range),
         legend: Some(Legend::UpperRight),
-        color_bar: None,
+        ..Default::default()
     }
 }
 
@@ -451,12 +446,13 @@ pub fn branch_figure(branch: &Branch, title: &str) -> Stack {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
             (a.min(p.value), b.max(p.value))
         });
-    let x_range = (lo < hi).then_some((lo, hi));
+    // A margin on both sides: a fold at an end of the branch keeps its whole marker.
+    let x_range = (lo < hi).then_some((lo - 0.03 * (hi - lo), hi + 0.03 * (hi - lo)));
     let top = Panel {
         title: title.to_string(),
         x_label: String::new(),
         y_label: "amplitude (max y − min y)/2".into(),
-        y_range: headroom(&series, x_range, 0.08 * legend_lines(&series) as f64),
+        y_range: headroom(&series, x_range),
         series,
         x_range,
         legend: Some(Legend::UpperLeft),

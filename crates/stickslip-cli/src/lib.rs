@@ -11,6 +11,8 @@ mod checkpoint;
 mod commands;
 mod diagrams;
 mod flags;
+#[cfg(test)]
+mod legend_check;
 pub mod model;
 pub mod output;
 mod plot;

@@ -41,6 +41,68 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(240, 228, 66),
 ];
 
+/// What a series shows: each quantity has one colour and one way of being drawn in every
+/// figure of the report, every `--plot` of the CLI, the lab and the notebook (the table is
+/// `docs/plot-style.md`). Where one figure shows a quantity at several drive amplitudes,
+/// the colour is the amplitude's (see `reproduce`'s `beta_color`) and the style stays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The drive U (or βcos(wτ+φ)): a thin grey line, under the response.
+    Drive,
+    /// The response u_C (or y): a 2-px blue line.
+    Response,
+    /// Where the motion stops: vermilion dots.
+    Stops,
+    /// A sweep's upward leg: filled blue dots.
+    SweepUp,
+    /// A sweep's downward leg: open vermilion squares.
+    SweepDown,
+    /// The paper's approximate formulas (its eqs. 11 and 13): dashed reddish purple.
+    PaperTheory,
+    /// The exact sliding orbit and the exact boundary β_c: solid black.
+    ExactTheory,
+    /// The fundamental A1: blue.
+    Harmonic1,
+    /// The third harmonic A3: vermilion.
+    Harmonic3,
+}
+
+impl Quantity {
+    /// The quantity's colour.
+    pub fn color(self) -> RGBColor {
+        match self {
+            Quantity::Drive => DRIVE,
+            Quantity::Response | Quantity::SweepUp | Quantity::Harmonic1 => PALETTE[0],
+            Quantity::Stops | Quantity::SweepDown | Quantity::Harmonic3 => PALETTE[1],
+            Quantity::PaperTheory => PALETTE[3],
+            Quantity::ExactTheory => INK,
+        }
+    }
+
+    /// How the quantity is drawn.
+    pub fn style(self) -> Style {
+        match self {
+            Quantity::Drive => Style::Line(1),
+            Quantity::Response => Style::Line(2),
+            Quantity::Stops => Style::Markers(3),
+            Quantity::SweepUp | Quantity::Harmonic1 | Quantity::Harmonic3 => Style::Markers(3),
+            Quantity::SweepDown => Style::Squares(5),
+            Quantity::PaperTheory => Style::Dashed(2),
+            Quantity::ExactTheory => Style::Line(2),
+        }
+    }
+
+    /// A series of this quantity.
+    pub fn series(self, label: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
+        Series::new(label, points, self.color(), self.style())
+    }
+}
+
+/// The drive's grey.
+pub const DRIVE: RGBColor = RGBColor(120, 120, 120);
+/// Black, for the exact theory and for legend entries that stand for a style, not for data.
+pub const INK: RGBColor = RGBColor(0, 0, 0);
+
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Style {
@@ -73,6 +135,12 @@ pub struct Series {
 }
 
 impl Series {
+    /// The same series in another colour (a quantity drawn once per drive amplitude).
+    pub fn colored(mut self, color: RGBColor) -> Self {
+        self.color = color;
+        self
+    }
+
     /// A series with a label, points, colour and style.
     pub fn new(
         label: impl Into<String>,
@@ -123,6 +191,10 @@ pub struct Panel {
     pub legend: Option<Legend>,
     /// A colour bar at the right of the chart, for cells coloured by a value (None: none).
     pub color_bar: Option<ColorBar>,
+    /// A logarithmic x axis (points with x ≤ 0 are left out).
+    pub x_log: bool,
+    /// A logarithmic y axis (points with y ≤ 0 are left out).
+    pub y_log: bool,
 }
 
 /// The scale of cells coloured by a signed value, drawn as a bar beside the chart: white at
@@ -201,7 +273,10 @@ pub fn diverging(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// Corner of a panel that holds its legend.
+/// The corner of a panel's plotting area tried first for its legend. The legend goes to the
+/// first corner (this one, then upper right, upper left, lower right, lower left) where it
+/// covers no pixel of data, and outside the plotting area, on its right, when every corner
+/// covers some.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Legend {
     /// Upper left.
@@ -210,7 +285,9 @@ pub enum Legend {
     UpperRight,
     /// Lower right.
     LowerRight,
-    /// The corner where the legend covers the fewest data points (upper right on a tie).
+    /// Lower left.
+    LowerLeft,
+    /// No preference: upper right first.
     Best,
 }
 
@@ -218,13 +295,17 @@ pub enum Legend {
 pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
     use stickslip::steady::MotionClass;
     match class {
-        MotionClass::Sliding => RGBColor(235, 235, 235),
+        MotionClass::Sliding => SLIDING,
         MotionClass::PeriodicStick => PALETTE[0],
         MotionClass::NonperiodicStick => PALETTE[1],
         MotionClass::Static => PALETTE[2],
         MotionClass::Chaotic => CHAOTIC,
     }
 }
+
+/// The colour of the sliding class: a light grey that reads as "nothing happens here" under
+/// the other classes, with a dark border in legends so that its swatch shows on white.
+pub const SLIDING: RGBColor = RGBColor(218, 218, 218);
 
 /// The colour of the chaotic class: a purple apart from the Okabe–Ito colours of the other
 /// classes and of the boundary curves.
@@ -265,29 +346,43 @@ impl Figure {
             .extension()
             .and_then(|e| e.to_str())
             .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-        if svg {
+        let placements = if svg {
             let root = SVGBackend::new(&temp, size).into_drawing_area();
-            self.draw(&root, rows)?;
+            let placements = self.draw(&root, rows)?;
             root.present().context("cannot write SVG")?;
+            placements
         } else {
             let root = BitMapBackend::new(&temp, size).into_drawing_area();
-            self.draw(&root, rows)?;
+            let placements = self.draw(&root, rows)?;
             root.present().context("cannot write PNG")?;
-        }
+            placements
+        };
+        log_placements(path, placements);
         file.commit()
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, rows: u32) -> Result<()>
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        rows: u32,
+    ) -> Result<Vec<LegendPlacement>>
     where
         DB::ErrorType: 'static,
     {
         root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
         let areas = root.split_evenly((rows as usize, self.columns.max(1)));
+        let font = font_size(
+            self.panel_size.0 * self.columns.max(1) as u32,
+            self.panel_size,
+        );
+        let mut placements = Vec::new();
         for (panel, area) in self.panels.iter().zip(areas.iter()) {
-            draw_panel(panel, area)
-                .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?;
+            placements.extend(
+                draw_panel(panel, area, font)
+                    .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?,
+            );
         }
-        Ok(())
+        Ok(placements)
     }
 }
 
@@ -313,46 +408,92 @@ impl Stack {
             .extension()
             .and_then(|e| e.to_str())
             .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-        if svg {
+        let placements = if svg {
             let root = SVGBackend::new(&temp, size).into_drawing_area();
-            self.draw(&root)?;
+            let placements = self.draw(&root)?;
             root.present().context("cannot write SVG")?;
+            placements
         } else {
             let root = BitMapBackend::new(&temp, size).into_drawing_area();
-            self.draw(&root)?;
+            let placements = self.draw(&root)?;
             root.present().context("cannot write PNG")?;
-        }
+            placements
+        };
+        log_placements(path, placements);
         file.commit()
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<Vec<LegendPlacement>>
     where
         DB::ErrorType: 'static,
     {
         root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
         let top = self.panels.first().map_or(0, |(_, h)| *h);
-        let font = (self.width.min(top) / 22).clamp(11, 20);
+        let font = font_size(self.width, (self.width, top));
+        let mut placements = Vec::new();
         let mut rest = root.clone();
-        for (i, (panel, h)) in self.panels.iter().enumerate() {
-            let area = if i + 1 == self.panels.len() {
+        let mut areas = Vec::new();
+        for (i, (_, h)) in self.panels.iter().enumerate() {
+            areas.push(if i + 1 == self.panels.len() {
                 rest.clone()
             } else {
                 let (top, bottom) = rest.split_vertically(*h);
                 rest = bottom;
                 top
-            };
-            draw_panel_with_font(panel, &area, font)
-                .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?;
+            });
         }
-        Ok(())
+        // One room for legends right of every plotting area, so that the x axes line up.
+        let mut floor = 0;
+        for ((panel, _), area) in self.panels.iter().zip(&areas) {
+            let (_, reserve) = plan_legend(panel, area, font, 0)
+                .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?;
+            floor = floor.max(reserve);
+        }
+        for ((panel, _), area) in self.panels.iter().zip(&areas) {
+            placements.extend(
+                draw_panel_with_font(panel, area, font, floor)
+                    .map_err(|e| anyhow::anyhow!("cannot draw '{}': {e}", panel.title))?,
+            );
+        }
+        Ok(placements)
     }
 }
 
-/// Data range of the panel's series and cells, padded.
+/// Keep where the legends of the figure written to `path` went, for the test that no legend
+/// hides data (a no-op outside tests).
+fn log_placements(path: &Path, placements: Vec<LegendPlacement>) {
+    #[cfg(test)]
+    {
+        let mut log = LEGEND_LOG.lock().unwrap_or_else(|e| e.into_inner());
+        log.extend(placements.into_iter().map(|p| (path.to_path_buf(), p)));
+    }
+    #[cfg(not(test))]
+    let _ = (path, placements);
+}
+
+/// A point in the panel's plotting coordinates: log10 of the value on a logarithmic axis.
+fn to_plot(panel: &Panel, (x, y): (f64, f64)) -> (f64, f64) {
+    let axis = |v: f64, log: bool| {
+        if !log {
+            v
+        } else if v > 0.0 {
+            v.log10()
+        } else {
+            f64::NAN
+        }
+    };
+    (axis(x, panel.x_log), axis(y, panel.y_log))
+}
+
+/// Data range of the panel's series and cells, padded, in plotting coordinates.
 fn ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     let mut xs = (f64::INFINITY, f64::NEG_INFINITY);
     let mut ys = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut take = |x: f64, y: f64| {
+    let mut take = |p: (f64, f64)| {
+        let (x, y) = to_plot(panel, p);
         if x.is_finite() && y.is_finite() {
             xs = (xs.0.min(x), xs.1.max(x));
             ys = (ys.0.min(y), ys.1.max(y));
@@ -360,15 +501,15 @@ fn ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     };
     for s in &panel.series {
         for &(x, y) in &s.points {
-            take(x, y);
+            take((x, y));
             if let Style::Bars(_) = s.style {
-                take(x, 0.0);
+                take((x, 0.0));
             }
         }
     }
     for c in &panel.cells {
-        take(c.x.0, c.y.0);
-        take(c.x.1, c.y.1);
+        take((c.x.0, c.y.0));
+        take((c.x.1, c.y.1));
     }
     let pad = |(lo, hi): (f64, f64), frac: f64| {
         if !lo.is_finite() {
@@ -381,88 +522,206 @@ fn ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
             (lo - d, hi + d)
         }
     };
-    let x = panel.x_range.unwrap_or_else(|| pad(xs, 0.0));
-    let y = panel.y_range.unwrap_or_else(|| pad(ys, 0.06));
+    let given = |range: Option<(f64, f64)>, log: bool| {
+        range.map(|(lo, hi)| {
+            if log {
+                (lo.max(f64::MIN_POSITIVE).log10(), hi.log10())
+            } else {
+                (lo, hi)
+            }
+        })
+    };
+    let x = given(panel.x_range, panel.x_log).unwrap_or_else(|| pad(xs, 0.0));
+    let y = given(panel.y_range, panel.y_log).unwrap_or_else(|| pad(ys, 0.06));
     (x, y)
 }
 
-fn draw_panel<DB: DrawingBackend>(
-    panel: &Panel,
-    area: &DrawingArea<DB, Shift>,
-) -> Result<(), String>
-where
-    DB::ErrorType: 'static,
-{
-    let (w, h) = area.dim_in_pixel();
-    draw_panel_with_font(panel, area, (w.min(h) / 22).clamp(11, 20))
+/// The font size of the panels of a figure `width` pixels wide whose panels measure
+/// `panel`: about 1/80 of the figure's width (so that the text keeps its size when the figure
+/// is shown at page width, whatever its number of columns), and no less than 1/22 of the
+/// panel's smaller side; from 13 to 22 px.
+pub fn font_size(width: u32, panel: (u32, u32)) -> u32 {
+    (width / 80).max(panel.0.min(panel.1) / 22).clamp(13, 22)
 }
 
-/// [`draw_panel`] with a given font size (panels of a [`Stack`] share one, so that their
-/// plotting areas line up).
-fn draw_panel_with_font<DB: DrawingBackend>(
+/// The space between a panel's title and its plotting area: half a tick label and more (the
+/// top tick label is centred on the top edge and must not touch the title).
+fn top_margin(font: u32) -> u32 {
+    8 + font / 2
+}
+
+/// The entries of a panel's legend: text and how its sample is drawn.
+fn legend_entries(panel: &Panel) -> Vec<(String, Sample)> {
+    panel
+        .cell_legend
+        .iter()
+        .map(|(label, color)| (label.clone(), Sample::Swatch(*color)))
+        .chain(
+            panel
+                .series
+                .iter()
+                .filter(|s| !s.label.is_empty())
+                .map(|s| (s.label.clone(), Sample::Series(s.style, s.color))),
+        )
+        .collect()
+}
+
+/// How a legend entry's sample is drawn.
+#[derive(Debug, Clone, Copy)]
+enum Sample {
+    /// As the series is drawn: a short line, a dashed line, a marker, a bar.
+    Series(Style, RGBColor),
+    /// A filled square with a dark border (a class of a map; the border keeps a pale colour
+    /// visible on white).
+    Swatch(RGBColor),
+}
+
+/// Sizes of a legend box, in pixels.
+const LEGEND_PAD: i32 = 6;
+const SAMPLE_WIDTH: i32 = 26;
+
+/// A rectangle in pixels: left, top, right, bottom (right and bottom excluded).
+pub type PixelRect = (i32, i32, i32, i32);
+
+/// Where a panel's legend went, and how many pixels of data it covers there (measured on the
+/// data drawn alone, with the final layout).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LegendPlacement {
+    /// The panel's title.
+    pub panel: String,
+    /// The legend box, in the panel's pixels.
+    pub rect: PixelRect,
+    /// The plotting area, in the panel's pixels.
+    pub plot: PixelRect,
+    /// Whether the box is outside the plotting area (no corner was free).
+    pub outside: bool,
+    /// Pixels of data (series and cells) under the box.
+    pub overlap: usize,
+}
+
+/// What the rendering of every legend reported, for the test that no legend hides data:
+/// (file, placement).
+#[cfg(test)]
+pub(crate) static LEGEND_LOG: std::sync::Mutex<Vec<(std::path::PathBuf, LegendPlacement)>> =
+    std::sync::Mutex::new(Vec::new());
+
+/// The legend box's size for `entries` at `font`, measured with the backend's text metrics.
+fn legend_size<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(String, Sample)],
+    font: u32,
+) -> (i32, i32) {
+    let style = TextStyle::from((FAMILY, font).into_font());
+    let text_width = entries
+        .iter()
+        .map(|(label, _)| {
+            area.estimate_text_size(label, &style)
+                .map_or(label.chars().count() as u32 * font * 6 / 10, |s| s.0)
+        })
+        .max()
+        .unwrap_or(0) as i32;
+    let row = font as i32 + 6;
+    (
+        2 * LEGEND_PAD + SAMPLE_WIDTH + 6 + text_width,
+        2 * LEGEND_PAD + row * entries.len() as i32 - 4,
+    )
+}
+
+/// The main area of a panel (left of its colour bar, if any) and the colour bar's strip.
+fn split_for_bar<DB: DrawingBackend>(
     panel: &Panel,
     area: &DrawingArea<DB, Shift>,
     font: u32,
-) -> Result<(), String>
-where
-    DB::ErrorType: 'static,
-{
-    let (xr, yr) = ranges(panel);
+) -> (DrawingArea<DB, Shift>, Option<DrawingArea<DB, Shift>>) {
     let (w, _) = area.dim_in_pixel();
-    let area = match &panel.color_bar {
-        Some(bar) => {
+    match &panel.color_bar {
+        Some(_) => {
             let (main, side) = area.split_horizontally(w.saturating_sub(font * 8));
-            draw_color_bar(bar, &side, font)?;
-            main
+            (main, Some(side))
         }
-        None => area.clone(),
-    };
-    let mut chart = ChartBuilder::on(&area)
-        .caption(&panel.title, (FAMILY, font + 2))
+        None => (area.clone(), None),
+    }
+}
+
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draw the title of `panel` across the top of its whole `area` (colour bar and legend room
+/// included) and return the area below it. A title wider than the panel is set smaller
+/// rather than cut.
+fn titled<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+) -> Result<DrawingArea<DB, Shift>, String> {
+    if panel.title.is_empty() {
+        return Ok(area.clone());
+    }
+    let width = area.dim_in_pixel().0.saturating_sub(16);
+    let mut title_font = font + 2;
+    while title_font > 10
+        && area
+            .estimate_text_size(
+                &panel.title,
+                &TextStyle::from((FAMILY, title_font).into_font()),
+            )
+            .is_ok_and(|s| s.0 > width)
+    {
+        title_font -= 1;
+    }
+    area.titled(&panel.title, (FAMILY, title_font))
+        .map_err(|e| e.to_string())
+}
+
+/// The chart of `panel` on `area` (below its title), with `reserve` pixels kept free on the
+/// right of the plotting area for a legend.
+fn build_chart<'a, DB: DrawingBackend>(
+    panel: &Panel,
+    area: &'a DrawingArea<DB, Shift>,
+    font: u32,
+    reserve: u32,
+) -> Result<Chart<'a, DB>, String> {
+    let (xr, yr) = ranges(panel);
+    ChartBuilder::on(area)
         .margin(8)
-        // Room for the last tick label, centred on the right edge.
-        .margin_right(font * 2)
+        .margin_top(top_margin(font))
+        // Room for the last tick label, centred on the right edge (and for a legend).
+        .margin_right(font * 2 + reserve)
         .x_label_area_size(font * 3)
         .y_label_area_size(font * 4)
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(&panel.x_label)
-        .y_desc(&panel.y_label)
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, font))
-        .axis_desc_style((FAMILY, font))
-        .light_line_style(RGBColor(235, 235, 235))
-        .x_labels(6)
-        .y_labels(6)
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| e.to_string())
+}
 
+/// The plotting area of `chart`, in pixels of `area`.
+fn plot_rect<DB: DrawingBackend>(
+    chart: &Chart<'_, DB>,
+    area: &DrawingArea<DB, Shift>,
+) -> PixelRect {
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let (bx, by) = area.get_base_pixel();
+    (xs.start - bx, ys.start - by, xs.end - bx, ys.end - by)
+}
+
+/// Draw the cells and series of `panel` (no axes, no legend).
+fn draw_data<DB: DrawingBackend>(panel: &Panel, chart: &mut Chart<'_, DB>) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let map = |p: (f64, f64)| to_plot(panel, p);
     for c in &panel.cells {
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(c.x.0, c.y.0), (c.x.1, c.y.1)],
-                c.color.filled(),
-            )))
-            .map_err(|e| e.to_string())?;
+        let (a, b) = (map((c.x.0, c.y.0)), map((c.x.1, c.y.1)));
+        if a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite() {
+            chart
+                .draw_series(std::iter::once(Rectangle::new([a, b], c.color.filled())))
+                .map_err(|e| e.to_string())?;
+        }
     }
-    for (label, color) in &panel.cell_legend {
-        let color = *color;
-        chart
-            .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())
-            .map_err(|e| e.to_string())?
-            .label(label.clone())
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], color.filled()));
-    }
-
     for s in &panel.series {
         let color = s.color;
         let finite = || {
             s.points
                 .iter()
-                .copied()
+                .map(|&p| map(p))
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
         };
         match s.style {
@@ -470,7 +729,8 @@ where
                 let style = color.stroke_width(width);
                 // Break the polyline at non-finite points.
                 let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-                for &(x, y) in &s.points {
+                for &p in &s.points {
+                    let (x, y) = map(p);
                     if x.is_finite() && y.is_finite() {
                         pieces.last_mut().expect("non-empty").push((x, y));
                     } else if !pieces.last().expect("non-empty").is_empty() {
@@ -509,69 +769,327 @@ where
                     .map_err(|e| e.to_string())?;
             }
             Style::Bars(width) => {
+                let base = if panel.y_log {
+                    chart.y_range().start
+                } else {
+                    0.0
+                };
                 chart
                     .draw_series(finite().map(|(x, y)| {
                         Rectangle::new(
-                            [(x - width / 2.0, 0.0), (x + width / 2.0, y)],
+                            [(x - width / 2.0, base), (x + width / 2.0, y)],
                             color.filled(),
                         )
                     }))
                     .map_err(|e| e.to_string())?;
             }
         }
-        if !s.label.is_empty() {
-            // The legend's sample is drawn as the series is: a dashed line for a dashed
-            // series, a dot for markers. A series with no points is a legend entry only.
-            let style = s.style;
-            chart
-                .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
-                .map_err(|e| e.to_string())?
-                .label(s.label.clone())
-                .legend(move |(x, y)| match style {
-                    Style::Line(w) => {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(w.max(2)))
-                            .into_dyn()
-                    }
-                    Style::Dashed(w) => plotters::element::DashedPathElement::new(
-                        vec![(x, y), (x + 20, y)],
-                        5,
-                        3,
-                        color.stroke_width(w.max(2)),
-                    )
-                    .into_dyn(),
-                    Style::Markers(r) => {
-                        Circle::new((x + 10, y), r.clamp(3, 5), color.filled()).into_dyn()
-                    }
-                    Style::Squares(_) => {
-                        Rectangle::new([(x + 6, y - 4), (x + 14, y + 4)], color.stroke_width(1))
-                            .into_dyn()
-                    }
-                    Style::Bars(_) => {
-                        Rectangle::new([(x + 4, y - 5), (x + 16, y + 5)], color.filled()).into_dyn()
-                    }
-                    Style::Dots(_) => {
-                        Rectangle::new([(x + 7, y - 3), (x + 13, y + 3)], color.filled()).into_dyn()
-                    }
-                });
-        }
-    }
-    if let Some(position) = panel.legend {
-        let position = match position {
-            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Legend::UpperRight => SeriesLabelPosition::UpperRight,
-            Legend::LowerRight => SeriesLabelPosition::LowerRight,
-            Legend::Best => best_corner(panel, &chart, font),
-        };
-        chart
-            .configure_series_labels()
-            .position(position)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .label_font((FAMILY, font))
-            .draw()
-            .map_err(|e| e.to_string())?;
     }
     Ok(())
+}
+
+/// Which pixels of a panel of `size` hold data (series or cells), drawn alone with the layout
+/// of [`build_chart`] with `reserve`: the mask (row by row) and the plotting area.
+fn data_mask(
+    panel: &Panel,
+    size: (u32, u32),
+    font: u32,
+    reserve: u32,
+) -> Result<(Vec<bool>, PixelRect), String> {
+    let (w, h) = size;
+    let mut buffer = vec![255u8; w as usize * h as usize * 3];
+    let rect = {
+        let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
+        let body = titled(panel, &root, font)?;
+        let (main, _) = split_for_bar(panel, &body, font);
+        let mut chart = build_chart(panel, &main, font, reserve)?;
+        let rect = plot_rect(&chart, &root);
+        draw_data(panel, &mut chart)?;
+        root.present().map_err(|e| e.to_string())?;
+        rect
+    };
+    // The caption is drawn too, outside the plotting area: keep what is inside.
+    let mut mask = vec![false; w as usize * h as usize];
+    for y in rect.1.max(0)..rect.3.min(h as i32) {
+        for x in rect.0.max(0)..rect.2.min(w as i32) {
+            let i = y as usize * w as usize + x as usize;
+            mask[i] = buffer[3 * i..3 * i + 3] != [255, 255, 255];
+        }
+    }
+    Ok((mask, rect))
+}
+
+/// Pixels of `mask` (a panel `width` wide) inside `rect`.
+fn covered(mask: &[bool], width: u32, rect: PixelRect) -> usize {
+    let height = (mask.len() / width.max(1) as usize) as i32;
+    let mut n = 0;
+    for y in rect.1.max(0)..rect.3.min(height) {
+        for x in rect.0.max(0)..rect.2.min(width as i32) {
+            n += usize::from(mask[y as usize * width as usize + x as usize]);
+        }
+    }
+    n
+}
+
+/// The corners of `plot` where a legend of `size` may go, `preferred` first, then upper
+/// right, upper left, lower right, lower left.
+fn corners(plot: PixelRect, size: (i32, i32), preferred: Legend) -> Vec<PixelRect> {
+    let gap = 6;
+    let (w, h) = size;
+    let at = |corner: Legend| {
+        let (left, top) = match corner {
+            Legend::UpperLeft => (plot.0 + gap, plot.1 + gap),
+            Legend::LowerRight => (plot.2 - gap - w, plot.3 - gap - h),
+            Legend::LowerLeft => (plot.0 + gap, plot.3 - gap - h),
+            Legend::UpperRight | Legend::Best => (plot.2 - gap - w, plot.1 + gap),
+        };
+        (left, top, left + w, top + h)
+    };
+    let mut order = vec![preferred];
+    for c in [
+        Legend::UpperRight,
+        Legend::UpperLeft,
+        Legend::LowerRight,
+        Legend::LowerLeft,
+    ] {
+        if !order.contains(&c) {
+            order.push(c);
+        }
+    }
+    order
+        .into_iter()
+        .map(at)
+        // A box larger than the plotting area does not fit in any corner.
+        .filter(|r| r.0 >= plot.0 && r.1 >= plot.1 && r.2 <= plot.2 && r.3 <= plot.3)
+        .collect()
+}
+
+/// Draw the legend box `rect` with `entries` on `area`.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(String, Sample)],
+    rect: PixelRect,
+    font: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    area.draw(&Rectangle::new(
+        [(rect.0, rect.1), (rect.2, rect.3)],
+        WHITE.filled(),
+    ))
+    .map_err(err)?;
+    area.draw(&Rectangle::new(
+        [(rect.0, rect.1), (rect.2, rect.3)],
+        RGBColor(170, 170, 170).stroke_width(1),
+    ))
+    .map_err(err)?;
+    let row = font as i32 + 6;
+    let style =
+        TextStyle::from((FAMILY, font).into_font()).pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Left,
+            plotters::style::text_anchor::VPos::Center,
+        ));
+    for (k, (label, sample)) in entries.iter().enumerate() {
+        let y = rect.1 + LEGEND_PAD + row * k as i32 + (row - 4) / 2;
+        let x = rect.0 + LEGEND_PAD;
+        let mid = x + SAMPLE_WIDTH / 2;
+        match *sample {
+            Sample::Swatch(color) => {
+                let r = (font as i32 / 2).clamp(5, 9);
+                area.draw(&Rectangle::new(
+                    [(mid - r, y - r), (mid + r, y + r)],
+                    color.filled(),
+                ))
+                .map_err(err)?;
+                area.draw(&Rectangle::new(
+                    [(mid - r, y - r), (mid + r, y + r)],
+                    RGBColor(90, 90, 90).stroke_width(1),
+                ))
+                .map_err(err)?;
+            }
+            Sample::Series(Style::Line(w), color) => {
+                area.draw(&PathElement::new(
+                    vec![(x, y), (x + SAMPLE_WIDTH, y)],
+                    color.stroke_width(w.max(2)),
+                ))
+                .map_err(err)?;
+            }
+            Sample::Series(Style::Dashed(w), color) => {
+                for a in (0..SAMPLE_WIDTH).step_by(9) {
+                    area.draw(&PathElement::new(
+                        vec![(x + a, y), (x + (a + 5).min(SAMPLE_WIDTH), y)],
+                        color.stroke_width(w.max(2)),
+                    ))
+                    .map_err(err)?;
+                }
+            }
+            Sample::Series(Style::Markers(r), color) => {
+                area.draw(&Circle::new((mid, y), r.clamp(3, 5), color.filled()))
+                    .map_err(err)?;
+            }
+            Sample::Series(Style::Squares(r), color) => {
+                let r = (r as i32).clamp(3, 6);
+                area.draw(&Rectangle::new(
+                    [(mid - r, y - r), (mid + r, y + r)],
+                    color.stroke_width(1),
+                ))
+                .map_err(err)?;
+            }
+            Sample::Series(Style::Bars(_), color) => {
+                area.draw(&Rectangle::new(
+                    [(mid - 7, y - 5), (mid + 7, y + 5)],
+                    color.filled(),
+                ))
+                .map_err(err)?;
+            }
+            Sample::Series(Style::Dots(_), color) => {
+                area.draw(&Rectangle::new(
+                    [(mid - 3, y - 3), (mid + 3, y + 3)],
+                    color.filled(),
+                ))
+                .map_err(err)?;
+            }
+        }
+        area.draw(&Text::new(
+            label.clone(),
+            (x + SAMPLE_WIDTH + 6, y),
+            style.clone(),
+        ))
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+) -> Result<Option<LegendPlacement>, String>
+where
+    DB::ErrorType: 'static,
+{
+    draw_panel_with_font(panel, area, font, 0)
+}
+
+/// Where the legend of `panel` goes: (box, plotting area, outside, data pixels covered), and
+/// the room kept free right of the plotting area (at least `floor`).
+#[allow(clippy::type_complexity)]
+fn plan_legend<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+    floor: u32,
+) -> Result<(Option<(PixelRect, PixelRect, bool, usize)>, u32), String> {
+    let entries = legend_entries(panel);
+    let size = area.dim_in_pixel();
+    let Some(preferred) = panel.legend.filter(|_| !entries.is_empty()) else {
+        return Ok((None, floor));
+    };
+    let (w, h) = legend_size(area, &entries, font);
+    // The data drawn alone: the first corner where the box covers none.
+    let (mask, plot) = data_mask(panel, size, font, floor)?;
+    let free = corners(plot, (w, h), preferred)
+        .into_iter()
+        .map(|r| (r, covered(&mask, size.0, r)))
+        .find(|&(_, n)| n == 0);
+    if let Some((rect, overlap)) = free {
+        return Ok((Some((rect, plot, false, overlap)), floor));
+    }
+    // Outside, right of the plotting area, top-aligned with it.
+    let reserve = floor.max((w + 12) as u32);
+    let (mask, plot) = data_mask(panel, size, font, reserve)?;
+    let left = plot.2 + 10;
+    let rect = (left, plot.1, left + w, plot.1 + h);
+    let overlap = covered(&mask, size.0, rect);
+    Ok((Some((rect, plot, true, overlap)), reserve))
+}
+
+/// Draw `panel` on `area` with text of `font` pixels; its legend goes in the first corner of
+/// the plotting area where it covers no data (the panel's [`Legend`] is the corner tried
+/// first), or, when every corner covers data, outside the plotting area on its right.
+/// At least `floor` pixels are kept free right of the plotting area (panels of a [`Stack`]
+/// share their width so that their x axes line up). Returns where the legend went and how
+/// much data it covers there.
+fn draw_panel_with_font<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, Shift>,
+    font: u32,
+    floor: u32,
+) -> Result<Option<LegendPlacement>, String>
+where
+    DB::ErrorType: 'static,
+{
+    let entries = legend_entries(panel);
+    let (legend, reserve) = plan_legend(panel, area, font, floor)?;
+
+    let body = titled(panel, area, font)?;
+    let (main, side) = split_for_bar(panel, &body, font);
+    if let (Some(bar), Some(side)) = (&panel.color_bar, &side) {
+        draw_color_bar(bar, side, font)?;
+    }
+    let mut chart = build_chart(panel, &main, font, reserve)?;
+    let formatter = |log: bool| -> fn(&f64) -> String {
+        if log {
+            log_tick
+        } else {
+            tick
+        }
+    };
+    let (x_tick, y_tick) = (formatter(panel.x_log), formatter(panel.y_log));
+    chart
+        .configure_mesh()
+        .x_desc(&panel.x_label)
+        .y_desc(&panel.y_label)
+        .x_label_formatter(&x_tick)
+        .y_label_formatter(&y_tick)
+        .label_style((FAMILY, font))
+        .axis_desc_style((FAMILY, font))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_labels(6)
+        .y_labels(6)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    draw_data(panel, &mut chart)?;
+    Ok(match legend {
+        Some((rect, plot, outside, overlap)) => {
+            draw_legend(area, &entries, rect, font)?;
+            Some(LegendPlacement {
+                panel: panel.title.clone(),
+                rect,
+                plot,
+                outside,
+                overlap,
+            })
+        }
+        None => None,
+    })
+}
+
+/// A tick label on a logarithmic axis: 10^v with three significant digits at most.
+fn log_tick(value: &f64) -> String {
+    let x = 10f64.powf(*value);
+    if !x.is_finite() {
+        return String::new();
+    }
+    let text = format!("{x:.2e}");
+    let parsed: f64 = text.parse().unwrap_or(x);
+    if (1e-4..1e5).contains(&parsed.abs()) {
+        let digits = (2 - parsed.abs().log10().floor() as i32).max(0) as usize;
+        let fixed = format!("{parsed:.digits$}");
+        if fixed.contains('.') {
+            fixed
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        } else {
+            fixed
+        }
+    } else {
+        text
+    }
 }
 
 /// A tick label as plotters writes it, without the sign of a zero that rounding left
@@ -598,7 +1116,7 @@ where
     let mut chart = ChartBuilder::on(area)
         // As the chart beside it: the caption's height on top, the x labels' at the bottom.
         .margin(8)
-        .margin_top(8 + font + 2 + 5)
+        .margin_top(top_margin(font))
         .margin_bottom(8 + font * 3)
         .set_label_area_size(LabelAreaPosition::Right, font * 5)
         .build_cartesian_2d(0.0..1.0, lo..hi)
@@ -625,77 +1143,4 @@ where
         .draw()
         .map_err(|e| e.to_string())?;
     Ok(())
-}
-
-/// The corner where a legend box would cover the fewest data points (upper right, upper
-/// left, lower right, lower left, in that order of preference on a tie). The box's size is
-/// estimated from the number of entries and the longest label at the legend's font size.
-fn best_corner<DB: DrawingBackend>(
-    panel: &Panel,
-    chart: &ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    font: u32,
-) -> SeriesLabelPosition {
-    let labels: Vec<&str> = panel
-        .series
-        .iter()
-        .map(|s| s.label.as_str())
-        .chain(panel.cell_legend.iter().map(|c| c.0.as_str()))
-        .filter(|l| !l.is_empty())
-        .collect();
-    let chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
-    let font = f64::from(font);
-    let (width, height) = (
-        chars * 0.6 * font + 40.0,
-        labels.len() as f64 * (font + 6.0) + 12.0,
-    );
-    let (xs, ys) = chart.plotting_area().get_pixel_range();
-    let (left, right, top, bottom) = (
-        f64::from(xs.start),
-        f64::from(xs.end),
-        f64::from(ys.start),
-        f64::from(ys.end),
-    );
-    let margin = 10.0;
-    let corners = [
-        (
-            SeriesLabelPosition::UpperRight,
-            right - margin - width,
-            top + margin,
-        ),
-        (SeriesLabelPosition::UpperLeft, left + margin, top + margin),
-        (
-            SeriesLabelPosition::LowerRight,
-            right - margin - width,
-            bottom - margin - height,
-        ),
-        (
-            SeriesLabelPosition::LowerLeft,
-            left + margin,
-            bottom - margin - height,
-        ),
-    ];
-    let points: Vec<(f64, f64)> = panel
-        .series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .filter(|p| p.0.is_finite() && p.1.is_finite())
-        .map(|p| {
-            let (x, y) = chart.backend_coord(&p);
-            (f64::from(x), f64::from(y))
-        })
-        .collect();
-    let covered = |x0: f64, y0: f64| {
-        points
-            .iter()
-            .filter(|&&(x, y)| x >= x0 && x <= x0 + width && y >= y0 && y <= y0 + height)
-            .count()
-    };
-    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
-    for (position, x0, y0) in corners {
-        let n = covered(x0, y0);
-        if n < best.0 {
-            best = (n, position);
-        }
-    }
-    best.1
 }

@@ -1109,8 +1109,8 @@
       const frame = plotFrame(off, xr, [0, ymax], f0 ? `w = Ω/ω0 (f0 = ${si(f0, 'Hz')})` : 'w', 'gain G');
       const { g: o, X, Y, box } = frame;
       const th = sw.theory;
-      polyline(o, th.x.map((x, i) => [X(x), th.paper_gain[i] === null || th.paper_gain[i] > ymax ? NaN : Y(th.paper_gain[i])]), '#009e73', 1.5, [6, 4]);
-      polyline(o, th.x.map((x, i) => [X(x), th.exact_peak_gain[i] === null ? NaN : Y(th.exact_peak_gain[i])]), '#000000', 1);
+      polyline(o, th.x.map((x, i) => [X(x), th.paper_gain[i] === null || th.paper_gain[i] > ymax ? NaN : Y(th.paper_gain[i])]), '#cc79a7', 2, [6, 4]);
+      polyline(o, th.x.map((x, i) => [X(x), th.exact_peak_gain[i] === null ? NaN : Y(th.exact_peak_gain[i])]), '#000000', 2);
       for (const [leg, color, dash] of [['up', '#0072b2', []], ['down', '#d55e00', [5, 3]]]) {
         const pts = sw.points.filter((p) => p.leg === leg);
         polyline(o, pts.map((p) => [X(p.value), Y(p.gain)]), color, 2, dash);
@@ -1119,7 +1119,7 @@
           if (p.stops_per_cycle > 0) o.fillRect(X(p.value) - 2.5, Y(p.gain) - 2.5, 5, 5);
         }
       }
-      const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#009e73', `${th.prefix}paper, eq. (11): A1/β`], ['#000', `${th.prefix}exact orbit: peak/β`], ['#c00', 'now']];
+      const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#cc79a7', `${th.prefix}paper, eq. (11): A1/β`], ['#000', `${th.prefix}exact orbit: peak/β`], ['#c00', 'now']];
       let ly = box.t + 12;
       for (const [c, text] of legend) {
         o.fillStyle = c;
@@ -1140,7 +1140,7 @@
     }
   }
 
-  const CLASS_COLORS = { sliding: '#ebebeb', 'periodic-stick': '#0072b2', 'nonperiodic-stick': '#d55e00', static: '#009e73', chaotic: '#7570b3' };
+  const CLASS_COLORS = { sliding: '#dadada', 'periodic-stick': '#0072b2', 'nonperiodic-stick': '#d55e00', static: '#009e73', chaotic: '#7570b3' };
   function drawMap() {
     const canvas = $('#map-plot');
     const m = state.map;
@@ -1171,7 +1171,7 @@
       o.clip();
       const b = m.boundary;
       polyline(o, b.w.map((w, i) => [X(w), b.paper[i] === null ? NaN : Y(b.paper[i])]), '#cc79a7', 2, [6, 4]);
-      polyline(o, b.w.map((w, i) => [X(w), b.exact[i] === null ? NaN : Y(b.exact[i])]), '#000', 1.5);
+      polyline(o, b.w.map((w, i) => [X(w), b.exact[i] === null ? NaN : Y(b.exact[i])]), '#000', 2);
       o.restore();
       let lx = box.l + 6;
       // The classes found on this map, in the library's order.

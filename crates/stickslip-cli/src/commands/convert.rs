@@ -32,16 +32,17 @@ pub fn run(args: Args) -> Result<()> {
     let Some(c) = experiment.conversion() else {
         usage!("convert needs a physical description: --preset paper, --config FILE, or --inductance --capacitance --resistance --ut --rd (or --mass --stiffness --damping --friction)");
     };
+    // What was converted goes to standard error, as every command's description does:
+    // standard output holds the numbers alone (text or JSON).
+    let description = experiment.to_string();
+    eprintln!(
+        "convert: {}",
+        description.split("; dimensionless").next().unwrap_or("")
+    );
     let mut text = String::new();
     if args.json {
         outln!(text, "{}", serde_json::to_string_pretty(&c)?);
     } else {
-        let description = experiment.to_string();
-        outln!(
-            text,
-            "{}",
-            description.split("; dimensionless").next().unwrap_or("")
-        );
         outln!(
             text,
             "omega0 = {:.1} rad/s   (1/sqrt(LC) or sqrt(k/m))",

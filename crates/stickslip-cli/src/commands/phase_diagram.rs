@@ -4,7 +4,7 @@ use crate::checkpoint::CheckpointFlags;
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
-use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -399,16 +399,16 @@ fn plot(
         series.push(Series::new(
             format!("{prefix}paper boundary, eq. (13)"),
             paper.points(),
-            PALETTE[3],
-            Style::Dashed(3),
+            Quantity::PaperTheory.color(),
+            Quantity::PaperTheory.style(),
         ));
     }
     if exact.present() > 0 {
         series.push(Series::new(
             format!("{prefix}exact boundary β_c"),
             exact.points(),
-            PALETTE[6],
-            Style::Line(2),
+            Quantity::ExactTheory.color(),
+            Quantity::ExactTheory.style(),
         ));
     }
     let what = if lyapunov {
@@ -427,6 +427,7 @@ fn plot(
         y_range: Some((beta.from() - hb, beta.to() + hb)),
         legend: Some(Legend::UpperRight),
         color_bar,
+        ..Default::default()
     };
     let width = if lyapunov { 1040 } else { 900 };
     Figure::single(panel, (width, 700)).render(path)

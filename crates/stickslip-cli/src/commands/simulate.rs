@@ -2,7 +2,7 @@
 
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, AtomicFile, Sink};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -167,19 +167,9 @@ pub fn run(args: Args) -> Result<()> {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: vec![
-                Series::new(
-                    if circuit { "drive U" } else { "drive" },
-                    drive,
-                    PALETTE[1],
-                    Style::Line(2),
-                ),
-                Series::new(
-                    if circuit { "u_C" } else { "y" },
-                    trace,
-                    PALETTE[0],
-                    Style::Line(1),
-                ),
-                Series::new("stops", stops, PALETTE[6], Style::Markers(3)),
+                Quantity::Drive.series(if circuit { "drive U" } else { "drive" }, drive),
+                Quantity::Response.series(if circuit { "u_C" } else { "y" }, trace),
+                Quantity::Stops.series("stops", stops),
             ],
             legend: Some(Legend::UpperRight),
             ..Default::default()

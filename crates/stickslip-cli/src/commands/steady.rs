@@ -3,7 +3,7 @@
 use crate::flags::SteadyFlags;
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, outln, usage, AtomicFile};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -215,7 +215,10 @@ fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
         .collect();
     let title = format!(
         "{}: w = {:.3}, β = {:.3}, ζ = {:.4}",
-        steady.class.label(),
+        match steady.class {
+            stickslip::steady::MotionClass::Static => "static (amplitude < β/100)",
+            other => other.label(),
+        },
         params.w,
         params.beta,
         params.zeta
@@ -225,9 +228,9 @@ fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
         x_label: "drive periods".into(),
         y_label: "y, drive".into(),
         series: vec![
-            Series::new("drive", drive, PALETTE[1], Style::Line(2)),
-            Series::new("y", trace, PALETTE[0], Style::Line(2)),
-            Series::new("stops", stops, PALETTE[6], Style::Markers(4)),
+            Quantity::Drive.series("drive", drive),
+            Quantity::Response.series("y", trace),
+            Quantity::Stops.series("stops", stops),
         ],
         legend: Some(Legend::UpperRight),
         ..Default::default()
@@ -236,7 +239,7 @@ fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
         title: "X-Y: y against the drive".into(),
         x_label: "drive β cos(wτ + φ)".into(),
         y_label: "y".into(),
-        series: vec![Series::new("", steady.xy(), PALETTE[0], Style::Line(2))],
+        series: vec![Quantity::Response.series("", steady.xy())],
         ..Default::default()
     };
     let bars: Vec<(f64, f64)> = steady
@@ -248,7 +251,12 @@ fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
         title: "harmonics of y".into(),
         x_label: "k (multiple of the drive frequency)".into(),
         y_label: "A_k".into(),
-        series: vec![Series::new("", bars, PALETTE[2], Style::Bars(0.6))],
+        series: vec![Series::new(
+            "",
+            bars,
+            Quantity::Response.color(),
+            Style::Bars(0.6),
+        )],
         ..Default::default()
     };
     Figure {

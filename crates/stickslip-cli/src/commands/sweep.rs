@@ -4,7 +4,7 @@ use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use std::io::Write;
 use std::ops::ControlFlow;
@@ -187,13 +187,14 @@ pub fn run(args: Args) -> Result<()> {
     sink.finish()?;
     if let Some(path) = &args.plot {
         let theory = Theory::new(&experiment, parameter, &range)?;
+        let exact_a1 = Theory::exact_a1(&experiment, parameter, &range)?;
         eprintln!(
             "sweep: theory on the plot: paper's gain at {} and exact sliding orbit at {} of {} values",
             theory.paper.present(),
-            theory.exact.present(),
+            exact_a1.present(),
             theory.paper.x.len()
         );
-        plot(&points, parameter, &theory, path)?;
+        plot(&points, parameter, &theory, &exact_a1, path)?;
     }
     if let Some(file) = file {
         file.remove()?;
@@ -385,6 +386,24 @@ pub(crate) struct Theory {
 }
 
 impl Theory {
+    /// The exact sliding orbit's A1/β over the swept range: the gain of the paper's
+    /// definition, to compare with the paper's eq. (11) and with the simulated A1/β.
+    fn exact_a1(
+        experiment: &Experiment,
+        parameter: Parameter,
+        range: &ParameterRange,
+    ) -> Result<TheoryCurve> {
+        let xs = abscissae(range.from(), range.to(), range.steps());
+        let base = experiment.params_with(&[(parameter, range.from())])?;
+        Ok(theory_curve(
+            TheoryKind::Exact,
+            TheoryQuantity::Gain,
+            &base,
+            parameter,
+            &xs,
+        ))
+    }
+
     pub(crate) fn new(
         experiment: &Experiment,
         parameter: Parameter,
@@ -406,24 +425,29 @@ impl Theory {
     }
 }
 
+/// The plot of a sweep: the gain G = A1/β (the fundamental of y over β, the paper's
+/// definition) of the simulated steady states, of the paper's eq. (11) and of the exact
+/// sliding orbit: one definition for all three. (The CSV also has the peak gain.)
 fn plot(
     points: &[Row],
     parameter: Parameter,
     theory: &Theory,
+    exact_a1: &stickslip::theory::curves::TheoryCurve,
     path: &std::path::Path,
 ) -> Result<()> {
+    let gain = |p: &Row| p.a1 / p.params.beta;
     let leg = |which: SweepLeg| -> Vec<(f64, f64)> {
         points
             .iter()
             .filter(|p| p.leg == which)
-            .map(|p| (p.value, p.gain))
+            .map(|p| (p.value, gain(p)))
             .collect()
     };
     let stick = |which: SweepLeg| -> Vec<(f64, f64)> {
         points
             .iter()
             .filter(|p| p.leg == which && p.stops > 0)
-            .map(|p| (p.value, p.gain))
+            .map(|p| (p.value, gain(p)))
             .collect()
     };
     let title = match points.first().map(|p| p.params) {
@@ -431,55 +455,57 @@ fn plot(
             let fixed: Vec<String> = Parameter::ALL
                 .into_iter()
                 .filter(|&q| q != parameter && (q != Parameter::MuS || p.mu_s != 1.0))
-                .map(|q| format!("{} = {:.3}", q.label(), q.get(&p)))
+                .map(|q| format!("{} = {:.3}", crate::diagrams::symbol(q), q.get(&p)))
                 .collect();
-            format!("gain against {} at {}", parameter.label(), fixed.join(", "))
+            format!(
+                "gain against {} at {}",
+                crate::diagrams::symbol(parameter),
+                fixed.join(", ")
+            )
         }
         None => "gain".into(),
     };
     let mut series = Vec::new();
+    // Up solid, down dashed, in the colours of the sweep's legs; the steps with stops marked
+    // as everywhere: up filled dots, down open squares.
     for (which, color, style, label) in [
-        (SweepLeg::Up, PALETTE[0], Style::Line(2), "sweep up"),
-        (SweepLeg::Down, PALETTE[1], Style::Dashed(2), "sweep down"),
+        (
+            SweepLeg::Up,
+            Quantity::SweepUp.color(),
+            Style::Line(2),
+            "sweep up",
+        ),
+        (
+            SweepLeg::Down,
+            Quantity::SweepDown.color(),
+            Style::Dashed(2),
+            "sweep down",
+        ),
     ] {
         let data = leg(which);
         if !data.is_empty() {
             series.push(Series::new(label, data, color, style));
         }
     }
-    series.push(Series::new(
-        "with stops (up)",
-        stick(SweepLeg::Up),
-        PALETTE[0],
-        Style::Squares(4),
-    ));
-    series.push(Series::new(
-        "with stops (down)",
-        stick(SweepLeg::Down),
-        PALETTE[1],
-        Style::Markers(2),
-    ));
+    series.push(Quantity::SweepDown.series("with stops (down)", stick(SweepLeg::Down)));
+    series.push(Quantity::SweepUp.series("with stops (up)", stick(SweepLeg::Up)));
     let prefix = theory.prefix;
     if theory.paper.present() > 0 {
-        series.push(Series::new(
+        series.push(Quantity::PaperTheory.series(
             format!("{prefix}paper, eq. (11): A1/β"),
             theory.paper.points(),
-            PALETTE[2],
-            Style::Dashed(2),
         ));
     }
-    if theory.exact.present() > 0 {
-        series.push(Series::new(
-            format!("{prefix}exact sliding orbit: peak/β"),
-            theory.exact.points(),
-            PALETTE[6],
-            Style::Line(1),
+    if exact_a1.present() > 0 {
+        series.push(Quantity::ExactTheory.series(
+            format!("{prefix}exact sliding orbit: A1/β"),
+            exact_a1.points(),
         ));
     }
     let panel = Panel {
         title,
         x_label: parameter.label().into(),
-        y_label: "gain G = (max y − min y)/(2β)".into(),
+        y_label: "gain G = A1/β (fundamental of y over β)".into(),
         series,
         legend: Some(Legend::Best),
         ..Default::default()

@@ -4,11 +4,12 @@
 use crate::flags::reject_swept_flags;
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::experiment::Key;
+use stickslip::scan::grid_value;
 use stickslip::solver::grid;
 use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
@@ -48,10 +49,12 @@ pub struct Args {
     /// Largest w of the curve (> --w-min) [default: 3].
     #[arg(long = "w-max", help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_max: Option<f64>,
-    /// Number of intervals of the curve: it has steps + 1 rows (1 to 100000) [default: 200].
+    /// Number of points of the curve, both ends included: it has this many rows (2 to
+    /// 100000) [default: 200]. (--steps counts points in every command.)
     #[arg(long, help_heading = "Theory", allow_hyphen_values = true)]
     steps: Option<u64>,
-    /// Space the frequencies of the curve logarithmically (and plot log10 w, log10 β_c).
+    /// Space the frequencies of the curve logarithmically (and plot them on a logarithmic
+    /// axis; the boundary's β_c axis is logarithmic in any case).
     #[arg(long, help_heading = "Theory")]
     log: bool,
     /// Curve CSV file [default: standard output].
@@ -187,8 +190,8 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     if !(hi > lo) {
         usage!("invalid --w-max {hi}: must be greater than --w-min {lo}");
     }
-    if steps == 0 || steps > 100_000 {
-        usage!("invalid --steps {steps}: must be from 1 to 100000");
+    if !(2..=100_000).contains(&steps) {
+        usage!("invalid --steps {steps}: must be from 2 to 100000 (the number of points)");
     }
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
@@ -220,7 +223,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         .map(|s| format!("{s}; "))
         .unwrap_or_default();
     eprintln!(
-        "theory: {described}ζ = {:.6}, μs = {}{}; w from {lo} to {hi} ({} steps{})",
+        "theory: {described}ζ = {:.6}, μs = {}{}; w from {lo} to {hi} ({} points{})",
         params.zeta,
         params.mu_s,
         if curve == Curve::Gain {
@@ -233,7 +236,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     );
 
     let ws: Vec<f64> = if args.log {
-        let mut ws: Vec<f64> = grid(lo.ln(), hi.ln(), steps as usize)
+        let mut ws: Vec<f64> = grid(lo.ln(), hi.ln(), steps as usize - 1)
             .into_iter()
             .map(f64::exp)
             .collect();
@@ -242,7 +245,8 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         *ws.last_mut().expect("at least two points") = hi;
         ws
     } else {
-        grid(lo, hi, steps as usize)
+        let n = steps as usize - 1;
+        (0..=n).map(|i| grid_value(lo, hi, i, n)).collect()
     };
     let quantity = match curve {
         Curve::Boundary => TheoryQuantity::Boundary,
@@ -275,28 +279,18 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     sink.finish()?;
 
     if let Some(path) = &args.plot {
-        // With --log the boundary spans decades: plot log10 of w (and of β_c).
-        let log_y = args.log && curve == Curve::Boundary;
-        let axis = |x: f64, log: bool| if log { x.log10() } else { x };
+        // The boundary spans decades (β_c grows like 2/w² at low w): a logarithmic β_c axis
+        // keeps the region that matters, β_c ≈ 1.3–1.8, readable. With --log, w too.
         let points = |pick: fn(&Row) -> Option<f64>| {
             rows.iter()
-                .map(|r| {
-                    (
-                        axis(r.0, args.log),
-                        pick(r).map_or(f64::NAN, |v| axis(v, log_y)),
-                    )
-                })
+                .map(|r| (r.0, pick(r).unwrap_or(f64::NAN)))
                 .collect::<Vec<_>>()
         };
         let (paper_label, exact_label, y_label, title) = match curve {
             Curve::Boundary => (
                 "paper, eq. (13)",
                 "exact",
-                if args.log {
-                    "log10 β_c (drive / friction)"
-                } else {
-                    "β_c (drive / friction)"
-                },
+                "β_c (drive / friction), logarithmic",
                 format!(
                     "stick-slip boundary, ζ = {:.4}, μs = {}",
                     params.zeta, params.mu_s
@@ -312,16 +306,18 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         let panel = Panel {
             title,
             x_label: if args.log {
-                "log10 w, w = Ω/ω0".into()
+                "w = Ω/ω0, logarithmic".into()
             } else {
                 "w = Ω/ω0".into()
             },
             y_label: y_label.into(),
             series: vec![
-                Series::new(paper_label, points(|r| r.1), PALETTE[1], Style::Dashed(2)),
-                Series::new(exact_label, points(|r| r.2), PALETTE[0], Style::Line(2)),
+                Quantity::PaperTheory.series(paper_label, points(|r| r.1)),
+                Quantity::ExactTheory.series(exact_label, points(|r| r.2)),
             ],
             legend: Some(Legend::UpperRight),
+            x_log: args.log,
+            y_log: curve == Curve::Boundary,
             ..Default::default()
         };
         Figure::single(panel, (900, 560)).render(path)?;

@@ -121,3 +121,24 @@ fn bad_input_is_a_one_line_usage_error() {
         assert_usage_error(dir.path(), &out, needle);
     }
 }
+
+/// The description goes to standard error, as with every command; standard output holds the
+/// numbers (text or JSON) alone.
+#[test]
+fn description_goes_to_standard_error_with_and_without_json() {
+    for json in [false, true] {
+        let mut args = vec!["convert", "--preset", "paper"];
+        if json {
+            args.push("--json");
+        }
+        let (_dir, out) = run(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let (text, err) = (stdout(&out), stderr(&out));
+        assert!(err.starts_with("convert: "), "{err}");
+        assert!(err.contains("11.5 mH") || err.contains("0.0115"), "{err}");
+        assert!(!text.contains("convert:"), "{text}");
+        if !json {
+            assert!(text.starts_with("omega0 = "), "{text}");
+        }
+    }
+}

@@ -58,6 +58,22 @@ fn writes_every_figure_table_and_the_report() {
             "{f}.svg"
         );
     }
+    // The page's table of contents gives each section's title, not its file id, and a flag
+    // in a caption cannot break at its hyphens.
+    assert!(
+        html.contains("<li><a href=\"#fig3\">Fig. 3 — "),
+        "table of contents"
+    );
+    assert!(
+        !html.contains(">beyond-basins</a>"),
+        "raw ids in the table of contents"
+    );
+    assert!(
+        html.contains("<span class=\"nw\">--v0-min</span>"),
+        "flags in captions"
+    );
+    // "static" is the paper's rule, said where the word appears.
+    assert!(html.contains("\"static\" is the paper's rule, an amplitude below β/100"));
     // Every data file the page lists exists and has a header and rows.
     for csv in html
         .split("href=\"")

@@ -113,8 +113,9 @@ fn boundary_curve_writes_csv_and_plot() {
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
         .collect();
-    assert_eq!(rows.len(), 41);
-    assert_eq!((rows[0][0], rows[40][0]), (0.05, 10.0));
+    // --steps counts points, as in every command.
+    assert_eq!(rows.len(), 40);
+    assert_eq!((rows[0][0], rows[39][0]), (0.05, 10.0));
     for r in &rows {
         let (w, paper, exact) = (r[0], r[1], r[2]);
         // Eq. (13) in closed form: β² = Z²/w⁴ + 16ζ/(πw) + 16/π².
@@ -140,7 +141,7 @@ fn gain_curve_leaves_cells_empty_where_there_is_no_solution() {
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("w,gain_paper,gain_exact"));
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    assert_eq!(rows.len(), 18);
+    assert_eq!(rows.len(), 17);
     assert!(rows.iter().all(|r| r.len() == 3));
     // β = 1.5 sticks at low w (empty exact cell) and slides near resonance.
     assert_eq!(rows[0][2], "");
@@ -178,6 +179,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
             "--w-max",
         ),
         (&["--curve", "boundary", "--steps", "0"], "--steps"),
+        (&["--curve", "boundary", "--steps", "1"], "--steps"),
         (&["--curve", "boundary", "--beta", "2"], "--beta"),
         (&["--curve", "boundary", "--w", "1"], "--w"),
         (&["--curve", "gain"], "--beta"),

@@ -47,5 +47,5 @@ pub use axis::Axis;
 pub use grid::{Grid, GridMap, GridPoint};
 pub(crate) use monitor::run_parallel;
 pub use monitor::Monitor;
-pub use range::ParameterRange;
+pub use range::{grid_value, ParameterRange};
 pub use sweep::{Sweep, SweepDirection, SweepLeg, SweepPoint};

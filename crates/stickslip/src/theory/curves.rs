@@ -162,13 +162,7 @@ pub fn abscissae(from: f64, to: f64, steps: usize) -> Vec<f64> {
     }
     let n = steps.max(MIN_POINTS);
     (0..n)
-        .map(|i| {
-            if i + 1 == n {
-                to
-            } else {
-                from + (to - from) * i as f64 / (n - 1) as f64
-            }
-        })
+        .map(|i| crate::scan::grid_value(from, to, i, n - 1))
         .collect()
 }
 

@@ -163,7 +163,9 @@ impl Report {
              img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}\n\
              table{border-collapse:collapse;margin:0.8em 0}td,th{border:1px solid #ccc;padding:0.25em 0.6em;text-align:right}\n\
              th{background:#f4f4f4}td:first-child,th:first-child{text-align:left}\n\
-             .caption{color:#333}.files{font-size:0.85em;color:#666}nav a{margin-right:1em}\n\
+             .caption{color:#333}.files{font-size:0.85em;color:#666}\n\
+             nav ul{margin:0.3em 0 1em;padding-left:1.2em}nav li{margin:0.1em 0}nav b{display:block;margin-top:0.6em}\n\
+             .nw{white-space:nowrap}\n\
              </style>\n</head>\n<body>\n",
         );
         h.push_str("<h1>The paper's figures, reproduced by stickslip</h1>\n");
@@ -176,13 +178,20 @@ impl Report {
              the stiff solver (Shockley diodes); where they differ from the paper's series \
              formula, the caption says so.</p>\n<nav>",
         );
+        // A table of contents: one line per section, with its title, under its chapter.
+        h.push_str("\n<ul>\n");
         for (k, s) in self.sections.iter().enumerate() {
             for c in self.chapters.iter().filter(|c| c.before == k) {
-                let _ = write!(h, "| <a href=\"#{}\"><b>{}</b></a>", c.id, escape(&c.title));
+                let _ = write!(
+                    h,
+                    "</ul>\n<b><a href=\"#{}\">{}</a></b>\n<ul>\n",
+                    c.id,
+                    escape(&c.title)
+                );
             }
-            let _ = write!(h, "<a href=\"#{}\">{}</a>", s.id, s.id);
+            let _ = writeln!(h, "<li><a href=\"#{}\">{}</a></li>", s.id, escape(&s.title));
         }
-        h.push_str("</nav>\n");
+        h.push_str("</ul>\n</nav>\n");
         for (k, s) in self.sections.iter().enumerate() {
             for c in self.chapters.iter().filter(|c| c.before == k) {
                 let _ = write!(
@@ -220,7 +229,7 @@ impl Report {
                 }
                 h.push_str("</table>\n");
             }
-            let _ = writeln!(h, "<p class=\"caption\">{}</p>", s.caption);
+            let _ = writeln!(h, "<p class=\"caption\">{}</p>", unbroken_flags(&s.caption));
             if !s.data.is_empty() || !s.figures.is_empty() {
                 h.push_str("<p class=\"files\">Files: ");
                 let mut names: Vec<String> = Vec::new();
@@ -245,6 +254,33 @@ impl Drop for Report {
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.staging);
     }
+}
+
+/// A caption whose command-line flags (`--v0-min`, `-8`) cannot break across lines: in
+/// `<code>` the words that hold a hyphen go into a no-wrap span (the browser would break
+/// after their hyphens).
+fn unbroken_flags(caption: &str) -> String {
+    let mut out = String::new();
+    let mut rest = caption;
+    while let Some(start) = rest.find("<code>") {
+        let (before, after) = rest.split_at(start + "<code>".len());
+        out.push_str(before);
+        let end = after.find("</code>").unwrap_or(after.len());
+        let words: Vec<String> = after[..end]
+            .split(' ')
+            .map(|w| {
+                if w.contains('-') {
+                    format!("<span class=\"nw\">{w}</span>")
+                } else {
+                    w.to_string()
+                }
+            })
+            .collect();
+        out.push_str(&words.join(" "));
+        rest = &after[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Escape text for HTML.

@@ -189,7 +189,9 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
          Lyapunov exponent over those periods (lower panel). A period-p orbit shows as p dots, \
          chaos as a vertical smear: on the way up {} values are chaotic (λ1 > 4 standard \
          errors of its block means; the chaotic stretches span w ≈ {windows_text}), {} \
-         periodic (periods {}). The two directions differ at {both_differ} of the {steps_n} \
+         periodic (periods {}), {} quasi-periodic (no period, λ1 within 4 standard errors of \
+         0) and {} unsettled (no period and no verdict: still contracting onto a motion not \
+         reached, or a record too short to judge); every value's kind is in beyond-bifurcation.csv. The two directions differ at {both_differ} of the {steps_n} \
          values: coexisting motions. The lines are {n_branches} branches of periodic orbits \
          continued from the periodic values by pseudo-arclength continuation \
          (<code>stickslip continue</code>), stable solid and unstable dashed: the unstable \
@@ -207,6 +209,8 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             .map(|p| p.to_string())
             .collect::<Vec<_>>()
             .join(", "),
+        count(AttractorKind::QuasiPeriodic),
+        count(AttractorKind::Unsettled),
     );
     report.sections.push(Section {
         id: "beyond-bifurcation".into(),

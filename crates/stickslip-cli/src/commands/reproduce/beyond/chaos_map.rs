@@ -3,7 +3,7 @@
 use super::super::report::{sig, Report, Section};
 use super::super::Context;
 use super::{frequency, literature};
-use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Series, Style};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
@@ -71,14 +71,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     )
     .within(beta.from() - db, beta.to() + db)
     .points();
-    let boundary = || {
-        Series::new(
-            "exact β_c: sliding above",
-            boundary.clone(),
-            RGBColor(0, 0, 0),
-            Style::Line(2),
-        )
-    };
+    let boundary = || Quantity::ExactTheory.series("exact β_c: sliding above", boundary.clone());
     let frame = |title: &str| Panel {
         title: title.into(),
         x_label: "w = Ω/ω0".into(),
@@ -90,9 +83,15 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         series: vec![boundary()],
         ..Default::default()
     };
+    // The boundary's legend entry is in (a), with the classes: (b), beside its colour bar,
+    // keeps its whole width for the map.
+    let mut line = boundary();
+    line.label.clear();
     let exponents = Panel {
         cells: cells(&|p| bar.color(lambda(p))),
         color_bar: Some(bar.clone()),
+        series: vec![line],
+        legend: None,
         ..frame("(b) largest Lyapunov exponent λ1, ζ = 0, μs = 3")
     };
     let mut present: Vec<MotionClass> = MotionClass::ALL
@@ -100,16 +99,12 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         .filter(|&c| points.iter().any(|p| p.class == c))
         .collect();
     present.sort_by_key(|&c| MotionClass::ALL.iter().position(|&k| k == c));
-    // The legend of the classes where it hides least (the boundary's entry is in (b)).
-    let mut line = boundary();
-    line.label.clear();
     let classes = Panel {
         cells: cells(&|p| class_color(p.class)),
         cell_legend: present
             .iter()
             .map(|&c| (c.label().to_string(), class_color(c)))
             .collect(),
-        series: vec![line],
         legend: Some(Legend::LowerRight),
         ..frame("(a) motion classes from rest, ζ = 0, μs = 3")
     };
@@ -163,6 +158,14 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         .filter(|p| p.class == MotionClass::Chaotic)
         .collect();
     let sticking = chaotic.iter().filter(|p| p.stops_per_period > 0.0).count();
+    // What (b) shows white: λ1 = 0 (rest) and slow contraction, within 5 % of the bar's
+    // negative end.
+    let faint = 0.05 * -bar.range.0;
+    let at_rest = points.iter().filter(|p| lambda(p) == 0.0).count();
+    let slow = points
+        .iter()
+        .filter(|p| p.period.is_some() && lambda(p) < 0.0 && lambda(p) > -faint)
+        .count();
     // Below the exact boundary: no symmetric sliding orbit at that β (NaN: none at any β).
     let below = chaotic
         .iter()
@@ -202,12 +205,15 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
              is measured over {PERIODS} more periods, and the point is chaotic when λ1 exceeds \
              4 standard errors. Red: chaos (λ1 > 0); blue: contraction onto a periodic motion \
              (the bar's lower end is the 2nd percentile of the negative values, lower ones take \
-             its colour); white: λ1 = 0, rest (β ≤ μs never moves from rest). {} of the {} \
+             its colour); white or nearly: λ1 within {} of 0, that is {at_rest} points with \
+             λ1 = 0 (at rest: β ≤ μs never moves from rest) and {slow} periodic motions that \
+             contract slowly (λ1 < 0 by less than 5 % of the bar's lower end). {} of the {} \
              points are chaotic, {} do not repeat without being chaotic (they contract onto a \
              periodic motion not reached, or are undecided), and {}. The largest exponent, {} \
              ± {} per unit τ, is at (w, β) = ({}, {}). {} of the {} chaotic motions stick, and \
              {} lie below the exact stick-slip boundary (black; above it the symmetric sliding \
              orbit exists) ({}).",
+            sig(faint, 2),
             count(MotionClass::Chaotic),
             points.len(),
             count(MotionClass::NonperiodicStick),

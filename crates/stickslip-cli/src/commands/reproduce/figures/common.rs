@@ -9,8 +9,9 @@ use stickslip::{Experiment, Parameter, Params, SteadyOptions, SteadyState};
 /// One colour per drive amplitude, the same in every figure.
 pub fn beta_color(beta: f64) -> RGBColor {
     const BETAS: [f64; 10] = [1.0, 1.07, 1.2, 1.43, 1.6, 2.14, 3.61, 7.1, 14.3, 4.0];
+    // β = 1 is not grey: grey is the drive's colour.
     const COLORS: [RGBColor; 10] = [
-        RGBColor(120, 120, 120),
+        RGBColor(0, 110, 110),
         RGBColor(0, 114, 178),
         RGBColor(86, 180, 233),
         RGBColor(0, 158, 115),
@@ -26,6 +27,25 @@ pub fn beta_color(beta: f64) -> RGBColor {
         .position(|b| (b - beta).abs() < 1e-9)
         .map(|i| COLORS[i])
         .unwrap_or(RGBColor(80, 80, 80))
+}
+
+/// A class for titles: "static" carries the paper's rule, which allows a small motion.
+pub fn class_title(class: stickslip::steady::MotionClass) -> String {
+    match class {
+        stickslip::steady::MotionClass::Static => "static (amplitude < β/100)".to_string(),
+        other => other.label().to_string(),
+    }
+}
+
+/// The range of `values` with `frac` of its span added on each side (a loop that must not
+/// touch the frame).
+pub fn padded(values: impl Iterator<Item = f64>, frac: f64) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    (lo < hi).then_some((lo - frac * (hi - lo), hi + frac * (hi - lo)))
 }
 
 /// Dimensionless parameters of the paper's circuit at (w, β).

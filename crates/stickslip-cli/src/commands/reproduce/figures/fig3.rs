@@ -2,10 +2,9 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{beta_color, num, steady_pwl};
-use crate::plot::{Figure, Legend, Panel, Series, Style};
+use super::common::{beta_color, class_title, num, padded, steady_pwl};
+use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
-use plotters::style::RGBColor;
 use serde_json::json;
 
 const FREQUENCIES: [f64; 3] = [0.29, 0.95, 1.43];
@@ -21,6 +20,7 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     let mut trace_rows = Vec::new();
     let mut spectrum_rows = Vec::new();
     let mut classes = Vec::new();
+    let mut small = Vec::new();
     for (row, &beta) in TRACE_BETAS.iter().enumerate() {
         for (col, &w) in FREQUENCIES.iter().enumerate() {
             let (params, s) = steady_pwl(ctx, w, beta)?;
@@ -48,13 +48,19 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
                 k += 1.0;
             }
             let label = format!("({}{})", row + 1, ["a", "b", "c"][col]);
+            if s.class == stickslip::steady::MotionClass::Static {
+                let peak = uc.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
+                small.push(format!("{label} at ±{:.1} mV", peak * 1e3));
+            }
             trace_panels.push(Panel {
-                title: format!("{label} β = {beta}, Ω/ω0 = {w}: {}", s.class.label()),
+                title: format!("{label} β = {beta}, Ω/ω0 = {w}: {}", class_title(s.class)),
                 x_label: "t (ms)".into(),
                 y_label: "voltage (V)".into(),
                 series: vec![
-                    Series::new("U", drive, RGBColor(70, 70, 70), Style::Line(2)),
-                    Series::new("u_C", uc, beta_color(beta), Style::Line(1)),
+                    Quantity::Drive.series("U", drive),
+                    Quantity::Response
+                        .series("u_C", uc)
+                        .colored(beta_color(beta)),
                 ],
                 legend: Some(Legend::UpperRight),
                 ..Default::default()
@@ -104,19 +110,24 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             for (u, y) in &pts {
                 xy_rows.push(vec![num(w), num(beta), num(*u), num(*y)]);
             }
-            series.push(Series::new(
-                format!("β = {beta}"),
-                pts,
-                beta_color(beta),
-                Style::Line(2),
-            ));
+            series.push(
+                Quantity::Response
+                    .series(format!("β = {beta}"), pts)
+                    .colored(beta_color(beta)),
+            );
         }
+        // The loops reach the drive's extremes: a margin keeps them off the frame.
+        let x_range = padded(
+            series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+            0.04,
+        );
         xy_panels.push(Panel {
             title: format!("(3{}) Ω/ω0 = {w}, X-Y mode", ["a", "b", "c"][col]),
             x_label: "drive U (V)".into(),
             y_label: "u_C (V)".into(),
             series,
             legend: Some(Legend::UpperLeft),
+            x_range,
             ..Default::default()
         });
     }
@@ -147,12 +158,22 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     )?;
     report.csv("fig3_xy.csv", &["w", "beta", "u_V", "uc_V"], &xy_rows)?;
     report.summary.insert("fig3".into(), json!(classes));
+    let static_note = if small.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " \"static\" is the paper's rule, an amplitude below β/100, not rest: u_C still \
+             moves, {}, a small square-like wave whose odd harmonics the spectra show.",
+            small.join(", ")
+        )
+    };
     report.sections.push(Section {
         id: "fig3".into(),
         title: "Fig. 3 — capacitor voltage, spectra and X-Y loops".into(),
-        caption: "Steady state of the paper's circuit (PWL diodes, exact solver) at Ω/ω0 = \
-                  0.29, 0.95 and 1.43. Rows 1–2: β = 1.07, capacitor voltage u_C (thin) and \
-                  drive U (thick) over two drive periods, and the amplitude spectrum of u_C \
+        caption: format!(
+            "Steady state of the paper's circuit (PWL diodes, exact solver) at Ω/ω0 = \
+                  0.29, 0.95 and 1.43. Rows 1–2: β = 1.07, capacitor voltage u_C (coloured) and \
+                  drive U (grey) over two drive periods, and the amplitude spectrum of u_C \
                   (harmonics 1–9 of the drive, by FFT over whole periods: no leakage). Rows \
                   3–4: the same at β = 2.14. Row 5: u_C against U (the oscilloscope's X-Y \
                   mode) for β = 1.07, 1.43, 2.14 and 3.61, one colour per β as in every \
@@ -162,8 +183,8 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
                   resonance the PWL model, started from rest, barely moves (the drive exceeds \
                   the diodes' 0.7 V only briefly): the paper's oscilloscope traces there show \
                   more motion because real diodes conduct below 0.7 V, which the Shockley model \
-                  of Fig. 7(b) describes."
-            .into(),
+                  of Fig. 7(b) describes.{static_note}"
+        ),
         figures: vec!["fig3".into()],
         data: vec![
             "fig3_traces.csv".into(),

@@ -4,7 +4,7 @@ use super::super::report::{Report, Section};
 use super::super::Context;
 use super::common::{beta_color, num, sweep_pwl};
 use super::theory_curves::{style_legend, INK};
-use crate::plot::{Figure, Legend, Panel, Series, Style};
+use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use serde_json::json;
 use stickslip::scan::SweepLeg;
@@ -17,6 +17,7 @@ pub const BETAS: [f64; 3] = [1.43, 3.61, 14.3];
 pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     let steps = if ctx.quick { 25 } else { 73 };
     let mut series = Vec::new();
+    let (mut up_series, mut down_series) = (Vec::new(), Vec::new());
     let mut rows = Vec::new();
     let mut peaks = Vec::new();
     for &beta in &BETAS {
@@ -44,9 +45,17 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             .chain(&down)
             .fold((0.0, 0.0), |m, &(w, g)| if g > m.1 { (w, g) } else { m });
         peaks.push(json!({"beta": beta, "w": peak.0, "gain": peak.1}));
-        series.push(Series::new("", up, beta_color(beta), Style::Markers(3)));
-        series.push(Series::new("", down, beta_color(beta), Style::Squares(4)));
+        // Down squares first and larger: the up dots show inside them.
+        down_series.push(
+            Quantity::SweepDown
+                .series("", down)
+                .colored(beta_color(beta)),
+        );
+        up_series.push(Quantity::SweepUp.series("", up).colored(beta_color(beta)));
     }
+    series.extend(down_series);
+    series.extend(up_series);
+    // The curves over the markers: a short exact segment stays visible.
     series.extend(super::theory_curves::gain_curves(ctx, &BETAS)?);
     // The legend: one colour per β, one symbol per sweep direction, one line per theory.
     for &beta in &BETAS {
@@ -57,8 +66,12 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             Style::Bars(1.0),
         ));
     }
-    series.push(Series::new("sweep up", vec![], INK, Style::Markers(3)));
-    series.push(Series::new("sweep down", vec![], INK, Style::Squares(4)));
+    series.push(Quantity::SweepUp.series("sweep up", vec![]).colored(INK));
+    series.push(
+        Quantity::SweepDown
+            .series("sweep down", vec![])
+            .colored(INK),
+    );
     series.extend(style_legend());
     let panel = Panel {
         title: "Fig. 4: resonance of the gain G = A1/β".into(),

@@ -4,7 +4,7 @@ use super::super::report::{Report, Section};
 use super::super::Context;
 use super::common::{num, sweep_pwl};
 use super::theory_curves::{style_legend, INK};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use stickslip::scan::{SweepLeg, SweepPoint};
 use stickslip::Parameter;
@@ -40,9 +40,10 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
                 p.steady.class.label().into(),
             ]);
         }
+        let (c1, c3) = (Quantity::Harmonic1.color(), Quantity::Harmonic3.color());
         let mut series = vec![
-            Series::new("", a1, PALETTE[0], Style::Markers(3)),
-            Series::new("", a3, PALETTE[1], Style::Markers(3)),
+            Quantity::Harmonic1.series("", a1),
+            Quantity::Harmonic3.series("", a3),
         ];
         series.extend(super::theory_curves::harmonic_curves(
             ctx,
@@ -50,11 +51,11 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             fixed,
             from,
             to,
-            [PALETTE[0], PALETTE[1]],
+            [c1, c3],
         )?);
         // The legend: one colour per harmonic, one symbol or line per source.
-        series.push(Series::new("A1", vec![], PALETTE[0], Style::Bars(1.0)));
-        series.push(Series::new("A3", vec![], PALETTE[1], Style::Bars(1.0)));
+        series.push(Series::new("A1", vec![], c1, Style::Bars(1.0)));
+        series.push(Series::new("A3", vec![], c3, Style::Bars(1.0)));
         series.push(Series::new("simulated", vec![], INK, Style::Markers(3)));
         series.extend(style_legend());
         let (title, x_label) = match parameter {
@@ -68,6 +69,8 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             series,
             legend: Some(Legend::Best),
             x_range: Some((from, to)),
+            // Against w, A3 is two decades below A1 away from w = 1/3: a log axis shows both.
+            y_log: parameter == Parameter::W,
             ..Default::default()
         });
     }
@@ -89,7 +92,7 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
         title: "Fig. 5 — harmonic amplitudes".into(),
         caption: format!(
             "Amplitudes of the fundamental A1 and of the third harmonic A3 of u_C (volts), \
-             (a) against Ω/ω0 at β = 7.1 and (b) against β at Ω/ω0 = 0.33. Dots: simulated \
+             (a) against Ω/ω0 at β = 7.1 (logarithmic axis) and (b) against β at Ω/ω0 = 0.33. Dots: simulated \
              steady states (exact solver, spectrum by FFT over whole periods, up sweep). {}",
             super::theory_curves::HARMONIC_NOTE
         ),

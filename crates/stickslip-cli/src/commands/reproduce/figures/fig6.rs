@@ -2,10 +2,9 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{beta_color, num, paper_at, steady_pwl};
-use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
+use super::common::{beta_color, class_title, num, paper_at, steady_pwl};
+use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
-use plotters::style::RGBColor;
 use serde_json::json;
 use stickslip::solver::{grid, sample_at};
 use stickslip::EventKind;
@@ -69,16 +68,19 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
             .unwrap_or_default();
         panels.push(Panel {
             title: format!(
-                "({}) Ω/ω0 = {w}, β = {beta}: {class}{period}, {} stops/period",
+                "({}) Ω/ω0 = {w}, β = {beta}: {}{period}, {} stops/period",
                 ["a", "b", "c", "d"][i],
+                class_title(s.class),
                 s.stops_per_period
             ),
             x_label: "t (ms)".into(),
             y_label: "voltage (V)".into(),
             series: vec![
-                Series::new("U", drive, RGBColor(70, 70, 70), Style::Line(2)),
-                Series::new("u_C", uc, beta_color(beta), Style::Line(1)),
-                Series::new("stops", stops, PALETTE[1], Style::Markers(3)),
+                Quantity::Drive.series("U", drive),
+                Quantity::Response
+                    .series("u_C", uc)
+                    .colored(beta_color(beta)),
+                Quantity::Stops.series("stops", stops),
             ],
             legend: Some(Legend::UpperRight),
             ..Default::default()
@@ -121,12 +123,13 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
         id: "fig6".into(),
         title: "Fig. 6 — the four types of motion".into(),
         caption: format!(
-            "Capacitor voltage u_C (thin) and drive U (thick) from rest over 12 drive periods \
+            "Capacitor voltage u_C (coloured) and drive U (grey) from rest over 12 drive periods \
              at the paper's four points (PWL diodes, exact solver); dots mark where the motion \
              stops. Titles give the class of the steady state, decided from the exact event \
              log: sliding (no stop), periodic stick (periodic, with stops), non-periodic stick \
              (no period up to 16 drive periods within 5000 periods), static (amplitude below \
-             β/100). {difference}"
+             β/100, the paper's rule: a static motion need not be at rest). \
+             {difference}"
         ),
         figures: vec!["fig6".into()],
         data: vec!["fig6.csv".into()],

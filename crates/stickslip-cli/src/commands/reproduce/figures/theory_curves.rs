@@ -3,7 +3,7 @@
 
 use super::super::Context;
 use super::common::beta_color;
-use crate::plot::{Series, Style, PALETTE};
+use crate::plot::{Quantity, Series, Style};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
@@ -40,12 +40,18 @@ fn base(ctx: &Context, w: f64, beta: f64) -> Result<Params> {
     super::common::paper_params(ctx, w, beta)
 }
 
-/// The line style of each theory: dashed for the paper's series, solid for the exact orbit.
-pub fn theory_style(theory: Theory) -> Style {
+/// The quantity each theory is drawn as: dashed for the paper's series, solid for the exact
+/// orbit.
+fn theory_quantity(theory: Theory) -> Quantity {
     match theory {
-        Theory::Paper => Style::Dashed(2),
-        Theory::Exact => Style::Line(2),
+        Theory::Paper => Quantity::PaperTheory,
+        Theory::Exact => Quantity::ExactTheory,
     }
+}
+
+/// The line style of each theory (see [`theory_quantity`]).
+pub fn theory_style(theory: Theory) -> Style {
+    theory_quantity(theory).style()
 }
 
 /// Legend entries that say what the line styles mean (no data of their own).
@@ -57,7 +63,7 @@ pub fn style_legend() -> Vec<Series> {
 }
 
 /// The colour of legend entries that stand for a style, not for data.
-pub const INK: RGBColor = RGBColor(60, 60, 60);
+pub const INK: RGBColor = crate::plot::INK;
 
 /// Gain curves A1/β of the paper's series solution and of the exact periodic solution, one
 /// colour per β, without legend entries (see [`style_legend`]).
@@ -126,21 +132,13 @@ pub fn boundary_curves(ctx: &Context, w_min: f64, w_max: f64) -> Result<Vec<Seri
             Parameter::W,
             &ws,
         )
-        .within(0.0, 4.0)
+        // Past the top of the map (β = 4) the chart's frame cuts the line: keeping the next
+        // point lets the curve reach the frame instead of stopping short of it.
+        .within(0.0, 8.0)
         .points())
     };
     Ok(vec![
-        Series::new(
-            "paper eq. 13",
-            curve(Theory::Paper)?,
-            PALETTE[6],
-            Style::Dashed(2),
-        ),
-        Series::new(
-            "exact β_c",
-            curve(Theory::Exact)?,
-            PALETTE[3],
-            Style::Line(2),
-        ),
+        Quantity::PaperTheory.series("paper, eq. 13", curve(Theory::Paper)?),
+        Quantity::ExactTheory.series("exact β_c", curve(Theory::Exact)?),
     ])
 }
