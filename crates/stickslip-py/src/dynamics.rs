@@ -12,7 +12,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stickslip::attractor::{AttractorKind, RecordOptions};
-use stickslip::basins::{BasinOptions, BasinReport, Basins};
+use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::{continue_orbit, settled_orbit, BranchReport, ContinuationOptions};
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
@@ -165,7 +165,7 @@ pub fn bifurcation<'py>(
 
 /// A basin map; see `stickslip.basins`.
 #[pyfunction]
-#[pyo3(signature = (experiment, y0, v0, steps, phase, max_periods, max_period, lyapunov_periods, threads=None, progress=None))]
+#[pyo3(signature = (experiment, y0, v0, steps, phase, max_periods, max_period, lyapunov_periods, threads=None, progress=None, method="recurrence"))]
 #[allow(clippy::too_many_arguments)]
 pub fn basins<'py>(
     py: Python<'py>,
@@ -179,7 +179,13 @@ pub fn basins<'py>(
     lyapunov_periods: i64,
     threads: Option<usize>,
     progress: Option<Bound<'py, PyAny>>,
+    method: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let method = BasinMethod::from_label(method).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "invalid method '{method}': must be 'recurrence' or 'exhaustive'"
+        ))
+    })?;
     let mut e = experiment.experiment().clone();
     if let Some(phase) = phase {
         e = e.with_phi(phase).map_err(error)?;
@@ -189,6 +195,7 @@ pub fn basins<'py>(
     let options = BasinOptions {
         max_periods: whole("max_periods", max_periods)?,
         max_period: whole("max_period", max_period)?,
+        method,
         ..BasinOptions::default()
     }
     .with_lyapunov_periods(whole("lyapunov_periods", lyapunov_periods)?);

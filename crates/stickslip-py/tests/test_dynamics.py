@@ -134,6 +134,30 @@ def test_basins_phase_steps_xarray_and_errors(cli):
                          y0=(-1, 1), v0=(-1, 1), steps=3)
 
 
+def test_basins_method_is_the_tools_method(cli, tmp_path):
+    # The mirror pair by both methods: the same cells and attractors (within Newton's
+    # tolerance, the fixed points come from other starts); each as the tool's --method.
+    e = Experiment(zeta=0.0, w=0.6, beta=3.269, mu_s=3.0)
+    flags = [*MIRROR, "--y0-min", -8, "--y0-max", 8, "--v0-min", -8, "--v0-max", 8,
+             "--steps", 10]
+    by = {}
+    for method in ["recurrence", "exhaustive"]:
+        out = tmp_path / f"{method}.csv"
+        summary = cli.json("basins", *flags, "--method", method, "--out", out)
+        m = stickslip.basins(e, y0=(-8, 8), v0=(-8, 8), steps=10, method=method)
+        assert m.to_dict() == summary
+        assert list(m.attractor.ravel()) == list(period_cells(read_csv(out)["attractor"]))
+        by[method] = m
+    assert np.array_equal(by["recurrence"].attractor, by["exhaustive"].attractor)
+    for a, b in zip(by["recurrence"].attractors, by["exhaustive"].attractors):
+        assert (a["kind"], a["period"], a["cells"], a["mirror"]) == \
+            (b["kind"], b["period"], b["cells"], b["mirror"])
+        assert a["state"]["y"] == pytest.approx(b["state"]["y"], abs=1e-9)
+    with pytest.raises(ValueError, match=r"^invalid method 'fast': must be 'recurrence' or "
+                                         r"'exhaustive'$"):
+        stickslip.basins(e, y0=(-1, 1), v0=(-1, 1), steps=3, method="fast")
+
+
 def test_continuation_is_the_tools_csv_and_json(cli, tmp_path):
     out = tmp_path / "branch.csv"
     summary = cli.json("continue", *BRANCH, "--over", "beta", "--from", 1.45, "--to", 1.25,

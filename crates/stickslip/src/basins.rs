@@ -1,8 +1,19 @@
 //! Basins of attraction: which attractor the motion settles on from each initial state of a
 //! grid, and the attractors identified and numbered.
 //!
-//! Every cell (y0, y0') of the grid starts the exact solver at τ = 0 (drive phase φ of the
-//! experiment) and runs it to its steady state ([`crate::steady::steady_state_from`], at most
+//! Two methods ([`BasinOptions::method`]) find the attractor of each cell:
+//!
+//! - **recurrence** (the default, [`BasinMethod::Recurrence`]): each initial state follows
+//!   the strobe map on a finer grid of the state space until it lands on cells already
+//!   labelled with an attractor or its basin, or comes back to its own cells often enough to
+//!   declare a new attractor, which is then classified once, as below (see [`Recurrence`]);
+//! - **exhaustive** ([`BasinMethod::Exhaustive`]): every cell is run to its steady state and
+//!   classified on its own, as follows; the reference the recurrence method is tested
+//!   against.
+//!
+//! The exhaustive method starts the exact solver at each cell (y0, y0') of the grid at τ = 0
+//! (drive phase φ of the experiment), the recurrence method at a point of each new attractor,
+//! and runs it to its steady state ([`crate::steady::steady_state_from`], at most
 //! [`BasinOptions::max_periods`] drive periods, extrapolating the strobe map where it
 //! converges linearly). Then:
 //!
@@ -25,10 +36,12 @@
 //!   [`BasinOptions::sample_points`] strobe points lie within 10 % of that attractor's extent
 //!   of the attractor's strobe points.
 //!
-//! Cells are computed in parallel, each on its own; attractors are identified afterwards in
-//! the order of the cells, so the map and the numbering are the same for any number of
-//! threads and for a map computed in blocks of rows ([`Basins::run_rows`],
-//! [`Basins::identify`]).
+//! Exhaustive cells are computed in parallel, each on its own; recurrence cells one after the
+//! other in the order of the cells. Attractors are identified afterwards in the order of the
+//! cells, so the map and the numbering are the same for any number of threads and for a map
+//! computed in blocks of rows ([`Basins::run_rows`], [`Recurrence::run_row`],
+//! [`Basins::identify`]). Mirror images under the symmetry (y, y', τ) → (−y, −y', τ + T/2)
+//! of the equation are paired ([`Attractor::mirror`]).
 //!
 //! ```
 //! use stickslip::basins::Basins;
@@ -56,6 +69,47 @@ use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
+mod recurrence;
+pub use recurrence::{Recurrence, RecurrenceRow};
+
+/// How a [`Basins`] map finds the attractor of each cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BasinMethod {
+    /// By recurrence on a finer grid of the strobe map's state space: a cell stops as soon
+    /// as its motion reaches a cell labelled with an attractor or its basin, and each
+    /// attractor is classified once ([`Recurrence`]). The default.
+    #[default]
+    Recurrence,
+    /// Every cell run to its steady state and classified on its own (the reference the
+    /// recurrence method is checked against).
+    Exhaustive,
+}
+
+impl BasinMethod {
+    /// Both methods.
+    pub const ALL: [BasinMethod; 2] = [BasinMethod::Recurrence, BasinMethod::Exhaustive];
+
+    /// `recurrence` or `exhaustive`.
+    pub fn label(self) -> &'static str {
+        match self {
+            BasinMethod::Recurrence => "recurrence",
+            BasinMethod::Exhaustive => "exhaustive",
+        }
+    }
+
+    /// The method with this label.
+    pub fn from_label(label: &str) -> Option<Self> {
+        BasinMethod::ALL.into_iter().find(|m| m.label() == label)
+    }
+}
+
+impl std::fmt::Display for BasinMethod {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
 /// Options of a [`Basins`] map.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct BasinOptions {
@@ -75,6 +129,24 @@ pub struct BasinOptions {
     /// Strobe points kept of a motion without a period, for telling its attractor. Default
     /// 64.
     pub sample_points: usize,
+    /// How the attractor of each cell is found. Default [`BasinMethod::Recurrence`].
+    pub method: BasinMethod,
+    /// Recurrence: cells of the state-space grid across the extent of the map along each
+    /// axis (16 to 1e6); at least 4 per spacing of the map's grid are used. Default 1024.
+    pub resolution: usize,
+    /// Recurrence: drive periods in a row that land on cells the motion visited before,
+    /// which declare a new attractor (and, once found, that end the labelling of its
+    /// cells). Default 100.
+    pub found_revisits: usize,
+    /// Recurrence: drive periods in a row landing on cells of one attractor that assign a
+    /// cell to it. Default 2.
+    pub attractor_hits: usize,
+    /// Recurrence: drive periods in a row landing on cells of one attractor's basin that
+    /// assign a cell to it. Default 10.
+    pub basin_hits: usize,
+    /// Recurrence: drive periods run at most from one initial state before it is
+    /// unsettled. Default 100000.
+    pub max_steps: usize,
 }
 
 impl Default for BasinOptions {
@@ -87,6 +159,12 @@ impl Default for BasinOptions {
             significance: 4.0,
             match_tolerance: 1e-6,
             sample_points: 64,
+            method: BasinMethod::Recurrence,
+            resolution: 1024,
+            found_revisits: 100,
+            attractor_hits: 2,
+            basin_hits: 10,
+            max_steps: 100_000,
         }
     }
 }
@@ -136,6 +214,25 @@ impl BasinOptions {
                 self.sample_points as f64,
                 "must be from 1 to lyapunov_periods",
             );
+        }
+        if !(16..=1_000_000).contains(&self.resolution) {
+            return bad(
+                "resolution",
+                self.resolution as f64,
+                "must be from 16 to 1e6",
+            );
+        }
+        for (name, value) in [
+            ("found_revisits", self.found_revisits),
+            ("attractor_hits", self.attractor_hits),
+            ("basin_hits", self.basin_hits),
+        ] {
+            if !(1..=1_000_000).contains(&value) {
+                return bad(name, value as f64, "must be from 1 to 1e6");
+            }
+        }
+        if !(1..=100_000_000).contains(&self.max_steps) {
+            return bad("max_steps", self.max_steps as f64, "must be from 1 to 1e8");
         }
         Ok(self)
     }
@@ -194,6 +291,10 @@ pub struct Attractor {
     pub rest_range: Option<(f64, f64)>,
     /// The first cell (row, column) that reached it.
     pub first_cell: (usize, usize),
+    /// The attractor that is its mirror image under the symmetry (y, y', τ) → (−y, −y',
+    /// τ + T/2) of the equation: its own id when it is symmetric, `None` when its image is
+    /// not among the attractors of the map.
+    pub mirror: Option<usize>,
 }
 
 /// A finished basin map: the grid, the attractor of every cell, and the attractors.
@@ -318,7 +419,12 @@ impl Basins {
     /// # Panics
     /// When i or j is out of range.
     pub fn cell(&self, i: usize, j: usize) -> Result<Cell> {
-        let start = State::new(self.y0[i], self.v0[j])?;
+        self.cell_from(State::new(self.y0[i], self.v0[j])?)
+    }
+
+    /// What the motion from `start` (at τ = 0) settles on, computed alone (the exhaustive
+    /// method's verdict).
+    fn cell_from(&self, start: State) -> Result<Cell> {
         let options = self.options;
         let steady = steady_state_from(
             &exact_solver,
@@ -399,9 +505,10 @@ impl Basins {
         })
     }
 
-    /// Compute the cells of `rows` (all columns), row-major; `monitor` sees every finished
-    /// cell (counted within the block) and can stop the work. The cells do not depend on the
-    /// number of threads nor on the blocks.
+    /// Compute the cells of `rows` (all columns) by the exhaustive method, each on its own,
+    /// row-major; `monitor` sees every finished cell (counted within the block) and can stop
+    /// the work. The cells do not depend on the number of threads nor on the blocks. (The
+    /// recurrence method computes rows in order: [`Basins::recurrence`].)
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for rows outside the grid; [`Error::Cancelled`]; the first
@@ -426,8 +533,24 @@ impl Basins {
     /// # Errors
     /// [`Error::Cancelled`]; the first solver failure.
     pub fn run(&self, monitor: &dyn Monitor) -> Result<BasinMap> {
-        let cells = self.run_rows(0..self.y0.len(), monitor)?;
+        let cells = match self.options.method {
+            BasinMethod::Exhaustive => self.run_rows(0..self.y0.len(), monitor)?,
+            BasinMethod::Recurrence => {
+                let mut recurrence = self.recurrence();
+                let mut cells = Vec::with_capacity(self.y0.len() * self.v0.len());
+                while recurrence.next_row() < self.y0.len() {
+                    cells.extend(recurrence.run_row(cells.len(), monitor)?.cells);
+                }
+                cells
+            }
+        };
         self.identify(&cells)
+    }
+
+    /// A map by recurrence from its first row (whatever [`BasinOptions::method`] says): the
+    /// rows are computed in order, each from the labels the rows before it left.
+    pub fn recurrence(&self) -> Recurrence<'_> {
+        Recurrence::new(self)
     }
 
     /// Identify and number the attractors of `cells` (all cells of the grid, row-major, as
@@ -486,6 +609,7 @@ impl Basins {
                         multipliers: None,
                         rest_range: None,
                         first_cell: (k / nc, k % nc),
+                        mirror: None,
                     });
                     attractors.len() - 1
                 }
@@ -526,6 +650,7 @@ impl Basins {
                         .map(|o| o.multipliers);
             }
         }
+        self.pair_mirrors(&mut attractors)?;
         let unsettled = assigned.iter().filter(|a| a.is_none()).count();
         Ok(BasinMap {
             params: self.params,
@@ -535,6 +660,50 @@ impl Basins {
             attractors,
             unsettled,
         })
+    }
+}
+
+impl Basins {
+    /// Set [`Attractor::mirror`]: the image of an attractor under (y, y', τ) → (−y, −y',
+    /// τ + T/2) is an attractor of the same kind and period, whose strobe points are those
+    /// of the first run on half a drive period and negated. Orbits are matched by their
+    /// fixed point (within [`BasinOptions::match_tolerance`]), chaotic and quasi-periodic
+    /// attractors by their strobe sets overlapping both ways, rest (|y| ≤ μs − β, a
+    /// symmetric set) is its own image.
+    fn pair_mirrors(&self, attractors: &mut [Attractor]) -> Result<()> {
+        let half = 0.5 * self.params.drive_period();
+        let tolerance = self.options.match_tolerance;
+        let mut mirrors = Vec::with_capacity(attractors.len());
+        for a in attractors.iter() {
+            if a.kind == AttractorKind::Static {
+                mirrors.push(Some(a.id));
+                continue;
+            }
+            let mut images = Vec::with_capacity(a.strobes.len());
+            for &s in &a.strobes {
+                let mut solver = ExactSolver::new(self.params, s);
+                run_until(&mut solver, half, |_| {})?;
+                let x = solver.state();
+                images.push(State { y: -x.y, v: -x.v });
+            }
+            let found = attractors.iter().find(|b| {
+                b.kind == a.kind
+                    && b.period == a.period
+                    && match a.kind {
+                        AttractorKind::Periodic => {
+                            let x = images[0];
+                            let limit = tolerance * scale_of(&[x]);
+                            b.strobes.iter().any(|s| distance(*s, x) <= limit)
+                        }
+                        _ => overlaps(&b.strobes, &images) && overlaps(&images, &b.strobes),
+                    }
+            });
+            mirrors.push(found.map(|b| b.id));
+        }
+        for (a, m) in attractors.iter_mut().zip(mirrors) {
+            a.mirror = m;
+        }
+        Ok(())
     }
 }
 
@@ -635,6 +804,9 @@ pub struct AttractorReport {
     pub rest_range: Option<[f64; 2]>,
     /// The first cell [row, column] that reached it.
     pub first_cell: [usize; 2],
+    /// The id of its mirror image under (y, y', τ) → (−y, −y', τ + T/2): its own id when
+    /// symmetric, `None` when the image is not an attractor of the map.
+    pub mirror: Option<usize>,
 }
 
 impl AttractorReport {
@@ -658,6 +830,7 @@ impl From<&Attractor> for AttractorReport {
                 .map(|m| [[m[0].re, m[0].im], [m[1].re, m[1].im]]),
             rest_range: a.rest_range.map(|(lo, hi)| [lo, hi]),
             first_cell: [a.first_cell.0, a.first_cell.1],
+            mirror: a.mirror,
         }
     }
 }

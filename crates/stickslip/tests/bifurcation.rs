@@ -4,7 +4,7 @@
 //! and coexisting rest and motion with the paper's ζ, μs = 1.5, w = 0.9.
 
 use stickslip::attractor::{record_strobes, AttractorKind, RecordOptions};
-use stickslip::basins::{BasinOptions, BasinReport, Basins};
+use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::{
     continue_both_ways, continue_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions,
@@ -269,7 +269,14 @@ fn basin_attractors_are_the_orbits_newton_finds() {
 
 #[test]
 fn basins_are_the_same_for_any_threads_and_blocks() {
-    let basins = mirror_pair();
+    // The exhaustive method, whose cells are computed on their own in blocks of rows (the
+    // recurrence method: tests/basins.rs).
+    let basins = mirror_pair()
+        .options(BasinOptions {
+            method: BasinMethod::Exhaustive,
+            ..BasinOptions::default()
+        })
+        .unwrap();
     let one = basins.clone().threads(1).unwrap().run(&()).unwrap();
     let two = basins.clone().threads(2).unwrap().run(&()).unwrap();
     assert_eq!(one, two);

@@ -7,19 +7,25 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::attractor::AttractorKind;
-use stickslip::basins::{BasinMap, BasinOptions, BasinReport, Basins, Cell};
+use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, BasinReport, Basins, Cell};
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
 use stickslip::scan::ParameterRange;
 use stickslip::State;
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
-/// (y0, y0') of a grid, given at drive phase --phase, in parallel. The attractors are found
-/// and numbered in the order of the cells (rows of y0, then y0'): a periodic orbit by its
-/// period and its fixed point (refined by Newton's method), rest by never moving again,
-/// chaos by a positive largest Lyapunov exponent and its strobe set, quasi-periodic motion by
-/// an exponent within its error of zero. Cells that settle on nothing within the caps are
-/// unsettled.
+/// (y0, y0') of a grid, given at drive phase --phase. The attractors are found and numbered
+/// in the order of the cells (rows of y0, then y0'): a periodic orbit by its period and its
+/// fixed point (refined by Newton's method), rest by never moving again, chaos by a positive
+/// largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
+/// its error of zero. Cells that settle on nothing within the caps are unsettled.
+///
+/// --method recurrence (the default) follows each initial state on a grid of the strobe
+/// map's state space with --resolution cells across the map, until it lands on cells already
+/// labelled with an attractor or its basin, or comes back to its own cells often enough to
+/// declare a new attractor, which is then classified once (cells in order, one thread).
+/// --method exhaustive runs every cell to its steady state and classifies it on its own, in
+/// parallel (the reference; costly where the motion is chaotic).
 ///
 /// Output CSV columns: y0,v0,attractor,kind,period
 /// (attractor = its number, empty when unsettled; kind = periodic|static|chaotic|
@@ -73,6 +79,15 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     lyapunov_periods: i64,
+    /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
+    /// state-space grid; attractors classified once) or exhaustive (every cell run to its
+    /// steady state and classified).
+    #[arg(long, value_enum, default_value_t = Method::Recurrence)]
+    method: Method,
+    /// Recurrence: cells of the state-space grid across the map's extent along each axis
+    /// (16 to 1e6; at least 4 per grid spacing of the map are used).
+    #[arg(long, default_value_t = 1024, allow_hyphen_values = true)]
+    resolution: i64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]
     out: Option<PathBuf>,
@@ -84,6 +99,13 @@ pub struct Args {
     json: bool,
     #[command(flatten)]
     checkpoint: CheckpointFlags,
+}
+
+/// `--method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Method {
+    Recurrence,
+    Exhaustive,
 }
 
 /// Run `stickslip basins`.
@@ -121,6 +143,12 @@ pub fn run(args: Args) -> Result<()> {
             args.lyapunov_periods
         );
     }
+    if !(16..=1_000_000).contains(&args.resolution) {
+        usage!(
+            "invalid --resolution {}: must be from 16 to 1e6",
+            args.resolution
+        );
+    }
     for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
         if args.model.given(key) {
             usage!(
@@ -144,6 +172,11 @@ pub fn run(args: Args) -> Result<()> {
     let options = BasinOptions {
         max_periods: args.max_periods as usize,
         max_period: args.max_period as usize,
+        method: match args.method {
+            Method::Recurrence => BasinMethod::Recurrence,
+            Method::Exhaustive => BasinMethod::Exhaustive,
+        },
+        resolution: args.resolution as usize,
         ..BasinOptions::default()
     }
     .with_lyapunov_periods(args.lyapunov_periods as usize);
@@ -177,6 +210,16 @@ pub fn run(args: Args) -> Result<()> {
             bar.finish_and_clear();
             crate::output::check_interrupt()?;
             (result?, total)
+        }
+        Some(mut file) if basins.basin_options().method == BasinMethod::Recurrence => {
+            let computed = fill_recurrence(&basins, &mut file, &bar);
+            bar.finish_and_clear();
+            file.save()?;
+            crate::output::check_interrupt()?;
+            let (cells, computed) = computed?;
+            let map = basins.identify(&cells)?;
+            checkpoint_file = Some(file);
+            (map, computed)
         }
         Some(mut file) => {
             let computed = file.fill_rows(
@@ -270,6 +313,101 @@ fn encode_row(cells: &[Cell]) -> Vec<u8> {
     unit.finish()
 }
 
+/// The map by recurrence on a checkpoint: the saved rows (a leading run of rows, since rows
+/// are computed in order) restore the labels they left; the others are computed in order and
+/// saved with theirs. Returns every cell, row-major, and the number computed.
+fn fill_recurrence(
+    basins: &Basins,
+    file: &mut crate::checkpoint::CheckpointFile,
+    bar: &indicatif::ProgressBar,
+) -> Result<(Vec<Cell>, usize)> {
+    let (rows, columns) = basins.shape();
+    let done = file.checkpoint().done();
+    if done > 0 {
+        eprintln!(
+            "basins: resuming from {}: {} of {} rows reused",
+            file.path().display(),
+            done,
+            rows
+        );
+        bar.inc((done * columns) as u64);
+    }
+    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
+    let mut recurrence = basins.recurrence();
+    let mut cells = Vec::with_capacity(rows * columns);
+    let mut computed = 0;
+    for i in 0..rows {
+        match file.checkpoint().unit(i) {
+            Some(unit) if computed == 0 => {
+                let mut r = UnitReader::new(unit);
+                cells.extend(decode_row(&mut r, columns)?);
+                let n = r.u64().ok_or_else(damaged)?;
+                if n > 1 << 40 {
+                    return Err(damaged());
+                }
+                let memory = (0..n)
+                    .map(|_| r.u8().ok_or_else(damaged))
+                    .collect::<Result<Vec<u8>>>()?;
+                if !r.is_empty() {
+                    return Err(damaged());
+                }
+                recurrence.replay(&memory)?;
+            }
+            // A saved row after one computed anew: rows are saved in order, so never.
+            Some(_) => return Err(damaged()),
+            None => {
+                let row = recurrence.run_row(i * columns, &|_: usize, _: usize| {
+                    bar.inc(1);
+                    !crate::output::interrupted()
+                })?;
+                let mut unit = encode_row(&row.cells);
+                let mut tail = UnitWriter::new();
+                tail.u64(row.memory.len() as u64);
+                for &b in &row.memory {
+                    tail.u8(b);
+                }
+                unit.extend(tail.finish());
+                file.insert(i, unit)?;
+                cells.extend(row.cells);
+                computed += columns;
+            }
+        }
+    }
+    Ok((cells, computed))
+}
+
+/// The cells of one saved row.
+fn decode_row(r: &mut UnitReader, columns: usize) -> Result<Vec<Cell>> {
+    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
+    let mut cells = Vec::with_capacity(columns);
+    for _ in 0..columns {
+        let kind = *AttractorKind::ALL
+            .get(r.u8().ok_or_else(damaged)? as usize)
+            .ok_or_else(damaged)?;
+        let period = r.u64().ok_or_else(damaged)?;
+        let exponent = r.f64().ok_or_else(damaged)?;
+        let periods = r.u64().ok_or_else(damaged)? as usize;
+        let n = r.u64().ok_or_else(damaged)?;
+        if n > 1 << 20 {
+            return Err(damaged());
+        }
+        let mut strobes = Vec::with_capacity(n as usize);
+        for _ in 0..n {
+            let y = r.f64().ok_or_else(damaged)?;
+            let v = r.f64().ok_or_else(damaged)?;
+            strobes.push(State { y, v });
+        }
+        cells.push(Cell {
+            kind,
+            period: (period > 0).then_some(period as usize),
+            strobes,
+            exponent,
+            periods,
+        });
+    }
+    Ok(cells)
+}
+
 /// Every cell of the grid, row-major, from the rows of a complete checkpoint.
 fn rows_to_cells(basins: &Basins, checkpoint: &Checkpoint) -> Result<Vec<Cell>> {
     let (rows, columns) = basins.shape();
@@ -277,31 +415,7 @@ fn rows_to_cells(basins: &Basins, checkpoint: &Checkpoint) -> Result<Vec<Cell>> 
     let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
     for i in 0..rows {
         let mut r = UnitReader::new(checkpoint.unit(i).ok_or_else(damaged)?);
-        for _ in 0..columns {
-            let kind = *AttractorKind::ALL
-                .get(r.u8().ok_or_else(damaged)? as usize)
-                .ok_or_else(damaged)?;
-            let period = r.u64().ok_or_else(damaged)?;
-            let exponent = r.f64().ok_or_else(damaged)?;
-            let periods = r.u64().ok_or_else(damaged)? as usize;
-            let n = r.u64().ok_or_else(damaged)?;
-            if n > 1 << 20 {
-                return Err(damaged());
-            }
-            let mut strobes = Vec::with_capacity(n as usize);
-            for _ in 0..n {
-                let y = r.f64().ok_or_else(damaged)?;
-                let v = r.f64().ok_or_else(damaged)?;
-                strobes.push(State { y, v });
-            }
-            cells.push(Cell {
-                kind,
-                period: (period > 0).then_some(period as usize),
-                strobes,
-                exponent,
-                periods,
-            });
-        }
+        cells.extend(decode_row(&mut r, columns)?);
         if !r.is_empty() {
             return Err(damaged());
         }

@@ -357,9 +357,12 @@ fn bad_checkpoint_flags_give_one_line_and_exit_code_2() {
     }
 }
 
-/// A basin map whose every cell is chaotic (the costliest kind), short caps.
+/// A basin map whose every cell is chaotic (the costliest kind), short caps, by the
+/// exhaustive method (every cell on its own, in parallel).
 const BASINS: &[&str] = &[
     "basins",
+    "--method",
+    "exhaustive",
     "--zeta",
     "0",
     "--mu-s",
@@ -438,6 +441,58 @@ fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
         !dir.path().join("run.ckpt").exists(),
         "removed after success"
     );
+}
+
+/// A basin map by recurrence (rows in order, each saved with the labels it left): two
+/// coexisting orbits.
+const RECURRENCE: &[&str] = &[
+    "basins",
+    "--zeta",
+    "0",
+    "--mu-s",
+    "3",
+    "--w",
+    "0.6",
+    "--beta",
+    "3.269",
+    "--y0-min",
+    "-8",
+    "--y0-max",
+    "8",
+    "--v0-min",
+    "-8",
+    "--v0-max",
+    "8",
+    "--steps",
+    "150",
+    "--out",
+    "basins.csv",
+    "--json",
+];
+
+/// Least bytes of a saved row of that map: 150 periodic cells with one strobe point each,
+/// index and length (the labels it left come on top).
+const RECURRENCE_ROW: u64 = 150 * (1 + 4 * 8 + 16) + 16;
+
+#[test]
+fn a_killed_recurrence_basin_map_resumes_to_the_same_bytes() {
+    let reference = tempfile::tempdir().unwrap();
+    let first = run_in(reference.path(), RECURRENCE);
+    assert!(first.status.success(), "{}", stderr(&first));
+
+    let dir = tempfile::tempdir().unwrap();
+    let args = with_checkpoint(RECURRENCE);
+    kill_part_way(dir.path(), &args, 3, RECURRENCE_ROW);
+    let out = run_in(dir.path(), &args);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    let reused = number_after(&err, "resuming from run.ckpt: ");
+    assert!((3..150).contains(&reused), "{reused} rows reused: {err}");
+    assert_eq!(number_after(&err, "cells ("), (150 - reused) * 150, "{err}");
+    assert!(out.stdout == first.stdout, "the JSON summary differs");
+    let a = std::fs::read(reference.path().join("basins.csv")).unwrap();
+    let b = std::fs::read(dir.path().join("basins.csv")).unwrap();
+    assert!(a == b, "basins.csv differs from the uninterrupted run's");
 }
 
 /// A second run on a checkpoint that a running run fills is refused with one line (exit code

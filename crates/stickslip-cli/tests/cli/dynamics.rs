@@ -352,6 +352,34 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         (
             "basins",
             vec![
+                "--w",
+                "0.6",
+                "--beta",
+                "3",
+                "--y0-min",
+                "0",
+                "--y0-max",
+                "1",
+                "--v0-min",
+                "0",
+                "--v0-max",
+                "1",
+                "--resolution",
+                "8",
+            ],
+            "--resolution",
+        ),
+        (
+            "basins",
+            vec![
+                "--w", "0.6", "--beta", "3", "--y0-min", "0", "--y0-max", "1", "--v0-min", "0",
+                "--v0-max", "1", "--method", "fast",
+            ],
+            "--method",
+        ),
+        (
+            "basins",
+            vec![
                 "--w", "0.6", "--beta", "3", "--y0", "1", "--y0-min", "0", "--y0-max", "1",
                 "--v0-min", "0", "--v0-max", "1",
             ],

@@ -192,6 +192,7 @@ def basins(
     lyapunov_periods: int,
     threads: Optional[int] = None,
     progress: _Progress = None,
+    method: str = "recurrence",
 ) -> Dict[str, Any]: ...
 def continuation(
     experiment: Experiment,

@@ -373,9 +373,10 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
 def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, float],
            steps: Union[int, Tuple[int, int]] = 100, *, phase: Optional[float] = None,
            max_periods: int = 1000, max_period: int = 16, lyapunov_periods: int = 1000,
-           threads: Optional[int] = None, progress: Progress = None) -> BasinMap:
+           threads: Optional[int] = None, progress: Progress = None,
+           method: str = "recurrence") -> BasinMap:
     """Basins of attraction: which motion the oscillator settles on from each initial state
-    (y0, y0') of a grid given at drive phase φ, in parallel (as ``stickslip basins``). The
+    (y0, y0') of a grid given at drive phase φ (as ``stickslip basins``). The
     attractors are numbered in the order of the cells (rows of y0, then y0'): a periodic orbit
     by its period and its fixed point (refined by Newton's method), rest, chaos by a positive
     largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
@@ -395,8 +396,14 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
         max_period: longest period looked for, 1 to 64 drive periods (default 16).
         lyapunov_periods: drive periods over which the exponent of a motion without a period
             is measured (8 to 1e7; default 1000).
-        threads: a pool of this many threads (1 to 1024; default: one per core).
+        threads: a pool of this many threads (1 to 1024; default: one per core; the exhaustive
+            method's cells run in parallel, the recurrence method's one after the other).
         progress: optional callable ``progress(done, total)`` (cells).
+        method: ``'recurrence'`` (default: each initial state is followed on a grid of the
+            state space 1024 cells across the map until it lands on cells labelled with an
+            attractor or its basin, or declares a new attractor, classified once) or
+            ``'exhaustive'`` (every cell run to its steady state and classified on its own,
+            in parallel; the reference, costly where the motion is chaotic).
 
     Returns:
         A ``BasinMap``: ``attractor``, ``kind``, ``period`` per cell (the CSV of ``stickslip
@@ -428,7 +435,7 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
                         _checks.integer("max_period", max_period, 1, 64),
                         _checks.integer("lyapunov_periods", lyapunov_periods, 8, 10**7,
                                         "must be from 8 to 1e7"),
-                        _checks.threads(threads), progress)
+                        _checks.threads(threads), progress, method)
     if phase is not None:
         experiment = experiment.replace(phi=float(phase))
     return BasinMap(experiment, data)
