@@ -29,7 +29,8 @@ pub struct SteadyFlags {
     /// Longest period looked for, in drive periods (1 to 64).
     #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
     pub max_period: i64,
-    /// Never extrapolate the stroboscopic map to its fixed point (slower; finds the same cycle).
+    /// Never extrapolate the stroboscopic map to its fixed point nor settle it by Newton's
+    /// method (slower; finds the same cycle).
     #[arg(long = "no-extrapolation")]
     pub no_extrapolation: bool,
     /// Drive periods over which a motion that does not repeat is measured by its largest

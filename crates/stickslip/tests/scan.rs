@@ -111,3 +111,66 @@ fn shockley_maps_use_the_stiff_solver_and_its_tolerance() {
     assert_eq!(map.points[0].class, MotionClass::Sliding);
     assert_eq!(map.points[0].params.zeta, e.zeta());
 }
+
+/// A map streamed a block of rows at a time: the blocks come in order, cover every row once,
+/// hold the points of the map computed at once (bit for bit, for 1, 2 and 8 threads, whose
+/// blocks differ in size), and the monitor counts every point of the grid once.
+#[test]
+fn streamed_rows_are_the_map_in_order() {
+    let grid = Grid::new(
+        &paper(),
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.2, 2.4, 70).unwrap(),
+        )
+        .unwrap(),
+        Axis::range(
+            Parameter::Beta,
+            &ParameterRange::new("beta", 0.5, 4.0, 9).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let whole = grid.clone().threads(1).unwrap().run(&()).unwrap();
+    for threads in [1, 2, 8] {
+        let grid = grid.clone().threads(threads).unwrap();
+        assert_eq!(grid.stream_block_rows(), (256 * threads).div_ceil(9));
+        let mut points = Vec::new();
+        let mut next = 0;
+        let mut blocks = 0;
+        let largest = std::sync::atomic::AtomicUsize::new(0);
+        grid.run_rows(
+            &|done: usize, total: usize| {
+                assert_eq!(total, 630);
+                largest.fetch_max(done, std::sync::atomic::Ordering::Relaxed);
+                true
+            },
+            |rows, block| {
+                assert_eq!(rows.start, next, "blocks in order");
+                assert_eq!(block.len(), rows.len() * 9);
+                next = rows.end;
+                blocks += 1;
+                points.extend(block);
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert_eq!(next, 70);
+        assert_eq!(blocks, 70usize.div_ceil(grid.stream_block_rows()));
+        assert_eq!(largest.into_inner(), 630);
+        assert_eq!(points, whole.points, "{threads} threads");
+    }
+    // An error of the consumer stops the work and is returned.
+    let mut calls = 0;
+    let err = grid
+        .clone()
+        .threads(1)
+        .unwrap()
+        .run_rows(&(), |_, _| {
+            calls += 1;
+            Err(stickslip::Error::Cancelled { done: 0, total: 0 })
+        })
+        .unwrap_err();
+    assert!(matches!(err, stickslip::Error::Cancelled { .. }));
+    assert_eq!(calls, 1);
+}

@@ -479,6 +479,11 @@ fn analysis_is_generic_over_the_solver_trait() {
         fn stats(&self) -> stickslip::Stats {
             self.0.stats()
         }
+        // It follows the exact model, so the steady-state search may settle it by Newton's
+        // method as it does the exact solver.
+        fn is_exact(&self) -> bool {
+            self.0.is_exact()
+        }
     }
     let factory = |p: Params, s: State| -> stickslip::Result<Box<dyn Solver + Send>> {
         Ok(Box::new(Wrapped(ExactSolver::new(p, s))))

@@ -33,6 +33,10 @@ use stickslip::{DiodeModel, Experiment, Parameter};
 /// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
 /// --max-period was found.
 ///
+/// The CSV is written block of rows by block of rows while the rest computes, so memory stays
+/// flat and a map may have up to 100000 × 100000 points; with --plot or --checkpoint the map
+/// is kept in memory, at most 4000000 points (docs/limits.md).
+///
 /// Example: stickslip phase-diagram --preset paper --w-steps 200 --beta-steps 200 \
 ///          --out map.csv --plot map.png
 ///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
@@ -106,10 +110,12 @@ pub fn run(args: Args) -> Result<()> {
     if beta.from() < 0.0 {
         usage!("invalid --beta-min {}: must be >= 0", beta.from());
     }
-    if w.steps() * beta.steps() > 4_000_000 {
+    // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
+    // memory; a streamed one only by its axes (docs/limits.md).
+    let points = w.steps() * beta.steps();
+    if points > MAX_KEPT_POINTS && (args.plot.is_some() || args.checkpoint.checkpoint.is_some()) {
         usage!(
-            "--w-steps × --beta-steps = {}: at most 4000000 points",
-            w.steps() * beta.steps()
+            "--w-steps × --beta-steps = {points}: with --plot or --checkpoint at most {MAX_KEPT_POINTS} points (every point is kept in memory; without them the map is streamed to its file and only each axis is limited)"
         );
     }
     reject_swept_flags(&args.model, Parameter::W, "phase-diagram (--w-min/--w-max)")?;
@@ -154,15 +160,55 @@ pub fn run(args: Args) -> Result<()> {
     let total = w.steps() * beta.steps();
     let bar = crate::output::progress(total as u64, "phase diagram");
     let started = std::time::Instant::now();
-    let (points, computed) = match checkpoint {
+    let open = || -> Result<Sink> {
+        let mut sink = Sink::open(args.out.as_deref())?;
+        write!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
+        writeln!(
+            sink,
+            "{}",
+            if lyapunov { ",lambda,lambda_error" } else { "" }
+        )?;
+        Ok(sink)
+    };
+    let mut summary = Summary::new(args.plot.is_some());
+    let (sink, computed) = match checkpoint {
         None => {
-            let result = grid.run(&|_: usize, _: usize| {
-                bar.inc(1);
-                !crate::output::interrupted()
+            // Opened before the work (a temporary file, committed once every row is
+            // written; Ctrl-C removes it).
+            let mut sink = open()?;
+            // Rows are computed on a thread of their own and written here as they come, in
+            // order: writing overlaps computing, and at most a few blocks of rows are held.
+            let result = std::thread::scope(|scope| -> Result<()> {
+                let (send, receive) = std::sync::mpsc::sync_channel::<Vec<GridPoint>>(2);
+                let grid = &grid;
+                let bar = &bar;
+                let worker = scope.spawn(move || {
+                    grid.run_rows(
+                        &|_: usize, _: usize| {
+                            bar.inc(1);
+                            !crate::output::interrupted()
+                        },
+                        |_, points| {
+                            // The writer stopped (it failed): stop too.
+                            send.send(points)
+                                .map_err(|_| stickslip::Error::Cancelled { done: 0, total })
+                        },
+                    )
+                });
+                let written = receive.iter().try_for_each(|points| {
+                    write_points(&mut sink, &points, lyapunov, &mut summary)
+                });
+                drop(receive);
+                let computed = worker
+                    .join()
+                    .expect("the map's worker thread does not panic");
+                written?;
+                Ok(computed?)
             });
             bar.finish_and_clear();
             crate::output::check_interrupt()?;
-            (result?.points, total)
+            result?;
+            (sink, total)
         }
         Some(mut file) => {
             let points = file.fill_rows(
@@ -178,21 +224,105 @@ pub fn run(args: Args) -> Result<()> {
             file.save()?;
             crate::output::check_interrupt()?;
             let computed = points?;
-            let points = rows_to_points(&grid, file.checkpoint())?;
+            // Opened once the checkpoint is complete: a killed run leaves only the
+            // checkpoint.
+            let mut sink = open()?;
+            for i in 0..grid.shape().0 {
+                let row = row_points(&grid, file.checkpoint(), i)?;
+                write_points(&mut sink, &row, lyapunov, &mut summary)?;
+            }
             checkpoint_file = Some(file);
-            (points, computed)
+            (sink, computed)
         }
     };
     let elapsed = started.elapsed().as_secs_f64();
+    sink.finish()?;
+    if let Some(path) = &args.plot {
+        plot(&summary.kept, &w, &beta, &experiment, lyapunov, path)?;
+    }
+    if let Some((p, l)) = summary.top {
+        eprintln!(
+            "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at (w, β) = ({}, {}), {}",
+            l.per_tau,
+            l.error_per_tau,
+            p.params.w,
+            p.params.beta,
+            p.class.label()
+        );
+    }
+    if let Some(file) = checkpoint_file {
+        file.remove()?;
+    }
+    let count = |c: MotionClass| {
+        summary.counts[MotionClass::ALL
+            .iter()
+            .position(|&k| k == c)
+            .expect("a class of ALL")]
+    };
+    eprintln!(
+        "phase-diagram: {} points ({} computed) in {:.2} s ({:.1} µs per computed point): {}",
+        total,
+        computed,
+        elapsed,
+        elapsed * 1e6 / computed.max(1) as f64,
+        MotionClass::ALL
+            .iter()
+            .map(|&c| format!("{} {}", c.label(), count(c)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(())
+}
 
-    let mut sink = Sink::open(args.out.as_deref())?;
-    write!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
-    writeln!(
-        sink,
-        "{}",
-        if lyapunov { ",lambda,lambda_error" } else { "" }
-    )?;
-    for p in &points {
+/// Most points of a map kept in memory whole: for the plot, or in a checkpoint (at most
+/// about 100 bytes a point; docs/limits.md).
+const MAX_KEPT_POINTS: usize = 4_000_000;
+
+/// What the run reports after the rows are written: the points per class, the largest
+/// exponent, and (for the plot) every point.
+struct Summary {
+    counts: [usize; MotionClass::ALL.len()],
+    top: Option<(GridPoint, Estimate)>,
+    keep: bool,
+    kept: Vec<GridPoint>,
+}
+
+impl Summary {
+    fn new(keep: bool) -> Self {
+        Self {
+            counts: [0; MotionClass::ALL.len()],
+            top: None,
+            keep,
+            kept: Vec::new(),
+        }
+    }
+
+    fn add(&mut self, p: &GridPoint) {
+        let class = MotionClass::ALL.iter().position(|&c| c == p.class);
+        self.counts[class.expect("a class of ALL")] += 1;
+        if let Some(l) = p.lyapunov {
+            // The last of equal largest exponents, as a maximum over the map in order.
+            if self
+                .top
+                .is_none_or(|(_, t)| l.per_tau.total_cmp(&t.per_tau).is_ge())
+            {
+                self.top = Some((*p, l));
+            }
+        }
+        if self.keep {
+            self.kept.push(*p);
+        }
+    }
+}
+
+/// Write rows of points as CSV lines and add them to the summary.
+fn write_points(
+    sink: &mut Sink,
+    points: &[GridPoint],
+    lyapunov: bool,
+    summary: &mut Summary,
+) -> Result<()> {
+    for p in points {
         write!(
             sink,
             "{},{},{},{},{},{}",
@@ -210,43 +340,8 @@ pub fn run(args: Args) -> Result<()> {
             }
         }
         writeln!(sink)?;
+        summary.add(p);
     }
-    sink.finish()?;
-    if let Some(path) = &args.plot {
-        plot(&points, &w, &beta, &experiment, lyapunov, path)?;
-    }
-    if lyapunov {
-        let top = points
-            .iter()
-            .filter_map(|p| p.lyapunov.map(|l| (p, l)))
-            .max_by(|a, b| a.1.per_tau.total_cmp(&b.1.per_tau));
-        if let Some((p, l)) = top {
-            eprintln!(
-                "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at (w, β) = ({}, {}), {}",
-                l.per_tau,
-                l.error_per_tau,
-                p.params.w,
-                p.params.beta,
-                p.class.label()
-            );
-        }
-    }
-    if let Some(file) = checkpoint_file {
-        file.remove()?;
-    }
-    let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
-    eprintln!(
-        "phase-diagram: {} points ({} computed) in {:.2} s ({:.1} µs per computed point): {}",
-        total,
-        computed,
-        elapsed,
-        elapsed * 1e6 / computed.max(1) as f64,
-        MotionClass::ALL
-            .iter()
-            .map(|&c| format!("{} {}", c.label(), count(c)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
     Ok(())
 }
 
@@ -295,42 +390,40 @@ fn encode_row(points: &[GridPoint], exponents: bool) -> Vec<u8> {
     unit.finish()
 }
 
-/// Every point of the grid, from the rows of a complete checkpoint.
-fn rows_to_points(grid: &Grid, checkpoint: &Checkpoint) -> Result<Vec<GridPoint>> {
-    let (rows, columns) = grid.shape();
+/// The points of row `i` of the grid, from its unit in a complete checkpoint.
+fn row_points(grid: &Grid, checkpoint: &Checkpoint, i: usize) -> Result<Vec<GridPoint>> {
+    let columns = grid.shape().1;
     let exponents = grid.lyapunov_options().is_some();
-    let mut points = Vec::with_capacity(rows * columns);
+    let mut points = Vec::with_capacity(columns);
     let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
-    for i in 0..rows {
-        let mut r = UnitReader::new(checkpoint.unit(i).ok_or_else(damaged)?);
-        for j in 0..columns {
-            let class = *MotionClass::ALL
-                .get(r.u8().ok_or_else(damaged)? as usize)
-                .ok_or_else(damaged)?;
-            let period = r.u64().ok_or_else(damaged)?;
-            points.push(GridPoint {
-                params: grid.params(i, j)?,
-                class,
-                period: (period > 0).then_some(period as usize),
-                stops_per_period: r.f64().ok_or_else(damaged)?,
-                gain: r.f64().ok_or_else(damaged)?,
-                symmetric: r.u8().ok_or_else(damaged)? != 0,
-                periods_to_settle: r.u64().ok_or_else(damaged)? as usize,
-                lyapunov: if exponents && r.u8().ok_or_else(damaged)? != 0 {
-                    Some(Estimate {
-                        per_tau: r.f64().ok_or_else(damaged)?,
-                        error_per_tau: r.f64().ok_or_else(damaged)?,
-                        per_period: r.f64().ok_or_else(damaged)?,
-                        error_per_period: r.f64().ok_or_else(damaged)?,
-                    })
-                } else {
-                    None
-                },
-            });
-        }
-        if !r.is_empty() {
-            return Err(damaged());
-        }
+    let mut r = UnitReader::new(checkpoint.unit(i).ok_or_else(damaged)?);
+    for j in 0..columns {
+        let class = *MotionClass::ALL
+            .get(r.u8().ok_or_else(damaged)? as usize)
+            .ok_or_else(damaged)?;
+        let period = r.u64().ok_or_else(damaged)?;
+        points.push(GridPoint {
+            params: grid.params(i, j)?,
+            class,
+            period: (period > 0).then_some(period as usize),
+            stops_per_period: r.f64().ok_or_else(damaged)?,
+            gain: r.f64().ok_or_else(damaged)?,
+            symmetric: r.u8().ok_or_else(damaged)? != 0,
+            periods_to_settle: r.u64().ok_or_else(damaged)? as usize,
+            lyapunov: if exponents && r.u8().ok_or_else(damaged)? != 0 {
+                Some(Estimate {
+                    per_tau: r.f64().ok_or_else(damaged)?,
+                    error_per_tau: r.f64().ok_or_else(damaged)?,
+                    per_period: r.f64().ok_or_else(damaged)?,
+                    error_per_period: r.f64().ok_or_else(damaged)?,
+                })
+            } else {
+                None
+            },
+        });
+    }
+    if !r.is_empty() {
+        return Err(damaged());
     }
     Ok(points)
 }

@@ -121,6 +121,16 @@ fn every_command_gives_the_same_bytes_with_1_2_and_8_threads() {
             "--plot",
             "m.svg",
         ],
+        // Streamed to standard output in blocks of rows whose size follows the threads.
+        &[
+            "phase-diagram",
+            "--preset",
+            "paper",
+            "--w-steps",
+            "90",
+            "--beta-steps",
+            "12",
+        ],
         &[
             "phase-diagram",
             "--zeta",

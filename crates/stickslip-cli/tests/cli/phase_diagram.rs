@@ -62,6 +62,29 @@ fn bad_grids_give_one_line_and_exit_code_2() {
         (&["--w", "1"], "--w"),
         (&["--w-steps", "1"], "--w-steps"),
         (&["--plot", "map.bmp"], "map.bmp"),
+        // A map kept whole (for the plot, in a checkpoint) is capped by its memory.
+        (
+            &[
+                "--w-steps",
+                "2001",
+                "--beta-steps",
+                "2000",
+                "--plot",
+                "m.png",
+            ],
+            "4002000: with --plot or --checkpoint at most 4000000 points",
+        ),
+        (
+            &[
+                "--w-steps",
+                "2001",
+                "--beta-steps",
+                "2000",
+                "--checkpoint",
+                "run.ckpt",
+            ],
+            "4002000: with --plot or --checkpoint at most 4000000 points",
+        ),
     ];
     for (args, needle) in cases {
         let dir = tempfile::tempdir().unwrap();
@@ -72,21 +95,28 @@ fn bad_grids_give_one_line_and_exit_code_2() {
     }
 }
 
+/// Streamed to its file or kept for the plot, a map stopped by Ctrl-C leaves no file (the
+/// streamed rows went to a temporary file, removed).
 #[test]
 fn ctrl_c_leaves_no_output_file() {
+    let map = ["phase-diagram", "--w-steps", "1000", "--beta-steps", "1000"];
+    ctrl_c_leaves_nothing(&[&map[..], &["--out", "map.csv", "--plot", "map.png"]].concat());
+    // Without the plot: 3000 × 3000, beyond the cap of a kept map.
+    ctrl_c_leaves_nothing(&[
+        "phase-diagram",
+        "--w-steps",
+        "3000",
+        "--beta-steps",
+        "3000",
+        "--out",
+        "map.csv",
+    ]);
+}
+
+fn ctrl_c_leaves_nothing(args: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
     let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args([
-            "phase-diagram",
-            "--w-steps",
-            "1000",
-            "--beta-steps",
-            "1000",
-            "--out",
-            "map.csv",
-            "--plot",
-            "map.png",
-        ])
+        .args(args)
         .current_dir(dir.path())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())

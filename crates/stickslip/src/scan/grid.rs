@@ -302,6 +302,45 @@ impl Grid {
         })
     }
 
+    /// Compute the whole grid a block of rows at a time, in order, handing every finished
+    /// block to `rows` (its row range and its points, row-major) before the next block
+    /// starts: memory stays at a few blocks whatever the grid's size, and a caller that passes
+    /// the points on to another thread (to write them) overlaps that with the computation of
+    /// the next block. A block holds whole rows, at least 256 points per thread
+    /// ([`Grid::stream_block_rows`]); the points are those of [`Grid::run`], whatever the
+    /// block size or number of threads. `monitor` sees every finished point, counted over the
+    /// whole grid, and can stop the work.
+    ///
+    /// # Errors
+    /// [`Error::Cancelled`]; the first solver failure; the first error of `rows` (the work
+    /// stops there).
+    pub fn run_rows(
+        &self,
+        monitor: &dyn Monitor,
+        mut rows: impl FnMut(Range<usize>, Vec<GridPoint>) -> Result<()>,
+    ) -> Result<()> {
+        let (nr, nc) = self.shape();
+        let total = nr * nc;
+        let block = self.stream_block_rows();
+        let mut first = 0;
+        while first < nr {
+            let last = (first + block).min(nr);
+            let offset = first * nc;
+            let counted = |done: usize, _: usize| monitor.step(offset + done, total);
+            let points = self.run_block(first..last, 0..nc, &Offset(&counted))?;
+            rows(first..last, points)?;
+            first = last;
+        }
+        Ok(())
+    }
+
+    /// Rows per block of [`Grid::run_rows`]: enough for 256 points per thread of the pool
+    /// (at least one row).
+    pub fn stream_block_rows(&self) -> usize {
+        let threads = self.threads.unwrap_or_else(rayon::current_num_threads);
+        (256 * threads).div_ceil(self.shape().1.max(1)).max(1)
+    }
+
     /// Compute the block `rows` × `cols` of the grid, row-major; `monitor` sees every
     /// finished point (counted within the block) and can stop the work. A grid computed
     /// block by block equals the grid computed at once.
@@ -328,5 +367,14 @@ impl Grid {
         super::run_parallel(total, self.threads, monitor, |k| {
             self.point(rows.start + k / width, cols.start + k % width)
         })
+    }
+}
+
+/// A monitor that counts points over the whole grid (see [`Grid::run_rows`]).
+struct Offset<'a, F: Fn(usize, usize) -> std::ops::ControlFlow<()> + Sync>(&'a F);
+
+impl<F: Fn(usize, usize) -> std::ops::ControlFlow<()> + Sync> Monitor for Offset<'_, F> {
+    fn step(&self, done: usize, total: usize) -> std::ops::ControlFlow<()> {
+        (self.0)(done, total)
     }
 }
