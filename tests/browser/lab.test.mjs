@@ -441,6 +441,15 @@ test('issue 21 (4): views that no longer match the inputs are marked, and the pr
   assert.equal(s.preset, 'custom');
   assert.ok(s.sweep && s.sweepText.includes('PWL diodes') && s.sweepText.includes('press Sweep'), JSON.stringify(s));
   assert.ok(s.map && s.mapText.includes('PWL diodes') && s.mapText.includes('press Map'), JSON.stringify(s));
+  // A Shockley sweep's legend (with its "PWL theory:" prefix) stays inside the plot.
+  await page.fill('input[name="sweep-steps"]', '4');
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('[data-sweep="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+  const legend = await page.evaluate(() => window.stickslipLab.sweepLegend);
+  const sweepWidth = await page.$eval('#sweep-plot', (c) => c.clientWidth);
+  assert.ok(legend.left >= 0 && legend.right <= sweepWidth, `legend ${JSON.stringify(legend)} in a plot ${sweepWidth} px wide`);
+  assert.equal(await page.$eval('#sweep-plot', (c) => c.dataset.stale), undefined);
+  await page.fill('input[name="sweep-steps"]', '60');
   // Only map sizes that finish with the stiff solver are offered.
   const sizes = await page.$$eval('select[name="map-size"] option', (os) => os.map((o) => o.value));
   for (const v of sizes) {
@@ -450,7 +459,8 @@ test('issue 21 (4): views that no longer match the inputs are marked, and the pr
   await page.selectOption('select[name="system"]', 'mechanics');
   await ready();
   s = await stale();
-  assert.ok(s.sweep && s.sweepText.includes('PWL diodes') && s.sweepText.includes('mechanical'), JSON.stringify(s));
+  assert.ok(s.sweep && s.sweepText.includes('Shockley diodes') && s.sweepText.includes('mechanical'), JSON.stringify(s));
+  assert.ok(s.map && s.mapText.includes('PWL diodes') && s.mapText.includes('mechanical'), JSON.stringify(s));
   // A bad input: the readouts and the screen go pale and nothing stale is exported.
   await page.selectOption('select[name="system"]', 'pwl');
   await ready();

@@ -1200,14 +1200,22 @@
         }
       }
       const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#009e73', `${th.prefix}paper, eq. (11): A1/β`], ['#000', `${th.prefix}exact orbit: peak/β`], ['#c00', 'now']];
+      // The legend's box fits its longest line (the PWL-theory prefix of Shockley diodes
+      // included), on a white ground over the curves.
+      const note = 'squares: motion with stops';
+      const textWidth = Math.max(...legend.map(([, text]) => o.measureText(text).width), o.measureText(note).width);
+      const lx = Math.max(box.l + 4, box.r - textWidth - 30);
+      o.fillStyle = 'rgba(255, 255, 255, 0.85)';
+      o.fillRect(lx - 4, box.t + 2, box.r - lx + 2, 14 * legend.length + 16);
       let ly = box.t + 12;
       for (const [c, text] of legend) {
         o.fillStyle = c;
-        o.fillRect(box.r - 170, ly - 7, 14, 3);
-        label(o, text, box.r - 150, ly - 2, '#222');
+        o.fillRect(lx, ly - 7, 14, 3);
+        label(o, text, lx + 20, ly - 2, '#222');
         ly += 14;
       }
-      label(o, 'squares: motion with stops', box.r - 170, ly, '#555');
+      label(o, note, lx, ly, '#555');
+      window.stickslipLab.sweepLegend = { left: lx - 4, right: lx + 20 + textWidth, plotRight: box.r + 14 };
       return { X, Y, xr };
     });
     // The current point, when the sweep is at its β.
