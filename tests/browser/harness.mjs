@@ -71,7 +71,7 @@ export function startLab(extra = []) {
 }
 
 /** Chromium with a fresh profile; resolves to { context, page, close() }. */
-export async function startBrowser(viewport = { width: 1500, height: 1100 }) {
+export async function startBrowser(viewport = { width: 1500, height: 1100 }, deviceScaleFactor = 1) {
   const { chromium } = await import('playwright-core');
   const profile = mkdtempSync(join(tmpdir(), 'stickslip-lab-chromium-'));
   const context = await chromium.launchPersistentContext(profile, {
@@ -79,6 +79,7 @@ export async function startBrowser(viewport = { width: 1500, height: 1100 }) {
     headless: true,
     args: CHROMIUM_FLAGS,
     viewport,
+    deviceScaleFactor,
     acceptDownloads: true,
   });
   const page = context.pages()[0] || (await context.newPage());

@@ -143,7 +143,7 @@ test('bad input shows the server message beside its field', async () => {
   await page.locator('input[name="resistance"]').fill('-5');
   await page.locator('input[name="resistance"]').press('Enter');
   await page.waitForFunction(() => document.querySelector('[data-error-for~="resistance"]').textContent !== '');
-  assert.match(await page.$eval('[data-error-for~="resistance"]', (e) => e.textContent), /invalid resistance -5: must be finite and >= 0/);
+  assert.match(await page.$eval('[data-error-for~="resistance"]', (e) => e.textContent), /invalid resistance -5: must be finite and from 0 to 1e9/);
   // Both fields are wrong now; mend both, then one answer comes.
   await page.locator('input[name="resistance"]').fill('68');
   await type('freq', '9.97k');
@@ -189,13 +189,15 @@ test('Y-T, X-Y and FFT screens, and their CSV exports', async () => {
   const fftFile = await exportFile('export-csv');
   assert.match(fftFile.name, /^stickslip-lab-fft-.*\.csv$/);
   const fftCsv = parseCsv(fftFile.bytes.toString());
-  assert.deepEqual(fftCsv.header, ['harmonic', 'f_Hz', 'amplitude_V', 'level_dBV']);
+  assert.deepEqual(fftCsv.header, ['harmonic', 'f_Hz', 'amplitude_peak_V', 'level_dBV_rms', 'level_dBV_peak']);
   assert.equal(fftCsv.rows.length, cli.harmonics.length);
   for (const k of [0, 2, 4]) {
-    const [order, f, a, db] = fftCsv.rows[k];
+    const [order, f, a, dbRms, dbPeak] = fftCsv.rows[k];
     assert.equal(order, k + 1);
     assert.ok(Math.abs(a - cli.harmonics[k] * 0.7) <= 1e-12 * a, `A${k + 1}`);
-    assert.ok(Math.abs(db - 20 * Math.log10(a)) < 1e-9);
+    // dBV RMS, as bench scopes: 20·log10(A/√2 / 1 V); peak: 20·log10(A / 1 V).
+    assert.ok(Math.abs(dbRms - 20 * Math.log10(a / Math.SQRT2)) < 1e-9);
+    assert.ok(Math.abs(dbPeak - 20 * Math.log10(a)) < 1e-9);
     assert.ok(Math.abs(f - (k + 1) * 0.95 * 10494.37) < (k + 1) * 0.5);
   }
   await page.selectOption('select[name="fft-scale"]', 'linear');
@@ -343,6 +345,207 @@ test('dragging the frequency knob: every input reaches the screen, the last one 
   const summary = { inputs: all.length, p50_ms: pct(50), p95_ms: pct(95), max_ms: all.at(-1) };
   console.log(`slider input → redraw latency over the six Fig. 3 points: ${JSON.stringify(summary)}`);
   if (process.env.LAB_LATENCY_OUT) writeFileSync(process.env.LAB_LATENCY_OUT, JSON.stringify({ ...summary, latencies_ms: all }, null, 1));
+});
+
+/** The FFT axes as the page draws them. */
+const fftAxes = () => page.evaluate(() => {
+  const ax = window.stickslipLab.fftAxes();
+  return { hzdiv: ax.hzdiv, db: ax.db, rms: ax.rms, bars: ax.bars.length };
+});
+
+test('issue 21 (1, 2): the FFT span follows the drive (7 harmonics at least), in dBV RMS by default', async () => {
+  // dB RMS is the default (the first option); the test before left the scale linear.
+  assert.deepEqual(await page.$eval('select[name="fft-scale"]', (s) => [s.options[0].value, s.options[0].textContent]), ['db', 'dB RMS']);
+  await page.selectOption('select[name="fft-scale"]', 'db');
+  await page.check('input[name="mode"][value="fft"]');
+  for (const [id, w] of [['fig3-2b', 0.95], ['fig3-2c', 1.43], ['fig3-1c', 1.43], ['fig3-2a', 0.29]]) {
+    await page.selectOption('select[name="preset-choice"]', id);
+    await ready();
+    const f = await page.evaluate(() => window.stickslipLab.state.steady.drive.f_Hz);
+    assert.ok(Math.abs(f - w * 10494.37) < 1, `${id}: f = ${f}`);
+    const ax = await fftAxes();
+    // Ten divisions: the 7th harmonic (and every bar the library computed) on screen.
+    assert.ok(10 * ax.hzdiv >= Math.max(7, ax.bars) * f, `${id}: ${ax.hzdiv} Hz/div at f = ${f}`);
+    // Not zoomed out needlessly: one 1-2-5 step less would cut bars off.
+    assert.ok(10 * ax.hzdiv <= 2.5 * (Math.max(7, ax.bars) + 0.5) * f, `${id}: ${ax.hzdiv} Hz/div`);
+  }
+  let ax = await fftAxes();
+  assert.ok(ax.db && ax.rms, 'dB RMS by default');
+  await page.selectOption('select[name="fft-scale"]', 'db-peak');
+  ax = await fftAxes();
+  assert.ok(ax.db && !ax.rms, 'dB peak on request');
+  await page.selectOption('select[name="fft-scale"]', 'db');
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  await page.check('input[name="mode"][value="yt"]');
+});
+
+test('issue 21 (3): the PNG caption is wrapped and names the experiment fully', async () => {
+  const png = await exportFile('export-png');
+  assert.deepEqual([...png.bytes.subarray(0, 8)], [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+  const { lines, widths, cssWidth, experiment } = await page.evaluate(() => {
+    const g = document.createElement('canvas').getContext('2d');
+    g.font = '12px system-ui, sans-serif';
+    const lines = window.stickslipLab.lastCaption;
+    return {
+      lines,
+      widths: lines.map((l) => g.measureText(l).width),
+      cssWidth: document.querySelector('#screen').clientWidth,
+      experiment: window.stickslipLab.state.steady.experiment,
+    };
+  });
+  const text = lines.join(' ');
+  assert.ok(lines.length >= 2, `${lines.length} lines`);
+  assert.ok(text.includes(experiment), `the whole description: ${text}`);
+  for (const needle of ['drive f = 9.969', 'amplitude 1.498', 'w = Ω/ω0 = 0.95', 'β = 2.14', 'class sliding', 'gain G = ']) {
+    assert.ok(text.includes(needle), `'${needle}' not in the caption: ${text}`);
+  }
+  widths.forEach((w, k) => assert.ok(w <= cssWidth - 16 + 0.5, `line ${k} is ${w} px wide, the picture ${cssWidth}`));
+  // The PNG is tall enough for every line: its height in the IHDR chunk.
+  const height = png.bytes.readUInt32BE(20);
+  const screenHeight = await page.$eval('#screen', (c) => c.height);
+  assert.ok(height >= screenHeight + 16 * lines.length, `${height} px for ${lines.length} lines`);
+});
+
+test('issue 21 (4): views that no longer match the inputs are marked, and the preset reads custom', async () => {
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('[data-sweep="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+  await page.click('[data-action="map"]');
+  await page.waitForFunction(() => document.querySelector('[data-map="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+  const stale = () => page.evaluate(() => ({
+    sweep: document.querySelector('#sweep-plot').dataset.stale === 'true',
+    map: document.querySelector('#map-plot').dataset.stale === 'true',
+    sweepText: document.querySelector('[data-sweep="status"]').textContent,
+    mapText: document.querySelector('[data-map="status"]').textContent,
+    preset: document.querySelector('select[name="preset-choice"]').value,
+  }));
+  let s = await stale();
+  assert.ok(!s.sweep && !s.map, JSON.stringify(s));
+  // A knob leaves the Fig. 3 point: custom (and the sweep, at another β, is marked).
+  await page.$eval('input[name="amplitude-knob"]', (k) => {
+    k.value = String(Number(k.value) - 40);
+    k.dispatchEvent(new Event('input', { bubbles: true }));
+  });
+  await ready();
+  s = await stale();
+  assert.equal(s.preset, 'custom');
+  assert.ok(s.sweep && /stale: computed at β/.test(s.sweepText), JSON.stringify(s));
+  // Shockley diodes: custom, and both views say which circuit they show.
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  await page.selectOption('select[name="system"]', 'shockley');
+  await ready(60000);
+  s = await stale();
+  assert.equal(s.preset, 'custom');
+  assert.ok(s.sweep && s.sweepText.includes('PWL diodes') && s.sweepText.includes('press Sweep'), JSON.stringify(s));
+  assert.ok(s.map && s.mapText.includes('PWL diodes') && s.mapText.includes('press Map'), JSON.stringify(s));
+  // A Shockley sweep's legend (with its "PWL theory:" prefix) stays inside the plot.
+  await page.fill('input[name="sweep-steps"]', '4');
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('[data-sweep="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+  const legend = await page.evaluate(() => window.stickslipLab.sweepLegend);
+  const sweepWidth = await page.$eval('#sweep-plot', (c) => c.clientWidth);
+  assert.ok(legend.left >= 0 && legend.right <= sweepWidth, `legend ${JSON.stringify(legend)} in a plot ${sweepWidth} px wide`);
+  assert.equal(await page.$eval('#sweep-plot', (c) => c.dataset.stale), undefined);
+  await page.fill('input[name="sweep-steps"]', '60');
+  // Only map sizes that finish with the stiff solver are offered.
+  const sizes = await page.$$eval('select[name="map-size"] option', (os) => os.map((o) => o.value));
+  for (const v of sizes) {
+    const [a, b] = v.split('x').map(Number);
+    assert.ok(a * b <= 800, `${v} offered with Shockley diodes`);
+  }
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  s = await stale();
+  assert.ok(s.sweep && s.sweepText.includes('Shockley diodes') && s.sweepText.includes('mechanical'), JSON.stringify(s));
+  assert.ok(s.map && s.mapText.includes('PWL diodes') && s.mapText.includes('mechanical'), JSON.stringify(s));
+  // A bad input: the readouts and the screen go pale and nothing stale is exported.
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  expectedConsole = /status of 400/;
+  await page.locator('input[name="freq"]').fill('-3');
+  await page.locator('input[name="freq"]').press('Enter');
+  await page.waitForFunction(() => document.querySelector('#status').dataset.labStatus === 'error');
+  assert.equal(await page.$eval('#screen', (c) => c.dataset.stale), 'true');
+  assert.equal(await page.$eval('#measurements', (c) => c.dataset.stale), 'true');
+  assert.ok(await page.$eval('[data-action="export-csv"]', (b) => b.disabled));
+  await type('freq', '9.97k');
+  await ready();
+  expectedConsole = null;
+  assert.equal(await page.$eval('#screen', (c) => c.dataset.stale), undefined);
+  assert.ok(!(await page.$eval('[data-action="export-csv"]', (b) => b.disabled)));
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+});
+
+test('issue 21 (7): field errors, labels, file names, t from 0, and Copy measurements', async () => {
+  // A sweep field error marks its field.
+  expectedConsole = /status of 400/;
+  await page.fill('input[name="sweep-from"]', '3');
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('input[name="sweep-from"]').getAttribute('aria-invalid') === 'true', null, { timeout: 30000 });
+  await page.fill('input[name="sweep-from"]', '0.2');
+  expectedConsole = null;
+  // Every map field has an accessible name.
+  for (const name of ['map-w-min', 'map-w-max', 'map-beta-min', 'map-beta-max']) {
+    const label = await page.$eval(`input[name="${name}"]`, (e) => e.getAttribute('aria-label') || (e.labels && e.labels.length ? e.labels[0].textContent : ''));
+    assert.ok(label && label.trim().length > 0, `${name} has no label`);
+  }
+  // The transient's CSV has a name of its own.
+  await page.selectOption('select[name="trigger"]', 'transient');
+  await ready();
+  const transient = await exportFile('export-csv');
+  assert.match(transient.name, /^stickslip-lab-yt-transient-/);
+  await page.selectOption('select[name="trigger"]', 'steady');
+  await ready();
+  const steady = await exportFile('export-csv');
+  assert.match(steady.name, /^stickslip-lab-yt-steady-/);
+  // The mechanics Y-T CSV starts at t = 0.
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  const mech = parseCsv((await exportFile('export-csv')).bytes.toString());
+  assert.equal(mech.rows[0][0], 0);
+  assert.ok(mech.rows[1][0] > 0);
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  // Copy measurements: a tab-separated table with the experiment.
+  await page.click('[data-action="copy-measurements"]');
+  const copied = await page.evaluate(() => window.stickslipLab.lastCopied);
+  const rows = copied.trim().split('\n').map((r) => r.split('\t'));
+  assert.equal(rows[0][0], 'experiment');
+  const gain = rows.find((r) => r[0] === 'gain G');
+  assert.ok(gain, copied);
+  assert.equal(gain[1], await readout('gain'));
+  assert.ok(rows.every((r) => r.length >= 2), copied);
+});
+
+test('issue 21 (6): at 800 × 900 the knobs, the scope and the gain are on screen together; canvases are sharp', async () => {
+  for (const ratio of [1, 2]) {
+    const small = await startBrowser({ width: 800, height: 900 }, ratio);
+    try {
+      const p = small.page;
+      await p.goto(lab.url);
+      await p.waitForFunction(() => document.querySelector('#status').dataset.labStatus === 'ready', null, { timeout: 30000 });
+      await p.waitForFunction(() => document.querySelector('[data-map="status"]').dataset.state === 'ready', null, { timeout: 60000 });
+      for (const selector of ['input[name="freq-knob"]', 'input[name="amplitude-knob"]', '#screen', '[data-measure="gain"]']) {
+        const box = await p.$eval(selector, (e) => {
+          const r = e.getBoundingClientRect();
+          return { left: r.left, top: r.top, right: r.right, bottom: r.bottom };
+        });
+        assert.ok(box.left >= 0 && box.top >= 0 && box.right <= 800 && box.bottom <= 900, `${selector} at ${JSON.stringify(box)} (ratio ${ratio})`);
+      }
+      for (const id of ['#screen', '#sweep-plot', '#map-plot', '#mechanics-view']) {
+        const c = await p.$eval(id, (e) => ({ w: e.width, h: e.height, cw: e.clientWidth, ch: e.clientHeight, hidden: e.offsetParent === null }));
+        if (c.hidden) continue;
+        assert.equal(c.w, Math.round(c.cw * ratio), `${id} backing width ${c.w} for ${c.cw} CSS px at ratio ${ratio}`);
+        assert.equal(c.h, Math.round(c.ch * ratio), `${id} backing height ${c.h} for ${c.ch} CSS px at ratio ${ratio}`);
+      }
+    } finally {
+      await small.close();
+    }
+  }
 });
 
 test('no console errors', () => {

@@ -53,6 +53,14 @@
     return out.map((v) => Number(v.toPrecision(3)));
   })();
   const niceAtLeast = (x) => STEPS.find((s) => s >= x * 0.999) || STEPS[STEPS.length - 1];
+  /** The smallest 1-2-5 value at least `x`, at any magnitude (frequency spans). */
+  function nice125(x) {
+    const e = 10 ** Math.floor(Math.log10(x));
+    for (const m of [1, 2, 5, 10]) if (m * e >= x * 0.999) return Number((m * e).toPrecision(3));
+    return 10 * e;
+  }
+  /** Harmonics the FFT span shows at least, as a scope's span follows its signal. */
+  const FFT_MIN_HARMONICS = 7;
 
   // ---------------------------------------------------------------- the API
   class ApiFailure extends Error {
@@ -64,8 +72,10 @@
   }
 
   /** GET /api/<name>?<params>; the JSON answer, or an ApiFailure with the server's line. */
+  // The page's own name for the server's fair queues (one per open page, not stored).
+  const CLIENT_ID = Array.from(crypto.getRandomValues(new Uint8Array(12)), (b) => b.toString(16).padStart(2, '0')).join('');
   async function api(name, params, signal) {
-    const response = await fetch(`/api/${name}?${params}`, { signal });
+    const response = await fetch(`/api/${name}?${params}`, { signal, headers: { 'X-Lab-Client': CLIENT_ID } });
     let body = null;
     try {
       body = await response.json();
@@ -115,6 +125,8 @@
   };
   // Latency of input → redraw, in ms, for every input (see docs/lab.md).
   window.stickslipLab = { latencies: [], redraws: 0, state };
+  // For tests: the FFT's axes as drawn (span per division, dB convention).
+  window.stickslipLab.fftAxes = () => fftAxes();
 
   const statusEl = $('#status');
   function setStatus(kind, text) {
@@ -132,7 +144,7 @@
     const slot = name ? $(`[data-error-for~="${CSS.escape(name)}"]`) : null;
     if (slot) {
       slot.textContent = failure.message;
-      const input = field(name) || field(slot.dataset.errorFor.split(' ')[0]);
+      const input = field(name) || field(`sweep-${name}`) || field(`map-${name}`) || (/-steps$/.test(name) ? field('map-size') : null) || field(slot.dataset.errorFor.split(' ')[0]);
       if (input) input.setAttribute('aria-invalid', 'true');
     } else if (fallbackScope) {
       fallbackScope.textContent = failure.message;
@@ -232,12 +244,17 @@
       clearErrors(document.body);
       showError(e, null);
       setStatus('error', e.message);
+      // What is on the screen no longer matches the inputs: say so, and export nothing.
+      for (const el of [$('#screen'), $('#measurements')]) el.dataset.stale = 'true';
+      for (const b of $$('[data-action="export-csv"], [data-action="export-png"], [data-action="copy-measurements"]')) b.disabled = true;
       statusEl.dataset.query = query;
       finishInputs(seq, false);
       return;
     }
     clearErrors($('#generator'));
     clearErrors($('#circuit'));
+    for (const el of [$('#screen'), $('#measurements')]) delete el.dataset.stale;
+    for (const b of $$('[data-action="export-csv"], [data-action="export-png"], [data-action="copy-measurements"]')) b.disabled = false;
     state.steady = steady;
     state.steadyQuery = query;
     state.transient = transient;
@@ -427,13 +444,26 @@
   }
 
   // ---------------------------------------------------------------- drawing helpers
+  /** A canvas's size in CSS pixels: as laid out on the page, or (off screen) its backing
+   * size over the ratio it was drawn at. */
+  function logicalSize(canvas) {
+    if (canvas.isConnected && canvas.clientWidth > 0 && canvas.clientHeight > 0) {
+      return { w: canvas.clientWidth, h: canvas.clientHeight };
+    }
+    const r = Number(canvas.dataset.ratio || 1);
+    return { w: canvas.width / r, h: canvas.height / r };
+  }
+
+  /** Size the canvas's backing store to its CSS size × devicePixelRatio (sharp on any
+   * screen) and return a context that draws in CSS pixels. */
   function prepare(canvas) {
     const ratio = window.devicePixelRatio || 1;
-    const w = canvas.width / (canvas.dataset.ratio || 1);
-    const h = canvas.height / (canvas.dataset.ratio || 1);
-    if (Number(canvas.dataset.ratio || 1) !== ratio) {
-      canvas.width = Math.round(w * ratio);
-      canvas.height = Math.round(h * ratio);
+    const { w, h } = logicalSize(canvas);
+    const bw = Math.round(w * ratio);
+    const bh = Math.round(h * ratio);
+    if (canvas.width !== bw || canvas.height !== bh || Number(canvas.dataset.ratio || 1) !== ratio) {
+      canvas.width = bw;
+      canvas.height = bh;
       canvas.dataset.ratio = String(ratio);
     }
     const g = canvas.getContext('2d');
@@ -680,27 +710,36 @@
   function fftAxes() {
     const bars = spectrum();
     const f = state.steady.drive.f_Hz;
-    const hzdiv = niceAtLeast(((bars.length + 1) * f) / SCREEN.divX / 1) || f;
-    const db = field('fft-scale').value === 'db';
+    const shown = Math.max(bars.length, FFT_MIN_HARMONICS) + 0.5;
+    const hzdiv = nice125((shown * f) / SCREEN.divX);
+    const scale = field('fft-scale').value;
+    const db = scale !== 'linear';
+    // dBV RMS (as bench scopes show it) by default: 20·log10(A/√2 / 1 V); dBV peak on request.
+    const rms = scale !== 'db-peak';
     const max = Math.max(...bars.map((b) => b.a), 1e-30);
     if (db) {
-      const top = Math.ceil((20 * Math.log10(max)) / 20) * 20 + 20;
-      return { bars, hzdiv, db, top, perDiv: 20 };
+      const top = Math.ceil((20 * Math.log10(rms ? max / Math.SQRT2 : max)) / 20) * 20 + 20;
+      return { bars, hzdiv, db, rms, top, perDiv: 20 };
     }
-    return { bars, hzdiv, db, top: 0, perDiv: niceAtLeast(max / 7) };
+    return { bars, hzdiv, db, rms, top: 0, perDiv: niceAtLeast(max / 7) };
+  }
+
+  /** A harmonic of amplitude `a` in dB re 1 unit, RMS (a/√2) or peak. */
+  function dbLevel(a, rms) {
+    return 20 * Math.log10(Math.max(rms ? a / Math.SQRT2 : a, 1e-300));
   }
 
   function drawFFT(g, box) {
     const ax = fftAxes();
     const bottom = box.y0 + SCREEN.divY * box.dy;
     const xOf = (f) => box.x0 + (f / ax.hzdiv) * box.dx;
-    const level = (a) => (ax.db ? 20 * Math.log10(Math.max(a, 1e-300)) : a);
+    const level = (a) => (ax.db ? dbLevel(a, ax.rms) : a);
     const yOfLevel = (v) => (ax.db ? box.y0 + ((ax.top - v) / ax.perDiv) * box.dy : bottom - (v / ax.perDiv) * box.dy);
     const color = COLORS[field('fft-source').value];
     const unit = { ch1: units().drive, ch2: units().position, ch3: units().velocity }[field('fft-source').value];
     for (let j = 0; j < SCREEN.divY; j++) {
       const v = ax.db ? ax.top - j * ax.perDiv : (SCREEN.divY - j) * ax.perDiv;
-      label(g, ax.db ? `${v} dB${unit}` : si(v, unit, 3), box.x0 + SCREEN.divX * box.dx - 4, box.y0 + j * box.dy + 13, COLORS.axis, 'right');
+      label(g, ax.db ? `${v} dB${unit} ${ax.rms ? 'RMS' : 'peak'}` : si(v, unit, 3), box.x0 + SCREEN.divX * box.dx - 4, box.y0 + j * box.dy + 13, COLORS.axis, 'right');
     }
     for (let i = 1; i < SCREEN.divX; i += 2) {
       label(g, si(i * ax.hzdiv, 'Hz', 3), box.x0 + i * box.dx, box.y0 + 13, COLORS.axis, 'center');
@@ -722,7 +761,7 @@
     if (state.mode === 'fft') {
       const ax = fftAxes();
       label(g, `FFT of ${field('fft-source').value.toUpperCase()} (steady cycle)  ${si(ax.hzdiv, 'Hz')}/div`, box.x0, 16);
-      label(g, ax.db ? `${ax.perDiv} dB/div, top ${ax.top} dB${u.position}` : `${si(ax.perDiv, u.position)}/div`, box.x0, y);
+      label(g, ax.db ? `${ax.perDiv} dB/div, top ${ax.top} dB${u.position} ${ax.rms ? 'RMS' : 'peak'} (re 1 ${u.position}${ax.rms ? ' RMS' : ' peak'}), ${si(ax.hzdiv, 'Hz', 3)}/div` : `${si(ax.perDiv, u.position)}/div, ${si(ax.hzdiv, 'Hz', 3)}/div`, box.x0, y);
     } else {
       const parts = [];
       const names = { 1: u.drive, 2: u.position, 3: u.velocity };
@@ -793,8 +832,8 @@
     let dragging = 0;
     const divAt = (event) => {
       const rect = canvas.getBoundingClientRect();
-      const w = canvas.width / (canvas.dataset.ratio || 1);
-      const box = screenBox(w, canvas.height / (canvas.dataset.ratio || 1));
+      const { w, h } = logicalSize(canvas);
+      const box = screenBox(w, h);
       const x = ((event.clientX - rect.left) / rect.width) * w;
       return (x - box.x0) / box.dx;
     };
@@ -896,10 +935,17 @@
     setTheory('exact-beta_c', t ? num(e.beta_c, 5) : '—');
     setTheory('paper-class', t && p.beta_c !== null ? (beta >= p.beta_c ? 'slides (β ≥ β_c)' : 'sticks (β < β_c)') : '—');
     setTheory('exact-class', t ? (e.exists ? 'sliding orbit exists' : 'no sliding orbit') : '—');
+    // Each theory describes a motion that never sticks: where its own verdict is that the
+    // motion sticks, its numbers do not apply and are greyed.
+    const table = $('#measurements');
+    table.dataset.paperApplies = t && p.beta_c !== null && beta < p.beta_c ? 'no' : 'yes';
+    table.dataset.exactApplies = t && !e.exists ? 'no' : 'yes';
     const notes = [];
     if (state.theoryNote) notes.push(state.theoryNote);
     if (t && p.note) notes.push(`paper: ${p.note}`);
     if (t && e.note) notes.push(`exact: ${e.note}`);
+    if (table.dataset.paperApplies === 'no') notes.push('The paper’s series assumes sliding; its own β_c says the motion sticks here, so its numbers (greyed) do not apply.');
+    if (table.dataset.exactApplies === 'no') notes.push('No sliding orbit exists here: the exact orbit’s column (greyed) does not apply.');
     notes.push('exact gain: the orbit’s peak/β (the measured G is (max − min)/2β); paper gain: its A1/β.');
     setTheory('notes', notes.join(' '));
   }
@@ -990,13 +1036,48 @@
   }
 
   // ---------------------------------------------------------------- sweep and map
+  /** `pwl`, `shockley` or `mechanics`: the system an answer was computed for. */
+  const kindOf = (answer) => (answer.system === 'mechanics' ? 'mechanics' : answer.model);
+  const KIND_NAMES = { pwl: 'the circuit with PWL diodes', shockley: 'the circuit with Shockley diodes', mechanics: 'the mechanical oscillator' };
+
+  /** Mark a view whose answer no longer matches the inputs (`why`), or clear the mark. */
+  function setStale(canvas, statusEl, why) {
+    if (why) {
+      canvas.dataset.stale = 'true';
+      statusEl.dataset.stale = 'true';
+      statusEl.textContent = why;
+    } else {
+      delete canvas.dataset.stale;
+      delete statusEl.dataset.stale;
+    }
+  }
+
   function markSweepAndMapStale() {
     const s = state.steady;
-    if (state.sweep && Math.abs(state.sweep.beta - s.beta) > 1e-12 * Math.max(1, s.beta)) {
-      $('[data-sweep="status"]').textContent = `computed at β = ${num(state.sweep.beta, 4)}; press Sweep for β = ${num(s.beta, 4)}`;
+    const now = state.system;
+    if (state.sweep) {
+      const kind = kindOf(state.sweep);
+      let why = '';
+      if (kind !== now) why = `stale: computed for ${KIND_NAMES[kind]}; press Sweep for ${KIND_NAMES[now]}`;
+      else if (state.sweep.experimentBase !== experimentBase(s)) why = 'stale: computed for other parts; press Sweep';
+      else if (Math.abs(state.sweep.beta - s.beta) > 1e-12 * Math.max(1, s.beta)) why = `stale: computed at β = ${num(state.sweep.beta, 4)}; press Sweep for β = ${num(s.beta, 4)}`;
+      setStale($('#sweep-plot'), $('[data-sweep="status"]'), why);
+    }
+    if (state.map) {
+      const kind = kindOf(state.map);
+      let why = '';
+      if (kind !== now) why = `stale: computed for ${KIND_NAMES[kind]}; press Map for ${KIND_NAMES[now]}`;
+      else if (state.map.experimentBase !== experimentBase(s)) why = 'stale: computed for other parts; press Map';
+      setStale($('#map-plot'), $('[data-map="status"]'), why);
     }
     drawSweep();
     drawMap();
+  }
+
+  /** The description of an experiment without its drive (what a sweep or a map keeps). */
+  function experimentBase(answer) {
+    if (!answer || !answer.experiment) return '';
+    return answer.experiment.split(';')[0];
   }
 
   /** Axes, grid and labels of a plot; `legendRow` leaves a row under the x label. */
@@ -1065,14 +1146,13 @@
   const layers = {};
   function cached(name, canvas, source, render) {
     const ratio = window.devicePixelRatio || 1;
-    const w = canvas.width / (canvas.dataset.ratio || 1);
-    const h = canvas.height / (canvas.dataset.ratio || 1);
+    const { w, h } = logicalSize(canvas);
     let layer = layers[name];
-    if (!layer || layer.source !== source || layer.ratio !== ratio || layer.w !== w) {
+    if (!layer || layer.source !== source || layer.ratio !== ratio || layer.w !== w || layer.h !== h) {
       const off = document.createElement('canvas');
       off.width = w;
       off.height = h;
-      layer = { source, ratio, w, canvas: off, ...render(off) };
+      layer = { source, ratio, w, h, canvas: off, ...render(off) };
       layers[name] = layer;
     }
     const { g } = prepare(canvas);
@@ -1120,14 +1200,22 @@
         }
       }
       const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#cc79a7', `${th.prefix}paper, eq. (11): A1/β`], ['#000', `${th.prefix}exact orbit: peak/β`], ['#c00', 'now']];
+      // The legend's box fits its longest line (the PWL-theory prefix of Shockley diodes
+      // included), on a white ground over the curves.
+      const note = 'squares: motion with stops';
+      const textWidth = Math.max(...legend.map(([, text]) => o.measureText(text).width), o.measureText(note).width);
+      const lx = Math.max(box.l + 4, box.r - textWidth - 30);
+      o.fillStyle = 'rgba(255, 255, 255, 0.85)';
+      o.fillRect(lx - 4, box.t + 2, box.r - lx + 2, 14 * legend.length + 16);
       let ly = box.t + 12;
       for (const [c, text] of legend) {
         o.fillStyle = c;
-        o.fillRect(box.r - 170, ly - 7, 14, 3);
-        label(o, text, box.r - 150, ly - 2, '#222');
+        o.fillRect(lx, ly - 7, 14, 3);
+        label(o, text, lx + 20, ly - 2, '#222');
         ly += 14;
       }
-      label(o, 'squares: motion with stops', box.r - 170, ly, '#555');
+      label(o, note, lx, ly, '#555');
+      window.stickslipLab.sweepLegend = { left: lx - 4, right: lx + 20 + textWidth, plotRight: box.r + 14 };
       return { X, Y, xr };
     });
     // The current point, when the sweep is at its β.
@@ -1228,6 +1316,8 @@
     try {
       const answer = await latest('sweep', 'sweep', p);
       answer.beta = answer.points.length ? answer.points[0].beta : NaN;
+      answer.experimentBase = experimentBase(answer);
+      setStale($('#sweep-plot'), out, '');
       state.sweep = answer;
       out.textContent = `${answer.points.length} steady states at β = ${num(answer.beta, 4)}`;
       out.dataset.state = 'ready';
@@ -1253,8 +1343,19 @@
     clearErrors($('#sweep'));
     out.textContent = 'computing…';
     out.dataset.state = 'computing';
+    // Progress for a map that takes more than a second: cells and seconds so far, against
+    // the time limit.
+    const cells = Number(nw) * Number(nb);
+    const began = performance.now();
+    const ticker = setInterval(() => {
+      const sec = (performance.now() - began) / 1000;
+      if (sec >= 1) out.textContent = `computing ${cells} cells… ${sec.toFixed(0)} s`;
+    }, 250);
     try {
       const answer = await latest('map', 'map', p);
+      clearInterval(ticker);
+      answer.experimentBase = experimentBase(answer);
+      setStale($('#map-plot'), out, '');
       state.map = answer;
       const counts = {};
       for (const c of answer.class) counts[answer.classes[c]] = (counts[answer.classes[c]] || 0) + 1;
@@ -1262,6 +1363,7 @@
       out.dataset.state = 'ready';
       drawMap();
     } catch (e) {
+      clearInterval(ticker);
       if (isAbort(e)) return;
       out.dataset.state = 'error';
       out.textContent = '';
@@ -1289,15 +1391,18 @@
     if (state.mode === 'fft') {
       const ax = fftAxes();
       const unit = { ch1: u.drive, ch2: u.position, ch3: u.velocity }[field('fft-source').value];
-      lines.push(`harmonic,f_Hz,amplitude_${unit.replace('/', '_')},level_dB${unit.replace('/', '_')}`);
-      for (const b of ax.bars) lines.push(`${b.k},${b.f},${b.a},${20 * Math.log10(Math.max(b.a, 1e-300))}`);
+      const u2 = unit.replace('/', '_');
+      lines.push(`harmonic,f_Hz,amplitude_peak_${u2},level_dB${u2}_rms,level_dB${u2}_peak`);
+      for (const b of ax.bars) lines.push(`${b.k},${b.f},${b.a},${dbLevel(b.a, true)},${dbLevel(b.a, false)}`);
     } else {
       const names = channelColumns(s).names;
       const d = state.mode === 'xy'
         ? (state.trigger === 'transient' && state.transient ? channelColumns(state.transient) : channelColumns(s))
         : displayed();
       lines.push([names[0], names[3], names[1], names[2]].join(','));
-      for (let i = 0; i < d.t.length; i++) lines.push(`${d.t[i]},${d.ch1[i]},${d.ch2[i]},${d.ch3[i]}`);
+      // Time from the first sample, as a scope's export counts it.
+      const t0 = d.t.length ? d.t[0] : 0;
+      for (let i = 0; i < d.t.length; i++) lines.push(`${d.t[i] - t0},${d.ch1[i]},${d.ch2[i]},${d.ch3[i]}`);
     }
     return `${lines.join('\n')}\n`;
   }
@@ -1305,26 +1410,89 @@
   function fileStem() {
     const s = state.steady;
     const f = s.drive ? `${num(s.drive.f_Hz, 5)}Hz-${num(s.drive.amplitude, 4)}${units().drive}` : `w${s.w}-beta${s.beta}`;
-    return `stickslip-lab-${state.mode}-${f}`;
+    const view = state.mode === 'fft' ? 'fft' : `${state.mode}-${state.trigger === 'transient' ? 'transient' : 'steady'}`;
+    return `stickslip-lab-${view}-${f}`;
+  }
+
+  /** The caption of an exported picture: the experiment in full, the drive, the result. */
+  function captionText() {
+    const s = state.steady;
+    const u = units();
+    const parts = [s.experiment];
+    if (s.drive) parts.push(`drive f = ${si(s.drive.f_Hz, 'Hz', 6)}, amplitude ${si(s.drive.amplitude, u.drive, 5)}`);
+    parts.push(`w = Ω/ω0 = ${num(s.w, 6)}, β = ${num(s.beta, 6)}`);
+    parts.push(`class ${s.class}, gain G = ${num(s.gain, 6)}, ${s.stops_per_cycle} stops per period`);
+    parts.push(`view ${state.mode === 'fft' ? `FFT (${field('fft-scale').value})` : state.mode}, ${state.trigger}; stickslip lab`);
+    return parts.join('; ');
+  }
+
+  /** `text` broken into lines of at most `width` pixels in the context's font. */
+  function wrapText(g, text, width) {
+    const lines = [];
+    let line = '';
+    for (const word of text.split(' ')) {
+      const next = line ? `${line} ${word}` : word;
+      if (line && g.measureText(next).width > width) {
+        lines.push(line);
+        line = word;
+      } else {
+        line = next;
+      }
+    }
+    if (line) lines.push(line);
+    return lines;
   }
 
   function exportPng() {
     const screen = $('#screen');
+    const ratio = screen.width / (screen.clientWidth || screen.width) || 1;
+    const measure = document.createElement('canvas').getContext('2d');
+    measure.font = '12px system-ui, sans-serif';
+    const cssWidth = screen.width / ratio;
+    const lines = wrapText(measure, captionText(), cssWidth - 16);
     const out = document.createElement('canvas');
     out.width = screen.width;
-    out.height = screen.height + Math.round(40 * (window.devicePixelRatio || 1));
+    out.height = screen.height + Math.round((10 + 16 * lines.length) * ratio);
     const g = out.getContext('2d');
     g.fillStyle = '#ffffff';
     g.fillRect(0, 0, out.width, out.height);
     g.drawImage(screen, 0, 0);
-    const ratio = window.devicePixelRatio || 1;
     g.scale(ratio, ratio);
     g.font = '12px system-ui, sans-serif';
     g.fillStyle = '#222';
-    const text = state.steady ? state.steady.experiment : '';
-    g.fillText(text.length > 150 ? `${text.slice(0, 150)}…` : text, 8, screen.height / ratio + 16);
-    g.fillText(`gain ${num(state.steady.gain, 6)}, ${state.steady.class}; stickslip lab`, 8, screen.height / ratio + 32);
+    lines.forEach((line, k) => g.fillText(line, 8, screen.height / ratio + 16 + 16 * k));
+    window.stickslipLab.lastCaption = lines;
     out.toBlob((blob) => download(blob, `${fileStem()}.png`), 'image/png');
+  }
+
+  /** The measurements table as tab-separated text (pasted into a spreadsheet or a report). */
+  function measurementsTsv() {
+    const rows = [];
+    const table = $('#measurements table');
+    for (const tr of $$('tr', table)) {
+      rows.push(Array.from(tr.children, (c) => c.textContent.replace(/\s+/g, ' ').replace(/ \?$/, '').trim()).join('\t'));
+    }
+    if (state.steady) rows.unshift(`experiment\t${captionText()}`);
+    return `${rows.join('\n')}\n`;
+  }
+
+  async function copyMeasurements() {
+    const text = measurementsTsv();
+    window.stickslipLab.lastCopied = text;
+    const out = $('[data-copy="status"]');
+    try {
+      await navigator.clipboard.writeText(text);
+      out.textContent = 'copied: paste into a spreadsheet or a report';
+    } catch (e) {
+      // Without clipboard permission: select the text for Ctrl-C.
+      const area = document.createElement('textarea');
+      area.value = text;
+      document.body.append(area);
+      area.select();
+      const ok = document.execCommand && document.execCommand('copy');
+      area.remove();
+      out.textContent = ok ? 'copied: paste into a spreadsheet or a report' : 'the browser refused the clipboard';
+    }
   }
 
   // ---------------------------------------------------------------- presets
@@ -1347,11 +1515,31 @@
     state.autoscalePending = true;
   }
 
+  /** Map sizes that finish within the time limit (10 s) on a 2-core laptop: the exact
+   * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md). */
+  const MAP_SIZES = {
+    pwl: [['40x30', '40 × 30'], ['60x50', '60 × 50'], ['120x100', '120 × 100']],
+    shockley: [['16x12', '16 × 12'], ['24x20', '24 × 20'], ['32x24', '32 × 24']],
+  };
+  function fillMapSizes() {
+    const select = field('map-size');
+    const sizes = MAP_SIZES[state.system === 'shockley' ? 'shockley' : 'pwl'];
+    const keep = select.value;
+    select.replaceChildren(...sizes.map(([v, text]) => new Option(text, v)));
+    select.value = sizes.some(([v]) => v === keep) ? keep : sizes[1][0];
+  }
+
   function showSystem() {
     for (const fs of $$('fieldset[data-for-system]')) fs.hidden = !fs.dataset.forSystem.split(' ').includes(state.system);
   }
 
   // ---------------------------------------------------------------- wiring
+  /** A knob or a typed drive value leaves a preset's point: the preset reads "custom". */
+  function leavePresetPoint() {
+    const select = field('preset-choice');
+    if (select.value.startsWith('fig3-')) select.value = 'custom';
+  }
+
   function wire() {
     // Typing: compute when typing pauses, at once on Enter or leaving the field.
     const typed = (name, onEdit) => {
@@ -1367,9 +1555,11 @@
     };
     typed('freq', () => {
       state.drive.w = null;
+      leavePresetPoint();
     });
     typed('amplitude', () => {
       state.drive.beta = null;
+      leavePresetPoint();
     });
     typed('phase', () => {});
     for (const k of PART_KEYS.concat(['rd'])) {
@@ -1381,12 +1571,14 @@
     for (const k of SHOCKLEY_KEYS) {
       typed(k, () => {
         state.shockleyEdited = true;
+        field('preset-choice').value = 'custom';
       });
     }
     for (const k of MECHANICS_KEYS) typed(k, () => {});
 
     // Knobs: every movement computes at once; a newer request drops the one before.
     field('freq-knob').addEventListener('input', (event) => {
+      leavePresetPoint();
       const r = knobRange();
       const f = r.fmin * (r.fmax / r.fmin) ** (Number(event.target.value) / 1000);
       field('freq').value = num(f, 5);
@@ -1394,6 +1586,7 @@
       schedule(0);
     });
     field('amplitude-knob').addEventListener('input', (event) => {
+      leavePresetPoint();
       const r = knobRange();
       field('amplitude').value = num((r.amax * Number(event.target.value)) / 1000, 4);
       state.drive.beta = null;
@@ -1415,11 +1608,9 @@
         field('system').value = keepSystem;
         showSystem();
       }
-      field('preset-choice').value = state.system === 'mechanics' ? 'mechanics' : field('preset-choice').value;
-      // The stiff solver takes about 10 ms a point: a smaller map stays within the time limit.
-      if (state.system === 'shockley' && ['120x100', '200x200', '60x50'].includes(field('map-size').value)) {
-        field('map-size').value = '40x30';
-      }
+      // A Fig. 3 point is the paper's PWL circuit: with Shockley diodes it is a custom point.
+      field('preset-choice').value = state.system === 'mechanics' ? 'mechanics' : state.system === 'shockley' ? 'custom' : field('preset-choice').value;
+      fillMapSizes();
       showSystem();
       state.autoscalePending = true;
       schedule(0);
@@ -1452,6 +1643,7 @@
       if (state.steady) exportPng();
     });
     $('[data-action="sweep"]').addEventListener('click', runSweep);
+    $('[data-action="copy-measurements"]').addEventListener('click', copyMeasurements);
     $('[data-action="map"]').addEventListener('click', runMap);
     window.addEventListener('resize', () => {
       redraw();
@@ -1483,7 +1675,7 @@
     }
     const custom = document.createElement('option');
     custom.value = 'custom';
-    custom.textContent = 'custom parts';
+    custom.textContent = 'custom (values of your own)';
     select.append(custom);
     for (const k of SHOCKLEY_KEYS) field(k).value = siText(state.shockley[k]);
     field('temperature').value = num(state.shockley.temperature, 6);
@@ -1494,6 +1686,7 @@
     // The paper's circuit at its Fig. 3 point (2b): Ω/ω0 = 0.95, β = 2.14.
     select.value = 'fig3-2b';
     applyPreset('fig3-2b');
+    fillMapSizes();
     wire();
     drawSweep();
     drawMap();

@@ -5,6 +5,22 @@ use crate::limits;
 use crate::shockley::diode::ZERO_CELSIUS;
 use serde::{Deserialize, Serialize};
 
+/// Largest resistance R or R_D (Ω): far beyond any ζ the solvers take with real parts, and
+/// small enough that ζ = (R + R_D)/2·√(C/L) stays finite (1e308 overflowed it).
+const RESISTANCE_MAX: f64 = 1e9;
+/// Range of the Shockley saturation current (A): real junctions lie between about 1e-18 A
+/// and 1e-6 A; beyond 1 A the knee voltage of the law is no longer finite.
+const SATURATION_MIN: f64 = 1e-30;
+const SATURATION_MAX: f64 = 1.0;
+/// Range of the emission coefficient (real diodes: 1 to 2); beyond it the thermal voltage
+/// n·V_T makes a stiff law the integrator cannot start on.
+const EMISSION_MIN: f64 = 0.1;
+const EMISSION_MAX: f64 = 100.0;
+/// Largest Shockley series resistance (Ω).
+const SERIES_RESISTANCE_MAX: f64 = 1e6;
+/// Highest diode temperature (°C): silicon junctions fail below 200 °C.
+const TEMPERATURE_MAX: f64 = 1000.0;
+
 /// One value of an experiment description. Its [`Key::name`] is the key of the TOML file and
 /// the keyword of the Python package; the command-line tool has its own flag for each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -192,9 +208,17 @@ impl Key {
             Key::V0 => ("v0", limits::state_ok(value), limits::STATE_ALLOWED),
             Key::Inductance => ("L", value > 0.0, "must be finite and > 0 (henry)"),
             Key::Capacitance => ("C", value > 0.0, "must be finite and > 0 (farad)"),
-            Key::Resistance => ("R", value >= 0.0, "must be finite and >= 0 (ohms)"),
+            Key::Resistance => (
+                "R",
+                (0.0..=RESISTANCE_MAX).contains(&value),
+                "must be finite and from 0 to 1e9 (ohms)",
+            ),
             Key::TurnOn => ("U_t", value > 0.0, "must be finite and > 0 (volts)"),
-            Key::DiodeResistance => ("R_D", value >= 0.0, "must be finite and >= 0 (ohms)"),
+            Key::DiodeResistance => (
+                "R_D",
+                (0.0..=RESISTANCE_MAX).contains(&value),
+                "must be finite and from 0 to 1e9 (ohms)",
+            ),
             Key::Mass => ("m", value > 0.0, "must be finite and > 0 (kg)"),
             Key::Stiffness => ("k", value > 0.0, "must be finite and > 0 (N/m)"),
             Key::Damping => ("gamma", value >= 0.0, "must be finite and >= 0 (N s/m)"),
@@ -204,13 +228,25 @@ impl Key {
             Key::Omega => ("Omega", value > 0.0, "must be finite and > 0 (rad/s)"),
             Key::Uc0 => ("uc0", true, "must be finite"),
             Key::I0 => ("i0", true, "must be finite"),
-            Key::SaturationCurrent => ("I_s", value > 0.0, "must be finite and > 0 (amperes)"),
-            Key::Emission => ("n", value > 0.0, "must be finite and > 0"),
-            Key::SeriesResistance => ("R_s", value >= 0.0, "must be finite and >= 0 (ohms)"),
+            Key::SaturationCurrent => (
+                "I_s",
+                (SATURATION_MIN..=SATURATION_MAX).contains(&value),
+                "must be finite and from 1e-30 to 1 (amperes)",
+            ),
+            Key::Emission => (
+                "n",
+                (EMISSION_MIN..=EMISSION_MAX).contains(&value),
+                "must be finite and from 0.1 to 100",
+            ),
+            Key::SeriesResistance => (
+                "R_s",
+                (0.0..=SERIES_RESISTANCE_MAX).contains(&value),
+                "must be finite and from 0 to 1e6 (ohms)",
+            ),
             Key::Temperature => (
                 "temperature",
-                value > -ZERO_CELSIUS,
-                "must be finite and above -273.15 (degrees Celsius)",
+                value > -ZERO_CELSIUS && value <= TEMPERATURE_MAX,
+                "must be finite, above -273.15 and at most 1000 (degrees Celsius)",
             ),
             Key::Diode | Key::Preset => (self.name(), false, "is not a number"),
         };
@@ -249,5 +285,28 @@ mod tests {
         assert!(Key::Temperature.check(-300.0).is_err());
         assert!(Key::Phi.check(f64::NAN).is_err());
         assert!(Key::Diode.check(1.0).is_err());
+    }
+
+    /// Values the solvers could not start from (1e308 made ζ overflow or the Shockley law
+    /// stiff beyond the integrator) are refused by the key that gives them; the ends of each
+    /// range are accepted.
+    #[test]
+    fn circuit_and_diode_values_have_finite_ranges() {
+        for (key, inside, outside) in [
+            (Key::Resistance, [0.0, 1e9], 1.1e9),
+            (Key::DiodeResistance, [0.0, 1e9], 1e308),
+            (Key::SaturationCurrent, [1e-30, 1.0], 1e308),
+            (Key::Emission, [0.1, 100.0], 1e308),
+            (Key::SeriesResistance, [0.0, 1e6], 1e308),
+            (Key::Temperature, [-273.0, 1000.0], 1e308),
+        ] {
+            for v in inside {
+                assert_eq!(key.check(v).unwrap(), v, "{key} {v}");
+            }
+            let err = key.check(outside).unwrap_err().to_string();
+            assert!(err.contains("must be finite"), "{key}: {err}");
+        }
+        assert!(Key::SaturationCurrent.check(1e-31).is_err());
+        assert!(Key::Emission.check(0.09).is_err());
     }
 }

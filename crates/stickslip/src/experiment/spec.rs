@@ -360,7 +360,28 @@ impl ExperimentSpec {
         // Each dimensionless value, with the key it came from (to name a physical value whose
         // image is out of range).
         let zeta_from = match system {
-            Some(System::Circuit(c)) => (Key::Resistance, c.resistance),
+            // ζ = (R + R_D)/2·√(C/L): a part the user gave is to blame, the larger resistance
+            // first.
+            Some(System::Circuit(c)) => {
+                let rd = c.diode.linear_resistance();
+                let resistances = if rd > c.resistance {
+                    [Key::DiodeResistance, Key::Resistance]
+                } else {
+                    [Key::Resistance, Key::DiodeResistance]
+                };
+                let value = |key: Key| match key {
+                    Key::DiodeResistance => rd,
+                    Key::Capacitance => c.capacitance,
+                    Key::Inductance => c.inductance,
+                    _ => c.resistance,
+                };
+                let key = resistances
+                    .into_iter()
+                    .chain([Key::Capacitance, Key::Inductance])
+                    .find(|&k| has(k))
+                    .unwrap_or(resistances[0]);
+                (key, value(key))
+            }
             Some(System::Mechanics(m)) => (Key::Damping, m.damping),
             None => (Key::Zeta, 0.0),
         };

@@ -12,7 +12,7 @@ use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::f64::consts::TAU;
 use std::sync::Arc;
-use stickslip::experiment::{Conversion, Experiment};
+use stickslip::experiment::{Conversion, Experiment, Key};
 use stickslip::physical::{Circuit, Scales, System};
 use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
 use stickslip::solver::{grid, sample_at};
@@ -517,10 +517,19 @@ fn reject_swept(q: &Query, parameter: Parameter, by: &str) -> Result<(), ApiErro
     Ok(())
 }
 
+/// A number as a message shows it: huge and tiny ones in exponent form.
+fn short(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// `from`, `to` and `steps` keys (with prefix, e.g. `w-`) as a range.
 fn range(
     q: &mut Query,
-    name: &'static str,
+    parameter: Parameter,
     keys: [&str; 3],
     defaults: (f64, f64, usize),
     max_steps: usize,
@@ -528,6 +537,25 @@ fn range(
     let from = q.number(keys[0], Some(defaults.0))?.unwrap_or(defaults.0);
     let to = q.number(keys[1], Some(defaults.1))?.unwrap_or(defaults.1);
     let steps = q.count(keys[2], defaults.2, 1, max_steps)?;
+    // Each end within the parameter's own range, named by the key that gave it.
+    let key = match parameter {
+        Parameter::W => Key::W,
+        Parameter::Beta => Key::Beta,
+        Parameter::Zeta => Key::Zeta,
+        _ => Key::MuS,
+    };
+    for (end, value) in [(keys[0], from), (keys[1], to)] {
+        if let Err(Error::InvalidParameter { allowed, .. }) = key.check(value) {
+            return Err(ApiError::field(
+                end,
+                format!(
+                    "invalid {end} {}: {} {allowed}",
+                    short(value),
+                    api_name(key)
+                ),
+            ));
+        }
+    }
     if from > to {
         return Err(ApiError::field(
             keys[0],
@@ -546,7 +574,8 @@ fn range(
             ),
         ));
     }
-    ParameterRange::new(name, from, to, steps).map_err(|e| ApiError::field(keys[0], e.to_string()))
+    ParameterRange::new(parameter.label(), from, to, steps)
+        .map_err(|e| ApiError::field(keys[0], e.to_string()))
 }
 
 impl SweepRequest {
@@ -564,7 +593,7 @@ impl SweepRequest {
         let experiment = q.experiment()?;
         let range = range(
             &mut q,
-            parameter.label(),
+            parameter,
             ["from", "to", "steps"],
             (0.2, 2.0, 60),
             caps::SWEEP_STEPS,
@@ -722,14 +751,14 @@ impl MapRequest {
         let experiment = q.experiment()?;
         let w = range(
             &mut q,
-            "w",
+            Parameter::W,
             ["w-min", "w-max", "w-steps"],
             (0.1, 2.5, 60),
             caps::MAP_SIDE,
         )?;
         let beta = range(
             &mut q,
-            "beta",
+            Parameter::Beta,
             ["beta-min", "beta-max", "beta-steps"],
             (0.5, 4.0, 50),
             caps::MAP_SIDE,
@@ -796,10 +825,41 @@ impl MapRequest {
         .options(self.options)
         .map_err(library)?
         .with_factory(LimitedFactory::new(e.factory(), budget.clone()));
-        budget.start(self.w.steps() * self.beta.steps());
-        let map = grid
-            .run(&budget.keep_going())
-            .map_err(|err| failed(err, budget, "map"))?;
+        let (rows, cols) = grid.shape();
+        let total = rows * cols;
+        budget.start(total);
+        // Block by block (a grid computed so equals the grid computed at once), so that the
+        // map gives its turn to other clients between blocks of about one slice: the blocks'
+        // points run on the parallel pool, whose threads must never wait for a turn.
+        let keep_going = budget.keep_going();
+        let mut points = Vec::with_capacity(total);
+        let mut size = 2 * rayon::current_num_threads();
+        while points.len() < total {
+            let next = points.len();
+            let (row, col) = (next / cols, next % cols);
+            let (block_rows, block_cols) = if col == 0 && size >= cols {
+                (row..(row + size / cols).min(rows), 0..cols)
+            } else {
+                (row..row + 1, col..(col + size).min(cols))
+            };
+            let n = block_rows.len() * block_cols.len();
+            let started = std::time::Instant::now();
+            points.extend(
+                grid.run_block(block_rows, block_cols, &|done, _| {
+                    keep_going(next + done, total)
+                })
+                .map_err(|err| failed(err, budget, "map"))?,
+            );
+            let per_point = started.elapsed().as_secs_f64() / n as f64;
+            size =
+                ((super::fair::SLICE.as_secs_f64() / per_point.max(1e-9)) as usize).clamp(1, total);
+            budget.share();
+        }
+        let map = stickslip::scan::GridMap {
+            first: grid_axis(&self.w, Parameter::W)?,
+            second: grid_axis(&self.beta, Parameter::Beta)?,
+            points,
+        };
         let index = |c: MotionClass| {
             MotionClass::ALL
                 .iter()
@@ -839,6 +899,11 @@ impl MapRequest {
             },
         })
     }
+}
+
+/// The axis of a map's range.
+fn grid_axis(range: &ParameterRange, parameter: Parameter) -> Result<Axis, ApiError> {
+    Axis::range(parameter, range).map_err(|err| ApiError::library(&err))
 }
 
 /// `GET /api/theory`.

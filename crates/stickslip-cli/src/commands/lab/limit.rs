@@ -1,10 +1,14 @@
 //! The lab's limits on one request: a time limit, and a stop as soon as nobody waits for
 //! the answer (the page dropped a stale request). Both reach into the computation: every
 //! solver the request builds checks its [`Budget`] as it advances, and sweeps and maps check
-//! it between points through the library's [`Monitor`](stickslip::scan::Monitor).
+//! it between points through the library's [`Monitor`](stickslip::scan::Monitor). The same
+//! checks give the computation's turn to another client every [`SLICE`] while others wait
+//! (see [`super::fair`]).
 
+use super::fair::{Fair, Turn, SLICE};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
+use std::thread::ThreadId;
 use std::time::{Duration, Instant};
 use stickslip::steady::SolverFactory;
 use stickslip::{Error, Event, Params, Phase, Result, Sample, Solver, State, Stats};
@@ -18,6 +22,27 @@ pub struct Budget {
     /// Steps or points finished, and their number, of a sweep or a map.
     done: AtomicUsize,
     total: AtomicUsize,
+    /// The computation's turn at the workers, when it takes turns.
+    turns: Mutex<Option<Turns>>,
+}
+
+/// A computation's turn, given back and taken again from the thread that runs it.
+struct Turns {
+    fair: Arc<Fair>,
+    client: String,
+    turn: Option<Turn>,
+    since: Instant,
+    thread: ThreadId,
+    runtime: tokio::runtime::Handle,
+}
+
+impl std::fmt::Debug for Turns {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Turns")
+            .field("client", &self.client)
+            .field("holds", &self.turn.is_some())
+            .finish()
+    }
 }
 
 impl Budget {
@@ -29,7 +54,67 @@ impl Budget {
             abandoned: AtomicBool::new(false),
             done: AtomicUsize::new(0),
             total: AtomicUsize::new(0),
+            turns: Mutex::new(None),
         })
+    }
+
+    /// The computation runs on this thread, in `turn`: from now on [`Budget::share`] on this
+    /// thread gives the turn to a waiting client every [`SLICE`] and waits for the next one.
+    pub fn take_turns(
+        &self,
+        fair: Arc<Fair>,
+        client: String,
+        turn: Turn,
+        runtime: tokio::runtime::Handle,
+    ) {
+        *self.turns.lock().unwrap_or_else(|e| e.into_inner()) = Some(Turns {
+            fair,
+            client,
+            turn: Some(turn),
+            since: Instant::now(),
+            thread: std::thread::current().id(),
+            runtime,
+        });
+    }
+
+    /// The computation is over: its turn goes to the next client.
+    pub fn end_turns(&self) {
+        self.turns.lock().unwrap_or_else(|e| e.into_inner()).take();
+    }
+
+    /// Give the turn to a waiting client when this computation has had its [`SLICE`], and
+    /// wait for the next turn (at most until the deadline, or until nobody waits for the
+    /// answer). Only on the thread that took the turn (never on a thread of a parallel
+    /// map, which must not block); elsewhere, and without turns, nothing happens.
+    pub fn share(&self) {
+        let Ok(mut guard) = self.turns.try_lock() else {
+            return;
+        };
+        let Some(turns) = guard.as_mut() else {
+            return;
+        };
+        if turns.thread != std::thread::current().id()
+            || turns.since.elapsed() < SLICE
+            || !turns.fair.others_wait()
+        {
+            return;
+        }
+        // Hand the turn over and queue behind the others.
+        turns.turn = None;
+        let fair = turns.fair.clone();
+        let deadline = tokio::time::Instant::from_std(self.deadline);
+        turns.turn = turns.runtime.block_on(async {
+            let mut next = std::pin::pin!(fair.turn(&turns.client));
+            loop {
+                let wake = (tokio::time::Instant::now() + Duration::from_millis(50)).min(deadline);
+                match tokio::time::timeout_at(wake, &mut next).await {
+                    Ok(turn) => return Some(turn),
+                    Err(_) if self.spent() => return None,
+                    Err(_) => {}
+                }
+            }
+        });
+        turns.since = Instant::now();
     }
 
     /// When the time runs out.
@@ -68,6 +153,7 @@ impl Budget {
         move |done, total| {
             self.done.fetch_max(done, Ordering::Relaxed);
             self.total.store(total, Ordering::Relaxed);
+            self.share();
             !self.spent()
         }
     }
@@ -127,8 +213,11 @@ impl Solver for Limited {
     }
     fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
         self.calls = self.calls.wrapping_add(1);
-        if self.calls.is_multiple_of(CALLS_PER_CHECK) && self.budget.spent() {
-            return Err(Error::Cancelled { done: 0, total: 1 });
+        if self.calls.is_multiple_of(CALLS_PER_CHECK) {
+            if self.budget.spent() {
+                return Err(Error::Cancelled { done: 0, total: 1 });
+            }
+            self.budget.share();
         }
         self.inner.advance(t_end)
     }

@@ -5,12 +5,16 @@
 //! - [`query`]: query strings → library types (the model keys are the flags without dashes);
 //! - [`api`]: the endpoints' work (steady state, simulation, sweep, map, theory);
 //! - [`limit`]: the time limit and the stop of abandoned requests, inside the solvers;
-//! - [`router`]: routes, assets, worker threads.
+//! - [`fair`]: fair turns at the workers, one queue per client;
+//! - [`router`]: routes, assets, the `Host` check, worker threads;
+//! - [`serve`]: connections and their time limits.
 
 pub mod api;
+pub mod fair;
 pub mod limit;
 pub mod query;
 pub mod router;
+pub mod serve;
 #[cfg(test)]
 mod tests;
 
@@ -30,7 +34,10 @@ use std::time::Duration;
 /// the gain swept up and down, the (w, β) map, CSV and PNG export.
 ///
 /// The server listens on 127.0.0.1 (this computer only) unless --host says otherwise, and
-/// prints the address to open. It reads no files; each request is capped in size and time.
+/// prints the address to open (with --host 0.0.0.0, also the addresses students type). It
+/// reads no files; each request is capped in size and time, computations take fair turns
+/// between clients, and requests must name the lab by one of its addresses (the Host
+/// header), so that other web pages cannot read its answers.
 /// The JSON API under /api/ takes the model flags without dashes as query keys
 /// (e.g. /api/steady?preset=paper&freq=9.97k&amplitude=1.498): see docs/lab.md.
 ///
@@ -38,6 +45,7 @@ use std::time::Duration;
 ///   stickslip lab --open
 ///   stickslip lab --port 0            # any free port
 ///   stickslip lab --host 0.0.0.0      # the whole classroom network (a warning says so)
+///   stickslip lab --host 0.0.0.0 --allow-host lab.school.example
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -58,9 +66,15 @@ pub struct Args {
     /// [default: the number of cores].
     #[arg(long, allow_hyphen_values = true)]
     jobs: Option<i64>,
-    /// Print one line per request on standard error (method, path, status, milliseconds).
+    /// Print one line per request on standard error (method, path, status, milliseconds),
+    /// and one per request or connection that ended early.
     #[arg(long)]
     verbose: bool,
+    /// Also answer requests that name the lab by this host name (e.g. a name the school's
+    /// DNS gives this computer); the addresses it listens on and localhost are always
+    /// answered. Repeat for more names.
+    #[arg(long = "allow-host", value_name = "NAME")]
+    allow_host: Vec<String>,
 }
 
 /// The address to listen on: an IP address, or `localhost`.
@@ -105,11 +119,21 @@ pub fn run(args: Args) -> Result<()> {
         Some(n) if (1..=256).contains(&n) => n as usize,
         Some(n) => usage!("invalid --jobs {n}: must be from 1 to 256"),
     };
-    let settings = router::Settings {
-        time_limit: Duration::from_secs_f64(args.time_limit),
-        jobs,
-        verbose: args.verbose,
-    };
+    let mut hosts = Vec::new();
+    for name in &args.allow_host {
+        let valid = !name.is_empty()
+            && name.len() <= 253
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '.' | ':'));
+        if !valid {
+            usage!(
+                "invalid --allow-host '{name}': a host name such as lab.school.example or an \
+                 address, without scheme, port or path"
+            );
+        }
+        hosts.push(name.trim_end_matches('.').to_ascii_lowercase());
+    }
     let addr = SocketAddr::new(ip, args.port);
     let listener = std::net::TcpListener::bind(addr).with_context(|| {
         format!(
@@ -124,6 +148,19 @@ pub fn run(args: Args) -> Result<()> {
     listener.set_nonblocking(true)?;
     let bound = listener.local_addr()?;
     let url = url_of(bound);
+    // The addresses the students type: those of the computer's networks.
+    let network: Vec<IpAddr> = if ip.is_unspecified() {
+        interface_addresses(ip.is_ipv4())
+    } else {
+        vec![ip]
+    };
+    hosts.extend(network.iter().map(|ip| ip.to_string()));
+    let settings = router::Settings {
+        time_limit: Duration::from_secs_f64(args.time_limit),
+        jobs,
+        verbose: args.verbose,
+        hosts,
+    };
     if !ip.is_loopback() {
         eprintln!(
             "warning: the lab listens on {bound}: anyone who can reach this computer over the \
@@ -135,6 +172,24 @@ pub fn run(args: Args) -> Result<()> {
     // The address on standard output, alone on its line, for people and for scripts.
     println!("stickslip lab: {url}");
     std::io::stdout().flush()?;
+    if ip.is_unspecified() {
+        let urls: Vec<String> = network
+            .iter()
+            .filter(|a| !a.is_loopback())
+            .map(|&a| url_of(SocketAddr::new(a, bound.port())))
+            .collect();
+        if urls.is_empty() {
+            eprintln!(
+                "lab: this computer has no network address but loopback: students cannot reach \
+                 it (is it on the classroom network?)"
+            );
+        } else {
+            eprintln!("lab: students on the same network open:");
+            for url in urls {
+                eprintln!("lab:   {url}");
+            }
+        }
+    }
     eprintln!(
         "lab: {jobs} computation(s) at once, {} s per request; Ctrl-C stops the server",
         args.time_limit
@@ -153,22 +208,75 @@ pub fn run(args: Args) -> Result<()> {
         .build()
         .context("cannot start the server's runtime")?;
     runtime.block_on(async move {
-        use axum::serve::ListenerExt;
-        // Answers go out at once, not held back to be merged with later writes.
-        let listener = tokio::net::TcpListener::from_std(listener)?.tap_io(|tcp| {
-            let _ = tcp.set_nodelay(true);
-        });
         let app = router::router(router::Lab::new(settings));
-        axum::serve(listener, app)
-            .with_graceful_shutdown(async {
+        serve::serve(
+            tokio::net::TcpListener::from_std(listener)?,
+            app,
+            serve::Limits::default(),
+            args.verbose,
+            async {
                 while !crate::output::interrupted() {
                     tokio::time::sleep(Duration::from_millis(100)).await;
                 }
-            })
-            .await
+            },
+            Duration::from_secs_f64(args.time_limit + 1.0),
+        )
+        .await
     })?;
     eprintln!("lab: stopped");
     Ok(())
+}
+
+/// This computer's addresses (IPv4 or IPv6), loopback included: on Linux every interface's,
+/// elsewhere the one its default route uses.
+fn interface_addresses(v4: bool) -> Vec<IpAddr> {
+    let mut found: Vec<IpAddr> = Vec::new();
+    if v4 {
+        // The kernel's table of local IPv4 addresses: an address line, then "/32 host LOCAL".
+        if let Ok(table) = std::fs::read_to_string("/proc/net/fib_trie") {
+            let lines: Vec<&str> = table.lines().collect();
+            for pair in lines.windows(2) {
+                if pair[1].trim() == "/32 host LOCAL" {
+                    let text = pair[0].trim().trim_start_matches(['|', '+', '-', ' ']);
+                    if let Ok(ip) = text.trim().parse::<Ipv4Addr>() {
+                        found.push(IpAddr::V4(ip));
+                    }
+                }
+            }
+        }
+    } else if let Ok(table) = std::fs::read_to_string("/proc/net/if_inet6") {
+        // 32 hex digits, interface index, prefix length, scope (00: global), flags, name.
+        for line in table.lines() {
+            let mut fields = line.split_whitespace();
+            let (Some(hex), Some(scope)) = (fields.next(), fields.nth(2)) else {
+                continue;
+            };
+            let global_or_loopback = scope == "00" || scope == "10";
+            if let (true, Ok(bits)) = (global_or_loopback, u128::from_str_radix(hex, 16)) {
+                found.push(IpAddr::V6(std::net::Ipv6Addr::from(bits)));
+            }
+        }
+    }
+    // The address of the default route: a UDP socket "connected" to a documentation address
+    // (RFC 5737 / 3849) sends nothing and reports the local address it would use.
+    let probe = if v4 { "192.0.2.1:9" } else { "[2001:db8::1]:9" };
+    let any = if v4 { "0.0.0.0:0" } else { "[::]:0" };
+    if let Ok(socket) = std::net::UdpSocket::bind(any) {
+        if socket.connect(probe).is_ok() {
+            if let Ok(local) = socket.local_addr() {
+                found.push(local.ip());
+            }
+        }
+    }
+    found.push(if v4 {
+        IpAddr::V4(Ipv4Addr::LOCALHOST)
+    } else {
+        IpAddr::V6(std::net::Ipv6Addr::LOCALHOST)
+    });
+    found.sort();
+    found.dedup();
+    found.retain(|a| !a.is_unspecified());
+    found
 }
 
 /// Open `url` in the default browser, without waiting for it.

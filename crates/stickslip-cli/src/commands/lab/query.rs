@@ -272,6 +272,9 @@ impl Query {
                     }
                 },
                 _ => {
+                    check_unit(key, &text).map_err(|e| {
+                        ApiError::field(&name, format!("invalid {name} {}: {e}", clip(&text)))
+                    })?;
                     let value = parse_value(key, &text).map_err(|e| {
                         ApiError::field(&name, format!("invalid value for {name}: {e}"))
                     })?;
@@ -325,6 +328,47 @@ impl Query {
     pub fn has(&self, key: &str) -> bool {
         self.values.contains_key(key)
     }
+}
+
+/// Units a value may end with (as the library's number parser strips them), longest first
+/// where one ends another.
+const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
+
+/// The units `key` may be written in (a value may also go without its unit).
+fn units_of(key: Key) -> &'static [&'static str] {
+    match key {
+        Key::Inductance => &["H"],
+        Key::Capacitance => &["F"],
+        Key::Resistance | Key::DiodeResistance | Key::SeriesResistance => &["ohm", "Ohm", "Ω"],
+        Key::TurnOn => &["V"],
+        Key::Amplitude => &["V", "N"],
+        Key::Frequency => &["Hz"],
+        Key::Friction => &["N"],
+        Key::Uc0 => &["V"],
+        Key::I0 | Key::SaturationCurrent => &["A"],
+        _ => &[],
+    }
+}
+
+/// A unit written after a value must be the key's: `freq=9.97kV` is refused, not read as
+/// 9.97 kHz.
+fn check_unit(key: Key, text: &str) -> Result<(), String> {
+    let text = text.trim();
+    let Some(unit) = UNITS.iter().find(|u| text.ends_with(*u)) else {
+        return Ok(());
+    };
+    let allowed = units_of(key);
+    if allowed.contains(unit) {
+        return Ok(());
+    }
+    Err(if allowed.is_empty() {
+        format!("the unit {unit} does not fit: write the number alone")
+    } else {
+        format!(
+            "the unit {unit} does not fit: write {} or the number alone",
+            allowed.join(" or ")
+        )
+    })
 }
 
 /// At most 40 characters of untrusted text in a message, without control characters.

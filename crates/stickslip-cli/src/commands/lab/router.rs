@@ -1,13 +1,18 @@
 //! The lab's routes: the page and its assets (embedded in the binary), and the JSON API
 //! (documented in `docs/lab.md`). Every computation runs on a worker thread, at most
-//! [`Settings::jobs`] at once, within [`Settings::time_limit`]; a request whose client went
-//! away stops its computation.
+//! [`Settings::jobs`] at once, in fair turns between clients (see [`super::fair`]), within
+//! [`Settings::time_limit`]; a request whose client went away stops its computation. Requests
+//! whose `Host` is not an address of the lab are refused (a web page elsewhere cannot make a
+//! browser read the lab's answers by renaming an address, "DNS rebinding").
 
 use super::api;
+use super::fair::{Fair, PER_CLIENT};
 use super::limit::{AbandonOnDrop, Budget};
 use super::query::ApiError;
+use super::serve::Peer;
 use axum::body::Body;
-use axum::extract::{RawQuery, Request, State};
+use axum::extract::{FromRequestParts, RawQuery, Request, State};
+use axum::http::request::Parts;
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
@@ -17,7 +22,6 @@ use serde::Serialize;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tokio::sync::Semaphore;
 
 /// The page.
 const INDEX_HTML: &str = include_str!("../../../assets/lab/index.html");
@@ -27,7 +31,7 @@ const LAB_JS: &str = include_str!("../../../assets/lab/lab.js");
 const LAB_CSS: &str = include_str!("../../../assets/lab/lab.css");
 
 /// How the server limits its work.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Settings {
     /// Time limit of one request, waiting included.
     pub time_limit: Duration,
@@ -35,22 +39,55 @@ pub struct Settings {
     pub jobs: usize,
     /// One line per request on standard error.
     pub verbose: bool,
+    /// Host names and addresses a request's `Host` header may name (without port, lower
+    /// case); `localhost` and the loopback addresses are always allowed.
+    pub hosts: Vec<String>,
 }
 
 /// The server's shared state.
 #[derive(Clone)]
 pub struct Lab {
-    settings: Settings,
-    permits: Arc<Semaphore>,
+    settings: Arc<Settings>,
+    fair: Arc<Fair>,
     active: Arc<AtomicUsize>,
+}
+
+/// The client a request comes from: the page's own id (the `x-lab-client` header) at the
+/// client's address, or else the connection.
+#[derive(Debug, Clone)]
+pub struct Client(pub String);
+
+/// Header by which the page names itself (random, one per open page).
+pub const CLIENT_HEADER: &str = "x-lab-client";
+
+impl<S: Send + Sync> FromRequestParts<S> for Client {
+    type Rejection = std::convert::Infallible;
+
+    async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, Self::Rejection> {
+        let peer = parts.extensions.get::<Peer>().map(|p| p.0);
+        let id = parts
+            .headers
+            .get(CLIENT_HEADER)
+            .and_then(|v| v.to_str().ok())
+            .filter(|v| {
+                (1..=64).contains(&v.len())
+                    && v.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-')
+            });
+        Ok(Client(match (peer, id) {
+            (Some(peer), Some(id)) => format!("{} {id}", peer.ip()),
+            (Some(peer), None) => peer.to_string(),
+            (None, Some(id)) => id.to_string(),
+            (None, None) => "local".to_string(),
+        }))
+    }
 }
 
 impl Lab {
     /// A lab with these settings.
     pub fn new(settings: Settings) -> Self {
         Self {
-            permits: Arc::new(Semaphore::new(settings.jobs.max(1))),
-            settings,
+            fair: Fair::new(settings.jobs),
+            settings: Arc::new(settings),
             active: Arc::new(AtomicUsize::new(0)),
         }
     }
@@ -61,38 +98,53 @@ impl Lab {
         self.active.load(Ordering::SeqCst)
     }
 
-    /// Run `work` on a worker thread within a new budget and answer with its JSON.
-    async fn compute<T, F>(&self, work: F) -> Response
+    /// Run `work` of `client` on a worker thread, in its turn, within a new budget, and
+    /// answer with its JSON.
+    async fn compute<T, F>(&self, client: Client, work: F) -> Response
     where
         T: Serialize + Send + 'static,
         F: FnOnce(&Arc<Budget>) -> Result<T, ApiError> + Send + 'static,
     {
+        let Some(slot) = self.fair.slot(&client.0) else {
+            return ApiError::status(
+                StatusCode::TOO_MANY_REQUESTS,
+                format!(
+                    "too many computations at once from this page: at most {PER_CLIENT} wait or \
+                     run for one client; let one finish (or drop it) and try again"
+                ),
+            )
+            .into_response();
+        };
         let budget = Budget::new(self.settings.time_limit);
         // Dropped with this future when the client goes away: the computation then stops.
         let _abandon = AbandonOnDrop(budget.clone());
         let deadline = tokio::time::Instant::from_std(budget.deadline());
-        let permit =
-            match tokio::time::timeout_at(deadline, self.permits.clone().acquire_owned()).await {
-                Ok(Ok(permit)) => permit,
-                _ => {
-                    return ApiError::status(
-                        StatusCode::SERVICE_UNAVAILABLE,
-                        format!(
-                            "the lab is busy: no worker was free within its time limit of {} s; \
+        let turn = match tokio::time::timeout_at(deadline, self.fair.turn(&client.0)).await {
+            Ok(turn) => turn,
+            Err(_) => {
+                return ApiError::status(
+                    StatusCode::SERVICE_UNAVAILABLE,
+                    format!(
+                        "the lab is busy: no worker was free within its time limit of {} s; \
                              try again",
-                            budget.limit().as_secs_f64()
-                        ),
-                    )
-                    .into_response()
-                }
-            };
+                        budget.limit().as_secs_f64()
+                    ),
+                )
+                .into_response()
+            }
+        };
         let active = self.active.clone();
         active.fetch_add(1, Ordering::SeqCst);
         let task_budget = budget.clone();
+        let fair = self.fair.clone();
+        let runtime = tokio::runtime::Handle::current();
         let task = tokio::task::spawn_blocking(move || {
-            let _permit = permit;
+            let _slot = slot;
             let _count = Decrement(active);
-            work(&task_budget).and_then(|answer| {
+            task_budget.take_turns(fair, client.0, turn, runtime);
+            let answer = work(&task_budget);
+            task_budget.end_turns();
+            answer.and_then(|answer| {
                 serde_json::to_vec(&answer)
                     .map_err(|e| ApiError::status(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))
             })
@@ -144,6 +196,7 @@ impl IntoResponse for ApiError {
 /// The router of a lab.
 pub fn router(lab: Lab) -> Router {
     let verbose = lab.settings.verbose;
+    let hosts = lab.settings.clone();
     let router = Router::new()
         .route("/", get(index))
         .route("/index.html", get(index))
@@ -158,6 +211,9 @@ pub fn router(lab: Lab) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(lab)
+        .layer(axum::middleware::from_fn(move |request, next| {
+            check_host(hosts.clone(), request, next)
+        }))
         .layer(axum::middleware::map_response(security_headers));
     if verbose {
         router.layer(axum::middleware::from_fn(log))
@@ -168,34 +224,109 @@ pub fn router(lab: Lab) -> Router {
 
 /// Headers on every answer: no sniffing, no referrer, and a page that loads only its own
 /// script and style (no CDN, no inline code).
+pub const SECURITY_HEADERS: [(&str, &str); 3] = [
+    ("x-content-type-options", "nosniff"),
+    ("referrer-policy", "no-referrer"),
+    (
+        "content-security-policy",
+        "default-src 'self'; img-src 'self' data: blob:; connect-src 'self'; \
+         object-src 'none'; base-uri 'none'; frame-ancestors 'none'",
+    ),
+];
+
 async fn security_headers(mut response: Response) -> Response {
     let h = response.headers_mut();
-    h.insert(
-        header::X_CONTENT_TYPE_OPTIONS,
-        HeaderValue::from_static("nosniff"),
-    );
-    h.insert(
-        header::REFERRER_POLICY,
-        HeaderValue::from_static("no-referrer"),
-    );
-    h.insert(
-        header::CONTENT_SECURITY_POLICY,
-        HeaderValue::from_static(
-            "default-src 'self'; img-src 'self' data: blob:; connect-src 'self'; \
-             object-src 'none'; base-uri 'none'; frame-ancestors 'none'",
-        ),
-    );
+    for (name, value) in SECURITY_HEADERS {
+        h.insert(name, HeaderValue::from_static(value));
+    }
     response
 }
 
-/// One line per request: method, path, status, milliseconds.
+/// The host part of a `Host` header, lower case, without port or brackets.
+fn host_name(value: &str) -> String {
+    let value = value.trim().to_ascii_lowercase();
+    let host = if let Some(rest) = value.strip_prefix('[') {
+        rest.split(']').next().unwrap_or_default().to_string()
+    } else {
+        value.split(':').next().unwrap_or_default().to_string()
+    };
+    host.trim_end_matches('.').to_string()
+}
+
+/// Answer only requests whose `Host` names the lab: `localhost`, a loopback address, an
+/// address the lab listens on, or a name given with `--allow-host`. A request without `Host`
+/// (not from a browser) passes.
+async fn check_host(settings: Arc<Settings>, request: Request, next: Next) -> Response {
+    let Some(value) = request.headers().get(header::HOST) else {
+        return next.run(request).await;
+    };
+    let host = host_name(value.to_str().unwrap_or_default());
+    let loopback = host == "localhost"
+        || host
+            .parse::<std::net::IpAddr>()
+            .is_ok_and(|ip| ip.is_loopback());
+    if loopback || settings.hosts.contains(&host) {
+        return next.run(request).await;
+    }
+    ApiError::status(
+        StatusCode::FORBIDDEN,
+        format!(
+            "this lab does not answer to the host '{}': open it by one of its addresses ({}), \
+             or start it with --allow-host {} to allow this name",
+            clip(&host, 60),
+            std::iter::once("localhost")
+                .chain(settings.hosts.iter().map(String::as_str))
+                .collect::<Vec<_>>()
+                .join(", "),
+            clip(&host, 60),
+        ),
+    )
+    .into_response()
+}
+
+/// At most `n` characters of `text`, without control characters.
+fn clip(text: &str, n: usize) -> String {
+    let mut out: String = text
+        .chars()
+        .take(n)
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    if text.chars().count() > n {
+        out.push('…');
+    }
+    out
+}
+
+/// Prints the line of a request that ended without an answer (its client went away).
+struct Aborted {
+    line: Option<String>,
+    started: Instant,
+}
+
+impl Drop for Aborted {
+    fn drop(&mut self) {
+        if let Some(line) = self.line.take() {
+            eprintln!(
+                "lab: {line} aborted after {:.1} ms: the client went away",
+                self.started.elapsed().as_secs_f64() * 1e3
+            );
+        }
+    }
+}
+
+/// One line per request: method, path (at most 80 characters), status, milliseconds; or
+/// `aborted` for a request whose client went away first.
 async fn log(request: Request, next: Next) -> Response {
     let started = Instant::now();
-    let method = request.method().clone();
-    let path = request.uri().path().to_string();
+    let line = format!("{} {}", request.method(), clip(request.uri().path(), 80));
+    let mut aborted = Aborted {
+        line: Some(line),
+        started,
+    };
     let response = next.run(request).await;
+    let line = aborted.line.take().unwrap_or_default();
     eprintln!(
-        "lab: {method} {path} {} {:.1} ms",
+        "lab: {line} {} {:.1} ms",
         response.status().as_u16(),
         started.elapsed().as_secs_f64() * 1e3
     );
@@ -231,7 +362,7 @@ async fn not_found(request: Request) -> Response {
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
              /api/map, /api/theory, /api/presets)",
-            request.uri().path().chars().take(80).collect::<String>()
+            clip(request.uri().path(), 80)
         ),
     )
     .into_response()
@@ -248,37 +379,37 @@ async fn method_not_allowed(request: Request) -> Response {
     .into_response()
 }
 
-async fn steady(State(lab): State<Lab>, RawQuery(raw): RawQuery) -> Response {
+async fn steady(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::SteadyRequest::parse(raw.as_deref()) {
-        Ok(request) => lab.compute(move |b| request.run(b)).await,
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }
 }
 
-async fn simulate(State(lab): State<Lab>, RawQuery(raw): RawQuery) -> Response {
+async fn simulate(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::SimulateRequest::parse(raw.as_deref()) {
-        Ok(request) => lab.compute(move |b| request.run(b)).await,
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }
 }
 
-async fn sweep(State(lab): State<Lab>, RawQuery(raw): RawQuery) -> Response {
+async fn sweep(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::SweepRequest::parse(raw.as_deref()) {
-        Ok(request) => lab.compute(move |b| request.run(b)).await,
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }
 }
 
-async fn map(State(lab): State<Lab>, RawQuery(raw): RawQuery) -> Response {
+async fn map(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::MapRequest::parse(raw.as_deref()) {
-        Ok(request) => lab.compute(move |b| request.run(b)).await,
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }
 }
 
-async fn theory(State(lab): State<Lab>, RawQuery(raw): RawQuery) -> Response {
+async fn theory(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::TheoryRequest::parse(raw.as_deref()) {
-        Ok(request) => lab.compute(move |b| request.run(b)).await,
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }
 }

@@ -21,6 +21,7 @@ fn lab(time_limit: Duration) -> Lab {
         time_limit,
         jobs: 2,
         verbose: false,
+        hosts: vec!["192.0.2.7".into(), "lab.school.example".into()],
     })
 }
 
@@ -533,5 +534,143 @@ async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_it
             colours.contains(&format!("'{label}':")) || colours.contains(&format!(" {label}:")),
             "no colour for {label} in {colours}"
         );
+    }
+}
+
+/// Issue 21, item 9: every bad value the review found is a 400 that names the key the user
+/// typed (never a 500, never another key), on every endpoint that takes it.
+#[tokio::test]
+async fn every_bad_value_of_the_review_is_a_400_naming_its_key() {
+    let bad = StatusCode::BAD_REQUEST;
+    let point = "preset=paper&w=0.95&beta=2.14";
+    let sweep = "preset=paper&beta=2.14";
+    let map = "preset=paper&w-steps=3&beta-steps=3";
+    // Shockley parts at 1e308 made the integrator fail (500) on every endpoint.
+    for key in ["diode-rs", "diode-n", "temperature", "diode-is"] {
+        for (endpoint, base) in [
+            ("steady", point),
+            ("simulate", point),
+            ("sweep", sweep),
+            ("map", map),
+        ] {
+            let uri = format!("/api/{endpoint}?{base}&model=shockley&{key}=1e308");
+            let body = refused(&uri, bad, &format!("invalid {key} 1e308")).await;
+            assert_eq!(body["field"], key, "{uri}: {body}");
+        }
+    }
+    // R or R_D at 1e308 blamed L.
+    for key in ["resistance", "rd"] {
+        let body = refused(
+            &format!("/api/steady?{point}&{key}=1e308"),
+            bad,
+            &format!("invalid {key} 1e308"),
+        )
+        .await;
+        assert_eq!(body["field"], key);
+        // Within the key's range but too large for the solvers: named all the same.
+        let body = refused(&format!("/api/steady?{point}&{key}=1e9"), bad, "zeta").await;
+        assert_eq!(body["field"], key, "{body}");
+    }
+    // A capacitance that makes ζ too large is the capacitance's fault when it was given.
+    let body = refused(&format!("/api/steady?{point}&capacitance=1e6"), bad, "C =").await;
+    assert_eq!(body["field"], "capacitance", "{body}");
+    // The end of a range that is out of range is named, not the other end.
+    let body = refused(
+        "/api/map?preset=paper&beta-max=1e308",
+        bad,
+        "invalid beta-max 1e308",
+    )
+    .await;
+    assert_eq!(body["field"], "beta-max");
+    let body = refused("/api/map?preset=paper&w-min=0", bad, "invalid w-min 0").await;
+    assert_eq!(body["field"], "w-min");
+    let body = refused(
+        &format!("/api/sweep?{sweep}&to=1e308"),
+        bad,
+        "invalid to 1e308",
+    )
+    .await;
+    assert_eq!(body["field"], "to");
+    let body = refused(
+        "/api/sweep?preset=paper&w=1&beta=2&over=mu-s&from=0.5&to=2",
+        bad,
+        "invalid from 0.5: mu-s must be finite and from 1",
+    )
+    .await;
+    assert_eq!(body["field"], "from");
+    // A unit that is not the key's.
+    let body = refused(
+        "/api/steady?preset=paper&freq=9.97kV&amplitude=1.4",
+        bad,
+        "the unit V does not fit",
+    )
+    .await;
+    assert_eq!(body["field"], "freq");
+    let body = refused(
+        "/api/steady?preset=paper&freq=9.97k&amplitude=1.4Hz",
+        bad,
+        "the unit Hz does not fit",
+    )
+    .await;
+    assert_eq!(body["field"], "amplitude");
+    // The key's own unit, or none, is fine.
+    for query in [
+        "preset=paper&freq=9.97kHz&amplitude=1.498V",
+        "preset=paper&freq=9.97k&amplitude=1.498&resistance=68ohm",
+    ] {
+        let (status, body) = get(&format!("/api/theory?{query}")).await;
+        assert_eq!(status, StatusCode::OK, "{query}: {body}");
+    }
+}
+
+/// GET `uri` with a `Host` header; status and body.
+async fn get_host(host: &str, uri: &str) -> (StatusCode, Value) {
+    let response = router(lab(Duration::from_secs(60)))
+        .oneshot(
+            Request::get(uri)
+                .header("host", host)
+                .body(Body::empty())
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    let status = response.status();
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap();
+    (status, serde_json::from_slice(&body).unwrap_or(Value::Null))
+}
+
+/// Issue 21, item 12: a page that renames an address ("DNS rebinding") gets nothing.
+#[tokio::test]
+async fn only_the_labs_own_host_names_are_answered() {
+    for host in [
+        "localhost:8080",
+        "LOCALHOST",
+        "127.0.0.1:8080",
+        "[::1]:8080",
+        "192.0.2.7:8080",
+        "lab.school.example",
+        "lab.school.example.:80",
+    ] {
+        let (status, body) = get_host(host, "/api/presets").await;
+        assert_eq!(status, StatusCode::OK, "{host}: {body}");
+    }
+    for host in [
+        "evil.example",
+        "evil.example:8080",
+        "192.0.2.8",
+        "[::2]:80",
+        "",
+    ] {
+        for path in ["/", "/api/presets", "/api/theory?preset=paper&w=1&beta=1"] {
+            let (status, body) = get_host(host, path).await;
+            assert_eq!(status, StatusCode::FORBIDDEN, "{host} {path}");
+            let message = body["error"].as_str().unwrap_or_default();
+            assert!(
+                message.contains("does not answer to the host") && message.contains("--allow-host"),
+                "{host}: {message}"
+            );
+        }
     }
 }

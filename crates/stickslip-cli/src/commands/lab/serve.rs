@@ -1,0 +1,277 @@
+//! The lab's connections: accepted up to [`MAX_CONNECTIONS`] at once, each with a time limit
+//! for its request headers (which is also how long an idle connection stays open, between
+//! two requests), a limit on a stalled answer, and a JSON 414 (with the page's security
+//! headers) for a request line too long to parse. The answers themselves come from the
+//! [`router`](super::router).
+
+use axum::Router;
+use hyper_util::rt::{TokioIo, TokioTimer};
+use hyper_util::service::TowerToHyperService;
+use std::future::Future;
+use std::io;
+use std::net::SocketAddr;
+use std::pin::Pin;
+use std::sync::Arc;
+use std::task::{Context, Poll};
+use std::time::{Duration, Instant};
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::net::{TcpListener, TcpStream};
+use tokio::sync::{watch, Semaphore};
+use tokio::time::Sleep;
+
+/// How the server treats connections.
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Time for the request headers to arrive, from the connection's start or the end of the
+    /// previous answer: a half-sent request, or a connection left idle, is closed after it.
+    pub header_timeout: Duration,
+    /// Time an answer may wait for the client to read it.
+    pub write_timeout: Duration,
+    /// Connections open at once; more wait in the system's queue until one closes.
+    pub max_connections: usize,
+}
+
+/// Header (and idle) time limit.
+pub const HEADER_TIMEOUT: Duration = Duration::from_secs(10);
+/// Stalled answer time limit.
+pub const WRITE_TIMEOUT: Duration = Duration::from_secs(30);
+/// Connections at once: a classroom of 30 browsers with six connections each, twice over.
+pub const MAX_CONNECTIONS: usize = 400;
+/// Longest line of a request head: the query is capped at 4096 bytes, and a longer line is
+/// answered here, with the JSON and the headers of every other answer.
+pub const MAX_LINE: usize = 16 * 1024;
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            header_timeout: HEADER_TIMEOUT,
+            write_timeout: WRITE_TIMEOUT,
+            max_connections: MAX_CONNECTIONS,
+        }
+    }
+}
+
+/// The client's address, in each request's extensions.
+#[derive(Debug, Clone, Copy)]
+pub struct Peer(pub SocketAddr);
+
+/// Serve `app` on `listener` until `shutdown` resolves; then stop accepting, let the requests
+/// in flight finish (at most `grace`) and return.
+///
+/// # Errors
+/// When the listener fails for good.
+pub async fn serve(
+    listener: TcpListener,
+    app: Router,
+    limits: Limits,
+    verbose: bool,
+    shutdown: impl Future<Output = ()>,
+    grace: Duration,
+) -> io::Result<()> {
+    let slots = Arc::new(Semaphore::new(limits.max_connections.max(1)));
+    let (stop, stopped) = watch::channel(false);
+    let mut shutdown = std::pin::pin!(shutdown);
+    loop {
+        let slot = tokio::select! {
+            () = &mut shutdown => break,
+            slot = slots.clone().acquire_owned() => slot.expect("the semaphore is never closed"),
+        };
+        let (stream, peer) = tokio::select! {
+            () = &mut shutdown => break,
+            accepted = listener.accept() => match accepted {
+                Ok(accepted) => accepted,
+                Err(e) => {
+                    // Out of file descriptors and the like: wait a little, keep serving.
+                    if verbose {
+                        eprintln!("lab: cannot accept a connection: {e}");
+                    }
+                    tokio::time::sleep(Duration::from_millis(50)).await;
+                    continue;
+                }
+            },
+        };
+        let _ = stream.set_nodelay(true);
+        let app = app.clone().layer(axum::Extension(Peer(peer)));
+        let mut stopped = stopped.clone();
+        tokio::spawn(async move {
+            let _slot = slot;
+            let io = TokioIo::new(Guarded::new(stream, limits.write_timeout));
+            let mut builder = hyper::server::conn::http1::Builder::new();
+            builder
+                .timer(TokioTimer::new())
+                .header_read_timeout(limits.header_timeout)
+                .keep_alive(true);
+            let connection = builder.serve_connection(io, TowerToHyperService::new(app));
+            let mut connection = std::pin::pin!(connection);
+            let started = Instant::now();
+            let result = tokio::select! {
+                result = connection.as_mut() => result,
+                _ = async { let _ = stopped.wait_for(|&s| s).await; } => {
+                    connection.as_mut().graceful_shutdown();
+                    connection.await
+                }
+            };
+            if let (Err(e), true) = (result, verbose) {
+                let why = if e.is_timeout() {
+                    format!(
+                        "no complete request within {} s",
+                        limits.header_timeout.as_secs_f64()
+                    )
+                } else {
+                    e.to_string()
+                };
+                eprintln!(
+                    "lab: connection from {peer} closed after {:.1} s: {why}",
+                    started.elapsed().as_secs_f64()
+                );
+            }
+        });
+    }
+    let _ = stop.send(true);
+    // Wait for the connections to finish, at most `grace`.
+    let all = u32::try_from(limits.max_connections.max(1)).unwrap_or(u32::MAX);
+    let _ = tokio::time::timeout(grace, slots.acquire_many(all)).await;
+    Ok(())
+}
+
+/// A client's socket, watched: a line of the request head longer than [`MAX_LINE`] is answered
+/// with a JSON 414 and the connection closed; an answer the client does not read within the
+/// write time limit ends the connection.
+struct Guarded {
+    stream: TcpStream,
+    write_timeout: Duration,
+    stall: Option<Pin<Box<Sleep>>>,
+    /// Bytes of the current line, and the current line's number within its head (0: the
+    /// request line).
+    line: usize,
+    line_number: usize,
+    /// Refused: reads end, writes are dropped.
+    refused: bool,
+}
+
+impl Guarded {
+    fn new(stream: TcpStream, write_timeout: Duration) -> Self {
+        Self {
+            stream,
+            write_timeout,
+            stall: None,
+            line: 0,
+            line_number: 0,
+            refused: false,
+        }
+    }
+
+    /// Follow the lines of the head; whether a line is too long.
+    fn too_long(&mut self, bytes: &[u8]) -> bool {
+        for &b in bytes {
+            if b == b'\n' {
+                // An empty line ("\r\n" or "\n") ends a head: the next line is a request line.
+                self.line_number = if self.line <= 1 {
+                    0
+                } else {
+                    self.line_number + 1
+                };
+                self.line = 0;
+            } else {
+                self.line += 1;
+                if self.line > MAX_LINE {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    /// Write the refusal straight to the socket (it is small: the socket's buffer takes it).
+    fn refuse(&mut self) {
+        self.refused = true;
+        let (status, what) = if self.line_number == 0 {
+            ("414 URI Too Long", "the request line")
+        } else {
+            ("431 Request Header Fields Too Large", "a header line")
+        };
+        let body = serde_json::json!({
+            "error": format!(
+                "{what} is longer than {MAX_LINE} bytes: the lab takes queries of at most {} bytes",
+                super::query::MAX_QUERY_BYTES
+            )
+        })
+        .to_string();
+        let mut response = format!("HTTP/1.1 {status}\r\ncontent-type: application/json\r\n");
+        for (name, value) in super::router::SECURITY_HEADERS {
+            response.push_str(&format!("{name}: {value}\r\n"));
+        }
+        response.push_str(&format!(
+            "cache-control: no-store\r\nconnection: close\r\ncontent-length: {}\r\n\r\n{body}",
+            body.len()
+        ));
+        let _ = self.stream.try_write(response.as_bytes());
+    }
+}
+
+impl AsyncRead for Guarded {
+    fn poll_read(
+        self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
+        let this = self.get_mut();
+        if this.refused {
+            return Poll::Ready(Ok(()));
+        }
+        let before = buf.filled().len();
+        let result = Pin::new(&mut this.stream).poll_read(cx, buf);
+        if let Poll::Ready(Ok(())) = result {
+            let new = buf.filled()[before..].to_vec();
+            if this.too_long(&new) {
+                this.refuse();
+                // Nothing of this read reaches the parser, which sees the end of the stream.
+                buf.set_filled(before);
+            }
+        }
+        result
+    }
+}
+
+impl AsyncWrite for Guarded {
+    fn poll_write(
+        self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        data: &[u8],
+    ) -> Poll<io::Result<usize>> {
+        let this = self.get_mut();
+        if this.refused {
+            return Poll::Ready(Ok(data.len()));
+        }
+        match Pin::new(&mut this.stream).poll_write(cx, data) {
+            Poll::Pending => {
+                let timeout = this.write_timeout;
+                let stall = this
+                    .stall
+                    .get_or_insert_with(|| Box::pin(tokio::time::sleep(timeout)));
+                if stall.as_mut().poll(cx).is_ready() {
+                    return Poll::Ready(Err(io::Error::new(
+                        io::ErrorKind::TimedOut,
+                        format!(
+                            "the client read nothing of the answer for {} s",
+                            timeout.as_secs_f64()
+                        ),
+                    )));
+                }
+                Poll::Pending
+            }
+            ready => {
+                this.stall = None;
+                ready
+            }
+        }
+    }
+
+    fn poll_flush(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        Pin::new(&mut self.get_mut().stream).poll_flush(cx)
+    }
+
+    fn poll_shutdown(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        Pin::new(&mut self.get_mut().stream).poll_shutdown(cx)
+    }
+}
