@@ -570,7 +570,8 @@ pub fn orbit<'py>(
 /// The Lyapunov exponents from the initial state; see `stickslip.lyapunov`. Returns the dict
 /// that `stickslip lyapunov --json` prints.
 #[pyfunction]
-#[pyo3(signature = (experiment, transient=1000, periods=20000, blocks=20, significance=4.0, progress=None))]
+#[pyo3(signature = (experiment, transient=1000, periods=20000, blocks=20, significance=4.0, progress=None, fixed=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn lyapunov<'py>(
     py: Python<'py>,
     experiment: PyRef<'py, PyExperiment>,
@@ -579,6 +580,7 @@ pub fn lyapunov<'py>(
     blocks: i64,
     significance: f64,
     progress: Option<Bound<'py, PyAny>>,
+    fixed: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let e = experiment.experiment().clone();
     let options = LyapunovOptions {
@@ -586,13 +588,14 @@ pub fn lyapunov<'py>(
         periods: whole("periods", periods)?,
         blocks: whole("blocks", blocks)?,
         significance,
+        sequential: !fixed,
     }
     .validate()
     .map_err(error)?;
     let report = run(py, progress.as_ref(), |monitor| {
         let params = e.exact_params()?;
         let c = e.lyapunov(&options, monitor)?;
-        Ok(LyapunovReport::new(&c, &options, &params))
+        LyapunovReport::new(&c, &options, &params)
     })?;
     json_value(py, &report)
 }

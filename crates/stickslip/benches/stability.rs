@@ -111,6 +111,7 @@ fn bench_lyapunov(c: &mut Criterion) {
         periods: MEASURED,
         blocks: 20,
         significance: 4.0,
+        sequential: false,
     };
     for (name, params) in points() {
         group.bench_with_input(BenchmarkId::new("plain", name), &params, |b, &p| {

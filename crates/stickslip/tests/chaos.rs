@@ -44,7 +44,12 @@ fn a_motion_that_does_not_repeat_is_chaotic_when_its_exponent_is_positive() {
             l.per_tau > 4.0 * l.error_per_tau && l.per_tau > 1e-3,
             "w {w}: {l:?}"
         );
-        assert_eq!(c.exponents.periods, SteadyOptions::DEFAULT_LYAPUNOV.periods);
+        assert_eq!(c.exponents.cap, SteadyOptions::DEFAULT_LYAPUNOV.periods);
+        // Sequential: decided at one of its looks, before the cap.
+        assert!(c.exponents.periods < c.exponents.cap);
+        assert!(SteadyOptions::DEFAULT_LYAPUNOV
+            .looks()
+            .contains(&c.exponents.periods));
         // Measured from the final state of the record, with the default options: the same
         // numbers as a direct measurement.
         let direct =
@@ -58,7 +63,7 @@ fn a_motion_that_does_not_repeat_is_chaotic_when_its_exponent_is_positive() {
         assert_eq!(json["lambda_per_tau"].as_f64(), Some(l.per_tau));
         assert_eq!(json["error_per_tau"].as_f64(), Some(l.error_per_tau));
         assert_eq!(json["lambda_per_period"].as_f64(), Some(l.per_period));
-        assert_eq!(json["lambda_periods"], 5000);
+        assert_eq!(json["lambda_periods"], c.exponents.periods);
         assert_eq!(json["lambda_converged"], true);
     }
 }
@@ -230,6 +235,7 @@ fn the_monitor_sees_every_period_and_can_stop_the_measurement() {
         periods: 2000,
         blocks: 20,
         significance: 4.0,
+        sequential: false,
     };
     let seen = std::sync::Mutex::new(Vec::new());
     let watched = lyapunov_exponents_monitored(&params, State::default(), &options, &|d, t| {
@@ -450,7 +456,7 @@ fn an_experiment_finds_its_orbits_and_exponents() {
 }
 
 #[test]
-fn reports_write_minus_infinity_as_text_and_count_real_stops() {
+fn reports_write_minus_infinity_as_null_with_its_reason_and_count_real_stops() {
     let zeta = Circuit::paper().scales().zeta();
     // A stick-slip orbit: two stops per period, one multiplier exactly 0.
     let params = Params::new(zeta, 0.7, 1.2).unwrap();
@@ -491,17 +497,20 @@ fn reports_write_minus_infinity_as_text_and_count_real_stops() {
         c.exponents.second,
         SecondExponent::MinusInfinity { .. }
     ));
-    let json = serde_json::to_value(LyapunovReport::new(&c, &options, &params)).unwrap();
-    assert_eq!(json["lambda2_per_tau"], "-inf");
+    let json = serde_json::to_value(LyapunovReport::new(&c, &options, &params).unwrap()).unwrap();
+    assert_eq!(json["lambda2_per_tau"], serde_json::Value::Null);
     assert_eq!(json["lambda2_error_per_tau"], serde_json::Value::Null);
     assert!(json["lambda2_reason"].as_str().unwrap().contains("stopped"));
-    assert_eq!(json["class"], "contracting");
+    // It has reached its period-1 orbit: periodic, and what the exponent says beside it.
+    assert_eq!(json["class"], "periodic");
+    assert_eq!(json["period"], 1);
+    assert_eq!(json["verdict"], "contracting");
     assert_eq!(json["stops_per_period"], 2.0);
     // A sliding motion: λ₂ finite.
     let sliding = Params::new(zeta, 0.9, 1.6).unwrap();
     let c =
         stickslip::stability::classify_nonperiodic(&sliding, State::default(), &options).unwrap();
-    let json = serde_json::to_value(LyapunovReport::new(&c, &options, &sliding)).unwrap();
+    let json = serde_json::to_value(LyapunovReport::new(&c, &options, &sliding).unwrap()).unwrap();
     assert!(json["lambda2_per_tau"].as_f64().unwrap() < json["lambda_per_tau"].as_f64().unwrap());
     assert_eq!(json["lambda2_reason"], serde_json::Value::Null);
     assert_eq!(json["stops_per_period"], 0.0);

@@ -712,9 +712,13 @@ fn unstable_orbits_are_found_and_perturbations_grow_at_their_multiplier() {
 // ---------------------------------------------------------------------------------------------
 // Lyapunov exponents
 
-/// The options of the Lyapunov tests: 1000 periods of transient, 20 000 measured in 20 blocks.
+/// The options of the Lyapunov tests: 1000 periods of transient, 20 000 measured in 20 blocks,
+/// all of them (the fixed measurement; the sequential one is tested in lyapunov_sequential.rs).
 fn measuring() -> LyapunovOptions {
-    LyapunovOptions::default()
+    LyapunovOptions {
+        sequential: false,
+        ..LyapunovOptions::default()
+    }
 }
 
 /// Chaotic points (ζ = 0, μs = 3, β = 9, in the two windows of the w sweep) and stable orbits:

@@ -35,8 +35,9 @@ fn a_chaotic_point_has_a_positive_exponent_beyond_its_error() {
         v["error_per_tau"].as_f64().unwrap(),
     );
     assert!(lambda > 4.0 * error && lambda > 1e-3, "{lambda} ± {error}");
-    // It stops, so λ2 = −∞, written "-inf" with the reason.
-    assert_eq!(v["lambda2_per_tau"], "-inf");
+    // It stops, so λ2 = −∞: null with the reason (JSON has no infinity).
+    assert_eq!(v["lambda2_per_tau"], serde_json::Value::Null);
+    assert_eq!(v["lambda2_per_period"], serde_json::Value::Null);
     assert!(v["lambda2_reason"].as_str().unwrap().contains("stopped"));
     assert!(v["stops_per_period"].as_f64().unwrap() > 1.0);
     assert_eq!(v["block_means"].as_array().unwrap().len(), 10);
@@ -50,9 +51,10 @@ fn a_chaotic_point_has_a_positive_exponent_beyond_its_error() {
         periods: 4000,
         blocks: 10,
         significance: 4.0,
+        sequential: true,
     };
     let c = e.lyapunov(&options, &()).unwrap();
-    let report = LyapunovReport::new(&c, &options, &e.params().unwrap());
+    let report = LyapunovReport::new(&c, &options, &e.params().unwrap()).unwrap();
     assert_eq!(v, serde_json::to_value(&report).unwrap());
 }
 
@@ -70,7 +72,12 @@ fn a_sliding_motion_contracts_with_a_finite_second_exponent() {
         "--periods",
         "400",
     ]);
-    assert_eq!(v["class"], "contracting");
+    // It has reached its period-1 sliding orbit.
+    assert_eq!(
+        (v["class"].as_str(), v["period"].as_u64()),
+        (Some("periodic"), Some(1))
+    );
+    assert_eq!(v["verdict"], "contracting");
     assert_eq!(v["stops_per_period"], 0.0);
     let l2 = v["lambda2_per_tau"].as_f64().expect("a number");
     assert!(l2 < v["lambda_per_tau"].as_f64().unwrap());
@@ -170,4 +177,78 @@ fn ctrl_c_stops_a_long_measurement() {
     assert!(out.stdout.is_empty());
     // It stops within 1000 periods, not at the end of 1e8 periods.
     assert!(started.elapsed() < std::time::Duration::from_secs(20));
+}
+
+#[test]
+fn lyapunov_json_writes_null_not_the_string_minus_inf_for_lambda2() {
+    let mut args = CHAOTIC.to_vec();
+    args.extend(["--transient", "200", "--periods", "2000"]);
+    let v = json(&args);
+    assert!(v["lambda2_per_tau"].is_null(), "{v}");
+    assert!(v["lambda2_error_per_tau"].is_null(), "{v}");
+    assert!(v["lambda2_per_period"].is_null(), "{v}");
+    assert!(
+        v["lambda2_reason"].as_str().unwrap().contains("det J = 0"),
+        "{v}"
+    );
+    assert!(!serde_json::to_string(&v).unwrap().contains("inf"));
+}
+
+#[test]
+fn the_measurement_stops_when_the_verdict_is_decided_and_fixed_runs_to_the_cap() {
+    let mut args = CHAOTIC.to_vec();
+    args.extend(["--transient", "500", "--periods", "20000"]);
+    let v = json(&args);
+    assert_eq!(v["class"], "chaotic");
+    assert_eq!(v["sequential"], true);
+    assert_eq!(v["cap_periods"], 20000);
+    let measured = v["periods"].as_u64().unwrap();
+    assert!(measured < 20000, "stopped at {measured}");
+    assert_eq!(v["block_means"].as_array().unwrap().len(), 20);
+    // --fixed: the fixed measurement of the same length gives the same numbers.
+    let measured = measured.to_string();
+    args.extend(["--fixed"]);
+    let fixed_args: Vec<&str> = args
+        .iter()
+        .map(|a| if *a == "20000" { measured.as_str() } else { a })
+        .collect();
+    let f = json(&fixed_args);
+    assert_eq!(f["sequential"], false);
+    assert_eq!(f["periods"], v["periods"]);
+    assert_eq!(f["lambda_per_tau"], v["lambda_per_tau"]);
+    assert_eq!(f["error_per_tau"], v["error_per_tau"]);
+    // Text: says it stopped early.
+    let mut text_args = vec!["lyapunov"];
+    text_args.extend_from_slice(&CHAOTIC);
+    text_args.extend(["--transient", "500", "--periods", "20000"]);
+    let (_dir, out) = run(&text_args);
+    assert!(stdout(&out).contains("stopped early"), "{}", stdout(&out));
+}
+
+#[test]
+fn lyapunov_on_a_period_3_stick_slip_orbit_says_periodic_with_its_period() {
+    // ζ = 0, μs = 3, β = 9, w = 0.42: from rest the motion reaches a period-3 orbit with
+    // stops; it used to be called "contracting: ... not reached".
+    let args = ["--zeta", "0", "--mu-s", "3", "--w", "0.42", "--beta", "9"];
+    let v = json(&args);
+    assert_eq!(v["class"], "periodic", "{v}");
+    assert_eq!(v["period"], 3, "{v}");
+    assert_eq!(v["verdict"], "contracting", "{v}");
+    let lambda = v["lambda_per_tau"].as_f64().unwrap();
+    assert!((-0.12..-0.10).contains(&lambda), "{lambda}");
+    let mut text = vec!["lyapunov"];
+    text.extend_from_slice(&args);
+    let (_dir, out) = run(&text);
+    let text = stdout(&out);
+    assert!(
+        text.contains("periodic with period 3 drive periods"),
+        "{text}"
+    );
+    assert!(!text.contains("not reached"), "{text}");
+    // A chaotic motion has no period.
+    let v = json(&CHAOTIC);
+    assert_eq!(
+        (v["class"].as_str(), v["period"].is_null()),
+        (Some("chaotic"), true)
+    );
 }

@@ -281,8 +281,16 @@ fn a_map_of_the_largest_exponent_with_the_chaotic_class() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let plain = std::fs::read_to_string(dir2.path().join("plain.csv")).unwrap();
+    // The classes of the plain map; a chaotic cell is decided after a shortened search
+    // (`steady_state_with_exponent`), so its record (stops, gain) is of another stretch of
+    // the chaotic motion, and only its class and period are compared.
     for (a, b) in plain.lines().zip(csv.lines()).skip(1) {
-        assert!(b.starts_with(a), "{a} against {b}");
+        if a.contains(",chaotic,") {
+            let head = |s: &str| s.split(',').take(4).collect::<Vec<_>>().join(",");
+            assert_eq!(head(a), head(b));
+        } else {
+            assert!(b.starts_with(a), "{a} against {b}");
+        }
     }
     let svg = std::fs::read_to_string(dir.path().join("map.svg")).unwrap();
     assert!(svg.contains("largest Lyapunov exponent") && svg.contains("λ1 per unit τ"));

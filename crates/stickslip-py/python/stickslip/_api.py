@@ -940,10 +940,13 @@ class LyapunovResult:
             the measurement disagree), with k = ``significance`` (the JSON's ``class``).
         converged: whether the two halves agree.
         lambda2_per_tau, lambda2_per_period: the second exponent (-inf once the motion stops:
-            a stop erases the velocity perturbation; ``lambda2_reason`` says so).
+            a stop erases the velocity perturbation; ``lambda2_reason`` says so; the JSON of
+            ``to_dict()`` has null there).
         stops_per_period: stops longer than 1e-8 drive periods per drive period.
         block_means: float64 array of λ1 per block, in time order.
-        transient_periods, periods, blocks, significance: how it was measured.
+        transient_periods, periods, blocks, significance: how it was measured (``periods``:
+            the drive periods measured, fewer than ``cap_periods`` when the verdict was
+            decided early; ``sequential``: whether it could stop early).
         final_state: (y, y') at the end of the measurement (a strobe).
         experiment: the experiment.
     """
@@ -958,14 +961,19 @@ class LyapunovResult:
         self.error_per_period: float = r["error_per_period"]
         self.motion_class: str = r["class"]
         self.converged: bool = r["converged"]
-        self.lambda2_per_tau: float = _exponent(r["lambda2_per_tau"])
+        minus_infinity = r["lambda2_per_tau"] is None
+        self.lambda2_per_tau: float = (float("-inf") if minus_infinity
+                                       else float(r["lambda2_per_tau"]))
         self.lambda2_error_per_tau: Optional[float] = r["lambda2_error_per_tau"]
-        self.lambda2_per_period: float = _exponent(r["lambda2_per_period"])
+        self.lambda2_per_period: float = (float("-inf") if minus_infinity
+                                          else float(r["lambda2_per_period"]))
         self.lambda2_reason: Optional[str] = r["lambda2_reason"]
         self.stops_per_period: float = r["stops_per_period"]
         self.block_means = np.asarray(r["block_means"], dtype=np.float64)
         self.transient_periods: int = r["transient_periods"]
         self.periods: int = r["periods"]
+        self.cap_periods: int = r["cap_periods"]
+        self.sequential: bool = r["sequential"]
         self.blocks: int = r["blocks"]
         self.significance: float = r["significance"]
         self.drive_period: float = r["drive_period"]
@@ -1034,14 +1042,16 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
 
 def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20000,
              blocks: int = 20, significance: float = 4.0,
-             progress: Progress = None) -> LyapunovResult:
+             progress: Progress = None, fixed: bool = False) -> LyapunovResult:
     """The Lyapunov exponents of the motion from the initial state, by the exact tangent
     dynamics of the PWL model (as ``stickslip lyapunov``).
 
     The 2×2 Jacobian of the exact flow is carried along the trajectory; after ``transient``
-    drive periods the largest exponent λ1 is averaged over ``periods`` more, cut into
+    drive periods the largest exponent λ1 is averaged over at most ``periods`` more, cut into
     ``blocks`` blocks whose spread gives its standard error σ. Two motions that start δ
-    apart are about e^(λ1 τ)·δ apart later (τ = ω0·t).
+    apart are about e^(λ1 τ)·δ apart later (τ = ω0·t). The measurement stops at the first of
+    its looks (after about periods/32, /16, …, /2 and all of them) where the halves agree and
+    |λ1| > kσ (docs/stability.md gives the rule and its significance).
 
     Args:
         experiment: a ``stickslip.Experiment`` with its drive given (not Shockley diodes).
@@ -1051,6 +1061,8 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
         blocks: even, from 4 to 10000 (default 20).
         significance: k, the standard errors that make λ1 significant (default 4).
         progress: optional callable ``progress(done, total)`` (drive periods).
+        fixed: measure all ``periods`` even when the verdict is decided sooner (default
+            False; as ``--fixed``).
 
     Returns:
         A ``LyapunovResult``; ``to_dict()`` equals ``stickslip lyapunov --json``.
@@ -1072,5 +1084,6 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
     report = _core.lyapunov(experiment, _checks.integer("transient", transient, 0, 10**9),
                             _checks.integer("periods", periods, blocks, 10**9,
                                             f"must be from blocks ({blocks}) to 1e9"), blocks,
-                            _checks.number("significance", significance), progress)
+                            _checks.number("significance", significance), progress,
+                            bool(fixed))
     return LyapunovResult(experiment, report)

@@ -169,6 +169,7 @@ def lyapunov(
     blocks: int = 20,
     significance: float = 4.0,
     progress: _Progress = None,
+    fixed: bool = False,
 ) -> Dict[str, Any]: ...
 def bifurcation(
     experiment: Experiment,

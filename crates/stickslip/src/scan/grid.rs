@@ -6,7 +6,7 @@ use super::monitor::Monitor;
 use crate::error::{Error, Result};
 use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
-use crate::stability::{steady_exponent, Estimate, LyapunovOptions};
+use crate::stability::{steady_state_with_exponent, Estimate, LyapunovOptions};
 use crate::steady::{check_horizon, steady_state_from, MotionClass, SolverFactory, SteadyOptions};
 
 use serde::{Deserialize, Serialize};
@@ -183,11 +183,12 @@ impl Grid {
     }
 
     /// Also find the largest Lyapunov exponent of every point ([`GridPoint::lyapunov`], by
-    /// [`steady_exponent`]): exactly, from the Floquet multipliers of the periodic orbit, where
+    /// [`crate::stability::steady_exponent`]): exactly, from the Floquet multipliers of the periodic orbit, where
     /// the motion repeats (a Newton step or two from the recorded cycle), and measured with
     /// `options` where it does not (unless the steady-state search measured it already, with
-    /// [`SteadyOptions::lyapunov`]). Points still differ only by what they compute, so the map
-    /// stays the same for any number of threads.
+    /// [`SteadyOptions::lyapunov`]). A motion decided chaotic early in its search stops there
+    /// ([`steady_state_with_exponent`]). Points still differ only by what they compute, so the
+    /// map stays the same for any number of threads.
     ///
     /// # Errors
     /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are
@@ -266,15 +267,23 @@ impl Grid {
     /// When i or j is out of range.
     pub fn point(&self, i: usize, j: usize) -> Result<GridPoint> {
         let params = self.params(i, j)?;
-        let s = steady_state_from(
-            self.factory.as_ref(),
-            &params,
-            self.experiment.initial(),
-            &self.options,
-        )?;
-        let lyapunov = match &self.lyapunov {
-            Some(options) => steady_exponent(&s, options)?,
-            None => None,
+        let (s, lyapunov) = match &self.lyapunov {
+            Some(options) => steady_state_with_exponent(
+                self.factory.as_ref(),
+                &params,
+                self.experiment.initial(),
+                &self.options,
+                options,
+            )?,
+            None => (
+                steady_state_from(
+                    self.factory.as_ref(),
+                    &params,
+                    self.experiment.initial(),
+                    &self.options,
+                )?,
+                None,
+            ),
         };
         Ok(GridPoint {
             params,

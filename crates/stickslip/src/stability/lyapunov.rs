@@ -11,10 +11,12 @@
 //! λ₁ = Σ_b g_b / (N T)      per unit τ,       λ₁ T per drive period,
 //! ```
 //!
-//! over N = blocks × L periods. Every block (and every stretch of L periods of the transient)
-//! runs on a solver restarted at τ = 0 from the strobe state, J kept: the rounding of absolute
-//! times grows with τ (ulp(τ) doubles at every power of two) and would change the segment
-//! durations the Jacobian sees by about 10⁻¹⁰ relative at τ ~ 10⁵, from one block to the next.
+//! over N = blocks × L periods. Every drive period (of the transient and of the measurement)
+//! runs on a solver restarted at τ = 0 from the strobe state, J kept and renormalised at its
+//! end, its growth recorded: the rounding of absolute times grows with τ (ulp(τ) doubles at
+//! every power of two) and would change the segment durations the Jacobian sees by about
+//! 10⁻¹⁰ relative at τ ~ 10⁵, from one period to the next; and so a measurement that stops
+//! early is, number for number, the fixed measurement of that length.
 //! **Error**: the N periods are cut into blocks of L periods; the
 //! block means are nearly independent when L is long against the correlation time, and the
 //! error is their standard error, sd/√blocks. **Convergence check**: the means of the first
@@ -26,6 +28,25 @@
 //! such a transient cannot excuse itself; the slow, bounded beat of ln‖J‖ along an orbit with
 //! complex multipliers (a focus) spreads over all blocks and passes. A drift between the
 //! halves makes the estimate not converged.
+//!
+//! **Stopping when the verdict is known** ([`LyapunovOptions::sequential`], the default).
+//! The growth is recorded drive period by drive period (the clock restarted and J renormalised
+//! at every strobe), so the measurement can be cut into `blocks` equal blocks at any length
+//! that is a multiple of `blocks`. It is looked at after n_j = blocks·⌊L/2^j⌋ periods,
+//! j = J, J − 1, …, 0, where L = ⌊periods/blocks⌋ is the block length at the cap and J ≤ 5 the
+//! largest with ⌊L/2^J⌋ ≥ 10 (at most six looks, lengths nearly doubling, the last the cap).
+//! At every look the estimate λ₁ ± σ and the convergence check are those of a fixed
+//! measurement of that length, and the run stops at the first look where the verdict is
+//! decided: the halves agree and λ₁ > kσ (chaotic) or λ₁ < −kσ (contracting), k =
+//! [`LyapunovOptions::significance`]; or λ₁ is zero to rounding, |λ₁| + kσ ≤ 10⁻¹²·(1 + |λ₁|)
+//! (an exactly neutral motion: rest, a neutral family). Otherwise (|λ₁| ≤ kσ, or halves that
+//! disagree) it goes on, and the cap gives the fixed measurement's answer. **Significance**:
+//! with σ the standard error of `blocks` = 20 nearly independent, nearly normal block means, a
+//! motion whose true exponent has the other sign (or is 0) passes one look with probability
+//! P(|t₁₉| > 4)/2 ≈ 3.9·10⁻⁴ at k = 4 (Student's t with 19 degrees of freedom), so at most
+//! 6 × 3.9·10⁻⁴ ≈ 2.3·10⁻³ over all looks (Bonferroni; about 1.9·10⁻⁴ should the means be
+//! normal with a known spread). `sequential: false` always runs to the cap (the measurement as
+//! it was before the early stop).
 //!
 //! **Second exponent.** λ₁ + λ₂ = lim (1/τ) ln|det J|, and ln|det J| is known exactly as a sum
 //! ([`TangentSolver::log_det`]): −2ζ per unit of sliding time (Liouville, between events) plus
@@ -58,6 +79,14 @@ pub struct LyapunovOptions {
     /// Standard errors that make a difference significant (the convergence check and the
     /// verdicts of [`super::classify_nonperiodic`]). Default 4.
     pub significance: f64,
+    /// Stop at the first look where the verdict is decided (see the module documentation);
+    /// `false`: always measure `periods`. Default true.
+    #[serde(default = "sequential_default")]
+    pub sequential: bool,
+}
+
+fn sequential_default() -> bool {
+    true
 }
 
 impl Default for LyapunovOptions {
@@ -67,6 +96,7 @@ impl Default for LyapunovOptions {
             periods: 20_000,
             blocks: 20,
             significance: 4.0,
+            sequential: true,
         }
     }
 }
@@ -100,6 +130,32 @@ impl LyapunovOptions {
         Ok(self)
     }
 
+    /// The measured lengths (drive periods) at which a sequential measurement looks at its
+    /// verdict, in increasing order; the last is the cap, `periods` rounded down to a multiple
+    /// of `blocks` (see the module documentation). Only the cap without
+    /// [`LyapunovOptions::sequential`].
+    ///
+    /// ```
+    /// use stickslip::stability::LyapunovOptions;
+    /// let o = LyapunovOptions { periods: 5000, ..Default::default() };
+    /// assert_eq!(o.looks(), vec![300, 620, 1240, 2500, 5000]);
+    /// ```
+    pub fn looks(&self) -> Vec<usize> {
+        let blocks = self.blocks.max(1);
+        let cap = (self.periods / blocks).max(1);
+        if !self.sequential {
+            return vec![cap * blocks];
+        }
+        let mut lengths: Vec<usize> = (0..=MAX_HALVINGS)
+            .rev()
+            .map(|j| cap >> j)
+            .filter(|&m| m >= MIN_FIRST_BLOCK || m == cap)
+            .map(|m| m * blocks)
+            .collect();
+        lengths.dedup();
+        lengths
+    }
+
     /// Check that the transient and the measurement, one run from τ = 0, stay within the time
     /// range the solvers resolve at these parameters ([`crate::limits::check_horizon`]).
     ///
@@ -119,6 +175,12 @@ impl LyapunovOptions {
         crate::limits::check_horizon(params, (self.transient_periods + measured) as f64)
     }
 }
+
+/// Most halvings of the block length below the cap: at most `MAX_HALVINGS + 1` looks.
+const MAX_HALVINGS: u32 = 5;
+
+/// Shortest block (drive periods) of the first look, unless the cap's blocks are shorter.
+const MIN_FIRST_BLOCK: usize = 10;
 
 /// An exponent with its statistical error, per unit τ and per drive period. Dimensionless
 /// (rates in units of ω0 per unit τ; per drive period a plain number).
@@ -176,12 +238,17 @@ pub struct LyapunovExponents {
     pub largest: Estimate,
     /// The second exponent.
     pub second: SecondExponent,
-    /// Whether the two halves of the measurement agree (see the module documentation).
+    /// Whether the two halves of the measurement agree (see the module documentation), at the
+    /// length measured.
     pub converged: bool,
     /// The block means of the largest exponent, per unit τ, in time order.
     pub block_means: Vec<f64>,
-    /// Drive periods measured (a multiple of the blocks).
+    /// Drive periods measured (a multiple of the blocks): the look at which the verdict was
+    /// decided, or the cap ([`LyapunovOptions::looks`]).
     pub periods: usize,
+    /// Drive periods the options allowed ([`LyapunovOptions::periods`] rounded down to a
+    /// multiple of the blocks); `periods` < `cap` when the measurement stopped early.
+    pub cap: usize,
     /// The drive period T = 2π/w (dimensionless time).
     pub drive_period: f64,
     /// The state at the end of the measurement (at a strobe).
@@ -256,7 +323,9 @@ pub fn lyapunov_exponents(
 }
 
 /// [`lyapunov_exponents`], watched by `monitor`: it is told the drive periods run (transient
-/// and measurement) after every block of them, and can stop the run.
+/// and measurement) after every block of them (blocks of the cap's length, at most 1000
+/// periods), and can stop the run; a measurement that stops early tells it the total at the
+/// end.
 ///
 /// # Errors
 /// As [`lyapunov_exponents`]; [`Error::Cancelled`] (counting drive periods) when the monitor
@@ -272,49 +341,66 @@ pub fn lyapunov_exponents_monitored(
     let initial = State::new(initial.y, initial.v)?;
     let period = params.drive_period();
     let per_block = options.periods / options.blocks;
+    // The monitor hears after every block of the cap's length, or every REPORT_EVERY periods.
+    let every = per_block.clamp(1, REPORT_EVERY);
     // One solver runs the transient and the measurement.
     options.check_horizon(&params)?;
-    let length = per_block as f64 * period;
     let mut progress = Progress {
         monitor,
         done: 0,
         total: options.transient_periods + per_block * options.blocks,
     };
     let mut tangent = TangentSolver::new(params, initial);
-    let mut left = options.transient_periods;
-    while left > 0 {
-        let chunk = left.min(per_block);
-        run(&mut tangent, chunk, period, &mut progress, &mut |_| {})?;
-        left -= chunk;
+    for k in 0..options.transient_periods {
+        tangent.restart_clock();
+        tangent.run_until(period, |_| {})?;
+        tangent.renormalize();
         if tangent.grazing().is_some() {
             // (Only the measurement needs a finite Jacobian: start it afresh.)
             tangent.reset();
+        }
+        if (k + 1) % every == 0 {
+            progress.step(every)?;
         }
     }
     // Keep the aligned J; restart ln|det J| and the stop count for the measurement.
     tangent.reset_log_det();
     let mut stops = StopCount::new(tangent.phase() == Phase::Stick, MIN_STOP_FRACTION * period);
-    let mut block_means = Vec::with_capacity(options.blocks);
-    let mut second_means = Vec::with_capacity(options.blocks);
-    let mut last_log_det = Some(0.0);
-    for block in 0..options.blocks {
-        let offset = block as f64 * length;
-        let growth = run(&mut tangent, per_block, period, &mut progress, &mut |e| {
-            stops.event(offset, e)
-        })?;
+    let looks = options.looks();
+    let cap = *looks.last().expect("at least one look");
+    // Growth ln‖J‖ of every measured period, and ln|det J| at its end (None once singular).
+    let mut growth = Vec::with_capacity(cap);
+    let mut log_det = Vec::with_capacity(cap + 1);
+    log_det.push(Some(0.0));
+    let mut look = 0;
+    let mut result = None;
+    while result.is_none() {
+        let k = growth.len();
+        let offset = k as f64 * period;
+        tangent.restart_clock();
+        tangent.run_until(period, |e| stops.event(offset, e))?;
         if let Some(tau) = tangent.grazing() {
-            return Err(StabilityError::NonFiniteJacobian { tau }.into());
+            return Err(StabilityError::NonFiniteJacobian { tau: offset + tau }.into());
         }
-        block_means.push(growth / length);
-        let log_det = tangent.log_det();
-        if let (Some(now), Some(before)) = (log_det, last_log_det) {
-            second_means.push((now - before - growth) / length);
+        growth.push(tangent.renormalize());
+        log_det.push(tangent.log_det());
+        let done = options.transient_periods + k + 1;
+        if done % every == 0 {
+            progress.step(done - progress.done)?;
         }
-        last_log_det = log_det;
+        if k + 1 == looks[look] {
+            let mut measured = Measured::new(&growth, &log_det, options.blocks, period);
+            if measured.decided(options.significance) || k + 1 == cap {
+                result = Some(measured);
+            }
+            look += 1;
+        }
     }
-    let (mean, error) = mean_and_error(&block_means);
-    let second = if tangent.log_det().is_some() {
-        let (mean2, error2) = mean_and_error(&second_means);
+    let measured = result.expect("the loop ends with a result");
+    // A verdict decided early completes the work.
+    progress.finish()?;
+    let second = if let Some(means) = measured.second_means {
+        let (mean2, error2) = mean_and_error(&means);
         SecondExponent::Finite(Estimate::new(mean2, error2, period))
     } else {
         SecondExponent::MinusInfinity {
@@ -322,15 +408,60 @@ pub fn lyapunov_exponents_monitored(
         }
     };
     Ok(LyapunovExponents {
-        largest: Estimate::new(mean, error, period),
+        largest: Estimate::new(measured.mean, measured.error, period),
         second,
-        converged: halves_agree(&block_means, options.significance),
-        block_means,
-        periods: per_block * options.blocks,
+        converged: measured.converged,
+        block_means: measured.block_means,
+        periods: growth.len(),
+        cap,
         drive_period: period,
         final_state: tangent.state(),
         stops: stops.count,
     })
+}
+
+/// The estimate at one look: `blocks` equal blocks of the periods measured so far.
+struct Measured {
+    block_means: Vec<f64>,
+    /// Block means of λ₂, while J is regular.
+    second_means: Option<Vec<f64>>,
+    mean: f64,
+    error: f64,
+    converged: bool,
+}
+
+impl Measured {
+    fn new(growth: &[f64], log_det: &[Option<f64>], blocks: usize, period: f64) -> Self {
+        let per_block = growth.len() / blocks;
+        let length = per_block as f64 * period;
+        let block_means: Vec<f64> = growth
+            .chunks_exact(per_block)
+            .map(|c| c.iter().sum::<f64>() / length)
+            .collect();
+        let second_means = (0..blocks)
+            .map(|b| {
+                let (from, to) = (log_det[b * per_block]?, log_det[(b + 1) * per_block]?);
+                Some((to - from) / length - block_means[b])
+            })
+            .collect::<Option<Vec<f64>>>();
+        let (mean, error) = mean_and_error(&block_means);
+        Self {
+            converged: false,
+            block_means,
+            second_means,
+            mean,
+            error,
+        }
+    }
+
+    /// Whether the verdict is decided at significance `k` (see the module documentation); sets
+    /// `converged`.
+    fn decided(&mut self, k: f64) -> bool {
+        self.converged = halves_agree(&self.block_means, k);
+        let floor = 1e-12 * (1.0 + self.mean.abs());
+        self.converged
+            && (self.mean.abs() > k * self.error || self.mean.abs() + k * self.error <= floor)
+    }
 }
 
 /// Most drive periods run between two reports to the monitor.
@@ -344,6 +475,14 @@ struct Progress<'a> {
 }
 
 impl Progress<'_> {
+    /// Everything is done (told once more unless it was told already).
+    fn finish(&mut self) -> Result<()> {
+        if self.done < self.total {
+            self.step(self.total - self.done)?;
+        }
+        Ok(())
+    }
+
     /// `periods` more are done.
     fn step(&mut self, periods: usize) -> Result<()> {
         self.done += periods;
@@ -355,28 +494,6 @@ impl Progress<'_> {
         }
         Ok(())
     }
-}
-
-/// `periods` drive periods of length `period` from the current strobe, the clock restarted
-/// first (see `TangentSolver::restart_clock`); the growth ln‖J‖ over them, J renormalised at
-/// the end. The monitor hears every [`REPORT_EVERY`] periods (the solver stops there, which
-/// a stretch of at most that many periods never needs).
-fn run(
-    tangent: &mut TangentSolver,
-    periods: usize,
-    period: f64,
-    progress: &mut Progress<'_>,
-    on_event: &mut dyn FnMut(&Event),
-) -> Result<f64> {
-    tangent.restart_clock();
-    let mut at = 0;
-    while at < periods {
-        let next = (at + REPORT_EVERY).min(periods);
-        tangent.run_until(next as f64 * period, &mut *on_event)?;
-        progress.step(next - at)?;
-        at = next;
-    }
-    Ok(tangent.renormalize())
 }
 
 /// Shortest stop counted in [`LyapunovExponents::stops`], as a fraction of the drive period

@@ -74,13 +74,15 @@ pub use lyapunov::{
     SecondExponent,
 };
 pub use matrix::{Matrix2, Multiplier};
-pub use nonperiodic::{classify_nonperiodic, NonperiodicClassification, NonperiodicVerdict};
+pub use nonperiodic::{
+    classify_nonperiodic, strobe_period, NonperiodicClassification, NonperiodicVerdict,
+};
 pub use periodic_orbit::{
     find_periodic_orbit, periodic_orbit_from_steady, NewtonOptions, PeriodicOrbit, Stability, Stop,
 };
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
-pub use steady::steady_exponent;
+pub use steady::{steady_exponent, steady_state_with_exponent, SEARCH_BEFORE_MEASURING};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};

@@ -3,7 +3,9 @@
 
 use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions};
 use crate::error::Result;
+use crate::exact::ExactSolver;
 use crate::params::{Params, State};
+use crate::solver::{run_until, Solver};
 use serde::{Deserialize, Serialize};
 
 /// What the largest Lyapunov exponent λ₁ says about a motion that does not repeat, with σ its
@@ -89,4 +91,42 @@ impl NonperiodicVerdict {
             NonperiodicVerdict::Undecided => "undecided",
         }
     }
+}
+
+/// Longest period (drive periods) [`strobe_period`] looks for.
+pub const MAX_STROBE_PERIOD: usize = 16;
+
+/// Relative distance within which [`strobe_period`] takes the strobe to have come back: far
+/// above the rounding of a motion that has reached its periodic orbit, far below the distance
+/// between distinct strobe states of one orbit.
+pub const STROBE_PERIOD_TOLERANCE: f64 = 1e-9;
+
+/// The least p ≤ [`MAX_STROBE_PERIOD`] after which the strobe state `state` (at τ = 0) comes
+/// back, max(|Δy|, |Δy'|) ≤ [`STROBE_PERIOD_TOLERANCE`]·max(1, |y|, |y'|): whether a
+/// measured motion has reached a periodic orbit (or rest, p = 1). `None` when it does not
+/// come back so soon.
+///
+/// ```
+/// use stickslip::stability::strobe_period;
+/// use stickslip::{Params, State};
+/// // At rest (β below μs) the strobe comes back after one period.
+/// let rest = Params::new(0.0, 0.5, 0.5).unwrap();
+/// assert_eq!(strobe_period(&rest, State::default()).unwrap(), Some(1));
+/// ```
+///
+/// # Errors
+/// Invalid parameters or state; whatever the solver reports.
+pub fn strobe_period(params: &Params, state: State) -> Result<Option<usize>> {
+    let params = params.validate()?;
+    let state = State::new(state.y, state.v)?;
+    let scale = 1f64.max(state.y.abs()).max(state.v.abs());
+    let mut solver = ExactSolver::new(params, state);
+    for p in 1..=MAX_STROBE_PERIOD {
+        run_until(&mut solver, p as f64 * params.drive_period(), |_| {})?;
+        let x = solver.state();
+        if (x.y - state.y).abs().max((x.v - state.v).abs()) <= STROBE_PERIOD_TOLERANCE * scale {
+            return Ok(Some(p));
+        }
+    }
+    Ok(None)
 }

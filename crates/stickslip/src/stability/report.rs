@@ -4,7 +4,7 @@
 
 use super::lyapunov::{LyapunovOptions, SecondExponent};
 use super::matrix::Multiplier;
-use super::nonperiodic::NonperiodicClassification;
+use super::nonperiodic::{strobe_period, NonperiodicClassification, NonperiodicVerdict};
 use super::periodic_orbit::{PeriodicOrbit, Stability, Stop};
 use crate::error::Result;
 use crate::exact::ExactSolver;
@@ -176,26 +176,42 @@ pub struct LyapunovReport {
     pub lambda_per_period: f64,
     /// Its standard error per drive period.
     pub error_per_period: f64,
-    /// What λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ), `contracting`
-    /// (λ₁ < −kσ: a periodic attractor, reached or not) or `undecided` (the halves of the
-    /// measurement disagree), with σ the error and k the significance.
+    /// What the motion is: `periodic` when it is not chaotic and its strobe at the end of
+    /// the measurement repeats with a period of at most 16 drive periods (`period`; rest has
+    /// period 1); else what λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ),
+    /// `contracting` (λ₁ < −kσ: settling onto a periodic attractor not reached by the end of
+    /// the measurement, or of a longer period) or `undecided` (the halves of the measurement
+    /// disagree), with σ the error and k the significance.
     pub class: &'static str,
+    /// The verdict of the exponent alone (`chaotic`, `quasi-periodic`, `contracting`,
+    /// `undecided`), also when `class` is `periodic`.
+    pub verdict: &'static str,
+    /// The period of the motion reached, in drive periods ([`strobe_period`]); `None` when
+    /// the strobe does not repeat (or the motion is chaotic).
+    pub period: Option<usize>,
     /// Whether the two halves of the measurement agree.
     pub converged: bool,
-    /// The second exponent λ₂ per unit τ, or `"-inf"` when the motion stopped.
-    pub lambda2_per_tau: ExponentValue,
+    /// The second exponent λ₂ per unit τ; `None` (JSON null) when λ₂ = −∞, with
+    /// `lambda2_reason` saying why (JSON has no infinity).
+    pub lambda2_per_tau: Option<f64>,
     /// Its standard error per unit τ (`None` when λ₂ = −∞).
     pub lambda2_error_per_tau: Option<f64>,
-    /// λ₂ per drive period, or `"-inf"`.
-    pub lambda2_per_period: ExponentValue,
+    /// λ₂ per drive period (`None` when λ₂ = −∞).
+    pub lambda2_per_period: Option<f64>,
     /// Why λ₂ = −∞ (`None` when it is finite).
     pub lambda2_reason: Option<String>,
     /// Stops longer than 10⁻⁸ drive periods per drive period while measured.
     pub stops_per_period: f64,
     /// Drive periods run before measuring.
     pub transient_periods: usize,
-    /// Drive periods measured.
+    /// Drive periods measured (fewer than `cap_periods` when the verdict was decided early).
     pub periods: usize,
+    /// Drive periods the measurement could run at most ([`LyapunovOptions::periods`] rounded
+    /// down to a multiple of the blocks).
+    pub cap_periods: usize,
+    /// Whether the measurement stops as soon as its verdict is decided
+    /// ([`LyapunovOptions::sequential`]).
+    pub sequential: bool,
     /// Blocks of the measurement.
     pub blocks: usize,
     /// Standard errors that make a difference significant (k).
@@ -221,13 +237,26 @@ pub struct LyapunovReport {
 }
 
 impl LyapunovReport {
-    /// The report of the measurement `c`, made with `options` on the model with `params`.
-    pub fn new(c: &NonperiodicClassification, options: &LyapunovOptions, params: &Params) -> Self {
+    /// The report of the measurement `c`, made with `options` on the model with `params`; the
+    /// strobe at the end of the measurement is followed for up to 16 more drive periods to see
+    /// whether the motion has reached a periodic orbit.
+    ///
+    /// # Errors
+    /// Whatever the solver reports on that run.
+    pub fn new(
+        c: &NonperiodicClassification,
+        options: &LyapunovOptions,
+        params: &Params,
+    ) -> Result<Self> {
         let e = &c.exponents;
+        let period = match c.verdict {
+            NonperiodicVerdict::Chaotic => None,
+            _ => strobe_period(params, e.final_state)?,
+        };
         let (lambda2, error2, reason) = match e.second {
-            SecondExponent::Finite(s) => (s.per_tau, Some(s.error_per_tau), None),
+            SecondExponent::Finite(s) => (Some(s.per_tau), Some(s.error_per_tau), None),
             SecondExponent::MinusInfinity { stops } => (
-                f64::NEG_INFINITY,
+                None,
                 None,
                 Some(format!(
                     "the motion stopped {stops} times while measured: a stop erases the \
@@ -235,20 +264,28 @@ impl LyapunovReport {
                 )),
             ),
         };
-        Self {
+        Ok(Self {
             lambda_per_tau: e.largest.per_tau,
             error_per_tau: e.largest.error_per_tau,
             lambda_per_period: e.largest.per_period,
             error_per_period: e.largest.error_per_period,
-            class: c.verdict.label(),
+            class: if period.is_some() {
+                "periodic"
+            } else {
+                c.verdict.label()
+            },
+            verdict: c.verdict.label(),
+            period,
             converged: e.converged,
-            lambda2_per_tau: lambda2.into(),
+            lambda2_per_tau: lambda2,
             lambda2_error_per_tau: error2,
-            lambda2_per_period: (lambda2 * e.drive_period).into(),
+            lambda2_per_period: lambda2.map(|l| l * e.drive_period),
             lambda2_reason: reason,
             stops_per_period: e.stops_per_period(),
             transient_periods: options.transient_periods,
             periods: e.periods,
+            cap_periods: e.cap,
+            sequential: options.sequential,
             blocks: options.blocks,
             significance: options.significance,
             block_means: e.block_means.clone(),
@@ -260,6 +297,6 @@ impl LyapunovReport {
             zeta: params.zeta,
             mu_s: params.mu_s,
             phi: params.phi,
-        }
+        })
     }
 }

@@ -1,10 +1,12 @@
 //! The largest Lyapunov exponent of a steady motion, however it repeats or not.
 
 use super::lyapunov::{lyapunov_exponents, Estimate, LyapunovOptions};
+use super::nonperiodic::{NonperiodicClassification, NonperiodicVerdict};
 use super::periodic_orbit::{periodic_orbit_from_steady, NewtonOptions};
 use super::StabilityError;
 use crate::error::{Error, Result};
-use crate::steady::SteadyState;
+use crate::params::{Params, State};
+use crate::steady::{steady_state_from, MotionClass, SolverFactory, SteadyOptions, SteadyState};
 
 /// The largest Lyapunov exponent of a steady motion of the exact model.
 ///
@@ -52,6 +54,71 @@ pub fn steady_exponent(
     match lyapunov_exponents(params, steady.final_state(), options) {
         Ok(exponents) => Ok(Some(exponents.largest)),
         Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// Periods the strobe search of [`steady_state_with_exponent`] runs before a motion that has
+/// not repeated is measured.
+pub const SEARCH_BEFORE_MEASURING: usize = 300;
+
+/// The steady state reached from `initial` and its largest Lyapunov exponent, for maps of
+/// the exponent: the result of [`crate::steady::steady_state_from`] followed by
+/// [`steady_exponent`], except that a motion which has not repeated after
+/// [`SEARCH_BEFORE_MEASURING`] drive periods of the search is measured there (with
+/// `options.lyapunov`, normally sequential: [`super::lyapunov`]) and, when it is decided
+/// chaotic, is reported so at once ([`crate::MotionClass::Chaotic`], the record of the
+/// shortened search) instead of running the rest of `options.max_periods` first. Every other
+/// motion gets exactly the full search's result. The shortcut differs from the full search
+/// only for a chaotic transient that ends in a periodic motion between the two lengths.
+///
+/// The solvers from `factory` must be exact ([`crate::Solver::is_exact`]); without
+/// `options.lyapunov` this is the full search and [`steady_exponent`] with
+/// `fallback` for motions that do not repeat.
+///
+/// # Errors
+/// As [`crate::steady::steady_state_from`] and [`steady_exponent`].
+pub fn steady_state_with_exponent<F: SolverFactory + ?Sized>(
+    factory: &F,
+    params: &Params,
+    initial: State,
+    options: &SteadyOptions,
+    fallback: &LyapunovOptions,
+) -> Result<(SteadyState, Option<Estimate>)> {
+    let full = |options: &SteadyOptions| -> Result<(SteadyState, Option<Estimate>)> {
+        let steady = steady_state_from(factory, params, initial, options)?;
+        let exponent = steady_exponent(&steady, fallback)?;
+        Ok((steady, exponent))
+    };
+    let Some(measure) = options.lyapunov else {
+        return full(options);
+    };
+    if options.max_periods <= SEARCH_BEFORE_MEASURING {
+        return full(options);
+    }
+    let short = SteadyOptions {
+        max_periods: SEARCH_BEFORE_MEASURING,
+        lyapunov: None,
+        ..*options
+    };
+    let mut steady = steady_state_from(factory, params, initial, &short)?;
+    if steady.period.is_some() {
+        // The search is causal: the full one finds the same cycle at the same strobe.
+        let exponent = steady_exponent(&steady, fallback)?;
+        return Ok((steady, exponent));
+    }
+    match lyapunov_exponents(params, steady.final_state(), &measure) {
+        Ok(exponents) => {
+            let c = NonperiodicClassification::new(exponents, measure.significance);
+            if c.verdict == NonperiodicVerdict::Chaotic {
+                let largest = c.exponents.largest;
+                steady.class = MotionClass::Chaotic;
+                steady.lyapunov = Some(c);
+                return Ok((steady, Some(largest)));
+            }
+            full(options)
+        }
+        Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => full(options),
         Err(e) => Err(e),
     }
 }

@@ -155,6 +155,7 @@ impl SteadyOptions {
         periods: 5000,
         blocks: 20,
         significance: 4.0,
+        sequential: true,
     };
 
     /// Measure motions that do not repeat with these options, or not at all (`None`).
