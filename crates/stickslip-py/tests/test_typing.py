@@ -73,22 +73,6 @@ bif_set: xarray.Dataset = stickslip.bifurcation(exp, "w", [0.7]).to_xarray()
 dask_map: stickslip.PhaseDiagram = stickslip.dask.phase_diagram(exp, w=[0.7], beta=[1.2])
 '''
 
-# What mypy --strict finds in the notebook's code cells today, all in cells that only the
-# notebook's own changes can fix (the package's types are not involved): the plotting cells
-# reuse `w` and `beta` (floats in the Fig. 4 loop) for arrays, reach matplotlib through
-# `plt.matplotlib.colors` and `plt.Rectangle` (not exported by pyplot), and call xarray's
-# `DataArray.plot(...)`, whose accessor mypy cannot call (`.plot.pcolormesh(...)` it can).
-# Each entry: (the start of the offending line, mypy's error code). The test fails on any other
-# error; an entry that no longer occurs may be deleted.
-NOTEBOOK_KNOWN = {
-    ("w = np.linspace(0.1, 2.5, 200)", "assignment"),
-    ("beta = np.linspace(0.5, 4.0, 200)", "assignment"),
-    ("colors = plt.matplotlib.colors.ListedColormap(", "attr-defined"),
-    ("handles = [plt.Rectangle(", "attr-defined"),
-    ('ds["motion"].plot(', "call-arg"),
-}
-
-
 def code_blocks(markdown: pathlib.Path) -> List[str]:
     """The ```python blocks of a Markdown file."""
     return re.findall(r"```python\n(.*?)```", markdown.read_text(), flags=re.S)
@@ -126,15 +110,9 @@ def test_examples_docs_and_notebook_type_check_strictly(tmp_path):
     done = run("mypy", "--config-file", "mypy.ini",
                "--cache-dir", str(TARGET / "mypy-cache"), "--no-error-summary",
                "--hide-error-context", "--show-error-codes", *sorted(files), cwd=tmp_path)
-    errors = [line for line in done.stdout.splitlines() if ": error: " in line]
-    unexpected = []
-    for error in errors:
+    errors = []
+    for error in (line for line in done.stdout.splitlines() if ": error: " in line):
         name, line, _ = error.split(":", 2)
-        code = re.search(r"\[([a-z-]+)\]$", error)
-        source = files[name].splitlines()[int(line) - 1].strip()
-        known = name == "notebook.py" and code is not None and any(
-            source.startswith(start) and code.group(1) == c for start, c in NOTEBOOK_KNOWN)
-        if not known:
-            unexpected.append(f"{error}\n    {source}")
-    assert not unexpected, "\n".join(unexpected) + "\n" + done.stderr
-    assert done.returncode in (0, 1) and not done.stderr, done.stderr
+        errors.append(f"{error}\n    {files[name].splitlines()[int(line) - 1].strip()}")
+    assert not errors, "\n".join(errors) + "\n" + done.stderr
+    assert done.returncode == 0 and not done.stderr, done.stdout + done.stderr
