@@ -202,7 +202,10 @@ pub fn run(args: Args) -> Result<()> {
 
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
-        .max_blocking_threads(jobs + 16)
+        // A computation that gave its turn away waits for the next one on its own blocking
+        // thread: with fewer threads than computations in flight (at most one per connection),
+        // a computation holding a turn could wait for a thread held by one waiting for a turn.
+        .max_blocking_threads(serve::MAX_CONNECTIONS + jobs + 16)
         .enable_io()
         .enable_time()
         .build()
