@@ -136,7 +136,12 @@ def test_lyapunov_verdicts_and_errors(cli):
     assert chaotic.motion_class == "chaotic"
     assert chaotic.lambda_per_tau > 4 * chaotic.error_per_tau
     sliding = stickslip.lyapunov(Experiment.paper(w=0.9, beta=1.6), transient=200, periods=400)
-    assert sliding.motion_class == "contracting" and sliding.stops_per_period == 0.0
+    # It has reached its period-1 sliding orbit: periodic, and contracting by its exponent.
+    assert (sliding.motion_class, sliding.period, sliding.verdict) == ("periodic", 1, "contracting")
+    assert sliding.stops_per_period == 0.0
+    assert sliding.lambda2_per_tau < sliding.lambda_per_tau
+    assert chaotic.period is None and chaotic.lambda2_per_tau == -math.inf
+    assert chaotic.to_dict()["lambda2_per_tau"] is None
     with pytest.raises(ValueError, match=r"^invalid blocks = 3: must be even and from 4 to 10000$"):
         stickslip.lyapunov(Experiment(**CHAOTIC), blocks=3)
     with pytest.raises(ValueError, match="^invalid periods = 10"):

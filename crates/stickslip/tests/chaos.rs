@@ -418,7 +418,9 @@ fn an_experiment_finds_its_orbits_and_exponents() {
     assert!(matches!(
         chaotic.periodic_orbit(None, 0, &steady, &newton, &()),
         Err(Error::Stability(StabilityError::NoPeriod {
-            periods_run: 5000
+            periods_run: 5000,
+            verdict: Some(NonperiodicVerdict::Chaotic),
+            ..
         }))
     ));
     let options = LyapunovOptions {

@@ -940,7 +940,7 @@ fn failures_are_typed() {
     // A chaotic motion has no period to refine.
     let chaotic = steady_state_from(&exact_solver, &params, State::default(), &settling()).unwrap();
     match periodic_orbit_from_steady(&params, &chaotic, &NewtonOptions::default()) {
-        Err(Error::Stability(StabilityError::NoPeriod { periods_run })) => {
+        Err(Error::Stability(StabilityError::NoPeriod { periods_run, .. })) => {
             assert_eq!(periods_run, SteadyOptions::default().max_periods)
         }
         other => panic!("{other:?}"),

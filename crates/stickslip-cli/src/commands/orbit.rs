@@ -131,11 +131,10 @@ pub fn run(args: Args) -> Result<()> {
     bar.finish_and_clear();
     check_interrupt()?;
     let orbit = match result {
-        Err(Error::Stability(StabilityError::NoPeriod { periods_run })) => anyhow::bail!(
-            "the motion from the initial state did not repeat within {periods_run} drive \
-             periods (with a period up to {}), so there is no orbit to start from: give \
-             --period P (and --transient N) to look for an orbit of period P, or see \
-             `stickslip lyapunov` (the motion may be chaotic)",
+        Err(Error::Stability(e @ StabilityError::NoPeriod { .. })) => anyhow::bail!(
+            "{e}. With no period up to {} there is no orbit to start from: give --period P \
+             (and --transient N) to look for an orbit of period P, more --max-periods, or see \
+             `stickslip lyapunov`",
             args.max_period
         ),
         other => other?,

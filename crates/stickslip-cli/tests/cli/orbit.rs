@@ -67,9 +67,11 @@ fn an_unstable_orbit_in_a_chaotic_window_is_found_with_a_period_and_a_guess() {
     assert_eq!(out.status.code(), Some(1));
     let err = stderr(&out);
     assert!(
-        err.contains("did not repeat") && err.contains("--period"),
+        err.contains("found no period") && err.contains("--period"),
         "{err}"
     );
+    // It says what the motion's exponent says.
+    assert!(err.contains("chaotic: nearby motions separate"), "{err}");
     assert!(out.stdout.is_empty());
     // With it, from the state after a transient: the unstable period-1 orbit.
     let mut args = chaotic.to_vec();
@@ -152,4 +154,22 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         ],
     );
     assert_usage_error(dir.path(), &out, "piecewise-linear");
+}
+
+#[test]
+fn orbit_from_rest_at_zeta_0_w_0_5_beta_5_says_what_its_exponent_says_not_may_be_chaotic() {
+    // A slow drift: no period within the search, and an exponent of a few −1e-5.
+    let (_dir, out) = run(&["orbit", "--zeta", "0", "--w", "0.5", "--beta", "5"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(!err.contains("chaotic"), "{err}");
+    assert!(err.contains("largest Lyapunov exponent is -"), "{err}");
+    assert!(err.contains("contracting"), "{err}");
+    let exponent: f64 = err
+        .split("exponent is ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!((-1e-4..-1e-6).contains(&exponent), "{exponent}");
 }

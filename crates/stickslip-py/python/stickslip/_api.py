@@ -935,9 +935,13 @@ class LyapunovResult:
     Attributes:
         lambda_per_tau, error_per_tau: the largest exponent λ1 and its standard error (from
             the block means); lambda_per_period, error_per_period: the same per drive period.
-        motion_class: 'chaotic' (λ1 > kσ), 'quasi-periodic' (|λ1| ≤ kσ), 'contracting'
-            (λ1 < −kσ: a periodic attractor, reached or not) or 'undecided' (the two halves of
+        motion_class: 'periodic' when the motion has reached a periodic orbit or rest (its
+            strobe repeats within 16 periods; ``period`` gives the period), else
+            'chaotic' (λ1 > kσ), 'quasi-periodic' (|λ1| ≤ kσ), 'contracting'
+            (λ1 < −kσ: settling onto a periodic attractor) or 'undecided' (the two halves of
             the measurement disagree), with k = ``significance`` (the JSON's ``class``).
+        verdict: what λ1 alone says ('chaotic', 'quasi-periodic', 'contracting',
+            'undecided'); period: the period reached, or None.
         converged: whether the two halves agree.
         lambda2_per_tau, lambda2_per_period: the second exponent (-inf once the motion stops:
             a stop erases the velocity perturbation; ``lambda2_reason`` says so; the JSON of
@@ -960,6 +964,8 @@ class LyapunovResult:
         self.lambda_per_period: float = r["lambda_per_period"]
         self.error_per_period: float = r["error_per_period"]
         self.motion_class: str = r["class"]
+        self.verdict: str = r["verdict"]
+        self.period: Optional[int] = r["period"]
         self.converged: bool = r["converged"]
         minus_infinity = r["lambda2_per_tau"] is None
         self.lambda2_per_tau: float = (float("-inf") if minus_infinity

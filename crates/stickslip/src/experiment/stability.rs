@@ -67,7 +67,10 @@ impl Experiment {
         let newton = newton.validate()?;
         match period {
             None => {
-                let options = steady.with_spectrum(false).with_lyapunov(None)?;
+                // A motion that does not repeat is measured, so that the error says what its
+                // exponent says.
+                let measure = steady.lyapunov.or(Some(SteadyOptions::DEFAULT_LYAPUNOV));
+                let options = steady.with_spectrum(false).with_lyapunov(measure)?;
                 let settled = self.steady_with(&options)?;
                 periodic_orbit_from_steady(&params, &settled, &newton)
             }

@@ -1,6 +1,29 @@
 //! Failures of the stability analysis, with the numbers that tell what went wrong.
 
+use super::nonperiodic::NonperiodicVerdict;
 use thiserror::Error;
+
+/// What a measured exponent says about a motion that found no period, for
+/// [`StabilityError::NoPeriod`]'s message.
+fn said(exponent: &Option<(f64, f64)>, verdict: &Option<NonperiodicVerdict>) -> String {
+    let (Some((lambda, error)), Some(verdict)) = (exponent, verdict) else {
+        return String::new();
+    };
+    let meaning = match verdict {
+        NonperiodicVerdict::Chaotic => "chaotic: nearby motions separate",
+        NonperiodicVerdict::Contracting => {
+            "contracting: the motion settles onto a periodic motion, too slowly for the search \
+             or of a longer period than it looks for"
+        }
+        NonperiodicVerdict::QuasiPeriodic => {
+            "neither growing nor contracting within its error: a torus, or a neutral family"
+        }
+        NonperiodicVerdict::Undecided => {
+            "undecided: the halves of the measurement disagree (a transient)"
+        }
+    };
+    format!("; its largest Lyapunov exponent is {lambda:.3e} ± {error:.1e} per unit τ, {meaning}")
+}
 
 /// What can go wrong in [`crate::stability`]. Reaches callers as
 /// [`crate::Error::Stability`].
@@ -55,10 +78,18 @@ pub enum StabilityError {
         net_force: f64,
     },
     /// A periodic orbit was asked of a steady state that found no period.
-    #[error("the steady state found no period in {periods_run} drive periods")]
+    #[error(
+        "the steady state found no period in {periods_run} drive periods{}",
+        said(exponent, verdict)
+    )]
     NoPeriod {
         /// Drive periods the steady-state analysis ran.
         periods_run: usize,
+        /// The largest Lyapunov exponent per unit τ and its standard error, when the steady
+        /// state measured it ([`crate::steady::SteadyOptions::lyapunov`]).
+        exponent: Option<(f64, f64)>,
+        /// What the exponent says, when measured.
+        verdict: Option<NonperiodicVerdict>,
     },
     /// The two trajectories of the two-trajectory estimate became identical, so their
     /// separation cannot be renormalised.

@@ -321,8 +321,16 @@ pub fn periodic_orbit_from_steady(
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
     let (Some(period), Some(&guess)) = (steady.period, steady.strobes.first()) else {
+        let measured = steady.lyapunov.as_ref();
         return Err(StabilityError::NoPeriod {
             periods_run: steady.periods_to_settle,
+            exponent: measured.map(|c| {
+                (
+                    c.exponents.largest.per_tau,
+                    c.exponents.largest.error_per_tau,
+                )
+            }),
+            verdict: measured.map(|c| c.verdict),
         }
         .into());
     };
