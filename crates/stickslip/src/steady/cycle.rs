@@ -38,7 +38,9 @@
 //! solver (x* is a fixed point to Newton's tolerance, 10⁻¹²·max(1, |x*|)·max(1, |M|)), with
 //! period 1; motions of longer period, and points where Newton fails or the check never
 //! passes, are settled by the repetition test as before. `periods_to_settle` then counts the
-//! strobe periods run and the periods of the Newton attempts.
+//! strobe periods run and the periods of the Newton attempts (the image at the guess and one
+//! per step), and the cap [`SteadyOptions::max_periods`] holds for both together: an attempt
+//! is made only while the cap leaves room for its longest run.
 //!
 //! **Motions that do not repeat** are then measured, when the solver follows the exact
 //! piecewise-linear model ([`Solver::is_exact`]) and [`SteadyOptions::lyapunov`] asks for it:
@@ -569,6 +571,10 @@ const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
     neutral_band: 1e-9,
 };
 
+/// Most periods one attempt counts: its steps with every halving, and the first image.
+const MOST_NEWTON_PERIODS: usize =
+    SETTLING_NEWTON.max_iterations * (1 + SETTLING_NEWTON.max_halvings) + 1;
+
 impl NewtonSettling {
     fn new() -> Self {
         Self {
@@ -582,7 +588,12 @@ impl NewtonSettling {
     /// After strobe x_k (the last of `history`, oldest first): the orbit, when it is stable
     /// and the trajectory is within its basin (see [`within_basin`]). Tries Newton from x_k
     /// when the strobes contract and no orbit is at hand.
-    fn step(&mut self, params: &Params, history: &VecDeque<State>) -> Option<PeriodicOrbit> {
+    fn step(
+        &mut self,
+        params: &Params,
+        history: &VecDeque<State>,
+        budget: usize,
+    ) -> Option<PeriodicOrbit> {
         let n = history.len();
         if n < 2 {
             return None;
@@ -595,6 +606,7 @@ impl NewtonSettling {
             && step > 0.0
             && contracting
             && step <= 0.25 * self.last_step
+            && budget >= MOST_NEWTON_PERIODS
         {
             self.attempts += 1;
             self.last_step = step;
@@ -606,10 +618,7 @@ impl NewtonSettling {
                     }
                 }
                 // A failed attempt costs at most its steps and halvings.
-                Err(_) => {
-                    self.periods +=
-                        SETTLING_NEWTON.max_iterations * (1 + SETTLING_NEWTON.max_halvings) + 1;
-                }
+                Err(_) => self.periods += MOST_NEWTON_PERIODS,
             }
         }
         let orbit = self.orbit.as_ref()?;
@@ -670,7 +679,9 @@ fn run_to_cycle<H: Holder>(
     let mut newton =
         (accelerate && options.newton && holder.can_restart() && holder.solver().is_exact())
             .then(NewtonSettling::new);
-    while periods_run < options.max_periods {
+    // Newton's periods count against the cap too (an attempt is made only within it).
+    let spent = |newton: &Option<NewtonSettling>| newton.as_ref().map_or(0, |n| n.periods);
+    while periods_run + spent(&newton) < options.max_periods {
         periods_run += 1;
         local += 1;
         run_until(holder.solver(), strobe(base + local as u64, period), |e| {
@@ -712,10 +723,14 @@ fn run_to_cycle<H: Holder>(
             found = Some(p);
             break;
         }
-        if let Some(orbit) = newton.as_mut().and_then(|n| n.step(params, &history)) {
+        let budget = options.max_periods - periods_run - spent(&newton);
+        if let Some(orbit) = newton
+            .as_mut()
+            .and_then(|n| n.step(params, &history, budget))
+        {
             // Record the cycle from the orbit's strobe, on a new solver started there.
             if holder.restart(orbit.state)? {
-                let tangent_periods = newton.as_ref().map_or(0, |n| n.periods);
+                let tangent_periods = spent(&newton);
                 return Ok(Settled {
                     found: Some(1),
                     periods_run: periods_run + tangent_periods,
@@ -743,8 +758,7 @@ fn run_to_cycle<H: Holder>(
     let events = recent.iter().filter(|(m, _)| *m + cycle > local).count();
     Ok(Settled {
         found,
-        // At the cap the count is the cap, as without Newton.
-        periods_run: periods_run + found.and(newton).map_or(0, |n| n.periods),
+        periods_run: periods_run + spent(&newton),
         strobe_index: base + local as u64,
         scale,
         events_per_period: events as f64 / cycle as f64,
