@@ -144,7 +144,13 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
         v["error_per_tau"].as_f64().unwrap(),
     );
     assert!(lambda > 4.0 * error, "{lambda} ± {error}");
-    assert_eq!(v["lambda_periods"], 5000);
+    // Measured until the verdict is decided (docs/stability.md): chaos is decided before the
+    // cap of 5000 periods, after at least the first look of 300.
+    let measured = v["lambda_periods"].as_u64().unwrap();
+    assert!(
+        (300..5000).contains(&measured),
+        "{measured} periods measured"
+    );
     assert!(v["lambda_per_period"].as_f64().unwrap() > 0.0);
     // Fewer periods measured: the same verdict.
     let short = json(&[
@@ -159,9 +165,11 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
         "--lyapunov-periods",
         "1000",
     ]);
-    assert_eq!(
-        (short["class"].clone(), short["lambda_periods"].clone()),
-        ("chaotic".into(), 1000.into())
+    assert_eq!(short["class"], "chaotic");
+    let measured = short["lambda_periods"].as_u64().unwrap();
+    assert!(
+        (1..=1000).contains(&measured),
+        "{measured} periods measured"
     );
     // Not measured: the class from the event log alone, and no exponent keys.
     let off = json(&[
