@@ -76,7 +76,9 @@ fn newton_gain_matches_a_tighter_iteration() {
     let factory = Experiment::paper().factory();
     for (w, beta) in [(0.9, 1.6), (1.0, 2.0), (0.95, 3.9), (0.6, 1.2), (1.5, 2.5)] {
         let params = Params::new(0.0468, w, beta).unwrap();
-        let options = SteadyOptions::default().with_spectrum(false);
+        let options = SteadyOptions::default()
+            .with_spectrum(false)
+            .with_newton(true);
         let newton = steady_state_from(&factory, &params, State::default(), &options).unwrap();
         let tight = steady_state_from(
             &factory,
@@ -95,4 +97,45 @@ fn newton_gain_matches_a_tighter_iteration() {
         );
         assert_ne!(newton.class, MotionClass::Static, "({w}, {beta})");
     }
+}
+
+/// Why Newton settling is off by default: at ζ = 0, μs = 3, w = 0.43, β = 13.5 from rest the
+/// trajectory passes close to a stable period-1 sliding orbit, the linear check of the basin
+/// passes there and Newton settles on it, while the trajectory goes on to a period-2 stick-slip
+/// cycle (the basin of the sliding orbit ends where a stop appears). The default options settle
+/// on the cycle the trajectory reaches, the same as the plain iteration to a tighter tolerance.
+#[test]
+fn regression_newton_settled_on_a_sliding_orbit_the_trajectory_leaves() {
+    let factory = Experiment::paper().factory();
+    let params = Params::new(0.0, 0.43, 13.5)
+        .unwrap()
+        .with_mu_s(3.0)
+        .unwrap();
+    let options = SteadyOptions::default().with_spectrum(false);
+    assert!(!options.newton, "Newton settling is not the default");
+    let settled = steady_state_from(&factory, &params, State::default(), &options).unwrap();
+    let tight = steady_state_from(
+        &factory,
+        &params,
+        State::default(),
+        &options.with_tolerance(1e-13).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        (settled.class, settled.period),
+        (MotionClass::PeriodicStick, Some(2))
+    );
+    assert_eq!((tight.class, tight.period), (settled.class, settled.period));
+    // With Newton, the sliding orbit is taken: the reason it is off.
+    let newton = steady_state_from(
+        &factory,
+        &params,
+        State::default(),
+        &options.with_newton(true),
+    )
+    .unwrap();
+    assert_eq!(
+        (newton.class, newton.period),
+        (MotionClass::Sliding, Some(1))
+    );
 }
