@@ -191,7 +191,8 @@ def test_real_cluster(real_cluster, local_map):
     )
 
 
-# A map that runs for minutes, in blocks of a few seconds each: Ctrl-C comes mid-way.
+# A map that runs for half a minute or more of CPU even on an idle machine (2.25e6 points of
+# the paper's map), in blocks of a fraction of a second each: Ctrl-C comes mid-way.
 CTRL_C_SCRIPT = """
 import sys
 import numpy as np
@@ -200,8 +201,8 @@ import stickslip, stickslip.dask
 
 def run(client):
     print("started", flush=True)
-    stickslip.dask.phase_diagram(stickslip.Experiment.paper(), client=client, chunks=(5, 400),
-                                 w=np.linspace(0.1, 2.5, 400), beta=np.linspace(0.5, 4, 400))
+    stickslip.dask.phase_diagram(stickslip.Experiment.paper(), client=client, chunks=(5, 1500),
+                                 w=np.linspace(0.1, 2.5, 1500), beta=np.linspace(0.5, 4, 1500))
 
 if __name__ == "__main__":
     if sys.argv[1] == "cluster":
@@ -237,6 +238,9 @@ def test_ctrl_c_raises_one_keyboard_interrupt_and_prints_nothing_else(tmp_path, 
     finally:
         child.kill()
         child.wait()
+        for pipe in (child.stdout, child.stderr):
+            if pipe is not None:
+                pipe.close()
     assert child.returncode in (-signal.SIGINT, 128 + signal.SIGINT), (child.returncode, stderr)
     lines = stderr.strip().splitlines()
     assert stderr.count("Traceback") == 1 and lines[-1] == "KeyboardInterrupt", stderr
