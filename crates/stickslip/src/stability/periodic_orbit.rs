@@ -329,7 +329,7 @@ const TANGENCY_PROBE_BELOW: f64 = 1e-3;
 ///
 /// An example: ζ = 0, w = ½, β = 5, φ = π + 0.5, μs = 1 from (−6.4, 1). Newton's method
 /// reaches the edge of the family of period-1 orbits in 23 linear steps and stops on orbits
-/// with a stop of 4·10⁻⁴ to 5·10⁻⁴ (the start decides which), |μ₁| = cos(stop) to 10⁻¹⁰
+/// with a stop of 4·10⁻⁴ to 5.3·10⁻⁴ (the start decides which), |μ₁| = cos(stop) to 10⁻⁹
 /// (between 1 − 1.4·10⁻⁷ and 1 − 7·10⁻⁸); d₁/d ≈ 0.47.
 fn tends_to_one(
     params: &Params,
