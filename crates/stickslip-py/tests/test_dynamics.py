@@ -183,6 +183,18 @@ def test_continuation_is_the_tools_csv_and_json(cli, tmp_path):
     assert np.all(np.abs(b.multipliers[:, 0]) >= np.abs(b.multipliers[:, 1]) - 1e-15)
 
 
+def test_a_tiny_max_step_does_not_stall_on_a_stable_orbit():
+    # A largest step of 1e-7 is a resolution, not an obstacle: the stable period-1 orbit goes
+    # on at it until the points run out, as it does at 1e-5.
+    e = Experiment(zeta=0.0, w=0.6, beta=3.269, mu_s=3.0, y0=4.9, v0=0.0)
+    for max_step in (1e-5, 1e-7):
+        b = stickslip.continuation(e, "w", start=0.6, to=0.7, max_step=max_step, max_points=200)
+        assert b.to_dict()["end"]["reason"] == "max-points", max_step
+        assert len(b) == 200
+        assert all(b.stable)
+        assert 150 * max_step < b.arclength[-1] <= 199 * max_step * (1 + 1e-9)
+
+
 def test_continuation_errors():
     e = Experiment.paper(mu_s=1.5, w=0.9)
     # From rest below β = μs nothing moves: no orbit to continue.

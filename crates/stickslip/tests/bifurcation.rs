@@ -799,3 +799,37 @@ fn option_helpers_keep_the_options_consistent() {
     let o = ContinuationOptions::default().with_max_step(0.5);
     assert_eq!(o.initial_step, ContinuationOptions::default().initial_step);
 }
+
+/// A largest step far below the default one (1e-7 of arclength) is a choice of resolution,
+/// not a sign of an obstacle: on the stable period-1 orbit of [`doubling_start`] the branch
+/// goes on at that step, as it does at 1e-5, until its points run out.
+#[test]
+fn a_tiny_max_step_does_not_stall_on_a_stable_orbit() {
+    let (pr, orbit) = doubling_start();
+    assert!(orbit.multipliers[0].modulus() < 1.0);
+    for max_step in [1e-5, 1e-7] {
+        let options = ContinuationOptions {
+            max_points: 200,
+            ..ContinuationOptions::default().with_max_step(max_step)
+        };
+        let branch = continue_orbit(&pr, Parameter::W, &orbit, 0.7, &options, &()).unwrap();
+        assert_eq!(branch.end, BranchEnd::MaxPoints, "max_step {max_step}");
+        assert_eq!(branch.points.len(), 200);
+        // Every step after the first few is the largest allowed: nothing cut it.
+        let last = branch.points.last().unwrap();
+        assert!(
+            last.arclength > 150.0 * max_step && last.arclength <= 199.0 * max_step * (1.0 + 1e-9),
+            "max_step {max_step}: arclength {}",
+            last.arclength
+        );
+        assert!(last.value > 0.6);
+        for point in &branch.points {
+            let at = Parameter::W.set(pr, point.value).unwrap();
+            let newton =
+                find_periodic_orbit(&at, point.orbit.state, 1, &NewtonOptions::default()).unwrap();
+            assert!(
+                distance(newton.state, point.orbit.state) <= 1e-9 * newton.state.y.abs().max(1.0)
+            );
+        }
+    }
+}

@@ -989,3 +989,37 @@ fn lyapunov_options_are_validated() {
         })
     ));
 }
+
+/// At ζ = 0, w = ½, β = 5, φ = π + 0.5 Newton's method converges linearly onto the edge of
+/// a family of period-1 orbits and stops, at its tolerance, on an orbit with a short stop
+/// whose length depends on the start. Its modulus is cos(stop) (checked here), so it goes to
+/// 1 as the stop shrinks to the edge: the verdict is neutral, not stable.
+#[test]
+fn orbit_at_the_edge_of_the_neutral_family_at_zeta_0_w_half_is_neutral_not_stable() {
+    let params = Params::new(0.0, 0.5, 5.0)
+        .and_then(|p| p.with_phi(3.64159265358979))
+        .unwrap();
+    let mut durations = Vec::new();
+    for (y, v) in [(-6.4, 1.0), (-7.0, 1.5), (-6.0, 0.5)] {
+        let orbit =
+            find_periodic_orbit(&params, State { y, v }, 1, &NewtonOptions::default()).unwrap();
+        assert_eq!(orbit.stability, Stability::Neutral, "from ({y}, {v})");
+        assert!(
+            orbit.residuals.len() > 15,
+            "linear convergence: {:?}",
+            orbit.residuals
+        );
+        assert_eq!(orbit.stops.len(), 1);
+        let stop = orbit.stops[0].duration;
+        let modulus = orbit.multipliers[0].modulus();
+        assert!(
+            (modulus - stop.cos()).abs() < 1e-9,
+            "{modulus} against cos({stop})"
+        );
+        assert!(1.0 - modulus > 1e-9, "outside the band of 1e-9: {modulus}");
+        durations.push(stop);
+    }
+    // The start decides where the iteration stops along the flat direction.
+    durations.sort_by(f64::total_cmp);
+    assert!(durations[2] - durations[0] > 1e-5, "{durations:?}");
+}

@@ -267,9 +267,15 @@ fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport) {
              that factor per orbit, so a simulation never settles on this orbit; its stable \
              neighbours or chaos do."
         ),
-        Stability::Neutral => println!(
+        Stability::Neutral if (1.0 - modulus).abs() <= 1e-9 => println!(
             "Here |μ1| is 1 within 1e-9: neutral (a bifurcation, or a continuum of orbits, as \
              rest is: the oscillator stays wherever it stopped)."
+        ),
+        Stability::Neutral => println!(
+            "Here |μ1| = {modulus:.10} goes to 1 as Newton's method goes on (one more step \
+             takes it closer to 1 by more than a tenth of its distance): the orbit sits where \
+             P(x) − x touches zero, at the edge of a continuum of orbits, and its multiplier is 1 \
+             there: neutral."
         ),
     }
     if !mu1.is_real() {

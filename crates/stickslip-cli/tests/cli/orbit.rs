@@ -173,3 +173,30 @@ fn orbit_from_rest_at_zeta_0_w_0_5_beta_5_says_what_its_exponent_says_not_may_be
         .unwrap_or_else(|| panic!("{err}"));
     assert!((-1e-4..-1e-6).contains(&exponent), "{exponent}");
 }
+
+#[test]
+fn orbit_at_the_edge_of_the_neutral_family_at_zeta_0_w_half_is_neutral_not_stable() {
+    let args = [
+        "--period",
+        "1",
+        "--zeta",
+        "0",
+        "--w",
+        "0.5",
+        "--beta",
+        "5",
+        "--phi",
+        "3.64159265358979",
+        "--y0=-6.4",
+        "--v0=1.0",
+    ];
+    let v = json(&args);
+    assert_eq!(v["stability"], "neutral", "{v}");
+    let (_dir, out) = run(&[&["orbit"][..], &args[..]].concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("goes to 1 as Newton's method goes on"),
+        "{text}"
+    );
+}

@@ -132,6 +132,15 @@ impl ContinuationOptions {
         self
     }
 
+    /// The step below which the continuation is crawling: 1e3 × `min_step`, or the geometric
+    /// mean of `min_step` and `max_step` when that is smaller. A step this small is taken
+    /// whatever the angle between tangents, and 25 of them in a row end the branch as
+    /// [`BranchEnd::Stalled`]. It lies below `max_step` whenever `max_step > min_step`, so a
+    /// small `max_step` is a resolution the steps keep, not a stall.
+    pub fn crawl_step(&self) -> f64 {
+        (1e3 * self.min_step).min((self.min_step * self.max_step).sqrt())
+    }
+
     /// Check every field.
     ///
     /// # Errors
@@ -331,7 +340,7 @@ pub enum BranchEnd {
         /// The parameter's value.
         value: f64,
     },
-    /// The steps stayed below 1e3 × [`ContinuationOptions::min_step`] for 25 points: the
+    /// The steps stayed at or below [`ContinuationOptions::crawl_step`] for 25 points: the
     /// branch approaches a point it cannot pass.
     Stalled {
         /// The parameter's value of the last point.
@@ -798,7 +807,7 @@ pub fn continue_orbit(
             let smooth = counts(&s.orbit) == counts(&current.orbit);
             !smooth
                 || angle(&s.tangent, &current.tangent) <= options.max_angle
-                || ds <= 1e3 * options.min_step
+                || ds <= options.crawl_step()
         });
         let (mut next, mut natural) = match accepted {
             Some(next) => (next, false),
@@ -889,7 +898,7 @@ pub fn continue_orbit(
         if points.len() > 10 && norm(&back) < sigma {
             break BranchEnd::Closed;
         }
-        crawling = if sigma <= 1e3 * options.min_step {
+        crawling = if sigma <= options.crawl_step() {
             crawling + 1
         } else {
             0

@@ -285,12 +285,14 @@ pub fn find_periodic_orbit(
     }
     let multipliers = image.jacobian.eigenvalues();
     let modulus = multipliers[0].modulus();
-    let stability = if modulus < 1.0 - options.neutral_band {
-        Stability::Stable
-    } else if modulus > 1.0 + options.neutral_band {
-        Stability::Unstable
-    } else {
+    let stability = if (1.0 - modulus).abs() <= options.neutral_band
+        || tends_to_one(params, x, &image, r, period, modulus)
+    {
         Stability::Neutral
+    } else if modulus < 1.0 {
+        Stability::Stable
+    } else {
+        Stability::Unstable
     };
     let drive_period = params.drive_period();
     let end = period as f64 * drive_period;
@@ -307,6 +309,61 @@ pub fn find_periodic_orbit(
         iterations,
         residuals,
     })
+}
+
+/// Beyond this distance from 1 the largest multiplier modulus is taken as Newton's method
+/// leaves it. At a tangential fixed point (a double root of P(x) − x) the distance left at
+/// the tolerance is of the order of the square root of the residual: below 1e-5 for the
+/// default tolerance on states of order 1.
+const TANGENCY_PROBE_BELOW: f64 = 1e-3;
+
+/// Whether the distance d = 1 − |μ₁| of the converged `x` is an artifact of where Newton's
+/// method stopped rather than a property of the orbit. One more Newton step from `x` gives
+/// d₁. At a simple fixed point the step is of the order of the residual and d₁ = d to that
+/// order. At a fixed point where M − I is singular (a tangency of P(x) and x, the edge of a
+/// family of periodic orbits: Newton's method converges there only linearly, halving its
+/// distance to the root each step) d shrinks with the distance left to the root, which the
+/// residual cannot resolve below its square root, and its limit is 0: a multiplier 1. Such an
+/// orbit is neutral: when 0 < d₁/d < 0.9 (the modulus moves toward 1 by more than a tenth of
+/// its distance in one step), its verdict is not stable or unstable.
+///
+/// An example: ζ = 0, w = ½, β = 5, φ = π + 0.5, μs = 1 from (−6.4, 1). Newton's method
+/// reaches the edge of the family of period-1 orbits in 23 linear steps and stops on orbits
+/// with a stop of 4·10⁻⁴ to 5.3·10⁻⁴ (the start decides which), |μ₁| = cos(stop) to 10⁻⁹
+/// (between 1 − 1.4·10⁻⁷ and 1 − 7·10⁻⁸); d₁/d ≈ 0.47.
+fn tends_to_one(
+    params: &Params,
+    x: State,
+    image: &StrobeImage,
+    r: [f64; 2],
+    period: usize,
+    modulus: f64,
+) -> bool {
+    let d = 1.0 - modulus;
+    if d.abs() > TANGENCY_PROBE_BELOW {
+        return false;
+    }
+    let m = image.jacobian;
+    let step = if image.stuck_at_start && image.stuck_at_end {
+        let slope = m.0[0][0] - 1.0;
+        if !(slope != 0.0 && slope.is_finite()) {
+            return false;
+        }
+        [-r[0] / slope, 0.0]
+    } else {
+        match m.minus_identity().solve([-r[0], -r[1]]) {
+            Some(step) => step,
+            None => return false,
+        }
+    };
+    let Ok(next) = State::new(x.y + step[0], x.v + step[1]) else {
+        return false;
+    };
+    let Ok(next_image) = strobe_map(params, next, period) else {
+        return false;
+    };
+    let ratio = (1.0 - next_image.jacobian.eigenvalues()[0].modulus()) / d;
+    ratio > 0.0 && ratio < 0.9
 }
 
 /// The periodic orbit of a settled steady state (its period and first recorded strobe as the
