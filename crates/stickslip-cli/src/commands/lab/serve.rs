@@ -41,6 +41,14 @@ pub const MAX_CONNECTIONS: usize = 400;
 /// answered here, with the JSON and the headers of every other answer.
 pub const MAX_LINE: usize = 16 * 1024;
 
+/// After a refusal, the rest of the request is read and dropped until the client has been
+/// quiet this long (or [`MAX_DRAIN`] bytes have come): a socket closed with unread input is
+/// reset, and a reset can reach the client before it has read the refusal.
+const LINGER: Duration = Duration::from_millis(200);
+
+/// The most bytes read and dropped after a refusal.
+const MAX_DRAIN: usize = 1 << 20;
+
 impl Default for Limits {
     fn default() -> Self {
         Self {
@@ -145,8 +153,11 @@ struct Guarded {
     /// request line).
     line: usize,
     line_number: usize,
-    /// Refused: reads end, writes are dropped.
+    /// Refused: reads drain the rest of the request and then end, writes are dropped.
     refused: bool,
+    /// Bytes read and dropped since the refusal, and the quiet time running.
+    drained: usize,
+    quiet: Option<Pin<Box<Sleep>>>,
 }
 
 impl Guarded {
@@ -158,6 +169,8 @@ impl Guarded {
             line: 0,
             line_number: 0,
             refused: false,
+            drained: 0,
+            quiet: None,
         }
     }
 
@@ -180,6 +193,35 @@ impl Guarded {
             }
         }
         false
+    }
+
+    /// After a refusal: read and drop what the client still sends; the end of the stream (for
+    /// the parser, which then closes) once the client is quiet for [`LINGER`], has closed, or
+    /// has sent [`MAX_DRAIN`] bytes more.
+    fn drain(&mut self, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        let mut scratch = [0u8; 8192];
+        loop {
+            let mut dropped = ReadBuf::new(&mut scratch);
+            match Pin::new(&mut self.stream).poll_read(cx, &mut dropped) {
+                Poll::Ready(Ok(())) if !dropped.filled().is_empty() => {
+                    self.drained += dropped.filled().len();
+                    self.quiet = None;
+                    if self.drained > MAX_DRAIN {
+                        return Poll::Ready(Ok(()));
+                    }
+                }
+                Poll::Ready(_) => return Poll::Ready(Ok(())),
+                Poll::Pending => {
+                    let quiet = self
+                        .quiet
+                        .get_or_insert_with(|| Box::pin(tokio::time::sleep(LINGER)));
+                    return match quiet.as_mut().poll(cx) {
+                        Poll::Ready(()) => Poll::Ready(Ok(())),
+                        Poll::Pending => Poll::Pending,
+                    };
+                }
+            }
+        }
     }
 
     /// Write the refusal straight to the socket (it is small: the socket's buffer takes it).
@@ -217,7 +259,7 @@ impl AsyncRead for Guarded {
     ) -> Poll<io::Result<()>> {
         let this = self.get_mut();
         if this.refused {
-            return Poll::Ready(Ok(()));
+            return this.drain(cx);
         }
         let before = buf.filled().len();
         let result = Pin::new(&mut this.stream).poll_read(cx, buf);
@@ -225,8 +267,10 @@ impl AsyncRead for Guarded {
             let new = buf.filled()[before..].to_vec();
             if this.too_long(&new) {
                 this.refuse();
-                // Nothing of this read reaches the parser, which sees the end of the stream.
+                // Nothing of this read reaches the parser, which sees the end of the stream
+                // once the rest of the request is drained.
                 buf.set_filled(before);
+                return this.drain(cx);
             }
         }
         result
