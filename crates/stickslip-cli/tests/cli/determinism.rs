@@ -1,4 +1,6 @@
-//! Every command gives the same bytes with 1, 2 and 8 threads.
+//! Every command gives the same bytes with 1, 2 and 8 threads, and the same bytes as the
+//! golden files in `tests/golden/determinism` (the outputs before the request layer; rewrite
+//! them with `STICKSLIP_BLESS=1` only for a change that is meant and listed in CHANGELOG.md).
 
 use crate::common::*;
 use std::path::Path;
@@ -34,6 +36,69 @@ fn outputs(args: &[&str], threads: &str) -> (Vec<u8>, Vec<(String, Vec<u8>)>) {
         .unwrap();
     assert!(out.status.success(), "{args:?}: {}", stderr(&out));
     (out.stdout, files(dir.path()))
+}
+
+/// Files larger than this are kept in the golden directory as their length and hash.
+const GOLDEN_INLINE_MAX: usize = 64 * 1024;
+
+/// FNV-1a, 64 bits: enough to tell a changed file from the golden one.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// What the golden directory holds for one output: the bytes, or `len hash` for a large one.
+fn golden_form(name: &str, bytes: &[u8]) -> (String, Vec<u8>) {
+    if bytes.len() > GOLDEN_INLINE_MAX {
+        (
+            format!("{name}.fnv"),
+            format!("{} {:016x}\n", bytes.len(), fnv1a(bytes)).into_bytes(),
+        )
+    } else {
+        (name.to_string(), bytes.to_vec())
+    }
+}
+
+/// Compare the outputs of command `index` with its golden directory (or write it when
+/// `STICKSLIP_BLESS=1`).
+fn check_golden(index: usize, args: &[&str], out: &(Vec<u8>, Vec<(String, Vec<u8>)>)) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/determinism");
+    let dir = root.join(format!("{index:02}-{}", args[0]));
+    let mut expected: Vec<(String, Vec<u8>)> = vec![golden_form("stdout", &out.0)];
+    for (name, bytes) in &out.1 {
+        expected.push(golden_form(&format!("files/{name}"), bytes));
+    }
+    expected.sort();
+    if std::env::var_os("STICKSLIP_BLESS").is_some_and(|v| v == "1") {
+        let _ = std::fs::remove_dir_all(&dir);
+        for (name, bytes) in &expected {
+            let path = dir.join(name);
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, bytes).unwrap();
+        }
+        return;
+    }
+    assert!(
+        dir.is_dir(),
+        "{args:?}: no golden directory {} (write it with STICKSLIP_BLESS=1)",
+        dir.display()
+    );
+    let golden = files(&dir);
+    let names: Vec<&String> = expected.iter().map(|f| &f.0).collect();
+    let golden_names: Vec<&String> = golden.iter().map(|f| &f.0).collect();
+    assert_eq!(names, golden_names, "{args:?}: files differ from {}", dir.display());
+    for (a, b) in expected.iter().zip(&golden) {
+        assert!(
+            a.1 == b.1,
+            "{args:?}: {} differs from its golden file in {}",
+            a.0,
+            dir.display()
+        );
+    }
 }
 
 #[test]
@@ -305,8 +370,9 @@ fn every_command_gives_the_same_bytes_with_1_2_and_8_threads() {
             "--json",
         ],
     ];
-    for args in commands {
+    for (index, args) in commands.iter().enumerate() {
         let one = outputs(args, "1");
+        check_golden(index, args, &one);
         assert!(
             !one.0.is_empty() || !one.1.is_empty(),
             "{args:?} wrote nothing"
