@@ -186,7 +186,7 @@ impl Section {
     ];
 
     /// The section's name in the file (`circuit`, ...).
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Section::Circuit => "circuit",
             Section::Mechanics => "mechanics",
