@@ -832,6 +832,70 @@ mod tests {
         assert!(Experiment::paper().with_zeta(0.1).is_err());
     }
 
+    /// The setters and the description convert a physical drive the same way (one
+    /// conversion, [`Key::image`]), bit for bit.
+    #[test]
+    fn setters_and_descriptions_convert_alike() {
+        for hertz in [9.97e3, 1.0, 123.456e3, 7.77e2] {
+            let set = Experiment::paper().with_frequency(hertz).unwrap().w();
+            let mut spec = ExperimentSpec::new();
+            spec.set_preset(Preset::Paper);
+            spec.set(Key::Frequency, hertz).unwrap();
+            let described = spec.build().unwrap().w();
+            assert_eq!(
+                set.map(f64::to_bits),
+                described.map(f64::to_bits),
+                "{hertz}"
+            );
+        }
+        let mut spec = ExperimentSpec::new();
+        spec.set_preset(Preset::Paper);
+        spec.set(Key::Amplitude, 1.498).unwrap();
+        spec.set(Key::Omega, 6.0e4).unwrap();
+        let described = spec.build().unwrap();
+        let set = Experiment::paper()
+            .with_omega(6.0e4)
+            .unwrap()
+            .with_amplitude(1.498)
+            .unwrap();
+        assert_eq!(set, described.with_origin(Origin::Preset(Preset::Paper)));
+    }
+
+    /// The curves drawn over a sweep are the theory's curves over the sweep's range, at the
+    /// sweep's first value; with Shockley diodes they are labelled as the PWL theory.
+    #[test]
+    fn the_sweep_theory_is_the_theory_curves_over_the_range() {
+        use crate::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
+        let bits = |c: &TheoryCurve| {
+            let x: Vec<u64> = c.x.iter().map(|v| v.to_bits()).collect();
+            let y: Vec<u64> = c.y.iter().map(|v| v.to_bits()).collect();
+            (x, y)
+        };
+        let e = Experiment::paper().with_beta(2.14).unwrap();
+        let range = ParameterRange::new("w", 0.5, 1.5, 11).unwrap();
+        let theory = e.sweep_theory(Parameter::W, &range).unwrap();
+        let base = e.params_with(&[(Parameter::W, 0.5)]).unwrap();
+        let xs = abscissae(0.5, 1.5, 11);
+        let curve = |t, q| theory_curve(t, q, &base, Parameter::W, &xs);
+        assert_eq!(
+            bits(&theory.paper),
+            bits(&curve(Theory::Paper, TheoryQuantity::Gain))
+        );
+        assert_eq!(
+            bits(&theory.exact),
+            bits(&curve(Theory::Exact, TheoryQuantity::PeakGain))
+        );
+        assert_eq!(
+            bits(&e.sweep_theory_a1(Parameter::W, &range).unwrap()),
+            bits(&curve(Theory::Exact, TheoryQuantity::Gain))
+        );
+        assert!(theory.exact.present() > 0 && theory.paper.present() > 0);
+        assert_eq!(theory.prefix, "");
+        let shockley = e.with_shockley(DiodePair::one_n4148()).unwrap();
+        let theory = shockley.sweep_theory(Parameter::W, &range).unwrap();
+        assert_eq!(theory.prefix, "PWL theory: ");
+    }
+
     #[test]
     fn steady_state_of_a_mechanical_oscillator() {
         let m = Mechanics::new(2.0, 8.0, 0.4, 0.5).unwrap();
