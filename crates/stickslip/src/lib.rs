@@ -59,6 +59,7 @@ pub mod limits;
 mod linear;
 pub mod params;
 pub mod physical;
+pub mod report;
 pub mod scan;
 pub mod shockley;
 pub mod solver;
