@@ -10,7 +10,7 @@ use stickslip::attractor::AttractorKind;
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, BasinReport, Basins, Cell};
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
-use stickslip::report::{BasinsTable, Table};
+use stickslip::report::BasinsTable;
 use stickslip::scan::ParameterRange;
 use stickslip::State;
 
@@ -430,8 +430,7 @@ fn short(x: f64) -> String {
 
 /// The CSV of the map, one row per cell.
 pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
-    out.write_all(BasinsTable { map }.csv().as_bytes())?;
-    Ok(())
+    crate::output::write_table(out, &BasinsTable { map })
 }
 
 /// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 unsettled".

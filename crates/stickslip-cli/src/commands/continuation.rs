@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use stickslip::continuation::{
     continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
-use stickslip::report::{BranchTable, Table};
+use stickslip::report::BranchTable;
 
 /// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
 /// --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
@@ -240,6 +240,5 @@ fn fixed(branch: &Branch) -> String {
 
 /// The CSV of a branch, one row per point.
 pub fn write_csv(out: &mut dyn Write, branch: &Branch) -> Result<()> {
-    out.write_all(BranchTable { branch }.csv().as_bytes())?;
-    Ok(())
+    crate::output::write_table(out, &BranchTable { branch })
 }

@@ -6,12 +6,11 @@ use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
-use std::io::Write;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::Origin;
-use stickslip::report::{SweepReport, SweepRow, Table};
+use stickslip::report::{SweepReport, SweepRow};
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg, SweepPoint};
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{
@@ -168,7 +167,7 @@ pub fn run(args: Args) -> Result<()> {
         points: points.iter().map(|p| p.report_row(&experiment)).collect(),
     };
     let mut sink = Sink::open(args.out.as_deref())?;
-    sink.write_all(report.csv().as_bytes())?;
+    crate::output::write_table(&mut sink, &report)?;
     sink.finish()?;
     if let Some(path) = &args.plot {
         let theory = Theory::new(&experiment, parameter, &range)?;

@@ -6,10 +6,9 @@ use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
-use std::io::Write;
 use std::path::PathBuf;
 use stickslip::experiment::Key;
-use stickslip::report::{Table, TheoryRow, TheoryTable};
+use stickslip::report::{TheoryRow, TheoryTable};
 use stickslip::scan::grid_value;
 use stickslip::solver::grid;
 use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
@@ -278,7 +277,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
             .collect(),
     };
     let mut sink = Sink::open(args.out.as_deref())?;
-    sink.write_all(table.csv().as_bytes())?;
+    crate::output::write_table(&mut sink, &table)?;
     sink.finish()?;
 
     if let Some(path) = &args.plot {

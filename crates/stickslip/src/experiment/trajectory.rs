@@ -61,11 +61,11 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] when `periods` is not finite and > 0, `samples_per_period`
-    /// is 0, or the run would hold more than [`Trajectory::MAX_SAMPLES`] samples; a missing
-    /// drive ([`Experiment::params`]); [`Error::HorizonTooLong`] for a run longer than the
-    /// solvers resolve ([`crate::limits::check_horizon`]), before any work;
-    /// [`Error::Cancelled`]; whatever the solver reports.
+    /// [`crate::Error::InvalidParameter`] when `periods` is not finite and > 0,
+    /// `samples_per_period` is 0, or the run would hold more than [`Trajectory::MAX_SAMPLES`]
+    /// samples; a missing drive ([`Experiment::params`]); [`crate::Error::HorizonTooLong`]
+    /// for a run longer than the solvers resolve ([`crate::limits::check_horizon`]), before
+    /// any work; [`crate::Error::Cancelled`]; whatever the solver reports.
     pub fn simulate(
         &self,
         periods: f64,

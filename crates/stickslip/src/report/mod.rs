@@ -32,6 +32,10 @@ mod sweep;
 mod trajectory;
 
 pub use crate::basins::{AttractorReport, BasinReport};
+
+/// The report of a basin map (the name beside the other reports'; the type is
+/// [`BasinReport`]).
+pub type BasinsReport = BasinReport;
 pub use crate::continuation::{BranchReport, SideReport, SpecialReport};
 pub use crate::stability::{LyapunovReport, OrbitReport};
 pub use crate::steady::SteadyReport;
