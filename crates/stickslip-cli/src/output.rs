@@ -253,3 +253,17 @@ pub fn progress(len: u64, what: &str) -> indicatif::ProgressBar {
     bar.set_message(what.to_string());
     bar
 }
+
+/// Write a report as CSV, its header then its rows one at a time (no copy of the whole
+/// table in memory).
+pub fn write_table(out: &mut dyn Write, table: &dyn stickslip::report::Table) -> Result<()> {
+    let mut line = table.header();
+    line.push('\n');
+    out.write_all(line.as_bytes())?;
+    for i in 0..table.len() {
+        line.clear();
+        table.write_row(i, &mut line);
+        out.write_all(line.as_bytes())?;
+    }
+    Ok(())
+}

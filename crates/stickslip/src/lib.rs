@@ -60,6 +60,7 @@ mod linear;
 pub mod names;
 pub mod params;
 pub mod physical;
+pub mod report;
 pub mod scan;
 pub mod shockley;
 pub mod solver;

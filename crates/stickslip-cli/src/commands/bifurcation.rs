@@ -6,11 +6,11 @@ use crate::flags::{range_from_flags, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
-use std::io::Write;
 use std::path::PathBuf;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::ContinuationOptions;
+use stickslip::report::BifurcationReport;
 use stickslip::scan::{Axis, SweepDirection, SweepLeg};
 
 /// Bifurcation diagram: at each value of one parameter (w, β, ζ or μs), after a transient,
@@ -160,28 +160,7 @@ pub fn run(args: Args) -> Result<()> {
     let seconds = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
-    writeln!(
-        sink,
-        "{},y,v,direction,lambda,class,period",
-        parameter.label()
-    )?;
-    for s in &steps {
-        let r = &s.record;
-        let period = r.period.map(|p| p.to_string()).unwrap_or_default();
-        for x in &r.strobes {
-            writeln!(
-                sink,
-                "{},{},{},{},{},{},{}",
-                s.value,
-                x.y,
-                x.v,
-                s.leg.label(),
-                r.exponent,
-                r.kind.label(),
-                period
-            )?;
-        }
-    }
+    crate::output::write_table(&mut sink, &BifurcationReport::new(parameter, &steps))?;
     sink.finish()?;
     eprintln!(
         "bifurcation: {} values in {seconds:.2} s: {}",

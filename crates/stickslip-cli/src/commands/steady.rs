@@ -5,8 +5,8 @@ use crate::model::ModelArgs;
 use crate::output::{check_plot_path, outln, usage, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
-use std::io::Write;
 use std::path::PathBuf;
+use stickslip::report::SteadyTrace;
 use stickslip::stability::{NonperiodicClassification, NonperiodicVerdict};
 use stickslip::steady::{SteadyReport, SteadyState};
 
@@ -88,17 +88,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     if let Some(path) = &args.xy {
         let mut file = AtomicFile::create(path)?;
-        writeln!(file, "tau,drive,y,v")?;
-        for s in &steady.trace {
-            writeln!(
-                file,
-                "{},{},{},{}",
-                s.tau,
-                steady.params.drive(s.tau),
-                s.y,
-                s.v
-            )?;
-        }
+        crate::output::write_table(&mut file, &SteadyTrace { steady: &steady })?;
         file.commit()?;
     }
     if let Some(path) = &args.plot {
