@@ -61,8 +61,9 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] when `periods` is not finite and > 0, `samples_per_period`
-    /// is 0, or the run would hold more than [`Trajectory::MAX_SAMPLES`] samples; a missing
+    /// [`Error::InvalidOption`] when `periods` is not finite and > 0 or `samples_per_period`
+    /// is out of its range, [`Error::OptionProduct`] when the run would hold more than
+    /// [`Trajectory::MAX_SAMPLES`] samples ([`crate::options::SimulateOptions`]); a missing
     /// drive ([`Experiment::params`]); [`Error::HorizonTooLong`] for a run longer than the
     /// solvers resolve ([`crate::limits::check_horizon`]), before any work;
     /// [`Error::Cancelled`]; whatever the solver reports.
@@ -72,28 +73,12 @@ impl Experiment {
         samples_per_period: usize,
         monitor: &dyn Monitor,
     ) -> Result<Trajectory> {
-        if !(periods.is_finite() && periods > 0.0) {
-            return Err(Error::InvalidParameter {
-                name: "periods",
-                value: periods,
-                allowed: "must be finite and > 0",
-            });
+        crate::options::SimulateOptions {
+            periods,
+            samples_per_period,
         }
-        if samples_per_period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "samples_per_period",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
+        .validate()?;
         let count = (periods * samples_per_period as f64).ceil();
-        if count > Trajectory::MAX_SAMPLES {
-            return Err(Error::InvalidParameter {
-                name: "samples",
-                value: count,
-                allowed: "periods × samples_per_period must be at most 5e7",
-            });
-        }
         let params = self.params()?;
         crate::limits::check_horizon(&params, periods)?;
         let mut solver = self.solver()?;
@@ -171,7 +156,7 @@ mod tests {
         for (periods, samples) in [(0.0, 10), (f64::NAN, 10), (1.0, 0), (1e7, 100)] {
             assert!(matches!(
                 e.simulate(periods, samples, &()),
-                Err(Error::InvalidParameter { .. })
+                Err(Error::InvalidOption { .. } | Error::OptionProduct { .. })
             ));
         }
         let stop_after_two = |done: usize, _: usize| done < 2;
