@@ -13,7 +13,9 @@
 //! scan stops between its points too.
 //!
 //! The token counts the steps charged to it ([`Cancel::spent`]) whether or not it has a
-//! budget: a benchmark reads its work from there.
+//! budget, and the solvers that check it add their work counters ([`crate::Stats`]) to it
+//! when they are dropped ([`Cancel::work`]): a benchmark reads the work of a whole scan from
+//! there.
 //!
 //! [`Cancel::default`] (= [`Cancel::never`]) is a token nobody holds: it never stops and costs
 //! one branch per check.
@@ -29,6 +31,7 @@
 //! ```
 
 use crate::error::{Error, Result};
+use crate::solver::Stats;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
@@ -53,6 +56,8 @@ struct Inner {
     spent: AtomicU64,
     /// Set once the deadline has passed (so that later checks need no clock).
     expired: AtomicBool,
+    /// The work counters of the solvers dropped so far: events, evaluations, steps, rejected.
+    work: [AtomicU64; 4],
 }
 
 /// Why a computation was stopped by its [`Cancel`] token.
@@ -87,6 +92,7 @@ impl Cancel {
                 budget: None,
                 spent: AtomicU64::new(0),
                 expired: AtomicBool::new(false),
+                work: Default::default(),
             })),
         }
     }
@@ -127,6 +133,7 @@ impl Cancel {
                 budget,
                 spent: AtomicU64::new(0),
                 expired: AtomicBool::new(false),
+                work: Default::default(),
             })),
         }
     }
@@ -223,6 +230,35 @@ impl Cancel {
             return Err(Stop::Deadline.error());
         }
         Ok(())
+    }
+
+    /// Add a solver's work counters to the token's ([`Cancel::work`]); what the solvers that
+    /// check the token do when they are dropped. Nothing for [`Cancel::never`].
+    pub fn add_work(&self, stats: Stats) {
+        if let Some(i) = &self.inner {
+            for (total, n) in
+                i.work
+                    .iter()
+                    .zip([stats.events, stats.evaluations, stats.steps, stats.rejected])
+            {
+                total.fetch_add(n, Ordering::Relaxed);
+            }
+        }
+    }
+
+    /// The work counters of every solver that checked this token and has been dropped.
+    pub fn work(&self) -> Stats {
+        let Some(i) = &self.inner else {
+            return Stats::default();
+        };
+        let [events, evaluations, steps, rejected] =
+            std::array::from_fn(|k| i.work[k].load(Ordering::Relaxed));
+        Stats {
+            events,
+            evaluations,
+            steps,
+            rejected,
+        }
     }
 
     /// Whether this is [`Cancel::never`].

@@ -133,3 +133,20 @@ fn the_measurement_of_a_motion_that_does_not_repeat_stops_at_the_deadline() {
     }
     panic!("five runs finished before their deadline");
 }
+
+#[test]
+fn the_token_adds_the_work_of_the_solvers_it_watched() {
+    let token = Cancel::new();
+    let experiment = point().with_cancel(token.clone());
+    let mut solver = experiment.solver().unwrap();
+    stickslip::solver::run_until(solver.as_mut(), 200.0, |_| {}).unwrap();
+    let stats = solver.stats();
+    assert!(stats.events > 10 && stats.evaluations > 0, "{stats:?}");
+    assert_eq!(token.work(), stickslip::Stats::default());
+    drop(solver);
+    assert_eq!(token.work(), stats);
+    let mut again = experiment.solver().unwrap();
+    stickslip::solver::run_until(again.as_mut(), 200.0, |_| {}).unwrap();
+    drop(again);
+    assert_eq!(token.work().events, 2 * stats.events);
+}

@@ -84,6 +84,15 @@ pub struct ExactSolver {
     cancel: Cancel,
 }
 
+impl Drop for ExactSolver {
+    /// Adds the work counters to the token's ([`Cancel::work`]).
+    fn drop(&mut self) {
+        if !self.cancel.is_never() {
+            self.cancel.add_work(Solver::stats(self));
+        }
+    }
+}
+
 impl ExactSolver {
     /// This solver, stopping with the token's error at its next advance once `cancel` is
     /// cancelled, past its deadline or over its budget (one step charged per advance).

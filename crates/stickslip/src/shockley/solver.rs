@@ -53,6 +53,15 @@ pub struct ShockleySolver {
     cancel: Cancel,
 }
 
+impl Drop for ShockleySolver {
+    /// Adds the work counters to the token's ([`Cancel::work`]).
+    fn drop(&mut self) {
+        if !self.cancel.is_never() {
+            self.cancel.add_work(Solver::stats(self));
+        }
+    }
+}
+
 impl ShockleySolver {
     /// A solver starting at τ = 0 from `initial`.
     ///
