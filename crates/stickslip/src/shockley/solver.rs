@@ -245,6 +245,10 @@ impl Solver for ShockleySolver {
         }
     }
 
+    fn is_exact(&self) -> bool {
+        false
+    }
+
     fn stats(&self) -> Stats {
         let c = self.radau.counters;
         Stats {
