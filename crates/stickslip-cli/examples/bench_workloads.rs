@@ -10,15 +10,15 @@
 //! Wall times are measured inside the process with `std::time::Instant` around the solver
 //! calls only; a short workload is repeated until it has run for `--min-seconds` (and at least
 //! `--min-repeats` times), and the minimum and median of the repetitions are reported.
-//! Work counters come from `Solver::stats()`.
+//! Work counters come from `Solver::stats()` (summed over a scan's solvers by the
+//! experiment's `Cancel` token).
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use rayon::prelude::*;
 use serde_json::{json, Value};
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Arc;
 use std::time::Instant;
+use stickslip::cancel::Cancel;
 use stickslip::scan::{Axis, Grid, ParameterRange};
 use stickslip::shockley::{self, NetlistOptions, ShockleyModel, ShockleyOptions, ShockleySolver};
 use stickslip::solver::{grid, run_until, sample_at};
@@ -371,80 +371,6 @@ fn classify_point(params: Params, periods: usize, tail: usize) -> Result<PointRe
     })
 }
 
-/// Work counters summed over every solver a factory made (each adds its own when dropped).
-#[derive(Default)]
-struct WorkTotals {
-    events: AtomicU64,
-    evaluations: AtomicU64,
-    steps: AtomicU64,
-    rejected: AtomicU64,
-}
-
-impl WorkTotals {
-    fn stats(&self) -> Stats {
-        Stats {
-            events: self.events.load(Ordering::Relaxed),
-            evaluations: self.evaluations.load(Ordering::Relaxed),
-            steps: self.steps.load(Ordering::Relaxed),
-            rejected: self.rejected.load(Ordering::Relaxed),
-        }
-    }
-}
-
-/// The exact solver, passing every call through, that adds its counters to `totals` when
-/// dropped: `scan::Grid` makes and drops its solvers itself.
-struct Counted {
-    inner: ExactSolver,
-    totals: Arc<WorkTotals>,
-}
-
-impl Drop for Counted {
-    fn drop(&mut self) {
-        let s = self.inner.stats();
-        self.totals.events.fetch_add(s.events, Ordering::Relaxed);
-        self.totals
-            .evaluations
-            .fetch_add(s.evaluations, Ordering::Relaxed);
-        self.totals.steps.fetch_add(s.steps, Ordering::Relaxed);
-        self.totals
-            .rejected
-            .fetch_add(s.rejected, Ordering::Relaxed);
-    }
-}
-
-impl Solver for Counted {
-    fn params(&self) -> &Params {
-        self.inner.params()
-    }
-    fn time(&self) -> f64 {
-        self.inner.time()
-    }
-    fn state(&self) -> State {
-        self.inner.state()
-    }
-    fn phase(&self) -> Phase {
-        self.inner.phase()
-    }
-    fn drive(&self, tau: f64) -> f64 {
-        self.inner.drive(tau)
-    }
-    fn advance(&mut self, t_end: f64) -> stickslip::Result<Option<Event>> {
-        self.inner.advance(t_end)
-    }
-    fn interval(&self) -> (f64, f64) {
-        self.inner.interval()
-    }
-    fn dense(&self, tau: f64) -> Sample {
-        self.inner.dense(tau)
-    }
-    fn stats(&self) -> Stats {
-        self.inner.stats()
-    }
-    fn is_exact(&self) -> bool {
-        self.inner.is_exact()
-    }
-}
-
 fn phase_diagram(args: PhaseDiagramArgs) -> Result<Value> {
     match args.mode {
         DiagramMode::Steady => phase_diagram_steady(args),
@@ -458,26 +384,18 @@ fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
     let w = ParameterRange::new("w", args.w_from, args.w_to, args.w_steps)?;
     let beta = ParameterRange::new("beta", args.beta_from, args.beta_to, args.beta_steps)?;
     let options = SteadyOptions::default();
-    let mut totals = Arc::new(WorkTotals::default());
+    // The experiment's token adds the work counters of every solver the grid makes and drops.
+    let mut token = Cancel::new();
     let (wall, points) = timed(&args.timing, || {
-        totals = Arc::new(WorkTotals::default());
-        let counters = Arc::clone(&totals);
-        let factory =
-            move |params: Params, initial: State| -> stickslip::Result<Box<dyn Solver + Send>> {
-                let params = params.validate()?;
-                Ok(Box::new(Counted {
-                    inner: ExactSolver::new(params, State::new(initial.y, initial.v)?),
-                    totals: Arc::clone(&counters),
-                }))
-            };
-        let experiment = Experiment::dimensionless(base.zeta, base.w, base.beta)?;
+        token = Cancel::new();
+        let experiment =
+            Experiment::dimensionless(base.zeta, base.w, base.beta)?.with_cancel(token.clone());
         Ok(Grid::new(
             &experiment,
             Axis::range(Parameter::W, &w)?,
             Axis::range(Parameter::Beta, &beta)?,
         )?
         .options(options)?
-        .with_factory(factory)
         .run(&())?
         .points)
     })?;
@@ -505,7 +423,7 @@ fn phase_diagram_steady(args: PhaseDiagramArgs) -> Result<Value> {
         "w_steps": args.w_steps,
         "beta_steps": args.beta_steps,
         "wall_s": wall,
-        "stats": stats_json(&totals.stats()),
+        "stats": stats_json(&token.work()),
         "points": points,
     }))
 }

@@ -115,6 +115,8 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
             matches!(
                 e,
                 Error::InvalidParameter { .. }
+                    | Error::InvalidOption { .. }
+                    | Error::OptionProduct { .. }
                     | Error::ImageOutOfRange { .. }
                     | Error::HorizonTooLong { .. }
                     | Error::Spec(_)
@@ -122,6 +124,9 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
                     | Error::Unsupported(_)
             )
         });
+    if let Some(e @ (Error::InvalidOption { .. } | Error::OptionProduct { .. })) = library {
+        return (e.render(stickslip::Spelling::Flag), true);
+    }
     if let Some(Error::Spec(spec)) = library {
         return (spec.render(&model::flag_name), true);
     }

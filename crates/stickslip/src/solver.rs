@@ -136,12 +136,11 @@ pub trait Solver {
 
     /// Whether the solver follows the exact piecewise-linear model, the one whose tangent
     /// dynamics [`crate::stability`] knows, so that its motions can be measured by Lyapunov
-    /// exponents (see [`crate::steady::SteadyOptions::lyapunov`]). False unless a solver says
-    /// otherwise: [`crate::ExactSolver`] does, and a wrapper around a solver says what the
-    /// solver it wraps says.
-    fn is_exact(&self) -> bool {
-        false
-    }
+    /// exponents (see [`crate::steady::SteadyOptions::lyapunov`]). [`crate::ExactSolver`]
+    /// does; the stiff solver does not; a wrapper around a solver says what the solver it
+    /// wraps says. No default: a wrapper that forgot it would silently turn off the
+    /// measurement.
+    fn is_exact(&self) -> bool;
 }
 
 /// Advance `solver` to `t_end`, handing every event to `on_event`.

@@ -164,6 +164,9 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
         fn stats(&self) -> stickslip::Stats {
             self.0.stats()
         }
+        fn is_exact(&self) -> bool {
+            false
+        }
     }
     let options = no_spectrum().with_max_periods(300).unwrap();
     let mut hidden = Hidden(ExactSolver::new(params, State::default()));
@@ -204,7 +207,10 @@ fn invalid_measurement_options_are_refused() {
     };
     assert!(matches!(
         SteadyOptions::default().with_lyapunov(Some(bad)),
-        Err(Error::InvalidParameter { name: "blocks", .. })
+        Err(Error::InvalidOption {
+            option: stickslip::OptionKey::Blocks,
+            ..
+        })
     ));
 }
 
