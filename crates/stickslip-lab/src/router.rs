@@ -24,11 +24,11 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The page.
-const INDEX_HTML: &str = include_str!("../../../assets/lab/index.html");
+const INDEX_HTML: &str = include_str!("../assets/index.html");
 /// Its script.
-const LAB_JS: &str = include_str!("../../../assets/lab/lab.js");
+const LAB_JS: &str = include_str!("../assets/lab.js");
 /// Its style sheet.
-const LAB_CSS: &str = include_str!("../../../assets/lab/lab.css");
+const LAB_CSS: &str = include_str!("../assets/lab.css");
 
 /// How the server limits its work.
 #[derive(Debug, Clone)]

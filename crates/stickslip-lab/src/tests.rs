@@ -3,18 +3,32 @@
 //! with one line of JSON; the time limit stops a computation.
 
 use super::router::{router, Lab, Settings};
-use crate::model::{ModelArgs, Preset};
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use serde_json::Value;
 use std::time::Duration;
-use stickslip::experiment::Experiment;
+use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset};
 use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
 use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
 use stickslip::theory::TheoryReport;
 use stickslip::Parameter;
 use tower::ServiceExt;
+
+/// The experiment of a preset, a diode law and values, as the library builds it.
+fn spec(preset: Option<Preset>, diode: Option<DiodeModel>, values: &[(Key, f64)]) -> Experiment {
+    let mut spec = ExperimentSpec::new();
+    if let Some(p) = preset {
+        spec.set_preset(p);
+    }
+    if let Some(d) = diode {
+        spec.set_diode(d);
+    }
+    for &(key, value) in values {
+        spec.set(key, value).unwrap();
+    }
+    spec.build().unwrap()
+}
 
 fn lab(time_limit: Duration) -> Lab {
     Lab::new(Settings {
@@ -89,18 +103,16 @@ async fn steady_equals_the_library_and_the_cli_for_the_same_point() {
     );
     assert_eq!(answer["class"], "sliding");
 
-    // Physical keys with SI prefixes, against the experiment the CLI builds from its flags
-    // (`stickslip steady --preset paper --freq 9.97k --amplitude 1.498 --json`).
+    // Physical keys with SI prefixes, against the experiment the library builds from the same
+    // values (`stickslip steady --preset paper --freq 9.97k --amplitude 1.498 --json`).
     let (status, answer) =
         get("/api/steady?preset=paper&freq=9.97k&amplitude=1.498&samples=256").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        freq: Some(9970.0),
-        amplitude: Some(1.498),
-        ..Default::default()
-    };
-    let e = flags.experiment().unwrap();
+    let e = spec(
+        Some(Preset::Paper),
+        None,
+        &[(Key::Frequency, 9970.0), (Key::Amplitude, 1.498)],
+    );
     let steady = e.steady().unwrap();
     same_keys(
         &answer,
@@ -137,15 +149,12 @@ async fn shockley_and_mechanics_answer_as_the_library() {
     let (status, answer) =
         get("/api/steady?preset=paper&model=shockley&w=0.95&beta=2.14&diode-n=1.8").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        model: Some(crate::model::DiodeModel::Shockley),
-        w: Some(0.95),
-        beta: Some(2.14),
-        diode_n: Some(1.8),
-        ..Default::default()
-    };
-    let steady = flags.experiment().unwrap().steady().unwrap();
+    let e = spec(
+        Some(Preset::Paper),
+        Some(DiodeModel::Shockley),
+        &[(Key::W, 0.95), (Key::Beta, 2.14), (Key::Emission, 1.8)],
+    );
+    let steady = e.steady().unwrap();
     same_keys(
         &answer,
         &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
@@ -156,17 +165,20 @@ async fn shockley_and_mechanics_answer_as_the_library() {
         get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")
             .await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        mass: Some(0.5),
-        stiffness: Some(200.0),
-        damping: Some(0.94),
-        friction: Some(1.0),
-        mu_s: Some(1.5),
-        w: Some(0.7),
-        beta: Some(1.4),
-        ..Default::default()
-    };
-    let steady = flags.experiment().unwrap().steady().unwrap();
+    let e = spec(
+        None,
+        None,
+        &[
+            (Key::Mass, 0.5),
+            (Key::Stiffness, 200.0),
+            (Key::Damping, 0.94),
+            (Key::Friction, 1.0),
+            (Key::MuS, 1.5),
+            (Key::W, 0.7),
+            (Key::Beta, 1.4),
+        ],
+    );
+    let steady = e.steady().unwrap();
     same_keys(
         &answer,
         &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),

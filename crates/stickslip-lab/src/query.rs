@@ -4,7 +4,7 @@
 //! for physical values: `freq=9.97k`). Every failure is an [`ApiError`]: one line, naming
 //! the key, never a panic.
 
-use crate::model::{flag_name, parse_value};
+use crate::compat::KeyExt;
 use axum::http::StatusCode;
 use std::collections::BTreeMap;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
@@ -102,7 +102,7 @@ fn spec_field(err: &SpecError) -> Option<Key> {
 
 /// The query key of a model value: its command-line flag without the dashes.
 pub fn api_name(key: Key) -> String {
-    flag_name(key).trim_start_matches('-').to_string()
+    key.flag().to_string()
 }
 
 /// A parsed query string: each key once.
@@ -160,7 +160,7 @@ impl Query {
     pub fn number(&mut self, key: &str, default: Option<f64>) -> Result<Option<f64>, ApiError> {
         match self.take(key) {
             None => Ok(default),
-            Some(text) => crate::model::finite(&text)
+            Some(text) => stickslip::units::parse_plain(&text)
                 .map(Some)
                 .map_err(|e| ApiError::field(key, format!("invalid {key}: {e}"))),
         }
@@ -275,7 +275,7 @@ impl Query {
                     check_unit(key, &text).map_err(|e| {
                         ApiError::field(&name, format!("invalid {name} {}: {e}", clip(&text)))
                     })?;
-                    let value = parse_value(key, &text).map_err(|e| {
+                    let value = key.parse_text(&text).map_err(|e| {
                         ApiError::field(&name, format!("invalid value for {name}: {e}"))
                     })?;
                     if let Err(err) = spec.set(key, value) {
@@ -406,13 +406,11 @@ mod tests {
         let e = query("preset=paper&freq=9.97k&amplitude=1.498")
             .experiment()
             .unwrap();
-        let flags = crate::model::ModelArgs {
-            preset: Some(crate::model::Preset::Paper),
-            freq: Some(9970.0),
-            amplitude: Some(1.498),
-            ..Default::default()
-        };
-        assert_eq!(e, flags.experiment().unwrap());
+        let mut spec = ExperimentSpec::new();
+        spec.set_preset(Preset::Paper);
+        spec.set(Key::Frequency, 9970.0).unwrap();
+        spec.set(Key::Amplitude, 1.498).unwrap();
+        assert_eq!(e, spec.build().unwrap());
     }
 
     #[test]

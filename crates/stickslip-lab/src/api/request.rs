@@ -1,0 +1,123 @@
+//! Keys that several endpoints share: the steady-state options, ranges of a parameter, the
+//! swept parameter's keys.
+
+use super::caps;
+use crate::compat::keys_of;
+use crate::query::{api_name, ApiError, Query};
+use stickslip::experiment::{Experiment, Key};
+use stickslip::scan::{Axis, ParameterRange};
+use stickslip::steady::SteadyOptions;
+use stickslip::{Error, Parameter};
+
+/// The steady-state keys of `steady`, `sweep` and `map` (as the command-line flags of the same
+/// names, with the lab's caps): `tolerance`, `max-periods`, `max-period`.
+pub(crate) fn steady_options(q: &mut Query, e: &Experiment) -> Result<SteadyOptions, ApiError> {
+    let tolerance = q.number("tolerance", None)?;
+    if let Some(t) = tolerance {
+        if !(t > 0.0 && t < 1.0) {
+            return Err(ApiError::field(
+                "tolerance",
+                format!("invalid tolerance {t}: must be > 0 and < 1"),
+            ));
+        }
+    }
+    let max_periods = q.count("max-periods", caps::MAX_PERIODS, 1, caps::MAX_PERIODS)?;
+    let max_period = q.count("max-period", 16, 1, caps::MAX_PERIOD)?;
+    // The experiment's own defaults (those of `stickslip steady`) with the keys over them.
+    let defaults = e.steady_options();
+    let tolerance = tolerance.unwrap_or(defaults.tolerance);
+    (|| {
+        defaults
+            .with_tolerance(tolerance)?
+            .with_max_periods(max_periods)?
+            .with_max_period(max_period)?
+            .with_accelerate(true)
+            .with_lyapunov(Some(SteadyOptions::DEFAULT_LYAPUNOV))
+    })()
+    .map_err(|err| ApiError::bad(err.to_string()))
+}
+
+/// The experiment's dimensionless parameters, or a 400 naming the missing drive value.
+pub(crate) fn needs_drive(e: &Experiment) -> Result<(), ApiError> {
+    e.params()
+        .map(|_| ())
+        .map_err(|err| ApiError::library(&err))
+}
+
+/// Refuse model keys that give a value of a parameter the request sets itself.
+pub(crate) fn reject_swept(q: &Query, parameter: Parameter, by: &str) -> Result<(), ApiError> {
+    if let Some(&key) = keys_of(parameter).iter().find(|&&k| q.has_model(k)) {
+        let name = api_name(key);
+        return Err(ApiError::field(
+            &name,
+            format!("{by} sets {} itself: drop {name}", parameter.label()),
+        ));
+    }
+    Ok(())
+}
+
+/// A number as a message shows it: huge and tiny ones in exponent form.
+pub(crate) fn short(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
+/// `from`, `to` and `steps` keys (with prefix, e.g. `w-`) as a range.
+pub(crate) fn range(
+    q: &mut Query,
+    parameter: Parameter,
+    keys: [&str; 3],
+    defaults: (f64, f64, usize),
+    max_steps: usize,
+) -> Result<ParameterRange, ApiError> {
+    let from = q.number(keys[0], Some(defaults.0))?.unwrap_or(defaults.0);
+    let to = q.number(keys[1], Some(defaults.1))?.unwrap_or(defaults.1);
+    let steps = q.count(keys[2], defaults.2, 1, max_steps)?;
+    // Each end within the parameter's own range, named by the key that gave it.
+    let key = match parameter {
+        Parameter::W => Key::W,
+        Parameter::Beta => Key::Beta,
+        Parameter::Zeta => Key::Zeta,
+        _ => Key::MuS,
+    };
+    for (end, value) in [(keys[0], from), (keys[1], to)] {
+        if let Err(Error::InvalidParameter { allowed, .. }) = key.check(value) {
+            return Err(ApiError::field(
+                end,
+                format!(
+                    "invalid {end} {}: {} {allowed}",
+                    short(value),
+                    api_name(key)
+                ),
+            ));
+        }
+    }
+    if from > to {
+        return Err(ApiError::field(
+            keys[0],
+            format!(
+                "invalid range: {} {from} is above {} {to}",
+                keys[0], keys[1]
+            ),
+        ));
+    }
+    if steps == 1 && from != to {
+        return Err(ApiError::field(
+            keys[2],
+            format!(
+                "invalid {} 1: a range from {from} to {to} needs at least 2 points",
+                keys[2]
+            ),
+        ));
+    }
+    ParameterRange::new(parameter.label(), from, to, steps)
+        .map_err(|e| ApiError::field(keys[0], e.to_string()))
+}
+
+/// The axis of a map's range.
+pub(crate) fn grid_axis(range: &ParameterRange, parameter: Parameter) -> Result<Axis, ApiError> {
+    Axis::range(parameter, range).map_err(|err| ApiError::library(&err))
+}
