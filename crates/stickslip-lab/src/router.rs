@@ -25,8 +25,18 @@ use std::time::{Duration, Instant};
 
 /// The page.
 const INDEX_HTML: &str = include_str!("../assets/index.html");
-/// Its script.
+/// Its script: the entry module, which imports the modules of [`MODULES`].
 const LAB_JS: &str = include_str!("../assets/lab.js");
+/// The page's ES modules, served at `/lab/<name>` (loaded as they are: no build step).
+const MODULES: [(&str, &str); 7] = [
+    ("api.js", include_str!("../assets/lab/api.js")),
+    ("export.js", include_str!("../assets/lab/export.js")),
+    ("panels.js", include_str!("../assets/lab/panels.js")),
+    ("scope.js", include_str!("../assets/lab/scope.js")),
+    ("state.js", include_str!("../assets/lab/state.js")),
+    ("sweepmap.js", include_str!("../assets/lab/sweepmap.js")),
+    ("util.js", include_str!("../assets/lab/util.js")),
+];
 /// Its style sheet.
 const LAB_CSS: &str = include_str!("../assets/lab.css");
 
@@ -201,6 +211,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/", get(index))
         .route("/index.html", get(index))
         .route("/lab.js", get(script))
+        .route("/lab/{module}", get(module))
         .route("/lab.css", get(style))
         .route("/api/steady", get(steady))
         .route("/api/simulate", get(simulate))
@@ -223,7 +234,7 @@ pub fn router(lab: Lab) -> Router {
 }
 
 /// Headers on every answer: no sniffing, no referrer, and a page that loads only its own
-/// script and style (no CDN, no inline code).
+/// scripts (ES modules, same origin) and style (no CDN, no inline code).
 pub const SECURITY_HEADERS: [(&str, &str); 3] = [
     ("x-content-type-options", "nosniff"),
     ("referrer-policy", "no-referrer"),
@@ -350,6 +361,15 @@ async fn index() -> Response {
 
 async fn script() -> Response {
     asset("text/javascript; charset=utf-8", LAB_JS)
+}
+
+/// A module of the page, or the 404 of any other path.
+async fn module(request: Request) -> Response {
+    let name = request.uri().path().trim_start_matches("/lab/");
+    match MODULES.iter().find(|(n, _)| *n == name) {
+        Some((_, body)) => asset("text/javascript; charset=utf-8", body),
+        None => not_found(request).await,
+    }
 }
 
 async fn style() -> Response {

@@ -435,9 +435,24 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     }
     // Assets are local: no address of another server in the page.
     assert!(!html.contains("http://") && !html.contains("https://"));
-    let (status, content_type, _) = get_with(&lab, "/lab.js").await;
+    assert!(html.contains(r#"<script type="module" src="lab.js">"#));
+    let (status, content_type, script) = get_with(&lab, "/lab.js").await;
     assert_eq!(status, StatusCode::OK);
     assert!(content_type.starts_with("text/javascript"));
+    // Every module the page imports is served as JavaScript (a module script needs the type).
+    let script = String::from_utf8(script).unwrap();
+    let mut modules = 0;
+    for line in script.lines().filter(|l| l.starts_with("import ")) {
+        let path = line.split('\'').nth(1).unwrap().trim_start_matches('.');
+        let (status, content_type, module) = get_with(&lab, path).await;
+        assert_eq!(status, StatusCode::OK, "{path}");
+        assert!(content_type.starts_with("text/javascript"), "{path}");
+        assert!(!module.is_empty(), "{path}");
+        modules += 1;
+    }
+    assert_eq!(modules, 7);
+    let (status, _, _) = get_with(&lab, "/lab/nothing.js").await;
+    assert_eq!(status, StatusCode::NOT_FOUND);
     let (status, _, _) = get_with(&lab, "/lab.css").await;
     assert_eq!(status, StatusCode::OK);
     let (status, presets) = get("/api/presets").await;
@@ -534,7 +549,7 @@ async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_it
         assert_eq!(answer[key], report[key], "{key}");
     }
     // The page has a colour for every class the library can answer.
-    let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab.js").await;
+    let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab/sweepmap.js").await;
     let script = String::from_utf8(script).unwrap();
     let colours = script
         .lines()
