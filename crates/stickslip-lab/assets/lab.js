@@ -150,8 +150,9 @@ export function transientParams(params) {
   const p = new URLSearchParams(params);
   const f = state.steady && state.steady.drive ? state.steady.drive.f_Hz : Number(value('freq')) || 1;
   const window = 10 * tdiv();
-  const periods = Math.min(2000, Math.max(1, Math.ceil((window + hpos() * tdiv()) * f) + 1));
-  const samples = Math.max(8, Math.min(2000, Math.floor(100000 / periods)));
+  // Within the server's caps: its periods, and half its samples (a screenful needs no more).
+  const periods = Math.min(state.caps.simulate_periods, Math.max(1, Math.ceil((window + hpos() * tdiv()) * f) + 1));
+  const samples = Math.max(8, Math.min(2000, Math.floor(state.caps.simulate_total / 2 / periods)));
   p.set('periods', String(periods));
   p.set('samples', String(samples));
   return p;
@@ -282,12 +283,15 @@ export async function start() {
   fillScaleSelect(field('ch2-vdiv'), 'V');
   fillScaleSelect(field('ch3-vdiv'), 'A');
   let presets;
+  let keys;
   try {
-    presets = await api('presets', '');
+    [presets, keys] = await Promise.all([api('presets', ''), api('keys', '')]);
   } catch (e) {
     setStatus('error', `cannot reach the lab server: ${e.message}`);
     return;
   }
+  state.caps = keys.caps;
+  state.stuckVelocity = keys.stuck_velocity;
   state.presets = presets.presets;
   state.shockley = presets.shockley;
   const select = field('preset-choice');

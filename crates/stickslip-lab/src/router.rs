@@ -219,6 +219,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/map", get(map))
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
+        .route("/api/keys", get(keys))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(lab)
@@ -381,7 +382,7 @@ async fn not_found(request: Request) -> Response {
         StatusCode::NOT_FOUND,
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
-             /api/map, /api/theory, /api/presets)",
+             /api/map, /api/theory, /api/presets, /api/keys)",
             clip(request.uri().path(), 80)
         ),
     )
@@ -434,13 +435,22 @@ async fn theory(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery)
     }
 }
 
-async fn presets(RawQuery(raw): RawQuery) -> Response {
+/// The answer of an endpoint that takes no keys.
+fn fixed(path: &str, raw: Option<String>, answer: fn() -> serde_json::Value) -> Response {
     if let Some(raw) = raw.filter(|r| !r.is_empty()) {
         return ApiError::bad(format!(
-            "/api/presets takes no keys (got '{}')",
+            "{path} takes no keys (got '{}')",
             raw.chars().take(40).collect::<String>()
         ))
         .into_response();
     }
-    json(StatusCode::OK, api::presets().to_string().into_bytes())
+    json(StatusCode::OK, answer().to_string().into_bytes())
+}
+
+async fn presets(RawQuery(raw): RawQuery) -> Response {
+    fixed("/api/presets", raw, api::presets)
+}
+
+async fn keys(RawQuery(raw): RawQuery) -> Response {
+    fixed("/api/keys", raw, api::keys)
 }

@@ -462,6 +462,50 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
 }
 
 #[tokio::test]
+async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
+    let (status, keys) = get("/api/keys").await;
+    assert_eq!(status, StatusCode::OK, "{keys}");
+    let flags: Vec<&str> = keys["keys"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k["flag"].as_str().unwrap())
+        .collect();
+    assert_eq!(flags.len(), Key::ALL.len());
+    for flag in ["mu-s", "freq", "ut", "rd", "diode-is", "model", "preset"] {
+        assert!(flags.contains(&flag), "{flag}");
+    }
+    // Every key the table names is one the query takes: a value out of range names it.
+    for key in Key::ALL {
+        let flag = crate::query::api_name(key);
+        assert!(flags.contains(&flag.as_str()), "{flag}");
+    }
+    // The caps are the ones the endpoints enforce: one more is refused.
+    let caps = &keys["caps"];
+    assert_eq!(caps["simulate_periods"], 2000.0);
+    assert_eq!(caps["max_period"], 16);
+    let (_, presets) = get("/api/presets").await;
+    assert_eq!(&presets["caps"], caps);
+    let over = caps["max_period"].as_u64().unwrap() + 1;
+    refused(
+        &format!("/api/steady?w=1&beta=2&max-period={over}"),
+        StatusCode::BAD_REQUEST,
+        "max-period",
+    )
+    .await;
+    let periods = caps["simulate_periods"].as_f64().unwrap() * 1.5;
+    refused(
+        &format!("/api/simulate?w=1&beta=2&periods={periods}&samples=1"),
+        StatusCode::BAD_REQUEST,
+        "periods",
+    )
+    .await;
+    assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
+    assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);
+    refused("/api/keys?w=1", StatusCode::BAD_REQUEST, "takes no keys").await;
+}
+
+#[tokio::test]
 async fn the_time_limit_stops_a_computation() {
     let lab = lab(Duration::from_millis(300));
     // A Shockley map this size takes minutes without the limit.

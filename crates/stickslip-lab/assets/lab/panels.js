@@ -207,7 +207,7 @@ export function drawMechanics(now) {
   g.stroke();
   // The block: red while stuck (velocity zero).
   const v = cols.v[i];
-  const stuck = Math.abs(v) <= (s.model === 'shockley' ? 1e-3 : 1e-9);
+  const stuck = Math.abs(v) <= state.stuckVelocity[s.model];
   g.fillStyle = stuck ? '#c0392b' : '#2e7d66';
   g.fillRect(left, floor - bh, bw, bh);
   // The drive force.

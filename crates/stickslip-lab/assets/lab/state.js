@@ -7,6 +7,8 @@ import { fftAxes } from './scope.js';
 // ---------------------------------------------------------------- state
 export const state = {
   presets: [],
+  caps: null, // what one request may ask for at most (/api/keys)
+  stuckVelocity: {}, // |v| at or below which the block is drawn stuck, by diode law (/api/keys)
   shockley: {},
   system: 'pwl',
   paperParts: true, // the circuit's parts are the paper's: send preset=paper

@@ -8,6 +8,7 @@
 
 pub mod answer;
 pub mod caps;
+mod keys;
 mod map;
 mod presets;
 pub mod request;
@@ -16,6 +17,7 @@ mod steady;
 mod sweep;
 mod theory;
 
+pub use keys::*;
 pub use map::*;
 pub use presets::*;
 pub use simulate::*;

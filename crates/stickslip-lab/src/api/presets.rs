@@ -1,6 +1,5 @@
 //! `GET /api/presets`: the page's presets.
 
-use super::caps;
 use crate::query::api_name;
 use serde::Serialize;
 use stickslip::physical::Circuit;
@@ -102,16 +101,6 @@ pub fn presets() -> serde_json::Value {
             api_name(Key::SeriesResistance): d.series_resistance,
             api_name(Key::Temperature): d.temperature,
         },
-        "caps": {
-            "steady_samples": caps::STEADY_SAMPLES,
-            "max_period": caps::MAX_PERIOD,
-            "max_periods": caps::MAX_PERIODS,
-            "simulate_periods": caps::SIMULATE_PERIODS,
-            "simulate_samples": caps::SIMULATE_SAMPLES,
-            "simulate_total": caps::SIMULATE_TOTAL,
-            "sweep_steps": caps::SWEEP_STEPS,
-            "map_side": caps::MAP_SIDE,
-            "map_points": caps::MAP_POINTS,
-        },
+        "caps": super::keys::caps_json(),
     })
 }

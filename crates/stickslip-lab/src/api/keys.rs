@@ -1,0 +1,44 @@
+//! `GET /api/keys`: what the page takes from the server rather than writing it down itself:
+//! the model keys (as the query spells them), the caps of one request, and the speed below
+//! which the mechanical view draws the block stuck.
+
+use super::caps;
+use crate::query::api_name;
+use stickslip::experiment::Key;
+
+/// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
+/// exact PWL solver holds v = 0 exactly while stuck; the stiff Shockley solver's current
+/// through the blocking diodes leaves a small v (below 1e-3 on the paper's circuit).
+pub const STUCK_VELOCITY: [(&str, f64); 2] = [("pwl", 1e-9), ("shockley", 1e-3)];
+
+/// The caps of one request, by the names of their JSON fields.
+pub fn caps_json() -> serde_json::Value {
+    serde_json::json!({
+        "steady_samples": caps::STEADY_SAMPLES,
+        "max_period": caps::MAX_PERIOD,
+        "max_periods": caps::MAX_PERIODS,
+        "simulate_periods": caps::SIMULATE_PERIODS,
+        "simulate_samples": caps::SIMULATE_SAMPLES,
+        "simulate_total": caps::SIMULATE_TOTAL,
+        "sweep_steps": caps::SWEEP_STEPS,
+        "map_side": caps::MAP_SIDE,
+        "map_points": caps::MAP_POINTS,
+    })
+}
+
+/// The answer of `/api/keys`: `keys` (each model key's query name and its name in the
+/// library), `caps` (as `/api/presets` has them) and `stuck_velocity` (by diode law).
+pub fn keys() -> serde_json::Value {
+    let keys: Vec<serde_json::Value> = Key::ALL
+        .iter()
+        .map(|&k| serde_json::json!({ "flag": api_name(k), "name": k.name() }))
+        .collect();
+    serde_json::json!({
+        "keys": keys,
+        "caps": caps_json(),
+        "stuck_velocity": STUCK_VELOCITY
+            .iter()
+            .map(|&(model, v)| (model.to_string(), serde_json::json!(v)))
+            .collect::<serde_json::Map<_, _>>(),
+    })
+}
