@@ -12,7 +12,6 @@
 //! - [`serve`]: connections and their time limits.
 
 pub mod api;
-mod compat;
 pub mod fair;
 pub mod limit;
 pub mod query;

@@ -1,9 +1,8 @@
 //! `GET /api/keys`: what the page takes from the server rather than writing it down itself:
-//! the model keys (as the query spells them), the caps of one request, and the speed below
+//! the library's table of model keys, the caps of one request, and the speed below
 //! which the mechanical view draws the block stuck.
 
 use super::caps;
-use crate::query::api_name;
 use stickslip::experiment::Key;
 
 /// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
@@ -26,15 +25,12 @@ pub fn caps_json() -> serde_json::Value {
     })
 }
 
-/// The answer of `/api/keys`: `keys` (each model key's query name and its name in the
-/// library), `caps` (as `/api/presets` has them) and `stuck_velocity` (by diode law).
+/// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model
+/// key's query name `flag`, its `name`, group, unit, range, help and default), `caps` (as
+/// `/api/presets` has them) and `stuck_velocity` (by diode law).
 pub fn keys() -> serde_json::Value {
-    let keys: Vec<serde_json::Value> = Key::ALL
-        .iter()
-        .map(|&k| serde_json::json!({ "flag": api_name(k), "name": k.name() }))
-        .collect();
     serde_json::json!({
-        "keys": keys,
+        "keys": Key::table(),
         "caps": caps_json(),
         "stuck_velocity": STUCK_VELOCITY
             .iter()

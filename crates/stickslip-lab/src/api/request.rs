@@ -2,9 +2,8 @@
 //! swept parameter's keys.
 
 use super::caps;
-use crate::compat::keys_of;
 use crate::query::{api_name, ApiError, Query};
-use stickslip::experiment::{Experiment, Key};
+use stickslip::experiment::Experiment;
 use stickslip::scan::{Axis, ParameterRange};
 use stickslip::steady::SteadyOptions;
 use stickslip::{Error, Parameter};
@@ -46,7 +45,7 @@ pub(crate) fn needs_drive(e: &Experiment) -> Result<(), ApiError> {
 
 /// Refuse model keys that give a value of a parameter the request sets itself.
 pub(crate) fn reject_swept(q: &Query, parameter: Parameter, by: &str) -> Result<(), ApiError> {
-    if let Some(&key) = keys_of(parameter).iter().find(|&&k| q.has_model(k)) {
+    if let Some(&key) = parameter.keys().iter().find(|&&k| q.has_model(k)) {
         let name = api_name(key);
         return Err(ApiError::field(
             &name,
@@ -77,12 +76,7 @@ pub(crate) fn range(
     let to = q.number(keys[1], Some(defaults.1))?.unwrap_or(defaults.1);
     let steps = q.count(keys[2], defaults.2, 1, max_steps)?;
     // Each end within the parameter's own range, named by the key that gave it.
-    let key = match parameter {
-        Parameter::W => Key::W,
-        Parameter::Beta => Key::Beta,
-        Parameter::Zeta => Key::Zeta,
-        _ => Key::MuS,
-    };
+    let key = parameter.key();
     for (end, value) in [(keys[0], from), (keys[1], to)] {
         if let Err(Error::InvalidParameter { allowed, .. }) = key.check(value) {
             return Err(ApiError::field(

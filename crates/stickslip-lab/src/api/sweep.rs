@@ -11,7 +11,8 @@ use std::sync::Arc;
 use stickslip::experiment::Experiment;
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection};
 use stickslip::steady::SteadyOptions;
-use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
+use stickslip::theory::curves::SweepTheory;
+use stickslip::DiodeModel;
 use stickslip::{Error, Parameter};
 
 /// `GET /api/sweep`.
@@ -83,14 +84,6 @@ pub struct SweepTheoryCurves {
     pub prefix: &'static str,
 }
 
-/// `over=` values and the parameters they name.
-const OVER: [(&str, Parameter); 4] = [
-    ("w", Parameter::W),
-    ("beta", Parameter::Beta),
-    ("zeta", Parameter::Zeta),
-    ("mu-s", Parameter::MuS),
-];
-
 impl SweepRequest {
     /// Keys: the model keys (without a value of the swept parameter), `over` (`w`, `beta`,
     /// `zeta` or `mu-s`, default `w`), `from`, `to` (default 0.2 to 2), `steps` (1 to 400,
@@ -101,7 +94,7 @@ impl SweepRequest {
     /// A 400 naming the key at fault.
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
-        let parameter = q.choice("over", &OVER, Parameter::W)?;
+        let parameter = q.name("over", Parameter::W)?;
         reject_swept(&q, parameter, "a sweep")?;
         let experiment = q.experiment()?;
         let range = range(
@@ -111,15 +104,7 @@ impl SweepRequest {
             (0.2, 2.0, 60),
             caps::SWEEP_STEPS,
         )?;
-        let direction = q.choice(
-            "direction",
-            &[
-                ("up", SweepDirection::Up),
-                ("down", SweepDirection::Down),
-                ("both", SweepDirection::Both),
-            ],
-            SweepDirection::Both,
-        )?;
+        let direction = q.name("direction", SweepDirection::Both)?;
         let options = steady_options(&mut q, &experiment)?
             .with_harmonics(3)
             .map_err(|e| ApiError::library(&e))?;
@@ -166,24 +151,20 @@ impl SweepRequest {
         let points = sweep
             .run(&budget.keep_going())
             .map_err(|err| failed(err, budget, "sweep"))?;
-        // The theory's gains over the range, as `stickslip sweep --plot` draws them: the
-        // paper's A1/β, eq. (11), and the exact sliding orbit's peak/β (the simulated gain is
-        // the peak over β).
-        let xs = abscissae(self.range.from(), self.range.to(), self.range.steps());
+        // The theory's gains over the range, as `stickslip sweep --plot` draws them.
         let base = e
             .params_with(&[(self.parameter, self.range.from())])
             .map_err(|err| ApiError::bad(err.to_string()))?;
-        let curve = |theory, quantity| theory_curve(theory, quantity, &base, self.parameter, &xs);
-        let paper = curve(Theory::Paper, TheoryQuantity::Gain);
-        let exact = curve(Theory::Exact, TheoryQuantity::PeakGain);
+        let theory = SweepTheory::new(
+            &base,
+            self.parameter,
+            (self.range.from(), self.range.to(), self.range.steps()),
+            e.diode_model() == DiodeModel::Shockley,
+        );
         let scales = e.scales();
         Ok(SweepAnswer {
             about: About::new(e),
-            over: OVER
-                .iter()
-                .find(|o| o.1 == self.parameter)
-                .map_or("w", |o| o.0)
-                .to_string(),
+            over: self.parameter.flag().to_string(),
             direction: self.direction.label(),
             points: points
                 .iter()
@@ -202,10 +183,10 @@ impl SweepRequest {
                 })
                 .collect(),
             theory: SweepTheoryCurves {
-                x: paper.x,
-                paper_gain: paper.y,
-                exact_peak_gain: exact.y,
-                prefix: pwl_prefix(e),
+                x: theory.paper.x,
+                paper_gain: theory.paper.y,
+                exact_peak_gain: theory.exact.y,
+                prefix: theory.prefix,
             },
         })
     }
