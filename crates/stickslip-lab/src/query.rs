@@ -169,6 +169,27 @@ impl Query {
         }
     }
 
+    /// Remove `key` and read it as a whole number (its range is the library's, checked
+    /// where the number is used), or `default`.
+    ///
+    /// # Errors
+    /// A 400 naming the key and the text.
+    pub fn whole(&mut self, key: &str, default: usize) -> Result<usize, ApiError> {
+        let Some(text) = self.take(key) else {
+            return Ok(default);
+        };
+        text.trim()
+            .parse::<u64>()
+            .ok()
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(|| {
+                ApiError::field(
+                    key,
+                    format!("invalid {key} {}: must be a whole number", clip(&text)),
+                )
+            })
+    }
+
     /// Remove `key` and read it as a whole number from `min` to `max`, or `default`.
     ///
     /// # Errors

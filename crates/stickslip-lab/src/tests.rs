@@ -373,7 +373,7 @@ async fn request_sizes_are_capped() {
     refused(
         "/api/simulate?preset=paper&w=1&beta=2&periods=1e6",
         bad,
-        "at most 2000",
+        "invalid periods 1e6: must be from 0 to 2000",
     )
     .await;
     refused(
@@ -391,7 +391,7 @@ async fn request_sizes_are_capped() {
     refused(
         "/api/map?preset=paper&w-steps=300&beta-steps=300",
         bad,
-        "at most 40000 points",
+        "w-steps × beta-steps = 90000 points: at most 40000 allowed",
     )
     .await;
     let long = format!("/api/steady?preset=paper&w=1&beta=2&x={}", "9".repeat(5000));

@@ -2,7 +2,7 @@
 //! the library's table of model keys, the caps of one request, and the speed below
 //! which the mechanical view draws the block stuck.
 
-use super::caps;
+use super::caps::CAPS;
 use stickslip::experiment::Key;
 
 /// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
@@ -12,17 +12,7 @@ pub const STUCK_VELOCITY: [(&str, f64); 2] = [("pwl", 1e-9), ("shockley", 1e-3)]
 
 /// The caps of one request, by the names of their JSON fields.
 pub fn caps_json() -> serde_json::Value {
-    serde_json::json!({
-        "steady_samples": caps::STEADY_SAMPLES,
-        "max_period": caps::MAX_PERIOD,
-        "max_periods": caps::MAX_PERIODS,
-        "simulate_periods": caps::SIMULATE_PERIODS,
-        "simulate_samples": caps::SIMULATE_SAMPLES,
-        "simulate_total": caps::SIMULATE_TOTAL,
-        "sweep_steps": caps::SWEEP_STEPS,
-        "map_side": caps::MAP_SIDE,
-        "map_points": caps::MAP_POINTS,
-    })
+    serde_json::to_value(CAPS).unwrap_or_default()
 }
 
 /// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model

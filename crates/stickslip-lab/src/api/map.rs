@@ -1,7 +1,7 @@
 //! `GET /api/map`: motion classes on a (w, β) grid, with the stick-slip boundaries.
 
 use super::answer::*;
-use super::caps;
+use super::caps::CAPS;
 use super::request::*;
 use crate::limit::{Budget, LimitedFactory};
 use crate::query::{ApiError, Query};
@@ -77,25 +77,17 @@ impl MapRequest {
             Parameter::W,
             ["w-min", "w-max", "w-steps"],
             (0.1, 2.5, 60),
-            caps::MAP_SIDE,
+            &|n| CAPS.check_map(n, 1),
         )?;
         let beta = range(
             &mut q,
             Parameter::Beta,
             ["beta-min", "beta-max", "beta-steps"],
             (0.5, 4.0, 50),
-            caps::MAP_SIDE,
+            &|n| CAPS.check_map(1, n),
         )?;
-        if w.steps() * beta.steps() > caps::MAP_POINTS {
-            return Err(ApiError::field(
-                "w-steps",
-                format!(
-                    "w-steps × beta-steps = {}: at most {} points",
-                    w.steps() * beta.steps(),
-                    caps::MAP_POINTS
-                ),
-            ));
-        }
+        CAPS.check_map(w.steps(), beta.steps())
+            .map_err(|e| option_error(&e))?;
         let options = steady_options(&mut q, &experiment)?;
         q.finish(&[
             "w-min",

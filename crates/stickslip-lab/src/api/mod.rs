@@ -1,5 +1,5 @@
 //! The endpoints' work, each in two steps: `parse` reads the query (at once, on the server's
-//! own threads: a bad query costs nothing) and `run` calls the library within a [`Budget`]
+//! own threads: a bad query costs nothing) and `run` calls the library within a [`Budget`](crate::limit::Budget)
 //! (on a worker thread). Answers are library results serialised as they are, with the
 //! description of the experiment and its physical scales beside them.
 //!

@@ -1,13 +1,14 @@
 //! `GET /api/simulate`: a run from the initial state.
 
 use super::answer::*;
-use super::caps;
+use super::caps::CAPS;
 use super::request::*;
 use crate::limit::{Budget, LimitedFactory};
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
+use stickslip::options::SimulateOptions;
 use stickslip::solver::{grid, sample_at};
 
 /// `GET /api/simulate`.
@@ -42,27 +43,15 @@ impl SimulateRequest {
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
         let experiment = q.experiment()?;
-        let periods = q.number("periods", Some(20.0))?.unwrap_or(20.0);
-        if !(periods > 0.0 && periods <= caps::SIMULATE_PERIODS) {
-            return Err(ApiError::field(
-                "periods",
-                format!(
-                    "invalid periods {periods}: must be > 0 and at most {}",
-                    caps::SIMULATE_PERIODS
-                ),
-            ));
-        }
-        let samples = q.count("samples", 200, 1, caps::SIMULATE_SAMPLES)?;
-        let total = (periods * samples as f64).ceil();
-        if total > caps::SIMULATE_TOTAL as f64 {
-            return Err(ApiError::field(
-                "samples",
-                format!(
-                    "periods × samples = {total} samples: at most {} allowed",
-                    caps::SIMULATE_TOTAL
-                ),
-            ));
-        }
+        let options = SimulateOptions {
+            periods: q.number("periods", Some(20.0))?.unwrap_or(20.0),
+            samples_per_period: q.whole("samples", 200)?,
+        };
+        // The lab's caps first: their words are the ones a student can act on.
+        CAPS.check_simulate(&options)
+            .and_then(|_| options.validate())
+            .map_err(|e| option_error(&e))?;
+        let (periods, samples) = (options.periods, options.samples_per_period);
         q.finish(&["periods", "samples"])?;
         needs_drive(&experiment)?;
         Ok(Self {

@@ -1,7 +1,7 @@
 //! `GET /api/steady`: the steady state at one point, with its cycle's trace.
 
 use super::answer::*;
-use super::caps;
+use super::caps::CAPS;
 use super::request::*;
 use crate::limit::{Budget, LimitedFactory};
 use crate::query::{ApiError, Query};
@@ -45,13 +45,13 @@ impl SteadyRequest {
         let mut q = Query::parse(raw)?;
         let experiment = q.experiment()?;
         let harmonics = q.count("harmonics", 16, 9, 256)?;
-        let samples = q.count("samples", 512, 16, caps::STEADY_SAMPLES)?;
+        let samples = q.count("samples", 512, 16, CAPS.steady_samples)?;
         if !samples.is_power_of_two() {
             return Err(ApiError::field(
                 "samples",
                 format!(
                     "invalid samples {samples}: must be a power of two from 16 to {}",
-                    caps::STEADY_SAMPLES
+                    CAPS.steady_samples
                 ),
             ));
         }

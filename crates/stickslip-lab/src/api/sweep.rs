@@ -1,7 +1,7 @@
 //! `GET /api/sweep`: the gain swept up and down over one parameter, beside the theory's.
 
 use super::answer::*;
-use super::caps;
+use super::caps::CAPS;
 use super::request::*;
 use crate::limit::{Budget, LimitedFactory};
 use crate::query::{ApiError, Query};
@@ -102,7 +102,7 @@ impl SweepRequest {
             parameter,
             ["from", "to", "steps"],
             (0.2, 2.0, 60),
-            caps::SWEEP_STEPS,
+            &|n| CAPS.check_sweep(n),
         )?;
         let direction = q.name("direction", SweepDirection::Both)?;
         let options = steady_options(&mut q, &experiment)?
