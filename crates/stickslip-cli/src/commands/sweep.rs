@@ -388,8 +388,6 @@ fn steps_to_rows(sweep: &Sweep, checkpoint: &Checkpoint) -> Result<Vec<Row>> {
 pub(crate) struct Theory {
     /// The paper's gain A1/β, eq. (11).
     pub(crate) paper: TheoryCurve,
-    /// The exact sliding orbit's peak/β.
-    pub(crate) exact: TheoryCurve,
     /// Legend prefix: the theory is that of the piecewise-linear model.
     pub(crate) prefix: &'static str,
 }
@@ -425,7 +423,6 @@ impl Theory {
         let curve = |theory, quantity| theory_curve(theory, quantity, &base, parameter, &xs);
         Ok(Self {
             paper: curve(TheoryKind::Paper, TheoryQuantity::Gain),
-            exact: curve(TheoryKind::Exact, TheoryQuantity::PeakGain),
             prefix: match experiment.diode_model() {
                 DiodeModel::Pwl => "",
                 DiodeModel::Shockley => "PWL theory: ",

@@ -1,13 +1,16 @@
-//! Query strings → library types. The keys of the model are the command-line flags without
-//! their dashes (`w`, `beta`, `preset=paper`, `freq`, `amplitude`, `inductance`,
-//! `model=shockley`, `diode-is`, `mu-s`, ...), and they take what the flags take (SI prefixes
-//! for physical values: `freq=9.97k`). Every failure is an [`ApiError`]: one line, naming
-//! the key, never a panic.
+//! Query strings → library types. The keys of the model are the library's key table
+//! ([`Key::flag`], the command-line flags without their dashes: `w`, `beta`, `preset=paper`,
+//! `freq`, `amplitude`, `inductance`, `model=shockley`, `diode-is`, `mu-s`, ...), and they
+//! take what the flags take ([`Key::parse`]: SI prefixes for physical values, `freq=9.97k`,
+//! with the key's unit). Every failure is an [`ApiError`]: one line, naming the key, never a
+//! panic.
 
-use crate::model::{flag_name, parse_value};
 use axum::http::StatusCode;
 use std::collections::BTreeMap;
+use std::str::FromStr;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
+use stickslip::names::NameError;
+use stickslip::units::NumberError;
 use stickslip::Error;
 
 /// Longest query string accepted, in bytes.
@@ -100,9 +103,9 @@ fn spec_field(err: &SpecError) -> Option<Key> {
     }
 }
 
-/// The query key of a model value: its command-line flag without the dashes.
+/// The query key of a model value: its flag in the library's key table ([`Key::flag`]).
 pub fn api_name(key: Key) -> String {
-    flag_name(key).trim_start_matches('-').to_string()
+    key.flag().to_string()
 }
 
 /// A parsed query string: each key once.
@@ -160,10 +163,31 @@ impl Query {
     pub fn number(&mut self, key: &str, default: Option<f64>) -> Result<Option<f64>, ApiError> {
         match self.take(key) {
             None => Ok(default),
-            Some(text) => crate::model::finite(&text)
+            Some(text) => stickslip::units::parse_plain(&text)
                 .map(Some)
                 .map_err(|e| ApiError::field(key, format!("invalid {key}: {e}"))),
         }
+    }
+
+    /// Remove `key` and read it as a whole number (its range is the library's, checked
+    /// where the number is used), or `default`.
+    ///
+    /// # Errors
+    /// A 400 naming the key and the text.
+    pub fn whole(&mut self, key: &str, default: usize) -> Result<usize, ApiError> {
+        let Some(text) = self.take(key) else {
+            return Ok(default);
+        };
+        text.trim()
+            .parse::<u64>()
+            .ok()
+            .and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(|| {
+                ApiError::field(
+                    key,
+                    format!("invalid {key} {}: must be a whole number", clip(&text)),
+                )
+            })
     }
 
     /// Remove `key` and read it as a whole number from `min` to `max`, or `default`.
@@ -196,34 +220,29 @@ impl Query {
         Ok(n as usize)
     }
 
-    /// Remove `key` and match it against `choices` (name, value), or `default`.
+    /// Remove `key` and read it as one of the names of a library enum (its `FromStr`), or
+    /// `default`.
     ///
     /// # Errors
-    /// A 400 listing the choices.
-    pub fn choice<T: Copy>(
+    /// A 400 listing the names allowed.
+    pub fn name<T: FromStr<Err = NameError>>(
         &mut self,
         key: &str,
-        choices: &[(&str, T)],
         default: T,
     ) -> Result<T, ApiError> {
         let Some(text) = self.take(key) else {
             return Ok(default);
         };
-        choices
-            .iter()
-            .find(|(name, _)| *name == text.trim())
-            .map(|c| c.1)
-            .ok_or_else(|| {
-                let names: Vec<&str> = choices.iter().map(|c| c.0).collect();
-                ApiError::field(
-                    key,
-                    format!(
-                        "invalid {key} '{}': one of {}",
-                        clip(&text),
-                        names.join(", ")
-                    ),
-                )
-            })
+        text.trim().parse().map_err(|e: NameError| {
+            ApiError::field(
+                key,
+                format!(
+                    "invalid {key} '{}': one of {}",
+                    clip(&text),
+                    e.allowed.join(", ")
+                ),
+            )
+        })
     }
 
     /// Remove the model keys and build the experiment they describe, as the command-line
@@ -245,38 +264,47 @@ impl Query {
             let Some(text) = self.take(&name) else {
                 continue;
             };
+            let invalid = |allowed: Vec<&str>| {
+                ApiError::field(
+                    &name,
+                    format!(
+                        "invalid {name} '{}': one of {}",
+                        clip(text.trim()),
+                        allowed.join(", ")
+                    ),
+                )
+            };
             match key {
-                Key::Preset => match text.trim() {
-                    "paper" => {
-                        spec.set_preset(Preset::Paper);
-                    }
-                    other => {
-                        return Err(ApiError::field(
-                            &name,
-                            format!("invalid preset '{}': the lab knows paper", clip(other)),
-                        ))
-                    }
-                },
-                Key::Diode => match text.trim() {
-                    "pwl" => {
-                        spec.set_diode(DiodeModel::Pwl);
-                    }
-                    "shockley" => {
-                        spec.set_diode(DiodeModel::Shockley);
-                    }
-                    other => {
-                        return Err(ApiError::field(
-                            &name,
-                            format!("invalid model '{}': pwl or shockley", clip(other)),
-                        ))
-                    }
-                },
+                Key::Preset => {
+                    let preset: Preset = text
+                        .trim()
+                        .parse()
+                        .map_err(|e: NameError| invalid(e.allowed))?;
+                    spec.set_preset(preset);
+                }
+                Key::Diode => {
+                    let diode: DiodeModel = text
+                        .trim()
+                        .parse()
+                        .map_err(|e: NameError| invalid(e.allowed))?;
+                    spec.set_diode(diode);
+                }
                 _ => {
-                    check_unit(key, &text).map_err(|e| {
-                        ApiError::field(&name, format!("invalid {name} {}: {e}", clip(&text)))
-                    })?;
-                    let value = parse_value(key, &text).map_err(|e| {
-                        ApiError::field(&name, format!("invalid value for {name}: {e}"))
+                    let value = key.parse(&text).map_err(|err| {
+                        let message = match err {
+                            Error::InvalidText {
+                                error: error @ NumberError::WrongUnit { .. },
+                                ..
+                            } => format!("invalid {name} {}: {error}", clip(&text)),
+                            Error::InvalidText { error, .. } => {
+                                format!("invalid value for {name}: {error}")
+                            }
+                            Error::InvalidParameter { allowed, .. } => {
+                                format!("invalid {name} {}: {allowed}", clip(&text))
+                            }
+                            other => other.to_string(),
+                        };
+                        ApiError::field(&name, message)
                     })?;
                     if let Err(err) = spec.set(key, value) {
                         let allowed = match err {
@@ -330,47 +358,6 @@ impl Query {
     }
 }
 
-/// Units a value may end with (as the library's number parser strips them), longest first
-/// where one ends another.
-const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
-
-/// The units `key` may be written in (a value may also go without its unit).
-fn units_of(key: Key) -> &'static [&'static str] {
-    match key {
-        Key::Inductance => &["H"],
-        Key::Capacitance => &["F"],
-        Key::Resistance | Key::DiodeResistance | Key::SeriesResistance => &["ohm", "Ohm", "Ω"],
-        Key::TurnOn => &["V"],
-        Key::Amplitude => &["V", "N"],
-        Key::Frequency => &["Hz"],
-        Key::Friction => &["N"],
-        Key::Uc0 => &["V"],
-        Key::I0 | Key::SaturationCurrent => &["A"],
-        _ => &[],
-    }
-}
-
-/// A unit written after a value must be the key's: `freq=9.97kV` is refused, not read as
-/// 9.97 kHz.
-fn check_unit(key: Key, text: &str) -> Result<(), String> {
-    let text = text.trim();
-    let Some(unit) = UNITS.iter().find(|u| text.ends_with(*u)) else {
-        return Ok(());
-    };
-    let allowed = units_of(key);
-    if allowed.contains(unit) {
-        return Ok(());
-    }
-    Err(if allowed.is_empty() {
-        format!("the unit {unit} does not fit: write the number alone")
-    } else {
-        format!(
-            "the unit {unit} does not fit: write {} or the number alone",
-            allowed.join(" or ")
-        )
-    })
-}
-
 /// At most 40 characters of untrusted text in a message, without control characters.
 fn clip(text: &str) -> String {
     let clean: String = text
@@ -406,13 +393,11 @@ mod tests {
         let e = query("preset=paper&freq=9.97k&amplitude=1.498")
             .experiment()
             .unwrap();
-        let flags = crate::model::ModelArgs {
-            preset: Some(crate::model::Preset::Paper),
-            freq: Some(9970.0),
-            amplitude: Some(1.498),
-            ..Default::default()
-        };
-        assert_eq!(e, flags.experiment().unwrap());
+        let mut spec = ExperimentSpec::new();
+        spec.set_preset(Preset::Paper);
+        spec.set(Key::Frequency, 9970.0).unwrap();
+        spec.set(Key::Amplitude, 1.498).unwrap();
+        assert_eq!(e, spec.build().unwrap());
     }
 
     #[test]

@@ -24,11 +24,21 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The page.
-const INDEX_HTML: &str = include_str!("../../../assets/lab/index.html");
-/// Its script.
-const LAB_JS: &str = include_str!("../../../assets/lab/lab.js");
+const INDEX_HTML: &str = include_str!("../assets/index.html");
+/// Its script: the entry module, which imports the modules of [`MODULES`].
+const LAB_JS: &str = include_str!("../assets/lab.js");
+/// The page's ES modules, served at `/lab/<name>` (loaded as they are: no build step).
+const MODULES: [(&str, &str); 7] = [
+    ("api.js", include_str!("../assets/lab/api.js")),
+    ("export.js", include_str!("../assets/lab/export.js")),
+    ("panels.js", include_str!("../assets/lab/panels.js")),
+    ("scope.js", include_str!("../assets/lab/scope.js")),
+    ("state.js", include_str!("../assets/lab/state.js")),
+    ("sweepmap.js", include_str!("../assets/lab/sweepmap.js")),
+    ("util.js", include_str!("../assets/lab/util.js")),
+];
 /// Its style sheet.
-const LAB_CSS: &str = include_str!("../../../assets/lab/lab.css");
+const LAB_CSS: &str = include_str!("../assets/lab.css");
 
 /// How the server limits its work.
 #[derive(Debug, Clone)]
@@ -201,6 +211,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/", get(index))
         .route("/index.html", get(index))
         .route("/lab.js", get(script))
+        .route("/lab/{module}", get(module))
         .route("/lab.css", get(style))
         .route("/api/steady", get(steady))
         .route("/api/simulate", get(simulate))
@@ -208,6 +219,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/map", get(map))
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
+        .route("/api/keys", get(keys))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(lab)
@@ -223,7 +235,7 @@ pub fn router(lab: Lab) -> Router {
 }
 
 /// Headers on every answer: no sniffing, no referrer, and a page that loads only its own
-/// script and style (no CDN, no inline code).
+/// scripts (ES modules, same origin) and style (no CDN, no inline code).
 pub const SECURITY_HEADERS: [(&str, &str); 3] = [
     ("x-content-type-options", "nosniff"),
     ("referrer-policy", "no-referrer"),
@@ -352,6 +364,15 @@ async fn script() -> Response {
     asset("text/javascript; charset=utf-8", LAB_JS)
 }
 
+/// A module of the page, or the 404 of any other path.
+async fn module(request: Request) -> Response {
+    let name = request.uri().path().trim_start_matches("/lab/");
+    match MODULES.iter().find(|(n, _)| *n == name) {
+        Some((_, body)) => asset("text/javascript; charset=utf-8", body),
+        None => not_found(request).await,
+    }
+}
+
 async fn style() -> Response {
     asset("text/css; charset=utf-8", LAB_CSS)
 }
@@ -361,7 +382,7 @@ async fn not_found(request: Request) -> Response {
         StatusCode::NOT_FOUND,
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
-             /api/map, /api/theory, /api/presets)",
+             /api/map, /api/theory, /api/presets, /api/keys)",
             clip(request.uri().path(), 80)
         ),
     )
@@ -414,13 +435,22 @@ async fn theory(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery)
     }
 }
 
-async fn presets(RawQuery(raw): RawQuery) -> Response {
+/// The answer of an endpoint that takes no keys.
+fn fixed(path: &str, raw: Option<String>, answer: fn() -> serde_json::Value) -> Response {
     if let Some(raw) = raw.filter(|r| !r.is_empty()) {
         return ApiError::bad(format!(
-            "/api/presets takes no keys (got '{}')",
+            "{path} takes no keys (got '{}')",
             raw.chars().take(40).collect::<String>()
         ))
         .into_response();
     }
-    json(StatusCode::OK, api::presets().to_string().into_bytes())
+    json(StatusCode::OK, answer().to_string().into_bytes())
+}
+
+async fn presets(RawQuery(raw): RawQuery) -> Response {
+    fixed("/api/presets", raw, api::presets)
+}
+
+async fn keys(RawQuery(raw): RawQuery) -> Response {
+    fixed("/api/keys", raw, api::keys)
 }

@@ -3,18 +3,32 @@
 //! with one line of JSON; the time limit stops a computation.
 
 use super::router::{router, Lab, Settings};
-use crate::model::{ModelArgs, Preset};
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use serde_json::Value;
 use std::time::Duration;
-use stickslip::experiment::Experiment;
+use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset};
 use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
 use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
 use stickslip::theory::TheoryReport;
 use stickslip::Parameter;
 use tower::ServiceExt;
+
+/// The experiment of a preset, a diode law and values, as the library builds it.
+fn spec(preset: Option<Preset>, diode: Option<DiodeModel>, values: &[(Key, f64)]) -> Experiment {
+    let mut spec = ExperimentSpec::new();
+    if let Some(p) = preset {
+        spec.set_preset(p);
+    }
+    if let Some(d) = diode {
+        spec.set_diode(d);
+    }
+    for &(key, value) in values {
+        spec.set(key, value).unwrap();
+    }
+    spec.build().unwrap()
+}
 
 fn lab(time_limit: Duration) -> Lab {
     Lab::new(Settings {
@@ -89,18 +103,16 @@ async fn steady_equals_the_library_and_the_cli_for_the_same_point() {
     );
     assert_eq!(answer["class"], "sliding");
 
-    // Physical keys with SI prefixes, against the experiment the CLI builds from its flags
-    // (`stickslip steady --preset paper --freq 9.97k --amplitude 1.498 --json`).
+    // Physical keys with SI prefixes, against the experiment the library builds from the same
+    // values (`stickslip steady --preset paper --freq 9.97k --amplitude 1.498 --json`).
     let (status, answer) =
         get("/api/steady?preset=paper&freq=9.97k&amplitude=1.498&samples=256").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        freq: Some(9970.0),
-        amplitude: Some(1.498),
-        ..Default::default()
-    };
-    let e = flags.experiment().unwrap();
+    let e = spec(
+        Some(Preset::Paper),
+        None,
+        &[(Key::Frequency, 9970.0), (Key::Amplitude, 1.498)],
+    );
     let steady = e.steady().unwrap();
     same_keys(
         &answer,
@@ -137,15 +149,12 @@ async fn shockley_and_mechanics_answer_as_the_library() {
     let (status, answer) =
         get("/api/steady?preset=paper&model=shockley&w=0.95&beta=2.14&diode-n=1.8").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        model: Some(crate::model::DiodeModel::Shockley),
-        w: Some(0.95),
-        beta: Some(2.14),
-        diode_n: Some(1.8),
-        ..Default::default()
-    };
-    let steady = flags.experiment().unwrap().steady().unwrap();
+    let e = spec(
+        Some(Preset::Paper),
+        Some(DiodeModel::Shockley),
+        &[(Key::W, 0.95), (Key::Beta, 2.14), (Key::Emission, 1.8)],
+    );
+    let steady = e.steady().unwrap();
     same_keys(
         &answer,
         &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
@@ -156,17 +165,20 @@ async fn shockley_and_mechanics_answer_as_the_library() {
         get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")
             .await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        mass: Some(0.5),
-        stiffness: Some(200.0),
-        damping: Some(0.94),
-        friction: Some(1.0),
-        mu_s: Some(1.5),
-        w: Some(0.7),
-        beta: Some(1.4),
-        ..Default::default()
-    };
-    let steady = flags.experiment().unwrap().steady().unwrap();
+    let e = spec(
+        None,
+        None,
+        &[
+            (Key::Mass, 0.5),
+            (Key::Stiffness, 200.0),
+            (Key::Damping, 0.94),
+            (Key::Friction, 1.0),
+            (Key::MuS, 1.5),
+            (Key::W, 0.7),
+            (Key::Beta, 1.4),
+        ],
+    );
+    let steady = e.steady().unwrap();
     same_keys(
         &answer,
         &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
@@ -361,7 +373,7 @@ async fn request_sizes_are_capped() {
     refused(
         "/api/simulate?preset=paper&w=1&beta=2&periods=1e6",
         bad,
-        "at most 2000",
+        "invalid periods 1e6: must be from 0 to 2000",
     )
     .await;
     refused(
@@ -379,7 +391,7 @@ async fn request_sizes_are_capped() {
     refused(
         "/api/map?preset=paper&w-steps=300&beta-steps=300",
         bad,
-        "at most 40000 points",
+        "w-steps × beta-steps = 90000 points: at most 40000 allowed",
     )
     .await;
     let long = format!("/api/steady?preset=paper&w=1&beta=2&x={}", "9".repeat(5000));
@@ -423,15 +435,75 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     }
     // Assets are local: no address of another server in the page.
     assert!(!html.contains("http://") && !html.contains("https://"));
-    let (status, content_type, _) = get_with(&lab, "/lab.js").await;
+    assert!(html.contains(r#"<script type="module" src="lab.js">"#));
+    let (status, content_type, script) = get_with(&lab, "/lab.js").await;
     assert_eq!(status, StatusCode::OK);
     assert!(content_type.starts_with("text/javascript"));
+    // Every module the page imports is served as JavaScript (a module script needs the type).
+    let script = String::from_utf8(script).unwrap();
+    let mut modules = 0;
+    for line in script.lines().filter(|l| l.starts_with("import ")) {
+        let path = line.split('\'').nth(1).unwrap().trim_start_matches('.');
+        let (status, content_type, module) = get_with(&lab, path).await;
+        assert_eq!(status, StatusCode::OK, "{path}");
+        assert!(content_type.starts_with("text/javascript"), "{path}");
+        assert!(!module.is_empty(), "{path}");
+        modules += 1;
+    }
+    assert_eq!(modules, 7);
+    let (status, _, _) = get_with(&lab, "/lab/nothing.js").await;
+    assert_eq!(status, StatusCode::NOT_FOUND);
     let (status, _, _) = get_with(&lab, "/lab.css").await;
     assert_eq!(status, StatusCode::OK);
     let (status, presets) = get("/api/presets").await;
     assert_eq!(status, StatusCode::OK);
     assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
     assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+}
+
+#[tokio::test]
+async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
+    let (status, keys) = get("/api/keys").await;
+    assert_eq!(status, StatusCode::OK, "{keys}");
+    let flags: Vec<&str> = keys["keys"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k["flag"].as_str().unwrap())
+        .collect();
+    assert_eq!(flags.len(), Key::ALL.len());
+    for flag in ["mu-s", "freq", "ut", "rd", "diode-is", "model", "preset"] {
+        assert!(flags.contains(&flag), "{flag}");
+    }
+    // The library's table, as it serialises it: the query takes every key under its flag.
+    let table = serde_json::to_value(Key::table()).unwrap();
+    assert_eq!(keys["keys"], table);
+    for key in Key::ALL {
+        assert!(flags.contains(&key.flag()), "{}", key.flag());
+    }
+    // The caps are the ones the endpoints enforce: one more is refused.
+    let caps = &keys["caps"];
+    assert_eq!(caps["simulate_periods"], 2000.0);
+    assert_eq!(caps["max_period"], 16);
+    let (_, presets) = get("/api/presets").await;
+    assert_eq!(&presets["caps"], caps);
+    let over = caps["max_period"].as_u64().unwrap() + 1;
+    refused(
+        &format!("/api/steady?w=1&beta=2&max-period={over}"),
+        StatusCode::BAD_REQUEST,
+        "max-period",
+    )
+    .await;
+    let periods = caps["simulate_periods"].as_f64().unwrap() * 1.5;
+    refused(
+        &format!("/api/simulate?w=1&beta=2&periods={periods}&samples=1"),
+        StatusCode::BAD_REQUEST,
+        "periods",
+    )
+    .await;
+    assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
+    assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);
+    refused("/api/keys?w=1", StatusCode::BAD_REQUEST, "takes no keys").await;
 }
 
 #[tokio::test]
@@ -522,7 +594,7 @@ async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_it
         assert_eq!(answer[key], report[key], "{key}");
     }
     // The page has a colour for every class the library can answer.
-    let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab.js").await;
+    let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab/sweepmap.js").await;
     let script = String::from_utf8(script).unwrap();
     let colours = script
         .lines()

@@ -1,9 +1,11 @@
-//! `stickslip lab`: a virtual oscilloscope and function generator in the browser, served by
-//! this binary and computed by the library on request. The page and its assets are embedded
-//! (no CDN, works offline); the JSON API is documented in `docs/lab.md`.
+//! The lab of stickslip (`stickslip lab`): a virtual oscilloscope and function generator in
+//! the browser, served by this crate and computed by the `stickslip` library on request. The
+//! page and its assets are embedded (no CDN, works offline); the JSON API is documented in
+//! `docs/lab.md`. [`run`] serves it until asked to stop.
 //!
 //! - [`query`]: query strings → library types (the model keys are the flags without dashes);
-//! - [`api`]: the endpoints' work (steady state, simulation, sweep, map, theory);
+//! - [`api`]: the endpoints' work, one file each (steady state, simulation, sweep, map,
+//!   theory, presets), and what they share (the answers' parts, the keys of several, the caps);
 //! - [`limit`]: the time limit and the stop of abandoned requests, inside the solvers;
 //! - [`fair`]: fair turns at the workers, one queue per client;
 //! - [`router`]: routes, assets, the `Host` check, worker threads;
@@ -18,63 +20,64 @@ pub mod serve;
 #[cfg(test)]
 mod tests;
 
-use crate::output::usage;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
 
-/// Serve the lab: an oscilloscope and a function generator in the browser, on the exact solver.
-///
-/// A two-channel scope and a function generator on the RLC-diode circuit (or its mechanical
-/// twin), computed by the library on request. The page opens on the paper's circuit at its Fig. 3 point Ω/ω0 = 0.95, β = 2.14:
-/// generator (frequency, amplitude, phase), circuit (L, C, R, PWL or Shockley diodes,
-/// presets) or mass-spring-friction view, scope (Y-T, X-Y, FFT; steady cycle or transient
-/// from rest; cursors), measurements beside the paper's series values and the exact orbit's,
-/// the gain swept up and down, the (w, β) map, CSV and PNG export.
-///
-/// The server listens on 127.0.0.1 (this computer only) unless --host says otherwise, and
-/// prints the address to open (with --host 0.0.0.0, also the addresses students type). It
-/// reads no files; each request is capped in size and time, computations take fair turns
-/// between clients, and requests must name the lab by one of its addresses (the Host
-/// header), so that other web pages cannot read its answers.
-/// The JSON API under /api/ takes the model flags without dashes as query keys
-/// (e.g. /api/steady?preset=paper&freq=9.97k&amplitude=1.498): see docs/lab.md.
-///
-/// Examples:
-///   stickslip lab --open
-///   stickslip lab --port 0            # any free port
-///   stickslip lab --host 0.0.0.0      # the whole classroom network (a warning says so)
-///   stickslip lab --host 0.0.0.0 --allow-host lab.school.example
-#[derive(Debug, clap::Args)]
-#[command(verbatim_doc_comment)]
-pub struct Args {
+/// How to serve the lab: what `stickslip lab` takes on its command line.
+#[derive(Debug, Clone)]
+pub struct Config {
     /// TCP port to listen on (0: any free port; the address printed says which).
-    #[arg(long, default_value_t = 8080)]
-    port: u16,
-    /// Address to listen on: 127.0.0.1 serves this computer only; 0.0.0.0 every network
-    /// the computer is on.
-    #[arg(long, default_value = "127.0.0.1")]
-    host: String,
+    pub port: u16,
+    /// Address to listen on: an IP address or `localhost` (127.0.0.1 serves this computer
+    /// only, 0.0.0.0 every network the computer is on).
+    pub host: String,
     /// Open the page in the default browser.
-    #[arg(long)]
-    open: bool,
+    pub open: bool,
     /// Time limit of one request in seconds, waiting for a worker included (0.1 to 600).
-    #[arg(long = "time-limit", default_value_t = 10.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
-    time_limit: f64,
-    /// Computations at once; further requests wait for a turn within their time limit
-    /// [default: the number of cores].
-    #[arg(long, allow_hyphen_values = true)]
-    jobs: Option<i64>,
-    /// Print one line per request on standard error (method, path, status, milliseconds),
-    /// and one per request or connection that ended early.
-    #[arg(long)]
-    verbose: bool,
-    /// Also answer requests that name the lab by this host name (e.g. a name the school's
-    /// DNS gives this computer); the addresses it listens on and localhost are always
-    /// answered. Repeat for more names.
-    #[arg(long = "allow-host", value_name = "NAME")]
-    allow_host: Vec<String>,
+    pub time_limit: f64,
+    /// Computations at once (1 to 256; `None`: the number of cores).
+    pub jobs: Option<i64>,
+    /// One line per request on standard error.
+    pub verbose: bool,
+    /// Further host names a request's `Host` header may name.
+    pub allow_host: Vec<String>,
+}
+
+impl Default for Config {
+    /// `stickslip lab` without flags: port 8080 on 127.0.0.1, 10 s per request.
+    fn default() -> Self {
+        Self {
+            port: 8080,
+            host: "127.0.0.1".into(),
+            open: false,
+            time_limit: 10.0,
+            jobs: None,
+            verbose: false,
+            allow_host: Vec::new(),
+        }
+    }
+}
+
+/// A setting of [`Config`] out of its range: the message names the command-line flag and
+/// what it allows (`stickslip lab` exits with a usage error on it).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InvalidSetting(pub String);
+
+impl std::fmt::Display for InvalidSetting {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for InvalidSetting {}
+
+/// Fail with an [`InvalidSetting`] made of this message.
+macro_rules! invalid {
+    ($($arg:tt)*) => {
+        return Err(anyhow::Error::new(InvalidSetting(format!($($arg)*))))
+    };
 }
 
 /// The address to listen on: an IP address, or `localhost`.
@@ -84,7 +87,7 @@ fn host_address(host: &str) -> Result<IpAddr> {
     }
     match host.trim_matches(['[', ']']).parse() {
         Ok(ip) => Ok(ip),
-        Err(_) => usage!(
+        Err(_) => invalid!(
             "invalid --host {host}: an IP address such as 127.0.0.1 (this computer only) or \
              0.0.0.0 (every network)"
         ),
@@ -104,11 +107,17 @@ fn url_of(addr: SocketAddr) -> String {
     }
 }
 
-/// Run `stickslip lab` until Ctrl-C.
-pub fn run(args: Args) -> Result<()> {
+/// Serve the lab as `config` says until `stop()` returns true (checked every 100 ms; the
+/// command-line tool passes its Ctrl-C flag). Prints the address on standard output and
+/// what it serves on standard error.
+///
+/// # Errors
+/// An [`InvalidSetting`] for a setting out of range; the port in use; the runtime.
+pub fn run(config: Config, stop: impl Fn() -> bool + Send + 'static) -> Result<()> {
+    let args = config;
     let ip = host_address(&args.host)?;
     if !(args.time_limit >= 0.1 && args.time_limit <= 600.0) {
-        usage!(
+        invalid!(
             "invalid --time-limit {}: must be from 0.1 to 600 (seconds)",
             args.time_limit
         );
@@ -117,7 +126,7 @@ pub fn run(args: Args) -> Result<()> {
     let jobs = match args.jobs {
         None => cores,
         Some(n) if (1..=256).contains(&n) => n as usize,
-        Some(n) => usage!("invalid --jobs {n}: must be from 1 to 256"),
+        Some(n) => invalid!("invalid --jobs {n}: must be from 1 to 256"),
     };
     let mut hosts = Vec::new();
     for name in &args.allow_host {
@@ -127,7 +136,7 @@ pub fn run(args: Args) -> Result<()> {
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '.' | ':'));
         if !valid {
-            usage!(
+            invalid!(
                 "invalid --allow-host '{name}': a host name such as lab.school.example or an \
                  address, without scheme, port or path"
             );
@@ -218,7 +227,7 @@ pub fn run(args: Args) -> Result<()> {
             serve::Limits::default(),
             args.verbose,
             async {
-                while !crate::output::interrupted() {
+                while !stop() {
                     tokio::time::sleep(Duration::from_millis(100)).await;
                 }
             },

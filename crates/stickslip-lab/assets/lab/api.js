@@ -1,0 +1,41 @@
+// The lab's JSON API (docs/lab.md): one GET per answer, one request per slot at a time.
+
+import { $, field } from './util.js';
+
+// ---------------------------------------------------------------- the API
+export class ApiFailure extends Error {
+  constructor(status, message, field) {
+    super(message);
+    this.status = status;
+    this.field = field;
+  }
+}
+
+/** GET /api/<name>?<params>; the JSON answer, or an ApiFailure with the server's line. */
+// The page's own name for the server's fair queues (one per open page, not stored).
+export const CLIENT_ID = Array.from(crypto.getRandomValues(new Uint8Array(12)), (b) => b.toString(16).padStart(2, '0')).join('');
+export async function api(name, params, signal) {
+  const response = await fetch(`/api/${name}?${params}`, { signal, headers: { 'X-Lab-Client': CLIENT_ID } });
+  let body = null;
+  try {
+    body = await response.json();
+  } catch (e) {
+    throw new ApiFailure(response.status, `the server answered ${response.status} without JSON`);
+  }
+  if (!response.ok) throw new ApiFailure(response.status, body.error || `error ${response.status}`, body.field);
+  return body;
+}
+
+/** One request per slot at a time: a new one aborts the one before (a stale answer is dropped). */
+export const slots = {};
+export async function latest(slot, name, params) {
+  if (slots[slot]) slots[slot].abort();
+  const controller = new AbortController();
+  slots[slot] = controller;
+  try {
+    return await api(name, params, controller.signal);
+  } finally {
+    if (slots[slot] === controller) delete slots[slot];
+  }
+}
+export const isAbort = (e) => e && e.name === 'AbortError';

@@ -1,0 +1,276 @@
+// The panels beside the scope: derived values, the knobs' ranges, the measurements and the
+// theory, the mechanical view, the presets and the model's fieldsets.
+
+import { $, $$, field, num, si, siText } from './util.js';
+import { state, PART_KEYS, MECHANICS_KEYS, value } from './state.js';
+import { channelColumns, prepare, COLORS, label, displayed } from './scope.js';
+
+// ---------------------------------------------------------------- derived readouts
+export function scales() {
+  return (state.steady && state.steady.scales) || { position: 1, velocity: 1, force: 1, omega0: 1 };
+}
+export function units() {
+  const mech = state.steady && state.steady.system === 'mechanics';
+  return mech ? { drive: 'N', position: 'm', velocity: 'm/s' } : { drive: 'V', position: 'V', velocity: 'A' };
+}
+
+export function showDerived() {
+  const s = state.steady;
+  const c = s.conversion;
+  $('[data-derived="w"]').textContent = num(s.w, 6);
+  $('[data-derived="beta"]').textContent = num(s.beta, 6);
+  if (c) {
+    $('[data-derived="natural"]').textContent =
+      `f0 = ${si(c.f0, 'Hz', 6)}, ω0 = ${num(c.omega0, 6)} rad/s, ζ = ${num(c.zeta, 5)}, Q = ${num(c.Q, 5)}`;
+  }
+  if (s.drive) {
+    if (state.drive.w !== null || document.activeElement !== field('freq')) {
+      if (state.drive.w !== null) field('freq').value = num(s.drive.f_Hz, 6);
+    }
+    if (state.drive.beta !== null) field('amplitude').value = num(s.drive.amplitude, 6);
+    placeKnobs();
+  }
+  const u = units();
+  for (const el of $$('[data-unit]')) el.textContent = u[el.dataset.unit] || el.textContent;
+  const mech = s.system === 'mechanics';
+  $('[data-label="ch1"]').textContent = mech ? 'F' : 'U';
+  $('[data-label="ch2"]').textContent = mech ? 'position r' : 'u_C';
+  $('[data-label="ch3"]').textContent = mech ? 'velocity ṙ' : 'current i';
+  $('[data-derived="twin"]').textContent = mech
+    ? 'The block is the model itself: spring k, damping γ, dry friction F0 (static μs·F0), driven by F cos Ωt.'
+    : 'The same model as a mass on a spring: u_C ↔ position, i ↔ velocity, U ↔ drive force, the diode pair ↔ dry friction (U_t ↔ F0). Red: the motion stops.';
+}
+
+// The knobs: frequency logarithmic from f0/10 to 3 f0, amplitude linear to 20 U_t.
+export function knobRange() {
+  const c = state.steady && state.steady.conversion;
+  const f0 = c ? c.f0 : 1;
+  const force = scales().force;
+  return { fmin: f0 / 10, fmax: 3 * f0, amax: 20 * force };
+}
+export function placeKnobs() {
+  const r = knobRange();
+  const f = Number(state.steady.drive.f_Hz);
+  field('freq-knob').value = String(Math.round((1000 * Math.log(f / r.fmin)) / Math.log(r.fmax / r.fmin)));
+  field('amplitude-knob').value = String(Math.round((1000 * state.steady.drive.amplitude) / r.amax));
+}
+
+
+// ---------------------------------------------------------------- measurements
+export function setMeasure(name, text, value) {
+  const el = $(`[data-measure="${name}"]`);
+  el.textContent = text;
+  if (value !== undefined && Number.isFinite(value)) el.dataset.value = String(value);
+  else delete el.dataset.value;
+}
+export function setTheory(name, text) {
+  $(`[data-theory="${name}"]`).textContent = text;
+}
+
+export function showMeasurements() {
+  const s = state.steady;
+  const sc = scales();
+  const deg = (rad) => (rad === null || rad === undefined ? null : (rad * 180) / Math.PI);
+  setMeasure('class', s.class);
+  setMeasure('stops', num(s.stops_per_cycle, 4), s.stops_per_cycle);
+  setMeasure('period', s.period === null ? 'none found' : `${s.period} (settled after ${s.periods_to_settle})`, s.period);
+  setMeasure('gain', num(s.gain, 6), s.gain);
+  const a1 = s.harmonics[0] * sc.position;
+  const a3 = s.harmonics[2] * sc.position;
+  const a5 = s.harmonics[4] * sc.position;
+  setMeasure('A1', num(a1, 6), a1);
+  setMeasure('A3', num(a3, 6), a3);
+  setMeasure('A5', num(a5, 6), a5);
+  setMeasure('phase', num(deg(s.phase_lag), 5), deg(s.phase_lag));
+  setMeasure('beta', `β = ${num(s.beta, 5)}`, s.beta);
+
+  // Scope measurements over the recorded cycle (steady) or the screen (transient).
+  const source = state.trigger === 'transient' && state.transient ? displayed() : channelColumns(s);
+  const stats = (arr) => {
+    if (!arr.length) return null;
+    let lo = Infinity;
+    let hi = -Infinity;
+    let sq = 0;
+    for (const v of arr) {
+      lo = Math.min(lo, v);
+      hi = Math.max(hi, v);
+      sq += v * v;
+    }
+    return { lo, hi, rms: Math.sqrt(sq / arr.length) };
+  };
+  for (const k of [1, 2]) {
+    const st = stats(source[`ch${k}`]);
+    setMeasure(`ch${k}-vpp`, st ? num(st.hi - st.lo, 5) : '—', st ? st.hi - st.lo : undefined);
+    setMeasure(`ch${k}-stats`, st ? `${num(st.hi, 5)} / ${num(st.lo, 5)} / ${num(st.rms, 5)}` : '—');
+  }
+  const st3 = stats(source.ch3);
+  setMeasure('ch3-vpp', st3 ? num(st3.hi - st3.lo, 5) : '—', st3 ? st3.hi - st3.lo : undefined);
+  const f = s.drive ? s.drive.f_Hz : NaN;
+  setMeasure('frequency', `${num(f, 6)} / ${num(s.period ? f / s.period : NaN, 6)}`, f);
+
+  showTheory();
+}
+
+export function showTheory() {
+  const s = state.steady;
+  if (!s) return;
+  const sc = scales();
+  const deg = (rad) => (rad === null || rad === undefined ? null : (rad * 180) / Math.PI);
+  const t = state.theory;
+  const p = t ? t.paper : {};
+  const e = t ? t.exact : {};
+  const volts = (x) => (x === null || x === undefined ? '—' : num(x * sc.position, 6));
+  setTheory('paper-A1', volts(p.A1));
+  setTheory('paper-A3', volts(p.A3));
+  setTheory('paper-A5', volts(p.A5));
+  setTheory('exact-A1', volts(e.A1));
+  setTheory('exact-A3', volts(e.A3));
+  setTheory('exact-A5', volts(e.A5));
+  setTheory('paper-gain', t ? num(p.gain, 6) : '—');
+  // The simulated gain is the peak over β; on a sliding orbit that is the orbit's peak/β.
+  const beta = t ? t.params.beta : NaN;
+  setTheory('exact-gain', t && e.peak !== null && e.peak !== undefined && beta > 0 ? num(e.peak / beta, 6) : '—');
+  setTheory('paper-phase', t ? num(deg(p.phi0), 5) : '—');
+  setTheory('exact-phase', t ? num(deg(e.phase), 5) : '—');
+  setTheory('paper-beta_c', t ? num(p.beta_c, 5) : '—');
+  setTheory('exact-beta_c', t ? num(e.beta_c, 5) : '—');
+  setTheory('paper-class', t && p.beta_c !== null ? (beta >= p.beta_c ? 'slides (β ≥ β_c)' : 'sticks (β < β_c)') : '—');
+  setTheory('exact-class', t ? (e.exists ? 'sliding orbit exists' : 'no sliding orbit') : '—');
+  // Each theory describes a motion that never sticks: where its own verdict is that the
+  // motion sticks, its numbers do not apply and are greyed.
+  const table = $('#measurements');
+  table.dataset.paperApplies = t && p.beta_c !== null && beta < p.beta_c ? 'no' : 'yes';
+  table.dataset.exactApplies = t && !e.exists ? 'no' : 'yes';
+  const notes = [];
+  if (state.theoryNote) notes.push(state.theoryNote);
+  if (t && p.note) notes.push(`paper: ${p.note}`);
+  if (t && e.note) notes.push(`exact: ${e.note}`);
+  if (table.dataset.paperApplies === 'no') notes.push('The paper’s series assumes sliding; its own β_c says the motion sticks here, so its numbers (greyed) do not apply.');
+  if (table.dataset.exactApplies === 'no') notes.push('No sliding orbit exists here: the exact orbit’s column (greyed) does not apply.');
+  notes.push('exact gain: the orbit’s peak/β (the measured G is (max − min)/2β); paper gain: its A1/β.');
+  setTheory('notes', notes.join(' '));
+}
+
+// ---------------------------------------------------------------- the mechanical view
+export const mech = { start: performance.now() };
+export function drawMechanics(now) {
+  const canvas = $('#mechanics-view');
+  const s = state.steady;
+  if (!s || document.hidden) return;
+  const { g, w, h } = prepare(canvas);
+  g.fillStyle = '#fbfcfa';
+  g.fillRect(0, 0, w, h);
+  const cols = s.trace.columns;
+  const n = cols.y.length;
+  const cycleSeconds = 2.5 * s.trace.periods;
+  const phase = (((now - mech.start) / 1000) % cycleSeconds) / cycleSeconds;
+  const i = Math.min(n - 1, Math.floor(phase * n));
+  if (!s.extent) {
+    s.extent = {
+      y: Math.max(...cols.y.map(Math.abs), 1e-9),
+      drive: Math.max(...cols.drive.map(Math.abs), 1e-9),
+    };
+  }
+  const ymax = s.extent.y;
+  const floor = h - 28;
+  const x0 = w / 2 + 20;
+  const reach = w / 2 - 90;
+  const x = x0 + (cols.y[i] / ymax) * reach;
+  // Ground with friction hatching.
+  g.strokeStyle = '#6b756f';
+  g.lineWidth = 1;
+  g.beginPath();
+  g.moveTo(20, floor);
+  g.lineTo(w - 10, floor);
+  for (let k = 24; k < w - 10; k += 9) {
+    g.moveTo(k, floor);
+    g.lineTo(k - 6, floor + 7);
+  }
+  g.moveTo(20, 12);
+  g.lineTo(20, floor);
+  g.stroke();
+  // Spring from the wall to the block.
+  const bw = 48;
+  const bh = 36;
+  const left = x - bw / 2;
+  g.strokeStyle = '#444';
+  g.lineWidth = 1.6;
+  g.beginPath();
+  const y = floor - bh / 2;
+  g.moveTo(20, y);
+  const coils = 12;
+  for (let k = 0; k <= coils; k++) {
+    const px = 30 + ((left - 40) * k) / coils;
+    g.lineTo(px, y + (k % 2 ? -8 : 8) * (k && k < coils ? 1 : 0));
+  }
+  g.lineTo(left, y);
+  g.stroke();
+  // The block: red while stuck (velocity zero).
+  const v = cols.v[i];
+  const stuck = Math.abs(v) <= state.stuckVelocity[s.model];
+  g.fillStyle = stuck ? '#c0392b' : '#2e7d66';
+  g.fillRect(left, floor - bh, bw, bh);
+  // The drive force.
+  const arrow = (cols.drive[i] / s.extent.drive) * 60;
+  g.strokeStyle = COLORS.ch1;
+  g.fillStyle = COLORS.ch1;
+  g.lineWidth = 3;
+  g.beginPath();
+  g.moveTo(x, floor - bh - 10);
+  g.lineTo(x + arrow, floor - bh - 10);
+  g.stroke();
+  if (Math.abs(arrow) > 4) {
+    const d = Math.sign(arrow);
+    g.beginPath();
+    g.moveTo(x + arrow + d * 7, floor - bh - 10);
+    g.lineTo(x + arrow, floor - bh - 15);
+    g.lineTo(x + arrow, floor - bh - 5);
+    g.fill();
+  }
+  g.font = '11px system-ui, sans-serif';
+  label(g, stuck ? 'stuck' : 'sliding', left + bw / 2, floor - bh / 2 + 4, '#ffffff', 'center');
+  label(g, 'drive force', w - 12, 14, '#8a6d00', 'right');
+}
+export function animate(now) {
+  drawMechanics(now);
+  requestAnimationFrame(animate);
+}
+
+
+// ---------------------------------------------------------------- presets
+export function applyPreset(id) {
+  const preset = state.presets.find((p) => p.id === id);
+  if (!preset) return;
+  const v = preset.values;
+  if (preset.system === 'mechanics') {
+    state.system = 'mechanics';
+    for (const k of MECHANICS_KEYS) if (k in v) field(k).value = num(v[k], 6);
+  } else {
+    if (state.system === 'mechanics') state.system = 'pwl';
+    for (const k of PART_KEYS.concat(['rd'])) if (k in v) field(k).value = siText(v[k]);
+    state.paperParts = preset.paper;
+  }
+  field('system').value = state.system;
+  if ('w' in v) state.drive.w = v.w;
+  if ('beta' in v) state.drive.beta = v.beta;
+  showSystem();
+  state.autoscalePending = true;
+}
+
+/** Map sizes that finish within the time limit (10 s) on a 2-core laptop: the exact
+ * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md). */
+export const MAP_SIZES = {
+  pwl: [['40x30', '40 × 30'], ['60x50', '60 × 50'], ['120x100', '120 × 100']],
+  shockley: [['16x12', '16 × 12'], ['24x20', '24 × 20'], ['32x24', '32 × 24']],
+};
+export function fillMapSizes() {
+  const select = field('map-size');
+  const sizes = MAP_SIZES[state.system === 'shockley' ? 'shockley' : 'pwl'];
+  const keep = select.value;
+  select.replaceChildren(...sizes.map(([v, text]) => new Option(text, v)));
+  select.value = sizes.some(([v]) => v === keep) ? keep : sizes[1][0];
+}
+
+export function showSystem() {
+  for (const fs of $$('fieldset[data-for-system]')) fs.hidden = !fs.dataset.forSystem.split(' ').includes(state.system);
+}

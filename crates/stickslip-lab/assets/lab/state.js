@@ -1,0 +1,96 @@
+// What the page holds: the answers on screen, the inputs' state, the status line, the errors
+// beside fields, and the model keys of the query.
+
+import { $, $$, field } from './util.js';
+import { fftAxes } from './scope.js';
+
+// ---------------------------------------------------------------- state
+export const state = {
+  presets: [],
+  caps: null, // what one request may ask for at most (/api/keys)
+  stuckVelocity: {}, // |v| at or below which the block is drawn stuck, by diode law (/api/keys)
+  shockley: {},
+  system: 'pwl',
+  paperParts: true, // the circuit's parts are the paper's: send preset=paper
+  shockleyEdited: false,
+  drive: { w: 0.95, beta: 2.14 }, // dimensionless drive from a preset, until the user turns a knob
+  steady: null,
+  steadyQuery: '',
+  transient: null,
+  theory: null,
+  theoryNote: '',
+  sweep: null,
+  map: null,
+  mode: 'yt',
+  trigger: 'steady',
+  autoscalePending: true,
+  started: false,
+  seq: 0, // input counter
+  shownSeq: 0,
+  pendingInputs: [], // [seq, time] of inputs not yet on the screen
+};
+// Latency of input → redraw, in ms, for every input (see docs/lab.md).
+window.stickslipLab = { latencies: [], redraws: 0, state };
+// For tests: the FFT's axes as drawn (span per division, dB convention).
+window.stickslipLab.fftAxes = () => fftAxes();
+
+export const statusEl = $('#status');
+export function setStatus(kind, text) {
+  statusEl.dataset.labStatus = kind;
+  statusEl.textContent = text;
+}
+
+// ---------------------------------------------------------------- errors beside fields
+export function clearErrors(scope) {
+  for (const el of $$('.error', scope)) el.textContent = '';
+  for (const el of $$('[aria-invalid="true"]', scope)) el.removeAttribute('aria-invalid');
+}
+export function showError(failure, fallbackScope) {
+  const name = failure.field;
+  const slot = name ? $(`[data-error-for~="${CSS.escape(name)}"]`) : null;
+  if (slot) {
+    slot.textContent = failure.message;
+    const input = field(name) || field(`sweep-${name}`) || field(`map-${name}`) || (/-steps$/.test(name) ? field('map-size') : null) || field(slot.dataset.errorFor.split(' ')[0]);
+    if (input) input.setAttribute('aria-invalid', 'true');
+  } else if (fallbackScope) {
+    fallbackScope.textContent = failure.message;
+  }
+}
+
+// ---------------------------------------------------------------- the model query
+export const PART_KEYS = ['inductance', 'capacitance', 'resistance', 'ut'];
+export const SHOCKLEY_KEYS = ['diode-is', 'diode-n', 'diode-rs', 'temperature'];
+export const MECHANICS_KEYS = ['mass', 'stiffness', 'damping', 'friction', 'mu-s'];
+export const value = (name) => (field(name).value || '').trim();
+
+/** The model keys for the API: the description, and the drive unless `withoutDrive`. */
+export function modelParams({ frequency = true, amplitude = true } = {}) {
+  const p = new URLSearchParams();
+  if (state.system === 'mechanics') {
+    for (const k of MECHANICS_KEYS) p.set(k, value(k));
+  } else {
+    if (state.paperParts) p.set('preset', 'paper');
+    else {
+      for (const k of PART_KEYS) p.set(k, value(k));
+      if (state.system === 'pwl') p.set('rd', value('rd'));
+    }
+    if (state.system === 'shockley') {
+      p.set('model', 'shockley');
+      // The 1N4148 defaults are the library's own until a value is edited.
+      if (state.shockleyEdited) for (const k of SHOCKLEY_KEYS) p.set(k, value(k));
+    }
+  }
+  if (frequency) {
+    if (state.drive.w !== null) p.set('w', String(state.drive.w));
+    else p.set('freq', value('freq'));
+  }
+  if (amplitude) {
+    if (state.drive.beta !== null) p.set('beta', String(state.drive.beta));
+    else p.set('amplitude', value('amplitude'));
+  }
+  const degrees = Number(value('phase'));
+  if (value('phase') !== '' && value('phase') !== '0') {
+    p.set('phi', Number.isFinite(degrees) ? String((degrees * Math.PI) / 180) : value('phase'));
+  }
+  return p;
+}

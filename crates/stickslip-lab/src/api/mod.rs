@@ -1,0 +1,26 @@
+//! The endpoints' work, each in two steps: `parse` reads the query (at once, on the server's
+//! own threads: a bad query costs nothing) and `run` calls the library within a [`Budget`](crate::limit::Budget)
+//! (on a worker thread). Answers are library results serialised as they are, with the
+//! description of the experiment and its physical scales beside them.
+//!
+//! One file per endpoint; [`answer`] and [`request`] hold what they share, [`caps`] what one
+//! request may ask for.
+
+pub mod answer;
+pub mod caps;
+mod keys;
+mod map;
+mod presets;
+pub mod request;
+mod simulate;
+mod steady;
+mod sweep;
+mod theory;
+
+pub use keys::*;
+pub use map::*;
+pub use presets::*;
+pub use simulate::*;
+pub use steady::*;
+pub use sweep::*;
+pub use theory::*;

@@ -1,0 +1,106 @@
+//! `GET /api/presets`: the page's presets.
+
+use crate::query::api_name;
+use serde::Serialize;
+use stickslip::physical::Circuit;
+use stickslip::DiodePair;
+
+/// The points of the paper's Fig. 3: (label, w = Ω/ω0, β), panels (1a)–(2c).
+pub const FIG3_POINTS: [(&str, f64, f64); 6] = [
+    ("1a", 0.29, 1.07),
+    ("1b", 0.95, 1.07),
+    ("1c", 1.43, 1.07),
+    ("2a", 0.29, 2.14),
+    ("2b", 0.95, 2.14),
+    ("2c", 1.43, 2.14),
+];
+
+/// One preset of the page: values of its fields, by query key.
+#[derive(Debug, Serialize)]
+pub struct PresetRow {
+    /// Identifier.
+    pub id: String,
+    /// What the page shows.
+    pub label: String,
+    /// `circuit` or `mechanics`.
+    pub system: &'static str,
+    /// Values by query key (numbers in SI units); `preset=paper` stands for the paper's parts.
+    pub values: Vec<(String, f64)>,
+    /// Whether the preset is the paper's circuit (`preset=paper` describes it exactly).
+    pub paper: bool,
+}
+
+/// `GET /api/presets`: the paper's circuit, its Fig. 3 points, the 1N4148 Shockley
+/// parameters and a mechanical oscillator with the paper's damping ratio.
+pub fn presets() -> serde_json::Value {
+    use stickslip::experiment::Key;
+    use stickslip::physical::Diode;
+    let paper = Circuit::paper();
+    let (turn_on, rd) = match paper.diode {
+        Diode::Pwl(d) => (d.turn_on, d.resistance),
+        Diode::Shockley(d) => (d.reference_voltage, 0.0),
+    };
+    let parts = vec![
+        (api_name(Key::Inductance), paper.inductance),
+        (api_name(Key::Capacitance), paper.capacitance),
+        (api_name(Key::Resistance), paper.resistance),
+        (api_name(Key::TurnOn), turn_on),
+        (api_name(Key::DiodeResistance), rd),
+    ];
+    let mut rows = vec![PresetRow {
+        id: "paper".into(),
+        label: "the paper's circuit (L = 11.5 mH, C = 20 nF, R = 68 Ω, U_t = 0.7 V, R_D = 3 Ω)"
+            .into(),
+        system: "circuit",
+        values: parts.clone(),
+        paper: true,
+    }];
+    for (panel, w, beta) in FIG3_POINTS {
+        let mut values = parts.clone();
+        values.push((api_name(Key::W), w));
+        values.push((api_name(Key::Beta), beta));
+        rows.push(PresetRow {
+            id: format!("fig3-{panel}"),
+            label: format!("paper, Fig. 3 ({panel}): Ω/ω0 = {w}, β = {beta}"),
+            system: "circuit",
+            values,
+            paper: true,
+        });
+    }
+    // A mass on a spring with dry friction, ζ = 0.94/(2·√(200·0.5)) = 0.047 as the paper's.
+    rows.push(PresetRow {
+        id: "mechanics".into(),
+        label: "a mass on a spring with dry friction (m = 0.5 kg, k = 200 N/m, γ = 0.94 N·s/m, \
+                F0 = 1 N)"
+            .into(),
+        system: "mechanics",
+        values: vec![
+            (api_name(Key::Mass), 0.5),
+            (api_name(Key::Stiffness), 200.0),
+            (api_name(Key::Damping), 0.94),
+            (api_name(Key::Friction), 1.0),
+            (api_name(Key::MuS), 1.0),
+            (api_name(Key::W), 0.95),
+            (api_name(Key::Beta), 2.14),
+        ],
+        paper: false,
+    });
+    let d = DiodePair::one_n4148();
+    serde_json::json!({
+        "presets": rows.iter().map(|r| serde_json::json!({
+            "id": r.id,
+            "label": r.label,
+            "system": r.system,
+            "paper": r.paper,
+            "values": r.values.iter().map(|(k, v)| (k.clone(), serde_json::json!(v)))
+                .collect::<serde_json::Map<_, _>>(),
+        })).collect::<Vec<_>>(),
+        "shockley": {
+            api_name(Key::SaturationCurrent): d.saturation_current,
+            api_name(Key::Emission): d.emission,
+            api_name(Key::SeriesResistance): d.series_resistance,
+            api_name(Key::Temperature): d.temperature,
+        },
+        "caps": super::keys::caps_json(),
+    })
+}

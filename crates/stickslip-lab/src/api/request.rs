@@ -1,0 +1,184 @@
+//! Keys that several endpoints share: the steady-state options, ranges of a parameter, the
+//! swept parameter's keys.
+
+use super::caps::CAPS;
+use crate::query::{api_name, ApiError, Query};
+use stickslip::experiment::Experiment;
+use stickslip::options::{OptionKey, Spelling};
+use stickslip::scan::{Axis, ParameterRange};
+use stickslip::steady::SteadyOptions;
+use stickslip::{Error, Parameter};
+
+/// The lab's names of the options whose query key is not the option's flag.
+const RENAMED: [(OptionKey, &str); 2] = [
+    (OptionKey::SimulateSamples, "samples"),
+    (OptionKey::SimulatePeriods, "periods"),
+];
+
+/// The query key of an option.
+fn key_of(option: OptionKey) -> &'static str {
+    RENAMED
+        .iter()
+        .find(|r| r.0 == option)
+        .map_or(option.flag(), |r| r.1)
+}
+
+/// A library error about an option (out of the library's range or over the lab's caps) as a
+/// 400 naming the query key; any other error as [`ApiError::library`].
+pub(crate) fn option_error(err: &Error) -> ApiError {
+    match err {
+        Error::InvalidOption {
+            option,
+            value,
+            allowed,
+        } => {
+            let key = key_of(*option);
+            ApiError::field(
+                key,
+                format!(
+                    "invalid {key} {}: {}",
+                    short(*value),
+                    allowed.render(*option, Spelling::Query)
+                ),
+            )
+        }
+        Error::OptionProduct {
+            what,
+            first,
+            second,
+            product,
+            max,
+        } => ApiError::field(
+            key_of(*second),
+            format!(
+                "{} × {} = {} {what}: at most {max} allowed",
+                key_of(*first),
+                key_of(*second),
+                short(*product)
+            ),
+        ),
+        other => ApiError::library(other),
+    }
+}
+
+/// The steady-state keys of `steady`, `sweep` and `map` (as the command-line flags of the same
+/// names, within the lab's caps): `tolerance`, `max-periods`, `max-period`.
+pub(crate) fn steady_options(q: &mut Query, e: &Experiment) -> Result<SteadyOptions, ApiError> {
+    // The experiment's own defaults (those of `stickslip steady`) with the keys over them.
+    let defaults = e.steady_options();
+    let tolerance = match q.number("tolerance", None)? {
+        Some(t) => OptionKey::Tolerance
+            .check(t)
+            .map_err(|e| option_error(&e))?,
+        None => defaults.tolerance,
+    };
+    let max_periods = q.whole("max-periods", CAPS.max_periods)?;
+    let max_period = q.whole("max-period", 16)?;
+    let options = (|| {
+        defaults
+            .with_tolerance(tolerance)?
+            .with_max_periods(max_periods)?
+            .with_max_period(max_period)?
+            .with_accelerate(true)
+            .with_lyapunov(Some(SteadyOptions::DEFAULT_LYAPUNOV))
+    })()
+    .map_err(|err| ApiError::bad(err.to_string()))?;
+    CAPS.check_steady(&options).map_err(|e| option_error(&e))?;
+    Ok(options)
+}
+
+/// The experiment's dimensionless parameters, or a 400 naming the missing drive value.
+pub(crate) fn needs_drive(e: &Experiment) -> Result<(), ApiError> {
+    e.params()
+        .map(|_| ())
+        .map_err(|err| ApiError::library(&err))
+}
+
+/// Refuse model keys that give a value of a parameter the request sets itself.
+pub(crate) fn reject_swept(q: &Query, parameter: Parameter, by: &str) -> Result<(), ApiError> {
+    if let Some(&key) = parameter.keys().iter().find(|&&k| q.has_model(k)) {
+        let name = api_name(key);
+        return Err(ApiError::field(
+            &name,
+            format!("{by} sets {} itself: drop {name}", parameter.label()),
+        ));
+    }
+    Ok(())
+}
+
+/// A number as a message shows it: huge and tiny ones in exponent form.
+pub(crate) fn short(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
+/// `from`, `to` and `steps` keys (with prefix, e.g. `w-`) as a range.
+pub(crate) fn range(
+    q: &mut Query,
+    parameter: Parameter,
+    keys: [&str; 3],
+    defaults: (f64, f64, usize),
+    cap: &dyn Fn(usize) -> stickslip::Result<()>,
+) -> Result<ParameterRange, ApiError> {
+    let from = q.number(keys[0], Some(defaults.0))?.unwrap_or(defaults.0);
+    let to = q.number(keys[1], Some(defaults.1))?.unwrap_or(defaults.1);
+    let steps = q.whole(keys[2], defaults.2)?;
+    OptionKey::SweepSteps
+        .check_count(steps)
+        .and_then(|_| cap(steps))
+        .map_err(|e| match e {
+            // The library's range of the count, under this range's key.
+            Error::InvalidOption { value, allowed, .. } => ApiError::field(
+                keys[2],
+                format!(
+                    "invalid {} {}: {}",
+                    keys[2],
+                    short(value),
+                    allowed.render(OptionKey::SweepSteps, Spelling::Query)
+                ),
+            ),
+            other => option_error(&other),
+        })?;
+    // Each end within the parameter's own range, named by the key that gave it.
+    let key = parameter.key();
+    for (end, value) in [(keys[0], from), (keys[1], to)] {
+        if let Err(Error::InvalidParameter { allowed, .. }) = key.check(value) {
+            return Err(ApiError::field(
+                end,
+                format!(
+                    "invalid {end} {}: {} {allowed}",
+                    short(value),
+                    api_name(key)
+                ),
+            ));
+        }
+    }
+    if from > to {
+        return Err(ApiError::field(
+            keys[0],
+            format!(
+                "invalid range: {} {from} is above {} {to}",
+                keys[0], keys[1]
+            ),
+        ));
+    }
+    if steps == 1 && from != to {
+        return Err(ApiError::field(
+            keys[2],
+            format!(
+                "invalid {} 1: a range from {from} to {to} needs at least 2 points",
+                keys[2]
+            ),
+        ));
+    }
+    ParameterRange::new(parameter.label(), from, to, steps)
+        .map_err(|e| ApiError::field(keys[0], e.to_string()))
+}
+
+/// The axis of a map's range.
+pub(crate) fn grid_axis(range: &ParameterRange, parameter: Parameter) -> Result<Axis, ApiError> {
+    Axis::range(parameter, range).map_err(|err| ApiError::library(&err))
+}

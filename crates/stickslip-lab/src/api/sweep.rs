@@ -1,0 +1,193 @@
+//! `GET /api/sweep`: the gain swept up and down over one parameter, beside the theory's.
+
+use super::answer::*;
+use super::caps::CAPS;
+use super::request::*;
+use crate::limit::{Budget, LimitedFactory};
+use crate::query::{ApiError, Query};
+use serde::Serialize;
+use std::f64::consts::TAU;
+use std::sync::Arc;
+use stickslip::experiment::Experiment;
+use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection};
+use stickslip::steady::SteadyOptions;
+use stickslip::theory::curves::SweepTheory;
+use stickslip::DiodeModel;
+use stickslip::{Error, Parameter};
+
+/// `GET /api/sweep`.
+#[derive(Debug)]
+pub struct SweepRequest {
+    experiment: Experiment,
+    parameter: Parameter,
+    range: ParameterRange,
+    direction: SweepDirection,
+    options: SteadyOptions,
+}
+
+/// One step of a sweep: the columns of `stickslip sweep`'s CSV.
+#[derive(Debug, Serialize)]
+pub struct SweepRow {
+    /// The swept parameter's value.
+    pub value: f64,
+    /// `up` or `down`.
+    pub leg: &'static str,
+    /// w of the step.
+    pub w: f64,
+    /// β of the step.
+    pub beta: f64,
+    /// Gain (y_max − y_min)/(2β).
+    pub gain: f64,
+    /// Amplitude of the fundamental of y.
+    #[serde(rename = "A1")]
+    pub a1: Option<f64>,
+    /// Amplitude of the third harmonic of y.
+    #[serde(rename = "A3")]
+    pub a3: Option<f64>,
+    /// Motion class.
+    pub class: &'static str,
+    /// Stops per drive period.
+    pub stops_per_cycle: f64,
+    /// Period in drive periods (`null`: none found).
+    pub period: Option<usize>,
+    /// Drive frequency in Hz, for a physical description.
+    #[serde(rename = "f_Hz")]
+    pub f_hz: Option<f64>,
+}
+
+/// The answer of `/api/sweep`.
+#[derive(Debug, Serialize)]
+pub struct SweepAnswer {
+    /// The experiment.
+    #[serde(flatten)]
+    pub about: About,
+    /// The swept parameter: `w`, `beta`, `zeta` or `mu-s`.
+    pub over: String,
+    /// `up`, `down` or `both`.
+    pub direction: &'static str,
+    /// The steps in the order they were computed.
+    pub points: Vec<SweepRow>,
+    /// The theory's gains over the range (null where there is none).
+    pub theory: SweepTheoryCurves,
+}
+
+/// The theory's gain curves beside a sweep (those `stickslip sweep --plot` draws).
+#[derive(Debug, Serialize)]
+pub struct SweepTheoryCurves {
+    /// Values of the swept parameter.
+    pub x: Vec<f64>,
+    /// The paper's gain A1/β, eq. (11).
+    pub paper_gain: Vec<f64>,
+    /// The exact sliding orbit's peak/β.
+    pub exact_peak_gain: Vec<f64>,
+    /// `PWL theory: ` with Shockley diodes (the theory is that of the PWL model), else empty.
+    pub prefix: &'static str,
+}
+
+impl SweepRequest {
+    /// Keys: the model keys (without a value of the swept parameter), `over` (`w`, `beta`,
+    /// `zeta` or `mu-s`, default `w`), `from`, `to` (default 0.2 to 2), `steps` (1 to 400,
+    /// default 60), `direction` (`up`, `down` or `both`, the default), `tolerance`,
+    /// `max-periods`, `max-period`.
+    ///
+    /// # Errors
+    /// A 400 naming the key at fault.
+    pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
+        let mut q = Query::parse(raw)?;
+        let parameter = q.name("over", Parameter::W)?;
+        reject_swept(&q, parameter, "a sweep")?;
+        let experiment = q.experiment()?;
+        let range = range(
+            &mut q,
+            parameter,
+            ["from", "to", "steps"],
+            (0.2, 2.0, 60),
+            &|n| CAPS.check_sweep(n),
+        )?;
+        let direction = q.name("direction", SweepDirection::Both)?;
+        let options = steady_options(&mut q, &experiment)?
+            .with_harmonics(3)
+            .map_err(|e| ApiError::library(&e))?;
+        q.finish(&[
+            "over",
+            "from",
+            "to",
+            "steps",
+            "direction",
+            "tolerance",
+            "max-periods",
+            "max-period",
+        ])?;
+        // The experiment must be complete but for the swept parameter.
+        Axis::range(parameter, &range)
+            .and_then(|axis| Sweep::new(&experiment, axis))
+            .map_err(|e| ApiError::library(&e))?;
+        Ok(Self {
+            experiment,
+            parameter,
+            range,
+            direction,
+            options,
+        })
+    }
+
+    /// Sweep up and/or down with continuation, as `stickslip sweep` does.
+    ///
+    /// # Errors
+    /// The time limit; the library's errors.
+    pub fn run(self, budget: &Arc<Budget>) -> Result<SweepAnswer, ApiError> {
+        let e = &self.experiment;
+        let library = |err: Error| ApiError::library(&err);
+        let sweep = Sweep::new(
+            e,
+            Axis::range(self.parameter, &self.range).map_err(library)?,
+        )
+        .map_err(library)?
+        .direction(self.direction)
+        .options(self.options)
+        .map_err(library)?
+        .with_factory(LimitedFactory::new(e.factory(), budget.clone()));
+        budget.start(sweep.plan().len());
+        let points = sweep
+            .run(&budget.keep_going())
+            .map_err(|err| failed(err, budget, "sweep"))?;
+        // The theory's gains over the range, as `stickslip sweep --plot` draws them.
+        let base = e
+            .params_with(&[(self.parameter, self.range.from())])
+            .map_err(|err| ApiError::bad(err.to_string()))?;
+        let theory = SweepTheory::new(
+            &base,
+            self.parameter,
+            (self.range.from(), self.range.to(), self.range.steps()),
+            e.diode_model() == DiodeModel::Shockley,
+        );
+        let scales = e.scales();
+        Ok(SweepAnswer {
+            about: About::new(e),
+            over: self.parameter.flag().to_string(),
+            direction: self.direction.label(),
+            points: points
+                .iter()
+                .map(|p| SweepRow {
+                    value: p.value,
+                    leg: p.leg.label(),
+                    w: p.params.w,
+                    beta: p.params.beta,
+                    gain: p.steady.gain,
+                    a1: p.steady.harmonic(1),
+                    a3: p.steady.harmonic(3),
+                    class: p.steady.class.label(),
+                    stops_per_cycle: p.steady.stops_per_period,
+                    period: p.steady.period,
+                    f_hz: scales.map(|s| s.drive_omega(p.params.w) / TAU),
+                })
+                .collect(),
+            theory: SweepTheoryCurves {
+                x: theory.paper.x,
+                paper_gain: theory.paper.y,
+                exact_peak_gain: theory.exact.y,
+                prefix: theory.prefix,
+            },
+        })
+    }
+}
