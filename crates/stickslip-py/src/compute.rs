@@ -3,112 +3,28 @@
 //! arrays (in a dict, for the Python layer to wrap) or the library's serialised report.
 
 use crate::experiment::PyExperiment;
-use crate::runner::run;
-use crate::{error, json_value};
+use crate::options::{self, count};
+use crate::runner::{run, run_with};
+use crate::{error, json_value, named, parameter};
 use numpy::{PyArray1, PyReadonlyArray1};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
-use stickslip::scan::{Axis, Grid, Sweep, SweepDirection, SweepLeg};
+use stickslip::options::{Allowed, OptionKey};
+use stickslip::report::{SweepReport, TrajectoryReport};
+use stickslip::scan::{Axis, Grid, Sweep, SweepDirection};
 use stickslip::stability::{LyapunovOptions, LyapunovReport, NewtonOptions, OrbitReport};
-use stickslip::steady::{MotionClass, SteadyOptions, SteadyReport};
+use stickslip::steady::{MotionClass, SteadyReport};
 use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
-use stickslip::{DiodeModel, Error, EventKind, Experiment, Parameter, Params, Phase, Unsupported};
-
-/// Options of the steady-state search that every computation takes.
-const SEARCH_OPTIONS: [&str; 6] = [
-    "tolerance",
-    "max_periods",
-    "max_period",
-    "min_stop_fraction",
-    "accelerate",
-    "lyapunov_periods",
-];
-/// Options of the spectrum (steady states and sweeps; a map computes none).
-const SPECTRUM_OPTIONS: [&str; 2] = ["harmonics", "samples_per_period"];
-
-/// A whole number ≥ 0 for option `name`.
-fn count(name: &str, value: &Bound<'_, PyAny>) -> PyResult<usize> {
-    let v: i64 = value
-        .extract()
-        .map_err(|_| PyTypeError::new_err(format!("{name} must be a whole number")))?;
-    usize::try_from(v)
-        .map_err(|_| PyValueError::new_err(format!("invalid {name} = {v}: must be >= 1")))
-}
-
-/// `base` with the caller's options over it (names as the fields of
-/// [`SteadyOptions`]), validated by the library.
-fn steady_options(
-    base: SteadyOptions,
-    options: Option<&Bound<'_, PyDict>>,
-    spectrum: bool,
-) -> PyResult<SteadyOptions> {
-    let mut o = base;
-    let Some(options) = options else {
-        return Ok(o);
-    };
-    for (k, v) in options.iter() {
-        let name: String = k.extract()?;
-        let known = SEARCH_OPTIONS.contains(&name.as_str())
-            || (spectrum && SPECTRUM_OPTIONS.contains(&name.as_str()));
-        if !known {
-            let mut names = SEARCH_OPTIONS.to_vec();
-            if spectrum {
-                names.extend(SPECTRUM_OPTIONS);
-            }
-            return Err(PyTypeError::new_err(format!(
-                "unknown option '{name}': the options are {}",
-                names.join(", ")
-            )));
-        }
-        if v.is_none() {
-            continue;
-        }
-        match name.as_str() {
-            "tolerance" => o.tolerance = v.extract()?,
-            "max_periods" => o.max_periods = count(&name, &v)?,
-            "max_period" => o.max_period = count(&name, &v)?,
-            "min_stop_fraction" => o.min_stop_fraction = v.extract()?,
-            "accelerate" => o.accelerate = v.extract()?,
-            "lyapunov_periods" => {
-                // As the tool's --lyapunov-periods: 0 turns the measurement off.
-                o.lyapunov = match count(&name, &v)? {
-                    0 => None,
-                    periods @ 1..20 => {
-                        return Err(PyValueError::new_err(format!(
-                            "invalid lyapunov_periods = {periods}: must be 0 (off) or at least 20"
-                        )))
-                    }
-                    periods => Some(LyapunovOptions {
-                        periods,
-                        ..SteadyOptions::DEFAULT_LYAPUNOV
-                    }),
-                }
-            }
-            "harmonics" => o.harmonics = count(&name, &v)?,
-            "samples_per_period" => o.samples_per_period = Some(count(&name, &v)?),
-            _ => unreachable!("checked above"),
-        }
-    }
-    o.validate().map_err(error)
-}
+use stickslip::{DiodeModel, Error, EventKind, Experiment, Params, Phase, Unsupported};
 
 /// The values of a contiguous, aligned float64 array (the Python layer makes them so).
 fn values(name: &str, array: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
     array.as_slice().map(<[f64]>::to_vec).map_err(|_| {
         PyValueError::new_err(format!(
             "{name} must be a contiguous, aligned float64 array (np.require(a, np.float64, ['C', 'A']))"
-        ))
-    })
-}
-
-/// The parameter named `name`.
-fn parameter(name: &str) -> PyResult<Parameter> {
-    Parameter::from_label(name).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "unknown parameter '{name}': sweeps and maps vary zeta, w, beta or mu_s"
         ))
     })
 }
@@ -126,15 +42,21 @@ fn period_code(period: Option<usize>) -> i16 {
     period.map_or(-1, |p| p as i16)
 }
 
+/// The event kinds in the order of their codes (`EVENT_KINDS`).
+pub(crate) const EVENT_KINDS: [EventKind; 3] = [EventKind::Turn, EventKind::Stick, EventKind::Slip];
+/// The phases of the motion (`PHASE_LABELS`, by their codes, [`phase_code`]).
+pub(crate) const PHASES: [Phase; 3] = [Phase::SlipPositive, Phase::SlipNegative, Phase::Stick];
+
+/// The event kind's code: its index in [`EVENT_KINDS`].
 fn event_code(kind: EventKind) -> i8 {
-    match kind {
-        EventKind::Turn => 0,
-        EventKind::Stick => 1,
-        EventKind::Slip => 2,
-    }
+    EVENT_KINDS
+        .iter()
+        .position(|&k| k == kind)
+        .expect("every kind is in EVENT_KINDS") as i8
 }
 
-fn phase_code(phase: Phase) -> i8 {
+/// The phase's code: the sliding direction, +1, -1 or 0 when stuck.
+pub(crate) fn phase_code(phase: Phase) -> i8 {
     phase.sign() as i8
 }
 
@@ -153,37 +75,29 @@ pub fn simulate<'py>(
     samples_per_period: i64,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let samples = usize::try_from(samples_per_period).map_err(|_| {
-        error(Error::InvalidParameter {
-            name: "samples_per_period",
-            value: samples_per_period as f64,
-            allowed: "must be at least 1",
-        })
-    })?;
+    let samples = count(OptionKey::SimulateSamples, samples_per_period)?;
     let e: Experiment = experiment.experiment().clone();
-    let (trajectory, physical, computed) = run(py, progress.as_ref(), |monitor| {
+    let (report, computed) = run(py, progress.as_ref(), |monitor| {
         let started = Instant::now();
-        let t = e.simulate(periods, samples, monitor)?;
-        let computed = started.elapsed().as_secs_f64();
-        let physical = e.units().map(|u| {
-            let mut columns: [Vec<f64>; 4] = Default::default();
-            for c in &mut columns {
-                c.reserve_exact(t.len());
-            }
-            for k in 0..t.len() {
-                let row = u.convert(t.tau[k], t.y[k], t.v[k], t.drive[k]);
-                for (c, x) in columns.iter_mut().zip(row) {
-                    c.push(x);
-                }
-            }
-            (u.columns(), columns)
-        });
-        Ok((t, physical, computed))
+        let report = e
+            .trajectory(periods, samples)?
+            .monitor(monitor)
+            .collect_report()?;
+        Ok((report, started.elapsed().as_secs_f64()))
     })?;
     let converting = Instant::now();
+    let TrajectoryReport {
+        columns,
+        tau,
+        y,
+        v,
+        drive,
+        phase,
+        physical,
+        events,
+        ..
+    } = report;
     let out = PyDict::new(py);
-    let phase = trajectory.phase.iter().map(|&p| phase_code(p)).collect();
-    let events = &trajectory.events;
     put(&out, "event_tau", events.iter().map(|e| e.tau).collect())?;
     put(&out, "event_y", events.iter().map(|e| e.y).collect())?;
     put(
@@ -191,14 +105,18 @@ pub fn simulate<'py>(
         "event_kind",
         events.iter().map(|e| event_code(e.kind)).collect(),
     )?;
-    put(&out, "tau", trajectory.tau)?;
-    put(&out, "y", trajectory.y)?;
-    put(&out, "v", trajectory.v)?;
-    put(&out, "drive", trajectory.drive)?;
-    put::<i8>(&out, "phase", phase)?;
+    put(&out, "tau", tau)?;
+    put(&out, "y", y)?;
+    put(&out, "v", v)?;
+    put(&out, "drive", drive)?;
+    put::<i8>(
+        &out,
+        "phase",
+        phase.iter().map(|&p| phase_code(p)).collect(),
+    )?;
     let names = pyo3::types::PyList::empty(py);
-    if let Some((columns, data)) = physical {
-        for (name, column) in columns.into_iter().zip(data) {
+    if let (Some(units), Some(data)) = (columns.units, physical) {
+        for (name, column) in units.columns().into_iter().zip(data) {
             put(&out, name, column)?;
             names.append(name)?;
         }
@@ -219,9 +137,11 @@ pub fn steady<'py>(
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let e = experiment.experiment().clone();
-    let options = steady_options(e.steady_options(), options, true)?;
+    let options = options::steady(e.steady_options(), options, true)?;
     e.params().map_err(error)?;
-    let s = py.detach(|| e.steady_with(&options)).map_err(error)?;
+    let s = run_with(py, None, |_, cancel| {
+        e.with_cancel(cancel.clone()).steady_with(&options)
+    })?;
     let out = PyDict::new(py);
     out.set_item("report", json_value(py, &SteadyReport::from(&s))?)?;
     let (drive, y): (Vec<f64>, Vec<f64>) = s.xy().into_iter().unzip();
@@ -329,18 +249,10 @@ pub fn sweep<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let e = experiment.experiment().clone();
-    let direction = match direction {
-        "up" => SweepDirection::Up,
-        "down" => SweepDirection::Down,
-        "both" => SweepDirection::Both,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "invalid direction '{direction}': must be 'up', 'down' or 'both'"
-            )))
-        }
-    };
-    let axis = Axis::new(parameter(over)?, self::values("values", &values)?).map_err(error)?;
-    let options = steady_options(e.steady_options(), options, true)?;
+    let direction: SweepDirection = named("direction", direction)?;
+    let over = parameter(over)?;
+    let axis = Axis::new(over, self::values("values", &values)?).map_err(error)?;
+    let options = options::steady(e.steady_options(), options, true)?;
     let sweep = Sweep::new(&e, axis)
         .map_err(error)?
         .direction(direction)
@@ -349,6 +261,8 @@ pub fn sweep<'py>(
     let points = run(py, progress.as_ref(), |monitor| sweep.run(monitor))?;
     let h = options.harmonics;
     let out = PyDict::new(py);
+    let report = SweepReport::new(&e, over, direction, &points);
+    out.set_item("report", json_value(py, &report)?)?;
     let column = |f: &dyn Fn(&stickslip::scan::SweepPoint) -> f64| -> Vec<f64> {
         points.iter().map(f).collect()
     };
@@ -368,12 +282,6 @@ pub fn sweep<'py>(
         &out,
         "phase_lag",
         column(&|p| p.steady.phase_lag().unwrap_or(f64::NAN)),
-    )?;
-    let leg = |l: SweepLeg| if l == SweepLeg::Up { 0i8 } else { 1 };
-    put(
-        &out,
-        "leg",
-        points.iter().map(|p| leg(p.leg)).collect::<Vec<i8>>(),
     )?;
     put(
         &out,
@@ -444,7 +352,7 @@ pub fn grid<'py>(
     let first = Axis::new(parameter(first)?, values(first, &first_values)?).map_err(error)?;
     let second = Axis::new(parameter(second)?, values(second, &second_values)?).map_err(error)?;
     let (rows, cols) = (first.len(), second.len());
-    let options = steady_options(e.steady_options().with_spectrum(false), options, false)?;
+    let options = options::steady(e.steady_options().with_spectrum(false), options, false)?;
     let mut grid = Grid::new(&e, first, second)
         .map_err(error)?
         .options(options)
@@ -523,17 +431,6 @@ pub fn grid<'py>(
     Ok(out)
 }
 
-/// A whole number ≥ 0 from a Python int, for `name`, checked by the library afterwards.
-fn whole(name: &'static str, value: i64) -> PyResult<usize> {
-    usize::try_from(value).map_err(|_| {
-        error(Error::InvalidParameter {
-            name,
-            value: value as f64,
-            allowed: "must be a whole number >= 0",
-        })
-    })
-}
-
 /// A periodic orbit by Newton's method; see `stickslip.orbit`. Returns the dict that
 /// `stickslip orbit --json` prints.
 #[pyfunction]
@@ -549,12 +446,14 @@ pub fn orbit<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let e = experiment.experiment().clone();
-    let period = period.map(|p| whole("period", p)).transpose()?;
-    let transient = whole("transient", transient)?;
-    let steady = steady_options(e.steady_options(), options, false)?;
+    let period = period
+        .map(|p| count(OptionKey::OrbitPeriod, p))
+        .transpose()?;
+    let transient = count(OptionKey::OrbitTransient, transient)?;
+    let steady = options::steady(e.steady_options(), options, false)?;
     let newton = NewtonOptions {
         tolerance,
-        max_iterations: whole("max_iterations", max_iterations)?,
+        max_iterations: count(OptionKey::MaxIterations, max_iterations)?,
         ..NewtonOptions::default()
     }
     .validate()
@@ -583,10 +482,26 @@ pub fn lyapunov<'py>(
     fixed: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let e = experiment.experiment().clone();
+    let blocks = count(OptionKey::Blocks, blocks)?;
+    let transient_periods = count(OptionKey::LyapunovTransient, transient)?;
+    // The measured periods' range starts at the number of blocks: the table's words with
+    // that number (`must be from blocks (20) to 1e9`).
+    let measured = OptionKey::LyapunovMeasured;
+    if !(measured.allows(periods as f64) && periods >= blocks as i64) {
+        return Err(error(Error::InvalidOption {
+            option: measured,
+            value: periods as f64,
+            allowed: Allowed::FromOption {
+                other: OptionKey::Blocks,
+                value: blocks as f64,
+                to: "1e9",
+            },
+        }));
+    }
     let options = LyapunovOptions {
-        transient_periods: whole("transient", transient)?,
-        periods: whole("periods", periods)?,
-        blocks: whole("blocks", blocks)?,
+        transient_periods,
+        periods: periods as usize,
+        blocks,
         significance,
         sequential: !fixed,
     }

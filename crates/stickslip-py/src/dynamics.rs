@@ -5,8 +5,9 @@
 //! report where the command-line tool prints one (`--json`).
 
 use crate::experiment::PyExperiment;
+use crate::options::{count, natural};
 use crate::runner::run;
-use crate::{error, json_value};
+use crate::{error, json_value, named, parameter};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -15,8 +16,8 @@ use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::{continue_orbit, settled_orbit, BranchReport, ContinuationOptions};
+use stickslip::options::OptionKey;
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
-use stickslip::{Error, Parameter};
 
 /// Set `name` of `out` to a numpy array that takes over `data` (no copy).
 fn put<T: numpy::Element>(out: &Bound<'_, PyDict>, name: &str, data: Vec<T>) -> PyResult<()> {
@@ -29,36 +30,6 @@ pub(crate) fn kind_code(kind: AttractorKind) -> i8 {
         .iter()
         .position(|&k| k == kind)
         .expect("every kind is in ALL") as i8
-}
-
-/// A whole number ≥ 0 given as a Python int, for option `name`.
-fn whole(name: &'static str, value: i64) -> PyResult<usize> {
-    usize::try_from(value).map_err(|_| {
-        error(Error::InvalidParameter {
-            name,
-            value: value as f64,
-            allowed: "must be a whole number >= 0",
-        })
-    })
-}
-
-fn parameter(name: &str) -> PyResult<Parameter> {
-    Parameter::from_label(name).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "unknown parameter '{name}': must be 'zeta', 'w', 'beta' or 'mu_s'"
-        ))
-    })
-}
-
-fn direction(name: &str) -> PyResult<SweepDirection> {
-    match name {
-        "up" => Ok(SweepDirection::Up),
-        "down" => Ok(SweepDirection::Down),
-        "both" => Ok(SweepDirection::Both),
-        _ => Err(PyValueError::new_err(format!(
-            "invalid direction '{name}': must be 'up', 'down' or 'both'"
-        ))),
-    }
 }
 
 /// A bifurcation diagram; see `stickslip.bifurcation`.
@@ -85,16 +56,16 @@ pub fn bifurcation<'py>(
     let axis = Axis::new(parameter(over)?, values).map_err(error)?;
     let options = BifurcationOptions {
         record: RecordOptions {
-            transient_periods: whole("transient", transient)?,
-            points: whole("points", points)?,
-            max_period: whole("max_period", max_period)?,
+            transient_periods: count(OptionKey::BifurcationTransient, transient)?,
+            points: count(OptionKey::Points, points)?,
+            max_period: count(OptionKey::BifurcationMaxPeriod, max_period)?,
             ..RecordOptions::default()
         },
-        first_transient_periods: whole("first_transient", first_transient)?,
+        first_transient_periods: count(OptionKey::FirstTransient, first_transient)?,
     };
     let diagram = Bifurcation::new(&e, axis)
         .map_err(error)?
-        .direction(self::direction(direction)?)
+        .direction(named::<SweepDirection>("direction", direction)?)
         .options(options)
         .map_err(error)?;
     let steps = run(py, progress.as_ref(), |monitor| diagram.run(monitor))?;
@@ -106,7 +77,7 @@ pub fn bifurcation<'py>(
         "leg",
         steps
             .iter()
-            .map(|s| i8::from(s.leg == SweepLeg::Down))
+            .map(|s| SweepLeg::ALL.iter().position(|&l| l == s.leg).unwrap_or(0) as i8)
             .collect::<Vec<i8>>(),
     )?;
     let mut y = Vec::with_capacity(steps.len() * n);
@@ -181,24 +152,22 @@ pub fn basins<'py>(
     progress: Option<Bound<'py, PyAny>>,
     method: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = BasinMethod::from_label(method).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "invalid method '{method}': must be 'recurrence' or 'exhaustive'"
-        ))
-    })?;
+    let method: BasinMethod = named("method", method)?;
     let mut e = experiment.experiment().clone();
     if let Some(phase) = phase {
         e = e.with_phi(phase).map_err(error)?;
     }
-    let y0 = ParameterRange::new("y0", y0.0, y0.1, whole("steps", steps.0)?).map_err(error)?;
-    let v0 = ParameterRange::new("v0", v0.0, v0.1, whole("steps", steps.1)?).map_err(error)?;
+    let y0 = ParameterRange::new("y0", y0.0, y0.1, natural(OptionKey::BasinSteps, steps.0)?)
+        .map_err(error)?;
+    let v0 = ParameterRange::new("v0", v0.0, v0.1, natural(OptionKey::BasinSteps, steps.1)?)
+        .map_err(error)?;
     let options = BasinOptions {
-        max_periods: whole("max_periods", max_periods)?,
-        max_period: whole("max_period", max_period)?,
+        max_periods: count(OptionKey::BasinMaxPeriods, max_periods)?,
+        max_period: count(OptionKey::BasinMaxPeriod, max_period)?,
         method,
         ..BasinOptions::default()
     }
-    .with_lyapunov_periods(whole("lyapunov_periods", lyapunov_periods)?);
+    .with_lyapunov_periods(count(OptionKey::BasinLyapunovPeriods, lyapunov_periods)?);
     let mut basins = Basins::new(&e, &y0, &v0)
         .map_err(error)?
         .options(options)
@@ -261,7 +230,7 @@ pub fn continuation<'py>(
         .with_parameter(parameter, start)
         .map_err(error)?;
     let options = ContinuationOptions {
-        max_points: whole("max_points", max_points)?,
+        max_points: count(OptionKey::MaxPoints, max_points)?,
         ..ContinuationOptions::default()
     }
     .with_max_step(max_step)

@@ -1,7 +1,7 @@
 //! `stickslip.Experiment`: the library's [`ExperimentSpec`] (what the user gave, key by key)
 //! and the [`Experiment`] it builds.
 
-use crate::{error, json_value};
+use crate::{either, error, json_value};
 use pyo3::exceptions::{
     PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyTypeError,
     PyValueError,
@@ -9,7 +9,10 @@ use pyo3::exceptions::{
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use std::path::PathBuf;
-use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
+use stickslip::experiment::{
+    DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset, SpecError,
+};
+use stickslip::names::NameError;
 use stickslip::System;
 
 /// One experiment: a dimensionless model, a circuit with PWL or Shockley diodes, or a
@@ -81,21 +84,32 @@ impl PyExperiment {
     }
 }
 
-/// The diode law named `name`.
-fn diode(name: &str) -> PyResult<DiodeModel> {
-    match name {
-        "pwl" => Ok(DiodeModel::Pwl),
-        "shockley" => Ok(DiodeModel::Shockley),
-        _ => Err(PyValueError::new_err(format!(
-            "invalid diode '{name}': must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
-        ))),
-    }
+/// The library's key table, one dict per key (`_core.KEYS`): the stubs' keywords and the
+/// tests are made from it.
+pub(crate) fn key_table(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    json_value(py, &Key::table())
 }
 
-/// Every key name, for messages.
+/// The value `text` of the key `key` whose values are names (the diode law, the preset),
+/// read by the library's enum; a name it does not know is a `ValueError` naming the keyword
+/// `name` and what the key takes, in the words of the key's help: `invalid diode 'spice':
+/// must be 'pwl' (exact solver) or 'shockley' (stiff solver)`.
+fn choice<T: std::str::FromStr<Err = NameError>>(key: Key, name: &str, text: &str) -> PyResult<T> {
+    text.parse().map_err(|e: NameError| {
+        let words = key.help().split_once(": ").map_or_else(
+            || either(key.choices()),
+            |(_, words)| words.replace('`', "'"),
+        );
+        PyValueError::new_err(format!("invalid {name} '{}': must be {words}", e.text))
+    })
+}
+
+/// Every keyword of a key (its name and the other names it takes), for messages.
 fn key_names() -> String {
-    let mut names: Vec<&str> = Key::ALL.iter().map(|k| k.name()).collect();
-    names.push("F");
+    let names: Vec<&str> = Key::ALL
+        .iter()
+        .flat_map(|k| std::iter::once(k.name()).chain(k.name_aliases().iter().copied()))
+        .collect();
     names.join(", ")
 }
 
@@ -116,44 +130,40 @@ fn put(
         unset.push(key);
         return Ok(());
     }
-    match key {
-        Key::Diode => {
-            let text: String = value
-                .extract()
-                .map_err(|_| PyTypeError::new_err("diode must be a string: 'pwl' or 'shockley'"))?;
-            spec.set_diode(diode(&text)?);
-        }
-        Key::Preset => match value.extract::<String>().as_deref() {
-            Ok("paper") => {
-                spec.set_preset(Preset::Paper);
+    if key.form() == KeyForm::Choice {
+        let text: String = value.extract().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "{name} must be a string: {}",
+                either(key.choices())
+            ))
+        })?;
+        match key {
+            Key::Diode => {
+                spec.set_diode(choice(key, name, &text)?);
             }
-            _ => {
-                return Err(PyValueError::new_err(format!(
-                    "invalid preset {}: the only preset is 'paper'",
-                    value.repr()?
-                )))
+            Key::Preset => {
+                spec.set_preset(choice(key, name, &text)?);
             }
-        },
-        _ => {
-            let number = if let Ok(text) = value.cast::<PyString>() {
-                let text = text.to_cow()?;
-                stickslip::units::parse_si(&text)
-                    .map_err(|e| PyValueError::new_err(format!("invalid {name}: {e}")))?
-            } else if value.is_instance_of::<pyo3::types::PyBool>() {
-                return Err(PyTypeError::new_err(format!(
-                    "{name} must be a number, not a bool"
-                )));
-            } else {
-                value.extract::<f64>().map_err(|_| {
-                    PyTypeError::new_err(format!(
-                        "{name} must be a number (or a string with an SI prefix such as \"20n\"), not {}",
-                        value.get_type().name().map(|n| n.to_string()).unwrap_or_default()
-                    ))
-                })?
-            };
-            spec.set(key, number).map_err(error)?;
+            _ => unreachable!("the keys whose values are names"),
         }
+        return Ok(());
     }
+    let number =
+        if let Ok(text) = value.cast::<PyString>() {
+            key.parse(&text.to_cow()?).map_err(error)?
+        } else if value.is_instance_of::<pyo3::types::PyBool>() {
+            return Err(PyTypeError::new_err(format!(
+                "{name} must be a number, not a bool"
+            )));
+        } else {
+            value.extract::<f64>().map_err(|_| {
+                PyTypeError::new_err(format!(
+                "{name} must be a number (or a string with an SI prefix such as \"20n\"), not {}",
+                value.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+            ))
+            })?
+        };
+    spec.set(key, number).map_err(error)?;
     Ok(())
 }
 
@@ -190,6 +200,15 @@ fn from_layer(
         spec.unset_quantity(key);
     }
     PyExperiment::build(spec.overlay(&top))
+}
+
+/// The experiment with the diode law `model` ('pwl' or 'shockley'): the `model=` argument of
+/// the computations.
+#[pyfunction]
+pub fn with_diode(experiment: PyRef<'_, PyExperiment>, model: &str) -> PyResult<PyExperiment> {
+    let mut top = ExperimentSpec::new();
+    top.set_diode(choice(Key::Diode, "model", model)?);
+    PyExperiment::build(experiment.spec.overlay(&top))
 }
 
 fn preset_paper() -> ExperimentSpec {

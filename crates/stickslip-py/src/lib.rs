@@ -12,17 +12,56 @@
 mod compute;
 mod dynamics;
 mod experiment;
+mod options;
 mod runner;
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use stickslip::names::NameError;
+use stickslip::options::Spelling;
+use stickslip::scan::SweepLeg;
 use stickslip::steady::MotionClass;
 use stickslip::Parameter;
 
-/// The library's error as a Python `ValueError` with its one-line message.
+/// The library's error as a Python `ValueError` with its one-line message, options named by
+/// their Python keywords (`invalid max_period = 65: must be from 1 to 64`).
 pub(crate) fn error(e: stickslip::Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    PyValueError::new_err(e.render(Spelling::Python))
+}
+
+/// The names of `names` as a Python message lists them: `'up', 'down' or 'both'`.
+pub(crate) fn either<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
+    let quoted: Vec<String> = names.into_iter().map(|n| format!("'{n}'")).collect();
+    match quoted.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => quoted.concat(),
+    }
+}
+
+/// `text` as a value of the library's enum `T` (its `FromStr`); a name it does not know is a
+/// `ValueError` naming the argument `what` as Python calls it: `invalid direction
+/// 'sideways': must be 'up', 'down' or 'both'`.
+pub(crate) fn named<T: std::str::FromStr<Err = NameError>>(what: &str, text: &str) -> PyResult<T> {
+    text.parse().map_err(|e: NameError| {
+        PyValueError::new_err(format!(
+            "invalid {what} '{}': must be {}",
+            e.text,
+            either(e.allowed.iter().copied())
+        ))
+    })
+}
+
+/// The parameter that sweeps and maps vary, by its Python name (`mu_s`; the library also
+/// takes the flag's `mu-s`).
+pub(crate) fn parameter(name: &str) -> PyResult<Parameter> {
+    name.parse().map_err(|e: NameError| {
+        PyValueError::new_err(format!(
+            "unknown parameter '{}': must be {}",
+            e.text,
+            either(Parameter::ALL.iter().map(|p| p.label()))
+        ))
+    })
 }
 
 /// A serialisable library value as Python objects, through its JSON (the same text the
@@ -51,7 +90,22 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         names.set_item(p.label(), p.long_name())?;
     }
     m.add("PARAMETER_LONG_NAMES", names)?;
+    m.add(
+        "EVENT_KINDS",
+        compute::EVENT_KINDS.map(|k| k.label()).to_vec(),
+    )?;
+    let phases = PyDict::new(py);
+    for p in compute::PHASES {
+        phases.set_item(compute::phase_code(p), p.label())?;
+    }
+    m.add("PHASE_LABELS", phases)?;
+    m.add("SWEEP_LEGS", SweepLeg::ALL.map(|l| l.to_string()).to_vec())?;
+    m.add("KEYS", experiment::key_table(py)?)?;
+    m.add("OPTIONS", options::table(py)?)?;
+    m.add_function(wrap_pyfunction!(options::check_option, m)?)?;
+    m.add_function(wrap_pyfunction!(options::steady_option_kinds, m)?)?;
     m.add_class::<experiment::PyExperiment>()?;
+    m.add_function(wrap_pyfunction!(experiment::with_diode, m)?)?;
     m.add_function(wrap_pyfunction!(compute::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(compute::steady, m)?)?;
     m.add_function(wrap_pyfunction!(compute::theory, m)?)?;

@@ -4,13 +4,15 @@
 //! only when that thread runs Python code. A computation is therefore run on a thread of its
 //! own while the calling thread waits without the GIL, waking every [`POLL`] to run the signal
 //! handlers ([`Python::check_signals`]) and the caller's progress callback. When either raises,
-//! the computation's [`Monitor`] tells the library to stop, the calling thread waits for it to
-//! return (within one grid point or one sweep step), and the exception propagates.
+//! the computation's [`Cancel`] token and its [`Monitor`] tell the library to
+//! stop, the calling thread waits for it to return (within one solver step, or one grid point
+//! or sweep step for a monitor), and the exception propagates.
 
 use pyo3::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
+use stickslip::cancel::Cancel;
 use stickslip::scan::Monitor;
 
 /// How often the waiting thread runs the signal handlers and the progress callback.
@@ -65,7 +67,22 @@ where
     T: Send,
     F: FnOnce(&dyn Monitor) -> stickslip::Result<T> + Send,
 {
-    let stop = AtomicBool::new(false);
+    run_with(py, progress, |monitor, _| work(monitor))
+}
+
+/// [`run`] for a computation that checks a [`Cancel`] token of its own (carried by its
+/// experiment, [`stickslip::Experiment::with_cancel`]): `work` gets the monitor and the token,
+/// which is cancelled when the caller is interrupted.
+pub(crate) fn run_with<T, F>(
+    py: Python<'_>,
+    progress: Option<&Bound<'_, PyAny>>,
+    work: F,
+) -> PyResult<T>
+where
+    T: Send,
+    F: FnOnce(&dyn Monitor, &Cancel) -> stickslip::Result<T> + Send,
+{
+    let stop = Cancel::new();
     let done = AtomicUsize::new(0);
     let total = AtomicUsize::new(0);
     let slot = Slot {
@@ -75,11 +92,11 @@ where
     let monitor = |d: usize, t: usize| {
         done.fetch_max(d, Ordering::Relaxed);
         total.store(t, Ordering::Relaxed);
-        !stop.load(Ordering::Relaxed)
+        !stop.is_cancelled()
     };
     std::thread::scope(|scope| {
-        let (monitor, slot_ref) = (&monitor, &slot);
-        let worker = scope.spawn(move || slot_ref.put(work(monitor)));
+        let (monitor, slot_ref, token) = (&monitor, &slot, &stop);
+        let worker = scope.spawn(move || slot_ref.put(work(monitor, token)));
         // The result, waiting at most one poll; a panic of the worker resumes here.
         let wait = || -> Option<stickslip::Result<T>> {
             let result = py.detach(|| slot.take(Some(POLL)));
@@ -110,7 +127,7 @@ where
                 };
             }
             if let Err(interrupt) = py.check_signals().and_then(|_| report()) {
-                stop.store(true, Ordering::Relaxed);
+                stop.cancel();
                 // The library returns within one point or step once told to stop.
                 while wait().is_none() {}
                 return Err(interrupt);

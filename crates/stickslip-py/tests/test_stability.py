@@ -185,6 +185,20 @@ def test_ctrl_c_stops_a_long_measurement():
         timer.cancel()
 
 
+def test_ctrl_c_stops_a_long_steady_state_search():
+    """stickslip.steady stops on Ctrl-C like the other computations: a chaotic motion never
+    repeats, so the search would run its 10^8 periods (minutes) without the interrupt."""
+    assert threading.current_thread() is threading.main_thread()
+    started = time.perf_counter()
+    timer = interrupt_after(0.5)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            stickslip.steady(Experiment(**CHAOTIC), max_periods=10**8, lyapunov_periods=0)
+    finally:
+        timer.cancel()
+    assert time.perf_counter() - started < 5.0
+
+
 def test_the_measurement_runs_without_the_gil():
     result = {}
 

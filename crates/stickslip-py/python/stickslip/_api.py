@@ -27,9 +27,9 @@ MOTION_CLASSES: Tuple[str, ...] = tuple(_core.MOTION_CLASSES)
 #: The parameters that sweeps and maps vary, with their long names (units: dimensionless).
 PARAMETERS: Dict[str, str] = dict(_core.PARAMETER_LONG_NAMES)
 #: ``phase`` codes of a trajectory: +1 sliding with y' > 0, -1 sliding with y' < 0, 0 stuck.
-PHASE_LABELS: Dict[int, str] = {1: "slip+", -1: "slip-", 0: "stick"}
+PHASE_LABELS: Dict[int, str] = dict(_core.PHASE_LABELS)
 #: ``kind`` of an event, by code, as in the command-line tool's event CSV.
-EVENT_KINDS: Tuple[str, ...] = ("turn", "stick", "slip")
+EVENT_KINDS: Tuple[str, ...] = tuple(_core.EVENT_KINDS)
 #: The structured dtype of event arrays.
 EVENT_DTYPE = np.dtype([("tau", np.float64), ("y", np.float64), ("kind", "U5")])
 
@@ -51,11 +51,7 @@ def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
         )
     if model is None:
         return experiment
-    if model not in ("pwl", "shockley"):
-        raise ValueError(
-            f"invalid model {model!r}: must be 'pwl' (exact solver) or 'shockley' (stiff solver)"
-        )
-    return experiment.replace(diode=model)
+    return _core.with_diode(experiment, model)
 
 
 def _events(tau: np.ndarray, y: np.ndarray, kind: np.ndarray) -> np.ndarray:
@@ -212,7 +208,10 @@ class Trajectory:
 
     def phase_labels(self) -> np.ndarray:
         """The phase of every sample as 'slip+', 'slip-' or 'stick'."""
-        return np.asarray(["stick", "slip+", "slip-"])[self.phase]
+        labels = np.empty(3, dtype=object)
+        for code, label in PHASE_LABELS.items():
+            labels[code] = label
+        return labels[self.phase].astype(str)
 
     def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` of the samples along the dimension ``tau`` (dimensionless
@@ -366,7 +365,8 @@ class SweepResult:
     Attributes:
         over: the swept parameter ('w', 'beta', 'zeta' or 'mu_s').
         value: float64 array, the swept parameter's value at each step.
-        leg: array of 'up' or 'down' (the direction of the leg each step belongs to).
+        leg: array of 'up' or 'down' (the direction of the leg each step belongs to; also
+            ``direction``, the report's and the CSV's name).
         w, beta, zeta, mu_s: float64 arrays, the parameters of each step.
         motion: int8 codes into ``labels`` (``MOTION_CLASSES``); 'static' is the paper's
             rule, an amplitude below β/100 whether or not the motion stops: read
@@ -378,6 +378,11 @@ class SweepResult:
         harmonics: float64 array (steps × harmonics): A_1, A_2, ... of y (NaN where absent).
         symmetric: bool array; periods_to_settle: int64 array.
         experiment, options: what was run.
+
+    ``to_dict()`` is the library's sweep report, the JSON shape every front end gives: the
+    swept parameter ``over``, the ``direction`` asked for and one dict per step in ``points``
+    (value, w, beta, zeta, mu_s, direction, gain, peak, A1, A3, class, stops_per_cycle,
+    period, phase_lag, f_Hz), as ``stickslip sweep`` writes its CSV columns.
     """
 
     def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
@@ -399,8 +404,15 @@ class SweepResult:
         self.period: np.ndarray = data["period"]
         self.symmetric: np.ndarray = data["symmetric"]
         self.periods_to_settle: np.ndarray = data["periods_to_settle"]
-        self.leg = np.asarray(["up", "down"])[data["leg"]]
+        self.leg = np.asarray([p["direction"] for p in data["report"]["points"]], dtype=str)
+        self.direction = self.leg
         self.harmonics = data["harmonics"].reshape(len(self.value), data["harmonic_count"])
+        self._report: Dict[str, Any] = data["report"]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's sweep report (a new dict of plain values): ``over``, ``direction``
+        and ``points``, one dict per step."""
+        return copy.deepcopy(self._report)
 
     def __len__(self) -> int:
         return len(self.value)
@@ -644,9 +656,7 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
     """
     experiment = _with_model(experiment, model)
     periods = _checks.number("periods", periods)
-    samples = _checks.integer("samples_per_period", samples_per_period, 1, 50_000_000,
-                              "must be from 1 to 5e7 (and periods × samples_per_period at most "
-                              "5e7)")
+    samples = _checks.integer("samples_per_period", samples_per_period, "simulate")
     data = _core.simulate(experiment, periods, samples, progress)
     return Trajectory(experiment, data)
 
@@ -1039,10 +1049,10 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
                         "max_periods, max_period")
     options = _checks.steady_options(options, False, "orbit")
     if period is not None:
-        period = _checks.integer("period", period, 1, 1000)
-    report = _core.orbit(experiment, period, _checks.integer("transient", transient, 0, 10**8),
+        period = _checks.integer("period", period, "orbit")
+    report = _core.orbit(experiment, period, _checks.integer("transient", transient, "orbit"),
                          options, _checks.number("tolerance", tolerance),
-                         _checks.integer("max_iterations", max_iterations, 1, 1000), progress)
+                         _checks.integer("max_iterations", max_iterations, "orbit"), progress)
     return PeriodicOrbit(experiment, report)
 
 
@@ -1084,12 +1094,9 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
         ('chaotic', True, -inf)
     """
     experiment = _with_model(experiment, None)
-    blocks = _checks.integer("blocks", blocks, 4, 10_000, "must be even and from 4 to 10000")
-    if blocks % 2:
-        raise ValueError(f"invalid blocks = {blocks}: must be even and from 4 to 10000")
-    report = _core.lyapunov(experiment, _checks.integer("transient", transient, 0, 10**9),
-                            _checks.integer("periods", periods, blocks, 10**9,
-                                            f"must be from blocks ({blocks}) to 1e9"), blocks,
+    blocks = _checks.integer("blocks", blocks, "lyapunov")
+    report = _core.lyapunov(experiment, _checks.integer("transient", transient, "lyapunov"),
+                            _checks.integer("periods", periods), blocks,
                             _checks.number("significance", significance), progress,
                             bool(fixed))
     return LyapunovResult(experiment, report)

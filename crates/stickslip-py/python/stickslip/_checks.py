@@ -4,8 +4,8 @@ argument raises ``TypeError`` or ``ValueError`` naming the parameter and what it
 Integer arguments (counts of periods, points, steps, threads) accept integers only: a
 Python ``int`` or a numpy integer (anything with ``__index__``, as ``range()`` and numpy's
 shapes take), never a float, not even an integral one such as ``100.0`` or ``1e4``, and
-never a ``bool``. The ranges are the library's where it has one (so the words are its words),
-else the command-line tool's: every count has an upper bound, checked before any work.
+never a ``bool``. The types are checked here; the ranges are the library's option table
+(``_core.OPTIONS``), checked by the library with its words, before any work.
 """
 
 from __future__ import annotations
@@ -17,26 +17,17 @@ from typing import Any, Dict, Iterable, Optional, Tuple
 
 import numpy as np
 
-#: The largest count of drive periods an option may give (the command-line tool's 1e8).
-MAX_PERIODS = 100_000_000
-#: The most threads a pool may have.
-MAX_THREADS = 1024
+from . import _core
 
 
-def _number_text(value: int) -> str:
-    """``value`` in the words of the ranges: 100000000 as 1e8."""
-    if value >= 10**8 and value % 10 ** (len(str(value)) - 1) == 0 and str(value)[0] == "1":
-        return f"1e{len(str(value)) - 1}"
-    return str(value)
-
-
-def integer(name: str, value: Any, low: int, high: int, allowed: Optional[str] = None) -> int:
-    """``value`` as an ``int`` from ``low`` to ``high`` (``allowed``: the range in words, when
-    they are not "must be from low to high").
+def integer(name: str, value: Any, computation: Optional[str] = None) -> int:
+    """``value`` as an ``int``; with ``computation`` (the option's group in the library's
+    option table: 'simulate', 'steady', 'orbit', 'bifurcation', 'basins', 'continuation',
+    'pool', ...), checked against the table's range for the option ``name``.
 
     Raises:
         TypeError: not an integer (a float, even an integral one, a bool, a string...).
-        ValueError: out of range; the message names ``name`` and the range.
+        ValueError: out of range, with the library's message naming ``name``.
     """
     if isinstance(value, (bool, np.bool_)) or not hasattr(type(value), "__index__"):
         hint = ""
@@ -44,9 +35,8 @@ def integer(name: str, value: Any, low: int, high: int, allowed: Optional[str] =
             hint = f" (write {int(value)}: counts are integers, not floats)"
         raise TypeError(f"{name} must be an integer, got {value!r}{hint}")
     v = operator.index(value)
-    if not low <= v <= high:
-        allowed = allowed or f"must be from {_number_text(low)} to {_number_text(high)}"
-        raise ValueError(f"invalid {name} = {v}: {allowed}")
+    if computation is not None:
+        _core.check_option(computation, name, v)
     return v
 
 
@@ -80,7 +70,7 @@ def pair(name: str, value: Any) -> Tuple[float, float]:
 
 def threads(value: Any) -> Optional[int]:
     """A pool's number of threads (None: one per core)."""
-    return None if value is None else integer("threads", value, 1, MAX_THREADS)
+    return None if value is None else integer("threads", value, "pool")
 
 
 def array(name: str, values: Any) -> np.ndarray:
@@ -112,32 +102,16 @@ def values(name: str, values: Any) -> np.ndarray:
     return np.require(a, np.float64, ["C", "A"])
 
 
-#: The options of the steady-state search: name → (kind, low, high).
-_SEARCH_OPTIONS: Dict[str, Tuple[str, int, int]] = {
-    "tolerance": ("number", 0, 0),
-    "max_periods": ("integer", 1, MAX_PERIODS),
-    "max_period": ("integer", 1, 64),
-    "min_stop_fraction": ("number", 0, 0),
-    "accelerate": ("flag", 0, 0),
-    "lyapunov_periods": ("integer", 0, MAX_PERIODS),
-}
-#: The options of the spectrum (steady states and sweeps; a map computes none).
-_SPECTRUM_OPTIONS: Dict[str, Tuple[str, int, int]] = {
-    "harmonics": ("integer", 1, 256),
-    "samples_per_period": ("integer", 16, 1 << 20),
-}
-
-
 def option_names(spectrum: bool) -> Tuple[str, ...]:
-    """The names of the steady-state options (with those of the spectrum)."""
-    names = tuple(_SEARCH_OPTIONS)
-    return names + tuple(_SPECTRUM_OPTIONS) if spectrum else names
+    """The names of the steady-state options (with those of the spectrum), from the library's
+    option table."""
+    return tuple(_core.steady_option_kinds(spectrum))
 
 
 def steady_options(options: Dict[str, Any], spectrum: bool, caller: str) -> Dict[str, Any]:
     """The options of the steady-state search, checked: known names, integers where counts,
-    in range (the library checks the rest: a power of two, a tolerance above 0)."""
-    known = dict(_SEARCH_OPTIONS, **(_SPECTRUM_OPTIONS if spectrum else {}))
+    in the library's range (the library checks what depends on the experiment)."""
+    known = _core.steady_option_kinds(spectrum)
     checked: Dict[str, Any] = {}
     for name, value in options.items():
         if name not in known:
@@ -146,13 +120,10 @@ def steady_options(options: Dict[str, Any], spectrum: bool, caller: str) -> Dict
         if value is None:
             checked[name] = None
             continue
-        kind, low, high = known[name]
-        if kind == "integer":
-            checked[name] = integer(name, value, low, high)
-            if name == "lyapunov_periods" and 0 < checked[name] < 20:
-                raise ValueError(f"invalid lyapunov_periods = {checked[name]}: must be 0 (off) "
-                                 "or from 20 to 1e8")
-        elif kind == "flag":
+        kind = known[name]
+        if kind == "count":
+            checked[name] = integer(name, value, "steady")
+        elif kind == "switch":
             checked[name] = flag(name, value)
         else:
             checked[name] = number(name, value)

@@ -8,33 +8,187 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, 
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import TypedDict, Unpack
 
 __all__ = [
     "ATTRACTOR_KINDS",
+    "EVENT_KINDS",
     "Experiment",
+    "KEYS",
+    "OPTIONS",
     "MOTION_CLASSES",
     "PARAMETER_LONG_NAMES",
+    "PHASE_LABELS",
+    "SWEEP_LEGS",
     "__version__",
     "basins",
     "bifurcation",
     "boundary",
+    "check_option",
     "continuation",
     "grid",
     "lyapunov",
     "orbit",
     "simulate",
     "steady",
+    "steady_option_kinds",
     "sweep",
     "theory",
+    "with_diode",
 ]
 __version__: str
 MOTION_CLASSES: List[str]
 ATTRACTOR_KINDS: List[str]
 PARAMETER_LONG_NAMES: Dict[str, str]
+EVENT_KINDS: List[str]
+PHASE_LABELS: Dict[int, str]
+SWEEP_LEGS: List[str]
+#: The library's key table: one dict per key (name, name_aliases, unit, range, help, ...).
+KEYS: List[Dict[str, Any]]
+#: The library's option table: one dict per option (name, group, kind, range, help, ...).
+OPTIONS: List[Dict[str, Any]]
 
 _Value = Union[float, int, str, None]
 _Progress = Optional[Callable[[int, int], Any]]
 _FloatArray = npt.NDArray[np.float64]
+
+# BEGIN keywords: generated from the library's key table by tests/test_keys.py (STICKSLIP_BLESS=1 rewrites)
+class _PaperKeys(TypedDict, total=False):
+    """The keys of Experiment.paper beside its own."""
+
+    zeta: _Value  # damping ratio ζ
+    phi: _Value  # drive phase φ (rad)
+    mu_s: _Value  # static-to-kinetic friction ratio μs
+    y0: _Value  # initial position y0
+    v0: _Value  # initial velocity v0
+    L: _Value  # inductance L (H)
+    C: _Value  # capacitance C (F)
+    R: _Value  # series resistance R without the diodes (Ω)
+    U_t: _Value  # diode turn-on voltage U_t (V)
+    R_D: _Value  # PWL diode resistance R_D (Ω)
+    m: _Value  # mass m (kg)
+    k: _Value  # spring constant k (N/m)
+    gamma: _Value  # viscous damping γ (N·s/m)
+    F0: _Value  # kinetic friction force F0 (N)
+    U: _Value  # drive amplitude U (V) or F (N)
+    F: _Value  # drive amplitude U (V) or F (N)
+    f: _Value  # drive frequency f (Hz)
+    omega: _Value  # drive angular frequency Ω (rad/s)
+    uc0: _Value  # initial capacitor voltage u_C(0) (V) or position r(0) (m)
+    i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
+    Is: _Value  # Shockley saturation current I_s (A)
+    n: _Value  # Shockley emission coefficient n
+    Rs: _Value  # Shockley series resistance R_s (Ω)
+    temperature: _Value  # diode temperature (°C)
+    diode: Optional[str]  # diode law: pwl or shockley
+    preset: Optional[str]  # built-in physical description
+
+class _CircuitKeys(TypedDict, total=False):
+    """The keys of Experiment.circuit beside its own."""
+
+    zeta: _Value  # damping ratio ζ
+    w: _Value  # drive frequency w = Ω/ω0
+    beta: _Value  # drive amplitude β = U/U_t or F/F0
+    phi: _Value  # drive phase φ (rad)
+    mu_s: _Value  # static-to-kinetic friction ratio μs
+    y0: _Value  # initial position y0
+    v0: _Value  # initial velocity v0
+    m: _Value  # mass m (kg)
+    k: _Value  # spring constant k (N/m)
+    gamma: _Value  # viscous damping γ (N·s/m)
+    F0: _Value  # kinetic friction force F0 (N)
+    F: _Value  # drive amplitude U (V) or F (N)
+    omega: _Value  # drive angular frequency Ω (rad/s)
+    uc0: _Value  # initial capacitor voltage u_C(0) (V) or position r(0) (m)
+    i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
+    Is: _Value  # Shockley saturation current I_s (A)
+    n: _Value  # Shockley emission coefficient n
+    Rs: _Value  # Shockley series resistance R_s (Ω)
+    temperature: _Value  # diode temperature (°C)
+    diode: Optional[str]  # diode law: pwl or shockley
+    preset: Optional[str]  # built-in physical description
+
+class _ShockleyKeys(TypedDict, total=False):
+    """The keys of Experiment.shockley beside its own."""
+
+    zeta: _Value  # damping ratio ζ
+    w: _Value  # drive frequency w = Ω/ω0
+    beta: _Value  # drive amplitude β = U/U_t or F/F0
+    phi: _Value  # drive phase φ (rad)
+    mu_s: _Value  # static-to-kinetic friction ratio μs
+    y0: _Value  # initial position y0
+    v0: _Value  # initial velocity v0
+    R_D: _Value  # PWL diode resistance R_D (Ω)
+    m: _Value  # mass m (kg)
+    k: _Value  # spring constant k (N/m)
+    gamma: _Value  # viscous damping γ (N·s/m)
+    F0: _Value  # kinetic friction force F0 (N)
+    F: _Value  # drive amplitude U (V) or F (N)
+    omega: _Value  # drive angular frequency Ω (rad/s)
+    uc0: _Value  # initial capacitor voltage u_C(0) (V) or position r(0) (m)
+    i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
+    diode: Optional[str]  # diode law: pwl or shockley
+    preset: Optional[str]  # built-in physical description
+
+class _MechanicsKeys(TypedDict, total=False):
+    """The keys of Experiment.mechanics beside its own."""
+
+    zeta: _Value  # damping ratio ζ
+    w: _Value  # drive frequency w = Ω/ω0
+    beta: _Value  # drive amplitude β = U/U_t or F/F0
+    phi: _Value  # drive phase φ (rad)
+    mu_s: _Value  # static-to-kinetic friction ratio μs
+    y0: _Value  # initial position y0
+    v0: _Value  # initial velocity v0
+    L: _Value  # inductance L (H)
+    C: _Value  # capacitance C (F)
+    R: _Value  # series resistance R without the diodes (Ω)
+    U_t: _Value  # diode turn-on voltage U_t (V)
+    R_D: _Value  # PWL diode resistance R_D (Ω)
+    U: _Value  # drive amplitude U (V) or F (N)
+    f: _Value  # drive frequency f (Hz)
+    uc0: _Value  # initial capacitor voltage u_C(0) (V) or position r(0) (m)
+    i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
+    Is: _Value  # Shockley saturation current I_s (A)
+    n: _Value  # Shockley emission coefficient n
+    Rs: _Value  # Shockley series resistance R_s (Ω)
+    temperature: _Value  # diode temperature (°C)
+    diode: Optional[str]  # diode law: pwl or shockley
+    preset: Optional[str]  # built-in physical description
+
+class _ExperimentKeys(TypedDict, total=False):
+    """Every experiment key."""
+
+    zeta: _Value  # damping ratio ζ
+    w: _Value  # drive frequency w = Ω/ω0
+    beta: _Value  # drive amplitude β = U/U_t or F/F0
+    phi: _Value  # drive phase φ (rad)
+    mu_s: _Value  # static-to-kinetic friction ratio μs
+    y0: _Value  # initial position y0
+    v0: _Value  # initial velocity v0
+    L: _Value  # inductance L (H)
+    C: _Value  # capacitance C (F)
+    R: _Value  # series resistance R without the diodes (Ω)
+    U_t: _Value  # diode turn-on voltage U_t (V)
+    R_D: _Value  # PWL diode resistance R_D (Ω)
+    m: _Value  # mass m (kg)
+    k: _Value  # spring constant k (N/m)
+    gamma: _Value  # viscous damping γ (N·s/m)
+    F0: _Value  # kinetic friction force F0 (N)
+    U: _Value  # drive amplitude U (V) or F (N)
+    F: _Value  # drive amplitude U (V) or F (N)
+    f: _Value  # drive frequency f (Hz)
+    omega: _Value  # drive angular frequency Ω (rad/s)
+    uc0: _Value  # initial capacitor voltage u_C(0) (V) or position r(0) (m)
+    i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
+    Is: _Value  # Shockley saturation current I_s (A)
+    n: _Value  # Shockley emission coefficient n
+    Rs: _Value  # Shockley series resistance R_s (Ω)
+    temperature: _Value  # diode temperature (°C)
+    diode: Optional[str]  # diode law: pwl or shockley
+    preset: Optional[str]  # built-in physical description
+
+# END keywords
 
 @final
 class Experiment:
@@ -52,7 +206,9 @@ class Experiment:
         v0: _Value = None,
     ) -> Experiment: ...
     @classmethod
-    def paper(cls, w: _Value = None, beta: _Value = None, **keys: _Value) -> Experiment: ...
+    def paper(
+        cls, w: _Value = None, beta: _Value = None, **keys: Unpack[_PaperKeys]
+    ) -> Experiment: ...
     @classmethod
     def circuit(
         cls,
@@ -63,7 +219,7 @@ class Experiment:
         R_D: _Value = None,
         U: _Value = None,
         f: _Value = None,
-        **keys: _Value,
+        **keys: Unpack[_CircuitKeys],
     ) -> Experiment: ...
     @classmethod
     def shockley(
@@ -78,7 +234,7 @@ class Experiment:
         n: _Value = None,
         Rs: _Value = None,
         temperature: _Value = None,
-        **keys: _Value,
+        **keys: Unpack[_ShockleyKeys],
     ) -> Experiment: ...
     @classmethod
     def mechanics(
@@ -89,7 +245,7 @@ class Experiment:
         F0: _Value = None,
         F: _Value = None,
         omega: _Value = None,
-        **keys: _Value,
+        **keys: Unpack[_MechanicsKeys],
     ) -> Experiment: ...
     @classmethod
     def from_toml(cls, path: Union[str, os.PathLike[str]]) -> Experiment: ...
@@ -97,7 +253,7 @@ class Experiment:
     def from_dict(cls, keys: Dict[str, _Value]) -> Experiment: ...
     @classmethod
     def from_json(cls, text: str) -> Experiment: ...
-    def replace(self, **changes: _Value) -> Experiment: ...
+    def replace(self, **changes: Unpack[_ExperimentKeys]) -> Experiment: ...
     def to_dict(self) -> Dict[str, Union[float, str]]: ...
     def to_json(self) -> str: ...
     def convert(self) -> Dict[str, float]: ...
@@ -124,6 +280,9 @@ class Experiment:
     def __hash__(self) -> int: ...
     def __reduce__(self) -> Tuple[Any, Tuple[str]]: ...
 
+def with_diode(experiment: Experiment, model: str) -> Experiment: ...
+def check_option(group: str, name: str, value: Union[int, float]) -> None: ...
+def steady_option_kinds(spectrum: bool) -> Dict[str, str]: ...
 def simulate(
     experiment: Experiment, periods: float, samples_per_period: int, progress: _Progress = None
 ) -> Dict[str, Any]: ...

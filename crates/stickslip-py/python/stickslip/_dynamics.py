@@ -59,7 +59,7 @@ class BifurcationDiagram:
         self.options = options
         self.labels: Tuple[str, ...] = ATTRACTOR_KINDS
         self.value: np.ndarray = data["value"]
-        self.leg = np.asarray(["up", "down"])[data["leg"]]
+        self.leg = np.asarray(_core.SWEEP_LEGS)[data["leg"]]
         points = int(data["points"])
         self.y: np.ndarray = data["y"].reshape(len(self.value), points)
         self.v: np.ndarray = data["v"].reshape(len(self.value), points)
@@ -357,12 +357,10 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
         (True, True)
     """
     experiment = _with_model(experiment, None)
-    options = {"points": _checks.integer("points", points, 1, 10**6),
-               "transient": _checks.integer("transient", transient, 0, 10**8,
-                                            "must be from 0 to 1e8 drive periods"),
-               "first_transient": _checks.integer("first_transient", first_transient, 0, 10**8,
-                                                  "must be from 0 to 1e8 drive periods"),
-               "max_period": _checks.integer("max_period", max_period, 1, 1000)}
+    options = {name: _checks.integer(name, value, "bifurcation")
+               for name, value in (("points", points), ("transient", transient),
+                                   ("first_transient", first_transient),
+                                   ("max_period", max_period))}
     values = _values("values", values)
     data = _core.bifurcation(experiment, over, values, direction,
                              options["points"], options["transient"],
@@ -428,13 +426,12 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
     else:
         rows, cols = steps, steps
     data = _core.basins(experiment, _checks.pair("y0", y0), _checks.pair("v0", v0),
-                        (_checks.integer("steps", rows, 1, 2000),
-                         _checks.integer("steps", cols, 1, 2000)),
+                        (_checks.integer("steps", rows, "basins"),
+                         _checks.integer("steps", cols, "basins")),
                         None if phase is None else _checks.number("phase", phase),
-                        _checks.integer("max_periods", max_periods, 1, _checks.MAX_PERIODS),
-                        _checks.integer("max_period", max_period, 1, 64),
-                        _checks.integer("lyapunov_periods", lyapunov_periods, 8, 10**7,
-                                        "must be from 8 to 1e7"),
+                        _checks.integer("max_periods", max_periods, "basins"),
+                        _checks.integer("max_period", max_period, "basins"),
+                        _checks.integer("lyapunov_periods", lyapunov_periods, "basins"),
                         _checks.threads(threads), progress, method)
     if phase is not None:
         experiment = experiment.replace(phi=float(phase))
@@ -483,7 +480,7 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
     experiment = _with_model(experiment, None)
     data = _core.continuation(experiment, over, _checks.number("start", start),
                               _checks.number("to", to),
-                              _checks.integer("max_points", max_points, 2, 10**7),
+                              _checks.integer("max_points", max_points, "continuation"),
                               _checks.number("max_step", max_step), progress)
     return Branch(experiment, over, data)
 
