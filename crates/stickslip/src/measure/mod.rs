@@ -20,7 +20,8 @@
 //! channel the vertical resolution (the smallest step between two distinct values) and the
 //! clipped samples (runs of equal values at the channel's extreme longer than a smooth peak
 //! stays within one resolution step: three times N·√(2q/A)/π samples for N samples per
-//! period, q the resolution and A half the range; at least four).
+//! period, q the resolution and A half the range; at least four; entered or left steeply, as
+//! a flat stop of u_C is not).
 //!
 //! **A record for fitting** ([`Measurement`]): the drive and response channels picked by
 //! name (default: the first channel is the drive, the second u_C); the drive's sine fitted

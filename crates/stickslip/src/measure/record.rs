@@ -302,10 +302,14 @@ fn resolution(values: &[f64]) -> Option<f64> {
 /// A sine of amplitude A (half the range) sampled N times per period stays within one step q
 /// of its peak for about N·√(2q/A)/π samples; N is taken from the number of times the
 /// channel crosses its mean. A run at the extreme longer than three times that (and at least
-/// four samples) is called clipped; when runs of four or more at the extremes hold more
-/// than a quarter of the samples, all of them are (a square wave). A stop of the oscillator (u_C constant while the current
-/// is zero) in a record without noise is such a run too: its samples are then left out, which
-/// costs information but does not bias a fit.
+/// four samples; q at most a 32nd of the range) is called clipped when the signal enters or leaves it steeply: the slope
+/// over the three samples outside either end above a tenth of the largest slope 2πA/N of a
+/// sine of that amplitude and period. A stop of the oscillator (u_C constant while the
+/// current is zero, which a noise-free record shows as a flat run) starts and ends with zero
+/// slope and is kept when the samples are dense enough to show it; in a record without noise
+/// and with a few samples per stop's approach it can look clipped, and its samples are then
+/// left out (which costs information but does not bias a fit). Records with noise of a step
+/// or more, as a scope's are, show no flat stops.
 fn clipped(values: &[f64], resolution: Option<f64>) -> Vec<bool> {
     let n = values.len();
     let mut mask = vec![false; n];
@@ -325,9 +329,16 @@ fn clipped(values: &[f64], resolution: Option<f64>) -> Vec<bool> {
         .count()
         .max(1);
     let per_period = 2.0 * n as f64 / crossings as f64;
+    // A channel with fewer than 32 levels over its range (a square wave between two rails
+    // shows hardly any level in between) is judged as if it had 32.
+    let q = q.min(2.0 * amplitude / 32.0);
     let smooth = per_period * (2.0 * q / amplitude).sqrt() / std::f64::consts::PI;
     let longest = (3.0 * smooth).max(4.0);
-    let mut runs = Vec::new();
+    // A clipped run starts and ends with the signal still moving (it would go on past the
+    // rail); a stop of u_C starts and ends with zero slope (u_C' = i/C and the current is
+    // continuous). The slope over the three samples outside each end, against a tenth of the
+    // largest slope of a sine of this amplitude and period.
+    let steep = 0.1 * amplitude * std::f64::consts::TAU / per_period;
     let mut i = 0;
     while i < n {
         let v = values[i];
@@ -335,20 +346,15 @@ fn clipped(values: &[f64], resolution: Option<f64>) -> Vec<bool> {
         while j < n && values[j] == v {
             j += 1;
         }
-        if (v == hi || v == lo) && j - i >= 4 {
-            runs.push((i, j));
+        if (v == hi || v == lo) && (j - i) as f64 > longest {
+            let entry = (i >= 4).then(|| (values[i - 1] - values[i - 4]).abs() / 3.0);
+            let exit = (j + 3 < n).then(|| (values[j + 3] - values[j]).abs() / 3.0);
+            let slope = entry.into_iter().chain(exit).fold(0.0f64, f64::max);
+            if slope > steep || (entry.is_none() && exit.is_none()) {
+                mask[i..j].iter_mut().for_each(|m| *m = true);
+            }
         }
         i = j;
-    }
-    // Runs at the extremes over a quarter of the record: a square wave, whatever the
-    // resolution says of its peaks (a channel clipped so hard that its only steps are the
-    // jumps between the rails).
-    let at_rails: usize = runs.iter().map(|(i, j)| j - i).sum();
-    let all = at_rails * 4 > n;
-    for (i, j) in runs {
-        if all || (j - i) as f64 > longest {
-            mask[i..j].iter_mut().for_each(|m| *m = true);
-        }
     }
     mask
 }
