@@ -30,6 +30,10 @@
 //!   threads.
 //! - [`limits`]: the ranges of parameters, initial states and run lengths in which the
 //!   solvers keep their accuracy, enforced wherever values enter the library.
+//! - [`measure`]: oscilloscope exports (Rigol, Tektronix, Keysight, Siglent, plain CSV) and
+//!   tables of measured amplitudes, read from text, with the drive's sine fit; [`fit`]: the
+//!   circuit's parameters fitted to them by least squares, with error bars, per record, and
+//!   PWL against Shockley.
 //! - [`checkpoint`]: a resumable record of finished work (rows of a map, steps of a sweep),
 //!   with its parameters and a checksum, for front ends that save long runs as they go.
 //! - [`theory`]: the paper's series solution, the exact periodic solution, both stick-slip
@@ -56,8 +60,10 @@ pub mod continuation;
 pub mod error;
 pub mod exact;
 pub mod experiment;
+pub mod fit;
 pub mod limits;
 mod linear;
+pub mod measure;
 pub mod names;
 pub mod options;
 pub mod params;

@@ -6,6 +6,7 @@ pub mod basins;
 pub mod bifurcation;
 pub mod continuation;
 pub mod convert;
+pub mod fit;
 pub mod lab;
 pub mod lyapunov;
 pub mod netlist;
@@ -46,6 +47,7 @@ pub enum Command {
     Basins(basins::Args),
     /// Continue a branch of periodic orbits through folds and changes of the event sequence.
     Continue(continuation::Args),
+    Fit(fit::Args),
 }
 
 /// Run one subcommand.
@@ -65,5 +67,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Bifurcation(a) => bifurcation::run(a),
         Command::Basins(a) => basins::run(a),
         Command::Continue(a) => continuation::run(a),
+        Command::Fit(a) => fit::run(a),
     }
 }

@@ -7,6 +7,7 @@ mod checkpoint;
 mod convert;
 mod determinism;
 mod dynamics;
+mod fit;
 mod fuzz_props;
 mod lab;
 mod limits;

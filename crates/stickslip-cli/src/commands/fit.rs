@@ -1,0 +1,403 @@
+//! `stickslip fit`: fit the circuit's parameters to scope records or a table of measured
+//! amplitudes.
+
+use crate::model::ModelArgs;
+use crate::output::{check_output_path, outln, usage, AtomicFile};
+use anyhow::{Context, Result};
+use serde_json::{json, Map, Value};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use stickslip::fit::{
+    compare_models, fit_per_record, fit_records, fit_table, FitError, FitOptions, FitParameter,
+    FitReport,
+};
+use stickslip::measure::{read_amplitudes, read_scope, MeasureError, Measurement, Record};
+use stickslip::shockley::DiodePair;
+
+/// Fit the circuit's parameters to measurements: scope records of the drive and u_C, or a
+/// table of measured amplitudes.
+///
+/// Records (--data, repeatable; a Tektronix export, one file per channel, is given as
+/// FILE1+FILE2): Rigol, Tektronix, Keysight InfiniiVision and Siglent CSV exports are
+/// detected from their header; a plain CSV needs a header row with a time column (t, time,
+/// time_s, second). The first channel is the drive and the second u_C unless --drive and
+/// --response name them (by name, CHn or position). Each record's drive (frequency,
+/// amplitude, phase) is fitted as a sine over its whole periods; the model's steady u_C is
+/// fitted to every record at once, with a DC offset of u_C and a time shift per record.
+///
+/// A table (--gain-table): columns freq_Hz, U_V, response_V (half the peak-to-peak of u_C),
+/// optionally direction (up/down: the row settles from the row before on its sweep), A1_V,
+/// A3_V. Unknown columns are refused.
+///
+/// The model flags give the starting values (and the diode law with --model). Free
+/// parameters (--free): resistance, ut, rd (PWL), diode-is, diode-n, diode-rs (Shockley),
+/// inductance, capacitance, mu-s.
+///
+/// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi]}}, correlation,
+/// records [{file, freq_Hz, amplitude_V, w, beta, class, periods, clipped, rms_residual_V,
+/// offset_V, time_shift_s}], rows (a table) [{line, freq_Hz, U_V, direction, measured_V,
+/// model_V, class}], rms_residual_V, chi2_dof, converged, iterations, aic, bic; with
+/// --per-record a list of such objects; with --compare {pwl, shockley, preferred,
+/// delta_aic}.
+///
+/// Example: stickslip fit --preset paper --data run1.csv --data run2.csv --free resistance,ut
+/// --json
+#[derive(Debug, clap::Args)]
+#[command(verbatim_doc_comment)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// A scope record (CSV); repeat for several records; FILE1+FILE2 merges single-channel
+    /// files on the same times.
+    #[arg(long, value_name = "FILE", help_heading = "Measurements")]
+    data: Vec<String>,
+    /// A table of measured amplitudes (CSV).
+    #[arg(
+        long = "gain-table",
+        value_name = "FILE",
+        help_heading = "Measurements",
+        conflicts_with = "data"
+    )]
+    gain_table: Option<PathBuf>,
+    /// The drive channel of each record (name, CHn or position) [default: the first].
+    #[arg(long, value_name = "COL", help_heading = "Measurements")]
+    drive: Option<String>,
+    /// The u_C channel of each record [default: the second].
+    #[arg(long, value_name = "COL", help_heading = "Measurements")]
+    response: Option<String>,
+    /// Free parameters, comma-separated.
+    #[arg(
+        long,
+        value_name = "KEYS",
+        default_value = "resistance,ut",
+        help_heading = "Fit"
+    )]
+    free: String,
+    /// Fit each record alone (how a parameter drifts with the drive).
+    #[arg(long = "per-record", help_heading = "Fit", conflicts_with = "compare")]
+    per_record: bool,
+    /// Fit PWL diodes (free --free) and 1N4148-like Shockley diodes (free --free-shockley)
+    /// and compare them by AIC.
+    #[arg(long, help_heading = "Fit")]
+    compare: bool,
+    /// Free parameters of the Shockley fit of --compare.
+    #[arg(
+        long = "free-shockley",
+        value_name = "KEYS",
+        default_value = "resistance,diode-is,diode-n",
+        help_heading = "Fit"
+    )]
+    free_shockley: String,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Residuals as CSV: file,t_s,measured_V,model_V,residual_V (records) or
+    /// line,freq_Hz,U_V,measured_V,model_V,residual_V (a table).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+}
+
+fn parse_free(text: &str, flag: &str) -> Result<Vec<FitParameter>> {
+    let mut free = Vec::new();
+    for name in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        match name.parse::<FitParameter>() {
+            Ok(p) => free.push(p),
+            Err(e) => usage!("invalid {flag} {name}: {e}"),
+        }
+    }
+    if free.is_empty() {
+        usage!("{flag} names no parameter");
+    }
+    Ok(free)
+}
+
+/// A library refusal of the user's input (a file, a flag) as a usage error (exit 2).
+fn refused(err: FitError) -> anyhow::Error {
+    match err {
+        FitError::Model { .. } => anyhow::Error::new(err),
+        _ => anyhow::Error::new(crate::output::UsageError(err.to_string())),
+    }
+}
+
+fn measure(err: MeasureError) -> anyhow::Error {
+    anyhow::Error::new(crate::output::UsageError(err.to_string()))
+}
+
+fn read_text(path: &Path) -> Result<String> {
+    match std::fs::read(path) {
+        Ok(bytes) => match String::from_utf8(bytes) {
+            Ok(text) => Ok(text),
+            Err(_) => usage!("{}: not a text file (UTF-8)", path.display()),
+        },
+        Err(e) => usage!("{}: {e}", path.display()),
+    }
+}
+
+fn read_record(spec: &str) -> Result<Record> {
+    let parts = spec
+        .split('+')
+        .map(|file| {
+            let text = read_text(Path::new(file))?;
+            read_scope(&text, file).map_err(measure)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Record::merge(parts).map_err(measure)
+}
+
+/// Run `stickslip fit`.
+pub fn run(args: Args) -> Result<()> {
+    if args.data.is_empty() && args.gain_table.is_none() {
+        usage!("give the measurements: --data FILE (repeatable) or --gain-table FILE");
+    }
+    if let Some(p) = &args.out {
+        check_output_path(p)?;
+    }
+    let free = parse_free(&args.free, "--free")?;
+    let experiment = args.model.experiment()?;
+    let options = FitOptions::default();
+    let mut report_json: Value;
+    let mut residual_reports: Vec<FitReport> = Vec::new();
+    if let Some(path) = &args.gain_table {
+        if args.per_record || args.compare {
+            usage!("--per-record and --compare take records (--data), not a table");
+        }
+        let name = path.display().to_string();
+        let table = read_amplitudes(&read_text(path)?, &name).map_err(measure)?;
+        eprintln!("fit: {} rows of {name}; {experiment}", table.rows.len());
+        let report = fit_table(&experiment, &table, &free, &options).map_err(refused)?;
+        report_json = to_json(&report);
+        residual_reports.push(report);
+    } else {
+        let mut data = Vec::new();
+        for spec in &args.data {
+            let record = read_record(spec)?;
+            data.push(
+                Measurement::new(&record, args.drive.as_deref(), args.response.as_deref())
+                    .map_err(measure)?,
+            );
+        }
+        eprintln!("fit: {} records; {experiment}", data.len());
+        if args.compare {
+            let shockley_free = parse_free(&args.free_shockley, "--free-shockley")?;
+            let c = compare_models(
+                &experiment,
+                DiodePair::one_n4148(),
+                &data,
+                &free,
+                &shockley_free,
+                &options,
+            )
+            .map_err(refused)?;
+            report_json = json!({
+                "pwl": to_json(&c.pwl),
+                "shockley": to_json(&c.shockley),
+                "preferred": c.preferred.label(),
+                "delta_aic": c.delta_aic,
+            });
+            residual_reports.push(c.pwl);
+            residual_reports.push(c.shockley);
+        } else if args.per_record {
+            let reports = fit_per_record(&experiment, &data, &free, &options).map_err(refused)?;
+            report_json = Value::Array(reports.iter().map(to_json).collect());
+            residual_reports = reports;
+        } else {
+            let report = fit_records(&experiment, &data, &free, &options).map_err(refused)?;
+            report_json = to_json(&report);
+            residual_reports.push(report);
+        }
+    }
+    crate::output::check_interrupt()?;
+    if args.json {
+        crate::output::print(&format!(
+            "{}\n",
+            serde_json::to_string_pretty(&report_json)?
+        ))?;
+    } else {
+        let mut text = String::new();
+        for r in &residual_reports {
+            describe(&mut text, r);
+        }
+        if let Some(obj) = report_json.as_object_mut() {
+            if let (Some(p), Some(d)) = (obj.get("preferred"), obj.get("delta_aic")) {
+                outln!(
+                    text,
+                    "preferred         {} (AIC Shockley − PWL = {d})",
+                    p.as_str().unwrap_or("")
+                );
+            }
+        }
+        crate::output::print(&text)?;
+    }
+    if let Some(path) = &args.out {
+        let mut file = AtomicFile::create(path)?;
+        write_residuals(&mut file, &residual_reports)
+            .with_context(|| format!("writing {}", path.display()))?;
+        file.commit()?;
+    }
+    Ok(())
+}
+
+fn write_residuals(file: &mut impl Write, reports: &[FitReport]) -> Result<()> {
+    let table = reports.iter().all(|r| r.records.is_empty());
+    if table {
+        writeln!(file, "line,freq_Hz,U_V,measured_V,model_V,residual_V")?;
+    } else {
+        writeln!(file, "model,file,t_s,measured_V,model_V,residual_V")?;
+    }
+    for r in reports {
+        for row in &r.rows {
+            writeln!(
+                file,
+                "{},{},{},{},{},{}",
+                row.line,
+                row.freq_hz,
+                row.drive_v,
+                row.measured_v,
+                row.model_v,
+                row.model_v - row.measured_v
+            )?;
+        }
+        for rec in &r.records {
+            for k in 0..rec.time.len() {
+                writeln!(
+                    file,
+                    "{},{},{},{},{},{}",
+                    r.model.label(),
+                    rec.file,
+                    rec.time[k],
+                    rec.model[k] - rec.residuals[k],
+                    rec.model[k],
+                    rec.residuals[k]
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn describe(text: &mut String, r: &FitReport) {
+    outln!(text, "model             {}", r.model.label());
+    for p in &r.parameters {
+        outln!(
+            text,
+            "{:<17} {:.6e} ± {:.2e} {} (95 %: {:.6e} … {:.6e}; start {:.6e})",
+            p.parameter.label(),
+            p.value,
+            p.stderr,
+            p.parameter.unit(),
+            p.ci95[0],
+            p.ci95[1],
+            p.initial
+        );
+    }
+    for rec in &r.records {
+        outln!(
+            text,
+            "record {}: {:.6} Hz, {:.6} V (w = {:.5}, β = {:.5}), {}, {} periods, {} clipped, \
+             RMS residual {:.3e} V (noise {:.3e} V)",
+            rec.file,
+            rec.freq_hz,
+            rec.amplitude_v,
+            rec.w,
+            rec.beta,
+            rec.class.label(),
+            rec.periods,
+            rec.clipped,
+            rec.rms_residual_v,
+            rec.noise_v
+        );
+    }
+    outln!(text, "RMS residual      {:.6e} V", r.rms_residual_v);
+    if let Some(c) = r.chi2_dof {
+        outln!(text, "chi2/dof          {c:.4}");
+    }
+    outln!(text, "AIC, BIC          {:.3}, {:.3}", r.aic, r.bic);
+    outln!(
+        text,
+        "iterations        {} ({})",
+        r.iterations,
+        if r.converged {
+            "converged"
+        } else {
+            "not converged"
+        }
+    );
+}
+
+/// The report as the issue's JSON.
+fn to_json(r: &FitReport) -> Value {
+    let mut parameters = Map::new();
+    for p in &r.parameters {
+        parameters.insert(
+            p.parameter.label().to_string(),
+            json!({"value": p.value, "stderr": finite(p.stderr), "ci95": [finite(p.ci95[0]), finite(p.ci95[1])]}),
+        );
+    }
+    let records: Vec<Value> = r
+        .records
+        .iter()
+        .map(|rec| {
+            json!({
+                "file": rec.file,
+                "freq_Hz": rec.freq_hz,
+                "amplitude_V": rec.amplitude_v,
+                "w": rec.w,
+                "beta": rec.beta,
+                "class": rec.class.label(),
+                "periods": rec.periods,
+                "clipped": rec.clipped,
+                "rms_residual_V": rec.rms_residual_v,
+                "offset_V": rec.offset_v,
+                "time_shift_s": rec.time_shift_s,
+            })
+        })
+        .collect();
+    let rows: Vec<Value> = r
+        .rows
+        .iter()
+        .map(|row| {
+            json!({
+                "line": row.line,
+                "freq_Hz": row.freq_hz,
+                "U_V": row.drive_v,
+                "direction": row.direction,
+                "measured_V": row.measured_v,
+                "model_V": row.model_v,
+                "class": row.class.label(),
+            })
+        })
+        .collect();
+    let correlation: Vec<Vec<Value>> = r
+        .correlation
+        .iter()
+        .map(|row| row.iter().map(|&c| finite(c)).collect())
+        .collect();
+    let mut out = json!({
+        "model": r.model.label(),
+        "parameters": parameters,
+        "correlation": correlation,
+        "rms_residual_V": r.rms_residual_v,
+        "chi2_dof": r.chi2_dof,
+        "converged": r.converged,
+        "iterations": r.iterations,
+        "aic": r.aic,
+        "bic": r.bic,
+    });
+    let obj = out.as_object_mut().expect("an object");
+    if !records.is_empty() {
+        obj.insert("records".into(), Value::Array(records));
+    }
+    if !rows.is_empty() {
+        obj.insert("rows".into(), Value::Array(rows));
+    }
+    out
+}
+
+/// A number, or null when it is not finite (a singular fit's error bars).
+fn finite(v: f64) -> Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        Value::Null
+    }
+}

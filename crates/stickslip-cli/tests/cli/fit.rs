@@ -1,0 +1,144 @@
+//! `stickslip fit`: records synthesised by the library's exact solver at R = 80 Ω,
+//! U_t = 0.6 V, written as scope exports, fitted by the binary; bad input refused in one
+//! line with exit status 2.
+
+use super::common::{assert_usage_error, run, run_in, stderr, stdout};
+use std::f64::consts::TAU;
+use stickslip::experiment::Experiment;
+use stickslip::physical::{Circuit, Diode, PwlDiode};
+use stickslip::solver::sample_at;
+use stickslip::steady::SolverFactory;
+
+fn truth() -> Experiment {
+    Experiment::circuit(Circuit {
+        resistance: 80.0,
+        diode: Diode::Pwl(PwlDiode {
+            turn_on: 0.6,
+            resistance: 3.0,
+        }),
+        ..Circuit::paper()
+    })
+    .unwrap()
+}
+
+/// A Rigol export (or Keysight with `keysight`) of 1200 samples over 3.4 drive periods, 8-bit
+/// quantised with a step of uniform noise (a fixed xorshift sequence).
+fn export(w: f64, beta: f64, keysight: bool) -> String {
+    let e = truth().with_w(w).unwrap().with_beta(beta).unwrap();
+    let steady = e.steady().unwrap();
+    let scales = e.scales().unwrap();
+    let mut solver = e
+        .factory()
+        .make(e.params().unwrap(), steady.final_state())
+        .unwrap();
+    let n = 1200;
+    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
+    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
+    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut noise = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut q = |v: f64, peak: f64| {
+        let step = 2.5 * peak / 256.0;
+        ((v + 2.0 * step * noise()) / step).round() * step
+    };
+    let u = beta * scales.force;
+    let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
+    let mut text = if keysight {
+        "x-axis,1,2\nsecond,Volt,Volt\n".to_string()
+    } else {
+        format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,0.000000e+00,{dt:.6e}\n")
+    };
+    for k in 0..n {
+        let drive = q(u * (w * taus[k]).cos(), u);
+        let uc = q(samples[k].y * scales.position, peak);
+        if keysight {
+            text += &format!("{:.9e},{drive:.6e},{uc:.6e}\n", k as f64 * dt);
+        } else {
+            text += &format!("{k},{drive:.6e},{uc:.6e},\n");
+        }
+    }
+    text
+}
+
+#[test]
+fn fit_recovers_r_and_ut_from_two_scope_formats() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
+    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit", "--preset", "paper", "--data", "a.csv", "--data", "b.csv", "--json", "--out",
+            "res.csv",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let r = v["parameters"]["resistance"]["value"].as_f64().unwrap();
+    let ut = v["parameters"]["ut"]["value"].as_f64().unwrap();
+    assert!((r / 80.0 - 1.0).abs() < 0.01, "R = {r}");
+    assert!((ut / 0.6 - 1.0).abs() < 0.01, "U_t = {ut}");
+    let ci = v["parameters"]["resistance"]["ci95"].as_array().unwrap();
+    assert!(ci[0].as_f64().unwrap() < r && r < ci[1].as_f64().unwrap());
+    assert_eq!(v["model"], "pwl");
+    assert_eq!(v["converged"], true);
+    let records = v["records"].as_array().unwrap();
+    assert_eq!(records.len(), 2);
+    assert_eq!(records[0]["file"], "a.csv");
+    assert_eq!(records[0]["periods"], 3);
+    assert_eq!(records[1]["class"], "sliding");
+    let f0 = truth().scales().unwrap().f0();
+    let f = records[1]["freq_Hz"].as_f64().unwrap();
+    assert!((f / (0.95 * f0) - 1.0).abs() < 1e-3, "{f}");
+    assert!(v["chi2_dof"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["correlation"].as_array().unwrap().len(), 2);
+    let residuals = std::fs::read_to_string(dir.path().join("res.csv")).unwrap();
+    assert!(residuals.starts_with("model,file,t_s,measured_V,model_V,residual_V\n"));
+    // A line per sample that is not clipped, and the header.
+    let clipped: u64 = records.iter().map(|r| r["clipped"].as_u64().unwrap()).sum();
+    assert_eq!(residuals.lines().count() as u64, 1 + 2400 - clipped);
+    assert!(clipped < 50, "{clipped} clipped");
+}
+
+#[test]
+fn fit_refuses_bad_input_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut bad = export(0.95, 2.14, true);
+    bad = bad.replacen("\n1.", "\n1.,garbage\n1.", 1);
+    std::fs::write(dir.path().join("bad.csv"), bad).unwrap();
+    std::fs::write(
+        dir.path().join("gain.csv"),
+        "freq_Hz,U_V,response_V,phase\n1,1,1,1\n",
+    )
+    .unwrap();
+    let run_bad = |args: &[&str], needle: &str| {
+        let out = run_in(dir.path(), args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "'{needle}' not in {err}");
+    };
+    run_bad(
+        &["fit", "--preset", "paper", "--data", "bad.csv"],
+        "bad.csv: line",
+    );
+    run_bad(
+        &["fit", "--preset", "paper", "--gain-table", "gain.csv"],
+        "gain.csv: line 1: unknown column \"phase\"",
+    );
+    run_bad(
+        &[
+            "fit", "--preset", "paper", "--data", "bad.csv", "--free", "zeta",
+        ],
+        "unknown fit parameter \"zeta\"",
+    );
+    let (d, out) = run(&["fit", "--preset", "paper"]);
+    assert_usage_error(d.path(), &out, "--data");
+    let (d, out) = run(&["fit", "--preset", "paper", "--data", "missing.csv"]);
+    assert_usage_error(d.path(), &out, "missing.csv");
+}
