@@ -8,6 +8,7 @@ mod convert;
 mod determinism;
 mod dynamics;
 mod fuzz_props;
+mod keys;
 mod lab;
 mod limits;
 mod lyapunov;
