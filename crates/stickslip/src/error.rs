@@ -121,6 +121,15 @@ pub enum Error {
     /// An experiment file could not be read as an experiment.
     #[error(transparent)]
     Config(#[from] ConfigError),
+    /// Text that is not a value of its key: not a number, or a number with a unit that is
+    /// not the key's ([`crate::experiment::Key::parse`]).
+    #[error("invalid {key}: {error}")]
+    InvalidText {
+        /// The key the text was given for.
+        key: crate::experiment::Key,
+        /// What is wrong with the text.
+        error: crate::units::NumberError,
+    },
     /// What was asked for does not apply to this model.
     #[error("{0}")]
     Unsupported(Unsupported),

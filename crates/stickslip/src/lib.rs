@@ -57,6 +57,7 @@ pub mod exact;
 pub mod experiment;
 pub mod limits;
 mod linear;
+pub mod names;
 pub mod params;
 pub mod physical;
 pub mod scan;

@@ -431,7 +431,7 @@ impl Scales {
             "must be finite and >= 0 (V or N)",
         )?;
         check(
-            "Omega",
+            "omega",
             omega,
             omega > 0.0,
             "must be finite and > 0 (rad/s)",

@@ -1,8 +1,9 @@
 //! Numbers with SI prefixes and units, as people write component values: `20n`, `0.02uF`,
 //! `11.5mH`, `9.97kHz`, `68ohm`, `1e-3`.
 //!
-//! The unit is optional and not checked against the quantity (it is there for the reader);
-//! the prefix scales the number. Prefixes: f p n u µ m k M G.
+//! The unit is optional; [`parse_si`] strips it without checking it against the quantity,
+//! [`crate::experiment::Key::parse`] checks it against the key's. The prefix scales the
+//! number. Prefixes: f p n u µ m k M G.
 
 /// Why a text is not a number.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -13,11 +14,35 @@ pub enum NumberError {
     /// The number is infinite or NaN.
     #[error("'{0}' is not a finite number")]
     NotFinite(String),
+    /// The number ends with a unit that is not the quantity's (`9.97kV` for a frequency).
+    #[error(
+        "the unit {unit} does not fit: write {}the number alone",
+        Alternatives(allowed)
+    )]
+    WrongUnit {
+        /// The unit written.
+        unit: &'static str,
+        /// The units the quantity may be written with (none: dimensionless).
+        allowed: &'static [&'static str],
+    },
+}
+
+/// `H or ` for the units of a quantity, nothing for none.
+struct Alternatives(&'static [&'static str]);
+
+impl std::fmt::Display for Alternatives {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0.is_empty() {
+            Ok(())
+        } else {
+            write!(f, "{} or ", self.0.join(" or "))
+        }
+    }
 }
 
 /// The text as a message shows it: control characters (a line break in a quoted value, say)
 /// escaped, so that the message stays one line.
-fn shown(text: &str) -> String {
+pub(crate) fn shown(text: &str) -> String {
     text.chars()
         .flat_map(|c| {
             let escaped: Vec<char> = if c.is_control() {
@@ -30,8 +55,8 @@ fn shown(text: &str) -> String {
         .collect()
 }
 
-/// Units that may follow a number (stripped, not checked).
-const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
+/// Units that may follow a number, longest first where one ends another.
+pub const UNITS: [&str; 10] = ["Hz", "ohm", "Ohm", "Ω", "H", "F", "V", "A", "s", "N"];
 
 /// SI prefixes and their factors.
 const PREFIXES: [(char, f64); 9] = [

@@ -30,16 +30,18 @@ mod stability;
 mod trajectory;
 
 pub use file::ConfigError;
-pub use key::Key;
+pub use key::{Key, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use spec::{ExperimentSpec, SpecError};
 pub use trajectory::Trajectory;
 
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
+use crate::scan::ParameterRange;
 use crate::shockley::{DiodePair, ShockleyOptions, ShockleySolver};
 use crate::solver::Solver;
 use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
+use crate::theory::curves::{SweepTheory, TheoryCurve};
 use crate::ExactSolver;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -56,6 +58,22 @@ pub enum DiodeModel {
 }
 
 impl DiodeModel {
+    /// Both laws.
+    pub const ALL: [DiodeModel; 2] = [DiodeModel::Pwl, DiodeModel::Shockley];
+
+    /// What the law is and which solver runs it, in one line.
+    pub fn description(self) -> &'static str {
+        match self {
+            DiodeModel::Pwl => {
+                "Piecewise linear: U_t sgn(i) + R_D i (the paper's model; solved exactly)"
+            }
+            DiodeModel::Shockley => {
+                "Shockley law of two anti-parallel diodes: n V_T asinh(i/2I_s) + R_s i (stiff \
+                 solver)"
+            }
+        }
+    }
+
     /// `pwl` or `shockley`.
     pub fn label(self) -> &'static str {
         match self {
@@ -74,6 +92,16 @@ pub enum Preset {
 }
 
 impl Preset {
+    /// Every preset.
+    pub const ALL: [Preset; 1] = [Preset::Paper];
+
+    /// What the preset describes, in one line.
+    pub fn description(self) -> &'static str {
+        match self {
+            Preset::Paper => "The paper's experiment",
+        }
+    }
+
     /// The preset's name: `paper`.
     pub fn label(self) -> &'static str {
         match self {
@@ -261,9 +289,7 @@ impl Experiment {
     /// # Errors
     /// [`SpecError::NeedsPhysical`] without a physical system; when f is not finite and > 0.
     pub fn with_frequency(self, hertz: f64) -> Result<Self> {
-        let hertz = Key::Frequency.check(hertz)?;
-        let s = self.physical_scales(Key::Frequency)?;
-        let w = spec::image((Key::Frequency, hertz, hertz * TAU / s.omega0), Key::W)?;
+        let w = self.image_of(Key::Frequency, hertz)?;
         self.with_w(w)
     }
 
@@ -272,9 +298,7 @@ impl Experiment {
     /// # Errors
     /// [`SpecError::NeedsPhysical`] without a physical system; when Ω is not finite and > 0.
     pub fn with_omega(self, omega: f64) -> Result<Self> {
-        let omega = Key::Omega.check(omega)?;
-        let s = self.physical_scales(Key::Omega)?;
-        let w = spec::image((Key::Omega, omega, omega / s.omega0), Key::W)?;
+        let w = self.image_of(Key::Omega, omega)?;
         self.with_w(w)
     }
 
@@ -284,9 +308,7 @@ impl Experiment {
     /// [`SpecError::NeedsPhysical`] without a physical system; when the amplitude is not
     /// finite and ≥ 0.
     pub fn with_amplitude(self, amplitude: f64) -> Result<Self> {
-        let amplitude = Key::Amplitude.check(amplitude)?;
-        let s = self.physical_scales(Key::Amplitude)?;
-        let beta = spec::image((Key::Amplitude, amplitude, amplitude / s.force), Key::Beta)?;
+        let beta = self.image_of(Key::Amplitude, amplitude)?;
         self.with_beta(beta)
     }
 
@@ -314,6 +336,17 @@ impl Experiment {
     pub fn with_shockley_options(mut self, options: ShockleyOptions) -> Result<Self> {
         self.shockley = options.validate()?;
         Ok(self)
+    }
+
+    /// The dimensionless value that `value` of the physical key `key` gives with this
+    /// system's scales ([`Key::image`]), checked against the range of the value it gives.
+    fn image_of(&self, key: Key, value: f64) -> Result<f64> {
+        let value = key.check(value)?;
+        let scales = self.physical_scales(key)?;
+        let (Some(target), Some(image)) = (key.image_key(), key.image(value, &scales)) else {
+            return Ok(value);
+        };
+        spec::image((key, value, image), target)
     }
 
     fn physical_scales(&self, key: Key) -> Result<Scales> {
@@ -397,6 +430,44 @@ impl Experiment {
             circuit: matches!(s, System::Circuit(_)),
             scales: s.scales(),
         })
+    }
+
+    /// The theory's gain curves over the range of a sweep of `parameter` from this
+    /// experiment ([`SweepTheory`]): the paper's eq. (11) and the exact sliding orbit's
+    /// peak gain.
+    ///
+    /// # Errors
+    /// [`SpecError::MissingDrive`] when w or β is missing and not swept; a value out of range.
+    pub fn sweep_theory(
+        &self,
+        parameter: Parameter,
+        range: &ParameterRange,
+    ) -> Result<SweepTheory> {
+        let base = self.params_with(&[(parameter, range.from())])?;
+        Ok(SweepTheory::new(
+            &base,
+            parameter,
+            (range.from(), range.to(), range.steps()),
+            self.diode_model() == DiodeModel::Shockley,
+        ))
+    }
+
+    /// The exact sliding orbit's A1/β over the range of a sweep of `parameter` from this
+    /// experiment ([`SweepTheory::exact_a1`]).
+    ///
+    /// # Errors
+    /// As [`Experiment::sweep_theory`].
+    pub fn sweep_theory_a1(
+        &self,
+        parameter: Parameter,
+        range: &ParameterRange,
+    ) -> Result<TheoryCurve> {
+        let base = self.params_with(&[(parameter, range.from())])?;
+        Ok(SweepTheory::exact_a1(
+            &base,
+            parameter,
+            (range.from(), range.to(), range.steps()),
+        ))
     }
 
     /// The dimensionless parameters.

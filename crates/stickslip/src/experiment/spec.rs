@@ -4,38 +4,10 @@
 use super::key::Key;
 use super::{DiodeModel, Experiment, Origin, Preset};
 use crate::error::{Error, Result, Unsupported};
-use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
+use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System};
 use crate::shockley::{DiodePair, ShockleyOptions};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::f64::consts::TAU;
-
-/// Keys that describe a circuit.
-const CIRCUIT_KEYS: [Key; 5] = [
-    Key::Inductance,
-    Key::Capacitance,
-    Key::Resistance,
-    Key::TurnOn,
-    Key::DiodeResistance,
-];
-/// Keys that describe a mechanical oscillator.
-const MECHANICS_KEYS: [Key; 4] = [Key::Mass, Key::Stiffness, Key::Damping, Key::Friction];
-/// Keys that mean something only with a physical description.
-const PHYSICAL_ONLY: [Key; 5] = [
-    Key::Amplitude,
-    Key::Frequency,
-    Key::Omega,
-    Key::Uc0,
-    Key::I0,
-];
-/// Groups of keys that give the same quantity: a layer that sets one of them replaces the
-/// whole group of the layers below, and one layer may set only one of each.
-const GROUPS: [(&[Key], &str); 4] = [
-    (&[Key::W, Key::Frequency, Key::Omega], "drive frequency"),
-    (&[Key::Beta, Key::Amplitude], "drive amplitude"),
-    (&[Key::Y0, Key::Uc0], "initial position"),
-    (&[Key::V0, Key::I0], "initial velocity"),
-];
 
 /// An experiment description that is incomplete or contradicts itself.
 ///
@@ -87,6 +59,19 @@ pub enum SpecError {
 }
 
 impl SpecError {
+    /// The key the error is about (for a value given twice, the second), for a front end to
+    /// point at.
+    pub fn key(&self) -> Option<Key> {
+        match *self {
+            SpecError::Missing { key, .. }
+            | SpecError::MissingDrive { key }
+            | SpecError::NeedsPhysical { key } => Some(key),
+            SpecError::Twice { second, .. } => Some(second),
+            SpecError::ZetaWithPhysical => Some(Key::Zeta),
+            SpecError::CircuitAndMechanics { mechanical } => Some(mechanical),
+        }
+    }
+
     /// The message, one line, with each key named by `name` (e.g. a command-line flag).
     pub fn render(&self, name: &dyn Fn(Key) -> String) -> String {
         match *self {
@@ -138,6 +123,17 @@ impl SpecError {
             ),
         }
     }
+}
+
+/// The quantities that several keys give (the drive frequency as w, f or Ω, ...): a layer
+/// that sets one of them replaces the whole group of the layers below, and one layer may set
+/// only one of each.
+fn quantities() -> Vec<(&'static str, Vec<Key>)> {
+    Key::ALL
+        .into_iter()
+        .filter(|k| k.image_key().is_none())
+        .filter_map(Key::quantity)
+        .collect()
 }
 
 /// Check the dimensionless value `image` that the value `value` of `key` gives against the
@@ -225,9 +221,9 @@ impl ExperimentSpec {
     /// Remove the quantity that `key` gives, in every form: [`Key::W`] removes the drive
     /// frequency given as w, f or Ω, say (see the type's documentation).
     pub fn unset_quantity(&mut self, key: Key) -> &mut Self {
-        match GROUPS.iter().find(|(keys, _)| keys.contains(&key)) {
-            Some((keys, _)) => {
-                for &k in *keys {
+        match key.quantity() {
+            Some((_, keys)) => {
+                for k in keys {
                     self.unset(k);
                 }
             }
@@ -285,9 +281,9 @@ impl ExperimentSpec {
     /// below.
     pub fn overlay(&self, top: &ExperimentSpec) -> ExperimentSpec {
         let mut out = self.clone();
-        for (keys, _) in GROUPS {
+        for (_, keys) in quantities() {
             if keys.iter().any(|k| top.values.contains_key(k)) {
-                for k in keys {
+                for k in &keys {
                     out.values.remove(k);
                 }
             }
@@ -313,8 +309,11 @@ impl ExperimentSpec {
     /// - [`Error::InvalidParameter`]: a value out of range after conversion (w from f, say).
     pub fn build(&self) -> Result<Experiment> {
         let has = |k: Key| self.values.contains_key(&k);
-        let circuit = self.preset.is_some() || CIRCUIT_KEYS.iter().any(|&k| has(k));
-        let mechanical = MECHANICS_KEYS.iter().copied().find(|&k| has(k));
+        let circuit =
+            self.preset.is_some() || Key::ALL.into_iter().any(|k| k.is_circuit_part() && has(k));
+        let mechanical = Key::ALL
+            .into_iter()
+            .find(|&k| k.is_mechanics_part() && has(k));
         if let (true, Some(key)) = (circuit, mechanical) {
             return Err(SpecError::CircuitAndMechanics { mechanical: key }.into());
         }
@@ -341,11 +340,14 @@ impl ExperimentSpec {
             return Err(Error::Unsupported(Unsupported::ShockleyNeedsCircuit));
         }
         if system.is_none() {
-            if let Some(key) = PHYSICAL_ONLY.iter().copied().find(|&k| has(k)) {
+            if let Some(key) = Key::ALL
+                .into_iter()
+                .find(|&k| k.image_key().is_some() && has(k))
+            {
                 return Err(SpecError::NeedsPhysical { key }.into());
             }
         }
-        for (keys, what) in GROUPS {
+        for (what, keys) in quantities() {
             let given: Vec<Key> = keys.iter().copied().filter(|&k| has(k)).collect();
             if given.len() > 1 {
                 return Err(SpecError::Twice {
@@ -391,18 +393,22 @@ impl ExperimentSpec {
             (None, Some(z)) => z,
             (None, None) => Circuit::paper().scales().zeta(),
         };
-        // Physical values convert with the scales; without scales they were rejected above.
-        let convert = |key: Key, scale: fn(&Scales) -> f64| {
-            self.get(key)
-                .map(|x| (key, x, scales.map_or(x, |s| x / scale(&s))))
+        // Each dimensionless value as given, or from the first physical value that gives it
+        // (converted with the scales; without scales they were rejected above).
+        let value = |target: Key| {
+            Key::ALL
+                .into_iter()
+                .filter(|&k| k == target || k.image_key() == Some(target))
+                .find_map(|key| {
+                    let x = self.get(key)?;
+                    let image = scales.and_then(|s| key.image(x, &s)).unwrap_or(x);
+                    Some((key, x, image))
+                })
         };
-        let given = |key: Key| self.get(key).map(|x| (key, x, x));
-        let w = given(Key::W)
-            .or_else(|| convert(Key::Frequency, |s| s.omega0 / TAU))
-            .or_else(|| convert(Key::Omega, |s| s.omega0));
-        let beta = given(Key::Beta).or_else(|| convert(Key::Amplitude, |s| s.force));
-        let y0 = given(Key::Y0).or_else(|| convert(Key::Uc0, |s| s.position));
-        let v0 = given(Key::V0).or_else(|| convert(Key::I0, |s| s.velocity));
+        let w = value(Key::W);
+        let beta = value(Key::Beta);
+        let y0 = value(Key::Y0);
+        let v0 = value(Key::V0);
         let origin = match (system, self.preset, &self.source) {
             (None, _, _) => Origin::Parameters,
             (Some(_), Some(p), _) => Origin::Preset(p),
@@ -475,6 +481,7 @@ impl ExperimentSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::TAU;
 
     fn spec(pairs: &[(Key, f64)]) -> ExperimentSpec {
         let mut s = ExperimentSpec::new();

@@ -60,14 +60,14 @@ impl DiodePair {
     ) -> Result<Self> {
         Ok(Self {
             saturation_current: check(
-                "I_s",
+                "Is",
                 saturation_current,
                 saturation_current > 0.0,
                 "must be finite and > 0 (amperes)",
             )?,
             emission: check("n", emission, emission > 0.0, "must be finite and > 0")?,
             series_resistance: check(
-                "R_s",
+                "Rs",
                 series_resistance,
                 series_resistance >= 0.0,
                 "must be finite and >= 0 (ohms)",
@@ -385,9 +385,9 @@ mod tests {
     #[test]
     fn rejects_bad_values_naming_the_field() {
         let cases = [
-            (DiodePair::new(0.0, 1.9, 0.6, 27.0), "I_s"),
+            (DiodePair::new(0.0, 1.9, 0.6, 27.0), "Is"),
             (DiodePair::new(1e-9, f64::NAN, 0.6, 27.0), "n"),
-            (DiodePair::new(1e-9, 1.9, -1.0, 27.0), "R_s"),
+            (DiodePair::new(1e-9, 1.9, -1.0, 27.0), "Rs"),
             (DiodePair::new(1e-9, 1.9, 0.6, -300.0), "temperature"),
         ];
         for (result, field) in cases {

@@ -34,6 +34,19 @@ pub enum Theory {
     Exact,
 }
 
+impl Theory {
+    /// Both theories.
+    pub const ALL: [Theory; 2] = [Theory::Paper, Theory::Exact];
+
+    /// `paper` or `exact`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Theory::Paper => "paper",
+            Theory::Exact => "exact",
+        }
+    }
+}
+
 /// What a theory curve shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum TheoryQuantity {
@@ -151,6 +164,50 @@ pub fn theory_curve(
         over,
         x: xs.to_vec(),
         y,
+    }
+}
+
+/// The theory's gain curves over a sweep's range, at the sweep's other parameters: what is
+/// drawn over a simulated sweep (the command line's plot, the lab's sweep view).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepTheory {
+    /// The paper's gain A1/β, eq. (11).
+    pub paper: TheoryCurve,
+    /// The exact sliding orbit's peak/β: what the simulated gain (y_max − y_min)/(2β)
+    /// measures on a sliding orbit.
+    pub exact: TheoryCurve,
+    /// Legend prefix: `PWL theory: ` when the experiment's diodes are Shockley diodes (the
+    /// theory is that of the piecewise-linear model), else empty.
+    pub prefix: &'static str,
+}
+
+impl SweepTheory {
+    /// The curves over [`abscissae`]`(from, to, steps)` of `over`, the other parameters from
+    /// `base`; `shockley` says that the swept experiment has Shockley diodes ([`Self::prefix`]).
+    pub fn new(
+        base: &Params,
+        over: Parameter,
+        (from, to, steps): (f64, f64, usize),
+        shockley: bool,
+    ) -> Self {
+        let xs = abscissae(from, to, steps);
+        let curve = |theory, quantity| theory_curve(theory, quantity, base, over, &xs);
+        Self {
+            paper: curve(Theory::Paper, TheoryQuantity::Gain),
+            exact: curve(Theory::Exact, TheoryQuantity::PeakGain),
+            prefix: if shockley { "PWL theory: " } else { "" },
+        }
+    }
+
+    /// The exact sliding orbit's A1/β over the same abscissae: the gain of the paper's
+    /// definition, to compare with the paper's eq. (11) and with the simulated A1/β.
+    pub fn exact_a1(
+        base: &Params,
+        over: Parameter,
+        (from, to, steps): (f64, f64, usize),
+    ) -> TheoryCurve {
+        let xs = abscissae(from, to, steps);
+        theory_curve(Theory::Exact, TheoryQuantity::Gain, base, over, &xs)
     }
 }
 
