@@ -2,7 +2,7 @@
 //! steady-state search, parameter ranges, and the rule that a swept parameter takes no value
 //! of its own.
 
-use crate::model::{flag_name, ModelArgs};
+use crate::model::{flag, ModelArgs};
 use crate::output::usage;
 use anyhow::Result;
 use stickslip::experiment::Key;
@@ -108,23 +108,20 @@ pub fn range_from_flags(
     Ok(ParameterRange::new(name, from, to, steps as usize)?)
 }
 
-/// The keys that give a value of `parameter` (w also as f or Ω, β also as U).
+/// The keys that give a value of `parameter`: the library's [`Parameter::keys`] (for the
+/// lab, until it calls the library itself).
+#[doc(hidden)]
 pub fn keys_of(parameter: Parameter) -> &'static [Key] {
-    match parameter {
-        Parameter::W => &[Key::W, Key::Frequency, Key::Omega],
-        Parameter::Beta => &[Key::Beta, Key::Amplitude],
-        Parameter::Zeta => &[Key::Zeta],
-        Parameter::MuS => &[Key::MuS],
-    }
+    parameter.keys()
 }
 
 /// Refuse flags that give a value of the swept parameter (`--over w` with `--w`, say).
 pub fn reject_swept_flags(model: &ModelArgs, over: Parameter, command: &str) -> Result<()> {
-    if let Some(&key) = keys_of(over).iter().find(|&&k| model.given(k)) {
+    if let Some(&key) = over.keys().iter().find(|&&k| model.given(k)) {
         usage!(
             "{command} sets {} from its range: drop {}",
             over.label(),
-            flag_name(key)
+            flag(key)
         );
     }
     Ok(())

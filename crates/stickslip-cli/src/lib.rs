@@ -8,6 +8,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 mod checkpoint;
+mod choice;
 mod commands;
 mod diagrams;
 mod flags;
@@ -123,7 +124,7 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
             )
         });
     if let Some(Error::Spec(spec)) = library {
-        return (spec.render(&model::flag_name), true);
+        return (spec.render(&model::flag), true);
     }
     if let Some(Error::ImageOutOfRange {
         key,
@@ -133,7 +134,7 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
         allowed,
     }) = library
     {
-        let flag = model::flag_name(*key);
+        let flag = model::flag(*key);
         let (value, image_value) = (stickslip::Number(*value), stickslip::Number(*image_value));
         return (
             format!("invalid {flag} {value}: it gives {image} = {image_value}, which {allowed}"),

@@ -1,7 +1,8 @@
 //! `stickslip basins`: the attractor reached from each initial state of a grid.
 
 use crate::checkpoint::CheckpointFlags;
-use crate::model::{finite, flag_name, ModelArgs};
+use crate::choice::choice;
+use crate::model::{finite, flag, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
 use std::io::Write;
@@ -82,8 +83,8 @@ pub struct Args {
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its
     /// steady state and classified).
-    #[arg(long, value_enum, default_value_t = Method::Recurrence)]
-    method: Method,
+    #[arg(long, value_parser = choice::<BasinMethod>(), default_value_t = BasinMethod::Recurrence)]
+    method: BasinMethod,
     /// Recurrence: cells of the state-space grid across the map's extent along each axis
     /// (16 to 1e6; at least 4 per grid spacing of the map are used).
     #[arg(long, default_value_t = 1024, allow_hyphen_values = true)]
@@ -99,13 +100,6 @@ pub struct Args {
     json: bool,
     #[command(flatten)]
     checkpoint: CheckpointFlags,
-}
-
-/// `--method`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Method {
-    Recurrence,
-    Exhaustive,
 }
 
 /// Run `stickslip basins`.
@@ -153,7 +147,7 @@ pub fn run(args: Args) -> Result<()> {
         if args.model.given(key) {
             usage!(
                 "basins sets the initial state from its grid: drop {}",
-                flag_name(key)
+                flag(key)
             );
         }
     }
@@ -172,10 +166,7 @@ pub fn run(args: Args) -> Result<()> {
     let options = BasinOptions {
         max_periods: args.max_periods as usize,
         max_period: args.max_period as usize,
-        method: match args.method {
-            Method::Recurrence => BasinMethod::Recurrence,
-            Method::Exhaustive => BasinMethod::Exhaustive,
-        },
+        method: args.method,
         resolution: args.resolution as usize,
         ..BasinOptions::default()
     }

@@ -1,7 +1,7 @@
 //! `stickslip bifurcation`: strobe points and the largest Lyapunov exponent against a
 //! parameter, state carried from value to value, with the branches of periodic orbits.
 
-use crate::commands::sweep::{Direction, Over};
+use crate::choice::choice;
 use crate::flags::{range_from_flags, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
@@ -12,6 +12,7 @@ use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::ContinuationOptions;
 use stickslip::scan::{Axis, SweepDirection, SweepLeg};
+use stickslip::Parameter;
 
 /// Bifurcation diagram: at each value of one parameter (w, β, ζ or μs), after a transient,
 /// the strobe points (y, y') once per drive period at drive phase φ, with the largest
@@ -37,8 +38,8 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// The parameter stepped (the others come from the model flags).
-    #[arg(long, value_enum)]
-    over: Over,
+    #[arg(long, value_parser = choice::<Parameter>())]
+    over: Parameter,
     /// First value of the parameter (dimensionless).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     from: f64,
@@ -48,9 +49,10 @@ pub struct Args {
     /// Number of values from --from to --to, both included.
     #[arg(long, allow_hyphen_values = true)]
     steps: i64,
-    /// Which way to step.
-    #[arg(long, value_enum, default_value_t = Direction::Both)]
-    direction: Direction,
+    /// Which way to step: up (from --from to --to), down (from --to to --from), or both (up,
+    /// then down again from where the up leg ended).
+    #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
+    direction: SweepDirection,
     /// Strobe points recorded at each value (drive periods).
     #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
     points: i64,
@@ -80,7 +82,7 @@ pub struct Args {
 
 /// Run `stickslip bifurcation`.
 pub fn run(args: Args) -> Result<()> {
-    let parameter = args.over.parameter();
+    let parameter = args.over;
     let range = range_from_flags(
         parameter.label(),
         ("from", args.from),
@@ -106,7 +108,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let rows = args.points as u64
         * range.steps() as u64
-        * if args.direction == Direction::Both {
+        * if args.direction == SweepDirection::Both {
             2
         } else {
             1
@@ -129,11 +131,7 @@ pub fn run(args: Args) -> Result<()> {
         },
         first_transient_periods: args.first_transient as usize,
     };
-    let direction = match args.direction {
-        Direction::Up => SweepDirection::Up,
-        Direction::Down => SweepDirection::Down,
-        Direction::Both => SweepDirection::Both,
-    };
+    let direction = args.direction;
     let diagram = Bifurcation::new(&experiment, Axis::range(parameter, &range)?)?
         .direction(direction)
         .options(options)?;

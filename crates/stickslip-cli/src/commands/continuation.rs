@@ -1,6 +1,6 @@
 //! `stickslip continue`: a branch of periodic orbits by pseudo-arclength continuation.
 
-use crate::commands::sweep::Over;
+use crate::choice::choice;
 use crate::flags::reject_swept_flags;
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use stickslip::continuation::{
     continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
+use stickslip::Parameter;
 
 /// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
 /// --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
@@ -38,8 +39,8 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// The continued parameter (the others come from the model flags).
-    #[arg(long, value_enum)]
-    over: Over,
+    #[arg(long, value_parser = choice::<Parameter>())]
+    over: Parameter,
     /// Start value: the orbit the motion settles on here is continued.
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     from: f64,
@@ -70,7 +71,7 @@ pub struct Args {
 
 /// Run `stickslip continue`.
 pub fn run(args: Args) -> Result<()> {
-    let parameter = args.over.parameter();
+    let parameter = args.over;
     if args.from == args.to {
         usage!("invalid --to {}: must differ from --from", args.to);
     }

@@ -77,17 +77,15 @@ pub enum Curve {
 /// Run `stickslip theory`.
 pub fn run(args: Args) -> Result<()> {
     let m = &args.model;
-    for (given, name) in [
-        (m.y0.is_some(), "y0"),
-        (m.v0.is_some(), "v0"),
-        (m.uc0.is_some(), "uc0"),
-        (m.i0.is_some(), "i0"),
-    ] {
-        if given {
-            usage!("--{name} is not used by theory: it computes steady states, not a run from an initial state");
+    for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
+        if m.given(key) {
+            usage!(
+                "{} is not used by theory: it computes steady states, not a run from an initial state",
+                crate::model::flag(key)
+            );
         }
     }
-    if m.model == Some(crate::model::DiodeModel::Shockley) {
+    if m.diode == Some(DiodeModel::Shockley) {
         usage!("theory covers the piecewise-linear diode (Coulomb friction) model; --model shockley is not supported");
     }
     match args.curve {

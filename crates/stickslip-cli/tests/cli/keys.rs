@@ -3,53 +3,8 @@
 //! range is refused with the library's words, exit code 2, before any work.
 
 use crate::common::*;
-use stickslip::experiment::{ExperimentSpec, Key, Preset};
+use stickslip::experiment::{ExperimentSpec, Key, KeyForm, Preset};
 use stickslip::{DiodeModel, Number};
-
-/// The flag of `key`, as the user types it (without dashes).
-fn flag(key: Key) -> &'static str {
-    match key {
-        Key::Zeta => "zeta",
-        Key::W => "w",
-        Key::Beta => "beta",
-        Key::Phi => "phi",
-        Key::MuS => "mu-s",
-        Key::Y0 => "y0",
-        Key::V0 => "v0",
-        Key::Inductance => "inductance",
-        Key::Capacitance => "capacitance",
-        Key::Resistance => "resistance",
-        Key::TurnOn => "ut",
-        Key::DiodeResistance => "rd",
-        Key::Mass => "mass",
-        Key::Stiffness => "stiffness",
-        Key::Damping => "damping",
-        Key::Friction => "friction",
-        Key::Amplitude => "amplitude",
-        Key::Frequency => "freq",
-        Key::Omega => "omega",
-        Key::Uc0 => "uc0",
-        Key::I0 => "i0",
-        Key::SaturationCurrent => "diode-is",
-        Key::Emission => "diode-n",
-        Key::SeriesResistance => "diode-rs",
-        Key::Temperature => "temperature",
-        Key::Diode => "model",
-        Key::Preset => "preset",
-        _ => unreachable!("a key without a flag"),
-    }
-}
-
-/// The other spellings of the flag of `key`.
-fn aliases(key: Key) -> &'static [&'static str] {
-    match key {
-        Key::Inductance => &["L"],
-        Key::Capacitance => &["C"],
-        Key::Resistance => &["R"],
-        Key::Amplitude => &["U"],
-        _ => &[],
-    }
-}
 
 /// One value of a description: the key, its text on the command line and the number it
 /// stands for (written out, so that the SI prefixes are checked too).
@@ -139,7 +94,7 @@ fn every_key_is_accepted_under_its_flag_and_aliases_and_reaches_the_experiment()
     // The walk covers the table: every key a user types a number for has a value above,
     // the two named keys are given too.
     for key in Key::ALL {
-        let numeric = !matches!(key, Key::Diode | Key::Preset);
+        let numeric = key.form() != KeyForm::Choice;
         let covered = descriptions
             .iter()
             .any(|(values, _)| values.iter().any(|v| v.0 == key));
@@ -148,18 +103,18 @@ fn every_key_is_accepted_under_its_flag_and_aliases_and_reaches_the_experiment()
     for (values, diode) in &descriptions {
         let mut flags: Vec<String> = Vec::new();
         for &(key, text, _) in values {
-            flags.push(format!("--{}", flag(key)));
+            flags.push(format!("--{}", key.flag()));
             flags.push(text.to_string());
         }
         if let Some(diode) = diode {
-            flags.push(format!("--{}", flag(Key::Diode)));
-            flags.push(diode.label().to_string());
+            flags.push(format!("--{}", Key::Diode.flag()));
+            flags.push(diode.to_string());
         }
         let expected = described(values, *diode, false);
         assert_eq!(simulate_description(&flags), expected);
         // Each alias in place of the flag gives the same experiment.
         for (i, &(key, _, _)) in values.iter().enumerate() {
-            for alias in aliases(key) {
+            for alias in key.aliases() {
                 let mut spelled = flags.clone();
                 spelled[2 * i] = format!("--{alias}");
                 assert_eq!(simulate_description(&spelled), expected, "--{alias}");
@@ -169,7 +124,7 @@ fn every_key_is_accepted_under_its_flag_and_aliases_and_reaches_the_experiment()
     // The preset, under its flag, with a drive over it.
     let drive = [(Key::W, "0.95", 0.95), (Key::Beta, "2.14", 2.14)];
     let flags: Vec<String> = [
-        format!("--{}", flag(Key::Preset)),
+        format!("--{}", Key::Preset.flag()),
         "paper".into(),
         "--w".into(),
         "0.95".into(),
@@ -180,17 +135,30 @@ fn every_key_is_accepted_under_its_flag_and_aliases_and_reaches_the_experiment()
     assert_eq!(simulate_description(&flags), described(&drive, None, true));
 }
 
-/// A value outside the range of `key` (by the library's own check), if it has one.
+/// A value outside the range of `key`, from the library's table, if it has one.
 fn outside(key: Key) -> Option<f64> {
-    [-1e300, -1e30, -1.0, 0.0, 1e30, 1e300]
-        .into_iter()
-        .find(|&v| key.check(v).is_err())
+    let range = key.range();
+    if range.min.is_finite() {
+        Some(if range.min_inclusive {
+            range.min - range.min.abs().max(1.0)
+        } else {
+            range.min
+        })
+    } else if range.max.is_finite() {
+        Some(if range.max_inclusive {
+            range.max + range.max.abs().max(1.0)
+        } else {
+            range.max
+        })
+    } else {
+        None
+    }
 }
 
 #[test]
 fn every_key_refuses_a_value_outside_its_range_with_the_librarys_words() {
     for key in Key::ALL {
-        if matches!(key, Key::Diode | Key::Preset) {
+        if key.form() == KeyForm::Choice {
             continue;
         }
         let Some(value) = outside(key) else {
@@ -199,14 +167,16 @@ fn every_key_refuses_a_value_outside_its_range_with_the_librarys_words() {
             assert!(matches!(key, Key::Uc0 | Key::I0), "{key} has no range");
             continue;
         };
-        let allowed = match key.check(value) {
-            Err(stickslip::Error::InvalidParameter { allowed, .. }) => allowed,
-            other => panic!("{key}: {other:?}"),
-        };
-        let expected = format!("invalid --{} {}: {allowed}", flag(key), Number(value));
+        assert!(key.check(value).is_err(), "{key} {value}");
+        let expected = format!(
+            "invalid --{} {}: {}",
+            key.flag(),
+            Number(value),
+            key.allowed()
+        );
         let text = format!("{value:e}");
-        let mut spellings = vec![flag(key)];
-        spellings.extend(aliases(key));
+        let mut spellings = vec![key.flag()];
+        spellings.extend(key.aliases());
         for spelling in spellings {
             let (dir, out) = run(&["steady", &format!("--{spelling}"), &text]);
             assert_usage_error(dir.path(), &out, &expected);
@@ -217,11 +187,54 @@ fn every_key_refuses_a_value_outside_its_range_with_the_librarys_words() {
 #[test]
 fn a_value_that_is_not_a_number_is_refused_naming_the_flag() {
     for key in Key::ALL {
-        if matches!(key, Key::Diode | Key::Preset) {
+        if key.form() == KeyForm::Choice {
             continue;
         }
-        let (dir, out) = run(&["steady", &format!("--{}", flag(key)), "nan"]);
-        assert_usage_error(dir.path(), &out, &format!("--{}", flag(key)));
+        let (dir, out) = run(&["steady", &format!("--{}", key.flag()), "nan"]);
+        assert_usage_error(dir.path(), &out, &format!("--{}", key.flag()));
         assert!(stderr(&out).contains("'nan'"), "{}", stderr(&out));
+    }
+}
+
+#[test]
+fn a_name_that_is_not_the_librarys_is_refused_naming_the_flag() {
+    for key in Key::ALL {
+        if key.form() != KeyForm::Choice {
+            continue;
+        }
+        let (dir, out) = run(&["steady", &format!("--{}", key.flag()), "nothing"]);
+        assert_usage_error(dir.path(), &out, &format!("--{}", key.flag()));
+        assert!(stderr(&out).contains("'nothing'"), "{}", stderr(&out));
+        // Every name the library lists is taken.
+        for name in key.choices() {
+            let out = run_in(dir.path(), &["convert", &format!("--{}", key.flag()), name]);
+            assert!(
+                !stderr(&out).contains(&format!("invalid value '{name}'")),
+                "{}",
+                stderr(&out)
+            );
+        }
+    }
+}
+
+/// A unit that is not the key's is refused, not read as the key's: `--freq 9.97kV`.
+#[test]
+fn a_unit_that_is_not_the_keys_is_refused() {
+    let units = ["Hz", "ohm", "H", "F", "V", "A", "s", "N"];
+    for key in Key::ALL {
+        if key.form() != KeyForm::Si {
+            continue;
+        }
+        let wrong = units
+            .iter()
+            .find(|u| !key.units().contains(u))
+            .expect("a unit that is not the key's");
+        let text = format!("2{wrong}");
+        let (dir, out) = run(&["steady", &format!("--{}", key.flag()), &text]);
+        assert_usage_error(dir.path(), &out, &format!("--{}", key.flag()));
+        assert!(stderr(&out).contains(&text), "{}", stderr(&out));
+        if let Some(&right) = key.units().first() {
+            assert_eq!(key.number(&format!("2{right}")).unwrap(), 2.0);
+        }
     }
 }

@@ -406,12 +406,10 @@ mod tests {
         let e = query("preset=paper&freq=9.97k&amplitude=1.498")
             .experiment()
             .unwrap();
-        let flags = crate::model::ModelArgs {
-            preset: Some(crate::model::Preset::Paper),
-            freq: Some(9970.0),
-            amplitude: Some(1.498),
-            ..Default::default()
-        };
+        let flags = crate::model::ModelArgs::default()
+            .with_preset(Preset::Paper)
+            .with(Key::Frequency, 9970.0)
+            .with(Key::Amplitude, 1.498);
         assert_eq!(e, flags.experiment().unwrap());
     }
 

@@ -3,12 +3,13 @@
 //! with one line of JSON; the time limit stops a computation.
 
 use super::router::{router, Lab, Settings};
-use crate::model::{ModelArgs, Preset};
+use crate::model::ModelArgs;
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use serde_json::Value;
 use std::time::Duration;
 use stickslip::experiment::Experiment;
+use stickslip::experiment::{Key, Preset};
 use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
 use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
@@ -94,12 +95,10 @@ async fn steady_equals_the_library_and_the_cli_for_the_same_point() {
     let (status, answer) =
         get("/api/steady?preset=paper&freq=9.97k&amplitude=1.498&samples=256").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        freq: Some(9970.0),
-        amplitude: Some(1.498),
-        ..Default::default()
-    };
+    let flags = ModelArgs::default()
+        .with_preset(Preset::Paper)
+        .with(Key::Frequency, 9970.0)
+        .with(Key::Amplitude, 1.498);
     let e = flags.experiment().unwrap();
     let steady = e.steady().unwrap();
     same_keys(
@@ -137,14 +136,12 @@ async fn shockley_and_mechanics_answer_as_the_library() {
     let (status, answer) =
         get("/api/steady?preset=paper&model=shockley&w=0.95&beta=2.14&diode-n=1.8").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        preset: Some(Preset::Paper),
-        model: Some(crate::model::DiodeModel::Shockley),
-        w: Some(0.95),
-        beta: Some(2.14),
-        diode_n: Some(1.8),
-        ..Default::default()
-    };
+    let flags = ModelArgs::default()
+        .with_preset(Preset::Paper)
+        .with_diode(stickslip::DiodeModel::Shockley)
+        .with(Key::W, 0.95)
+        .with(Key::Beta, 2.14)
+        .with(Key::Emission, 1.8);
     let steady = flags.experiment().unwrap().steady().unwrap();
     same_keys(
         &answer,
@@ -156,16 +153,14 @@ async fn shockley_and_mechanics_answer_as_the_library() {
         get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")
             .await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let flags = ModelArgs {
-        mass: Some(0.5),
-        stiffness: Some(200.0),
-        damping: Some(0.94),
-        friction: Some(1.0),
-        mu_s: Some(1.5),
-        w: Some(0.7),
-        beta: Some(1.4),
-        ..Default::default()
-    };
+    let flags = ModelArgs::default()
+        .with(Key::Mass, 0.5)
+        .with(Key::Stiffness, 200.0)
+        .with(Key::Damping, 0.94)
+        .with(Key::Friction, 1.0)
+        .with(Key::MuS, 1.5)
+        .with(Key::W, 0.7)
+        .with(Key::Beta, 1.4);
     let steady = flags.experiment().unwrap().steady().unwrap();
     same_keys(
         &answer,
