@@ -5,6 +5,7 @@
 //! is one line.
 
 use crate::experiment::{ConfigError, SpecError};
+use crate::options::{Allowed, OptionKey, Spelling};
 use crate::theory::Obstruction;
 use thiserror::Error;
 
@@ -21,6 +22,35 @@ pub enum Error {
         value: f64,
         /// What is allowed, in words (e.g. "must be finite and >= 0").
         allowed: &'static str,
+    },
+    /// An option of a computation is outside its range ([`crate::options`]).
+    #[error("invalid {} = {}: {}", option.name(), Number(*value), allowed.render(*option, Spelling::Python))]
+    InvalidOption {
+        /// The option.
+        option: OptionKey,
+        /// The rejected value.
+        value: f64,
+        /// What is allowed.
+        allowed: Allowed,
+    },
+    /// Two options whose product (the size of the result) is too large.
+    #[error(
+        "invalid {what} = {}: {} × {} must be at most {max}",
+        Number(*product),
+        first.name(),
+        second.name()
+    )]
+    OptionProduct {
+        /// What the product counts (`samples`, `rows`, `points`).
+        what: &'static str,
+        /// The first option.
+        first: OptionKey,
+        /// The second option.
+        second: OptionKey,
+        /// Their product.
+        product: f64,
+        /// The largest product allowed, in words.
+        max: &'static str,
     },
     /// A requested time lies before the solver's current time.
     #[error("requested time {requested} lies before the solver's current time {current}")]
@@ -115,6 +145,15 @@ pub enum Error {
         /// Points requested.
         total: usize,
     },
+    /// The computation's [`crate::cancel::Cancel`] token passed its deadline.
+    #[error("stopped: the deadline passed")]
+    DeadlineExceeded,
+    /// The computation's [`crate::cancel::Cancel`] token used up its budget of solver steps.
+    #[error("stopped: the budget of {budget} solver steps is used up")]
+    BudgetExceeded {
+        /// The budget (solver steps).
+        budget: u64,
+    },
     /// An experiment description is incomplete or contradicts itself.
     #[error(transparent)]
     Spec(#[from] SpecError),
@@ -136,6 +175,61 @@ pub enum Error {
     /// A stability analysis failed (Newton's method, a non-finite Jacobian, …).
     #[error(transparent)]
     Stability(#[from] crate::stability::StabilityError),
+}
+
+impl Error {
+    /// The option an [`Error::InvalidOption`] names (the first of an
+    /// [`Error::OptionProduct`]).
+    pub fn option(&self) -> Option<OptionKey> {
+        match self {
+            Error::InvalidOption { option, .. } => Some(*option),
+            Error::OptionProduct { first, .. } => Some(*first),
+            _ => None,
+        }
+    }
+
+    /// Whether the computation was stopped by its caller (cancelled, past its deadline or
+    /// over its budget) rather than failed.
+    pub fn is_stop(&self) -> bool {
+        matches!(
+            self,
+            Error::Cancelled { .. } | Error::DeadlineExceeded | Error::BudgetExceeded { .. }
+        )
+    }
+
+    /// The message, one line, with options spelled by `spelling` (`--max-period` on the
+    /// command line, `max_period` in Python, `max-period` in the lab's query). The same as
+    /// `to_string()` for errors that name no option, and for [`Spelling::Python`].
+    pub fn render(&self, spelling: Spelling) -> String {
+        match self {
+            Error::InvalidOption {
+                option,
+                value,
+                allowed,
+            } => crate::options::render_invalid(*option, *value, allowed, spelling),
+            Error::OptionProduct {
+                what,
+                first,
+                second,
+                product,
+                max,
+            } => match spelling {
+                Spelling::Flag => format!(
+                    "{} × {} = {} {what}: at most {max} allowed",
+                    first.spelled(spelling),
+                    second.spelled(spelling),
+                    Number(*product)
+                ),
+                Spelling::Python | Spelling::Query => format!(
+                    "invalid {what} = {}: {} × {} must be at most {max}",
+                    Number(*product),
+                    first.spelled(spelling),
+                    second.spelled(spelling)
+                ),
+            },
+            other => other.to_string(),
+        }
+    }
 }
 
 /// A quantity that a theory may fail to provide.

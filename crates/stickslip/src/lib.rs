@@ -49,6 +49,7 @@
 pub mod attractor;
 pub mod basins;
 pub mod bifurcation;
+pub mod cancel;
 mod certify;
 pub mod checkpoint;
 pub mod continuation;
@@ -58,6 +59,7 @@ pub mod experiment;
 pub mod limits;
 mod linear;
 pub mod names;
+pub mod options;
 pub mod params;
 pub mod physical;
 pub mod scan;
@@ -71,9 +73,11 @@ pub mod theory;
 mod trig;
 pub mod units;
 
+pub use cancel::Cancel;
 pub use error::{Error, NoSolutionReason, Number, Quantity, Result, Unsupported};
 pub use exact::ExactSolver;
 pub use experiment::{DiodeModel, Experiment, ExperimentSpec};
+pub use options::{OptionKey, Spelling};
 pub use params::{Parameter, Params, State};
 pub use physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
 pub use shockley::{DiodePair, ShockleyOptions, ShockleySolver};

@@ -23,7 +23,9 @@
 //! length.
 
 use crate::error::{Error, Result};
+use crate::options::{Allowed, OptionKey, SimulateOptions};
 use crate::params::Params;
+use serde::Serialize;
 use std::f64::consts::TAU;
 
 /// Largest damping ratio ζ.
@@ -148,6 +150,194 @@ pub fn check_time(params: &Params, tau: f64) -> Result<()> {
     }
 }
 
+/// Caps on the sizes of a request: how much work one request may ask for. The library's
+/// own ranges ([`Caps::library`], what the command line and Python allow) and a stricter
+/// profile for a server shared by several users ([`Caps::shared_server`], the lab's), which
+/// a server serves to its page (the field names are the JSON's).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Caps {
+    /// The profile's name (`library` or `shared-server`); not serialised.
+    #[serde(skip)]
+    pub profile: &'static str,
+    /// Most samples per drive period of a steady cycle's trace or spectrum.
+    pub steady_samples: usize,
+    /// Longest period looked for by a steady state (drive periods).
+    pub max_period: usize,
+    /// Most drive periods run to reach a steady state.
+    pub max_periods: usize,
+    /// Most drive periods of a run from the initial state.
+    pub simulate_periods: f64,
+    /// Most samples per drive period of a run.
+    pub simulate_samples: usize,
+    /// Most samples of a run in all.
+    pub simulate_total: usize,
+    /// Most values of a sweep (each leg).
+    pub sweep_steps: usize,
+    /// Most values on one side of a map.
+    pub map_side: usize,
+    /// Most points of a map.
+    pub map_points: usize,
+}
+
+impl Caps {
+    /// The library's ranges ([`crate::options::OptionKey::table`]): what the command line
+    /// and Python allow.
+    pub const fn library() -> Self {
+        Self {
+            profile: "library",
+            steady_samples: 1 << 20,
+            max_period: 64,
+            max_periods: 100_000_000,
+            simulate_periods: 5e7,
+            simulate_samples: 50_000_000,
+            simulate_total: 50_000_000,
+            sweep_steps: 100_000,
+            map_side: 100_000,
+            map_points: MAX_GRID_POINTS,
+        }
+    }
+
+    /// The profile of a server shared by several users (the lab's caps): every request
+    /// answers within seconds.
+    pub const fn shared_server() -> Self {
+        Self {
+            profile: "shared-server",
+            steady_samples: 4096,
+            max_period: 16,
+            max_periods: 5000,
+            simulate_periods: 2000.0,
+            simulate_samples: 10_000,
+            simulate_total: 200_000,
+            sweep_steps: 400,
+            map_side: 1000,
+            map_points: 40_000,
+        }
+    }
+
+    fn over(option: OptionKey, value: f64, min: f64, max: f64) -> Result<()> {
+        if value <= max {
+            Ok(())
+        } else {
+            Err(Error::InvalidOption {
+                option,
+                value,
+                allowed: Allowed::Cap { min, max },
+            })
+        }
+    }
+
+    /// Check a steady-state search against the caps (after its own `validate()`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] with [`Allowed::Cap`] naming the first field over its cap.
+    pub fn check_steady(&self, options: &crate::SteadyOptions) -> Result<()> {
+        Self::over(
+            OptionKey::MaxPeriods,
+            options.max_periods as f64,
+            1.0,
+            self.max_periods as f64,
+        )?;
+        Self::over(
+            OptionKey::MaxPeriod,
+            options.max_period as f64,
+            1.0,
+            self.max_period as f64,
+        )?;
+        if let Some(n) = options.samples_per_period {
+            Self::over(
+                OptionKey::SpectrumSamples,
+                n as f64,
+                16.0,
+                self.steady_samples as f64,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Check a run from the initial state against the caps.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] with [`Allowed::Cap`] naming the first field over its cap;
+    /// [`Error::OptionProduct`] for too many samples in all.
+    pub fn check_simulate(&self, options: &SimulateOptions) -> Result<()> {
+        Self::over(
+            OptionKey::SimulatePeriods,
+            options.periods,
+            0.0,
+            self.simulate_periods,
+        )?;
+        Self::over(
+            OptionKey::SimulateSamples,
+            options.samples_per_period as f64,
+            1.0,
+            self.simulate_samples as f64,
+        )?;
+        let total = (options.periods * options.samples_per_period as f64).ceil();
+        if total > self.simulate_total as f64 {
+            return Err(Error::OptionProduct {
+                what: "samples",
+                first: OptionKey::SimulatePeriods,
+                second: OptionKey::SimulateSamples,
+                product: total,
+                max: if self.profile == "library" {
+                    "5e7"
+                } else {
+                    "200000"
+                },
+            });
+        }
+        Ok(())
+    }
+
+    /// Check the values of a sweep (each leg) against the caps.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming [`OptionKey::SweepSteps`].
+    pub fn check_sweep(&self, steps: usize) -> Result<()> {
+        Self::over(
+            OptionKey::SweepSteps,
+            steps as f64,
+            1.0,
+            self.sweep_steps as f64,
+        )
+    }
+
+    /// Check the sides and the points of a map against the caps.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the side over its cap; [`Error::OptionProduct`] for
+    /// too many points.
+    pub fn check_map(&self, w_steps: usize, beta_steps: usize) -> Result<()> {
+        Self::over(
+            OptionKey::MapWSteps,
+            w_steps as f64,
+            1.0,
+            self.map_side as f64,
+        )?;
+        Self::over(
+            OptionKey::MapBetaSteps,
+            beta_steps as f64,
+            1.0,
+            self.map_side as f64,
+        )?;
+        let points = w_steps as f64 * beta_steps as f64;
+        if points > self.map_points as f64 {
+            return Err(Error::OptionProduct {
+                what: "points",
+                first: OptionKey::MapWSteps,
+                second: OptionKey::MapBetaSteps,
+                product: points,
+                max: if self.profile == "library" {
+                    "1e8"
+                } else {
+                    "40000"
+                },
+            });
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,6 +361,31 @@ mod tests {
         assert!(check_time(&fast, 0.99 * TAU_MAX / 100.0).is_ok());
         assert!(check_time(&fast, 1.01 * TAU_MAX / 100.0).is_err());
         assert!(check_time(&fast, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn the_shared_server_is_within_the_library() {
+        let (lib, lab) = (Caps::library(), Caps::shared_server());
+        assert!(lab.max_period <= lib.max_period && lab.max_periods <= lib.max_periods);
+        assert!(lab.map_points <= lib.map_points && lab.sweep_steps <= lib.sweep_steps);
+        let steady = crate::SteadyOptions::default();
+        assert!(lab.check_steady(&steady).is_ok());
+        let long = crate::SteadyOptions {
+            max_period: 32,
+            ..steady
+        };
+        assert!(lib.check_steady(&long).is_ok());
+        let e = lab.check_steady(&long).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid max_period = 32: must be from 1 to 16"
+        );
+        let map = lab.check_map(300, 300).unwrap_err();
+        assert_eq!(
+            map.to_string(),
+            "invalid points = 90000: w_steps × beta_steps must be at most 40000"
+        );
+        assert!(lib.check_map(300, 300).is_ok());
     }
 
     #[test]

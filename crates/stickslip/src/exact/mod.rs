@@ -15,6 +15,7 @@
 
 mod search;
 
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::linear::{Damping, Forcing, LinearSegment};
 use crate::params::{Params, State};
@@ -79,9 +80,18 @@ pub struct ExactSolver {
     /// Slot of the segment covered by the last advance, its start, and the interval covered
     /// (for dense output).
     last: (usize, f64, f64, f64),
+    /// Checked (and charged one step) at every advance.
+    cancel: Cancel,
 }
 
 impl ExactSolver {
+    /// This solver, stopping with the token's error at its next advance once `cancel` is
+    /// cancelled, past its deadline or over its budget (one step charged per advance).
+    pub fn with_cancel(mut self, cancel: Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// A solver starting at τ = 0 from `initial`. With y'(0) = 0 the oscillator starts stuck
     /// when the net force |β cos φ − y0| is at most μs.
     pub fn new(params: Params, initial: State) -> Self {
@@ -101,6 +111,7 @@ impl ExactSolver {
             time: 0.0,
             search: ZeroSearch::new(),
             last: (0, 0.0, 0.0, 0.0),
+            cancel: Cancel::never(),
         };
         let theta = solver.theta0;
         let trig = sin_cos(theta);
@@ -308,6 +319,7 @@ impl Solver for ExactSolver {
     }
 
     fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
+        self.cancel.charge(1)?;
         if t_end < self.time || t_end.is_nan() {
             return Err(Error::TimeBeforeCurrent {
                 requested: t_end,

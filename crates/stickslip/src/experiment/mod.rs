@@ -34,6 +34,7 @@ pub use key::{Key, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use spec::{ExperimentSpec, SpecError};
 pub use trajectory::Trajectory;
 
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
@@ -145,6 +146,21 @@ pub struct Experiment {
     initial: State,
     origin: Origin,
     shockley: ShockleyOptions,
+    /// The token every solver of the experiment checks (not part of what the experiment is:
+    /// not saved, not compared).
+    #[serde(skip)]
+    cancel: CancelSlot,
+}
+
+/// An experiment's [`Cancel`] token: equal to any other (the token says how long to work,
+/// not what to compute).
+#[derive(Debug, Clone, Default)]
+struct CancelSlot(Cancel);
+
+impl PartialEq for CancelSlot {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl Experiment {
@@ -159,6 +175,7 @@ impl Experiment {
             initial: State::default(),
             origin,
             shockley: ShockleyOptions::default(),
+            cancel: CancelSlot::default(),
         }
     }
 
@@ -521,10 +538,24 @@ impl Experiment {
         Ok(self)
     }
 
+    /// This experiment with `cancel` as the token that every solver it builds checks
+    /// ([`crate::cancel`]): every computation on it stops within a solver step once the token
+    /// is cancelled, past its deadline or over its budget.
+    pub fn with_cancel(mut self, cancel: Cancel) -> Self {
+        self.cancel = CancelSlot(cancel);
+        self
+    }
+
+    /// The token every solver of this experiment checks ([`Cancel::never`] unless given).
+    pub fn cancel(&self) -> &Cancel {
+        &self.cancel.0
+    }
+
     /// The factory of this experiment's solver (exact, or stiff for Shockley diodes), for
     /// any parameters and initial state.
     pub fn factory(&self) -> ExperimentFactory {
         ExperimentFactory {
+            cancel: self.cancel.0.clone(),
             circuit: self
                 .circuit_ref()
                 .copied()
@@ -707,10 +738,11 @@ impl std::fmt::Display for Experiment {
 
 /// The solver factory of an [`Experiment`]: the exact solver, or the stiff solver of the
 /// experiment's Shockley circuit (ζ of the parameters is then ζ_R).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct ExperimentFactory {
     circuit: Option<Circuit>,
     options: ShockleyOptions,
+    cancel: Cancel,
 }
 
 impl SolverFactory for ExperimentFactory {
@@ -723,9 +755,20 @@ impl SolverFactory for ExperimentFactory {
             .transpose()?
             .flatten()
         {
-            Some(model) => Ok(Box::new(ShockleySolver::new(model, initial, self.options)?)),
-            None => Ok(Box::new(ExactSolver::new(params, initial))),
+            Some(model) => Ok(Box::new(ShockleySolver::with_cancel(
+                model,
+                initial,
+                self.options,
+                self.cancel.clone(),
+            )?)),
+            None => Ok(Box::new(
+                ExactSolver::new(params, initial).with_cancel(self.cancel.clone()),
+            )),
         }
+    }
+
+    fn cancel(&self) -> Cancel {
+        self.cancel.clone()
     }
 }
 

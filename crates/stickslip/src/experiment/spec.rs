@@ -427,6 +427,7 @@ impl ExperimentSpec {
             initial: crate::limits::check_state(y0, v0)?,
             origin,
             shockley: ShockleyOptions::default(),
+            cancel: Default::default(),
         };
         if let Some(w) = w {
             experiment.w = Some(image(w, Key::W)?);

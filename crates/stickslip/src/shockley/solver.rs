@@ -4,6 +4,7 @@ use super::model::ShockleyModel;
 use super::options::ShockleyOptions;
 use super::radau::{Radau5, Settings, Step};
 use super::stops::{Classifier, Mark};
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{Event, Phase, Sample, Solver, Stats};
@@ -48,6 +49,8 @@ pub struct ShockleySolver {
     interval: (f64, f64),
     interval_phase: Phase,
     events: u64,
+    /// Checked (and charged one step) at every advance.
+    cancel: Cancel,
 }
 
 impl ShockleySolver {
@@ -61,6 +64,21 @@ impl ShockleySolver {
     /// [`Error::InvalidParameter`] for invalid options or model; [`Error::StepSizeTooSmall`] when
     /// the integration fails while deciding the initial phase.
     pub fn new(model: ShockleyModel, initial: State, options: ShockleyOptions) -> Result<Self> {
+        Self::with_cancel(model, initial, options, Cancel::never())
+    }
+
+    /// As [`ShockleySolver::new`], stopping with the token's error once `cancel` is
+    /// cancelled, past its deadline or over its budget (one step charged per integration
+    /// step).
+    ///
+    /// # Errors
+    /// As [`ShockleySolver::new`]; the token's error.
+    pub fn with_cancel(
+        model: ShockleyModel,
+        initial: State,
+        options: ShockleyOptions,
+        cancel: Cancel,
+    ) -> Result<Self> {
         let options = options.validate()?;
         let model = ShockleyModel::new(model.params, model.law)?;
         let initial = State::new(initial.y, initial.v)?;
@@ -86,6 +104,7 @@ impl ShockleySolver {
             interval: (0.0, 0.0),
             interval_phase: Phase::Stick,
             events: 0,
+            cancel,
         };
         let phase = loop {
             if let Some(phase) = solver.classifier.initial_phase() {
@@ -114,6 +133,7 @@ impl ShockleySolver {
     }
 
     fn integrate_one(&mut self) -> Result<()> {
+        self.cancel.charge(1)?;
         let step = self.radau.step()?;
         self.classifier.feed(&step);
         self.steps.push_back(step);

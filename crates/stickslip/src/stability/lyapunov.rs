@@ -114,7 +114,7 @@ impl LyapunovOptions {
                 allowed,
             })
         };
-        if self.blocks < 4 || self.blocks % 2 != 0 {
+        if self.blocks < 4 || !self.blocks.is_multiple_of(2) {
             return bad("blocks", self.blocks as f64, "must be even and at least 4");
         }
         if self.periods < self.blocks {

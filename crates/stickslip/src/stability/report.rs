@@ -153,7 +153,7 @@ fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
     let p = orbit.period;
     let x = orbit.state;
     let scale = 1f64.max(x.y.abs()).max(x.v.abs());
-    for d in (1..p).filter(|d| p % d == 0) {
+    for d in (1..p).filter(|d| p.is_multiple_of(*d)) {
         let mut solver = ExactSolver::new(*params, x);
         run_until(&mut solver, d as f64 * orbit.drive_period, |_| {})?;
         let y = solver.state();

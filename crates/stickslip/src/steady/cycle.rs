@@ -78,12 +78,14 @@
 use super::classify::{classify, MotionClass};
 use super::spectrum::Spectrum;
 use super::SolverFactory;
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{run_until, sample_at, Event, EventKind, Phase, Sample, Solver};
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents, LyapunovOptions, NewtonOptions,
-    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
+    find_periodic_orbit, lyapunov_exponents, lyapunov_exponents_monitored, LyapunovOptions,
+    NewtonOptions, NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, Stability,
+    StabilityError,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
@@ -832,7 +834,7 @@ pub fn steady_state<S: Solver + ?Sized>(
     let settled = run_to_cycle(&mut holder, &params, &options, false)?;
     let exact = holder.0.is_exact();
     let steady = record(holder.0, &params, &options, &settled)?;
-    measure(steady, exact, &options)
+    measure(steady, exact, &options, &Cancel::never())
 }
 
 /// The steady state reached from `initial` (at τ = 0) by solvers from `factory`.
@@ -862,18 +864,29 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
     let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
     let exact = holder.solver.is_exact();
     let steady = record(holder.solver.as_mut(), params, &options, &settled)?;
-    measure(steady, exact, &options)
+    measure(steady, exact, &options, &factory.cancel())
 }
 
 /// Measure a motion that did not repeat (see the module documentation).
-fn measure(mut steady: SteadyState, exact: bool, options: &SteadyOptions) -> Result<SteadyState> {
+fn measure(
+    mut steady: SteadyState,
+    exact: bool,
+    options: &SteadyOptions,
+    cancel: &Cancel,
+) -> Result<SteadyState> {
     let Some(lyapunov) = options
         .lyapunov
         .filter(|_| exact && steady.period.is_none())
     else {
         return Ok(steady);
     };
-    match lyapunov_exponents(&steady.params, steady.final_state(), &lyapunov) {
+    let measured = if cancel.is_never() {
+        lyapunov_exponents(&steady.params, steady.final_state(), &lyapunov)
+    } else {
+        lyapunov_exponents_monitored(&steady.params, steady.final_state(), &lyapunov, cancel)
+            .map_err(|e| cancel.stopped().map_or(e, |stop| stop.error()))
+    };
+    match measured {
         Ok(exponents) => {
             let c = NonperiodicClassification::new(exponents, lyapunov.significance);
             if c.verdict == NonperiodicVerdict::Chaotic {

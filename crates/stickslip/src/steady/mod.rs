@@ -27,6 +27,7 @@ pub use cycle::{check_horizon, steady_state, steady_state_from, SteadyOptions, S
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
 
+use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
@@ -44,6 +45,13 @@ pub trait SolverFactory: Sync {
     /// # Errors
     /// Whatever building the solver can report (invalid parameters).
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>>;
+
+    /// The token the solvers it makes check, which the computations on them check too
+    /// between their own steps (the Lyapunov measurement of a motion that does not repeat,
+    /// say). [`Cancel::never`] unless the factory carries one ([`crate::Experiment::factory`]).
+    fn cancel(&self) -> Cancel {
+        Cancel::never()
+    }
 }
 
 impl<F> SolverFactory for F

@@ -81,7 +81,7 @@ impl Spectrum {
         harmonics: usize,
         phase_at_start: f64,
     ) -> Result<Self> {
-        if periods == 0 || samples.len() % periods != 0 {
+        if periods == 0 || !samples.len().is_multiple_of(periods) {
             return Err(Error::InvalidParameter {
                 name: "periods",
                 value: periods as f64,

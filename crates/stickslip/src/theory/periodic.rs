@@ -377,7 +377,7 @@ impl PeriodicSolution {
     /// Complex Fourier coefficient c_k of y in local time (origin at the lower turning point),
     /// y = Σ_k 2 Re(c_k e^{ikwt}); zero for even k.
     fn local_coefficient(&self, order: u32) -> Complex64 {
-        if order % 2 == 0 {
+        if order.is_multiple_of(2) {
             return Complex64::new(0.0, 0.0);
         }
         let p = &self.params;

@@ -1,0 +1,375 @@
+//! The option table's data: the keys, their rows and how a front end spells them.
+
+use serde::Serialize;
+
+/// How a front end spells an option (or a key) in its messages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Spelling {
+    /// The command line: `--max-period` (and `invalid --max-period 65: …`).
+    Flag,
+    /// Python's keyword and the library's own messages: `max_period` (and
+    /// `invalid max_period = 65: …`).
+    Python,
+    /// The lab's query key: `max-period` (and `invalid max-period = 65: …`).
+    Query,
+}
+
+/// The computation an option belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionGroup {
+    /// A run from the initial state (`simulate`).
+    Simulate,
+    /// The steady-state search (`steady`, `sweep`, `phase-diagram`).
+    Steady,
+    /// A periodic orbit by Newton's method (`orbit`).
+    Orbit,
+    /// Lyapunov exponents (`lyapunov`).
+    Lyapunov,
+    /// A sweep of one parameter (`sweep`).
+    Sweep,
+    /// A map of two parameters (`phase-diagram`).
+    Map,
+    /// A bifurcation diagram (`bifurcation`).
+    Bifurcation,
+    /// Basins of attraction (`basins`).
+    Basins,
+    /// A branch of periodic orbits (`continue`).
+    Continuation,
+    /// A curve of the theory (`theory --curve`).
+    Curve,
+    /// The pool of threads of a parallel computation.
+    Pool,
+}
+
+/// What values an option takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionKind {
+    /// A whole number.
+    Count,
+    /// A real number.
+    Number,
+    /// On or off.
+    Switch,
+}
+
+/// One end of a range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Bound {
+    /// The value.
+    pub value: f64,
+    /// Whether the value itself is allowed.
+    pub inclusive: bool,
+}
+
+const fn incl(value: f64) -> Option<Bound> {
+    Some(Bound {
+        value,
+        inclusive: true,
+    })
+}
+
+const fn excl(value: f64) -> Option<Bound> {
+    Some(Bound {
+        value,
+        inclusive: false,
+    })
+}
+
+/// A rule beyond the range.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Rule {
+    /// The range alone.
+    Range,
+    /// An even number.
+    Even,
+    /// A power of two.
+    PowerOfTwo,
+    /// 0 (off) or a value in the range.
+    ZeroIsOff,
+}
+
+/// An option of a computation (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[non_exhaustive]
+pub enum OptionKey {
+    /// Drive periods of a run from the initial state.
+    SimulatePeriods,
+    /// Samples per drive period of a run.
+    SimulateSamples,
+    /// Relative tolerance of the steady state's stroboscopic repetition.
+    Tolerance,
+    /// Drive periods run at most before calling the motion non-periodic.
+    MaxPeriods,
+    /// Longest period looked for by the steady state.
+    MaxPeriod,
+    /// Whether the stroboscopic map may be extrapolated (the flag says the opposite).
+    Accelerate,
+    /// Drive periods over which a motion that does not repeat is measured (0: not measured).
+    LyapunovPeriods,
+    /// Shortest stop that counts, as a fraction of the drive period.
+    MinStopFraction,
+    /// Drive harmonics reported.
+    Harmonics,
+    /// Samples per drive period of the spectrum.
+    SpectrumSamples,
+    /// Period of the orbit looked for.
+    OrbitPeriod,
+    /// Drive periods run before Newton's method starts.
+    OrbitTransient,
+    /// Drive periods run at most to find the steady state's period (orbit).
+    OrbitMaxPeriods,
+    /// Longest period looked for (orbit).
+    OrbitMaxPeriod,
+    /// Relative tolerance of Newton's method.
+    NewtonTolerance,
+    /// Most Newton steps.
+    MaxIterations,
+    /// Drive periods run before measuring the exponents.
+    LyapunovTransient,
+    /// Drive periods measured.
+    LyapunovMeasured,
+    /// Blocks the measured periods are cut into.
+    Blocks,
+    /// Standard errors that make an exponent significant.
+    Significance,
+    /// Measure all periods even when the verdict is decided sooner.
+    Fixed,
+    /// Values of a sweep.
+    SweepSteps,
+    /// Frequencies of a map.
+    MapWSteps,
+    /// Amplitudes of a map.
+    MapBetaSteps,
+    /// Values of a bifurcation diagram.
+    BifurcationSteps,
+    /// Strobe points recorded at each value of a bifurcation diagram.
+    Points,
+    /// Transient at each value of a bifurcation diagram.
+    BifurcationTransient,
+    /// Transient at the first value of a bifurcation diagram.
+    FirstTransient,
+    /// Longest period looked for in the recorded points of a bifurcation diagram.
+    BifurcationMaxPeriod,
+    /// Initial states along each axis of a basin map.
+    BasinSteps,
+    /// Drive periods run at most to find a period (basins).
+    BasinMaxPeriods,
+    /// Longest period looked for (basins).
+    BasinMaxPeriod,
+    /// Drive periods over which the exponent of a motion without a period is measured
+    /// (basins).
+    BasinLyapunovPeriods,
+    /// Cells of the state-space grid along each axis (basins by recurrence).
+    Resolution,
+    /// Most points of a branch.
+    MaxPoints,
+    /// Largest step of arclength of a branch.
+    MaxStep,
+    /// Points of a theory curve.
+    CurveSteps,
+    /// Threads of a pool.
+    Threads,
+}
+
+/// One row of [`OptionKey::table`]: everything a front end needs to offer, parse, check and
+/// document an option.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OptionInfo {
+    /// The key (its variant name).
+    pub key: OptionKey,
+    /// The computation it belongs to.
+    pub group: OptionGroup,
+    /// Spelling on the command line (without dashes) and in the lab's query.
+    pub flag: &'static str,
+    /// Python keyword, and the name in the library's messages.
+    pub name: &'static str,
+    /// What values it takes.
+    pub kind: OptionKind,
+    /// Smallest value, if bounded below.
+    pub min: Option<Bound>,
+    /// Largest value, if bounded above.
+    pub max: Option<Bound>,
+    /// A rule beyond the range.
+    pub rule: Rule,
+    /// What is allowed, in words (the end of the error message).
+    pub allowed: &'static str,
+    /// The default, if it does not depend on the experiment.
+    pub default: Option<f64>,
+    /// One-line help (the command line's).
+    pub help: &'static str,
+}
+
+macro_rules! rows {
+    ($( $key:ident, $group:ident, $flag:literal, $name:literal, $kind:ident, $min:expr, $max:expr,
+        $rule:ident, $allowed:literal, $default:expr, $help:literal; )*) => {
+        impl OptionKey {
+            /// Every option, in the order of the table.
+            pub const ALL: &'static [OptionKey] = &[$(OptionKey::$key),*];
+
+            /// The option's row of the table.
+            pub fn info(self) -> OptionInfo {
+                match self {
+                    $(OptionKey::$key => OptionInfo {
+                        key: OptionKey::$key,
+                        group: OptionGroup::$group,
+                        flag: $flag,
+                        name: $name,
+                        kind: OptionKind::$kind,
+                        min: $min,
+                        max: $max,
+                        rule: Rule::$rule,
+                        allowed: $allowed,
+                        default: $default,
+                        help: $help,
+                    },)*
+                }
+            }
+        }
+    };
+}
+
+rows! {
+    SimulatePeriods, Simulate, "periods", "periods", Number, excl(0.0), None, Range,
+        "must be finite and > 0", Some(20.0),
+        "Number of drive periods to simulate (> 0).";
+    SimulateSamples, Simulate, "samples-per-period", "samples_per_period", Count, incl(1.0),
+        incl(5e7), Range,
+        "must be from 1 to 5e7 (and periods × samples_per_period at most 5e7)", Some(200.0),
+        "Samples per drive period in the CSV (≥ 1).";
+    Tolerance, Steady, "tolerance", "tolerance", Number, excl(0.0), excl(1.0), Range,
+        "must be > 0 and < 1", None,
+        "Relative tolerance of the once-per-period (stroboscopic) repetition [default: 1e-10 with the exact PWL solver, 1e-6 (its rtol) with the Shockley solver].";
+    MaxPeriods, Steady, "max-periods", "max_periods", Count, incl(1.0), incl(1e8), Range,
+        "must be from 1 to 1e8", Some(5000.0),
+        "Drive periods run at most before calling the motion non-periodic.";
+    MaxPeriod, Steady, "max-period", "max_period", Count, incl(1.0), incl(64.0), Range,
+        "must be from 1 to 64", Some(16.0),
+        "Longest period looked for, in drive periods (1 to 64).";
+    Accelerate, Steady, "no-extrapolation", "accelerate", Switch, None, None, Range,
+        "must be on or off", Some(1.0),
+        "Never extrapolate the stroboscopic map to its fixed point nor settle it by Newton's method (slower; finds the same cycle).";
+    LyapunovPeriods, Steady, "lyapunov-periods", "lyapunov_periods", Count, incl(20.0),
+        incl(1e8), ZeroIsOff, "must be 0 (off) or from 20 to 1e8", Some(5000.0),
+        "Drive periods over which a motion that does not repeat is measured by its largest Lyapunov exponent (exact PWL model; after 100 periods that align the tangent, in 20 blocks): chaotic when it is positive beyond 4 standard errors. 0: not measured.";
+    MinStopFraction, Steady, "min-stop-fraction", "min_stop_fraction", Number, incl(0.0),
+        excl(1.0), Range, "must be >= 0 and < 1", Some(1e-8),
+        "Shortest stop that counts, as a fraction of the drive period.";
+    Harmonics, Steady, "harmonics", "harmonics", Count, incl(1.0), incl(256.0), Range,
+        "must be from 1 to 256", Some(16.0),
+        "Number of drive harmonics reported.";
+    SpectrumSamples, Steady, "spectrum-samples", "samples_per_period", Count, incl(16.0),
+        incl(1048576.0), PowerOfTwo, "must be a power of two from 16 to 1048576", None,
+        "Samples per drive period of the spectrum [default: chosen from the event log].";
+    OrbitPeriod, Orbit, "period", "period", Count, incl(1.0), incl(1000.0), Range,
+        "must be from 1 to 1000", None,
+        "Period p of the orbit in drive periods (1 to 1000) [default: that of the steady state].";
+    OrbitTransient, Orbit, "transient", "transient", Count, incl(0.0), incl(1e8), Range,
+        "must be from 0 to 1e8", Some(0.0),
+        "With --period: drive periods run from the initial state before Newton's method starts.";
+    OrbitMaxPeriods, Orbit, "max-periods", "max_periods", Count, incl(1.0), incl(1e8), Range,
+        "must be from 1 to 1e8", Some(5000.0),
+        "Without --period: drive periods run at most to find the steady state's period.";
+    OrbitMaxPeriod, Orbit, "max-period", "max_period", Count, incl(1.0), incl(64.0), Range,
+        "must be from 1 to 64", Some(16.0),
+        "Without --period: longest period looked for (1 to 64).";
+    NewtonTolerance, Orbit, "newton-tolerance", "tolerance", Number, excl(0.0), excl(1e-3),
+        Range, "must be > 0 and < 1e-3", Some(1e-12),
+        "Relative tolerance of Newton's method on max(|Δy|, |Δy'|) of P^p(x) − x.";
+    MaxIterations, Orbit, "max-iterations", "max_iterations", Count, incl(1.0), incl(1000.0),
+        Range, "must be from 1 to 1000", Some(30.0),
+        "Most Newton steps (1 to 1000).";
+    LyapunovTransient, Lyapunov, "transient", "transient", Count, incl(0.0), incl(1e9), Range,
+        "must be from 0 to 1e9", Some(1000.0),
+        "Drive periods run before measuring (0 to 1e9).";
+    LyapunovMeasured, Lyapunov, "periods", "periods", Count, incl(4.0), incl(1e9), Range,
+        "must be from blocks to 1e9", Some(20000.0),
+        "Drive periods measured (rounded down to a multiple of --blocks; up to 1e9).";
+    Blocks, Lyapunov, "blocks", "blocks", Count, incl(4.0), incl(10000.0), Even,
+        "must be even and from 4 to 10000", Some(20.0),
+        "Blocks the measured periods are cut into for the error (even, 4 to 10000).";
+    Significance, Lyapunov, "significance", "significance", Number, excl(0.0), None, Range,
+        "must be finite and > 0", Some(4.0),
+        "Standard errors k that make λ1 significantly positive or negative.";
+    Fixed, Lyapunov, "fixed", "fixed", Switch, None, None, Range, "must be on or off",
+        Some(0.0), "Measure all --periods, even when the verdict is decided sooner.";
+    SweepSteps, Sweep, "steps", "steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", None,
+        "Number of values from --from to --to, both included (≥ 2, or 1 when they are equal).";
+    MapWSteps, Map, "w-steps", "w_steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", Some(100.0),
+        "Number of frequencies from --w-min to --w-max, both included.";
+    MapBetaSteps, Map, "beta-steps", "beta_steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", Some(100.0),
+        "Number of amplitudes from --beta-min to --beta-max, both included.";
+    BifurcationSteps, Bifurcation, "steps", "steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", None,
+        "Number of values from --from to --to, both included.";
+    Points, Bifurcation, "points", "points", Count, incl(1.0), incl(1e6), Range,
+        "must be from 1 to 1000000", Some(100.0),
+        "Strobe points recorded at each value (drive periods).";
+    BifurcationTransient, Bifurcation, "transient", "transient", Count, incl(0.0), incl(1e8),
+        Range, "must be from 0 to 1e8 drive periods", Some(200.0),
+        "Drive periods of transient at each value before recording.";
+    FirstTransient, Bifurcation, "first-transient", "first_transient", Count, incl(0.0),
+        incl(1e8), Range, "must be from 0 to 1e8 drive periods", Some(2000.0),
+        "Drive periods of transient at the first value, from the initial state.";
+    BifurcationMaxPeriod, Bifurcation, "max-period", "max_period", Count, incl(1.0),
+        incl(1000.0), Range, "must be from 1 to 1000", Some(32.0),
+        "Longest period looked for in the recorded points (drive periods).";
+    BasinSteps, Basins, "steps", "steps", Count, incl(1.0), incl(2000.0), Range,
+        "must be from 1 to 2000", Some(100.0),
+        "Grid points along each axis (the map has --steps × --steps cells).";
+    BasinMaxPeriods, Basins, "max-periods", "max_periods", Count, incl(1.0), incl(1e8), Range,
+        "must be from 1 to 1e8", Some(1000.0),
+        "Drive periods run at most to find a period.";
+    BasinMaxPeriod, Basins, "max-period", "max_period", Count, incl(1.0), incl(64.0), Range,
+        "must be from 1 to 64", Some(16.0),
+        "Longest period looked for, in drive periods (1 to 64).";
+    BasinLyapunovPeriods, Basins, "lyapunov-periods", "lyapunov_periods", Count, incl(8.0),
+        incl(1e7), Range, "must be from 8 to 1e7", Some(1000.0),
+        "Drive periods over which the exponent of a motion without a period is measured.";
+    Resolution, Basins, "resolution", "resolution", Count, incl(16.0), incl(1e6), Range,
+        "must be from 16 to 1e6", Some(1024.0),
+        "Recurrence: cells of the state-space grid across the map's extent along each axis (16 to 1e6; at least 4 per grid spacing of the map are used).";
+    MaxPoints, Continuation, "max-points", "max_points", Count, incl(2.0), incl(1e7), Range,
+        "must be from 2 to 10000000", Some(5000.0),
+        "Most points of the branch.";
+    MaxStep, Continuation, "max-step", "max_step", Number, excl(0.0), incl(10.0), Range,
+        "must be > 0 and <= 10", Some(0.1),
+        "Largest step of arclength in (y, y', parameter).";
+    CurveSteps, Curve, "steps", "steps", Count, incl(2.0), incl(100000.0), Range,
+        "must be from 2 to 100000 (the number of points)", Some(200.0),
+        "Number of points of the curve.";
+    Threads, Pool, "threads", "threads", Count, incl(1.0), incl(1024.0), Range,
+        "must be from 1 to 1024", None,
+        "Threads of the pool [default: one per core].";
+}
+
+/// What an option allows, in an [`crate::Error::InvalidOption`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Allowed {
+    /// The table's words ([`OptionKey::allowed`]).
+    Table,
+    /// Other words (a rule between options that the table cannot state).
+    Text(&'static str),
+    /// From the value of another option to a bound: `must be from blocks (20) to 1e9`.
+    FromOption {
+        /// The other option.
+        other: OptionKey,
+        /// Its value.
+        value: f64,
+        /// The upper bound, in words.
+        to: &'static str,
+    },
+    /// At most `max` under a caps profile ([`crate::limits::Caps`]).
+    Cap {
+        /// Smallest value allowed.
+        min: f64,
+        /// Largest value the profile allows.
+        max: f64,
+    },
+}
