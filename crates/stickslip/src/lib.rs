@@ -62,6 +62,7 @@ pub mod names;
 pub mod options;
 pub mod params;
 pub mod physical;
+pub mod report;
 pub mod scan;
 pub mod shockley;
 pub mod solver;

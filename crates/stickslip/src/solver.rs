@@ -242,6 +242,13 @@ pub enum Record {
 /// every event comes before the first sample after it. After an error the stream ends.
 pub struct Stream<'a, S: Solver + ?Sized> {
     solver: &'a mut S,
+    cursor: Cursor,
+}
+
+/// Where a [`Stream`] stands on its grid of times, apart from the solver it advances (so that
+/// an owner of a solver can stream it too: [`crate::report::TrajectoryRun`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cursor {
     from: f64,
     to: f64,
     count: usize,
@@ -282,28 +289,8 @@ pub fn stream<S: Solver + ?Sized>(
     to: f64,
     count: usize,
 ) -> Result<Stream<'_, S>> {
-    if !(from >= solver.time()) {
-        return Err(Error::TimeBeforeCurrent {
-            requested: from,
-            current: solver.time(),
-        });
-    }
-    if !(to >= from) {
-        return Err(Error::TimeBeforeCurrent {
-            requested: to,
-            current: from,
-        });
-    }
-    crate::limits::check_time(solver.params(), to)?;
-    Ok(Stream {
-        solver,
-        from,
-        to,
-        count,
-        next: 0,
-        advancing: false,
-        ended: false,
-    })
+    let cursor = Cursor::new(&*solver, from, to, count)?;
+    Ok(Stream { solver, cursor })
 }
 
 impl<S: Solver + ?Sized> Stream<'_, S> {
@@ -317,25 +304,67 @@ impl<S: Solver + ?Sized> Iterator for Stream<'_, S> {
     type Item = Result<Record>;
 
     fn next(&mut self) -> Option<Result<Record>> {
+        self.cursor.next(self.solver)
+    }
+}
+
+impl Cursor {
+    /// A cursor over `count + 1` times from `from` to `to` for `solver` (see [`stream`]).
+    pub(crate) fn new<S: Solver + ?Sized>(
+        solver: &S,
+        from: f64,
+        to: f64,
+        count: usize,
+    ) -> Result<Self> {
+        if !(from >= solver.time()) {
+            return Err(Error::TimeBeforeCurrent {
+                requested: from,
+                current: solver.time(),
+            });
+        }
+        if !(to >= from) {
+            return Err(Error::TimeBeforeCurrent {
+                requested: to,
+                current: from,
+            });
+        }
+        crate::limits::check_time(solver.params(), to)?;
+        Ok(Self {
+            from,
+            to,
+            count,
+            next: 0,
+            advancing: false,
+            ended: false,
+        })
+    }
+
+    /// Samples handed out so far.
+    pub(crate) fn samples_done(&self) -> usize {
+        self.next
+    }
+
+    /// The next record, advancing `solver` (the same solver every call).
+    pub(crate) fn next<S: Solver + ?Sized>(&mut self, solver: &mut S) -> Option<Result<Record>> {
         if self.ended || self.next > self.count {
             return None;
         }
         let tau = grid_time(self.from, self.to, self.count, self.next);
         // As `sample_at`: a sample at the solver's own time is its state; otherwise advance,
         // one event at a time, and sample the interval that reaches the time.
-        if !self.advancing && tau == self.solver.time() {
+        if !self.advancing && tau == solver.time() {
             self.next += 1;
-            let s = self.solver.state();
+            let s = solver.state();
             return Some(Ok(Record::Sample(Sample {
                 tau,
                 y: s.y,
                 v: s.v,
-                phase: self.solver.phase(),
+                phase: solver.phase(),
             })));
         }
         self.advancing = true;
-        while self.solver.time() < tau {
-            match self.solver.advance(tau) {
+        while solver.time() < tau {
+            match solver.advance(tau) {
                 Ok(Some(event)) => return Some(Ok(Record::Event(event))),
                 Ok(None) => {}
                 Err(e) => {
@@ -346,6 +375,6 @@ impl<S: Solver + ?Sized> Iterator for Stream<'_, S> {
         }
         self.advancing = false;
         self.next += 1;
-        Some(Ok(Record::Sample(self.solver.dense(tau))))
+        Some(Ok(Record::Sample(solver.dense(tau))))
     }
 }

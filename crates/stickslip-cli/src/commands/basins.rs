@@ -11,6 +11,7 @@ use stickslip::attractor::AttractorKind;
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, BasinReport, Basins, Cell};
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
+use stickslip::report::{BasinsTable, Table};
 use stickslip::scan::ParameterRange;
 use stickslip::State;
 
@@ -420,21 +421,7 @@ fn short(x: f64) -> String {
 
 /// The CSV of the map, one row per cell.
 pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
-    writeln!(out, "y0,v0,attractor,kind,period")?;
-    let n = map.v0.len();
-    for (k, a) in map.cells.iter().enumerate() {
-        let (y, v) = (map.y0[k / n], map.v0[k % n]);
-        match a.map(|i| &map.attractors[i]) {
-            Some(a) => writeln!(
-                out,
-                "{y},{v},{},{},{}",
-                a.id,
-                a.kind.label(),
-                a.period.map(|p| p.to_string()).unwrap_or_default()
-            )?,
-            None => writeln!(out, "{y},{v},,{},", AttractorKind::Unsettled.label())?,
-        }
-    }
+    out.write_all(BasinsTable { map }.csv().as_bytes())?;
     Ok(())
 }
 

@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::ContinuationOptions;
+use stickslip::report::{BifurcationReport, Table};
 use stickslip::scan::{Axis, SweepDirection, SweepLeg};
 use stickslip::Parameter;
 
@@ -158,28 +159,7 @@ pub fn run(args: Args) -> Result<()> {
     let seconds = started.elapsed().as_secs_f64();
 
     let mut sink = Sink::open(args.out.as_deref())?;
-    writeln!(
-        sink,
-        "{},y,v,direction,lambda,class,period",
-        parameter.label()
-    )?;
-    for s in &steps {
-        let r = &s.record;
-        let period = r.period.map(|p| p.to_string()).unwrap_or_default();
-        for x in &r.strobes {
-            writeln!(
-                sink,
-                "{},{},{},{},{},{},{}",
-                s.value,
-                x.y,
-                x.v,
-                s.leg.label(),
-                r.exponent,
-                r.kind.label(),
-                period
-            )?;
-        }
-    }
+    sink.write_all(BifurcationReport::new(parameter, &steps).csv().as_bytes())?;
     sink.finish()?;
     eprintln!(
         "bifurcation: {} values in {seconds:.2} s: {}",

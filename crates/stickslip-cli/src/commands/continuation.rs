@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use stickslip::continuation::{
     continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
+use stickslip::report::{BranchTable, Table};
 use stickslip::Parameter;
 
 /// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
@@ -240,30 +241,6 @@ fn fixed(branch: &Branch) -> String {
 
 /// The CSV of a branch, one row per point.
 pub fn write_csv(out: &mut dyn Write, branch: &Branch) -> Result<()> {
-    writeln!(
-        out,
-        "{},y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,stable,arclength",
-        branch.parameter.label()
-    )?;
-    for p in &branch.points {
-        let m = &p.orbit.multipliers;
-        writeln!(
-            out,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            p.value,
-            p.orbit.state.y,
-            p.orbit.state.v,
-            p.amplitude(),
-            p.orbit.period,
-            p.stops_per_period(),
-            p.turns,
-            m[0].re,
-            m[0].im,
-            m[1].re,
-            m[1].im,
-            p.stable(),
-            p.arclength
-        )?;
-    }
+    out.write_all(BranchTable { branch }.csv().as_bytes())?;
     Ok(())
 }

@@ -10,6 +10,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::Origin;
+use stickslip::report::MapRow;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
@@ -162,12 +163,7 @@ pub fn run(args: Args) -> Result<()> {
     let started = std::time::Instant::now();
     let open = || -> Result<Sink> {
         let mut sink = Sink::open(args.out.as_deref())?;
-        write!(sink, "w,beta,class,period,stops_per_cycle,gain")?;
-        writeln!(
-            sink,
-            "{}",
-            if lyapunov { ",lambda,lambda_error" } else { "" }
-        )?;
+        writeln!(sink, "{}", MapRow::columns(lyapunov).join(","))?;
         Ok(sink)
     };
     let mut summary = Summary::new(args.plot.is_some());
@@ -322,26 +318,12 @@ fn write_points(
     lyapunov: bool,
     summary: &mut Summary,
 ) -> Result<()> {
+    let mut text = String::new();
     for p in points {
-        write!(
-            sink,
-            "{},{},{},{},{},{}",
-            p.params.w,
-            p.params.beta,
-            p.class.label(),
-            p.period.map(|x| x.to_string()).unwrap_or_default(),
-            p.stops_per_period,
-            p.gain
-        )?;
-        if lyapunov {
-            match p.lyapunov {
-                Some(l) => write!(sink, ",{},{}", l.per_tau, l.error_per_tau)?,
-                None => write!(sink, ",,")?,
-            }
-        }
-        writeln!(sink)?;
+        MapRow::from(p).write_row(lyapunov, &mut text);
         summary.add(p);
     }
+    sink.write_all(text.as_bytes())?;
     Ok(())
 }
 

@@ -6,7 +6,7 @@ use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::solver::{stream, Record};
+use stickslip::report::{EventRow, TrajectoryRecord};
 use stickslip::EventKind;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
@@ -71,56 +71,48 @@ pub fn run(args: Args) -> Result<()> {
     stickslip::limits::check_horizon(&params, args.periods)?;
     eprintln!("simulate: {experiment}");
 
-    let mut solver = experiment.solver()?;
     let period = params.drive_period();
     let t_end = args.periods * period;
     let units = experiment.units();
 
     // Samples and events are written as they are computed: memory stays flat however long
     // the run. Both files are temporary until the run has finished.
+    let keep_going = |_: usize, _: usize| !crate::output::interrupted();
+    let run = experiment
+        .trajectory(args.periods, args.samples_per_period as usize)?
+        .monitor(&keep_going);
     let mut sink = Sink::open(args.out.as_deref())?;
     let mut events_file = args.events.as_deref().map(AtomicFile::create).transpose()?;
-    let mut header = vec!["tau", "y", "v", "drive", "phase"];
-    if let Some(u) = &units {
-        header.extend(u.columns());
-    }
-    writeln!(sink, "{}", header.join(","))?;
+    writeln!(sink, "{}", run.columns().header())?;
     if let Some(file) = &mut events_file {
-        writeln!(file, "tau,y,kind")?;
+        writeln!(file, "{}", EventRow::COLUMNS.join(","))?;
     }
     let mut trace = args.plot.as_ref().map(|_| PlotTrace::new(t_end));
     let (mut samples, mut events) = (0u64, 0u64);
-    let mut records = stream(solver.as_mut(), 0.0, t_end, total as usize)?;
-    while let Some(record) = records.next() {
-        if (samples + events) % 4096 == 0 {
-            crate::output::check_interrupt()?;
-        }
-        match record? {
-            Record::Sample(s) => {
+    let mut line = String::new();
+    for record in run {
+        let record = match record {
+            Ok(record) => record,
+            Err(err) => {
+                crate::output::check_interrupt()?;
+                return Err(err.into());
+            }
+        };
+        line.clear();
+        match record {
+            TrajectoryRecord::Sample(s) => {
                 samples += 1;
-                let drive = records.solver().drive(s.tau);
-                write!(
-                    sink,
-                    "{},{},{},{},{}",
-                    s.tau,
-                    s.y,
-                    s.v,
-                    drive,
-                    s.phase.label()
-                )?;
-                if let Some(u) = &units {
-                    let [a, b, c, d] = u.convert(s.tau, s.y, s.v, drive);
-                    write!(sink, ",{a},{b},{c},{d}")?;
-                }
-                writeln!(sink)?;
+                s.write_row(&mut line);
+                sink.write_all(line.as_bytes())?;
                 if let Some(t) = &mut trace {
-                    t.sample(s.tau, s.y, drive);
+                    t.sample(s.tau, s.y, s.drive);
                 }
             }
-            Record::Event(e) => {
+            TrajectoryRecord::Event(e) => {
                 events += 1;
                 if let Some(file) = &mut events_file {
-                    writeln!(file, "{},{},{}", e.tau, e.y, e.kind.label())?;
+                    e.write_row(&mut line);
+                    file.write_all(line.as_bytes())?;
                 }
                 if let (Some(t), EventKind::Stick) = (&mut trace, e.kind) {
                     t.stop(e.tau, e.y);

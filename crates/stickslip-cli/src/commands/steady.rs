@@ -7,6 +7,7 @@ use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::report::{SteadyTrace, Table};
 use stickslip::stability::{NonperiodicClassification, NonperiodicVerdict};
 use stickslip::steady::{SteadyReport, SteadyState};
 
@@ -88,17 +89,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     if let Some(path) = &args.xy {
         let mut file = AtomicFile::create(path)?;
-        writeln!(file, "tau,drive,y,v")?;
-        for s in &steady.trace {
-            writeln!(
-                file,
-                "{},{},{},{}",
-                s.tau,
-                steady.params.drive(s.tau),
-                s.y,
-                s.v
-            )?;
-        }
+        file.write_all(SteadyTrace { steady: &steady }.csv().as_bytes())?;
         file.commit()?;
     }
     if let Some(path) = &args.plot {

@@ -12,6 +12,7 @@ use std::ops::ControlFlow;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::Origin;
+use stickslip::report::{SweepReport, SweepRow, Table};
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg, SweepPoint};
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{
@@ -123,29 +124,13 @@ pub fn run(args: Args) -> Result<()> {
         }
     };
 
-    let extra = matches!(parameter, Parameter::Zeta | Parameter::MuS);
+    let report = SweepReport {
+        over: parameter,
+        direction,
+        points: points.iter().map(|p| p.report_row(&experiment)).collect(),
+    };
     let mut sink = Sink::open(args.out.as_deref())?;
-    if extra {
-        write!(sink, "{},", parameter.label())?;
-    }
-    writeln!(sink, "w,beta,direction,gain,A1,A3,class,stops_per_cycle")?;
-    for p in &points {
-        if extra {
-            write!(sink, "{},", p.value)?;
-        }
-        writeln!(
-            sink,
-            "{},{},{},{},{},{},{},{}",
-            p.params.w,
-            p.params.beta,
-            p.leg.label(),
-            p.gain,
-            p.a1,
-            p.a3,
-            p.class.label(),
-            p.stops_per_period
-        )?;
-    }
+    sink.write_all(report.csv().as_bytes())?;
     sink.finish()?;
     if let Some(path) = &args.plot {
         let theory = Theory::new(&experiment, parameter, &range)?;
@@ -223,6 +208,31 @@ impl From<&SweepPoint> for Row {
 }
 
 impl Row {
+    /// The row of the report (the steady state's peak, period and phase lag are not kept in
+    /// a row: absent).
+    fn report_row(&self, experiment: &Experiment) -> SweepRow {
+        let measured = |x: f64| (!x.is_nan()).then_some(x);
+        SweepRow {
+            value: self.value,
+            w: self.params.w,
+            beta: self.params.beta,
+            zeta: self.params.zeta,
+            mu_s: self.params.mu_s,
+            direction: self.leg,
+            gain: self.gain,
+            peak: None,
+            a1: measured(self.a1),
+            a3: measured(self.a3),
+            class: self.class,
+            stops_per_cycle: self.stops_per_period,
+            period: None,
+            phase_lag: None,
+            f_hz: experiment
+                .scales()
+                .map(|s| s.drive_omega(self.params.w) / std::f64::consts::TAU),
+        }
+    }
+
     /// The row as a checkpoint unit (its parameters, value and leg follow from the sweep).
     fn encode(&self) -> Vec<u8> {
         let class = MotionClass::ALL

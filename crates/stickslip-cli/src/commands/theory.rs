@@ -9,6 +9,7 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::experiment::Key;
+use stickslip::report::{Table, TheoryRow, TheoryTable};
 use stickslip::scan::grid_value;
 use stickslip::solver::grid;
 use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
@@ -264,16 +265,18 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     }
     bar.finish_and_clear();
 
-    let names = match curve {
-        Curve::Boundary => ["beta_c_paper", "beta_c_exact"],
-        Curve::Gain => ["gain_paper", "gain_exact"],
+    let table = TheoryTable {
+        quantity: match curve {
+            Curve::Boundary => "beta_c",
+            Curve::Gain => "gain",
+        },
+        rows: rows
+            .iter()
+            .map(|&(w, paper, exact)| TheoryRow { w, paper, exact })
+            .collect(),
     };
     let mut sink = Sink::open(args.out.as_deref())?;
-    writeln!(sink, "w,{},{}", names[0], names[1])?;
-    let cell = |v: Option<f64>| v.map(|x| format!("{x}")).unwrap_or_default();
-    for &(w, a, b) in &rows {
-        writeln!(sink, "{w},{},{}", cell(a), cell(b))?;
-    }
+    sink.write_all(table.csv().as_bytes())?;
     sink.finish()?;
 
     if let Some(path) = &args.plot {

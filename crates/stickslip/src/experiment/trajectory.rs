@@ -2,11 +2,10 @@
 //! `stickslip simulate` writes and the Python package's `simulate` returns.
 
 use super::Experiment;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::scan::Monitor;
-use crate::solver::{grid, sample_at, Event, Phase};
+use crate::solver::{Event, Phase};
 use serde::{Deserialize, Serialize};
-use std::ops::ControlFlow;
 
 /// A sampled run: the samples column by column (each column has one value per sample), and
 /// every event on the way.
@@ -48,7 +47,8 @@ impl Experiment {
     /// Run the experiment from its initial state for `periods` drive periods and sample the
     /// motion `samples_per_period` times per drive period (both ends included; see
     /// [`Trajectory`]). `monitor` is told after every drive period sampled (done and total
-    /// periods, rounded up) and can stop the run.
+    /// periods, rounded up) and can stop the run. This is [`Experiment::trajectory`] kept
+    /// whole.
     ///
     /// ```
     /// use stickslip::experiment::Experiment;
@@ -72,68 +72,34 @@ impl Experiment {
         samples_per_period: usize,
         monitor: &dyn Monitor,
     ) -> Result<Trajectory> {
-        if !(periods.is_finite() && periods > 0.0) {
-            return Err(Error::InvalidParameter {
-                name: "periods",
-                value: periods,
-                allowed: "must be finite and > 0",
-            });
-        }
-        if samples_per_period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "samples_per_period",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
-        let count = (periods * samples_per_period as f64).ceil();
-        if count > Trajectory::MAX_SAMPLES {
-            return Err(Error::InvalidParameter {
-                name: "samples",
-                value: count,
-                allowed: "periods × samples_per_period must be at most 5e7",
-            });
-        }
-        let params = self.params()?;
-        crate::limits::check_horizon(&params, periods)?;
-        let mut solver = self.solver()?;
-        let times = grid(0.0, periods * params.drive_period(), count as usize);
-        let n = times.len();
-        let mut run = Trajectory {
-            tau: Vec::with_capacity(n),
-            y: Vec::with_capacity(n),
-            v: Vec::with_capacity(n),
-            drive: Vec::with_capacity(n),
-            phase: Vec::with_capacity(n),
-            events: Vec::new(),
-        };
-        // A drive period at a time, so that the monitor can stop a long run; the samples are
-        // those of one pass over all the times.
-        let chunks = times.chunks(samples_per_period);
-        let total = chunks.len();
-        for (done, chunk) in chunks.enumerate() {
-            let samples = sample_at(solver.as_mut(), chunk, |e| run.events.push(*e))?;
-            for s in &samples {
-                run.tau.push(s.tau);
-                run.y.push(s.y);
-                run.v.push(s.v);
-                run.drive.push(solver.drive(s.tau));
-                run.phase.push(s.phase);
-            }
-            if monitor.step(done + 1, total) == ControlFlow::Break(()) {
-                return Err(Error::Cancelled {
-                    done: done + 1,
-                    total,
-                });
-            }
-        }
-        Ok(run)
+        // The one trajectory path: the run streamed and kept whole.
+        let report = self
+            .trajectory(periods, samples_per_period)?
+            .monitor(monitor)
+            .collect_report()?;
+        Ok(Trajectory {
+            tau: report.tau,
+            y: report.y,
+            v: report.v,
+            drive: report.drive,
+            phase: report.phase,
+            events: report
+                .events
+                .into_iter()
+                .map(|e| Event {
+                    tau: e.tau,
+                    y: e.y,
+                    kind: e.kind,
+                })
+                .collect(),
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
     use crate::solver::{grid, sample_at};
 
     #[test]

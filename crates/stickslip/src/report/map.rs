@@ -1,0 +1,193 @@
+//! The report of a map (`stickslip phase-diagram`, the lab's map): one row per point of the
+//! grid of (w, β).
+
+use super::{cell, optional, Table};
+use crate::scan::GridPoint;
+use crate::steady::MotionClass;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// One point of a map.
+///
+/// The JSON fields are the CSV's columns: `w`, `beta`, `class`, `period`,
+/// `stops_per_cycle`, `gain`, and with exponents `lambda`, `lambda_error`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MapRow {
+    /// Drive frequency w = Ω/ω0.
+    pub w: f64,
+    /// Drive amplitude β.
+    pub beta: f64,
+    /// Motion class.
+    pub class: MotionClass,
+    /// Period in drive periods (`None`: none found within the cap; an empty cell).
+    pub period: Option<usize>,
+    /// Stops of non-zero duration per drive period.
+    pub stops_per_cycle: f64,
+    /// Gain (y_max − y_min)/(2β).
+    pub gain: f64,
+    /// Largest Lyapunov exponent per unit τ, when the map measured exponents (`None` where
+    /// the flow has no derivative: an empty cell).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// Its standard error per unit τ.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_error: Option<f64>,
+}
+
+impl From<&GridPoint> for MapRow {
+    fn from(p: &GridPoint) -> Self {
+        Self {
+            w: p.params.w,
+            beta: p.params.beta,
+            class: p.class,
+            period: p.period,
+            stops_per_cycle: p.stops_per_period,
+            gain: p.gain,
+            lambda: p.lyapunov.map(|l| l.per_tau),
+            lambda_error: p.lyapunov.map(|l| l.error_per_tau),
+        }
+    }
+}
+
+impl MapRow {
+    /// The columns of a map; `lyapunov`: with the exponent's two.
+    pub fn columns(lyapunov: bool) -> Vec<&'static str> {
+        let mut columns = vec!["w", "beta", "class", "period", "stops_per_cycle", "gain"];
+        if lyapunov {
+            columns.extend(["lambda", "lambda_error"]);
+        }
+        columns
+    }
+
+    /// The row's cells; `lyapunov`: with the exponent's two (empty where it is absent).
+    pub fn cells(&self, lyapunov: bool) -> Vec<String> {
+        let mut row = vec![
+            cell(self.w),
+            cell(self.beta),
+            self.class.label().to_string(),
+            optional(self.period),
+            cell(self.stops_per_cycle),
+            cell(self.gain),
+        ];
+        if lyapunov {
+            row.push(optional(self.lambda));
+            row.push(optional(self.lambda_error));
+        }
+        row
+    }
+
+    /// Append the row as a CSV line, with its newline, to `out`.
+    pub fn write_row(&self, lyapunov: bool, out: &mut String) {
+        let _ = write!(
+            out,
+            "{},{},{},{},{},{}",
+            self.w,
+            self.beta,
+            self.class.label(),
+            optional(self.period),
+            self.stops_per_cycle,
+            self.gain
+        );
+        if lyapunov {
+            let _ = write!(
+                out,
+                ",{},{}",
+                optional(self.lambda),
+                optional(self.lambda_error)
+            );
+        }
+        out.push('\n');
+    }
+}
+
+/// A map: its points, rows of the grid one after the other (w-major, as the CSV).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapReport {
+    /// Whether the map measured Lyapunov exponents (the CSV then has their two columns).
+    pub lyapunov: bool,
+    /// The points.
+    pub points: Vec<MapRow>,
+}
+
+impl MapReport {
+    /// The report of computed points.
+    pub fn new(points: &[GridPoint], lyapunov: bool) -> Self {
+        Self {
+            lyapunov,
+            points: points.iter().map(MapRow::from).collect(),
+        }
+    }
+}
+
+impl Table for MapReport {
+    fn columns(&self) -> Vec<String> {
+        MapRow::columns(self.lyapunov)
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    fn row(&self, i: usize) -> Vec<String> {
+        self.points[i].cells(self.lyapunov)
+    }
+
+    fn write_row(&self, i: usize, out: &mut String) {
+        self.points[i].write_row(self.lyapunov, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scan::{Axis, Grid};
+    use crate::{Experiment, Parameter};
+
+    #[test]
+    fn cells_are_the_cli_line_and_write_row_agrees() {
+        let e = Experiment::dimensionless(0.05, 0.7, 1.2).unwrap();
+        let grid = Grid::new(
+            &e,
+            Axis::new(Parameter::W, vec![0.5, 0.9]).unwrap(),
+            Axis::new(Parameter::Beta, vec![0.8, 2.5]).unwrap(),
+        )
+        .unwrap();
+        let map = grid.run(&()).unwrap();
+        for lyapunov in [false, true] {
+            let report = MapReport::new(&map.points, lyapunov);
+            let csv = report.csv();
+            let mut lines = csv.lines();
+            assert_eq!(
+                lines.next().unwrap(),
+                if lyapunov {
+                    "w,beta,class,period,stops_per_cycle,gain,lambda,lambda_error"
+                } else {
+                    "w,beta,class,period,stops_per_cycle,gain"
+                }
+            );
+            for (i, (line, p)) in lines.zip(&map.points).enumerate() {
+                let mut expected = format!(
+                    "{},{},{},{},{},{}",
+                    p.params.w,
+                    p.params.beta,
+                    p.class.label(),
+                    p.period.map(|x| x.to_string()).unwrap_or_default(),
+                    p.stops_per_period,
+                    p.gain
+                );
+                if lyapunov {
+                    expected.push_str(",,");
+                }
+                assert_eq!(line, expected);
+                assert_eq!(line, report.row(i).join(","));
+            }
+        }
+        let json = serde_json::to_value(MapReport::new(&map.points, false)).unwrap();
+        let first = &json["points"][0];
+        assert_eq!(first["class"], map.points[0].class.label());
+        assert!(first.get("lambda").is_none());
+    }
+}

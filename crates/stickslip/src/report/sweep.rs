@@ -1,0 +1,248 @@
+//! The report of a sweep: one row per step, in the order the steps were computed.
+
+use super::{cell, Table};
+use crate::experiment::Experiment;
+use crate::params::Parameter;
+use crate::scan::{SweepDirection, SweepLeg, SweepPoint};
+use crate::steady::MotionClass;
+use serde::Serialize;
+
+/// One step of a sweep.
+///
+/// The JSON fields are the CSV's columns (`w`, `beta`, `direction`, `gain`, `A1`, `A3`,
+/// `class`, `stops_per_cycle`; the swept value as `value`) and what the CSV leaves out
+/// (`zeta`, `mu_s`, `peak`, `period`, `phase_lag`, `f_Hz`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepRow {
+    /// The swept parameter's value.
+    pub value: f64,
+    /// Drive frequency w = Ω/ω0 of the step.
+    pub w: f64,
+    /// Drive amplitude β of the step.
+    pub beta: f64,
+    /// Damping ratio ζ of the step.
+    pub zeta: f64,
+    /// Static-to-kinetic friction ratio μs of the step.
+    pub mu_s: f64,
+    /// The leg of the step: `up` or `down`.
+    pub direction: SweepLeg,
+    /// Gain (y_max − y_min)/(2β).
+    pub gain: f64,
+    /// Peak |y| of the steady motion (`None` for a step restored from a file that did not
+    /// keep it).
+    pub peak: Option<f64>,
+    /// Amplitude of the fundamental of y (`None`: not measured; the CSV writes `NaN`).
+    #[serde(rename = "A1")]
+    pub a1: Option<f64>,
+    /// Amplitude of the third harmonic of y (`None`: not measured; the CSV writes `NaN`).
+    #[serde(rename = "A3")]
+    pub a3: Option<f64>,
+    /// Motion class.
+    pub class: MotionClass,
+    /// Stops of non-zero duration per drive period.
+    pub stops_per_cycle: f64,
+    /// Period in drive periods (`None`: none found within the cap).
+    pub period: Option<usize>,
+    /// Phase lag of the fundamental of y behind the drive, radians (`None`: no fundamental,
+    /// or not kept).
+    pub phase_lag: Option<f64>,
+    /// Drive frequency in Hz, for a physical description.
+    #[serde(rename = "f_Hz")]
+    pub f_hz: Option<f64>,
+}
+
+impl SweepRow {
+    /// The row of a computed step; `experiment` gives the drive frequency in Hz when it is
+    /// physical.
+    pub fn new(point: &SweepPoint, experiment: &Experiment) -> Self {
+        let s = &point.steady;
+        Self {
+            value: point.value,
+            w: point.params.w,
+            beta: point.params.beta,
+            zeta: point.params.zeta,
+            mu_s: point.params.mu_s,
+            direction: point.leg,
+            gain: s.gain,
+            peak: Some(s.peak),
+            a1: s.harmonic(1),
+            a3: s.harmonic(3),
+            class: s.class,
+            stops_per_cycle: s.stops_per_period,
+            period: s.period,
+            phase_lag: s.phase_lag(),
+            f_hz: experiment
+                .scales()
+                .map(|sc| sc.drive_omega(point.params.w) / std::f64::consts::TAU),
+        }
+    }
+}
+
+/// A sweep: the swept parameter, the direction asked for, and the steps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepReport {
+    /// The swept parameter (`w`, `beta`, `zeta` or `mu_s`).
+    pub over: Parameter,
+    /// `up`, `down` or `both`.
+    #[serde(serialize_with = "direction")]
+    pub direction: SweepDirection,
+    /// The steps in the order they were computed.
+    pub points: Vec<SweepRow>,
+}
+
+fn direction<S: serde::Serializer>(d: &SweepDirection, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(d.label())
+}
+
+impl SweepReport {
+    /// The report of computed steps.
+    pub fn new(
+        experiment: &Experiment,
+        over: Parameter,
+        direction: SweepDirection,
+        points: &[SweepPoint],
+    ) -> Self {
+        Self {
+            over,
+            direction,
+            points: points
+                .iter()
+                .map(|p| SweepRow::new(p, experiment))
+                .collect(),
+        }
+    }
+
+    /// Whether the CSV puts the swept value in a column of its own, first (a sweep of ζ or
+    /// μs, whose value is not among the other columns).
+    pub fn value_column(&self) -> bool {
+        matches!(self.over, Parameter::Zeta | Parameter::MuS)
+    }
+}
+
+impl Table for SweepReport {
+    /// `w,beta,direction,gain,A1,A3,class,stops_per_cycle`, after `zeta` or `mu_s` for a
+    /// sweep of that parameter.
+    fn columns(&self) -> Vec<String> {
+        let mut columns = Vec::new();
+        if self.value_column() {
+            columns.push(self.over.label().to_string());
+        }
+        columns.extend(
+            [
+                "w",
+                "beta",
+                "direction",
+                "gain",
+                "A1",
+                "A3",
+                "class",
+                "stops_per_cycle",
+            ]
+            .map(String::from),
+        );
+        columns
+    }
+
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    fn row(&self, i: usize) -> Vec<String> {
+        let p = &self.points[i];
+        let mut row = Vec::with_capacity(9);
+        if self.value_column() {
+            row.push(cell(p.value));
+        }
+        row.extend([
+            cell(p.w),
+            cell(p.beta),
+            p.direction.label().to_string(),
+            cell(p.gain),
+            cell(p.a1.unwrap_or(f64::NAN)),
+            cell(p.a3.unwrap_or(f64::NAN)),
+            p.class.label().to_string(),
+            cell(p.stops_per_cycle),
+        ]);
+        row
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scan::{Axis, Sweep};
+
+    #[test]
+    fn rows_csv_and_json_of_a_sweep_of_mu_s() {
+        let e = Experiment::dimensionless(0.05, 0.7, 2.0).unwrap();
+        let axis = Axis::new(Parameter::MuS, vec![1.0, 1.5]).unwrap();
+        let sweep = Sweep::new(&e, axis)
+            .unwrap()
+            .direction(SweepDirection::Both)
+            .options(e.steady_options().with_harmonics(3).unwrap())
+            .unwrap();
+        let points = sweep.run(&()).unwrap();
+        let report = SweepReport::new(&e, Parameter::MuS, SweepDirection::Both, &points);
+        assert_eq!(
+            report.header(),
+            "mu_s,w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+        );
+        assert_eq!(report.len(), 4);
+        for (i, p) in points.iter().enumerate() {
+            let s = &p.steady;
+            // The CLI's line before the report type, written out.
+            let line = format!(
+                "{},{},{},{},{},{},{},{},{}",
+                p.value,
+                p.params.w,
+                p.params.beta,
+                p.leg.label(),
+                s.gain,
+                s.harmonic(1).unwrap_or(f64::NAN),
+                s.harmonic(3).unwrap_or(f64::NAN),
+                s.class.label(),
+                s.stops_per_period
+            );
+            assert_eq!(report.row(i).join(","), line);
+        }
+        let json = serde_json::to_value(&report).unwrap();
+        assert_eq!(json["over"], "mu_s");
+        assert_eq!(json["direction"], "both");
+        let row = &json["points"][3];
+        assert_eq!(row["direction"], "down");
+        assert_eq!(row["mu_s"], 1.0);
+        assert_eq!(row["class"], points[3].steady.class.label());
+        assert_eq!(row["A1"], points[3].steady.harmonic(1).unwrap());
+        assert!(row["f_Hz"].is_null());
+        for key in [
+            "value",
+            "w",
+            "beta",
+            "zeta",
+            "gain",
+            "peak",
+            "A3",
+            "stops_per_cycle",
+            "period",
+            "phase_lag",
+        ] {
+            assert!(row.get(key).is_some(), "{key}");
+        }
+    }
+
+    #[test]
+    fn a_sweep_of_w_has_no_value_column_and_a_circuit_has_f_hz() {
+        let e = Experiment::paper().with_beta(1.2).unwrap();
+        let axis = Axis::new(Parameter::W, vec![0.7]).unwrap();
+        let sweep = Sweep::new(&e, axis).unwrap().direction(SweepDirection::Up);
+        let points = sweep.run(&()).unwrap();
+        let report = SweepReport::new(&e, Parameter::W, SweepDirection::Up, &points);
+        assert_eq!(
+            report.header(),
+            "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+        );
+        let scales = e.scales().unwrap();
+        let f = report.points[0].f_hz.unwrap();
+        assert!((f * std::f64::consts::TAU / scales.omega0 - 0.7).abs() < 1e-12);
+    }
+}
