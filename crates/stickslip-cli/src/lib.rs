@@ -116,6 +116,9 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
             matches!(
                 e,
                 Error::InvalidParameter { .. }
+                    | Error::InvalidOption { .. }
+                    | Error::OptionProduct { .. }
+                    | Error::InvalidText { .. }
                     | Error::ImageOutOfRange { .. }
                     | Error::HorizonTooLong { .. }
                     | Error::Spec(_)
@@ -123,6 +126,10 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
                     | Error::Unsupported(_)
             )
         });
+    // An option names its flag (`invalid --max-period 65: must be from 1 to 64`).
+    if let Some(e @ (Error::InvalidOption { .. } | Error::OptionProduct { .. })) = library {
+        return (e.render(stickslip::Spelling::Flag), true);
+    }
     if let Some(Error::Spec(spec)) = library {
         return (spec.render(&model::flag), true);
     }

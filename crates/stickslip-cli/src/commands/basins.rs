@@ -2,6 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
+use crate::flags::{count, range_from_flags};
 use crate::model::{finite, flag, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
@@ -13,7 +14,7 @@ use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
 use stickslip::report::{BasinsTable, Table};
 use stickslip::scan::ParameterRange;
-use stickslip::State;
+use stickslip::{OptionKey, State};
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase. The attractors are found and numbered
@@ -105,45 +106,22 @@ pub struct Args {
 
 /// Run `stickslip basins`.
 pub fn run(args: Args) -> Result<()> {
-    let y0 = crate::flags::range_from_flags(
+    let y0 = range_from_flags(
         "y0",
         ("y0-min", args.y0_min),
         ("y0-max", args.y0_max),
-        ("steps", args.steps),
+        (OptionKey::BasinSteps, args.steps),
     )?;
-    let v0 = crate::flags::range_from_flags(
+    let v0 = range_from_flags(
         "v0",
         ("v0-min", args.v0_min),
         ("v0-max", args.v0_max),
-        ("steps", args.steps),
+        (OptionKey::BasinSteps, args.steps),
     )?;
-    if args.steps > 2000 {
-        usage!("invalid --steps {}: must be from 1 to 2000", args.steps);
-    }
-    if !(1..=100_000_000).contains(&args.max_periods) {
-        usage!(
-            "invalid --max-periods {}: must be from 1 to 1e8",
-            args.max_periods
-        );
-    }
-    if !(1..=64).contains(&args.max_period) {
-        usage!(
-            "invalid --max-period {}: must be from 1 to 64",
-            args.max_period
-        );
-    }
-    if !(8..=10_000_000).contains(&args.lyapunov_periods) {
-        usage!(
-            "invalid --lyapunov-periods {}: must be from 8 to 1e7",
-            args.lyapunov_periods
-        );
-    }
-    if !(16..=1_000_000).contains(&args.resolution) {
-        usage!(
-            "invalid --resolution {}: must be from 16 to 1e6",
-            args.resolution
-        );
-    }
+    let max_periods = count(OptionKey::BasinMaxPeriods, args.max_periods)?;
+    let max_period = count(OptionKey::BasinMaxPeriod, args.max_period)?;
+    let lyapunov_periods = count(OptionKey::BasinLyapunovPeriods, args.lyapunov_periods)?;
+    let resolution = count(OptionKey::Resolution, args.resolution)?;
     for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
         if args.model.given(key) {
             usage!(
@@ -165,13 +143,13 @@ pub fn run(args: Args) -> Result<()> {
         experiment = experiment.with_phi(phase)?;
     }
     let options = BasinOptions {
-        max_periods: args.max_periods as usize,
-        max_period: args.max_period as usize,
+        max_periods,
+        max_period,
         method: args.method,
-        resolution: args.resolution as usize,
+        resolution,
         ..BasinOptions::default()
     }
-    .with_lyapunov_periods(args.lyapunov_periods as usize);
+    .with_lyapunov_periods(lyapunov_periods);
     let basins = Basins::new(&experiment, &y0, &v0)?.options(options)?;
     // A checkpoint of other parameters, or a damaged one, is refused before any work.
     let checkpoint = args.checkpoint.open(

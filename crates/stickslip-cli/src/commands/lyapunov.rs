@@ -1,11 +1,14 @@
 //! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
 
+use crate::flags::{count, number};
 use crate::model::ModelArgs;
-use crate::output::{check_interrupt, interrupted, progress, usage};
+use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
+use stickslip::options::Allowed;
 use stickslip::stability::{
     LyapunovOptions, LyapunovReport, NonperiodicClassification, NonperiodicVerdict, SecondExponent,
 };
+use stickslip::OptionKey;
 
 /// The largest Lyapunov exponent λ1 of the motion from the initial state, with a standard
 /// error, and the second exponent λ2, by the exact tangent dynamics of the PWL model: the
@@ -63,33 +66,26 @@ pub struct Args {
 
 /// Run `stickslip lyapunov`.
 pub fn run(args: Args) -> Result<()> {
-    if !(0..=1_000_000_000).contains(&args.transient) {
-        usage!(
-            "invalid --transient {}: must be from 0 to 1e9",
-            args.transient
-        );
-    }
-    if !(4..=10_000).contains(&args.blocks) || args.blocks % 2 != 0 {
-        usage!(
-            "invalid --blocks {}: must be even and from 4 to 10000",
-            args.blocks
-        );
-    }
-    if !(args.blocks..=1_000_000_000).contains(&args.periods) {
-        usage!(
-            "invalid --periods {}: must be from --blocks ({}) to 1e9",
-            args.periods,
-            args.blocks
-        );
-    }
-    if !(args.significance > 0.0) {
-        usage!("invalid --significance {}: must be > 0", args.significance);
+    let transient_periods = count(OptionKey::LyapunovTransient, args.transient)?;
+    let blocks = count(OptionKey::Blocks, args.blocks)?;
+    let periods = count(OptionKey::LyapunovMeasured, args.periods)?;
+    if periods < blocks {
+        return Err(stickslip::Error::InvalidOption {
+            option: OptionKey::LyapunovMeasured,
+            value: periods as f64,
+            allowed: Allowed::FromOption {
+                other: OptionKey::Blocks,
+                value: blocks as f64,
+                to: "1e9",
+            },
+        }
+        .into());
     }
     let options = LyapunovOptions {
-        transient_periods: args.transient as usize,
-        periods: args.periods as usize,
-        blocks: args.blocks as usize,
-        significance: args.significance,
+        transient_periods,
+        periods,
+        blocks,
+        significance: number(OptionKey::Significance, args.significance)?,
         sequential: !args.fixed,
     }
     .validate()?;

@@ -18,7 +18,7 @@ use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{
     abscissae, theory_curve, Theory as TheoryKind, TheoryCurve, TheoryQuantity,
 };
-use stickslip::{DiodeModel, Experiment, Parameter, Params, State};
+use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 
 /// Sweep one parameter (w, β, ζ or μs) with the others fixed; each step starts from the final
 /// state of the step before, as when turning a knob, so hysteresis and coexisting motions
@@ -71,7 +71,7 @@ pub fn run(args: Args) -> Result<()> {
         parameter.label(),
         ("from", args.from),
         ("to", args.to),
-        ("steps", args.steps),
+        (OptionKey::SweepSteps, args.steps),
     )?;
     reject_swept_flags(&args.model, parameter, "--over")?;
     if let Some(p) = &args.plot {

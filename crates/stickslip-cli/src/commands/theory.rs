@@ -1,7 +1,7 @@
 //! `stickslip theory`: the paper's series solution against the exact periodic solution, and
 //! stick-slip boundary or gain curves.
 
-use crate::flags::reject_swept_flags;
+use crate::flags::{key_value, reject_swept_flags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -14,7 +14,7 @@ use stickslip::scan::grid_value;
 use stickslip::solver::grid;
 use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
-use stickslip::{DiodeModel, Experiment, Parameter, Unsupported};
+use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Unsupported};
 
 /// The paper's series solution (its eqs. 9–11, 13) next to the exact non-sticking periodic
 /// solution (Den Hartog 1930 for ζ = 0, its damped generalisation otherwise).
@@ -182,16 +182,12 @@ fn point(args: &Args) -> Result<()> {
 
 fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     let (lo, hi) = (args.w_min.unwrap_or(0.2), args.w_max.unwrap_or(3.0));
-    let steps = args.steps.unwrap_or(200);
-    if !(lo > 0.0) {
-        usage!("invalid --w-min {lo}: must be > 0");
-    }
+    key_value(Key::W, "w-min", lo)?;
+    key_value(Key::W, "w-max", hi)?;
     if !(hi > lo) {
         usage!("invalid --w-max {hi}: must be greater than --w-min {lo}");
     }
-    if !(2..=100_000).contains(&steps) {
-        usage!("invalid --steps {steps}: must be from 2 to 100000 (the number of points)");
-    }
+    let steps = OptionKey::CurveSteps.check(args.steps.unwrap_or(200) as f64)? as u64;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
