@@ -34,6 +34,7 @@
 //! [`crate::stability::classify_nonperiodic`] decides at length.
 
 use crate::error::{Error, Result};
+use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{EventKind, Phase};
 use crate::stability::TangentSolver;
@@ -124,7 +125,9 @@ impl RecordOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] naming the points, the transient or the longest period
+    /// ([`crate::options`]); [`Error::InvalidParameter`] naming the tolerance or the
+    /// significance.
     pub fn validate(self) -> Result<Self> {
         let bad = |name, value: f64, allowed| {
             Err(Error::InvalidParameter {
@@ -133,19 +136,9 @@ impl RecordOptions {
                 allowed,
             })
         };
-        if self.points == 0 || self.points > 1_000_000 {
-            return bad("points", self.points as f64, "must be from 1 to 1000000");
-        }
-        if self.transient_periods > 100_000_000 {
-            return bad(
-                "transient",
-                self.transient_periods as f64,
-                "must be at most 1e8 drive periods",
-            );
-        }
-        if self.max_period == 0 {
-            return bad("max_period", 0.0, "must be at least 1");
-        }
+        OptionKey::Points.check_count(self.points)?;
+        OptionKey::BifurcationTransient.check_count(self.transient_periods)?;
+        OptionKey::BifurcationMaxPeriod.check_count(self.max_period)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return bad("tolerance", self.tolerance, "must be > 0 and < 1");
         }
@@ -374,7 +367,10 @@ mod tests {
         };
         assert!(matches!(
             record_strobes(&params, State::default(), &bad),
-            Err(Error::InvalidParameter { name: "points", .. })
+            Err(Error::InvalidOption {
+                option: crate::options::OptionKey::Points,
+                ..
+            })
         ));
     }
 }

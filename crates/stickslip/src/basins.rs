@@ -61,6 +61,7 @@ use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, Record
 use crate::error::{Error, Result, Unsupported};
 use crate::exact::ExactSolver;
 use crate::experiment::{DiodeModel, Experiment};
+use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::scan::{Monitor, ParameterRange};
 use crate::solver::{run_until, Solver};
@@ -181,7 +182,8 @@ impl BasinOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] naming the first bad field of the option table
+    /// ([`crate::options`]), [`Error::InvalidParameter`] naming any other.
     pub fn validate(self) -> Result<Self> {
         let bad = |name, value: f64, allowed| {
             Err(Error::InvalidParameter {
@@ -190,14 +192,10 @@ impl BasinOptions {
                 allowed,
             })
         };
+        OptionKey::BasinMaxPeriods.check_count(self.max_periods)?;
+        OptionKey::BasinMaxPeriod.check_count(self.max_period)?;
         self.steady_options()?;
-        if !(8..=10_000_000).contains(&self.lyapunov_periods) {
-            return bad(
-                "lyapunov_periods",
-                self.lyapunov_periods as f64,
-                "must be from 8 to 1e7",
-            );
-        }
+        OptionKey::BasinLyapunovPeriods.check_count(self.lyapunov_periods)?;
         if !(self.significance > 0.0 && self.significance.is_finite()) {
             return bad("significance", self.significance, "must be finite and > 0");
         }
@@ -215,13 +213,7 @@ impl BasinOptions {
                 "must be from 1 to lyapunov_periods",
             );
         }
-        if !(16..=1_000_000).contains(&self.resolution) {
-            return bad(
-                "resolution",
-                self.resolution as f64,
-                "must be from 16 to 1e6",
-            );
-        }
+        OptionKey::Resolution.check_count(self.resolution)?;
         for (name, value) in [
             ("found_revisits", self.found_revisits),
             ("attractor_hits", self.attractor_hits),

@@ -70,16 +70,11 @@ impl BifurcationOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] or [`Error::InvalidParameter`] naming the first bad field
+    /// ([`RecordOptions::validate`]).
     pub fn validate(self) -> Result<Self> {
         self.record.validate()?;
-        if self.first_transient_periods > 100_000_000 {
-            return Err(Error::InvalidParameter {
-                name: "first_transient_periods",
-                value: self.first_transient_periods as f64,
-                allowed: "must be at most 1e8 drive periods",
-            });
-        }
+        crate::options::OptionKey::FirstTransient.check_count(self.first_transient_periods)?;
         Ok(self)
     }
 }

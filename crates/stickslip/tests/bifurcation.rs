@@ -693,8 +693,8 @@ fn bad_input_is_refused_with_its_name() {
     };
     assert!(matches!(
         continue_orbit(&pr, Parameter::W, &orbit, 0.7, &bad, &()),
-        Err(stickslip::Error::InvalidParameter {
-            name: "max_step",
+        Err(stickslip::Error::InvalidOption {
+            option: stickslip::OptionKey::MaxStep,
             ..
         })
     ));

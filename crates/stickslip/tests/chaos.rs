@@ -204,7 +204,10 @@ fn invalid_measurement_options_are_refused() {
     };
     assert!(matches!(
         SteadyOptions::default().with_lyapunov(Some(bad)),
-        Err(Error::InvalidParameter { name: "blocks", .. })
+        Err(Error::InvalidOption {
+            option: stickslip::OptionKey::Blocks,
+            ..
+        })
     ));
 }
 

@@ -951,8 +951,8 @@ fn failures_are_typed() {
     };
     assert!(matches!(
         find_periodic_orbit(&params, State::default(), 1, &loose),
-        Err(Error::InvalidParameter {
-            name: "tolerance",
+        Err(Error::InvalidOption {
+            option: stickslip::OptionKey::NewtonTolerance,
             ..
         })
     ));
@@ -968,19 +968,25 @@ fn lyapunov_options_are_validated() {
     };
     assert!(matches!(
         lyapunov_exponents(&params, State::default(), &odd_blocks),
-        Err(Error::InvalidParameter { name: "blocks", .. })
+        Err(Error::InvalidOption {
+            option: stickslip::OptionKey::Blocks,
+            ..
+        })
     ));
     let short = LyapunovOptions {
         periods: 10,
         ..LyapunovOptions::default()
     };
-    assert!(matches!(
-        classify_nonperiodic(&params, State::default(), &short),
-        Err(Error::InvalidParameter {
-            name: "periods",
-            ..
-        })
-    ));
+    let e = classify_nonperiodic(&params, State::default(), &short).unwrap_err();
+    assert_eq!(e.option(), Some(stickslip::OptionKey::LyapunovMeasured));
+    assert_eq!(
+        e.to_string(),
+        "invalid periods = 10: must be from blocks (20) to 1e9"
+    );
+    assert_eq!(
+        e.render(stickslip::Spelling::Flag),
+        "invalid --periods 10: must be from --blocks (20) to 1e9"
+    );
     assert!(matches!(
         two_trajectory_exponent(&params, State::default(), &measuring(), 0.0),
         Err(Error::InvalidParameter {

@@ -68,6 +68,7 @@ mod detect;
 use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
 use crate::experiment::{DiodeModel, Experiment};
+use crate::options::{Allowed, OptionKey};
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
 use crate::solver::Solver;
@@ -158,8 +159,13 @@ impl ContinuationOptions {
             return bad("min_step", self.min_step, "must be finite and > 0");
         }
         if !(positive(self.max_step) && self.max_step >= self.min_step) {
-            return bad("max_step", self.max_step, "must be finite and >= min_step");
+            return Err(Error::InvalidOption {
+                option: OptionKey::MaxStep,
+                value: self.max_step,
+                allowed: Allowed::Text("must be finite and >= min_step"),
+            });
         }
+        OptionKey::MaxStep.check(self.max_step)?;
         if !(self.initial_step >= self.min_step && self.initial_step <= self.max_step) {
             return bad(
                 "initial_step",
@@ -177,13 +183,7 @@ impl ContinuationOptions {
         if !(positive(self.max_angle) && self.max_angle < std::f64::consts::FRAC_PI_2) {
             return bad("max_angle", self.max_angle, "must be > 0 and < pi/2");
         }
-        if self.max_points < 2 || self.max_points > 10_000_000 {
-            return bad(
-                "max_points",
-                self.max_points as f64,
-                "must be from 2 to 10000000",
-            );
-        }
+        OptionKey::MaxPoints.check_count(self.max_points)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-3) {
             return bad("tolerance", self.tolerance, "must be > 0 and < 1e-3");
         }

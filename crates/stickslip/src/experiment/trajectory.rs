@@ -61,8 +61,9 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] when `periods` is not finite and > 0, `samples_per_period`
-    /// is 0, or the run would hold more than [`Trajectory::MAX_SAMPLES`] samples; a missing
+    /// [`Error::InvalidOption`] when `periods` is not finite and > 0 or `samples_per_period`
+    /// is out of its range, [`Error::OptionProduct`] when the run would hold more than
+    /// [`Trajectory::MAX_SAMPLES`] samples ([`crate::options::SimulateOptions`]); a missing
     /// drive ([`Experiment::params`]); [`Error::HorizonTooLong`] for a run longer than the
     /// solvers resolve ([`crate::limits::check_horizon`]), before any work;
     /// [`Error::Cancelled`]; whatever the solver reports.
@@ -72,6 +73,11 @@ impl Experiment {
         samples_per_period: usize,
         monitor: &dyn Monitor,
     ) -> Result<Trajectory> {
+        crate::options::SimulateOptions {
+            periods,
+            samples_per_period,
+        }
+        .validate()?;
         // The one trajectory path: the run streamed and kept whole.
         let report = self
             .trajectory(periods, samples_per_period)?
@@ -137,7 +143,7 @@ mod tests {
         for (periods, samples) in [(0.0, 10), (f64::NAN, 10), (1.0, 0), (1e7, 100)] {
             assert!(matches!(
                 e.simulate(periods, samples, &()),
-                Err(Error::InvalidParameter { .. })
+                Err(Error::InvalidOption { .. } | Error::OptionProduct { .. })
             ));
         }
         let stop_after_two = |done: usize, _: usize| done < 2;

@@ -58,6 +58,7 @@
 use super::error::StabilityError;
 use super::tangent::TangentSolver;
 use crate::error::{Error, Result};
+use crate::options::{Allowed, OptionKey};
 use crate::params::{Params, State};
 use crate::scan::Monitor;
 use crate::solver::{Event, EventKind, Phase};
@@ -105,28 +106,22 @@ impl LyapunovOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] naming the first bad field ([`crate::options`]).
     pub fn validate(self) -> Result<Self> {
-        let bad = |name, value: f64, allowed| {
-            Err(Error::InvalidParameter {
-                name,
-                value,
-                allowed,
-            })
-        };
-        if self.blocks < 4 || !self.blocks.is_multiple_of(2) {
-            return bad("blocks", self.blocks as f64, "must be even and at least 4");
+        OptionKey::LyapunovTransient.check_count(self.transient_periods)?;
+        OptionKey::Blocks.check_count(self.blocks)?;
+        if self.periods < self.blocks || !OptionKey::LyapunovMeasured.allows(self.periods as f64) {
+            return Err(Error::InvalidOption {
+                option: OptionKey::LyapunovMeasured,
+                value: self.periods as f64,
+                allowed: Allowed::FromOption {
+                    other: OptionKey::Blocks,
+                    value: self.blocks as f64,
+                    to: "1e9",
+                },
+            });
         }
-        if self.periods < self.blocks {
-            return bad(
-                "periods",
-                self.periods as f64,
-                "must be at least the number of blocks",
-            );
-        }
-        if !(self.significance > 0.0 && self.significance.is_finite()) {
-            return bad("significance", self.significance, "must be finite and > 0");
-        }
+        OptionKey::Significance.check(self.significance)?;
         Ok(self)
     }
 

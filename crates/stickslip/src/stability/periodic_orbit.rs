@@ -49,6 +49,7 @@ use super::error::StabilityError;
 use super::matrix::{Matrix2, Multiplier};
 use super::strobe::{strobe_map, StrobeImage};
 use crate::error::{Error, Result};
+use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind};
 use crate::steady::SteadyState;
@@ -83,23 +84,17 @@ impl NewtonOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] naming the tolerance or the most steps
+    /// ([`crate::options`]); [`Error::InvalidParameter`] for the neutral band.
     pub fn validate(self) -> Result<Self> {
-        let bad = |name, value, allowed| {
-            Err(Error::InvalidParameter {
-                name,
-                value,
-                allowed,
-            })
-        };
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad("tolerance", self.tolerance, "must be > 0 and < 1");
-        }
-        if self.max_iterations == 0 {
-            return bad("max_iterations", 0.0, "must be at least 1");
-        }
+        OptionKey::NewtonTolerance.check(self.tolerance)?;
+        OptionKey::MaxIterations.check_count(self.max_iterations)?;
         if !(self.neutral_band >= 0.0 && self.neutral_band < 1.0) {
-            return bad("neutral_band", self.neutral_band, "must be >= 0 and < 1");
+            return Err(Error::InvalidParameter {
+                name: "neutral_band",
+                value: self.neutral_band,
+                allowed: "must be >= 0 and < 1",
+            });
         }
         Ok(self)
     }

@@ -80,6 +80,8 @@ use super::spectrum::Spectrum;
 use super::SolverFactory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
+use crate::limits::Caps;
+use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{run_until, sample_at, Event, EventKind, Phase, Sample, Solver};
 use crate::stability::{
@@ -150,14 +152,6 @@ impl Default for SteadyOptions {
 /// settled without it).
 fn default_newton() -> bool {
     false
-}
-
-fn invalid(name: &'static str, value: f64, allowed: &'static str) -> Error {
-    Error::InvalidParameter {
-        name,
-        value,
-        allowed,
-    }
 }
 
 impl SteadyOptions {
@@ -256,51 +250,35 @@ impl SteadyOptions {
         self.validate()
     }
 
-    /// Check every field.
+    /// Check every field against the option table ([`crate::options`]).
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming the first bad field.
+    /// [`Error::InvalidOption`] naming the first bad field.
     pub fn validate(self) -> Result<Self> {
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return Err(invalid(
-                "tolerance",
-                self.tolerance,
-                "must be finite and > 0",
-            ));
-        }
-        if self.max_periods == 0 {
-            return Err(invalid("max_periods", 0.0, "must be at least 1"));
-        }
-        if self.max_period == 0 || self.max_period > 64 {
-            return Err(invalid(
-                "max_period",
-                self.max_period as f64,
-                "must be from 1 to 64",
-            ));
-        }
-        if !(self.min_stop_fraction >= 0.0 && self.min_stop_fraction < 1.0) {
-            return Err(invalid(
-                "min_stop_fraction",
-                self.min_stop_fraction,
-                "must be >= 0 and < 1",
-            ));
-        }
+        OptionKey::Tolerance.check(self.tolerance)?;
+        OptionKey::MaxPeriods.check_count(self.max_periods)?;
+        OptionKey::MaxPeriod.check_count(self.max_period)?;
+        OptionKey::MinStopFraction.check(self.min_stop_fraction)?;
         if let Some(n) = self.samples_per_period {
-            if !(16..=1 << 20).contains(&n) || !n.is_power_of_two() {
-                return Err(invalid(
-                    "samples_per_period",
-                    n as f64,
-                    "must be a power of two from 16 to 1048576",
-                ));
-            }
+            OptionKey::SpectrumSamples.check_count(n)?;
         }
-        if self.harmonics == 0 {
-            return Err(invalid("harmonics", 0.0, "must be at least 1"));
-        }
+        OptionKey::Harmonics.check_count(self.harmonics)?;
         if let Some(lyapunov) = self.lyapunov {
+            OptionKey::LyapunovPeriods.check_count(lyapunov.periods)?;
             lyapunov.validate()?;
         }
         Ok(self)
+    }
+
+    /// Check every field ([`SteadyOptions::validate`]) and that the search stays within
+    /// `caps` ([`Caps::check_steady`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the first bad field.
+    pub fn validate_within(self, caps: &Caps) -> Result<Self> {
+        let options = self.validate()?;
+        caps.check_steady(&options)?;
+        Ok(options)
     }
 }
 
