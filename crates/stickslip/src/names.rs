@@ -15,9 +15,9 @@ use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::params::Parameter;
-use crate::scan::{SweepDirection, SweepLeg};
+use crate::scan::{MapColor, SweepDirection, SweepLeg};
 use crate::steady::MotionClass;
-use crate::theory::curves::Theory;
+use crate::theory::curves::{CurveKind, Theory};
 
 /// A name that is not one of an enum's ([`std::str::FromStr`] of the library's enums).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -77,6 +77,8 @@ names!(SweepDirection, "sweep direction", display);
 names!(SweepLeg, "sweep leg", display);
 names!(MotionClass, "motion class", display);
 names!(Theory, "theory", display);
+names!(CurveKind, "curve", display);
+names!(MapColor, "map colour", display);
 names!(AttractorKind, "attractor kind");
 names!(BasinMethod, "basin method");
 
@@ -170,6 +172,8 @@ mod tests {
         round_trip(&AttractorKind::ALL);
         round_trip(&BasinMethod::ALL);
         round_trip(&Theory::ALL);
+        round_trip(&CurveKind::ALL);
+        round_trip(&MapColor::ALL);
         round_trip(&Parameter::ALL);
     }
 

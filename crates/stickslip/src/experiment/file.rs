@@ -27,13 +27,14 @@
 //!
 //! Unknown sections and keys are errors; every error names the file, the line and the key.
 
-use super::key::Key;
+use super::key::{Key, Section};
 use super::spec::ExperimentSpec;
 use super::DiodeModel;
 use crate::error::{Error, Result};
 use crate::units::parse_si;
-use serde::de::{self, Deserializer, Visitor};
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
+use std::sync::OnceLock;
 use toml::Spanned;
 
 /// An experiment file that is not a valid experiment description.
@@ -100,78 +101,126 @@ impl<'de> Deserialize<'de> for Number {
     }
 }
 
-type Value = Option<Spanned<Number>>;
+/// One value of the file: a number, with where it stands, or the diode law.
+enum Entry {
+    Number(Spanned<Number>),
+    Diode(DiodeModel),
+}
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The file: each section given, with its values under the names the file gives them.
 struct Document {
-    circuit: Option<CircuitSection>,
-    mechanics: Option<MechanicsSection>,
-    drive: Option<DriveSection>,
-    model: Option<ModelSection>,
-    shockley: Option<ShockleySection>,
+    sections: Vec<(Section, Vec<(&'static str, Entry)>)>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CircuitSection {
-    #[serde(rename = "L")]
-    inductance: Value,
-    #[serde(rename = "C")]
-    capacitance: Value,
-    #[serde(rename = "R")]
-    resistance: Value,
-    #[serde(rename = "U_t")]
-    turn_on: Value,
-    #[serde(rename = "R_D")]
-    diode_resistance: Value,
+/// The names of the sections, for messages.
+const SECTION_NAMES: [&str; 5] = {
+    let mut names = [""; 5];
+    let mut i = 0;
+    while i < Section::ALL.len() {
+        names[i] = Section::ALL[i].name();
+        i += 1;
+    }
+    names
+};
+
+/// The names a section takes ([`Section::entries`]), for messages.
+fn fields(section: Section) -> &'static [&'static str] {
+    static FIELDS: OnceLock<Vec<Vec<&'static str>>> = OnceLock::new();
+    &FIELDS.get_or_init(|| {
+        Section::ALL
+            .iter()
+            .map(|s| s.entries().map(|(_, name)| name).collect())
+            .collect()
+    })[section as usize]
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MechanicsSection {
-    m: Value,
-    k: Value,
-    gamma: Value,
-    #[serde(rename = "F0")]
-    friction: Value,
+impl<'de> Deserialize<'de> for Document {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct DocumentVisitor;
+        impl<'de> Visitor<'de> for DocumentVisitor {
+            type Value = Document;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an experiment file")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Document, A::Error> {
+                let mut sections = Vec::new();
+                let section = |name: &str| {
+                    Section::ALL
+                        .into_iter()
+                        .find(|s| s.name() == name)
+                        .ok_or(&SECTION_NAMES[..])
+                };
+                while let Some(section) = map.next_key_seed(Name(section))? {
+                    sections.push((section, map.next_value_seed(SectionSeed(section))?));
+                }
+                Ok(Document { sections })
+            }
+        }
+        deserializer.deserialize_map(DocumentVisitor)
+    }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct DriveSection {
-    #[serde(rename = "U")]
-    volts: Value,
-    #[serde(rename = "F")]
-    newtons: Value,
-    f: Value,
-    omega: Value,
-    w: Value,
-    beta: Value,
-    phi: Value,
+/// Reads a key of a table as what its function makes of the name; an unknown name is an
+/// error listing the names the function gives back (raised while the key is read, so that
+/// the message points at the key's line).
+struct Name<F>(F);
+
+impl<'de, T, F> DeserializeSeed<'de> for Name<F>
+where
+    F: Fn(&str) -> Result<T, &'static [&'static str]>,
+{
+    type Value = T;
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<T, D::Error> {
+        deserializer.deserialize_str(self)
+    }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ModelSection {
-    zeta: Value,
-    mu_s: Value,
-    y0: Value,
-    v0: Value,
-    uc0: Value,
-    i0: Value,
-    diode: Option<DiodeModel>,
+impl<T, F> Visitor<'_> for Name<F>
+where
+    F: Fn(&str) -> Result<T, &'static [&'static str]>,
+{
+    type Value = T;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a key")
+    }
+    fn visit_str<E: de::Error>(self, name: &str) -> Result<T, E> {
+        (self.0)(name).map_err(|expected| E::unknown_field(name, expected))
+    }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ShockleySection {
-    #[serde(rename = "Is")]
-    saturation_current: Value,
-    n: Value,
-    #[serde(rename = "Rs")]
-    series_resistance: Value,
-    temperature: Value,
+/// Reads one section: the keys the table puts in it ([`Key::section`]), and no other.
+struct SectionSeed(Section);
+
+impl<'de> DeserializeSeed<'de> for SectionSeed {
+    type Value = Vec<(&'static str, Entry)>;
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        deserializer.deserialize_map(self)
+    }
+}
+
+impl<'de> Visitor<'de> for SectionSeed {
+    type Value = Vec<(&'static str, Entry)>;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(f, "the [{}] section", self.0.name())
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+        let mut entries = Vec::new();
+        let section = self.0;
+        let entry = |name: &str| {
+            section
+                .entries()
+                .find(|(_, n)| *n == name)
+                .ok_or(fields(section))
+        };
+        while let Some((key, name)) = map.next_key_seed(Name(entry))? {
+            let entry = match key {
+                Key::Diode => Entry::Diode(map.next_value()?),
+                _ => Entry::Number(map.next_value()?),
+            };
+            entries.push((name, entry));
+        }
+        Ok(entries)
+    }
 }
 
 /// Line number (from 1) of a byte offset.
@@ -231,81 +280,47 @@ impl ExperimentSpec {
                 e.message().to_string(),
             )
         })?;
-        let mut spec = ExperimentSpec::new();
-        spec.set_source(file);
-        let mut put = |section: &str, name: &str, key: Key, value: &Value| -> Result<()> {
-            let Some(v) = value else { return Ok(()) };
-            if section == "drive" && key == Key::Amplitude && spec.has(Key::Amplitude) {
-                return Err(fail(
-                    Some(line_of(text, v.span().start)),
-                    Some(format!("[{section}] {name}")),
-                    "give the drive amplitude once: U (V) or F (N)".into(),
-                ));
-            }
-            spec.set(key, v.get_ref().0).map_err(|e| {
-                fail(
-                    Some(line_of(text, v.span().start)),
-                    Some(format!("[{section}] {name}")),
-                    e.to_string(),
-                )
-            })?;
-            Ok(())
-        };
-        if let (Some(_), Some(_)) = (&doc.circuit, &doc.mechanics) {
+        let has = |section: Section| doc.sections.iter().any(|(s, _)| *s == section);
+        if has(Section::Circuit) && has(Section::Mechanics) {
             return Err(fail(
                 None,
                 None,
                 "describe either [circuit] or [mechanics], not both".into(),
             ));
         }
-        if let Some(c) = &doc.circuit {
-            put("circuit", "L", Key::Inductance, &c.inductance)?;
-            put("circuit", "C", Key::Capacitance, &c.capacitance)?;
-            put("circuit", "R", Key::Resistance, &c.resistance)?;
-            put("circuit", "U_t", Key::TurnOn, &c.turn_on)?;
-            put("circuit", "R_D", Key::DiodeResistance, &c.diode_resistance)?;
-        }
-        if let Some(m) = &doc.mechanics {
-            put("mechanics", "m", Key::Mass, &m.m)?;
-            put("mechanics", "k", Key::Stiffness, &m.k)?;
-            put("mechanics", "gamma", Key::Damping, &m.gamma)?;
-            put("mechanics", "F0", Key::Friction, &m.friction)?;
-        }
-        if let Some(d) = &doc.drive {
-            put("drive", "U", Key::Amplitude, &d.volts)?;
-            put("drive", "F", Key::Amplitude, &d.newtons)?;
-            put("drive", "f", Key::Frequency, &d.f)?;
-            put("drive", "omega", Key::Omega, &d.omega)?;
-            put("drive", "w", Key::W, &d.w)?;
-            put("drive", "beta", Key::Beta, &d.beta)?;
-            put("drive", "phi", Key::Phi, &d.phi)?;
-        }
-        if let Some(m) = &doc.model {
-            put("model", "zeta", Key::Zeta, &m.zeta)?;
-            put("model", "mu_s", Key::MuS, &m.mu_s)?;
-            put("model", "y0", Key::Y0, &m.y0)?;
-            put("model", "v0", Key::V0, &m.v0)?;
-            put("model", "uc0", Key::Uc0, &m.uc0)?;
-            put("model", "i0", Key::I0, &m.i0)?;
-        }
-        if let Some(s) = &doc.shockley {
-            put(
-                "shockley",
-                "Is",
-                Key::SaturationCurrent,
-                &s.saturation_current,
-            )?;
-            put("shockley", "n", Key::Emission, &s.n)?;
-            put(
-                "shockley",
-                "Rs",
-                Key::SeriesResistance,
-                &s.series_resistance,
-            )?;
-            put("shockley", "temperature", Key::Temperature, &s.temperature)?;
-        }
-        if let Some(diode) = doc.model.as_ref().and_then(|m| m.diode) {
-            spec.set_diode(diode);
+        let mut spec = ExperimentSpec::new();
+        spec.set_source(file);
+        for section in Section::ALL {
+            let Some((_, entries)) = doc.sections.iter().find(|(s, _)| *s == section) else {
+                continue;
+            };
+            let mut given: Vec<(Key, &str)> = Vec::new();
+            for (key, name) in section.entries() {
+                let Some((_, entry)) = entries.iter().find(|(n, _)| *n == name) else {
+                    continue;
+                };
+                let value = match entry {
+                    Entry::Diode(diode) => {
+                        spec.set_diode(*diode);
+                        continue;
+                    }
+                    Entry::Number(value) => value,
+                };
+                let here = |message: String| {
+                    fail(
+                        Some(line_of(text, value.span().start)),
+                        Some(format!("[{}] {name}", section.name())),
+                        message,
+                    )
+                };
+                if let Some((_, first)) = given.iter().find(|(k, _)| *k == key) {
+                    let what = key.quantity().map_or(key.description(), |(what, _)| what);
+                    return Err(here(format!("give the {what} once: {first} or {name}")));
+                }
+                given.push((key, name));
+                spec.set(key, value.get_ref().0)
+                    .map_err(|e| here(e.to_string()))?;
+            }
         }
         Ok(spec)
     }
@@ -370,7 +385,10 @@ mod tests {
         let text = err("[wiring]\nx = 1\n");
         assert!(text.contains("unknown field `wiring`"), "{text}");
         assert!(err("[circuit]\nL = 1\n[mechanics]\nm = 1\n").contains("not both"));
-        assert!(err("[drive]\nU = 1\nF = 2\n").contains("[drive] F: give the drive amplitude once"));
+        assert_eq!(
+            err("[drive]\nU = 1\nF = 2\n"),
+            "x.toml, line 3, [drive] F: give the drive amplitude once: U or F"
+        );
         let text = err("[circuit\nL = 1\n");
         assert!(text.starts_with("x.toml, line 1"), "{text}");
     }

@@ -186,7 +186,7 @@ impl Section {
     ];
 
     /// The section's name in the file (`circuit`, ...).
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Section::Circuit => "circuit",
             Section::Mechanics => "mechanics",
@@ -336,7 +336,7 @@ struct Row {
 const OHMS: &[&str] = &["ohm", "Ohm", "Ω"];
 
 /// The table: one row per key, in the order of [`Key::ALL`].
-const ROWS: [Row; 27] = [
+const ROWS: &[Row] = &[
     Row {
         key: Key::Zeta,
         name: "zeta",
@@ -976,8 +976,8 @@ pub struct KeyInfo {
 
 impl Key {
     /// Every key, in the table's order.
-    pub const ALL: [Key; 27] = {
-        let mut all = [Key::Zeta; 27];
+    pub const ALL: [Key; ROWS.len()] = {
+        let mut all = [Key::Zeta; ROWS.len()];
         let mut i = 0;
         while i < ROWS.len() {
             all[i] = ROWS[i].key;
@@ -1328,6 +1328,42 @@ mod tests {
         assert_eq!(Key::from_name("Q"), None);
         assert_eq!(Key::from_flag("L"), Some(Key::Inductance));
         assert_eq!(Key::from_flag("mu_s"), None);
+    }
+
+    /// Every variant has its row (a new variant fails to compile here until it is listed,
+    /// and fails the test until its row is added).
+    #[test]
+    fn every_variant_has_its_row() {
+        let listed = |k: Key| match k {
+            Key::Zeta
+            | Key::W
+            | Key::Beta
+            | Key::Phi
+            | Key::MuS
+            | Key::Y0
+            | Key::V0
+            | Key::Inductance
+            | Key::Capacitance
+            | Key::Resistance
+            | Key::TurnOn
+            | Key::DiodeResistance
+            | Key::Mass
+            | Key::Stiffness
+            | Key::Damping
+            | Key::Friction
+            | Key::Amplitude
+            | Key::Frequency
+            | Key::Omega
+            | Key::Uc0
+            | Key::I0
+            | Key::SaturationCurrent
+            | Key::Emission
+            | Key::SeriesResistance
+            | Key::Temperature
+            | Key::Diode
+            | Key::Preset => k as usize,
+        };
+        assert_eq!(listed(Key::Preset) + 1, ROWS.len());
     }
 
     #[test]

@@ -38,12 +38,14 @@
 //! ```
 
 mod axis;
+mod color;
 mod grid;
 mod monitor;
 mod range;
 mod sweep;
 
 pub use axis::Axis;
+pub use color::MapColor;
 pub use grid::{Grid, GridMap, GridPoint};
 pub(crate) use monitor::run_parallel;
 pub use monitor::Monitor;

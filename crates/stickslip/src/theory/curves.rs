@@ -47,6 +47,53 @@ impl Theory {
     }
 }
 
+/// A curve of both theories over w, as `stickslip theory --curve` writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CurveKind {
+    /// The stick-slip boundary β_c over w: `w,beta_c_paper,beta_c_exact`.
+    Boundary,
+    /// The gain A1/β over w at a given β: `w,gain_paper,gain_exact`.
+    Gain,
+}
+
+impl CurveKind {
+    /// Both.
+    pub const ALL: [CurveKind; 2] = [CurveKind::Boundary, CurveKind::Gain];
+
+    /// `boundary` or `gain`.
+    pub fn label(self) -> &'static str {
+        match self {
+            CurveKind::Boundary => "boundary",
+            CurveKind::Gain => "gain",
+        }
+    }
+
+    /// The quantity along the curve.
+    pub fn quantity(self) -> TheoryQuantity {
+        match self {
+            CurveKind::Boundary => TheoryQuantity::Boundary,
+            CurveKind::Gain => TheoryQuantity::Gain,
+        }
+    }
+
+    /// The CSV columns of the paper's and the exact values.
+    pub fn columns(self) -> [&'static str; 2] {
+        match self {
+            CurveKind::Boundary => ["beta_c_paper", "beta_c_exact"],
+            CurveKind::Gain => ["gain_paper", "gain_exact"],
+        }
+    }
+
+    /// What the curve is, in one line.
+    pub fn description(self) -> &'static str {
+        match self {
+            CurveKind::Boundary => "β_c over w: `w,beta_c_paper,beta_c_exact`",
+            CurveKind::Gain => "Gain A1/β over w at the given β: `w,gain_paper,gain_exact`",
+        }
+    }
+}
+
 /// What a theory curve shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum TheoryQuantity {
