@@ -6,7 +6,8 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use std::str::FromStr;
 use stickslip::basins::BasinMethod;
 use stickslip::experiment::{DiodeModel, Preset};
-use stickslip::scan::SweepDirection;
+use stickslip::scan::{MapColor, SweepDirection};
+use stickslip::theory::curves::CurveKind;
 use stickslip::Parameter;
 
 /// A library enum a flag names by one of its values (`--model shockley`), listed with its
@@ -90,5 +91,29 @@ impl Choice for BasinMethod {
     }
     fn name(self) -> &'static str {
         self.label()
+    }
+}
+
+impl Choice for MapColor {
+    fn all() -> &'static [Self] {
+        &MapColor::ALL
+    }
+    fn name(self) -> &'static str {
+        self.label()
+    }
+    fn about(self) -> Option<&'static str> {
+        Some(self.description())
+    }
+}
+
+impl Choice for CurveKind {
+    fn all() -> &'static [Self] {
+        &CurveKind::ALL
+    }
+    fn name(self) -> &'static str {
+        self.label()
+    }
+    fn about(self) -> Option<&'static str> {
+        Some(self.description())
     }
 }

@@ -1,10 +1,9 @@
 //! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
 
-use crate::flags::{count, number};
+use crate::flags::count;
 use crate::model::ModelArgs;
 use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
-use stickslip::options::Allowed;
 use stickslip::stability::{
     LyapunovOptions, LyapunovReport, NonperiodicClassification, NonperiodicVerdict, SecondExponent,
 };
@@ -66,26 +65,14 @@ pub struct Args {
 
 /// Run `stickslip lyapunov`.
 pub fn run(args: Args) -> Result<()> {
-    let transient_periods = count(OptionKey::LyapunovTransient, args.transient)?;
-    let blocks = count(OptionKey::Blocks, args.blocks)?;
-    let periods = count(OptionKey::LyapunovMeasured, args.periods)?;
-    if periods < blocks {
-        return Err(stickslip::Error::InvalidOption {
-            option: OptionKey::LyapunovMeasured,
-            value: periods as f64,
-            allowed: Allowed::FromOption {
-                other: OptionKey::Blocks,
-                value: blocks as f64,
-                to: "1e9",
-            },
-        }
-        .into());
-    }
+    // Counts are typed signed, so that `-4` is refused by the table's range; the rule
+    // between --periods and --blocks is the options' own (`validate`).
     let options = LyapunovOptions {
-        transient_periods,
-        periods,
-        blocks,
-        significance: number(OptionKey::Significance, args.significance)?,
+        transient_periods: count(OptionKey::LyapunovTransient, args.transient)?,
+        blocks: count(OptionKey::Blocks, args.blocks)?,
+        periods: usize::try_from(args.periods)
+            .map_err(|_| OptionKey::LyapunovMeasured.invalid(args.periods as f64))?,
+        significance: args.significance,
         sequential: !args.fixed,
     }
     .validate()?;

@@ -1,6 +1,7 @@
 //! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
 
 use crate::checkpoint::CheckpointFlags;
+use crate::choice::choice;
 use crate::flags::{key_value, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
@@ -11,7 +12,7 @@ use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Key, Origin};
 use stickslip::report::MapRow;
-use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::scan::{Axis, Grid, GridPoint, MapColor as Color, ParameterRange};
 use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
@@ -76,19 +77,10 @@ pub struct Args {
     plot: Option<PathBuf>,
     /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
     /// every point, and written to the CSV as lambda,lambda_error).
-    #[arg(long, value_enum, default_value_t = Color::Class)]
+    #[arg(long, value_parser = choice::<Color>(), default_value_t = Color::Class)]
     color: Color,
     #[command(flatten)]
     checkpoint: CheckpointFlags,
-}
-
-/// What the cells of the map show.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Color {
-    /// The motion class.
-    Class,
-    /// The largest Lyapunov exponent per unit τ.
-    Lyapunov,
 }
 
 /// Run `stickslip phase-diagram`.

@@ -1,6 +1,7 @@
 //! `stickslip theory`: the paper's series solution against the exact periodic solution, and
 //! stick-slip boundary or gain curves.
 
+use crate::choice::choice;
 use crate::flags::{key_value, reject_swept_flags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
@@ -12,7 +13,7 @@ use stickslip::experiment::Key;
 use stickslip::report::{Table, TheoryRow, TheoryTable};
 use stickslip::scan::grid_value;
 use stickslip::solver::grid;
-use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
+use stickslip::theory::curves::{theory_curve, CurveKind as Curve, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
 use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Unsupported};
 
@@ -42,7 +43,7 @@ pub struct Args {
     #[arg(long, conflicts_with = "curve", help_heading = "Theory")]
     json: bool,
     /// Write a curve over w instead of one point: `boundary` or `gain`.
-    #[arg(long, value_enum, help_heading = "Theory")]
+    #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
     /// Smallest w of the curve (> 0) [default: 0.2].
     #[arg(long = "w-min", help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
@@ -64,15 +65,6 @@ pub struct Args {
     /// Plot of the curve (.png or .svg).
     #[arg(long, value_name = "FILE", help_heading = "Theory")]
     plot: Option<PathBuf>,
-}
-
-/// Which curve `--curve` writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Curve {
-    /// β_c over w: `w,beta_c_paper,beta_c_exact`.
-    Boundary,
-    /// Gain A1/β over w at the given β: `w,gain_paper,gain_exact`.
-    Gain,
 }
 
 /// Run `stickslip theory`.
