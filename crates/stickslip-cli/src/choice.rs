@@ -23,30 +23,6 @@ pub trait Choice: FromStr + Copy + Send + Sync + 'static {
     }
 }
 
-impl Choice for DiodeModel {
-    fn all() -> &'static [Self] {
-        &DiodeModel::ALL
-    }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-    fn about(self) -> Option<&'static str> {
-        Some(self.description())
-    }
-}
-
-impl Choice for Preset {
-    fn all() -> &'static [Self] {
-        &Preset::ALL
-    }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-    fn about(self) -> Option<&'static str> {
-        Some(self.description())
-    }
-}
-
 /// The parser of a flag that takes a value of `T` by name: the names are the library's, the
 /// help lists them.
 pub fn choice<T: Choice>() -> impl TypedValueParser<Value = T> {
@@ -64,56 +40,62 @@ pub fn choice<T: Choice>() -> impl TypedValueParser<Value = T> {
     })
 }
 
-impl Choice for Parameter {
-    fn all() -> &'static [Self] {
-        &Parameter::ALL
-    }
-    fn name(self) -> &'static str {
-        self.flag()
-    }
-    fn about(self) -> Option<&'static str> {
-        Some(self.long_name())
-    }
+/// `impl Choice` by the enum's `ALL`, the method that names a value and, where the library
+/// has one, the method that describes it.
+macro_rules! choice_of {
+    ($type:ty, $name:ident) => {
+        impl Choice for $type {
+            fn all() -> &'static [Self] {
+                &<$type>::ALL
+            }
+            fn name(self) -> &'static str {
+                self.$name()
+            }
+        }
+    };
+    ($type:ty, $name:ident, $about:ident) => {
+        impl Choice for $type {
+            fn all() -> &'static [Self] {
+                &<$type>::ALL
+            }
+            fn name(self) -> &'static str {
+                self.$name()
+            }
+            fn about(self) -> Option<&'static str> {
+                Some(self.$about())
+            }
+        }
+    };
 }
 
-impl Choice for SweepDirection {
-    fn all() -> &'static [Self] {
-        &SweepDirection::ALL
-    }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-}
+choice_of!(DiodeModel, label, description);
+choice_of!(Preset, label, description);
+choice_of!(Parameter, flag, long_name);
+choice_of!(SweepDirection, label);
+choice_of!(BasinMethod, label);
+choice_of!(MapColor, label, description);
+choice_of!(CurveKind, label, description);
 
-impl Choice for BasinMethod {
-    fn all() -> &'static [Self] {
-        &BasinMethod::ALL
-    }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-impl Choice for MapColor {
-    fn all() -> &'static [Self] {
-        &MapColor::ALL
+    fn reads_back<T: Choice + PartialEq + std::fmt::Debug>() {
+        for &value in T::all() {
+            assert_eq!(T::from_str(value.name()).ok(), Some(value));
+        }
     }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-    fn about(self) -> Option<&'static str> {
-        Some(self.description())
-    }
-}
 
-impl Choice for CurveKind {
-    fn all() -> &'static [Self] {
-        &CurveKind::ALL
-    }
-    fn name(self) -> &'static str {
-        self.label()
-    }
-    fn about(self) -> Option<&'static str> {
-        Some(self.description())
+    /// Every name a flag lists is read back by the library's `FromStr` (the parser relies on
+    /// it).
+    #[test]
+    fn every_name_listed_reads_back() {
+        reads_back::<DiodeModel>();
+        reads_back::<Preset>();
+        reads_back::<Parameter>();
+        reads_back::<SweepDirection>();
+        reads_back::<BasinMethod>();
+        reads_back::<MapColor>();
+        reads_back::<CurveKind>();
     }
 }
