@@ -2,14 +2,14 @@
 //! steady-state search, parameter ranges, and the rule that a swept parameter takes no value
 //! of its own.
 
-use crate::model::{flag_name, ModelArgs};
-use crate::output::usage;
+use crate::model::{flag, ModelArgs};
+use crate::output::{usage, UsageError};
 use anyhow::Result;
 use stickslip::experiment::Key;
 use stickslip::scan::ParameterRange;
 use stickslip::stability::LyapunovOptions;
 use stickslip::steady::SteadyOptions;
-use stickslip::{Experiment, Parameter};
+use stickslip::{Experiment, OptionKey, Parameter};
 
 /// Flags of the steady-state search, shared by `steady`, `sweep` and `phase-diagram`.
 #[derive(Debug, Clone, clap::Args)]
@@ -46,85 +46,98 @@ pub struct SteadyFlags {
 
 impl SteadyFlags {
     /// Validated library options (spectrum on) for the experiment's solver: its own
-    /// defaults ([`Experiment::steady_options`]) with the flags over them.
+    /// defaults ([`Experiment::steady_options`]) with the flags over them, each checked
+    /// against the library's option table.
     pub fn options(&self, experiment: &Experiment) -> Result<SteadyOptions> {
         let defaults = experiment.steady_options();
-        let tolerance = self.tolerance.unwrap_or(defaults.tolerance);
-        if !(tolerance > 0.0 && tolerance < 1.0) {
-            usage!("invalid --tolerance {tolerance}: must be > 0 and < 1");
-        }
-        if !(1..=100_000_000).contains(&self.max_periods) {
-            usage!(
-                "invalid --max-periods {}: must be from 1 to 1e8",
-                self.max_periods
-            );
-        }
-        if !(1..=64).contains(&self.max_period) {
-            usage!(
-                "invalid --max-period {}: must be from 1 to 64",
-                self.max_period
-            );
-        }
+        let tolerance = number(
+            OptionKey::Tolerance,
+            self.tolerance.unwrap_or(defaults.tolerance),
+        )?;
+        let max_periods = count(OptionKey::MaxPeriods, self.max_periods)?;
+        let max_period = count(OptionKey::MaxPeriod, self.max_period)?;
         Ok(defaults
             .with_tolerance(tolerance)?
-            .with_max_periods(self.max_periods as usize)?
-            .with_max_period(self.max_period as usize)?
+            .with_max_periods(max_periods)?
+            .with_max_period(max_period)?
             .with_accelerate(!self.no_extrapolation)
             .with_lyapunov(self.lyapunov()?)?)
     }
 
     /// The measurement of motions that do not repeat (`None` for `--lyapunov-periods 0`).
     pub fn lyapunov(&self) -> Result<Option<LyapunovOptions>> {
-        let periods = self.lyapunov_periods;
-        if periods == 0 {
-            return Ok(None);
-        }
-        if !(20..=100_000_000).contains(&periods) {
-            usage!("invalid --lyapunov-periods {periods}: must be 0 (off) or from 20 to 1e8");
-        }
-        Ok(Some(LyapunovOptions {
-            periods: periods as usize,
+        let periods = count(OptionKey::LyapunovPeriods, self.lyapunov_periods)?;
+        Ok((periods > 0).then_some(LyapunovOptions {
+            periods,
             ..SteadyOptions::DEFAULT_LYAPUNOV
         }))
     }
 }
 
-/// Validate a range given by flags `--{from_flag}`, `--{to_flag}`, `--{steps_flag}`.
+/// A whole number given to the flag of `option`, checked against the library's option table
+/// (typed as a signed number, so that `-4` is refused by the table's range, not by the
+/// parser).
+///
+/// # Errors
+/// [`stickslip::Error::InvalidOption`], which the tool renders with the flag's name.
+pub fn count(option: OptionKey, value: i64) -> Result<usize> {
+    Ok(option.check(value as f64)? as usize)
+}
+
+/// A number given to the flag of `option`, checked against the library's option table.
+///
+/// # Errors
+/// [`stickslip::Error::InvalidOption`], which the tool renders with the flag's name.
+pub fn number(option: OptionKey, value: f64) -> Result<f64> {
+    Ok(option.check(value)?)
+}
+
+/// A value of `key` given to a flag of its own (an end of a range of w, say), checked
+/// against the key's range in the library's table and named by that flag.
+pub fn key_value(key: Key, flag: &str, value: f64) -> Result<f64> {
+    key.check(value).map_err(|_| {
+        let value = stickslip::Number(value);
+        UsageError(format!("invalid --{flag} {value}: {}", key.allowed())).into()
+    })
+}
+
+/// A range of `name` given by flags `--{from_flag}`, `--{to_flag}` and the count `steps` of
+/// `steps_option`: the count is checked against the library's option table, the range by the
+/// library ([`ParameterRange::new`]), whose message names the flags.
 pub fn range_from_flags(
     name: &'static str,
     (from_flag, from): (&str, f64),
     (to_flag, to): (&str, f64),
-    (steps_flag, steps): (&str, i64),
+    (steps_option, steps): (OptionKey, i64),
 ) -> Result<ParameterRange> {
-    if from > to {
-        usage!("invalid range: --{from_flag} {from} is above --{to_flag} {to}");
-    }
-    if !(1..=100_000).contains(&steps) {
-        usage!("invalid --{steps_flag} {steps}: must be from 1 to 100000");
-    }
-    if steps == 1 && from != to {
-        usage!("invalid --{steps_flag} 1: a range from {from} to {to} needs at least 2 points");
-    }
-    Ok(ParameterRange::new(name, from, to, steps as usize)?)
-}
-
-/// The keys that give a value of `parameter` (w also as f or Ω, β also as U).
-pub fn keys_of(parameter: Parameter) -> &'static [Key] {
-    match parameter {
-        Parameter::W => &[Key::W, Key::Frequency, Key::Omega],
-        Parameter::Beta => &[Key::Beta, Key::Amplitude],
-        Parameter::Zeta => &[Key::Zeta],
-        Parameter::MuS => &[Key::MuS],
-    }
+    let steps = count(steps_option, steps)?;
+    ParameterRange::new(name, from, to, steps).map_err(|e| match e {
+        stickslip::Error::InvalidParameter {
+            name: field,
+            value,
+            allowed,
+        } => {
+            let flag = if field != name {
+                steps_option.flag()
+            } else if value == from {
+                from_flag
+            } else {
+                to_flag
+            };
+            let value = stickslip::Number(value);
+            UsageError(format!("invalid --{flag} {value}: {allowed}")).into()
+        }
+        other => other.into(),
+    })
 }
 
 /// Refuse flags that give a value of the swept parameter (`--over w` with `--w`, say).
 pub fn reject_swept_flags(model: &ModelArgs, over: Parameter, command: &str) -> Result<()> {
-    if let Some(&key) = keys_of(over).iter().find(|&&k| model.given(k)) {
+    if let Some(&key) = over.keys().iter().find(|&&k| model.given(k)) {
         usage!(
             "{command} sets {} from its range: drop {}",
             over.label(),
-            flag_name(key)
+            flag(key)
         );
     }
     Ok(())

@@ -8,6 +8,7 @@ use clap::Parser;
 use std::process::ExitCode;
 
 mod checkpoint;
+mod choice;
 mod commands;
 mod diagrams;
 mod flags;
@@ -117,6 +118,7 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
                 Error::InvalidParameter { .. }
                     | Error::InvalidOption { .. }
                     | Error::OptionProduct { .. }
+                    | Error::InvalidText { .. }
                     | Error::ImageOutOfRange { .. }
                     | Error::HorizonTooLong { .. }
                     | Error::Spec(_)
@@ -124,11 +126,12 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
                     | Error::Unsupported(_)
             )
         });
+    // An option names its flag (`invalid --max-period 65: must be from 1 to 64`).
     if let Some(e @ (Error::InvalidOption { .. } | Error::OptionProduct { .. })) = library {
         return (e.render(stickslip::Spelling::Flag), true);
     }
     if let Some(Error::Spec(spec)) = library {
-        return (spec.render(&model::flag_name), true);
+        return (spec.render(&model::flag), true);
     }
     if let Some(Error::ImageOutOfRange {
         key,
@@ -138,7 +141,7 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
         allowed,
     }) = library
     {
-        let flag = model::flag_name(*key);
+        let flag = model::flag(*key);
         let (value, image_value) = (stickslip::Number(*value), stickslip::Number(*image_value));
         return (
             format!("invalid {flag} {value}: it gives {image} = {image_value}, which {allowed}"),

@@ -1,233 +1,192 @@
-//! The model flags shared by every command: dimensionless (`--zeta --w --beta ...`) or a
-//! physical description (`--preset paper`, `--config FILE.toml`, `--inductance ...`). The flags
-//! become one layer of a library [`ExperimentSpec`] (over the file's, which the library reads
-//! from the file's text); the library checks and builds the [`Experiment`].
+//! The model flags shared by every command: one flag per key of the library's table
+//! ([`Key::table`]), with the key's spelling, aliases, value name, help and heading, so that a
+//! new key is one row of the library's table and nothing here. The flags become one layer of
+//! a library [`ExperimentSpec`] (over the config file's, which the library reads from the
+//! file's text); the library checks and builds the [`Experiment`].
 
+use crate::choice::choice;
 use crate::output::UsageError;
 use anyhow::Result;
+use clap::{Arg, ArgAction, ArgMatches, Command};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
-use stickslip::experiment::{
-    DiodeModel as LibraryDiode, Experiment, ExperimentSpec, Key, Preset as LibraryPreset,
-};
+use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset};
+use stickslip::units::NumberError;
 
-/// Parse a number with an optional SI prefix and unit: `0.02u`, `20nF`, `11.5mH`, `9.9kHz`,
-/// `68ohm`, `1e-3`.
-pub fn si_value(text: &str) -> Result<f64, String> {
-    stickslip::units::parse_si(text).map_err(|e| e.to_string())
+/// The id and flag of the config file (a file of keys, not a key).
+const CONFIG: &str = "config";
+
+/// Model flags, as typed: the values of the keys given, the preset, the diode law and the
+/// config file. Dimensionless flags override values derived from a physical description;
+/// physical flags override the preset or the config file.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ModelArgs {
+    /// The numbers given, by key (in the key's unit, as typed: SI prefixes applied).
+    pub values: BTreeMap<Key, f64>,
+    /// `--preset`.
+    pub preset: Option<Preset>,
+    /// `--model`: the diode law.
+    pub diode: Option<DiodeModel>,
+    /// `--config`: a TOML experiment file.
+    pub config: Option<PathBuf>,
 }
 
-/// Parse a finite plain number (dimensionless flags).
-pub fn finite(text: &str) -> Result<f64, String> {
-    stickslip::units::parse_plain(text).map_err(|e| e.to_string())
+/// The flag of `key` as the user types it, with its dashes: `--mu-s`.
+pub fn flag(key: Key) -> String {
+    format!("--{}", key.flag())
 }
 
-/// Read the value of the flag of `key` as that flag does: a plain number for the
-/// dimensionless values, the emission coefficient and the temperature, a number with an
-/// optional SI prefix and unit for the physical values. (The lab reads query values with it,
-/// so that its keys take what the flags take.)
-///
-/// # Errors
-/// The parser's one-line message; [`Key::Preset`] and [`Key::Diode`] are not numbers.
-pub fn parse_value(key: Key, text: &str) -> Result<f64, String> {
+/// Parse a finite plain number (the options' values): the library's
+/// [`stickslip::units::parse_plain`].
+pub fn finite(text: &str) -> Result<f64, NumberError> {
+    stickslip::units::parse_plain(text)
+}
+
+/// Read the text of a number flag of `key`: a plain number or one with an SI prefix and the
+/// key's unit, as the key is written ([`Key::number`], [`Key::check_unit`]). Its range is
+/// checked when the flags become a description, where the message names the flag and the
+/// library's range.
+fn number(key: Key, text: &str) -> Result<f64, NumberError> {
+    key.check_unit(text)?;
+    key.number(text)
+}
+
+/// The flag of a number key.
+fn number_arg(key: Key) -> Arg {
+    Arg::new(key.flag())
+        .long(key.flag())
+        .aliases(key.aliases())
+        .value_name(key.metavar())
+        .help(key.help())
+        .help_heading(key.heading())
+        .allow_hyphen_values(true)
+        .action(ArgAction::Set)
+        .value_parser(move |text: &str| number(key, text))
+}
+
+/// The flag of a key that takes a name (`--preset`, `--model`).
+fn choice_arg(key: Key) -> Arg {
+    let arg = Arg::new(key.flag())
+        .long(key.flag())
+        .aliases(key.aliases())
+        .value_name(key.metavar())
+        .help(key.help())
+        .help_heading(key.heading())
+        .action(ArgAction::Set);
     match key {
-        Key::Zeta
-        | Key::W
-        | Key::Beta
-        | Key::Phi
-        | Key::MuS
-        | Key::Y0
-        | Key::V0
-        | Key::Emission
-        | Key::Temperature => finite(text),
-        Key::Preset | Key::Diode => Err(format!("{} is not a number", flag_name(key))),
-        _ => si_value(text),
+        Key::Preset => arg.value_parser(choice::<Preset>()),
+        Key::Diode => arg.value_parser(choice::<DiodeModel>()),
+        other => unreachable!("{other} is not a key of names"),
     }
 }
 
-/// Which law the diode pair follows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Default)]
-pub enum DiodeModel {
-    /// Piecewise linear: U_t sgn(i) + R_D i (the paper's model; solved exactly).
-    #[default]
-    Pwl,
-    /// Shockley law of two anti-parallel diodes: n V_T asinh(i/2I_s) + R_s i (stiff solver).
-    Shockley,
+/// `--config FILE`, after `--preset`: the other physical description that is not a key.
+fn config_arg() -> Arg {
+    Arg::new(CONFIG)
+        .long(CONFIG)
+        .value_name("FILE")
+        .help(
+            "A TOML experiment file (sections `[circuit]` or `[mechanics]`, `[drive]`, \
+             `[model]`, `[shockley]`); see the README for an example",
+        )
+        .help_heading(Key::Preset.heading())
+        .action(ArgAction::Set)
+        .value_parser(clap::value_parser!(PathBuf))
 }
 
-/// Model flags, as typed. Dimensionless flags override values derived from a physical
-/// description; physical flags override the preset or the config file.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct ModelArgs {
-    /// Damping ratio ζ = α/(2ω0) ≥ 0 [default: the paper's circuit, 0.0468].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub zeta: Option<f64>,
-    /// Drive frequency w = Ω/ω0 > 0.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub w: Option<f64>,
-    /// Drive amplitude β = U/U_t (circuit) or F/F0 (mechanics), ≥ 0.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub beta: Option<f64>,
-    /// Drive phase φ in radians at τ = 0 [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub phi: Option<f64>,
-    /// Static-to-kinetic friction ratio μs ≥ 1 [default: 1, as in the paper].
-    #[arg(long = "mu-s", value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub mu_s: Option<f64>,
-    /// Initial position y0 = u_C/U_t [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub y0: Option<f64>,
-    /// Initial velocity v0 = y'(0) [default: 0].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Model (dimensionless)")]
-    pub v0: Option<f64>,
-
-    /// A built-in physical description: `paper` (L = 11.5 mH, C = 0.02 µF, R = 68 Ω,
-    /// U_t = 0.7 V, R_D = 3.0 Ω).
-    #[arg(long, value_enum, help_heading = "Model (physical)")]
-    pub preset: Option<Preset>,
-    /// A TOML experiment file (sections `[circuit]` or `[mechanics]`, `[drive]`, `[model]`, `[shockley]`);
-    /// see the README for an example.
-    #[arg(long, value_name = "FILE", help_heading = "Model (physical)")]
-    pub config: Option<PathBuf>,
-    /// Inductance L in henry (SI prefixes allowed: 11.5m).
-    #[arg(long, alias = "L", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub inductance: Option<f64>,
-    /// Capacitance C in farad (0.02u).
-    #[arg(long, alias = "C", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub capacitance: Option<f64>,
-    /// Series resistance R in ohms, without the diodes.
-    #[arg(long, alias = "R", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub resistance: Option<f64>,
-    /// Diode turn-on voltage U_t in volts (PWL model).
-    #[arg(long = "ut", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub turn_on: Option<f64>,
-    /// Diode forward resistance R_D in ohms (PWL model).
-    #[arg(long = "rd", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub diode_resistance: Option<f64>,
-    /// Mass m in kg (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub mass: Option<f64>,
-    /// Spring constant k in N/m (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub stiffness: Option<f64>,
-    /// Viscous damping γ in N·s/m (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub damping: Option<f64>,
-    /// Kinetic friction force F0 in N (mechanical twin).
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub friction: Option<f64>,
-    /// Drive amplitude: U in volts (circuit) or F in newtons (mechanics).
-    #[arg(long, alias = "U", value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub amplitude: Option<f64>,
-    /// Drive frequency f in Hz.
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub freq: Option<f64>,
-    /// Drive angular frequency Ω in rad/s.
-    #[arg(long, value_parser = si_value, help_heading = "Model (physical)", allow_hyphen_values = true)]
-    pub omega: Option<f64>,
-    /// Initial capacitor voltage u_C(0) in volts (circuit; instead of --y0).
-    #[arg(long, value_parser = si_value, allow_hyphen_values = true, help_heading = "Model (physical)")]
-    pub uc0: Option<f64>,
-    /// Initial current i(0) in amperes (circuit; instead of --v0).
-    #[arg(long, value_parser = si_value, allow_hyphen_values = true, help_heading = "Model (physical)")]
-    pub i0: Option<f64>,
-
-    /// Diode law: `pwl` (exact solver) or `shockley` (stiff solver).
-    #[arg(long, value_enum, help_heading = "Diode model")]
-    pub model: Option<DiodeModel>,
-    /// Shockley saturation current I_s in amperes [default: 4.352n, 1N4148].
-    #[arg(long = "diode-is", value_parser = si_value, help_heading = "Diode model", allow_hyphen_values = true)]
-    pub diode_is: Option<f64>,
-    /// Shockley emission coefficient n [default: 1.906, 1N4148].
-    #[arg(long = "diode-n", value_parser = finite, help_heading = "Diode model", allow_hyphen_values = true)]
-    pub diode_n: Option<f64>,
-    /// Shockley series resistance R_s in ohms [default: 0.6458, 1N4148].
-    #[arg(long = "diode-rs", value_parser = si_value, help_heading = "Diode model", allow_hyphen_values = true)]
-    pub diode_rs: Option<f64>,
-    /// Diode temperature in °C [default: 27, as SPICE].
-    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Diode model")]
-    pub temperature: Option<f64>,
+/// The keys in the order of the help: heading by heading (in the order the table first
+/// names them), the keys of names first, then the numbers in the table's order.
+fn help_order() -> Vec<Key> {
+    let mut headings: Vec<&str> = Vec::new();
+    for key in Key::ALL {
+        if !headings.contains(&key.heading()) {
+            headings.push(key.heading());
+        }
+    }
+    let mut order = Vec::with_capacity(Key::ALL.len());
+    for heading in headings {
+        let keys = Key::ALL.into_iter().filter(|k| k.heading() == heading);
+        let (names, numbers): (Vec<Key>, Vec<Key>) =
+            keys.partition(|k| k.form() == KeyForm::Choice);
+        order.extend(names);
+        order.extend(numbers);
+    }
+    order
 }
 
-/// Built-in physical descriptions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Preset {
-    /// The paper's experiment.
-    Paper,
+impl clap::Args for ModelArgs {
+    fn augment_args(mut cmd: Command) -> Command {
+        for key in help_order() {
+            if key.form() == KeyForm::Choice {
+                cmd = cmd.arg(choice_arg(key));
+            } else {
+                cmd = cmd.arg(number_arg(key));
+            }
+            if key == Key::Preset {
+                cmd = cmd.arg(config_arg());
+            }
+        }
+        cmd
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
 }
 
-/// The flag that sets `key`, as the user types it.
-pub fn flag_name(key: Key) -> String {
-    let flag = match key {
-        Key::Zeta => "zeta",
-        Key::W => "w",
-        Key::Beta => "beta",
-        Key::Phi => "phi",
-        Key::MuS => "mu-s",
-        Key::Y0 => "y0",
-        Key::V0 => "v0",
-        Key::Inductance => "inductance",
-        Key::Capacitance => "capacitance",
-        Key::Resistance => "resistance",
-        Key::TurnOn => "ut",
-        Key::DiodeResistance => "rd",
-        Key::Mass => "mass",
-        Key::Stiffness => "stiffness",
-        Key::Damping => "damping",
-        Key::Friction => "friction",
-        Key::Amplitude => "amplitude",
-        Key::Frequency => "freq",
-        Key::Omega => "omega",
-        Key::Uc0 => "uc0",
-        Key::I0 => "i0",
-        Key::SaturationCurrent => "diode-is",
-        Key::Emission => "diode-n",
-        Key::SeriesResistance => "diode-rs",
-        Key::Temperature => "temperature",
-        Key::Diode => "model",
-        Key::Preset => "preset",
-        _ => key.name(),
-    };
-    format!("--{flag}")
+impl clap::FromArgMatches for ModelArgs {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut args = Self::default();
+        args.update_from_arg_matches(matches)?;
+        Ok(args)
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        for key in Key::ALL {
+            if key.form() != KeyForm::Choice {
+                if let Some(&value) = matches.get_one::<f64>(key.flag()) {
+                    self.values.insert(key, value);
+                }
+            }
+        }
+        if let Some(&preset) = matches.get_one::<Preset>(Key::Preset.flag()) {
+            self.preset = Some(preset);
+        }
+        if let Some(&diode) = matches.get_one::<DiodeModel>(Key::Diode.flag()) {
+            self.diode = Some(diode);
+        }
+        if let Some(path) = matches.get_one::<PathBuf>(CONFIG) {
+            self.config = Some(path.clone());
+        }
+        Ok(())
+    }
 }
 
 impl ModelArgs {
-    /// The flags' values, key by key.
-    fn values(&self) -> [(Key, Option<f64>); 25] {
-        [
-            (Key::Zeta, self.zeta),
-            (Key::W, self.w),
-            (Key::Beta, self.beta),
-            (Key::Phi, self.phi),
-            (Key::MuS, self.mu_s),
-            (Key::Y0, self.y0),
-            (Key::V0, self.v0),
-            (Key::Inductance, self.inductance),
-            (Key::Capacitance, self.capacitance),
-            (Key::Resistance, self.resistance),
-            (Key::TurnOn, self.turn_on),
-            (Key::DiodeResistance, self.diode_resistance),
-            (Key::Mass, self.mass),
-            (Key::Stiffness, self.stiffness),
-            (Key::Damping, self.damping),
-            (Key::Friction, self.friction),
-            (Key::Amplitude, self.amplitude),
-            (Key::Frequency, self.freq),
-            (Key::Omega, self.omega),
-            (Key::Uc0, self.uc0),
-            (Key::I0, self.i0),
-            (Key::SaturationCurrent, self.diode_is),
-            (Key::Emission, self.diode_n),
-            (Key::SeriesResistance, self.diode_rs),
-            (Key::Temperature, self.temperature),
-        ]
+    /// These flags with `key` set to `value` (a number key).
+    pub fn with(mut self, key: Key, value: f64) -> Self {
+        self.values.insert(key, value);
+        self
+    }
+
+    /// These flags with `--preset`.
+    pub fn with_preset(mut self, preset: Preset) -> Self {
+        self.preset = Some(preset);
+        self
+    }
+
+    /// These flags with `--model`.
+    pub fn with_diode(mut self, diode: DiodeModel) -> Self {
+        self.diode = Some(diode);
+        self
     }
 
     /// Whether the flag of `key` was given.
     pub fn given(&self, key: Key) -> bool {
         match key {
             Key::Preset => self.preset.is_some(),
-            Key::Diode => self.model.is_some(),
-            _ => self.values().iter().any(|(k, v)| *k == key && v.is_some()),
+            Key::Diode => self.diode.is_some(),
+            _ => self.values.contains_key(&key),
         }
     }
 
@@ -243,26 +202,21 @@ impl ModelArgs {
             None => ExperimentSpec::new(),
         };
         let mut flags = ExperimentSpec::new();
-        for (key, value) in self.values() {
-            if let Some(v) = value {
-                if let Err(stickslip::Error::InvalidParameter { allowed, .. }) = flags.set(key, v) {
-                    return Err(UsageError(format!(
-                        "invalid {} {}: {allowed}",
-                        flag_name(key),
-                        stickslip::Number(v)
-                    ))
-                    .into());
-                }
+        for (&key, &value) in &self.values {
+            if let Err(stickslip::Error::InvalidParameter { allowed, .. }) = flags.set(key, value) {
+                return Err(UsageError(format!(
+                    "invalid {} {}: {allowed}",
+                    flag(key),
+                    stickslip::Number(value)
+                ))
+                .into());
             }
         }
-        if let Some(Preset::Paper) = self.preset {
-            flags.set_preset(LibraryPreset::Paper);
+        if let Some(preset) = self.preset {
+            flags.set_preset(preset);
         }
-        if let Some(model) = self.model {
-            flags.set_diode(match model {
-                DiodeModel::Pwl => LibraryDiode::Pwl,
-                DiodeModel::Shockley => LibraryDiode::Shockley,
-            });
+        if let Some(diode) = self.diode {
+            flags.set_diode(diode);
         }
         Ok(file.overlay(&flags))
     }
@@ -276,22 +230,20 @@ impl ModelArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::Parser;
 
-    #[test]
-    fn si_values() {
-        assert_eq!(si_value("11.5m").unwrap(), 11.5e-3);
-        assert!(si_value("abc").is_err());
-        assert!(finite("nan").is_err());
+    #[derive(clap::Parser)]
+    struct Flags {
+        #[command(flatten)]
+        model: ModelArgs,
     }
 
     #[test]
     fn preset_with_dimensionless_drive() {
-        let args = ModelArgs {
-            preset: Some(Preset::Paper),
-            w: Some(0.95),
-            beta: Some(2.14),
-            ..Default::default()
-        };
+        let args = ModelArgs::default()
+            .with_preset(Preset::Paper)
+            .with(Key::W, 0.95)
+            .with(Key::Beta, 2.14);
         let e = args.experiment().unwrap();
         let p = e.params().unwrap();
         assert!((p.zeta - 71.0 / 2.0 * (0.02e-6f64 / 11.5e-3).sqrt()).abs() < 1e-15);
@@ -300,54 +252,66 @@ mod tests {
 
     #[test]
     fn zeta_conflicts_with_physical() {
-        let args = ModelArgs {
-            preset: Some(Preset::Paper),
-            zeta: Some(0.1),
-            w: Some(0.95),
-            beta: Some(2.14),
-            ..Default::default()
-        };
+        let args = ModelArgs::default()
+            .with_preset(Preset::Paper)
+            .with(Key::Zeta, 0.1)
+            .with(Key::W, 0.95)
+            .with(Key::Beta, 2.14);
         assert!(args.experiment().is_err());
     }
 
-    /// `parse_value` reads every value as its flag does (the flags' parsers are attributes,
-    /// so this test keeps the two in step).
+    /// Every key's flag and aliases read its value as the library reads the key's text, and
+    /// the flags of names take the library's names.
     #[test]
-    fn parse_value_reads_values_as_the_flags_do() {
-        #[derive(clap::Parser)]
-        struct Flags {
-            #[command(flatten)]
-            model: ModelArgs,
-        }
-        use clap::Parser;
+    fn the_flags_read_values_as_the_library_does() {
         for key in Key::ALL {
-            if matches!(key, Key::Preset | Key::Diode) {
-                assert!(parse_value(key, "1").is_err());
-                continue;
-            }
-            for text in ["1k", "0.25", "2e-3", "-1", "abc", "20nF", "inf"] {
-                let flag = flag_name(key);
-                let clap = Flags::try_parse_from(["stickslip", &format!("{flag}={text}")]);
-                assert_eq!(
-                    clap.is_ok(),
-                    parse_value(key, text).is_ok(),
-                    "{flag} {text}: {:?}",
-                    clap.err().map(|e| e.to_string())
-                );
-                if let Ok(flags) = clap {
-                    let mut spec_from_flags = flags.model.values().into_iter();
-                    let value = spec_from_flags.find(|(k, _)| *k == key).and_then(|kv| kv.1);
-                    assert_eq!(value, parse_value(key, text).ok(), "{flag} {text}");
+            let spellings = std::iter::once(key.flag()).chain(key.aliases().iter().copied());
+            for spelling in spellings {
+                if key.form() == KeyForm::Choice {
+                    for name in key.choices() {
+                        let flags =
+                            Flags::try_parse_from(["stickslip", &format!("--{spelling}={name}")])
+                                .unwrap_or_else(|e| panic!("--{spelling} {name}: {e}"));
+                        assert!(flags.model.given(key), "--{spelling} {name}");
+                    }
+                    assert!(
+                        Flags::try_parse_from(["stickslip", &format!("--{spelling}=nothing")])
+                            .is_err()
+                    );
+                    continue;
+                }
+                for text in ["1k", "0.25", "2e-3", "-1", "abc", "20nF", "9.97kHz", "inf"] {
+                    let clap =
+                        Flags::try_parse_from(["stickslip", &format!("--{spelling}={text}")]);
+                    let library = number(key, text).ok();
+                    assert_eq!(
+                        clap.as_ref()
+                            .ok()
+                            .and_then(|f| f.model.values.get(&key).copied()),
+                        library,
+                        "--{spelling} {text}"
+                    );
                 }
             }
         }
     }
 
+    /// clap's own checks of every command (in a debug build): no flag of a command clashes
+    /// with a model flag.
+    #[test]
+    fn every_command_takes_the_model_flags_without_a_clash() {
+        use clap::CommandFactory;
+        crate::Cli::command().debug_assert();
+    }
+
     #[test]
     fn every_key_has_a_flag_of_its_own() {
-        let mut flags: Vec<String> = Key::ALL.iter().map(|&k| flag_name(k)).collect();
-        flags.sort();
+        let mut flags: Vec<&str> = Key::ALL.iter().map(|k| k.flag()).collect();
+        flags.extend(Key::ALL.iter().flat_map(|k| k.aliases().iter().copied()));
+        flags.push(CONFIG);
+        let count = flags.len();
+        flags.sort_unstable();
         flags.dedup();
-        assert_eq!(flags.len(), Key::ALL.len());
+        assert_eq!(flags.len(), count);
     }
 }

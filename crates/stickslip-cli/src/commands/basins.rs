@@ -1,7 +1,9 @@
 //! `stickslip basins`: the attractor reached from each initial state of a grid.
 
 use crate::checkpoint::CheckpointFlags;
-use crate::model::{finite, flag_name, ModelArgs};
+use crate::choice::choice;
+use crate::flags::{count, range_from_flags};
+use crate::model::{finite, flag, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
 use std::io::Write;
@@ -12,7 +14,7 @@ use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
 use stickslip::report::BasinsTable;
 use stickslip::scan::ParameterRange;
-use stickslip::State;
+use stickslip::{OptionKey, State};
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase. The attractors are found and numbered
@@ -83,8 +85,8 @@ pub struct Args {
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its
     /// steady state and classified).
-    #[arg(long, value_enum, default_value_t = Method::Recurrence)]
-    method: Method,
+    #[arg(long, value_parser = choice::<BasinMethod>(), default_value_t = BasinMethod::Recurrence)]
+    method: BasinMethod,
     /// Recurrence: cells of the state-space grid across the map's extent along each axis
     /// (16 to 1e6; at least 4 per grid spacing of the map are used).
     #[arg(long, default_value_t = 1024, allow_hyphen_values = true)]
@@ -102,59 +104,29 @@ pub struct Args {
     checkpoint: CheckpointFlags,
 }
 
-/// `--method`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Method {
-    Recurrence,
-    Exhaustive,
-}
-
 /// Run `stickslip basins`.
 pub fn run(args: Args) -> Result<()> {
-    let y0 = crate::flags::range_from_flags(
+    let y0 = range_from_flags(
         "y0",
         ("y0-min", args.y0_min),
         ("y0-max", args.y0_max),
-        ("steps", args.steps),
+        (OptionKey::BasinSteps, args.steps),
     )?;
-    let v0 = crate::flags::range_from_flags(
+    let v0 = range_from_flags(
         "v0",
         ("v0-min", args.v0_min),
         ("v0-max", args.v0_max),
-        ("steps", args.steps),
+        (OptionKey::BasinSteps, args.steps),
     )?;
-    if args.steps > 2000 {
-        usage!("invalid --steps {}: must be from 1 to 2000", args.steps);
-    }
-    if !(1..=100_000_000).contains(&args.max_periods) {
-        usage!(
-            "invalid --max-periods {}: must be from 1 to 1e8",
-            args.max_periods
-        );
-    }
-    if !(1..=64).contains(&args.max_period) {
-        usage!(
-            "invalid --max-period {}: must be from 1 to 64",
-            args.max_period
-        );
-    }
-    if !(8..=10_000_000).contains(&args.lyapunov_periods) {
-        usage!(
-            "invalid --lyapunov-periods {}: must be from 8 to 1e7",
-            args.lyapunov_periods
-        );
-    }
-    if !(16..=1_000_000).contains(&args.resolution) {
-        usage!(
-            "invalid --resolution {}: must be from 16 to 1e6",
-            args.resolution
-        );
-    }
+    let max_periods = count(OptionKey::BasinMaxPeriods, args.max_periods)?;
+    let max_period = count(OptionKey::BasinMaxPeriod, args.max_period)?;
+    let lyapunov_periods = count(OptionKey::BasinLyapunovPeriods, args.lyapunov_periods)?;
+    let resolution = count(OptionKey::Resolution, args.resolution)?;
     for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
         if args.model.given(key) {
             usage!(
                 "basins sets the initial state from its grid: drop {}",
-                flag_name(key)
+                flag(key)
             );
         }
     }
@@ -171,16 +143,13 @@ pub fn run(args: Args) -> Result<()> {
         experiment = experiment.with_phi(phase)?;
     }
     let options = BasinOptions {
-        max_periods: args.max_periods as usize,
-        max_period: args.max_period as usize,
-        method: match args.method {
-            Method::Recurrence => BasinMethod::Recurrence,
-            Method::Exhaustive => BasinMethod::Exhaustive,
-        },
-        resolution: args.resolution as usize,
+        max_periods,
+        max_period,
+        method: args.method,
+        resolution,
         ..BasinOptions::default()
     }
-    .with_lyapunov_periods(args.lyapunov_periods as usize);
+    .with_lyapunov_periods(lyapunov_periods);
     let basins = Basins::new(&experiment, &y0, &v0)?.options(options)?;
     // A checkpoint of other parameters, or a damaged one, is refused before any work.
     let checkpoint = args.checkpoint.open(

@@ -1,17 +1,19 @@
 //! `stickslip bifurcation`: strobe points and the largest Lyapunov exponent against a
 //! parameter, state carried from value to value, with the branches of periodic orbits.
 
-use crate::commands::sweep::{Direction, Over};
-use crate::flags::{range_from_flags, reject_swept_flags};
+use crate::choice::choice;
+use crate::flags::{count, range_from_flags, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
-use crate::output::{check_plot_path, usage, Sink};
+use crate::output::{check_plot_path, Sink};
 use anyhow::Result;
 use std::path::PathBuf;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::ContinuationOptions;
+use stickslip::options::check_product;
 use stickslip::report::BifurcationReport;
 use stickslip::scan::{Axis, SweepDirection, SweepLeg};
+use stickslip::{OptionKey, Parameter};
 
 /// Bifurcation diagram: at each value of one parameter (w, β, ζ or μs), after a transient,
 /// the strobe points (y, y') once per drive period at drive phase φ, with the largest
@@ -37,8 +39,8 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// The parameter stepped (the others come from the model flags).
-    #[arg(long, value_enum)]
-    over: Over,
+    #[arg(long, value_parser = choice::<Parameter>())]
+    over: Parameter,
     /// First value of the parameter (dimensionless).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     from: f64,
@@ -48,9 +50,10 @@ pub struct Args {
     /// Number of values from --from to --to, both included.
     #[arg(long, allow_hyphen_values = true)]
     steps: i64,
-    /// Which way to step.
-    #[arg(long, value_enum, default_value_t = Direction::Both)]
-    direction: Direction,
+    /// Which way to step: up (from --from to --to), down (from --to to --from), or both (up,
+    /// then down again from where the up leg ended).
+    #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
+    direction: SweepDirection,
     /// Strobe points recorded at each value (drive periods).
     #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
     points: i64,
@@ -80,40 +83,29 @@ pub struct Args {
 
 /// Run `stickslip bifurcation`.
 pub fn run(args: Args) -> Result<()> {
-    let parameter = args.over.parameter();
+    let parameter = args.over;
     let range = range_from_flags(
         parameter.label(),
         ("from", args.from),
         ("to", args.to),
-        ("steps", args.steps),
+        (OptionKey::BifurcationSteps, args.steps),
     )?;
-    if !(1..=100_000).contains(&args.points) {
-        usage!("invalid --points {}: must be from 1 to 100000", args.points);
-    }
-    for (flag, value) in [
-        ("transient", args.transient),
-        ("first-transient", args.first_transient),
-    ] {
-        if !(0..=10_000_000).contains(&value) {
-            usage!("invalid --{flag} {value}: must be from 0 to 1e7 drive periods");
-        }
-    }
-    if !(1..=1000).contains(&args.max_period) {
-        usage!(
-            "invalid --max-period {}: must be from 1 to 1000",
-            args.max_period
-        );
-    }
-    let rows = args.points as u64
-        * range.steps() as u64
-        * if args.direction == Direction::Both {
-            2
-        } else {
-            1
-        };
-    if rows > 20_000_000 {
-        usage!("--steps × --points = {rows} rows: at most 20000000");
-    }
+    let points = count(OptionKey::Points, args.points)?;
+    let transient = count(OptionKey::BifurcationTransient, args.transient)?;
+    let first_transient = count(OptionKey::FirstTransient, args.first_transient)?;
+    let max_period = count(OptionKey::BifurcationMaxPeriod, args.max_period)?;
+    let legs = if args.direction == SweepDirection::Both {
+        2
+    } else {
+        1
+    };
+    check_product(
+        "rows",
+        (OptionKey::BifurcationSteps, range.steps() * legs),
+        (OptionKey::Points, points),
+        2e7,
+        "20000000",
+    )?;
     reject_swept_flags(&args.model, parameter, "--over")?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
@@ -122,18 +114,14 @@ pub fn run(args: Args) -> Result<()> {
     let experiment = args.model.experiment()?;
     let options = BifurcationOptions {
         record: RecordOptions {
-            transient_periods: args.transient as usize,
-            points: args.points as usize,
-            max_period: args.max_period as usize,
+            transient_periods: transient,
+            points,
+            max_period,
             ..RecordOptions::default()
         },
-        first_transient_periods: args.first_transient as usize,
+        first_transient_periods: first_transient,
     };
-    let direction = match args.direction {
-        Direction::Up => SweepDirection::Up,
-        Direction::Down => SweepDirection::Down,
-        Direction::Both => SweepDirection::Both,
-    };
+    let direction = args.direction;
     let diagram = Bifurcation::new(&experiment, Axis::range(parameter, &range)?)?
         .direction(direction)
         .options(options)?;

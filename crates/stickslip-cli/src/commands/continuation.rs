@@ -1,7 +1,7 @@
 //! `stickslip continue`: a branch of periodic orbits by pseudo-arclength continuation.
 
-use crate::commands::sweep::Over;
-use crate::flags::reject_swept_flags;
+use crate::choice::choice;
+use crate::flags::{count, number, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
@@ -11,6 +11,7 @@ use stickslip::continuation::{
     continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
 use stickslip::report::BranchTable;
+use stickslip::{OptionKey, Parameter};
 
 /// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
 /// --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
@@ -39,8 +40,8 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// The continued parameter (the others come from the model flags).
-    #[arg(long, value_enum)]
-    over: Over,
+    #[arg(long, value_parser = choice::<Parameter>())]
+    over: Parameter,
     /// Start value: the orbit the motion settles on here is continued.
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     from: f64,
@@ -71,22 +72,12 @@ pub struct Args {
 
 /// Run `stickslip continue`.
 pub fn run(args: Args) -> Result<()> {
-    let parameter = args.over.parameter();
+    let parameter = args.over;
     if args.from == args.to {
         usage!("invalid --to {}: must differ from --from", args.to);
     }
-    if !(2..=1_000_000).contains(&args.max_points) {
-        usage!(
-            "invalid --max-points {}: must be from 2 to 1000000",
-            args.max_points
-        );
-    }
-    if !(args.max_step > 0.0 && args.max_step <= 10.0) {
-        usage!(
-            "invalid --max-step {}: must be > 0 and <= 10",
-            args.max_step
-        );
-    }
+    let max_points = count(OptionKey::MaxPoints, args.max_points)?;
+    let max_step = number(OptionKey::MaxStep, args.max_step)?;
     reject_swept_flags(&args.model, parameter, "--over")?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
@@ -123,10 +114,10 @@ pub fn run(args: Args) -> Result<()> {
         multipliers(&orbit.multipliers)
     );
     let options = ContinuationOptions {
-        max_points: args.max_points as usize,
+        max_points,
         ..ContinuationOptions::default()
     }
-    .with_max_step(args.max_step);
+    .with_max_step(max_step);
     let started = std::time::Instant::now();
     let bar = crate::output::progress(options.max_points as u64, "continue");
     let result = continue_orbit(

@@ -1,11 +1,13 @@
 //! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
 
+use crate::flags::count;
 use crate::model::ModelArgs;
-use crate::output::{check_interrupt, interrupted, progress, usage};
+use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
 use stickslip::stability::{
     LyapunovOptions, LyapunovReport, NonperiodicClassification, NonperiodicVerdict, SecondExponent,
 };
+use stickslip::OptionKey;
 
 /// The largest Lyapunov exponent λ1 of the motion from the initial state, with a standard
 /// error, and the second exponent λ2, by the exact tangent dynamics of the PWL model: the
@@ -63,32 +65,13 @@ pub struct Args {
 
 /// Run `stickslip lyapunov`.
 pub fn run(args: Args) -> Result<()> {
-    if !(0..=1_000_000_000).contains(&args.transient) {
-        usage!(
-            "invalid --transient {}: must be from 0 to 1e9",
-            args.transient
-        );
-    }
-    if !(4..=10_000).contains(&args.blocks) || args.blocks % 2 != 0 {
-        usage!(
-            "invalid --blocks {}: must be even and from 4 to 10000",
-            args.blocks
-        );
-    }
-    if !(args.blocks..=1_000_000_000).contains(&args.periods) {
-        usage!(
-            "invalid --periods {}: must be from --blocks ({}) to 1e9",
-            args.periods,
-            args.blocks
-        );
-    }
-    if !(args.significance > 0.0) {
-        usage!("invalid --significance {}: must be > 0", args.significance);
-    }
+    // Counts are typed signed, so that `-4` is refused by the table's range; the rule
+    // between --periods and --blocks is the options' own (`validate`).
     let options = LyapunovOptions {
-        transient_periods: args.transient as usize,
-        periods: args.periods as usize,
-        blocks: args.blocks as usize,
+        transient_periods: count(OptionKey::LyapunovTransient, args.transient)?,
+        blocks: count(OptionKey::Blocks, args.blocks)?,
+        periods: usize::try_from(args.periods)
+            .map_err(|_| OptionKey::LyapunovMeasured.invalid(args.periods as f64))?,
         significance: args.significance,
         sequential: !args.fixed,
     }

@@ -1,12 +1,14 @@
 //! `stickslip orbit`: a periodic orbit by Newton's method, with its Floquet multipliers.
 
+use crate::flags::{count, number};
 use crate::model::ModelArgs;
 use crate::output::{check_interrupt, interrupted, progress, usage};
 use anyhow::Result;
+use stickslip::options::OrbitOptions;
 use stickslip::stability::{
     Multiplier, NewtonOptions, OrbitReport, PeriodicOrbit, Stability, StabilityError,
 };
-use stickslip::{Error, EventKind};
+use stickslip::{Error, EventKind, OptionKey};
 
 /// Find a periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
 /// (the state once every p drive periods), with the exact Jacobian, and report its Floquet
@@ -66,60 +68,38 @@ pub struct Args {
 
 /// Run `stickslip orbit`.
 pub fn run(args: Args) -> Result<()> {
-    if let Some(p) = args.period {
-        if !(1..=1000).contains(&p) {
-            usage!("invalid --period {p}: must be from 1 to 1000 drive periods");
-        }
-    }
-    if !(0..=100_000_000).contains(&args.transient) {
-        usage!(
-            "invalid --transient {}: must be from 0 to 1e8",
-            args.transient
-        );
-    }
-    if args.transient > 0 && args.period.is_none() {
+    let period = args
+        .period
+        .map(|p| count(OptionKey::OrbitPeriod, p))
+        .transpose()?;
+    let transient = count(OptionKey::OrbitTransient, args.transient)?;
+    if transient > 0 && period.is_none() {
         usage!("--transient needs --period (without it the steady state gives the guess)");
     }
-    if !(1..=100_000_000).contains(&args.max_periods) {
-        usage!(
-            "invalid --max-periods {}: must be from 1 to 1e8",
-            args.max_periods
-        );
+    let orbit = OrbitOptions {
+        period,
+        transient,
+        max_periods: count(OptionKey::OrbitMaxPeriods, args.max_periods)?,
+        max_period: count(OptionKey::OrbitMaxPeriod, args.max_period)?,
+        newton: NewtonOptions {
+            tolerance: number(OptionKey::NewtonTolerance, args.newton_tolerance)?,
+            max_iterations: count(OptionKey::MaxIterations, args.max_iterations)?,
+            ..NewtonOptions::default()
+        },
     }
-    if !(1..=64).contains(&args.max_period) {
-        usage!(
-            "invalid --max-period {}: must be from 1 to 64",
-            args.max_period
-        );
-    }
-    if !(args.newton_tolerance > 0.0 && args.newton_tolerance < 1e-3) {
-        usage!(
-            "invalid --newton-tolerance {}: must be > 0 and < 1e-3",
-            args.newton_tolerance
-        );
-    }
-    if !(1..=1000).contains(&args.max_iterations) {
-        usage!(
-            "invalid --max-iterations {}: must be from 1 to 1000",
-            args.max_iterations
-        );
-    }
+    .validate()?;
     let experiment = args.model.experiment()?;
     let params = experiment.exact_params()?;
     let steady = experiment
         .steady_options()
-        .with_max_periods(args.max_periods as usize)?
-        .with_max_period(args.max_period as usize)?;
-    let newton = NewtonOptions {
-        tolerance: args.newton_tolerance,
-        max_iterations: args.max_iterations as usize,
-        ..NewtonOptions::default()
-    };
+        .with_max_periods(orbit.max_periods)?
+        .with_max_period(orbit.max_period)?;
+    let newton = orbit.newton;
     eprintln!("orbit: {experiment}");
-    let transient = args.transient as usize;
+    let transient = orbit.transient;
     let bar = progress(transient as u64, "transient");
     let result = experiment.periodic_orbit(
-        args.period.map(|p| p as usize),
+        orbit.period,
         transient,
         &steady,
         &newton,

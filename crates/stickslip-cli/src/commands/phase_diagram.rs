@@ -1,7 +1,8 @@
 //! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
 
 use crate::checkpoint::CheckpointFlags;
-use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::choice::choice;
+use crate::flags::{key_value, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -9,13 +10,13 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
-use stickslip::experiment::Origin;
+use stickslip::experiment::{Key, Origin};
 use stickslip::report::MapRow;
-use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::scan::{Axis, Grid, GridPoint, MapColor as Color, ParameterRange};
 use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
-use stickslip::{DiodeModel, Experiment, Parameter};
+use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
 /// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
@@ -76,19 +77,10 @@ pub struct Args {
     plot: Option<PathBuf>,
     /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
     /// every point, and written to the CSV as lambda,lambda_error).
-    #[arg(long, value_enum, default_value_t = Color::Class)]
+    #[arg(long, value_parser = choice::<Color>(), default_value_t = Color::Class)]
     color: Color,
     #[command(flatten)]
     checkpoint: CheckpointFlags,
-}
-
-/// What the cells of the map show.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum Color {
-    /// The motion class.
-    Class,
-    /// The largest Lyapunov exponent per unit τ.
-    Lyapunov,
 }
 
 /// Run `stickslip phase-diagram`.
@@ -97,20 +89,18 @@ pub fn run(args: Args) -> Result<()> {
         "w",
         ("w-min", args.w_min),
         ("w-max", args.w_max),
-        ("w-steps", args.w_steps),
+        (OptionKey::MapWSteps, args.w_steps),
     )?;
     let beta = range_from_flags(
         "beta",
         ("beta-min", args.beta_min),
         ("beta-max", args.beta_max),
-        ("beta-steps", args.beta_steps),
+        (OptionKey::MapBetaSteps, args.beta_steps),
     )?;
-    if w.from() <= 0.0 {
-        usage!("invalid --w-min {}: must be > 0", w.from());
-    }
-    if beta.from() < 0.0 {
-        usage!("invalid --beta-min {}: must be >= 0", beta.from());
-    }
+    key_value(Key::W, "w-min", w.from())?;
+    key_value(Key::W, "w-max", w.to())?;
+    key_value(Key::Beta, "beta-min", beta.from())?;
+    key_value(Key::Beta, "beta-max", beta.to())?;
     // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
     // memory; a streamed one only by its axes (docs/limits.md).
     let points = w.steps() * beta.steps();

@@ -1,11 +1,12 @@
 //! `stickslip simulate`: one trajectory, written as CSV, with its events and a plot.
 
 use crate::model::ModelArgs;
-use crate::output::{check_plot_path, usage, AtomicFile, Sink};
+use crate::output::{check_plot_path, AtomicFile, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
+use stickslip::options::SimulateOptions;
 use stickslip::report::{EventRow, TrajectoryRecord};
 use stickslip::EventKind;
 
@@ -43,22 +44,11 @@ pub struct Args {
 
 /// Run `stickslip simulate`.
 pub fn run(args: Args) -> Result<()> {
-    if !(args.periods > 0.0) || args.periods > 1e7 {
-        usage!(
-            "invalid --periods {}: must be > 0 and at most 1e7",
-            args.periods
-        );
+    SimulateOptions {
+        periods: args.periods,
+        samples_per_period: usize::try_from(args.samples_per_period).unwrap_or(usize::MAX),
     }
-    if args.samples_per_period == 0 || args.samples_per_period > 100_000 {
-        usage!(
-            "invalid --samples-per-period {}: must be from 1 to 100000",
-            args.samples_per_period
-        );
-    }
-    let total = (args.periods * args.samples_per_period as f64).ceil();
-    if total > 5e7 {
-        usage!("--periods × --samples-per-period = {total} samples: at most 5e7 allowed");
-    }
+    .validate()?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }

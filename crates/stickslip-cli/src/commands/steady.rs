@@ -57,6 +57,8 @@ pub struct Args {
 
 /// Run `stickslip steady`.
 pub fn run(args: Args) -> Result<()> {
+    // The command's floor of 9 is above the library's table (Harmonics: 1 to 256), so it is
+    // checked here until the table has it.
     if !(9..=256).contains(&args.harmonics) {
         usage!(
             "invalid --harmonics {}: must be from 9 to 256",

@@ -1,6 +1,7 @@
 //! `stickslip sweep`: w, β, ζ or μs swept up and/or down with continuation (hysteresis).
 
 use crate::checkpoint::{CheckpointFile, CheckpointFlags};
+use crate::choice::choice;
 use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
@@ -16,43 +17,7 @@ use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{
     abscissae, theory_curve, Theory as TheoryKind, TheoryCurve, TheoryQuantity,
 };
-use stickslip::{DiodeModel, Experiment, Parameter, Params, State};
-
-/// The swept parameter, as typed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Over {
-    /// The drive frequency w = Ω/ω0.
-    W,
-    /// The drive amplitude β.
-    Beta,
-    /// The damping ratio ζ.
-    Zeta,
-    /// The static-to-kinetic friction ratio μs.
-    MuS,
-}
-
-impl Over {
-    /// The library's parameter.
-    pub fn parameter(self) -> Parameter {
-        match self {
-            Over::W => Parameter::W,
-            Over::Beta => Parameter::Beta,
-            Over::Zeta => Parameter::Zeta,
-            Over::MuS => Parameter::MuS,
-        }
-    }
-}
-
-/// Sweep direction, as typed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Direction {
-    /// From --from to --to.
-    Up,
-    /// From --to to --from.
-    Down,
-    /// Up, then down again from where the up sweep ended.
-    Both,
-}
+use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 
 /// Sweep one parameter (w, β, ζ or μs) with the others fixed; each step starts from the final
 /// state of the step before, as when turning a knob, so hysteresis and coexisting motions
@@ -72,8 +37,8 @@ pub struct Args {
     #[command(flatten)]
     steady: SteadyFlags,
     /// The swept parameter (the others come from the model flags).
-    #[arg(long, value_enum)]
-    over: Over,
+    #[arg(long, value_parser = choice::<Parameter>())]
+    over: Parameter,
     /// First value of the swept parameter (dimensionless).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     from: f64,
@@ -83,9 +48,10 @@ pub struct Args {
     /// Number of values from --from to --to, both included (≥ 2, or 1 when they are equal).
     #[arg(long, allow_hyphen_values = true)]
     steps: i64,
-    /// Which way to sweep.
-    #[arg(long, value_enum, default_value_t = Direction::Both)]
-    direction: Direction,
+    /// Which way to sweep: up (from --from to --to), down (from --to to --from), or both (up,
+    /// then down again from where the up sweep ended).
+    #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
+    direction: SweepDirection,
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
@@ -99,12 +65,12 @@ pub struct Args {
 
 /// Run `stickslip sweep`.
 pub fn run(args: Args) -> Result<()> {
-    let parameter = args.over.parameter();
+    let parameter = args.over;
     let range = range_from_flags(
         parameter.label(),
         ("from", args.from),
         ("to", args.to),
-        ("steps", args.steps),
+        (OptionKey::SweepSteps, args.steps),
     )?;
     reject_swept_flags(&args.model, parameter, "--over")?;
     if let Some(p) = &args.plot {
@@ -114,11 +80,7 @@ pub fn run(args: Args) -> Result<()> {
     args.checkpoint.check()?;
     let experiment = args.model.experiment()?;
     let options = args.steady.options(&experiment)?.with_harmonics(3)?;
-    let direction = match args.direction {
-        Direction::Up => SweepDirection::Up,
-        Direction::Down => SweepDirection::Down,
-        Direction::Both => SweepDirection::Both,
-    };
+    let direction = args.direction;
     let sweep = Sweep::new(&experiment, Axis::range(parameter, &range)?)?
         .direction(direction)
         .options(options)?;
@@ -133,9 +95,9 @@ pub fn run(args: Args) -> Result<()> {
         range.to(),
         range.steps(),
         match args.direction {
-            Direction::Up => "up",
-            Direction::Down => "down",
-            Direction::Both => "up and down",
+            SweepDirection::Up => "up",
+            SweepDirection::Down => "down",
+            SweepDirection::Both => "up and down",
         }
     );
     let total = sweep.plan().len();

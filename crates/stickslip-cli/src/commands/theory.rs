@@ -1,7 +1,8 @@
 //! `stickslip theory`: the paper's series solution against the exact periodic solution, and
 //! stick-slip boundary or gain curves.
 
-use crate::flags::reject_swept_flags;
+use crate::choice::choice;
+use crate::flags::{key_value, reject_swept_flags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -11,9 +12,9 @@ use stickslip::experiment::Key;
 use stickslip::report::{TheoryRow, TheoryTable};
 use stickslip::scan::grid_value;
 use stickslip::solver::grid;
-use stickslip::theory::curves::{theory_curve, Theory, TheoryQuantity};
+use stickslip::theory::curves::{theory_curve, CurveKind as Curve, Theory, TheoryQuantity};
 use stickslip::theory::TheoryReport;
-use stickslip::{DiodeModel, Experiment, Parameter, Unsupported};
+use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Unsupported};
 
 /// The paper's series solution (its eqs. 9–11, 13) next to the exact non-sticking periodic
 /// solution (Den Hartog 1930 for ζ = 0, its damped generalisation otherwise).
@@ -41,7 +42,7 @@ pub struct Args {
     #[arg(long, conflicts_with = "curve", help_heading = "Theory")]
     json: bool,
     /// Write a curve over w instead of one point: `boundary` or `gain`.
-    #[arg(long, value_enum, help_heading = "Theory")]
+    #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
     /// Smallest w of the curve (> 0) [default: 0.2].
     #[arg(long = "w-min", help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
@@ -65,29 +66,18 @@ pub struct Args {
     plot: Option<PathBuf>,
 }
 
-/// Which curve `--curve` writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Curve {
-    /// β_c over w: `w,beta_c_paper,beta_c_exact`.
-    Boundary,
-    /// Gain A1/β over w at the given β: `w,gain_paper,gain_exact`.
-    Gain,
-}
-
 /// Run `stickslip theory`.
 pub fn run(args: Args) -> Result<()> {
     let m = &args.model;
-    for (given, name) in [
-        (m.y0.is_some(), "y0"),
-        (m.v0.is_some(), "v0"),
-        (m.uc0.is_some(), "uc0"),
-        (m.i0.is_some(), "i0"),
-    ] {
-        if given {
-            usage!("--{name} is not used by theory: it computes steady states, not a run from an initial state");
+    for key in [Key::Y0, Key::V0, Key::Uc0, Key::I0] {
+        if m.given(key) {
+            usage!(
+                "{} is not used by theory: it computes steady states, not a run from an initial state",
+                crate::model::flag(key)
+            );
         }
     }
-    if m.model == Some(crate::model::DiodeModel::Shockley) {
+    if m.diode == Some(DiodeModel::Shockley) {
         usage!("theory covers the piecewise-linear diode (Coulomb friction) model; --model shockley is not supported");
     }
     match args.curve {
@@ -183,16 +173,12 @@ fn point(args: &Args) -> Result<()> {
 
 fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     let (lo, hi) = (args.w_min.unwrap_or(0.2), args.w_max.unwrap_or(3.0));
-    let steps = args.steps.unwrap_or(200);
-    if !(lo > 0.0) {
-        usage!("invalid --w-min {lo}: must be > 0");
-    }
+    key_value(Key::W, "w-min", lo)?;
+    key_value(Key::W, "w-max", hi)?;
     if !(hi > lo) {
         usage!("invalid --w-max {hi}: must be greater than --w-min {lo}");
     }
-    if !(2..=100_000).contains(&steps) {
-        usage!("invalid --steps {steps}: must be from 2 to 100000 (the number of points)");
-    }
+    let steps = OptionKey::CurveSteps.check(args.steps.unwrap_or(200) as f64)? as u64;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }

@@ -9,6 +9,7 @@ mod determinism;
 mod dynamics;
 mod fit;
 mod fuzz_props;
+mod keys;
 mod lab;
 mod limits;
 mod lyapunov;
