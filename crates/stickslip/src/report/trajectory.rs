@@ -341,7 +341,7 @@ impl Iterator for TrajectoryRun<'_> {
                 };
                 let done = self.cursor.samples_done();
                 if let Some(monitor) = self.monitor {
-                    if done % self.samples_per_period == 0 || done == self.samples {
+                    if done.is_multiple_of(self.samples_per_period) || done == self.samples {
                         let total = self.samples.div_ceil(self.samples_per_period);
                         let blocks = done.div_ceil(self.samples_per_period);
                         if monitor.step(blocks, total) == ControlFlow::Break(()) {
