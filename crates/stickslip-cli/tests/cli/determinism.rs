@@ -90,7 +90,12 @@ fn check_golden(index: usize, args: &[&str], out: &(Vec<u8>, Vec<(String, Vec<u8
     let golden = files(&dir);
     let names: Vec<&String> = expected.iter().map(|f| &f.0).collect();
     let golden_names: Vec<&String> = golden.iter().map(|f| &f.0).collect();
-    assert_eq!(names, golden_names, "{args:?}: files differ from {}", dir.display());
+    assert_eq!(
+        names,
+        golden_names,
+        "{args:?}: files differ from {}",
+        dir.display()
+    );
     for (a, b) in expected.iter().zip(&golden) {
         assert!(
             a.1 == b.1,
