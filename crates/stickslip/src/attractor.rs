@@ -155,7 +155,9 @@ impl RecordOptions {
 pub struct StrobeRecord {
     /// The recorded strobe points x_1 … x_N, at τ = (transient + k)T from the start.
     pub strobes: Vec<State>,
-    /// The largest Lyapunov exponent over the N recorded periods, per unit τ.
+    /// The largest Lyapunov exponent over the N recorded periods, per unit τ (in a
+    /// [`crate::bifurcation`] diagram, for a motion that does not repeat, the sequential
+    /// measurement from the last point instead).
     pub exponent: f64,
     /// Its standard error from the block means, per unit τ (NaN when N < 8).
     pub exponent_error: f64,

@@ -10,6 +10,15 @@
 //! ([`crate::attractor`]): a period-p orbit gives exactly p points, chaos a cloud of N points
 //! and a positive exponent.
 //!
+//! **The exponent** of a motion whose strobe points do not repeat is then measured as `steady`
+//! and the maps measure it ([`SteadyOptions::DEFAULT_LYAPUNOV`]): from the record's last
+//! point, 100 periods to align the tangent, then lengths that double up to 5000 periods, stopped
+//! as soon as the verdict is decided at [`RecordOptions::significance`] standard errors (see
+//! [`crate::stability::lyapunov`]). Its exponent and standard error replace the record's own
+//! (measured over the N recorded periods only), and its verdict the record's: chaotic, or
+//! quasi-periodic (within its error of zero), or unsettled (contracting onto something not
+//! reached, or undecided). Periodic orbits and rest keep the record's exponent.
+//!
 //! The first step (from the experiment's initial state) runs
 //! [`BifurcationOptions::first_transient_periods`], every later one
 //! [`RecordOptions::transient_periods`]. The result is deterministic: step i depends only on
@@ -40,11 +49,45 @@ use crate::error::{Error, Result, Unsupported};
 use crate::experiment::{DiodeModel, Experiment};
 use crate::params::{Params, State};
 use crate::scan::{Axis, Monitor, SweepDirection, SweepLeg};
-use crate::stability::{find_periodic_orbit, NewtonOptions};
+use crate::stability::{
+    find_periodic_orbit, lyapunov_exponents, LyapunovOptions, NewtonOptions,
+    NonperiodicClassification, NonperiodicVerdict, StabilityError,
+};
+use crate::steady::SteadyOptions;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Measure the largest exponent of a motion whose strobe points do not repeat as `steady` and
+/// the maps do (see the module documentation): from the record's last point, sequentially
+/// ([`SteadyOptions::DEFAULT_LYAPUNOV`], at `significance` standard errors), and take its
+/// exponent, error and verdict in place of the record's own (N periods only). The state the
+/// next step starts from is the record's last point either way.
+fn measure(params: &Params, record: &mut StrobeRecord, significance: f64) -> Result<()> {
+    if record.period.is_some() || record.kind == AttractorKind::Static {
+        return Ok(());
+    }
+    let options = LyapunovOptions {
+        significance,
+        ..SteadyOptions::DEFAULT_LYAPUNOV
+    };
+    let exponents = match lyapunov_exponents(params, record.final_state(), &options) {
+        Ok(exponents) => exponents,
+        // A tangential release: the record's own exponent stays.
+        Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => return Ok(()),
+        Err(e) => return Err(e),
+    };
+    let c = NonperiodicClassification::new(exponents, significance);
+    record.exponent = c.exponents.largest.per_tau;
+    record.exponent_error = c.exponents.largest.error_per_tau;
+    record.kind = match c.verdict {
+        NonperiodicVerdict::Chaotic => AttractorKind::Chaotic,
+        NonperiodicVerdict::QuasiPeriodic => AttractorKind::QuasiPeriodic,
+        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Unsettled,
+    };
+    Ok(())
+}
 
 /// Options of a [`Bifurcation`] diagram.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -210,11 +253,13 @@ impl Bifurcation {
         if index == 0 {
             record.transient_periods = self.options.first_transient_periods;
         }
+        let mut record = record_strobes(&params, state, &record)?;
+        measure(&params, &mut record, self.options.record.significance)?;
         Ok(BifurcationStep {
             params,
             value,
             leg,
-            record: record_strobes(&params, state, &record)?,
+            record,
         })
     }
 

@@ -121,6 +121,65 @@ fn a_period_p_orbit_gives_exactly_p_strobe_points() {
     }
 }
 
+/// A diagram measures the exponent of a motion that does not repeat as `steady` and the maps
+/// do: sequentially from the record's last point (the default measurement of the steady
+/// state), its error kept; and the result agrees, within the errors, with a fixed run ten
+/// times as long from the same point.
+#[test]
+fn a_diagram_measures_a_chaotic_exponent_sequentially_with_its_error() {
+    let experiment = experiment(0.0, 3.0, 0.3, 9.0);
+    let diagram = Bifurcation::new(
+        &experiment,
+        Axis::new(Parameter::W, vec![0.25, 0.33]).unwrap(),
+    )
+    .unwrap()
+    .direction(SweepDirection::Up)
+    .run(&())
+    .unwrap();
+    let (periodic, chaotic) = (&diagram[0], &diagram[1]);
+    assert_eq!(
+        (periodic.record.kind, periodic.record.period),
+        (AttractorKind::Periodic, Some(1))
+    );
+    assert!(periodic.record.exponent < 0.0);
+
+    assert_eq!(chaotic.record.kind, AttractorKind::Chaotic);
+    let sequential = lyapunov_exponents(
+        &chaotic.params,
+        chaotic.record.final_state(),
+        &stickslip::steady::SteadyOptions::DEFAULT_LYAPUNOV,
+    )
+    .unwrap();
+    assert!(sequential.converged);
+    assert!(sequential.periods < sequential.cap, "stopped when it knew");
+    assert_eq!(chaotic.record.exponent, sequential.largest.per_tau);
+    assert_eq!(
+        chaotic.record.exponent_error,
+        sequential.largest.error_per_tau
+    );
+    assert!(chaotic.record.exponent > 4.0 * chaotic.record.exponent_error);
+    let fixed = LyapunovOptions {
+        transient_periods: 100,
+        periods: 10 * sequential.periods,
+        blocks: 20,
+        significance: 4.0,
+        sequential: false,
+    };
+    let long = lyapunov_exponents(&chaotic.params, chaotic.record.final_state(), &fixed).unwrap();
+    let gap = (chaotic.record.exponent - long.largest.per_tau).abs();
+    let allowed =
+        4.0 * (chaotic.record.exponent_error.powi(2) + long.largest.error_per_tau.powi(2)).sqrt();
+    assert!(
+        gap <= allowed,
+        "exponent {} ± {} against {} ± {} over {} periods",
+        chaotic.record.exponent,
+        chaotic.record.exponent_error,
+        long.largest.per_tau,
+        long.largest.error_per_tau,
+        long.periods
+    );
+}
+
 #[test]
 fn a_chaotic_window_gives_a_cloud_of_points_and_a_positive_exponent() {
     let pr = params(0.0, 3.0, 0.33, 9.0);

@@ -42,9 +42,10 @@ class BifurcationDiagram:
         leg: array of 'up' or 'down', the leg of each value.
         y, v: float64 arrays (values, points): the strobe points (y, y') once per drive period
             at drive phase φ, after the transient.
-        exponent: float64 array: the largest Lyapunov exponent per unit τ over the recorded
-            periods (the CSV's ``lambda``); exponent_error: its standard error (NaN with
-            fewer than 8 points).
+        exponent: float64 array: the largest Lyapunov exponent per unit τ (the CSV's
+            ``lambda``): over the recorded periods where the points repeat, else measured
+            sequentially from the last point as ``steady`` does; exponent_error: its standard
+            error (NaN with fewer than 8 points).
         kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS`` (the CSV's ``class``;
             'static' is rest: the motion stopped for good); stops: the stops beside it.
         period: int16, the period in drive periods, -1 without one.
@@ -134,8 +135,8 @@ class BifurcationDiagram:
             "v": (dims + ("point",), table(self.v),
                   {"long_name": "velocity y' at the strobe (drive phase phi)", "units": "1"}),
             "exponent": (dims, table(self.exponent),
-                         {"long_name": "largest Lyapunov exponent per unit tau over the "
-                                       "recorded periods", "units": "1"}),
+                         {"long_name": "largest Lyapunov exponent per unit tau",
+                          "units": "1"}),
             "exponent_error": (dims, table(self.exponent_error),
                                {"long_name": "standard error of the exponent", "units": "1"}),
             "kind": (dims, table(self.kind), _kind_attributes()),
