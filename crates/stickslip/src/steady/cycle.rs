@@ -124,7 +124,10 @@ pub struct SteadyOptions {
     /// only, together with [`SteadyOptions::accelerate`]): the stable fixed point found is
     /// accepted when the trajectory is within its basin by the checks of the module
     /// documentation (two strobe steps that follow the orbit's linearisation through the
-    /// orbit's events), and the cycle is recorded from it. Default true.
+    /// orbit's events), and the cycle is recorded from it. Default false: a point settled by
+    /// Newton's method records its cycle from the fixed point, which can differ in the last
+    /// bit from the cycle the plain iteration records, and the steady state of one point must
+    /// equal the same point of a map computed either way.
     #[serde(default = "default_newton")]
     pub newton: bool,
     /// How a motion that does not repeat within the cap is measured (exact model only, see
@@ -145,7 +148,7 @@ impl Default for SteadyOptions {
             samples_per_period: None,
             harmonics: 16,
             accelerate: true,
-            newton: true,
+            newton: false,
             lyapunov: Some(Self::DEFAULT_LYAPUNOV),
         }
     }
