@@ -10,6 +10,7 @@ use serde_json::json;
 use stickslip::continuation::{
     continue_both_ways, settled_orbit, BranchEnd, ContinuationOptions, SpecialKind,
 };
+use stickslip::report::{BranchTable, Table};
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg};
 use stickslip::{Parameter, State};
 
@@ -89,47 +90,12 @@ pub fn branch_fold(report: &mut Report, ctx: &Context) -> Result<()> {
         top.y_range = Some((lo.min(-0.05), hi + 0.15 * (hi - lo)));
     }
     report.stack("beyond-branch", &figure)?;
-    let rows: Vec<Vec<String>> = branch
-        .points
-        .iter()
-        .map(|p| {
-            let m = &p.orbit.multipliers;
-            vec![
-                format!("{}", p.value),
-                format!("{}", p.orbit.state.y),
-                format!("{}", p.orbit.state.v),
-                format!("{}", p.amplitude()),
-                p.orbit.period.to_string(),
-                format!("{}", p.stops_per_period()),
-                p.turns.to_string(),
-                format!("{}", m[0].re),
-                format!("{}", m[0].im),
-                format!("{}", m[1].re),
-                format!("{}", m[1].im),
-                (m[0].modulus() < 1.0).to_string(),
-                format!("{}", p.arclength),
-            ]
-        })
-        .collect();
-    report.csv(
-        "beyond-branch.csv",
-        &[
-            "beta",
-            "y",
-            "v",
-            "amplitude",
-            "period",
-            "stops_per_period",
-            "turns",
-            "mu1_re",
-            "mu1_im",
-            "mu2_re",
-            "mu2_im",
-            "stable",
-            "arclength",
-        ],
-        &rows,
-    )?;
+    // The CSV of `stickslip continue`: the library's table of a branch.
+    let table = BranchTable { branch: &branch };
+    let rows: Vec<Vec<String>> = (0..table.len()).map(|i| table.row(i)).collect();
+    let columns = table.columns();
+    let header: Vec<&str> = columns.iter().map(String::as_str).collect();
+    report.csv("beyond-branch.csv", &header, &rows)?;
     let find = |kind: SpecialKind| branch.special.iter().find(|s| s.kind == kind);
     let fold = find(SpecialKind::Fold);
     let grazing = find(SpecialKind::Grazing);
