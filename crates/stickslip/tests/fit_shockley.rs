@@ -142,7 +142,8 @@ fn quantise(values: &[f64], rng: &mut Rng) -> Vec<f64> {
         .collect()
 }
 
-/// The record of drive `i` as a scope export: Rigol for even `i`, Keysight for odd.
+/// The record of drive `i` as a scope export: Rigol for even `i`, Keysight for odd; written
+/// to `record<i>.csv` in the work directory too.
 fn scope_file(i: usize, rng: &mut Rng) -> String {
     let (w, beta, phi) = DRIVES[i];
     let points = run_ngspice(&format!("{i}"), w, beta, phi);
@@ -164,9 +165,10 @@ fn scope_file(i: usize, rng: &mut Rng) -> String {
         .map(|&t| interpolate(&points, t) + offset)
         .collect();
     let (drive, response) = (quantise(&drive, rng), quantise(&response, rng));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fit-shockley-{i}"));
     // The scope's time axis starts at the trigger, half a record before its first sample.
     let t0 = -0.5 * SAMPLES as f64 * increment;
-    if i.is_multiple_of(2) {
+    let text = if i.is_multiple_of(2) {
         let mut t =
             format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,{t0:.6e},{increment:.6e}\n");
         for k in 0..SAMPLES {
@@ -184,7 +186,10 @@ fn scope_file(i: usize, rng: &mut Rng) -> String {
             );
         }
         t
-    }
+    };
+    // Kept for the worked example of docs/fit.md (`stickslip fit --data ...`).
+    std::fs::write(dir.join(format!("record{i}.csv")), &text).unwrap();
+    text
 }
 
 /// The forward voltage of one diode at current `i` (A): n V_T ln(1 + I/I_s) + I R_s.
