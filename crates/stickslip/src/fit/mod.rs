@@ -26,10 +26,12 @@
 //! tens of unknowns), which 150 lines over a Cholesky solver handle. It runs over the free
 //! parameters (scaled by their starting values) and the nuisance
 //! parameters. The Jacobian: the drive's columns on the drive samples and the offsets'
-//! columns exactly; the others by forward differences (relative step 10⁻⁶ with PWL diodes,
-//! whose exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
-//! solver is accurate to its tolerance), a record's own nuisance columns from that record
-//! only. The exact tangent dynamics with respect to the parameters are not used yet.
+//! columns exactly; the others by forward differences (step 10⁻⁶ with PWL diodes, whose
+//! exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
+//! solver is accurate to its tolerance; relative to a free parameter's value, but never
+//! smaller than that fraction of its starting value, so that a value fitted near zero, such
+//! as a diode's R_s, keeps a step above the solver's error), a record's own nuisance columns
+//! from that record only. The exact tangent dynamics with respect to the parameters are not used yet.
 //!
 //! **What is reported** ([`FitReport`]): each free parameter's value, standard error from
 //! s²(JᵀJ)⁻¹ with s² the weighted SSR/(N − P) (N residuals, P fitted values with the nuisance
@@ -536,7 +538,7 @@ impl lm::Problem for Records<'_> {
         let h = self.setup.step;
         for (k, column) in columns.iter_mut().enumerate().take(self.setup.free.len()) {
             let mut xp = x.to_vec();
-            let mut dx = h * x[k].abs().max(1e-3);
+            let mut dx = h * x[k].abs().max(1.0);
             xp[k] += dx;
             let mut rp = self.all(&xp);
             if rp.is_none() {
@@ -1012,7 +1014,7 @@ impl lm::Problem for Table<'_> {
         (0..x.len())
             .map(|k| {
                 let mut xp = x.to_vec();
-                let mut dx = h * x[k].abs().max(1e-3);
+                let mut dx = h * x[k].abs().max(1.0);
                 xp[k] += dx;
                 let rp = match self.residuals(&xp)? {
                     Some(rp) => Some(rp),
