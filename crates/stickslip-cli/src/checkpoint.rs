@@ -42,12 +42,7 @@ pub struct CheckpointFlags {
 impl CheckpointFlags {
     /// Check the flags before any work.
     pub fn check(&self) -> Result<()> {
-        if !(self.every >= 0.0 && self.every <= 86_400.0) {
-            usage!(
-                "invalid --checkpoint-every {}: must be from 0 to 86400 seconds",
-                self.every
-            );
-        }
+        stickslip::options::OptionKey::CheckpointEvery.check(self.every)?;
         if let Some(path) = &self.checkpoint {
             crate::output::check_output_path(path)?;
             if path.is_dir() {

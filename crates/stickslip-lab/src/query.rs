@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use std::str::FromStr;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
 use stickslip::names::NameError;
+use stickslip::options::{OptionKey, Spelling};
 use stickslip::units::NumberError;
 use stickslip::Error;
 
@@ -54,10 +55,46 @@ impl ApiError {
         }
     }
 
-    /// A library error about the request (400, naming keys as the API does), or about the
-    /// computation (500).
+    /// A library error about the request (400, naming keys as the API does), a computation
+    /// stopped by its caller (503, as the lab's own time limit), or a failed computation (500).
     pub fn library(err: &Error) -> Self {
         match err {
+            Error::InvalidOption {
+                option,
+                value,
+                allowed,
+            } => {
+                let key = option_key(*option);
+                Self::field(
+                    key,
+                    format!(
+                        "invalid {key} {}: {}",
+                        short(*value),
+                        allowed.render(*option, Spelling::Query)
+                    ),
+                )
+            }
+            Error::OptionProduct {
+                what,
+                first,
+                second,
+                product,
+                max,
+            } => Self::field(
+                option_key(*second),
+                format!(
+                    "{} × {} = {} {what}: at most {max} allowed",
+                    option_key(*first),
+                    option_key(*second),
+                    short(*product)
+                ),
+            ),
+            Error::Cancelled { .. } | Error::DeadlineExceeded | Error::BudgetExceeded { .. } => {
+                Self::status(
+                    StatusCode::SERVICE_UNAVAILABLE,
+                    format!("the computation was stopped ({err}): ask for less (fewer points, steps or periods)"),
+                )
+            }
             Error::Spec(spec) => {
                 let field = spec_field(spec).map(api_name);
                 Self {
@@ -75,6 +112,29 @@ impl ApiError {
             | Error::Unsupported(_) => Self::bad(err.to_string()),
             _ => Self::status(StatusCode::INTERNAL_SERVER_ERROR, err.to_string()),
         }
+    }
+}
+
+/// The lab's names of the options whose query key is not the option's flag.
+const RENAMED: [(OptionKey, &str); 2] = [
+    (OptionKey::SimulateSamples, "samples"),
+    (OptionKey::SimulatePeriods, "periods"),
+];
+
+/// The query key of an option: its flag ([`OptionKey::flag`]) but for [`RENAMED`].
+pub fn option_key(option: OptionKey) -> &'static str {
+    RENAMED
+        .iter()
+        .find(|r| r.0 == option)
+        .map_or(option.flag(), |r| r.1)
+}
+
+/// A number as a message shows it: huge and tiny ones in exponent form.
+pub fn short(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
     }
 }
 

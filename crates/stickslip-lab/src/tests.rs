@@ -746,3 +746,54 @@ async fn only_the_labs_own_host_names_are_answered() {
         }
     }
 }
+
+/// Every library error that names an option is a 400 naming its query key, and every stop
+/// of a computation by its caller is a 503 (as the lab's own time limit): none is a 500.
+#[test]
+fn library_errors_about_options_and_stops_are_never_500() {
+    use crate::query::ApiError;
+    use stickslip::options::{check_product, OptionKey};
+    use stickslip::Error;
+
+    let e = ApiError::library(&OptionKey::MaxPeriod.check(65.0).unwrap_err());
+    assert_eq!(e.status, StatusCode::BAD_REQUEST);
+    assert_eq!(e.field.as_deref(), Some("max-period"));
+    assert_eq!(e.message, "invalid max-period 65: must be from 1 to 64");
+
+    // Renamed query keys: `samples` for the simulation's samples per period.
+    let e = ApiError::library(&OptionKey::SimulateSamples.check(0.0).unwrap_err());
+    assert_eq!(e.status, StatusCode::BAD_REQUEST);
+    assert_eq!(e.field.as_deref(), Some("samples"));
+    assert!(
+        e.message.starts_with("invalid samples 0: "),
+        "{}",
+        e.message
+    );
+
+    let product = check_product(
+        "points",
+        (OptionKey::MapWSteps, 1000),
+        (OptionKey::MapBetaSteps, 1000),
+        40_000.0,
+        "40000",
+    )
+    .unwrap_err();
+    let e = ApiError::library(&product);
+    assert_eq!(e.status, StatusCode::BAD_REQUEST);
+    assert_eq!(e.field.as_deref(), Some("beta-steps"));
+    assert_eq!(
+        e.message,
+        "w-steps × beta-steps = 1e6 points: at most 40000 allowed"
+    );
+
+    for stop in [
+        Error::Cancelled { done: 3, total: 10 },
+        Error::DeadlineExceeded,
+        Error::BudgetExceeded { budget: 1000 },
+    ] {
+        let e = ApiError::library(&stop);
+        assert_eq!(e.status, StatusCode::SERVICE_UNAVAILABLE, "{stop}");
+        assert!(e.message.contains(&stop.to_string()), "{}", e.message);
+        assert!(!e.message.contains('\n'));
+    }
+}

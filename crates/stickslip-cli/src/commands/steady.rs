@@ -2,10 +2,11 @@
 
 use crate::flags::SteadyFlags;
 use crate::model::ModelArgs;
-use crate::output::{check_plot_path, outln, usage, AtomicFile};
+use crate::output::{check_plot_path, outln, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use std::path::PathBuf;
+use stickslip::options::OptionKey;
 use stickslip::report::SteadyTrace;
 use stickslip::stability::{NonperiodicClassification, NonperiodicVerdict};
 use stickslip::steady::{SteadyReport, SteadyState};
@@ -57,14 +58,8 @@ pub struct Args {
 
 /// Run `stickslip steady`.
 pub fn run(args: Args) -> Result<()> {
-    // The command's floor of 9 is above the library's table (Harmonics: 1 to 256), so it is
-    // checked here until the table has it.
-    if !(9..=256).contains(&args.harmonics) {
-        usage!(
-            "invalid --harmonics {}: must be from 9 to 256",
-            args.harmonics
-        );
-    }
+    // The report's floor of 9 is its own row of the table (Python's `steady` allows 1).
+    let harmonics = crate::flags::count(OptionKey::ReportHarmonics, args.harmonics)?;
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
@@ -76,7 +71,7 @@ pub fn run(args: Args) -> Result<()> {
     let options = args
         .steady
         .options(&experiment)?
-        .with_harmonics(args.harmonics as usize)?;
+        .with_harmonics(harmonics)?;
     stickslip::steady::check_horizon(&params, &options, 0.0)?;
     eprintln!("steady: {experiment}");
     let steady = experiment.steady_with(&options)?;

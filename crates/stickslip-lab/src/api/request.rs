@@ -2,63 +2,17 @@
 //! swept parameter's keys.
 
 use super::caps::CAPS;
-use crate::query::{api_name, ApiError, Query};
+use crate::query::{api_name, short, ApiError, Query};
 use stickslip::experiment::Experiment;
 use stickslip::options::{OptionKey, Spelling};
 use stickslip::scan::{Axis, ParameterRange};
 use stickslip::steady::SteadyOptions;
 use stickslip::{Error, Parameter};
 
-/// The lab's names of the options whose query key is not the option's flag.
-const RENAMED: [(OptionKey, &str); 2] = [
-    (OptionKey::SimulateSamples, "samples"),
-    (OptionKey::SimulatePeriods, "periods"),
-];
-
-/// The query key of an option.
-fn key_of(option: OptionKey) -> &'static str {
-    RENAMED
-        .iter()
-        .find(|r| r.0 == option)
-        .map_or(option.flag(), |r| r.1)
-}
-
-/// A library error about an option (out of the library's range or over the lab's caps) as a
-/// 400 naming the query key; any other error as [`ApiError::library`].
+/// A library error as an answer ([`ApiError::library`]: an option out of range or over the
+/// lab's caps is a 400 naming the query key).
 pub(crate) fn option_error(err: &Error) -> ApiError {
-    match err {
-        Error::InvalidOption {
-            option,
-            value,
-            allowed,
-        } => {
-            let key = key_of(*option);
-            ApiError::field(
-                key,
-                format!(
-                    "invalid {key} {}: {}",
-                    short(*value),
-                    allowed.render(*option, Spelling::Query)
-                ),
-            )
-        }
-        Error::OptionProduct {
-            what,
-            first,
-            second,
-            product,
-            max,
-        } => ApiError::field(
-            key_of(*second),
-            format!(
-                "{} × {} = {} {what}: at most {max} allowed",
-                key_of(*first),
-                key_of(*second),
-                short(*product)
-            ),
-        ),
-        other => ApiError::library(other),
-    }
+    ApiError::library(err)
 }
 
 /// The steady-state keys of `steady`, `sweep` and `map` (as the command-line flags of the same
@@ -104,15 +58,6 @@ pub(crate) fn reject_swept(q: &Query, parameter: Parameter, by: &str) -> Result<
         ));
     }
     Ok(())
-}
-
-/// A number as a message shows it: huge and tiny ones in exponent form.
-pub(crate) fn short(x: f64) -> String {
-    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        x.to_string()
-    }
 }
 
 /// `from`, `to` and `steps` keys (with prefix, e.g. `w-`) as a range.

@@ -8,6 +8,7 @@ use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
+use stickslip::options::OptionKey;
 use stickslip::steady::{steady_state_from, SteadyOptions, SteadyReport};
 
 /// `GET /api/steady`.
@@ -44,7 +45,10 @@ impl SteadyRequest {
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
         let experiment = q.experiment()?;
-        let harmonics = q.count("harmonics", 16, 9, 256)?;
+        let harmonics = q.whole("harmonics", 16)?;
+        OptionKey::ReportHarmonics
+            .check_count(harmonics)
+            .map_err(|e| ApiError::library(&e))?;
         let samples = q.count("samples", 512, 16, CAPS.steady_samples)?;
         if !samples.is_power_of_two() {
             return Err(ApiError::field(

@@ -40,6 +40,11 @@ pub enum OptionGroup {
     Curve,
     /// The pool of threads of a parallel computation.
     Pool,
+    /// The report of one steady state (`steady` on the command line, `/api/steady` in the
+    /// lab; Python's `steady` takes the search's [`OptionKey::Harmonics`]).
+    SteadyReport,
+    /// Saving finished work as a long computation goes (`--checkpoint`).
+    Checkpoint,
 }
 
 /// What values an option takes.
@@ -172,6 +177,10 @@ pub enum OptionKey {
     CurveSteps,
     /// Threads of a pool.
     Threads,
+    /// Drive harmonics in the report of one steady state (at least 9, the paper's).
+    ReportHarmonics,
+    /// Least time between two saves of a checkpoint, in seconds.
+    CheckpointEvery,
 }
 
 /// One row of [`OptionKey::table`]: everything a front end needs to offer, parse, check and
@@ -346,6 +355,12 @@ rows! {
     Threads, Pool, "threads", "threads", Count, incl(1.0), incl(1024.0), Range,
         "must be from 1 to 1024", None,
         "Threads of the pool [default: one per core].";
+    ReportHarmonics, SteadyReport, "harmonics", "harmonics", Count, incl(9.0), incl(256.0),
+        Range, "must be from 9 to 256", Some(16.0),
+        "Number of drive harmonics reported (at least 9).";
+    CheckpointEvery, Checkpoint, "checkpoint-every", "checkpoint_every", Number, incl(0.0),
+        incl(86400.0), Range, "must be from 0 to 86400 seconds", Some(10.0),
+        "Least time between two saves of the checkpoint, in seconds (0: after every finished row or step).";
 }
 
 /// What an option allows, in an [`crate::Error::InvalidOption`].
