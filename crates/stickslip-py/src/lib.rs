@@ -12,6 +12,7 @@
 mod compute;
 mod dynamics;
 mod experiment;
+mod fit;
 mod options;
 mod runner;
 
@@ -118,5 +119,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dynamics::bifurcation, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::basins, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::continuation, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::read_scope, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::read_amplitudes, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
     Ok(())
 }

@@ -71,6 +71,26 @@ start: Tuple[float, float, int, int] = b.start
 basin_set: xarray.Dataset = stickslip.basins(exp, (-1, 1), (-1, 1), 2).to_xarray()
 bif_set: xarray.Dataset = stickslip.bifurcation(exp, "w", [0.7]).to_xarray()
 dask_map: stickslip.PhaseDiagram = stickslip.dask.phase_diagram(exp, w=[0.7], beta=[1.2])
+rec: stickslip.ScopeRecord = stickslip.read_scope("run.csv", drive="CH1", response="CH2")
+rec_columns: List[npt.NDArray[Any]] = [rec.t_s, rec.drive, rec.response, *rec.channels.values()]
+rec_meta: Tuple[str, float, float, float, int, Optional[float], int, str] = (
+    rec.format, rec.freq_Hz, rec.amplitude_V, rec.sample_interval_s, rec.periods,
+    rec.resolution_V["CH1"], rec.clipped["CH1"], rec.units["CH1"])
+table: stickslip.AmplitudeTable = stickslip.read_amplitudes("gain.csv")
+table_columns: List[npt.NDArray[Any]] = [table.freq_Hz, table.U_V, table.response_V,
+                                         table.A1_V, table.A3_V, table.line]
+fitted: stickslip.FitResult = stickslip.fit(exp, data=[rec], free=("resistance", "ut"))
+values: Dict[str, float] = fitted.parameters
+errors: Dict[str, float] = fitted.stderr
+ci: Tuple[float, float] = fitted.ci95["resistance"]
+matrices: List[npt.NDArray[Any]] = [fitted.covariance, fitted.correlation]
+residuals: List[npt.NDArray[Any]] = [r.residual_V for r in fitted.records]
+fitted_exp: stickslip.Experiment = fitted.exp
+fit_dict: Dict[str, Any] = fitted.to_dict()
+fit_set: xarray.Dataset = fitted.to_xarray()
+chi2: Optional[float] = fitted.chi2_dof
+drift: List[stickslip.FitResult] = stickslip.fit(exp, data=[rec, "b.csv"], per_record=True)
+from_table: stickslip.FitResult = stickslip.fit(exp, data=[table], model="pwl")
 '''
 
 def code_blocks(markdown: pathlib.Path) -> List[str]:

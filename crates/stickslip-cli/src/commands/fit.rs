@@ -4,7 +4,7 @@
 use crate::model::ModelArgs;
 use crate::output::{check_output_path, outln, usage, AtomicFile};
 use anyhow::{Context, Result};
-use serde_json::{json, Map, Value};
+use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stickslip::fit::{
@@ -165,7 +165,7 @@ pub fn run(args: Args) -> Result<()> {
         let table = read_amplitudes(&read_text(path)?, &name).map_err(measure)?;
         eprintln!("fit: {} rows of {name}; {experiment}", table.rows.len());
         let report = fit_table(&experiment, &table, &free, &options).map_err(refused)?;
-        report_json = to_json(&report);
+        report_json = to_json(&report)?;
         residual_reports.push(report);
     } else {
         let mut data = Vec::new();
@@ -188,21 +188,16 @@ pub fn run(args: Args) -> Result<()> {
                 &options,
             )
             .map_err(refused)?;
-            report_json = json!({
-                "pwl": to_json(&c.pwl),
-                "shockley": to_json(&c.shockley),
-                "preferred": c.preferred.label(),
-                "delta_aic": c.delta_aic,
-            });
+            report_json = serde_json::to_value(c.to_json())?;
             residual_reports.push(c.pwl);
             residual_reports.push(c.shockley);
         } else if args.per_record {
             let reports = fit_per_record(&experiment, &data, &free, &options).map_err(refused)?;
-            report_json = Value::Array(reports.iter().map(to_json).collect());
+            report_json = Value::Array(reports.iter().map(to_json).collect::<Result<_>>()?);
             residual_reports = reports;
         } else {
             let report = fit_records(&experiment, &data, &free, &options).map_err(refused)?;
-            report_json = to_json(&report);
+            report_json = to_json(&report)?;
             residual_reports.push(report);
         }
     }
@@ -324,80 +319,7 @@ fn describe(text: &mut String, r: &FitReport) {
     );
 }
 
-/// The report as the JSON.
-fn to_json(r: &FitReport) -> Value {
-    let mut parameters = Map::new();
-    for p in &r.parameters {
-        parameters.insert(
-            p.parameter.label().to_string(),
-            json!({"value": p.value, "stderr": finite(p.stderr), "ci95": [finite(p.ci95[0]), finite(p.ci95[1])]}),
-        );
-    }
-    let records: Vec<Value> = r
-        .records
-        .iter()
-        .map(|rec| {
-            json!({
-                "file": rec.file,
-                "freq_Hz": rec.freq_hz,
-                "amplitude_V": rec.amplitude_v,
-                "w": rec.w,
-                "beta": rec.beta,
-                "class": rec.class.label(),
-                "periods": rec.periods,
-                "clipped": rec.clipped,
-                "rms_residual_V": rec.rms_residual_v,
-                "offset_V": rec.offset_v,
-                "time_shift_s": rec.time_shift_s,
-            })
-        })
-        .collect();
-    let rows: Vec<Value> = r
-        .rows
-        .iter()
-        .map(|row| {
-            json!({
-                "line": row.line,
-                "freq_Hz": row.freq_hz,
-                "U_V": row.drive_v,
-                "direction": row.direction,
-                "measured_V": row.measured_v,
-                "model_V": row.model_v,
-                "class": row.class.label(),
-            })
-        })
-        .collect();
-    let correlation: Vec<Vec<Value>> = r
-        .correlation
-        .iter()
-        .map(|row| row.iter().map(|&c| finite(c)).collect())
-        .collect();
-    let mut out = json!({
-        "model": r.model.label(),
-        "parameters": parameters,
-        "correlation": correlation,
-        "rms_residual_V": r.rms_residual_v,
-        "chi2_dof": r.chi2_dof,
-        "converged": r.converged,
-        "iterations": r.iterations,
-        "aic": r.aic,
-        "bic": r.bic,
-    });
-    let obj = out.as_object_mut().expect("an object");
-    if !records.is_empty() {
-        obj.insert("records".into(), Value::Array(records));
-    }
-    if !rows.is_empty() {
-        obj.insert("rows".into(), Value::Array(rows));
-    }
-    out
-}
-
-/// A number, or null when it is not finite (a singular fit's error bars).
-fn finite(v: f64) -> Value {
-    if v.is_finite() {
-        json!(v)
-    } else {
-        Value::Null
-    }
+/// The report in the library's JSON shape.
+fn to_json(r: &FitReport) -> Result<Value> {
+    Ok(serde_json::to_value(r.to_json())?)
 }

@@ -23,6 +23,9 @@ For the circuit y = u_C/U_t, 2ζ = (R + R_D)√(C/L), β = U/U_t, w = Ω/ω0.
 - ``basins``: the attractor reached from each initial state of a grid, attractors numbered.
 - ``continuation``: a branch of periodic orbits with its stability, folds, period doublings
   and grazings.
+- ``read_scope``, ``read_amplitudes``: oscilloscope exports and tables of measured amplitudes.
+- ``fit``: the circuit's parameters (R, U_t, diode laws, ...) fitted to measurements, with error
+  bars and residuals; ``to_dict()`` is ``stickslip fit --json``.
 - ``stickslip.dask``: the same maps as Dask tasks on any cluster.
 
 Every computation releases the GIL; Ctrl-C stops a long sweep, map or run; bad input raises
@@ -63,6 +66,15 @@ from ._api import (
     theory,
 )
 from ._core import Experiment, __version__
+from ._fit import (
+    AmplitudeTable,
+    FitRecord,
+    FitResult,
+    ScopeRecord,
+    fit,
+    read_amplitudes,
+    read_scope,
+)
 from ._dynamics import (
     ATTRACTOR_KINDS,
     BasinMap,
@@ -74,6 +86,13 @@ from ._dynamics import (
 )
 
 __all__ = [
+    "AmplitudeTable",
+    "FitRecord",
+    "FitResult",
+    "ScopeRecord",
+    "fit",
+    "read_amplitudes",
+    "read_scope",
     "ATTRACTOR_KINDS",
     "BasinMap",
     "BifurcationDiagram",

@@ -26,9 +26,12 @@ __all__ = [
     "boundary",
     "check_option",
     "continuation",
+    "fit",
     "grid",
     "lyapunov",
     "orbit",
+    "read_amplitudes",
+    "read_scope",
     "simulate",
     "steady",
     "steady_option_kinds",
@@ -363,3 +366,15 @@ def continuation(
     max_step: float,
     progress: _Progress = None,
 ) -> Dict[str, Any]: ...
+def read_scope(
+    paths: List[str], drive: Optional[str] = None, response: Optional[str] = None
+) -> Dict[str, Any]: ...
+def read_amplitudes(path: str) -> Dict[str, Any]: ...
+def fit(
+    experiment: Experiment,
+    records: List[Tuple[List[str], Optional[str], Optional[str]]],
+    table: Optional[str],
+    free: List[str],
+    per_record: bool,
+    progress: _Progress = None,
+) -> List[Dict[str, Any]]: ...

@@ -51,10 +51,12 @@
 //! rest. There is no nuisance parameter and no noise estimate independent of the fit:
 //! χ²/dof is not reported.
 
+mod json;
 pub(crate) mod linalg;
 mod lm;
 mod parameter;
 
+pub use json::{ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson};
 pub use parameter::FitParameter;
 
 use crate::experiment::{DiodeModel, Experiment};
