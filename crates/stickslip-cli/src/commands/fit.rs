@@ -115,6 +115,7 @@ fn parse_free(text: &str, flag: &str) -> Result<Vec<FitParameter>> {
 fn refused(err: FitError) -> anyhow::Error {
     match err {
         FitError::Model { .. } => anyhow::Error::new(err),
+        FitError::Stopped(e) => anyhow::Error::new(e),
         _ => anyhow::Error::new(crate::output::UsageError(err.to_string())),
     }
 }

@@ -110,6 +110,9 @@ pub enum FitError {
         /// Fitted values (free and nuisance).
         values: usize,
     },
+    /// The experiment's cancellation token stopped the fit ([`Experiment::with_cancel`]).
+    #[error(transparent)]
+    Stopped(crate::Error),
     /// The model cannot be computed at the starting values.
     #[error("{file}: the model cannot be computed at the starting values: {error}")]
     Model {
@@ -348,7 +351,19 @@ impl Setup {
         let e = e
             .with_shockley_options(*self.experiment.shockley_options())
             .ok()?;
-        e.with_mu_s(mu_s).ok()
+        // The rebuilt experiment keeps the caller's cancellation token.
+        e.with_mu_s(mu_s)
+            .ok()
+            .map(|e| e.with_cancel(self.experiment.cancel().clone()))
+    }
+
+    /// `Err(FitError::Stopped)` once the caller's token stops the fit (Ctrl-C, a deadline):
+    /// checked before each evaluation, since a stopped model only looks like a failed step.
+    fn check_stop(&self) -> Result<(), FitError> {
+        match self.experiment.cancel().stopped() {
+            Some(stop) => Err(FitError::Stopped(stop.error())),
+            None => Ok(()),
+        }
     }
 
     fn values(&self, x: &[f64]) -> Vec<f64> {
@@ -530,10 +545,12 @@ impl lm::Problem for Records<'_> {
     type Error = FitError;
 
     fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, FitError> {
+        self.setup.check_stop()?;
         Ok(self.all(x).map(|r| r.concat()))
     }
 
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
+        self.setup.check_stop()?;
         let n = x.len();
         let spans = self.spans();
         let mut columns = vec![vec![0.0; r.len()]; n];
@@ -1003,6 +1020,7 @@ impl lm::Problem for Table<'_> {
     type Error = FitError;
 
     fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, FitError> {
+        self.setup.check_stop()?;
         Ok(self.amplitudes(x).map(|a| {
             a.iter()
                 .zip(&self.table.rows)
@@ -1012,6 +1030,7 @@ impl lm::Problem for Table<'_> {
     }
 
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
+        self.setup.check_stop()?;
         let h = self.setup.step;
         (0..x.len())
             .map(|k| {
