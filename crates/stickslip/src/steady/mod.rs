@@ -19,13 +19,17 @@
 
 mod classify;
 mod cycle;
+mod options;
 mod report;
 mod spectrum;
+mod state;
 
 pub use classify::{classify, Classification, MotionClass};
-pub use cycle::{check_horizon, steady_state, steady_state_from, SteadyOptions, SteadyState};
+pub use cycle::{check_horizon, steady_state, steady_state_from};
+pub use options::SteadyOptions;
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
+pub use state::SteadyState;
 
 use crate::cancel::Cancel;
 use crate::error::Result;
