@@ -19,6 +19,7 @@
 
 mod classify;
 mod cycle;
+mod exponent;
 mod options;
 mod report;
 mod spectrum;
@@ -26,6 +27,10 @@ mod state;
 
 pub use classify::{classify, Classification, MotionClass};
 pub use cycle::{check_horizon, steady_state, steady_state_from};
+pub use exponent::{
+    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
+    SEARCH_BEFORE_MEASURING,
+};
 pub use options::SteadyOptions;
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
