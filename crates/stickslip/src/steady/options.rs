@@ -171,7 +171,7 @@ impl SteadyOptions {
     /// Check every field against the option table ([`crate::options`]).
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] naming the first bad field.
+    /// [`Error::InvalidOption`](crate::Error::InvalidOption) naming the first bad field.
     pub fn validate(self) -> Result<Self> {
         OptionKey::Tolerance.check(self.tolerance)?;
         OptionKey::MaxPeriods.check_count(self.max_periods)?;
@@ -192,7 +192,7 @@ impl SteadyOptions {
     /// `caps` ([`Caps::check_steady`]).
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] naming the first bad field.
+    /// [`Error::InvalidOption`](crate::Error::InvalidOption) naming the first bad field.
     pub fn validate_within(self, caps: &Caps) -> Result<Self> {
         let options = self.validate()?;
         caps.check_steady(&options)?;

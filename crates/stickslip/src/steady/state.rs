@@ -52,7 +52,7 @@ pub struct SteadyState {
     /// The samples of the dense output behind the spectrum (empty without it).
     pub trace: Vec<Sample>,
     /// The Lyapunov exponents of a motion that did not repeat, measured from the final state
-    /// ([`SteadyOptions::lyapunov`]), and what they say; `None` for a motion that repeats,
+    /// ([`SteadyOptions::lyapunov`](super::SteadyOptions::lyapunov)), and what they say; `None` for a motion that repeats,
     /// with a solver other than the exact one, without the option, or when the measurement
     /// met a tangential release (where the flow has no derivative).
     pub lyapunov: Option<NonperiodicClassification>,
