@@ -55,7 +55,7 @@
 //! [`steady_exponent`] gives the largest exponent of any steady motion (maps of it:
 //! [`crate::scan::Grid::lyapunov`]).
 
-mod error;
+pub(crate) mod error;
 pub mod lyapunov;
 mod matrix;
 pub mod nonperiodic;
@@ -66,6 +66,7 @@ pub mod segment;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
+pub(crate) mod verdict;
 
 pub use error::StabilityError;
 pub use lyapunov::{
