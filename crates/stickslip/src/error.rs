@@ -4,9 +4,12 @@
 //! of a numerical failure, the reason a solution does not exist as an enum), and its `Display`
 //! is one line.
 
-use crate::experiment::{ConfigError, SpecError};
-use crate::options::{Allowed, OptionKey, Spelling};
-use crate::theory::Obstruction;
+use crate::experiment::errors::{ConfigError, SpecError};
+use crate::experiment::keys::Key;
+use crate::options::key::{Allowed, OptionKey, Spelling};
+use crate::stability::error::StabilityError;
+use crate::theory::obstruction::Obstruction;
+use crate::units::NumberError;
 use thiserror::Error;
 
 /// Everything that can go wrong in the library, with the offending value in the variant.
@@ -111,7 +114,7 @@ pub enum Error {
     )]
     ImageOutOfRange {
         /// The physical value (e.g. `f`, `U`, `R`).
-        key: crate::experiment::Key,
+        key: Key,
         /// The physical value.
         value: f64,
         /// The dimensionless quantity it gives (e.g. `w`, `beta`, `zeta`).
@@ -165,16 +168,16 @@ pub enum Error {
     #[error("invalid {key}: {error}")]
     InvalidText {
         /// The key the text was given for.
-        key: crate::experiment::Key,
+        key: Key,
         /// What is wrong with the text.
-        error: crate::units::NumberError,
+        error: NumberError,
     },
     /// What was asked for does not apply to this model.
     #[error("{0}")]
     Unsupported(Unsupported),
     /// A stability analysis failed (Newton's method, a non-finite Jacobian, …).
     #[error(transparent)]
-    Stability(#[from] crate::stability::StabilityError),
+    Stability(#[from] StabilityError),
 }
 
 impl Error {
@@ -195,40 +198,6 @@ impl Error {
             self,
             Error::Cancelled { .. } | Error::DeadlineExceeded | Error::BudgetExceeded { .. }
         )
-    }
-
-    /// The message, one line, with options spelled by `spelling` (`--max-period` on the
-    /// command line, `max_period` in Python, `max-period` in the lab's query). The same as
-    /// `to_string()` for errors that name no option, and for [`Spelling::Python`].
-    pub fn render(&self, spelling: Spelling) -> String {
-        match self {
-            Error::InvalidOption {
-                option,
-                value,
-                allowed,
-            } => crate::options::render_invalid(*option, *value, allowed, spelling),
-            Error::OptionProduct {
-                what,
-                first,
-                second,
-                product,
-                max,
-            } => match spelling {
-                Spelling::Flag => format!(
-                    "{} × {} = {} {what}: at most {max} allowed",
-                    first.spelled(spelling),
-                    second.spelled(spelling),
-                    Number(*product)
-                ),
-                Spelling::Python | Spelling::Query => format!(
-                    "invalid {what} = {}: {} × {} must be at most {max}",
-                    Number(*product),
-                    first.spelled(spelling),
-                    second.spelled(spelling)
-                ),
-            },
-            other => other.to_string(),
-        }
     }
 }
 

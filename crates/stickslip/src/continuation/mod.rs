@@ -72,9 +72,8 @@ use crate::options::{Allowed, OptionKey};
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
 use crate::solver::Solver;
-use crate::stability::{
-    periodic_orbit_from_steady, Multiplier, NewtonOptions, PeriodicOrbit, Stability,
-};
+use crate::stability::{Multiplier, NewtonOptions, PeriodicOrbit, Stability};
+use crate::steady::periodic_orbit_from_steady;
 use corrector::{counts, norm, Problem, Solution};
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;

@@ -27,6 +27,7 @@
 //!
 //! Unknown sections and keys are errors; every error names the file, the line and the key.
 
+use super::errors::ConfigError;
 use super::key::{Key, Section};
 use super::spec::ExperimentSpec;
 use super::DiodeModel;
@@ -36,41 +37,6 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 use std::sync::OnceLock;
 use toml::Spanned;
-
-/// An experiment file that is not a valid experiment description.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{}", self.describe())]
-pub struct ConfigError {
-    /// The file's name as given.
-    pub file: String,
-    /// Line number (from 1) of the problem, when known.
-    pub line: Option<usize>,
-    /// The key, as `[section] key`, when known.
-    pub key: Option<String>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl ConfigError {
-    fn describe(&self) -> String {
-        let mut s = self.file.clone();
-        if let Some(line) = self.line {
-            s.push_str(&format!(", line {line}"));
-        }
-        if let Some(key) = &self.key {
-            s.push_str(&format!(", {key}"));
-        }
-        // One line, whatever the parser's message holds.
-        let message: String = self
-            .message
-            .lines()
-            .map(str::trim)
-            .filter(|l| !l.is_empty())
-            .collect::<Vec<_>>()
-            .join("; ");
-        format!("{s}: {message}")
-    }
-}
 
 /// A number: a TOML integer or float, or a string with an SI prefix (`"11.5m"`).
 #[derive(Debug, Clone, Copy)]

@@ -23,15 +23,18 @@
 //! assert!((scales.drive_amplitude(2.14) - 1.498).abs() < 1e-12);
 //! ```
 
+pub(crate) mod errors;
 mod file;
 mod key;
+pub(crate) mod keys;
 mod spec;
 mod stability;
 mod trajectory;
 
-pub use file::ConfigError;
-pub use key::{Key, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
-pub use spec::{ExperimentSpec, SpecError};
+pub use errors::{ConfigError, SpecError};
+pub use key::{KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
+pub use keys::Key;
+pub use spec::ExperimentSpec;
 pub use trajectory::Trajectory;
 
 use crate::cancel::Cancel;

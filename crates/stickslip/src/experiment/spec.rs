@@ -1,6 +1,7 @@
 //! An experiment as described: every value optional, in layers (a preset, a file, flags or
 //! keyword arguments), turned into an [`Experiment`] by [`ExperimentSpec::build`].
 
+use super::errors::SpecError;
 use super::key::Key;
 use super::{DiodeModel, Experiment, Origin, Preset};
 use crate::error::{Error, Result, Unsupported};
@@ -8,55 +9,6 @@ use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System
 use crate::shockley::{DiodePair, ShockleyOptions};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-
-/// An experiment description that is incomplete or contradicts itself.
-///
-/// `Display` names keys by [`Key::name`]; [`SpecError::render`] names them as the caller's
-/// own interface does (the command-line tool's flags, say).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum SpecError {
-    /// A part of a physical description is missing.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    Missing {
-        /// The missing value.
-        key: Key,
-        /// Whether the description is of a circuit (else a mechanical oscillator).
-        circuit: bool,
-    },
-    /// The drive frequency (`key` = [`Key::W`]) or amplitude ([`Key::Beta`]) is needed and
-    /// was not given.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    MissingDrive {
-        /// [`Key::W`] or [`Key::Beta`].
-        key: Key,
-    },
-    /// Two values that give the same quantity were both given.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    Twice {
-        /// The first value.
-        first: Key,
-        /// The second value.
-        second: Key,
-        /// The quantity they both give.
-        what: &'static str,
-    },
-    /// ζ was given with a physical description, whose parts decide it.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    ZetaWithPhysical,
-    /// A circuit and a mechanical oscillator were both described.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    CircuitAndMechanics {
-        /// A mechanical value that was given.
-        mechanical: Key,
-    },
-    /// A physical value was given without a physical description to convert it with.
-    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
-    NeedsPhysical {
-        /// The physical value.
-        key: Key,
-    },
-}
 
 impl SpecError {
     /// The key the error is about (for a value given twice, the second), for a front end to

@@ -6,10 +6,10 @@ use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::scan::Monitor;
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents_monitored, periodic_orbit_from_steady, LyapunovOptions,
-    NewtonOptions, NonperiodicClassification, PeriodicOrbit,
+    find_periodic_orbit, lyapunov_exponents_monitored, LyapunovOptions, NewtonOptions,
+    NonperiodicClassification, PeriodicOrbit,
 };
-use crate::steady::SteadyOptions;
+use crate::steady::{periodic_orbit_from_steady, SteadyOptions};
 use crate::{ExactSolver, Solver, Unsupported};
 use std::ops::ControlFlow;
 

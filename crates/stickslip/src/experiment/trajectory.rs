@@ -61,12 +61,12 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// [`crate::Error::InvalidOption`] when `periods` is not finite and > 0 or `samples_per_period`
-    /// is out of its range, [`crate::Error::OptionProduct`] when the run would hold more than
+    /// [`Error::InvalidOption`](crate::Error::InvalidOption) when `periods` is not finite and > 0 or `samples_per_period`
+    /// is out of its range, [`Error::OptionProduct`](crate::Error::OptionProduct) when the run would hold more than
     /// [`Trajectory::MAX_SAMPLES`] samples ([`crate::options::SimulateOptions`]); a missing
-    /// drive ([`Experiment::params`]); [`crate::Error::HorizonTooLong`] for a run longer than the
+    /// drive ([`Experiment::params`]); [`Error::HorizonTooLong`](crate::Error::HorizonTooLong) for a run longer than the
     /// solvers resolve ([`crate::limits::check_horizon`]), before any work;
-    /// [`crate::Error::Cancelled`]; whatever the solver reports.
+    /// [`Error::Cancelled`](crate::Error::Cancelled); whatever the solver reports.
     pub fn simulate(
         &self,
         periods: f64,

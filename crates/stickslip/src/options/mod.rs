@@ -13,7 +13,7 @@
 //! The same flag may belong to several computations with different ranges (`--max-period` is
 //! 1 to 64 for a steady state, 1 to 1000 for a bifurcation diagram): each is its own key.
 
-mod key;
+pub(crate) mod key;
 mod run;
 
 pub use key::{Allowed, Bound, OptionGroup, OptionInfo, OptionKey, OptionKind, Rule, Spelling};
@@ -154,6 +154,42 @@ impl Allowed {
             Allowed::Cap { min, max } => {
                 format!("must be from {} to {}", Number(min), Number(max))
             }
+        }
+    }
+}
+
+impl Error {
+    /// The message, one line, with options spelled by `spelling` (`--max-period` on the
+    /// command line, `max_period` in Python, `max-period` in the lab's query). The same as
+    /// `to_string()` for errors that name no option, and for [`Spelling::Python`].
+    pub fn render(&self, spelling: Spelling) -> String {
+        match self {
+            Error::InvalidOption {
+                option,
+                value,
+                allowed,
+            } => render_invalid(*option, *value, allowed, spelling),
+            Error::OptionProduct {
+                what,
+                first,
+                second,
+                product,
+                max,
+            } => match spelling {
+                Spelling::Flag => format!(
+                    "{} × {} = {} {what}: at most {max} allowed",
+                    first.spelled(spelling),
+                    second.spelled(spelling),
+                    Number(*product)
+                ),
+                Spelling::Python | Spelling::Query => format!(
+                    "invalid {what} = {}: {} × {} must be at most {max}",
+                    Number(*product),
+                    first.spelled(spelling),
+                    second.spelled(spelling)
+                ),
+            },
+            other => other.to_string(),
         }
     }
 }

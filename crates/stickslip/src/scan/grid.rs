@@ -6,8 +6,11 @@ use super::monitor::Monitor;
 use crate::error::{Error, Result};
 use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
-use crate::stability::{steady_state_with_exponent, Estimate, LyapunovOptions};
-use crate::steady::{check_horizon, steady_state_from, MotionClass, SolverFactory, SteadyOptions};
+use crate::stability::{Estimate, LyapunovOptions};
+use crate::steady::{
+    check_horizon, steady_state_from, steady_state_with_exponent, MotionClass, SolverFactory,
+    SteadyOptions,
+};
 
 use serde::{Deserialize, Serialize};
 use std::ops::Range;

@@ -1,6 +1,6 @@
 //! Failures of the stability analysis, with the numbers that tell what went wrong.
 
-use super::nonperiodic::NonperiodicVerdict;
+use super::verdict::NonperiodicVerdict;
 use thiserror::Error;
 
 /// What a measured exponent says about a motion that found no period, for

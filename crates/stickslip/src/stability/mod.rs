@@ -55,7 +55,7 @@
 //! [`steady_exponent`] gives the largest exponent of any steady motion (maps of it:
 //! [`crate::scan::Grid::lyapunov`]).
 
-mod error;
+pub(crate) mod error;
 pub mod lyapunov;
 mod matrix;
 pub mod nonperiodic;
@@ -63,10 +63,10 @@ pub mod periodic_orbit;
 pub mod report;
 pub mod saltation;
 pub mod segment;
-mod steady;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
+pub(crate) mod verdict;
 
 pub use error::StabilityError;
 pub use lyapunov::{
@@ -77,12 +77,16 @@ pub use matrix::{Matrix2, Multiplier};
 pub use nonperiodic::{
     classify_nonperiodic, strobe_period, NonperiodicClassification, NonperiodicVerdict,
 };
-pub use periodic_orbit::{
-    find_periodic_orbit, periodic_orbit_from_steady, NewtonOptions, PeriodicOrbit, Stability, Stop,
-};
+pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stability, Stop};
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
-pub use steady::{steady_exponent, steady_state_with_exponent, SEARCH_BEFORE_MEASURING};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
+
+// What joins a steady state to its stability lives in `crate::steady`, which builds on this
+// module (never the other way round); these names stay here for the paths users know.
+pub use crate::steady::{
+    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
+    SEARCH_BEFORE_MEASURING,
+};

@@ -1,30 +1,14 @@
 //! Is a motion whose strobe map does not repeat chaotic? The verdict from the largest
 //! Lyapunov exponent and its error.
 
+pub use super::verdict::NonperiodicVerdict;
+
 use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions};
 use crate::error::Result;
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
 use crate::solver::{run_until, Solver};
 use serde::{Deserialize, Serialize};
-
-/// What the largest Lyapunov exponent λ₁ says about a motion that does not repeat, with σ its
-/// standard error and k = [`LyapunovOptions::significance`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum NonperiodicVerdict {
-    /// λ₁ > kσ and the measurement converged: nearby motions separate exponentially.
-    Chaotic,
-    /// |λ₁| ≤ kσ and the measurement converged: neither growth nor decay (quasi-periodic
-    /// motion on a torus; also rest, which is periodic).
-    QuasiPeriodic,
-    /// λ₁ < −kσ and the measurement converged: the motion contracts onto an attractor that
-    /// is periodic, either not yet reached or of a longer period than was looked for.
-    Contracting,
-    /// The two halves of the measurement disagree (a transient, or chaos that ends): no
-    /// verdict at this length.
-    Undecided,
-}
 
 /// The verdict on a motion and the exponents behind it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

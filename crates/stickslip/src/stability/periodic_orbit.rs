@@ -52,7 +52,6 @@ use crate::error::{Error, Result};
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind};
-use crate::steady::SteadyState;
 use serde::{Deserialize, Serialize};
 
 /// Options of [`find_periodic_orbit`].
@@ -359,34 +358,6 @@ fn tends_to_one(
     };
     let ratio = (1.0 - next_image.jacobian.eigenvalues()[0].modulus()) / d;
     ratio > 0.0 && ratio < 0.9
-}
-
-/// The periodic orbit of a settled steady state (its period and first recorded strobe as the
-/// guess), refined by [`find_periodic_orbit`].
-///
-/// # Errors
-/// [`StabilityError::NoPeriod`] when the steady state has no period; as
-/// [`find_periodic_orbit`].
-pub fn periodic_orbit_from_steady(
-    params: &Params,
-    steady: &SteadyState,
-    options: &NewtonOptions,
-) -> Result<PeriodicOrbit> {
-    let (Some(period), Some(&guess)) = (steady.period, steady.strobes.first()) else {
-        let measured = steady.lyapunov.as_ref();
-        return Err(StabilityError::NoPeriod {
-            periods_run: steady.periods_to_settle,
-            exponent: measured.map(|c| {
-                (
-                    c.exponents.largest.per_tau,
-                    c.exponents.largest.error_per_tau,
-                )
-            }),
-            verdict: measured.map(|c| c.verdict),
-        }
-        .into());
-    };
-    find_periodic_orbit(params, guess, period, options)
 }
 
 /// The stops of one orbit period [0, end] from its events (a stop over the end joins the one

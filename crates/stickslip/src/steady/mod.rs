@@ -19,13 +19,22 @@
 
 mod classify;
 mod cycle;
+mod exponent;
+mod options;
 mod report;
 mod spectrum;
+mod state;
 
 pub use classify::{classify, Classification, MotionClass};
-pub use cycle::{check_horizon, steady_state, steady_state_from, SteadyOptions, SteadyState};
+pub use cycle::{check_horizon, steady_state, steady_state_from};
+pub use exponent::{
+    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
+    SEARCH_BEFORE_MEASURING,
+};
+pub use options::SteadyOptions;
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
+pub use state::SteadyState;
 
 use crate::cancel::Cancel;
 use crate::error::Result;

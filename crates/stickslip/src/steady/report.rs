@@ -1,7 +1,7 @@
 //! A steady state as a flat record of numbers: what `stickslip steady --json` prints, what
 //! the Python package's `steady(...).to_dict()` and the lab's `/api/steady` return.
 
-use super::cycle::SteadyState;
+use super::state::SteadyState;
 use serde::Serialize;
 
 /// The numbers of a [`SteadyState`], dimensionless (y in units of the friction force over the

@@ -29,6 +29,7 @@
 pub mod boundary;
 pub mod curves;
 pub mod fourier;
+pub(crate) mod obstruction;
 pub mod paper;
 pub mod periodic;
 pub mod report;

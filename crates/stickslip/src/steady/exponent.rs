@@ -1,12 +1,44 @@
-//! The largest Lyapunov exponent of a steady motion, however it repeats or not.
+//! The stability of a steady motion: its periodic orbit refined by Newton's method, and its
+//! largest Lyapunov exponent, however it repeats or not. The steady-state search builds on
+//! [`crate::stability`] (Newton's method settles it, the Lyapunov exponents classify the
+//! motions that do not repeat); what joins the two is here, so that `stability` does not
+//! depend on `steady`.
 
-use super::lyapunov::{lyapunov_exponents, Estimate, LyapunovOptions};
-use super::nonperiodic::{NonperiodicClassification, NonperiodicVerdict};
-use super::periodic_orbit::{periodic_orbit_from_steady, NewtonOptions};
-use super::StabilityError;
+use super::{steady_state_from, MotionClass, SolverFactory, SteadyOptions, SteadyState};
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::steady::{steady_state_from, MotionClass, SolverFactory, SteadyOptions, SteadyState};
+use crate::stability::{
+    find_periodic_orbit, lyapunov_exponents, Estimate, LyapunovOptions, NewtonOptions,
+    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, StabilityError,
+};
+
+/// The periodic orbit of a settled steady state (its period and first recorded strobe as the
+/// guess), refined by [`find_periodic_orbit`].
+///
+/// # Errors
+/// [`StabilityError::NoPeriod`] when the steady state has no period; as
+/// [`find_periodic_orbit`].
+pub fn periodic_orbit_from_steady(
+    params: &Params,
+    steady: &SteadyState,
+    options: &NewtonOptions,
+) -> Result<PeriodicOrbit> {
+    let (Some(period), Some(&guess)) = (steady.period, steady.strobes.first()) else {
+        let measured = steady.lyapunov.as_ref();
+        return Err(StabilityError::NoPeriod {
+            periods_run: steady.periods_to_settle,
+            exponent: measured.map(|c| {
+                (
+                    c.exponents.largest.per_tau,
+                    c.exponents.largest.error_per_tau,
+                )
+            }),
+            verdict: measured.map(|c| c.verdict),
+        }
+        .into());
+    };
+    find_periodic_orbit(params, guess, period, options)
+}
 
 /// The largest Lyapunov exponent of a steady motion of the exact model.
 ///
@@ -17,7 +49,7 @@ use crate::steady::{steady_state_from, MotionClass, SolverFactory, SteadyOptions
 ///   Should Newton's method fail, the exponent is measured as below.
 /// - A motion that does not repeat: its measurement [`SteadyState::lyapunov`] when it has
 ///   one, else a measurement from its final state with `options`
-///   ([`super::lyapunov_exponents`]), with the error from its blocks.
+///   ([`crate::stability::lyapunov_exponents`]), with the error from its blocks.
 ///
 /// `None` when the measurement meets a tangential release, where the flow has no derivative.
 ///
@@ -66,7 +98,7 @@ pub const SEARCH_BEFORE_MEASURING: usize = 300;
 /// the exponent: the result of [`crate::steady::steady_state_from`] followed by
 /// [`steady_exponent`], except that a motion which has not repeated after
 /// [`SEARCH_BEFORE_MEASURING`] drive periods of the search is measured there (with
-/// `options.lyapunov`, normally sequential: [`super::lyapunov`]) and, when it is decided
+/// `options.lyapunov`, normally sequential: [`crate::stability::lyapunov`]) and, when it is decided
 /// chaotic, is reported so at once ([`crate::MotionClass::Chaotic`], the record of the
 /// shortened search) instead of running the rest of `options.max_periods` first. Every other
 /// motion gets exactly the full search's result. The shortcut differs from the full search

@@ -1,0 +1,22 @@
+//! The verdict on a motion that does not repeat ([`NonperiodicVerdict`]). A leaf: it imports
+//! nothing of the crate, so [`super::StabilityError`] (and so [`crate::error`]) can carry it.
+
+use serde::{Deserialize, Serialize};
+
+/// What the largest Lyapunov exponent λ₁ says about a motion that does not repeat, with σ its
+/// standard error and k = [`LyapunovOptions::significance`](super::LyapunovOptions::significance).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NonperiodicVerdict {
+    /// λ₁ > kσ and the measurement converged: nearby motions separate exponentially.
+    Chaotic,
+    /// |λ₁| ≤ kσ and the measurement converged: neither growth nor decay (quasi-periodic
+    /// motion on a torus; also rest, which is periodic).
+    QuasiPeriodic,
+    /// λ₁ < −kσ and the measurement converged: the motion contracts onto an attractor that
+    /// is periodic, either not yet reached or of a longer period than was looked for.
+    Contracting,
+    /// The two halves of the measurement disagree (a transient, or chaos that ends): no
+    /// verdict at this length.
+    Undecided,
+}
