@@ -121,7 +121,7 @@ const RENAMED: [(OptionKey, &str); 2] = [
     (OptionKey::SimulatePeriods, "periods"),
 ];
 
-/// The query key of an option: its flag ([`OptionKey::flag`]) but for [`RENAMED`].
+/// The query key of an option: its flag ([`OptionKey::flag`]) but for the keys the lab renames (`RENAMED`).
 pub fn option_key(option: OptionKey) -> &'static str {
     RENAMED
         .iter()
