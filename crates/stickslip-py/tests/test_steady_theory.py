@@ -55,7 +55,7 @@ def test_steady_errors():
     e = Experiment.paper(w=0.7, beta=1.2)
     with pytest.raises(ValueError, match=r"^invalid max_period = 65: must be from 1 to 64$"):
         stickslip.steady(e, max_period=65)
-    with pytest.raises(ValueError, match=r"^invalid tolerance = -1: must be finite and > 0$"):
+    with pytest.raises(ValueError, match=r"^invalid tolerance = -1: must be > 0 and < 1$"):
         stickslip.steady(e, tolerance=-1)
     with pytest.raises(ValueError, match=r"^invalid samples_per_period = 100: must be a power"):
         stickslip.steady(e, samples_per_period=100)
