@@ -26,7 +26,7 @@
 pub(crate) mod errors;
 mod file;
 mod key;
-pub(crate) mod keys;
+pub mod keys;
 mod spec;
 mod stability;
 mod trajectory;

@@ -13,7 +13,7 @@
 //! The same flag may belong to several computations with different ranges (`--max-period` is
 //! 1 to 64 for a steady state, 1 to 1000 for a bifurcation diagram): each is its own key.
 
-pub(crate) mod key;
+pub mod key;
 mod run;
 
 pub use key::{Allowed, Bound, OptionGroup, OptionInfo, OptionKey, OptionKind, Rule, Spelling};

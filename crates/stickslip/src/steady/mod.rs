@@ -20,7 +20,7 @@
 mod classify;
 mod cycle;
 mod exponent;
-mod options;
+pub mod options;
 mod report;
 mod spectrum;
 mod state;
