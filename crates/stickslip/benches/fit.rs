@@ -7,107 +7,14 @@
 //! and U_t free; the target is at most 0.5 s.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::f64::consts::TAU;
 use std::hint::black_box;
 use stickslip::experiment::Experiment;
 use stickslip::fit::{fit_records, fit_table, FitOptions, FitParameter};
 use stickslip::measure::{read_amplitudes, read_scope, Measurement};
-use stickslip::physical::{Circuit, Diode, PwlDiode};
-use stickslip::solver::sample_at;
-use stickslip::steady::SolverFactory;
 
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
-
-fn truth() -> Experiment {
-    Experiment::circuit(Circuit {
-        resistance: 80.0,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: 0.6,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .expect("valid")
-}
-
-/// A Keysight export of the record at (w, β, φ).
-fn record(w: f64, beta: f64, phi: f64, rng: &mut Rng) -> String {
-    let e = truth()
-        .with_w(w)
-        .and_then(|e| e.with_beta(beta))
-        .and_then(|e| e.with_phi(phi))
-        .expect("valid");
-    let steady = e.steady().expect("settles");
-    let scales = e.scales().expect("a circuit");
-    let mut solver = e
-        .factory()
-        .make(e.params().expect("a drive"), steady.final_state())
-        .expect("starts");
-    let n = 1200;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).expect("runs");
-    let drive: Vec<f64> = taus
-        .iter()
-        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
-        .collect();
-    let response: Vec<f64> = samples.iter().map(|s| s.y * scales.position).collect();
-    let mut quantise = |v: &[f64]| -> Vec<f64> {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let q = 1.25 * (hi - lo) / 256.0;
-        v.iter()
-            .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
-            .collect()
-    };
-    let (drive, response) = (quantise(&drive), quantise(&response));
-    let mut text = "x-axis,1,2\nsecond,Volt,Volt\n".to_string();
-    for k in 0..n {
-        text += &format!(
-            "{:.9e},{:.6e},{:.6e}\n",
-            k as f64 * dt,
-            drive[k],
-            response[k]
-        );
-    }
-    text
-}
-
-fn table(rng: &mut Rng) -> String {
-    let e = truth();
-    let f0 = e.scales().expect("a circuit").f0();
-    let mut text = "freq_Hz,U_V,response_V\n".to_string();
-    for beta in [1.6, 2.5, 4.0] {
-        for k in 0..15 {
-            let w = 0.3 + 1.3 * k as f64 / 14.0;
-            let s = e
-                .clone()
-                .with_w(w)
-                .and_then(|e| e.with_beta(beta))
-                .and_then(|e| e.steady())
-                .expect("settles");
-            let a = s.amplitude() * 0.6 * (1.0 + 0.005 * rng.gauss());
-            text += &format!("{:.4},{:.5},{:.6}\n", w * f0, beta * 0.6, a);
-        }
-    }
-    text
-}
+#[path = "../tests/support/mod.rs"]
+mod support;
+use support::{amplitude_table, keysight, synthesise, Rng};
 
 const FREE: [FitParameter; 2] = [FitParameter::Resistance, FitParameter::Ut];
 
@@ -120,11 +27,12 @@ fn bench_fit(c: &mut Criterion) {
     let data: Vec<Measurement> = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)]
         .iter()
         .map(|&(w, beta, phi)| {
-            let r = read_scope(&record(w, beta, phi, &mut rng), "k.csv").expect("reads");
+            let s = synthesise(w, beta, phi, 0.0, 1.0, &mut rng);
+            let r = read_scope(&keysight(&s), "k.csv").expect("reads");
             Measurement::new(&r, None, None).expect("a record")
         })
         .collect();
-    let amplitudes = read_amplitudes(&table(&mut rng), "gain.csv").expect("reads");
+    let amplitudes = read_amplitudes(&amplitude_table(&mut rng, false), "gain.csv").expect("reads");
     let start = Experiment::paper();
     let options = FitOptions::default();
     let report = pool.install(|| fit_records(&start, &data, &FREE, &options).expect("fits"));

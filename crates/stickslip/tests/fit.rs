@@ -6,176 +6,13 @@ use std::f64::consts::TAU;
 use stickslip::experiment::Experiment;
 use stickslip::fit::{fit_per_record, fit_records, fit_table, FitOptions, FitParameter, FitReport};
 use stickslip::measure::{read_amplitudes, read_scope, Measurement, Record, ScopeFormat};
-use stickslip::physical::{Circuit, Diode, PwlDiode};
-use stickslip::solver::sample_at;
-use stickslip::steady::SolverFactory;
+use stickslip::physical::Circuit;
 
-/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
-
-const TRUE_R: f64 = 80.0;
-const TRUE_UT: f64 = 0.6;
-
-fn truth() -> Experiment {
-    Experiment::circuit(Circuit {
-        resistance: TRUE_R,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: TRUE_UT,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .unwrap()
-}
-
-/// A synthesised two-channel record: times (s), drive (V), u_C (V), quantised to 8 bits of a
-/// screen 1.25 times the channel's peak-to-peak, with Gaussian noise of `noise` steps and a
-/// u_C offset of `offset` V.
-struct Synthetic {
-    time: Vec<f64>,
-    drive: Vec<f64>,
-    response: Vec<f64>,
-    start: f64,
-    increment: f64,
-}
-
-fn synthesise(w: f64, beta: f64, phi: f64, offset: f64, noise: f64, rng: &mut Rng) -> Synthetic {
-    synthesise_bits(w, beta, phi, offset, noise, 256.0, rng)
-}
-
-fn synthesise_bits(
-    w: f64,
-    beta: f64,
-    phi: f64,
-    offset: f64,
-    noise: f64,
-    levels: f64,
-    rng: &mut Rng,
-) -> Synthetic {
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let params = e.params().unwrap();
-    let mut solver = e.factory().make(params, steady.final_state()).unwrap();
-    let n = 1200;
-    let period = TAU / (w * scales.omega0);
-    let increment = 3.4 * period / n as f64;
-    let start = -0.5 * n as f64 * increment;
-    let taus: Vec<f64> = (0..n)
-        .map(|k| k as f64 * increment * scales.omega0)
-        .collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let drive: Vec<f64> = taus
-        .iter()
-        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
-        .collect();
-    let response: Vec<f64> = samples
-        .iter()
-        .map(|s| s.y * scales.position + offset)
-        .collect();
-    let quantise = |v: &[f64], rng: &mut Rng| -> Vec<f64> {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let q = 1.25 * (hi - lo) / levels;
-        v.iter()
-            .map(|&x| ((x + noise * q * rng.gauss()) / q).round() * q)
-            .collect()
-    };
-    Synthetic {
-        time: (0..n).map(|k| start + k as f64 * increment).collect(),
-        drive: quantise(&drive, rng),
-        response: quantise(&response, rng),
-        start,
-        increment,
-    }
-}
-
-fn rigol(s: &Synthetic) -> String {
-    let mut t = format!(
-        "X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,{:.6e},{:.6e}\n",
-        s.start, s.increment
-    );
-    for k in 0..s.time.len() {
-        t += &format!("{k},{:.6e},{:.6e},\n", s.drive[k], s.response[k]);
-    }
-    t
-}
-
-fn keysight(s: &Synthetic) -> String {
-    let mut t = "x-axis,1,2\nsecond,Volt,Volt\n".to_string();
-    for k in 0..s.time.len() {
-        t += &format!(
-            "{:.9e},{:.6e},{:.6e}\n",
-            s.time[k], s.drive[k], s.response[k]
-        );
-    }
-    t
-}
-
-fn tektronix(s: &Synthetic, channel: usize) -> String {
-    let values = if channel == 1 { &s.drive } else { &s.response };
-    let header = [
-        ("Record Length", format!("{:.6e}", s.time.len())),
-        ("Sample Interval", format!("{:.6e}", s.increment)),
-        ("Trigger Point", "6.000000000000e+02".into()),
-        ("", String::new()),
-        ("Source", format!("CH{channel}")),
-        ("Vertical Units", "V".into()),
-        ("Model Number", "TDS2012B".into()),
-    ];
-    let mut t = String::new();
-    for k in 0..s.time.len() {
-        let (key, value) = header.get(k).cloned().unwrap_or(("", String::new()));
-        t += &format!("{key},{value},,{:.9e},{:.6e},\r\n", s.time[k], values[k]);
-    }
-    t
-}
-
-fn siglent(s: &Synthetic) -> String {
-    let mut t = format!(
-        "Record Length,Analog:{}\nSample Rate,{:.1}\nVertical Scale,CH1: 0.5,CH2: 0.5\n\
-         Second,Volt,Volt\n",
-        s.time.len(),
-        1.0 / s.increment
-    );
-    for k in 0..s.time.len() {
-        t += &format!("{:.9e},{:.5},{:.5}\n", s.time[k], s.drive[k], s.response[k]);
-    }
-    t
-}
-
-fn plain(s: &Synthetic) -> String {
-    let mut t = "time_s,u_V,uc_V\n".to_string();
-    for k in 0..s.time.len() {
-        t += &format!(
-            "{:.9e},{:.6e},{:.6e}\n",
-            s.time[k], s.drive[k], s.response[k]
-        );
-    }
-    t
-}
+mod support;
+use support::{
+    amplitude_table, keysight, plain, rigol, siglent, synthesise, tektronix, truth, Rng, TRUE_R,
+    TRUE_UT,
+};
 
 const DRIVES: [(f64, f64, f64); 3] = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)];
 
@@ -439,39 +276,10 @@ fn the_95_percent_intervals_cover_the_truth_in_90_of_100_draws() {
     );
 }
 
-/// 45 rows: 15 frequencies at three drive levels, amplitudes from the exact steady state
-/// with 0.5 % Gaussian noise.
-fn table(rng: &mut Rng, direction: bool) -> String {
-    let e = truth();
-    let f0 = e.scales().unwrap().f0();
-    let mut text = if direction {
-        "freq_Hz,U_V,response_V,direction\n".to_string()
-    } else {
-        "# the paper's Fig. 4, three drive levels\nfreq_Hz,U_V,response_V\n".to_string()
-    };
-    for beta in [1.6, 2.5, 4.0] {
-        for k in 0..15 {
-            let w = 0.3 + 1.3 * k as f64 / 14.0;
-            let s = e
-                .clone()
-                .with_w(w)
-                .unwrap()
-                .with_beta(beta)
-                .unwrap()
-                .steady()
-                .unwrap();
-            let a = s.amplitude() * TRUE_UT * (1.0 + 0.005 * rng.gauss());
-            text += &format!("{:.4},{:.5},{:.6}", w * f0, beta * TRUE_UT, a);
-            text += if direction { ",up\n" } else { "\n" };
-        }
-    }
-    text
-}
-
 #[test]
 fn an_amplitude_table_gives_r_and_ut() {
     let mut rng = Rng(45);
-    let t = read_amplitudes(&table(&mut rng, false), "gain.csv").unwrap();
+    let t = read_amplitudes(&amplitude_table(&mut rng, false), "gain.csv").unwrap();
     assert_eq!(t.rows.len(), 45);
     assert_eq!(t.rows[0].line, 3);
     let report = fit_table(&Experiment::paper(), &t, &FREE, &FitOptions::default()).unwrap();
@@ -494,7 +302,7 @@ fn an_amplitude_table_gives_r_and_ut() {
     assert_eq!(report.rows.len(), 45);
     assert!(report.chi2_dof.is_none());
     // Along an upward sweep the same.
-    let t = read_amplitudes(&table(&mut rng, true), "up.csv").unwrap();
+    let t = read_amplitudes(&amplitude_table(&mut rng, true), "up.csv").unwrap();
     let report = fit_table(&Experiment::paper(), &t, &FREE, &FitOptions::default()).unwrap();
     let r = report.value(FitParameter::Resistance).unwrap();
     assert!((r.value / TRUE_R - 1.0).abs() < 0.01, "R = {}", r.value);

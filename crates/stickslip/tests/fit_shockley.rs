@@ -14,14 +14,17 @@
 //! `cargo test --release --test fit_shockley -- --nocapture` shows the fitted values.
 
 use std::f64::consts::TAU;
-use std::io::Write;
-use std::path::PathBuf;
-use std::process::Command;
 use stickslip::experiment::{DiodeModel, Experiment};
 use stickslip::fit::{compare_models, FitOptions, FitParameter};
 use stickslip::measure::{read_scope, Measurement};
 use stickslip::shockley::{netlist, DiodePair, NetlistOptions};
 use stickslip::{Circuit, State};
+
+mod support;
+use support::{
+    interpolate, keysight, ngspice_available, quantise, rigol, run_ngspice, work_dir, Rng,
+    Synthetic,
+};
 
 /// The diodes ngspice simulates: `.model DPAIR D(IS=2n N=1.8 RS=1)` at 27 °C.
 fn true_pair() -> DiodePair {
@@ -41,47 +44,8 @@ const SETTLE_PERIODS: f64 = 60.0;
 const SAMPLES: usize = 500;
 const RECORD_PERIODS: f64 = 2.4;
 
-/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
-
-/// Whether ngspice runs (see the module documentation).
-fn ngspice_available(test: &str) -> bool {
-    if let Ok(out) = Command::new("ngspice").arg("--version").output() {
-        if out.status.success() {
-            return true;
-        }
-    }
-    let required = std::env::var("STICKSLIP_REQUIRE_NGSPICE").is_ok_and(|v| v != "0");
-    assert!(
-        !required,
-        "{test}: ngspice not found on PATH, and STICKSLIP_REQUIRE_NGSPICE is set"
-    );
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED {test}: ngspice not found on PATH (apt-get install ngspice to run it; \
-         STICKSLIP_REQUIRE_NGSPICE=1 makes this a failure)"
-    );
-    false
-}
-
 /// ngspice's u_C (t in s, V) of the true circuit driven at (w, β, φ) from rest.
-fn run_ngspice(name: &str, w: f64, beta: f64, phi: f64) -> Vec<(f64, f64)> {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fit-shockley-{name}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create the work directory");
+fn spice_response(name: &str, w: f64, beta: f64, phi: f64) -> Vec<(f64, f64)> {
     let circuit = true_circuit();
     let params = circuit.params(w, beta, phi).unwrap();
     let options = NetlistOptions {
@@ -94,59 +58,13 @@ fn run_ngspice(name: &str, w: f64, beta: f64, phi: f64) -> Vec<(f64, f64)> {
         wrdata: Some("out.txt".into()),
     };
     let text = netlist(&circuit, &params, State::default(), &options).unwrap();
-    std::fs::write(dir.join("circuit.cir"), text).unwrap();
-    let out = Command::new("ngspice")
-        .args(["-b", "circuit.cir"])
-        .current_dir(&dir)
-        .output()
-        .expect("ngspice runs");
-    assert!(
-        out.status.success(),
-        "ngspice failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let data = std::fs::read_to_string(dir.join("out.txt")).expect("ngspice wrote its output");
-    data.lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            let v: Vec<f64> = l
-                .split_whitespace()
-                .map(|x| x.parse().expect("a number"))
-                .collect();
-            (v[0], v[1])
-        })
-        .collect()
+    run_ngspice(&work_dir(&format!("fit-shockley-{name}")), &text)
 }
 
-/// Linear interpolation of ngspice's points at `t` (its steps are at most 1/1000 of a
-/// period: the error is below 10⁻⁵ of the amplitude, far under one 8-bit step).
-fn interpolate(points: &[(f64, f64)], t: f64) -> f64 {
-    let k = points
-        .partition_point(|p| p.0 <= t)
-        .clamp(1, points.len() - 1);
-    let ((t0, y0), (t1, y1)) = (points[k - 1], points[k]);
-    y0 + (y1 - y0) * (t - t0) / (t1 - t0)
-}
-
-/// 8 bits over 1.25 times the peak-to-peak, one step of Gaussian noise.
-fn quantise(values: &[f64], rng: &mut Rng) -> Vec<f64> {
-    let (lo, hi) = values
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let q = 1.25 * (hi - lo) / 256.0;
-    values
-        .iter()
-        .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
-        .collect()
-}
-
-/// The record of drive `i` as a scope export: Rigol for even `i`, Keysight for odd; written
-/// to `record<i>.csv` in the work directory too.
+/// The record of drive `i` as a scope export: Rigol for even `i`, Keysight for odd.
 fn scope_file(i: usize, rng: &mut Rng) -> String {
     let (w, beta, phi) = DRIVES[i];
-    let points = run_ngspice(&format!("{i}"), w, beta, phi);
+    let points = spice_response(&format!("{i}"), w, beta, phi);
     let circuit = true_circuit();
     let scales = circuit.scales();
     let omega = w * scales.omega0;
@@ -164,32 +82,18 @@ fn scope_file(i: usize, rng: &mut Rng) -> String {
         .iter()
         .map(|&t| interpolate(&points, t) + offset)
         .collect();
-    let (drive, response) = (quantise(&drive, rng), quantise(&response, rng));
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fit-shockley-{i}"));
+    let (drive, response) = (
+        quantise(&drive, 256.0, 1.0, rng),
+        quantise(&response, 256.0, 1.0, rng),
+    );
     // The scope's time axis starts at the trigger, half a record before its first sample.
     let t0 = -0.5 * SAMPLES as f64 * increment;
-    let text = if i.is_multiple_of(2) {
-        let mut t =
-            format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,{t0:.6e},{increment:.6e}\n");
-        for k in 0..SAMPLES {
-            t += &format!("{k},{:.6e},{:.6e},\n", drive[k], response[k]);
-        }
-        t
+    let record = Synthetic::new(drive, response, t0, increment);
+    if i.is_multiple_of(2) {
+        rigol(&record)
     } else {
-        let mut t = "x-axis,1,2\nsecond,Volt,Volt\n".to_string();
-        for k in 0..SAMPLES {
-            t += &format!(
-                "{:.9e},{:.6e},{:.6e}\n",
-                t0 + k as f64 * increment,
-                drive[k],
-                response[k]
-            );
-        }
-        t
-    };
-    // Kept for the worked example of docs/fit.md (`stickslip fit --data ...`).
-    std::fs::write(dir.join(format!("record{i}.csv")), &text).unwrap();
-    text
+        keysight(&record)
+    }
 }
 
 /// The forward voltage of one diode at current `i` (A): n V_T ln(1 + I/I_s) + I R_s.

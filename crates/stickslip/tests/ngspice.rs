@@ -17,35 +17,14 @@
 //! `STICKSLIP_REQUIRE_NGSPICE=1` (set by `scripts/test`, which installs ngspice first) a missing ngspice
 //! fails the test instead. `cargo test --test ngspice -- --nocapture` shows the deviations.
 
-use std::io::Write;
-use std::path::PathBuf;
-use std::process::Command;
 use stickslip::shockley::{
     netlist, NetlistOptions, ShockleyModel, ShockleyOptions, ShockleySolver,
 };
 use stickslip::solver::{grid, sample_at};
 use stickslip::{Circuit, Params, State};
 
-/// Whether ngspice runs. When it does not: fails if `STICKSLIP_REQUIRE_NGSPICE` is set (and
-/// not `0`), else says on standard error, past the harness's capture, why the test is skipped.
-fn ngspice_available(test: &str) -> bool {
-    if let Ok(out) = Command::new("ngspice").arg("--version").output() {
-        if out.status.success() {
-            return true;
-        }
-    }
-    let required = std::env::var("STICKSLIP_REQUIRE_NGSPICE").is_ok_and(|v| v != "0");
-    assert!(
-        !required,
-        "{test}: ngspice not found on PATH, and STICKSLIP_REQUIRE_NGSPICE is set"
-    );
-    let _ = writeln!(
-        std::io::stderr(),
-        "SKIPPED {test}: ngspice not found on PATH (apt-get install ngspice to run it; \
-         STICKSLIP_REQUIRE_NGSPICE=1 makes this a failure)"
-    );
-    false
-}
+mod support;
+use support::{ngspice_available, run_ngspice, work_dir};
 
 /// The paper's circuit with 1N4148 diodes, and its dimensionless model at (w, β, φ).
 fn paper_model(w: f64, beta: f64, phi: f64) -> (Circuit, ShockleyModel) {
@@ -54,18 +33,9 @@ fn paper_model(w: f64, beta: f64, phi: f64) -> (Circuit, ShockleyModel) {
     (circuit, circuit.shockley_model(&params).unwrap().unwrap())
 }
 
-/// A fresh directory for one test's netlist and output.
-fn work_dir(test: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("ngspice-{test}"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create the work directory");
-    dir
-}
-
 /// Run ngspice on the netlist of the paper circuit for (w, β, φ) from `initial`, and return
 /// its rows (t in s, u_C in V).
-fn run_ngspice(test: &str, params: &Params, initial: State, periods: f64) -> Vec<(f64, f64)> {
-    let dir = work_dir(test);
+fn spice_rows(test: &str, params: &Params, initial: State, periods: f64) -> Vec<(f64, f64)> {
     let options = NetlistOptions {
         periods,
         points_per_period: 200,
@@ -76,28 +46,7 @@ fn run_ngspice(test: &str, params: &Params, initial: State, periods: f64) -> Vec
         wrdata: Some("out.txt".into()),
     };
     let text = netlist(&Circuit::paper_shockley(), params, initial, &options).unwrap();
-    std::fs::write(dir.join("circuit.cir"), text).unwrap();
-    let out = Command::new("ngspice")
-        .args(["-b", "circuit.cir"])
-        .current_dir(&dir)
-        .output()
-        .expect("ngspice runs");
-    assert!(
-        out.status.success(),
-        "ngspice failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let data = std::fs::read_to_string(dir.join("out.txt")).expect("ngspice wrote its output");
-    data.lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            let v: Vec<f64> = l
-                .split_whitespace()
-                .map(|x| x.parse().expect("a number"))
-                .collect();
-            (v[0], v[1])
-        })
-        .collect()
+    run_ngspice(&work_dir(&format!("ngspice-{test}")), &text)
 }
 
 /// Peak of a sampled curve refined by a parabola through the largest sample and its
@@ -135,7 +84,7 @@ fn amplitude(points: &[(f64, f64)]) -> f64 {
 fn compare(test: &str, w: f64, beta: f64, phi: f64, initial: State, periods: f64) -> (f64, f64) {
     let (circuit, model) = paper_model(w, beta, phi);
     let scales = circuit.scales();
-    let rows = run_ngspice(test, &model.params, initial, periods);
+    let rows = spice_rows(test, &model.params, initial, periods);
     let period_s = model.params.drive_period() / scales.omega0;
     let start = (periods - 1.0) * period_s;
     let spice: Vec<(f64, f64)> = rows.into_iter().filter(|r| r.0 >= start).collect();

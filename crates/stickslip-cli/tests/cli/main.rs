@@ -22,3 +22,4 @@ mod steady;
 mod streaming;
 mod sweep;
 mod theory;
+mod worked_example;
