@@ -135,10 +135,13 @@ fn extrapolate(history: &VecDeque<State>, tolerance: f64, scale: f64) -> Option<
     if n < 5 {
         return None;
     }
-    let x: Vec<[f64; 2]> = history.iter().skip(n - 5).map(|s| [s.y, s.v]).collect();
-    let d: Vec<[f64; 2]> = (1..5)
-        .map(|i| [x[i][0] - x[i - 1][0], x[i][1] - x[i - 1][1]])
-        .collect();
+    // The last five strobes and their four differences, on the stack (this runs after every
+    // strobe of a transient).
+    let x: [[f64; 2]; 5] = std::array::from_fn(|i| {
+        let s = history[n - 5 + i];
+        [s.y, s.v]
+    });
+    let d: [[f64; 2]; 4] = std::array::from_fn(|i| [x[i + 1][0] - x[i][0], x[i + 1][1] - x[i][1]]);
     let norm = |a: [f64; 2]| a[0].abs().max(a[1].abs());
     let last = d[3];
     // Nearly converged already: plain iteration finishes in a few periods.
@@ -438,8 +441,11 @@ fn run_to_cycle<H: Holder>(
     history.push_back(holder.solver().state());
     // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
     let mut passes = vec![0usize; max_period + 1];
+    // |x_k − x_{k−lag}| for lag = 1, 2, …: one buffer for the whole run.
+    let mut gaps: Vec<f64> = Vec::with_capacity(max_period);
     // Events of the last `max_period` periods, with the index of the period they fell in.
-    let mut recent: VecDeque<(usize, Event)> = VecDeque::new();
+    // (Room for a few events a period: most motions never grow it.)
+    let mut recent: VecDeque<(usize, Event)> = VecDeque::with_capacity(64);
     let mut found = None;
     let mut scale = 1.0f64;
     let mut local = 0usize;
@@ -476,9 +482,8 @@ fn run_to_cycle<H: Holder>(
         // periods long before it repeats after one.
         let distinct = options.tolerance.sqrt() * scale;
         let lags = history.len().min(max_period);
-        let gaps: Vec<f64> = (1..=lags)
-            .map(|lag| distance(x, history[history.len() - lag]))
-            .collect();
+        gaps.clear();
+        gaps.extend((1..=lags).map(|lag| distance(x, history[history.len() - lag])));
         for lag in 1..=lags {
             let repeats = gaps[lag - 1] <= limit
                 && (1..lag)
@@ -681,8 +686,11 @@ fn record<S: Solver + ?Sized>(
     let start = strobe(start_index, period);
     let stuck_at_start = solver.phase() == Phase::Stick;
 
-    let mut events = Vec::new();
-    let mut strobes = vec![solver.state()];
+    // (Room for the events the settling saw a period, and a few more.)
+    let mut events =
+        Vec::with_capacity(((settled.events_per_period * recorded as f64) as usize).min(4096) + 8);
+    let mut strobes = Vec::with_capacity(recorded + 1);
+    strobes.push(solver.state());
     let mut half_strobes = Vec::with_capacity(recorded);
     let mut trace = Vec::new();
     let mut spectrum = None;
