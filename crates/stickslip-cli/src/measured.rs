@@ -514,9 +514,233 @@ pub fn record_series(record: &AlignedRecord, file: &str) -> Vec<Series> {
     ]
 }
 
+/// Records and tables for tests, made by the library's exact solver at R = 80 Ω,
+/// U_t = 0.6 V.
+#[cfg(test)]
+pub(crate) mod synthetic {
+    use std::f64::consts::TAU;
+    use stickslip::experiment::Experiment;
+    use stickslip::physical::{Circuit, Diode, PwlDiode};
+    use stickslip::solver::sample_at;
+    use stickslip::steady::SolverFactory;
+
+    /// The paper's circuit with resistance `r` (Ω) and PWL diodes of turn-on `ut` (V).
+    pub fn circuit(r: f64, ut: f64) -> Experiment {
+        Experiment::circuit(Circuit {
+            resistance: r,
+            diode: Diode::Pwl(PwlDiode {
+                turn_on: ut,
+                resistance: 3.0,
+            }),
+            ..Circuit::paper()
+        })
+        .unwrap()
+    }
+
+    /// The circuit the records are made of.
+    pub fn truth() -> Experiment {
+        circuit(80.0, 0.6)
+    }
+
+    /// A Rigol export (Keysight with `keysight`) of 800 samples over 2.6 drive periods of the
+    /// steady state at (w, β), 8-bit quantised with a step of uniform noise.
+    pub fn record(w: f64, beta: f64, keysight: bool) -> String {
+        let e = truth().with_w(w).unwrap().with_beta(beta).unwrap();
+        let steady = e.steady().unwrap();
+        let scales = e.scales().unwrap();
+        let mut solver = e
+            .factory()
+            .make(e.params().unwrap(), steady.final_state())
+            .unwrap();
+        let n = 800;
+        let dt = 2.6 * TAU / (w * scales.omega0) / n as f64;
+        let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
+        let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut noise = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut q = |v: f64, peak: f64| {
+            let step = 2.5 * peak / 256.0;
+            ((v + 2.0 * step * noise()) / step).round() * step
+        };
+        let u = beta * scales.force;
+        let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
+        let mut text = if keysight {
+            "x-axis,1,2\nsecond,Volt,Volt\n".to_string()
+        } else {
+            format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,0.000000e+00,{dt:.6e}\n")
+        };
+        for k in 0..n {
+            let drive = q(u * (w * taus[k]).cos(), u);
+            let uc = q(samples[k].y * scales.position, peak);
+            if keysight {
+                text += &format!("{:.9e},{drive:.6e},{uc:.6e}\n", k as f64 * dt);
+            } else {
+                text += &format!("{k},{drive:.6e},{uc:.6e},\n");
+            }
+        }
+        text
+    }
+
+    /// A table of amplitudes of the truth, 1 % above the model, over 0.5 … 1.5 f0 at each
+    /// drive amplitude of `levels` (V): an up and a down leg with `legs`, else rows from rest
+    /// (and no direction column).
+    pub fn table(levels: &[f64], legs: bool) -> String {
+        let f0 = truth().scales().unwrap().f0();
+        let freqs: Vec<f64> = (0..7).map(|k| f0 * (0.5 + k as f64 / 6.0)).collect();
+        let mut text = if legs {
+            "freq_Hz,U_V,response_V,direction\n"
+        } else {
+            "freq_Hz,U_V,response_V\n"
+        }
+        .to_string();
+        for &u in levels {
+            let runs: &[&str] = if legs { &["up", "down"] } else { &[""] };
+            for &leg in runs {
+                let mut f = freqs.clone();
+                if leg == "down" {
+                    f.reverse();
+                }
+                let a = super::model_amplitudes(&truth(), u, &f, legs);
+                for (f, a) in f.iter().zip(a) {
+                    let direction = if legs {
+                        format!(",{leg}")
+                    } else {
+                        String::new()
+                    };
+                    text += &format!("{f},{u},{}{direction}\n", 1.01 * a);
+                }
+            }
+        }
+        text
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use stickslip::fit::{fit_records, fit_table, FitOptions};
+    use stickslip::measure::{read_amplitudes, read_scope};
+
+    #[test]
+    fn the_records_figure_draws_the_fits_arrays() {
+        let data: Vec<Measurement> = [(0.5, 2.5, false), (1.2, 2.0, true)]
+            .iter()
+            .enumerate()
+            .map(|(k, &(w, beta, keysight))| {
+                let text = synthetic::record(w, beta, keysight);
+                let record = read_scope(&text, &format!("r{k}.csv")).unwrap();
+                Measurement::new(&record, None, None).unwrap()
+            })
+            .collect();
+        let free = [FitParameter::Resistance, FitParameter::Ut];
+        let options = FitOptions::default();
+        let start = synthetic::circuit(68.0, 0.7);
+        let report = fit_records(&start, &data, &free, &options).unwrap();
+        let groups: Vec<Vec<(&FitReport, &RecordFit)>> =
+            report.records.iter().map(|r| vec![(&report, r)]).collect();
+        let stack = records_stack(&groups);
+        assert_eq!(stack.panels.len(), 4);
+        for (k, record) in report.records.iter().enumerate() {
+            let (main, _) = &stack.panels[2 * k];
+            let (residual, _) = &stack.panels[2 * k + 1];
+            // Two drive periods: the samples up to 2/f, in µs.
+            let n = record
+                .time
+                .iter()
+                .filter(|&&t| t <= 2.0 / record.freq_hz)
+                .count();
+            assert!(n > 500 && n < record.time.len(), "{n}");
+            let (measured, model) = (&main.series[0].points, &main.series[1].points);
+            let residuals = &residual.series[1].points;
+            assert_eq!((measured.len(), model.len(), residuals.len()), (n, n, n));
+            for i in 0..n {
+                let t = record.time[i] * 1e6;
+                assert_eq!(model[i], (t, record.model[i]));
+                assert_eq!(residuals[i], (t, record.residuals[i]));
+                assert_eq!(measured[i], (t, record.model[i] - record.residuals[i]));
+            }
+            assert!(main.title.contains(&parameter_text(&report.parameters[0])));
+        }
+    }
+
+    #[test]
+    fn the_resonance_curves_are_the_table_fits_model() {
+        let free = [FitParameter::Resistance, FitParameter::Ut];
+        let start = synthetic::circuit(70.0, 0.6);
+        for legs in [true, false] {
+            let levels: &[f64] = if legs { &[0.9, 1.5] } else { &[1.2] };
+            let table = read_amplitudes(&synthetic::table(levels, legs), "gain.csv").unwrap();
+            let report = fit_table(&start, &table, &free, &FitOptions::default()).unwrap();
+            // Each leg of the table, stepped as the curves are, gives the fit's model values.
+            let directions = if legs {
+                vec![Some(Direction::Up), Some(Direction::Down)]
+            } else {
+                vec![None]
+            };
+            for &u in levels {
+                for &direction in &directions {
+                    let rows: Vec<_> = report
+                        .rows
+                        .iter()
+                        .filter(|r| r.direction == direction && r.drive_v == u)
+                        .collect();
+                    assert_eq!(rows.len(), 7);
+                    let frequencies: Vec<f64> = rows.iter().map(|r| r.freq_hz).collect();
+                    let amplitudes = model_amplitudes(&report.experiment, u, &frequencies, legs);
+                    for (row, a) in rows.iter().zip(amplitudes) {
+                        assert_eq!(a, row.model_v, "line {}", row.line);
+                    }
+                }
+            }
+            assert_eq!(drive_levels(&table).len(), levels.len());
+            let figure = table_figure(&report, &table);
+            assert_eq!(figure.panels.len(), levels.len());
+            let labels: Vec<&str> = figure.panels[0]
+                .series
+                .iter()
+                .map(|s| s.label.as_str())
+                .collect();
+            if legs {
+                // Both theories, the two fitted legs and the two measured legs.
+                assert_eq!(
+                    labels,
+                    [
+                        "exact sliding orbit (peak)",
+                        "paper, eq. (11) (A1)",
+                        "fitted model, up",
+                        "fitted model, down",
+                        "measured, down",
+                        "measured, up"
+                    ]
+                );
+            } else {
+                assert_eq!(
+                    labels,
+                    [
+                        "exact sliding orbit (peak)",
+                        "paper, eq. (11) (A1)",
+                        "fitted model (from rest)",
+                        "measured"
+                    ]
+                );
+                // The curve from rest starts at the lowest row's frequency, where it is
+                // the fit's model value.
+                let first = report
+                    .rows
+                    .iter()
+                    .min_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz))
+                    .unwrap();
+                let curve = &figure.panels[0].series[2];
+                assert_eq!(curve.points[0], (first.freq_hz / 1e3, first.model_v));
+                assert_eq!(curve.points.len(), CURVE_POINTS);
+            }
+        }
+    }
 
     #[test]
     fn plus_minus_rounds_to_the_error() {
