@@ -249,6 +249,10 @@ pub fn model_amplitudes(
     frequencies
         .iter()
         .map(|&f| {
+            // Ctrl-C: the rest is left out (the caller stops before drawing).
+            if crate::output::interrupted() {
+                return f64::NAN;
+            }
             let start = if continued { state } else { State::default() };
             let steady = experiment
                 .clone()
