@@ -365,3 +365,94 @@ fn no_legend_of_a_plot_hides_data() {
         ],
     );
 }
+
+#[test]
+fn no_legend_of_a_measurement_plot_hides_data() {
+    use crate::measured::synthetic;
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let d = dir.path();
+    let write = |name: &str, text: String| std::fs::write(d.join(name), text).expect("written");
+    write("rec-a.csv", synthetic::record(0.5, 2.5, false));
+    write("rec-b.csv", synthetic::record(1.2, 2.0, true));
+    write("legs.csv", synthetic::table(&[0.9, 1.5], true));
+    write("rest.csv", synthetic::table(&[1.2], false));
+    let circuit = ["--preset", "paper", "--resistance", "80", "--ut", "0.6"];
+    let cases: Vec<Vec<&str>> = vec![
+        vec![
+            "fit",
+            "--preset",
+            "paper",
+            "--data",
+            "rec-a.csv",
+            "--data",
+            "rec-b.csv",
+            "--plot",
+            "fit-records.png",
+        ],
+        vec![
+            "fit",
+            "--preset",
+            "paper",
+            "--gain-table",
+            "legs.csv",
+            "--plot",
+            "fit-legs.png",
+        ],
+        vec![
+            "fit",
+            "--preset",
+            "paper",
+            "--gain-table",
+            "rest.csv",
+            "--plot",
+            "fit-rest.png",
+        ],
+        [
+            &["steady"][..],
+            &circuit,
+            &[
+                "--w",
+                "0.5",
+                "--beta",
+                "2.5",
+                "--data",
+                "rec-a.csv",
+                "--plot",
+                "steady-data.png",
+            ],
+        ]
+        .concat(),
+        [
+            &["simulate"][..],
+            &circuit,
+            &[
+                "--w",
+                "1.2",
+                "--beta",
+                "2",
+                "--periods",
+                "12",
+                "--out",
+                "sim-data.csv",
+                "--data",
+                "rec-b.csv",
+                "--plot",
+                "simulate-data.png",
+            ],
+        ]
+        .concat(),
+    ];
+    for args in &cases {
+        run(d, args);
+    }
+    check(
+        d,
+        &[
+            "fit-records.png",
+            "fit-legs.png",
+            "fit-rest.png",
+            "steady-data.png",
+            "simulate-data.png",
+        ],
+    );
+}

@@ -14,6 +14,7 @@ mod diagrams;
 mod flags;
 #[cfg(test)]
 mod legend_check;
+mod measured;
 pub mod model;
 pub mod output;
 mod plot;

@@ -82,11 +82,13 @@ pub fn check_interrupt() -> Result<()> {
 
 /// A file written under a temporary name in the same directory and renamed into place by
 /// [`AtomicFile::commit`]; dropped without commit, the temporary file is removed. So an
-/// output file is either complete or absent.
+/// output file is either complete or absent. A path that exists and is no regular file (a
+/// device such as `/dev/null`, a named pipe) is written in place: a rename would replace it.
 pub struct AtomicFile {
     path: PathBuf,
     temp: PathBuf,
     writer: Option<BufWriter<File>>,
+    in_place: bool,
 }
 
 impl AtomicFile {
@@ -97,6 +99,18 @@ impl AtomicFile {
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         check_output_path(path)?;
+        if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            return Ok(Self {
+                path: path.to_path_buf(),
+                temp: path.to_path_buf(),
+                writer: Some(BufWriter::new(file)),
+                in_place: true,
+            });
+        }
         let name = path
             .file_name()
             .with_context(|| format!("{} is not a file name", path.display()))?;
@@ -112,6 +126,7 @@ impl AtomicFile {
             path: path.to_path_buf(),
             temp,
             writer: Some(BufWriter::new(file)),
+            in_place: false,
         })
     }
 
@@ -127,6 +142,9 @@ impl AtomicFile {
                 .with_context(|| format!("cannot write {}", self.path.display()))?;
         }
         check_interrupt()?;
+        if self.in_place {
+            return Ok(());
+        }
         std::fs::rename(&self.temp, &self.path)
             .with_context(|| format!("cannot write {}", self.path.display()))?;
         Ok(())
@@ -144,6 +162,10 @@ impl Write for AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
+        // A device or pipe written in place is never removed.
+        if self.in_place {
+            return;
+        }
         if self.writer.is_some() || self.temp.exists() {
             self.writer = None;
             let _ = std::fs::remove_file(&self.temp);

@@ -65,6 +65,10 @@ pub enum Quantity {
     Harmonic1,
     /// The third harmonic A3: vermilion.
     Harmonic3,
+    /// A measured u_C (a scope record, a measured amplitude): black dots.
+    Measured,
+    /// A measured drive U (a scope record's drive channel): small grey dots.
+    MeasuredDrive,
 }
 
 impl Quantity {
@@ -75,7 +79,8 @@ impl Quantity {
             Quantity::Response | Quantity::SweepUp | Quantity::Harmonic1 => PALETTE[0],
             Quantity::Stops | Quantity::SweepDown | Quantity::Harmonic3 => PALETTE[1],
             Quantity::PaperTheory => PALETTE[3],
-            Quantity::ExactTheory => INK,
+            Quantity::ExactTheory | Quantity::Measured => INK,
+            Quantity::MeasuredDrive => DRIVE,
         }
     }
 
@@ -89,6 +94,8 @@ impl Quantity {
             Quantity::SweepDown => Style::Squares(5),
             Quantity::PaperTheory => Style::Dashed(2),
             Quantity::ExactTheory => Style::Line(2),
+            Quantity::Measured => Style::Markers(2),
+            Quantity::MeasuredDrive => Style::Markers(1),
         }
     }
 

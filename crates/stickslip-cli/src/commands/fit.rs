@@ -2,16 +2,18 @@
 //! amplitudes.
 
 use crate::model::ModelArgs;
-use crate::output::{check_output_path, outln, usage, AtomicFile};
+use crate::output::{check_output_path, check_plot_path, outln, usage, AtomicFile};
 use anyhow::{Context, Result};
 use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stickslip::fit::{
     compare_models, fit_per_record, fit_records, fit_table, FitError, FitOptions, FitParameter,
-    FitReport,
+    FitReport, RecordFit,
 };
-use stickslip::measure::{read_amplitudes, read_scope, MeasureError, Measurement, Record};
+use stickslip::measure::{
+    read_amplitudes, read_scope, AmplitudeTable, MeasureError, Measurement, Record,
+};
 use stickslip::shockley::DiodePair;
 
 /// Fit the circuit's parameters to measurements: scope records of the drive and u_C, or a
@@ -33,6 +35,10 @@ use stickslip::shockley::DiodePair;
 /// parameters (--free): resistance, ut, rd (PWL), diode-is, diode-n, diode-rs (Shockley),
 /// inductance, capacitance, mu-s.
 ///
+/// --plot draws the records (measured u_C, the fitted model over two drive periods and the
+/// residual below) or the table (measured amplitudes on the fitted resonance curves, with
+/// the exact theory and the paper's).
+///
 /// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi]}}, correlation,
 /// records [{file, freq_Hz, amplitude_V, w, beta, class, periods, clipped, rms_residual_V,
 /// offset_V, time_shift_s}], rows (a table) [{line, freq_Hz, U_V, direction, measured_V,
@@ -41,7 +47,7 @@ use stickslip::shockley::DiodePair;
 /// delta_aic}.
 ///
 /// Example: stickslip fit --preset paper --data run1.csv --data run2.csv --free resistance,ut
-/// --json
+/// --json --plot fit.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -91,10 +97,16 @@ pub struct Args {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
-    /// Residuals as CSV: file,t_s,measured_V,model_V,residual_V (records) or
+    /// Residuals as CSV: model,file,t_s,measured_V,model_V,residual_V (records) or
     /// line,freq_Hz,U_V,measured_V,model_V,residual_V (a table).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Plot (.png or .svg). Records: per record the measured u_C and the fitted model over
+    /// its first two drive periods, the residual below. A table: per drive amplitude the
+    /// measured amplitudes on the fitted model's resonance curves (along the table's legs),
+    /// with the exact sliding orbit and the paper's eq. (11) at the fitted values.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
 }
 
 fn parse_free(text: &str, flag: &str) -> Result<Vec<FitParameter>> {
@@ -134,7 +146,9 @@ fn read_text(path: &Path) -> Result<String> {
     }
 }
 
-fn read_record(spec: &str) -> Result<Record> {
+/// Read the record of `spec`: one file, or single-channel files joined by `+` (merged on
+/// their common times).
+pub(crate) fn read_record(spec: &str) -> Result<Record> {
     let parts = spec
         .split('+')
         .map(|file| {
@@ -145,6 +159,35 @@ fn read_record(spec: &str) -> Result<Record> {
     Record::merge(parts).map_err(measure)
 }
 
+/// The scope record that `simulate --data` and `steady --data` draw beside the computed
+/// trace (`spec` as `fit --data`, channels picked as `fit --drive/--response`). The record is
+/// in volts and seconds: the experiment must be a circuit, and the record is drawn in the
+/// plot, which must be asked for.
+pub(crate) fn record_to_draw(
+    spec: &str,
+    drive: Option<&str>,
+    response: Option<&str>,
+    experiment: &stickslip::Experiment,
+    plot: Option<&Path>,
+) -> Result<Measurement> {
+    if plot.is_none() {
+        usage!("--data {spec} is drawn in the plot: add --plot FILE (.png or .svg)");
+    }
+    match experiment.units() {
+        Some(u) if u.circuit => {}
+        Some(_) => usage!(
+            "--data {spec}: a scope record is in volts and seconds, and this model is a \
+             mechanical oscillator: describe a circuit (--preset paper or its parts)"
+        ),
+        None => usage!(
+            "--data {spec}: a scope record is in volts and seconds, and this model is \
+             dimensionless: describe a circuit (--preset paper or its parts)"
+        ),
+    }
+    let record = read_record(spec)?;
+    Measurement::new(&record, drive, response).map_err(measure)
+}
+
 /// Run `stickslip fit`.
 pub fn run(args: Args) -> Result<()> {
     if args.data.is_empty() && args.gain_table.is_none() {
@@ -153,11 +196,15 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(p) = &args.out {
         check_output_path(p)?;
     }
+    if let Some(p) = &args.plot {
+        check_plot_path(p)?;
+    }
     let free = parse_free(&args.free, "--free")?;
     let experiment = args.model.experiment()?;
     let options = FitOptions::default();
     let mut report_json: Value;
     let mut residual_reports: Vec<FitReport> = Vec::new();
+    let mut fitted_table = None;
     if let Some(path) = &args.gain_table {
         if args.per_record || args.compare {
             usage!("--per-record and --compare take records (--data), not a table");
@@ -168,6 +215,7 @@ pub fn run(args: Args) -> Result<()> {
         let report = fit_table(&experiment, &table, &free, &options).map_err(refused)?;
         report_json = to_json(&report)?;
         residual_reports.push(report);
+        fitted_table = Some(table);
     } else {
         let mut data = Vec::new();
         for spec in &args.data {
@@ -230,7 +278,46 @@ pub fn run(args: Args) -> Result<()> {
             .with_context(|| format!("writing {}", path.display()))?;
         file.commit()?;
     }
+    if let Some(path) = &args.plot {
+        plot(
+            path,
+            &residual_reports,
+            fitted_table.as_ref(),
+            args.per_record,
+        )?;
+    }
     Ok(())
+}
+
+/// Draw the fit into `path`: the records of `reports` (one report, the two of `--compare`,
+/// or one per record with `per_record`), or the fitted `table`.
+fn plot(
+    path: &Path,
+    reports: &[FitReport],
+    table: Option<&AmplitudeTable>,
+    per_record: bool,
+) -> Result<()> {
+    if let (Some(table), Some(report)) = (table, reports.first()) {
+        eprintln!(
+            "fit: drawing the fitted resonance curves ({} points each)",
+            crate::measured::CURVE_POINTS
+        );
+        let figure = crate::measured::table_figure(report, table);
+        crate::output::check_interrupt()?;
+        return figure.render(path);
+    }
+    let groups: Vec<Vec<(&FitReport, &RecordFit)>> = if per_record {
+        reports
+            .iter()
+            .flat_map(|r| r.records.iter().map(move |rec| vec![(r, rec)]))
+            .collect()
+    } else {
+        let n = reports.first().map_or(0, |r| r.records.len());
+        (0..n)
+            .map(|k| reports.iter().map(|r| (r, &r.records[k])).collect())
+            .collect()
+    };
+    crate::measured::records_stack(&groups).render(path)
 }
 
 fn write_residuals(file: &mut impl Write, reports: &[FitReport]) -> Result<()> {

@@ -40,6 +40,27 @@ pub struct Args {
     /// Plot of the trace (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// A scope record (CSV, as `fit --data`) drawn in the plot beside the computed trace: its
+    /// u_C and drive, shifted so that its drive's phase (from its sine fit) meets the
+    /// computed drive's, as late in the run as it fits. Needs a circuit and --plot.
+    #[arg(long, value_name = "FILE", help_heading = "Measurements")]
+    data: Option<String>,
+    /// The record's drive channel (name, CHn or position) [default: the first].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    drive: Option<String>,
+    /// The record's u_C channel [default: the second].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    response: Option<String>,
 }
 
 /// Run `stickslip simulate`.
@@ -59,6 +80,16 @@ pub fn run(args: Args) -> Result<()> {
     let params = experiment.params()?;
     // Before any work: a run longer than the solvers resolve is refused (exit code 2).
     stickslip::limits::check_horizon(&params, args.periods)?;
+    let record = match &args.data {
+        Some(spec) => Some(crate::commands::fit::record_to_draw(
+            spec,
+            args.drive.as_deref(),
+            args.response.as_deref(),
+            &experiment,
+            args.plot.as_deref(),
+        )?),
+        None => None,
+    };
     eprintln!("simulate: {experiment}");
 
     let period = params.drive_period();
@@ -141,6 +172,18 @@ pub fn run(args: Args) -> Result<()> {
             scale(trace.y.points()),
         );
         let circuit = units.is_some_and(|u| u.circuit);
+        let mut series =
+            vec![Quantity::Drive.series(if circuit { "drive U" } else { "drive" }, drive)];
+        // The record under the computed u_C.
+        if let Some(record) = &record {
+            // The axis is in ms (τ·tx): the computed drive is cos(w·t/tx + φ).
+            let aligned =
+                crate::measured::align(record, params.w / tx, params.phi, 1e3, t_end * tx);
+            note_drive_mismatch("simulate", record, &experiment);
+            series.extend(crate::measured::record_series(&aligned, &record.file));
+        }
+        series.push(Quantity::Response.series(if circuit { "u_C" } else { "y" }, trace));
+        series.push(Quantity::Stops.series("stops", stops));
         let panel = Panel {
             title: format!(
                 "w = {:.3}, β = {:.3}, ζ = {:.4}",
@@ -148,11 +191,7 @@ pub fn run(args: Args) -> Result<()> {
             ),
             x_label: x_label.into(),
             y_label: y_label.into(),
-            series: vec![
-                Quantity::Drive.series(if circuit { "drive U" } else { "drive" }, drive),
-                Quantity::Response.series(if circuit { "u_C" } else { "y" }, trace),
-                Quantity::Stops.series("stops", stops),
-            ],
+            series,
             legend: Some(Legend::UpperRight),
             ..Default::default()
         };
@@ -169,6 +208,29 @@ pub fn run(args: Args) -> Result<()> {
             .unwrap_or_default()
     );
     Ok(())
+}
+
+/// Say on standard error when a record drawn beside a computed trace was driven otherwise
+/// than the model (by more than 1 % in frequency or 5 % in amplitude): the two are then
+/// aligned at the record's start only.
+pub(crate) fn note_drive_mismatch(
+    command: &str,
+    record: &stickslip::measure::Measurement,
+    experiment: &stickslip::Experiment,
+) {
+    let (Some(scales), Ok(params)) = (experiment.scales(), experiment.params()) else {
+        return;
+    };
+    let f = params.w * scales.f0();
+    let u = params.beta * scales.force;
+    let (rf, ru) = (record.drive.frequency, record.drive.amplitude);
+    if (rf / f - 1.0).abs() > 0.01 || (ru / u - 1.0).abs() > 0.05 {
+        eprintln!(
+            "{command}: note: {} was driven at {rf:.6} Hz, {ru:.4} V; the model at {f:.6} Hz, \
+             {u:.4} V (give --freq {rf:.6} --amplitude {ru:.4} to compare like with like)",
+            record.file
+        );
+    }
 }
 
 /// Most points of a plotted curve kept as they are; a longer curve is drawn from the

@@ -6,10 +6,12 @@ use crate::output::{check_plot_path, outln, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use std::path::PathBuf;
+use stickslip::measure::Measurement;
 use stickslip::options::OptionKey;
 use stickslip::report::SteadyTrace;
 use stickslip::stability::{NonperiodicClassification, NonperiodicVerdict};
 use stickslip::steady::{SteadyReport, SteadyState};
+use stickslip::Scales;
 
 /// Run to the steady state from the initial state and report it.
 ///
@@ -54,6 +56,27 @@ pub struct Args {
     /// Plot of the cycle, its X-Y picture and its harmonics (.png or .svg).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// A scope record (CSV, as `fit --data`) drawn in the plot beside the cycle (and in its
+    /// X-Y picture): its u_C and drive, shifted so that its drive's phase (from its sine fit)
+    /// meets the computed drive's; the plot is then in volts. Needs a circuit and --plot.
+    #[arg(long, value_name = "FILE", help_heading = "Measurements")]
+    data: Option<String>,
+    /// The record's drive channel (name, CHn or position) [default: the first].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    drive: Option<String>,
+    /// The record's u_C channel [default: the second].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    response: Option<String>,
 }
 
 /// Run `stickslip steady`.
@@ -73,6 +96,16 @@ pub fn run(args: Args) -> Result<()> {
         .options(&experiment)?
         .with_harmonics(harmonics)?;
     stickslip::steady::check_horizon(&params, &options, 0.0)?;
+    let record = match &args.data {
+        Some(spec) => Some(crate::commands::fit::record_to_draw(
+            spec,
+            args.drive.as_deref(),
+            args.response.as_deref(),
+            &experiment,
+            args.plot.as_deref(),
+        )?),
+        None => None,
+    };
     eprintln!("steady: {experiment}");
     let steady = experiment.steady_with(&options)?;
     crate::output::check_interrupt()?;
@@ -89,7 +122,14 @@ pub fn run(args: Args) -> Result<()> {
         file.commit()?;
     }
     if let Some(path) = &args.plot {
-        plot(&steady, path)?;
+        let record = match (&record, experiment.scales()) {
+            (Some(r), Some(scales)) => {
+                crate::commands::simulate::note_drive_mismatch("steady", r, &experiment);
+                Some((r, scales))
+            }
+            _ => None,
+        };
+        plot(&steady, path, record)?;
     }
     Ok(())
 }
@@ -180,26 +220,49 @@ fn verdict_text(c: &NonperiodicClassification) -> String {
     }
 }
 
-fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
+/// The plot of the steady state; with a scope record (and the experiment's scales) the
+/// record is drawn beside the cycle and in the X-Y picture, and the figure is in volts.
+fn plot(
+    steady: &SteadyState,
+    path: &std::path::Path,
+    record: Option<(&Measurement, Scales)>,
+) -> Result<()> {
     let params = &steady.params;
     let t0 = steady.start;
     let period = params.drive_period();
+    // Volts per unit of y and of the drive with a record, else dimensionless.
+    let (volts, drive_volts) = record.map_or((1.0, 1.0), |(_, s)| (s.position, s.force));
     let trace: Vec<(f64, f64)> = steady
         .trace
         .iter()
-        .map(|s| ((s.tau - t0) / period, s.y))
+        .map(|s| ((s.tau - t0) / period, s.y * volts))
         .collect();
     let drive: Vec<(f64, f64)> = steady
         .trace
         .iter()
-        .map(|s| ((s.tau - t0) / period, params.drive(s.tau)))
+        .map(|s| ((s.tau - t0) / period, params.drive(s.tau) * drive_volts))
         .collect();
     let stops: Vec<(f64, f64)> = steady
         .events
         .iter()
         .filter(|e| e.kind == stickslip::EventKind::Stick)
-        .map(|e| ((e.tau - t0) / period, e.y))
+        .map(|e| ((e.tau - t0) / period, e.y * volts))
         .collect();
+    let end = trace.last().map_or(1.0, |p| p.0);
+    // The axis counts drive periods from the record's start τ0: the computed drive is
+    // cos(2π·x + w·τ0 + φ), and a second is w·ω0/2π periods.
+    let aligned = record.map(|(r, scales)| {
+        (
+            r,
+            crate::measured::align(
+                r,
+                std::f64::consts::TAU,
+                params.w * t0 + params.phi,
+                params.w * scales.omega0 / std::f64::consts::TAU,
+                end,
+            ),
+        )
+    });
     let title = format!(
         "{}: w = {:.3}, β = {:.3}, ζ = {:.4}",
         match steady.class {
@@ -210,34 +273,69 @@ fn plot(steady: &SteadyState, path: &std::path::Path) -> Result<()> {
         params.beta,
         params.zeta
     );
+    let volts_label = |dimensionless: &'static str, physical: &'static str| {
+        if record.is_some() {
+            physical
+        } else {
+            dimensionless
+        }
+    };
+    let mut series = vec![Quantity::Drive.series(volts_label("drive", "drive U"), drive)];
+    let mut xy_series = vec![Quantity::Response.series(
+        "",
+        steady
+            .xy()
+            .into_iter()
+            .map(|(x, y)| (x * drive_volts, y * volts))
+            .collect(),
+    )];
+    if let Some((r, aligned)) = &aligned {
+        // The record under the computed u_C.
+        series.extend(crate::measured::record_series(aligned, &r.file));
+        xy_series.insert(
+            0,
+            Quantity::Measured.series(
+                r.file.clone(),
+                r.drive_values
+                    .iter()
+                    .copied()
+                    .zip(r.response.iter().copied())
+                    .collect(),
+            ),
+        );
+        xy_series[1].label = "computed".into();
+    }
+    series.push(Quantity::Response.series(volts_label("y", "u_C"), trace));
+    series.push(Quantity::Stops.series("stops", stops));
     let time = Panel {
         title,
         x_label: "drive periods".into(),
-        y_label: "y, drive".into(),
-        series: vec![
-            Quantity::Drive.series("drive", drive),
-            Quantity::Response.series("y", trace),
-            Quantity::Stops.series("stops", stops),
-        ],
+        y_label: volts_label("y, drive", "u_C, U (V)").into(),
+        series,
         legend: Some(Legend::UpperRight),
         ..Default::default()
     };
     let xy = Panel {
-        title: "X-Y: y against the drive".into(),
-        x_label: "drive β cos(wτ + φ)".into(),
-        y_label: "y".into(),
-        series: vec![Quantity::Response.series("", steady.xy())],
+        title: volts_label("X-Y: y against the drive", "X-Y: u_C against the drive U").into(),
+        x_label: volts_label("drive β cos(wτ + φ)", "drive U (V)").into(),
+        y_label: volts_label("y", "u_C (V)").into(),
+        series: xy_series,
+        legend: record.map(|_| Legend::UpperLeft),
         ..Default::default()
     };
     let bars: Vec<(f64, f64)> = steady
         .spectrum
         .iter()
-        .flat_map(|s| s.harmonics.iter().map(|h| (h.order as f64, h.amplitude)))
+        .flat_map(|s| {
+            s.harmonics
+                .iter()
+                .map(|h| (h.order as f64, h.amplitude * volts))
+        })
         .collect();
     let spectrum = Panel {
-        title: "harmonics of y".into(),
+        title: volts_label("harmonics of y", "harmonics of u_C").into(),
         x_label: "k (multiple of the drive frequency)".into(),
-        y_label: "A_k".into(),
+        y_label: volts_label("A_k", "A_k (V)").into(),
         series: vec![Series::new(
             "",
             bars,

@@ -142,3 +142,289 @@ fn fit_refuses_bad_input_in_one_line() {
     let (d, out) = run(&["fit", "--preset", "paper", "--data", "missing.csv"]);
     assert_usage_error(d.path(), &out, "missing.csv");
 }
+
+/// Width and height of a PNG, from its header (after checking its signature).
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    let be = |k: usize| u32::from_be_bytes(bytes[k..k + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// Pixels of exactly `color` in a PNG.
+fn count_color(bytes: &[u8], color: [u8; 3]) -> usize {
+    let decoder = png::Decoder::new(bytes);
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let step = info.color_type.samples();
+    buf[..info.buffer_size()]
+        .chunks(step)
+        .filter(|p| p[..3] == color)
+        .count()
+}
+
+/// The files of a directory, sorted.
+fn files(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// A table of amplitudes of the truth at U = 1.2 V: its steady amplitude from rest at seven
+/// frequencies, 1 % above.
+fn gain_table() -> String {
+    let f0 = truth().scales().unwrap().f0();
+    let mut text = "freq_Hz,U_V,response_V\n".to_string();
+    for k in 0..7 {
+        let f = f0 * (0.5 + k as f64 / 6.0);
+        let e = truth()
+            .with_frequency(f)
+            .and_then(|e| e.with_amplitude(1.2))
+            .unwrap();
+        let a = e.steady().unwrap().amplitude() * e.scales().unwrap().position;
+        text += &format!("{f},1.2,{}\n", 1.01 * a);
+    }
+    text
+}
+
+#[test]
+fn fit_plots_records_and_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
+    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    std::fs::write(dir.path().join("gain.csv"), gain_table()).unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit", "--preset", "paper", "--data", "a.csv", "--data", "b.csv", "--plot", "fit.png",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let png = std::fs::read(dir.path().join("fit.png")).unwrap();
+    // Per record a panel of 380 px and its residual's of 200 px, 1100 px wide.
+    assert_eq!(png_size(&png), (1100, 2 * (380 + 200)));
+    // The fitted model (the response's blue) and the measured points (black) are drawn.
+    assert!(count_color(&png, [0, 114, 178]) > 2000);
+    assert!(count_color(&png, [0, 0, 0]) > 2000);
+    // SVG too, of a fit per record.
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit",
+            "--preset",
+            "paper",
+            "--data",
+            "b.csv",
+            "--per-record",
+            "--plot",
+            "fit.svg",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(dir.path().join("fit.svg")).unwrap();
+    assert!(
+        svg.starts_with("<svg") && svg.contains("b.csv"),
+        "{}",
+        &svg[..200]
+    );
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit",
+            "--preset",
+            "paper",
+            "--gain-table",
+            "gain.csv",
+            "--plot",
+            "gain.png",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let png = std::fs::read(dir.path().join("gain.png")).unwrap();
+    assert_eq!(png_size(&png), (1100, 540));
+    // The paper's curve (reddish purple) and the fitted curve (blue) are drawn.
+    assert!(count_color(&png, [204, 121, 167]) > 200);
+    assert!(count_color(&png, [0, 114, 178]) > 200);
+    assert_eq!(
+        files(dir.path()),
+        ["a.csv", "b.csv", "fit.png", "fit.svg", "gain.csv", "gain.png"]
+    );
+}
+
+#[test]
+fn fit_refuses_a_bad_plot_path_and_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    std::fs::write(
+        dir.path().join("bad.csv"),
+        "x-axis,1,2\nsecond,Volt,Volt\n0,1\n",
+    )
+    .unwrap();
+    let refuse = |args: &[&str], needle: &str| {
+        let out = run_in(dir.path(), args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "'{needle}' not in {err}");
+        assert!(out.stdout.is_empty());
+        assert_eq!(files(dir.path()), ["b.csv", "bad.csv"]);
+    };
+    let fit = ["fit", "--preset", "paper", "--data"];
+    let with =
+        |rest: &[&'static str]| -> Vec<&'static str> { fit.iter().chain(rest).copied().collect() };
+    refuse(&with(&["b.csv", "--plot", "fit.txt"]), "fit.txt");
+    refuse(
+        &with(&["b.csv", "--plot", "no/such/dir/fit.png"]),
+        "no/such/dir",
+    );
+    // A bad record after the plot's path was accepted: no plot, no temporary file.
+    refuse(&with(&["bad.csv", "--plot", "fit.png"]), "bad.csv");
+}
+
+#[test]
+fn simulate_and_steady_draw_a_record_beside_the_trace() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
+    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    let circuit = ["--preset", "paper", "--resistance", "80", "--ut", "0.6"];
+    let with = |rest: &[&'static str]| -> Vec<&'static str> {
+        circuit.iter().chain(rest).copied().collect()
+    };
+    // Steady: a Keysight record, in the cycle and the X-Y picture, in volts.
+    let mut args = vec!["steady"];
+    args.extend(with(&[
+        "--w",
+        "0.95",
+        "--beta",
+        "2.14",
+        "--data",
+        "b.csv",
+        "--plot",
+        "steady.png",
+    ]));
+    let out = run_in(dir.path(), &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let png = std::fs::read(dir.path().join("steady.png")).unwrap();
+    assert_eq!(png_size(&png), (3 * 560, 440));
+    assert!(
+        count_color(&png, [0, 0, 0]) > 2000,
+        "the record's black dots"
+    );
+    // Simulate: a Rigol record at the end of the run; driven as the model, so no note.
+    let mut args = vec!["simulate"];
+    args.extend(with(&[
+        "--w",
+        "0.29",
+        "--beta",
+        "2.6",
+        "--periods",
+        "8",
+        "--data",
+        "a.csv",
+        "--out",
+        "t.csv",
+        "--plot",
+        "simulate.png",
+    ]));
+    let out = run_in(dir.path(), &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("note"), "{}", stderr(&out));
+    let png = std::fs::read(dir.path().join("simulate.png")).unwrap();
+    assert_eq!(png_size(&png), (1000, 480));
+    assert!(
+        count_color(&png, [0, 0, 0]) > 2000,
+        "the record's black dots"
+    );
+    // Driven otherwise than the model: a note says so.
+    let mut args = vec!["simulate"];
+    args.extend(with(&[
+        "--w",
+        "0.5",
+        "--beta",
+        "2.6",
+        "--periods",
+        "8",
+        "--data",
+        "a.csv",
+        "--out",
+        "t2.csv",
+        "--plot",
+        "simulate2.png",
+    ]));
+    let out = run_in(dir.path(), &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("note: a.csv was driven at"),
+        "{}",
+        stderr(&out)
+    );
+    let before = files(dir.path());
+    // Refused in one line, exit status 2, no file written: a mechanical or dimensionless
+    // model, no plot, a bad record.
+    for (args, needle) in [
+        (
+            vec![
+                "simulate",
+                "--mass",
+                "1",
+                "--stiffness",
+                "100",
+                "--damping",
+                "0.1",
+                "--friction",
+                "1",
+                "--w",
+                "0.9",
+                "--beta",
+                "2",
+                "--data",
+                "a.csv",
+                "--out",
+                "m.csv",
+                "--plot",
+                "m.png",
+            ],
+            "mechanical oscillator",
+        ),
+        (
+            vec![
+                "steady", "--w", "0.9", "--beta", "2", "--data", "a.csv", "--plot", "d.png",
+            ],
+            "dimensionless",
+        ),
+        (
+            vec![
+                "steady", "--preset", "paper", "--w", "0.9", "--beta", "2", "--data", "a.csv",
+            ],
+            "add --plot",
+        ),
+        (
+            vec![
+                "simulate",
+                "--preset",
+                "paper",
+                "--w",
+                "0.9",
+                "--beta",
+                "2",
+                "--data",
+                "missing.csv",
+                "--out",
+                "x.csv",
+                "--plot",
+                "x.png",
+            ],
+            "missing.csv",
+        ),
+    ] {
+        let out = run_in(dir.path(), &args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "'{needle}' not in {err}");
+        assert_eq!(files(dir.path()), before);
+    }
+}

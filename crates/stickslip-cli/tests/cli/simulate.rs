@@ -181,3 +181,25 @@ fn config_file_with_flag_override() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("LL"));
 }
+
+#[cfg(unix)]
+#[test]
+fn out_to_a_device_writes_in_place() {
+    // `--out /dev/null` must not replace the device by a renamed file.
+    let (dir, out) = run(&[
+        "simulate",
+        "--w",
+        "0.7",
+        "--beta",
+        "1.2",
+        "--periods",
+        "1",
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    use std::os::unix::fs::FileTypeExt;
+    let kind = std::fs::metadata("/dev/null").unwrap().file_type();
+    assert!(kind.is_char_device(), "/dev/null is no longer a device");
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+}
