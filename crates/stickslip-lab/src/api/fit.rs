@@ -217,6 +217,11 @@ fn wrap(phase: f64) -> f64 {
 /// their field, a stop by the budget the time limit's 503, a model that cannot be computed
 /// the library's status with the fit's words.
 fn fit_error(err: FitError, budget: &Budget) -> ApiError {
+    // Past the time limit, or with nobody waiting, whatever failed failed because the token
+    // stopped the solvers (a stopped evaluation inside a step can read as a failed model).
+    if budget.spent() {
+        return stopped(budget);
+    }
     let message = err.to_string();
     match err {
         FitError::Measure(_) | FitError::TooFewSamples { .. } | FitError::NoData => {
