@@ -61,7 +61,7 @@ export function drawRefsXY(g, box, xOf) {
 export function drawRefLabel(g, box, y) {
   if (!showing()) return;
   const r = state.record;
-  label(g, `REF1 ${r.drive_channel}, REF2 ${r.response_channel}: ${r.file} (dashed)`, box.x0 + SCREEN.divX * box.dx, y, REF_COLORS.ref2, 'right');
+  label(g, `REF1: ${r.drive_channel}, REF2: ${r.response_channel} of ${r.file} (dashed)`, box.x0 + SCREEN.divX * box.dx, y, REF_COLORS.ref2, 'right');
 }
 
 // ---------------------------------------------------------------- reading a record
