@@ -560,7 +560,16 @@ test('issue 20: a scope record dropped on the screen is drawn as REF1 and REF2, 
   stickslip(['simulate', '--inductance', '11.5m', '--capacitance', '20n', '--resistance', '80', '--ut', '0.6', '--rd', '3', '--freq', '5.25k', '--amplitude', '1.5', '--periods', '40', '--samples-per-period', '400', '--out', simFile]);
   const sim = parseCsv(readFileSync(simFile, 'utf8'));
   const col = (name) => sim.header.indexOf(name);
-  const rows = sim.rows.slice(37 * 400, 40 * 400).map((r) => `${r[col('t_s')]},${r[col('u_V')]},${r[col('uc_V')]}`);
+  const kept = sim.rows.slice(37 * 400, 40 * 400);
+  const rows = kept.map((r) => `${r[col('t_s')]},${r[col('u_V')]},${r[col('uc_V')]}`);
+  // The same record as a Tektronix export: a file per channel, its header in the first columns.
+  const tektronix = (k, column) =>
+    kept
+      .map((r, i) => {
+        const [key, value] = [['Record Length', '1.200000e+03'], ['Sample Interval', String(r[col('t_s')] - kept[0][col('t_s')] || 4.7619e-7)], ['Trigger Point', '0'], ['', ''], ['Source', `CH${k}`], ['Vertical Units', 'V']][i] || ['', ''];
+        return `${key},${value},,${r[col('t_s')]},${r[col(column)]},`;
+      })
+      .join('\r\n');
   const text = `t_s,u_V,uc_V\n${rows.join('\n')}\n`;
   try {
     await page.selectOption('select[name="system"]', 'pwl');
@@ -612,6 +621,14 @@ test('issue 20: a scope record dropped on the screen is drawn as REF1 and REF2, 
     await ready();
     const query = new URLSearchParams(await shownQuery());
     assert.ok(Math.abs(Number(query.get('resistance')) / truth.resistance - 1) < 0.01, await shownQuery());
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    // A Tektronix export: both channels' files picked at once, merged by the lab.
+    writeFileSync(join(dir, 'ch1.csv'), tektronix(1, 'u_V'));
+    writeFileSync(join(dir, 'ch2.csv'), tektronix(2, 'uc_V'));
+    await page.setInputFiles('input[name="record-file"]', [join(dir, 'ch1.csv'), join(dir, 'ch2.csv')]);
+    await page.waitForFunction(() => /merged/.test(document.querySelector('[data-record="status"]').textContent), null, { timeout: 30000 });
+    assert.match(await page.$eval('[data-record="status"]', (e) => e.textContent), /^ch1\.csv\+ch2\.csv: merged, 1200 samples, 5\.25 kHz, 1\.5 V/);
+    await ready();
     assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
     // Picked with the button instead: a garbage row is refused with the file and the line,
     // beside the record, and the record on the screen stays.

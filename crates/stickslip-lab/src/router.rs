@@ -448,9 +448,9 @@ async fn record(
     body: Body,
 ) -> Response {
     match api::RecordRequest::parse(raw.as_deref()) {
-        Ok(request) => match api::upload::read_body(&headers, body).await {
-            Ok(text) => {
-                let request = request.with_text(text);
+        Ok(request) => match api::upload::read_upload(&headers, body).await {
+            Ok(upload) => {
+                let request = request.with_upload(upload);
                 lab.compute(client, move |b| request.run(b)).await
             }
             Err(err) => err.into_response(),
@@ -468,9 +468,9 @@ async fn fit(
 ) -> Response {
     // The keys first: a bad key costs no upload.
     match api::FitRequest::parse(raw.as_deref()) {
-        Ok(request) => match api::upload::read_body(&headers, body).await {
-            Ok(text) => {
-                let request = request.with_text(text);
+        Ok(request) => match api::upload::read_upload(&headers, body).await {
+            Ok(upload) => {
+                let request = request.with_upload(upload);
                 lab.compute(client, move |b| request.run(b)).await
             }
             Err(err) => err.into_response(),

@@ -1240,6 +1240,131 @@ async fn bad_records_and_keys_are_400s_naming_the_field_and_line() {
         .contains("POST at /api/record and /api/fit"));
 }
 
+/// A Rigol record's channel `k` (1 or 2) as a Tektronix file (one file per channel).
+fn tektronix_file(rigol: &str, k: usize) -> String {
+    let record = stickslip::measure::read_scope(rigol, "r.csv").unwrap();
+    let header = [
+        ("Record Length", format!("{:.6e}", record.len())),
+        ("Sample Interval", format!("{:.6e}", record.sample_interval)),
+        ("Trigger Point", "6.000000000000e+02".into()),
+        ("", String::new()),
+        ("Source", format!("CH{k}")),
+        ("Vertical Units", "V".into()),
+    ];
+    let mut text = String::new();
+    for (i, (t, v)) in record
+        .time
+        .iter()
+        .zip(&record.channels[k - 1].values)
+        .enumerate()
+    {
+        let (key, value) = header.get(i).cloned().unwrap_or(("", String::new()));
+        text += &format!("{key},{value},,{t:.9e},{v:.6e},\r\n");
+    }
+    text
+}
+
+/// POST a JSON body of files.
+async fn post_files(uri: &str, files: &[(&str, &str)]) -> (StatusCode, Value) {
+    let body = serde_json::json!({
+        "files": files.iter().map(|(n, t)| serde_json::json!({"name": n, "text": t})).collect::<Vec<_>>()
+    });
+    let response = router(lab(Duration::from_secs(120)))
+        .oneshot(
+            Request::post(uri)
+                .header("content-type", "application/json")
+                .body(Body::from(body.to_string()))
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    let status = response.status();
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap();
+    (status, serde_json::from_slice(&body).unwrap())
+}
+
+#[tokio::test]
+async fn a_tektronix_export_is_sent_as_its_files_and_merged() {
+    let rigol = rigol_record_bits(0.5, 2.5, 0.3, 12);
+    let (c1, c2) = (tektronix_file(&rigol, 1), tektronix_file(&rigol, 2));
+    let files = [("c1.csv", c1.as_str()), ("c2.csv", c2.as_str())];
+    let (status, answer) = post_files("/api/record", &files).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    assert_eq!(answer["file"], "c1.csv+c2.csv");
+    assert_eq!(answer["format"], "merged");
+    assert_eq!(answer["drive_channel"], "CH1");
+    assert_eq!(answer["response_channel"], "CH2");
+    // The fit of the merged files is the library's fit of the same files merged, and finds
+    // the circuit.
+    let (status, answer) = post_files("/api/fit?preset=paper", &files).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let merged = stickslip::measure::Record::merge(vec![
+        stickslip::measure::read_scope(&c1, "c1.csv").unwrap(),
+        stickslip::measure::read_scope(&c2, "c2.csv").unwrap(),
+    ])
+    .unwrap();
+    let m = stickslip::measure::Measurement::new(&merged, None, None).unwrap();
+    let report = stickslip::fit::fit_records(
+        &spec(Some(Preset::Paper), None, &[]),
+        &[m],
+        &[
+            stickslip::fit::FitParameter::Resistance,
+            stickslip::fit::FitParameter::Ut,
+        ],
+        &stickslip::fit::FitOptions::default(),
+    )
+    .unwrap();
+    same_keys(&answer, &serde_json::to_value(report.to_json()).unwrap());
+    let r = answer["parameters"]["resistance"]["value"]
+        .as_f64()
+        .unwrap();
+    assert!((r / TRUE_R - 1.0).abs() < 0.01, "R = {r}");
+    // Files that do not share their times, bad JSON, too many files: 400s about the record.
+    let short = c2.lines().take(600).collect::<Vec<_>>().join("\n");
+    let (status, answer) = post_files("/api/record", &[("c1.csv", &c1), ("c2.csv", &short)]).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(
+        answer["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("c2.csv: 600 samples"),
+        "{answer}"
+    );
+    assert_eq!(answer["field"], "record");
+    let (status, answer) = post_files("/api/record", &[]).await;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(
+        answer["error"]
+            .as_str()
+            .unwrap()
+            .contains("send 1 to 4 files"),
+        "{answer}"
+    );
+    let response = router(lab(Duration::from_secs(60)))
+        .oneshot(
+            Request::post("/api/record")
+                .header("content-type", "application/json")
+                .body(Body::from(r#"{"files": [{"name": "a", "txt": "b"}]}"#))
+                .unwrap(),
+        )
+        .await
+        .unwrap();
+    assert_eq!(response.status(), StatusCode::BAD_REQUEST);
+    let body = axum::body::to_bytes(response.into_body(), usize::MAX)
+        .await
+        .unwrap();
+    let answer: Value = serde_json::from_slice(&body).unwrap();
+    assert!(
+        answer["error"]
+            .as_str()
+            .unwrap()
+            .contains("the JSON body must be"),
+        "{answer}"
+    );
+}
+
 #[tokio::test]
 async fn records_over_the_upload_cap_are_refused_naming_it() {
     let cap = stickslip::limits::Caps::shared_server().upload_bytes;

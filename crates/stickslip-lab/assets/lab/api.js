@@ -18,10 +18,10 @@ export const CLIENT_ID = Array.from(crypto.getRandomValues(new Uint8Array(12)), 
 export async function api(name, params, signal, upload = null) {
   const init = { signal, headers: { 'X-Lab-Client': CLIENT_ID } };
   if (upload !== null) {
-    // POST /api/record and /api/fit: the body is a scope record's CSV text.
+    // POST /api/record and /api/fit: { body, type }, a scope record's CSV text or JSON files.
     init.method = 'POST';
-    init.headers['Content-Type'] = 'text/csv; charset=utf-8';
-    init.body = upload;
+    init.headers['Content-Type'] = upload.type;
+    init.body = upload.body;
   }
   const response = await fetch(`/api/${name}?${params}`, init);
   let body = null;

@@ -2,7 +2,8 @@
 // no CSV reader of its own), drawn as the reference traces REF1 (the drive) and REF2 (u_C)
 // beside the computed ones, and the circuit fitted to it (POST /api/fit). The file's text
 // stays in the page: it is sent to the lab when the file is dropped (to be read) and when
-// Fit is pressed, and the lab keeps nothing.
+// Fit is pressed, and the lab keeps nothing. Several files dropped at once are the channels of
+// one record (a Tektronix export writes a file per channel), merged by the lab.
 
 import { $, field, num, si, siText } from './util.js';
 import { latest, slots, isAbort } from './api.js';
@@ -71,27 +72,40 @@ function recordStatus(text, kind) {
   out.dataset.state = kind;
 }
 
-/** Read `file` (a File) on the lab's readers and show it; the generator takes its drive. */
-export async function loadRecord(file, hooks) {
+/** Read `files` (one File, or a File per channel of the same record, as a Tektronix scope
+ * writes them) on the lab's readers and show the record; the generator takes its drive. */
+export async function loadRecord(files, hooks) {
   clearErrors($('.toolbar.record'));
+  files = Array.from(files);
+  const names = files.map((f) => f.name).join('+');
+  const size = files.reduce((sum, f) => sum + f.size, 0);
   const cap = state.caps && state.caps.upload_bytes;
-  if (cap && file.size > cap) {
-    recordStatus(`${file.name} is ${file.size} bytes: over the lab's cap of ${num(cap / 1048576, 4)} MB (${cap} bytes); export fewer samples`, 'error');
+  if (cap && size > cap) {
+    recordStatus(`${names} is ${size} bytes: over the lab's cap of ${num(cap / 1048576, 4)} MB (${cap} bytes); export fewer samples`, 'error');
     return;
   }
-  recordStatus(`reading ${file.name}…`, 'computing');
-  let text;
+  if (files.length > 4) {
+    recordStatus(`${files.length} files: drop one record (one file, or one file per channel, at most 4)`, 'error');
+    return;
+  }
+  recordStatus(`reading ${names}…`, 'computing');
+  let texts;
   try {
-    text = await file.text();
+    texts = await Promise.all(files.map((f) => f.text()));
   } catch (e) {
-    recordStatus(`${file.name}: cannot be read (${e.message})`, 'error');
+    recordStatus(`${names}: cannot be read (${e.message})`, 'error');
     return;
   }
+  // One file: its text; several: JSON with each file's name and text (merged by the lab).
+  const upload =
+    files.length === 1
+      ? { body: texts[0], type: 'text/csv; charset=utf-8' }
+      : { body: JSON.stringify({ files: files.map((f, i) => ({ name: f.name, text: texts[i] })) }), type: 'application/json' };
   const p = new URLSearchParams();
-  p.set('file', file.name.slice(0, 120) || 'record.csv');
+  if (files.length === 1) p.set('file', files[0].name.slice(0, 120) || 'record.csv');
   let r;
   try {
-    r = await latest('record', 'record', p, text);
+    r = await latest('record', 'record', p, upload);
   } catch (e) {
     if (isAbort(e)) return;
     recordStatus('', 'error');
@@ -99,7 +113,8 @@ export async function loadRecord(file, hooks) {
     return;
   }
   state.record = r;
-  state.recordText = text;
+  state.recordUpload = upload;
+  state.recordFileKey = files.length === 1 ? p.get('file') : null;
   state.fit = null;
   $('[data-fit="table"]').hidden = true;
   const d = r.drive;
@@ -125,7 +140,7 @@ export function clearRecord(hooks) {
   clearErrors($('.toolbar.record'));
   clearErrors($('#fit'));
   state.record = null;
-  state.recordText = null;
+  state.recordUpload = null;
   state.fit = null;
   if (slots.fit) slots.fit.abort();
   $('[data-fit="table"]').hidden = true;
@@ -160,12 +175,12 @@ export async function runFit(hooks) {
   const p = modelParams({ frequency: false, amplitude: false });
   p.delete('phi');
   p.set('free', free.join(','));
-  p.set('file', state.record.file);
+  if (state.recordFileKey) p.set('file', state.recordFileKey);
   out.dataset.state = 'computing';
   out.textContent = `fitting ${free.join(', ')} to ${state.record.file}…`;
   let a;
   try {
-    a = await latest('fit', 'fit', p, state.recordText);
+    a = await latest('fit', 'fit', p, state.recordUpload);
   } catch (e) {
     if (isAbort(e)) return;
     out.dataset.state = 'error';
@@ -248,13 +263,12 @@ export function wireRecord(hooks) {
   screen.addEventListener('drop', (e) => {
     e.preventDefault();
     over(false);
-    const file = e.dataTransfer && e.dataTransfer.files[0];
-    if (file) loadRecord(file, hooks);
+    const files = e.dataTransfer && e.dataTransfer.files;
+    if (files && files.length) loadRecord(files, hooks);
   });
   const input = field('record-file');
   input.addEventListener('change', () => {
-    const file = input.files[0];
-    if (file) loadRecord(file, hooks).finally(() => (input.value = ''));
+    if (input.files.length) loadRecord(input.files, hooks).finally(() => (input.value = ''));
   });
   $('[data-action="clear-record"]').addEventListener('click', () => clearRecord(hooks));
   $('[data-action="fit"]').addEventListener('click', () => runFit(hooks));

@@ -4,7 +4,7 @@
 //! fitted model over two drive periods for the plot.
 
 use super::answer::Columns;
-use super::upload::{RecordKeys, RECORD_FIELD, RECORD_KEYS};
+use super::upload::{RecordKeys, Upload, RECORD_FIELD, RECORD_KEYS};
 use crate::limit::Budget;
 use crate::query::{api_name, ApiError, Query};
 use axum::http::StatusCode;
@@ -21,7 +21,7 @@ pub struct FitRequest {
     experiment: Experiment,
     free: Vec<FitParameter>,
     keys: RecordKeys,
-    text: String,
+    upload: Upload,
 }
 
 /// The answer of `/api/fit`: every key of `stickslip fit --json` for the same record and
@@ -72,7 +72,7 @@ impl FitRequest {
     /// `free` (comma-separated fit parameters: `resistance`, `ut`, `rd`, `diode-is`,
     /// `diode-n`, `diode-rs`, `inductance`, `capacitance`, `mu-s`; default
     /// [`default_free`]), `file`, `drive`, `response` ([`RecordKeys`]). The body: the CSV
-    /// text, given by [`Self::with_text`].
+    /// text, given by [`Self::with_upload`].
     ///
     /// # Errors
     /// A 400 naming the key at fault.
@@ -140,13 +140,13 @@ impl FitRequest {
             experiment,
             free,
             keys,
-            text: String::new(),
+            upload: Upload::None,
         })
     }
 
-    /// The request with the record's text (the body, read after the keys were checked).
-    pub fn with_text(mut self, text: String) -> Self {
-        self.text = text;
+    /// The request with the record (the body, read after the keys were checked).
+    pub fn with_upload(mut self, upload: Upload) -> Self {
+        self.upload = upload;
         self
     }
 
@@ -157,7 +157,7 @@ impl FitRequest {
     /// The reader's refusal (400 naming the file and line), the fit's (400), the time limit
     /// (503), a model that cannot be computed (the library's status).
     pub fn run(self, budget: &Arc<Budget>) -> Result<FitAnswer, ApiError> {
-        let (_, m) = self.keys.read(&self.text)?;
+        let (_, m) = self.keys.read(&self.upload)?;
         let e = self.experiment.with_cancel(budget.cancel().clone());
         let report = fit_records(
             &e,

@@ -1,7 +1,7 @@
 //! `POST /api/record`: a scope record read by the library's readers, so that the page draws
 //! it as reference traces without a reader of its own.
 
-use super::upload::{RecordKeys, RECORD_KEYS};
+use super::upload::{RecordKeys, Upload, RECORD_KEYS};
 use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
@@ -11,7 +11,7 @@ use std::sync::Arc;
 #[derive(Debug)]
 pub struct RecordRequest {
     keys: RecordKeys,
-    text: String,
+    upload: Upload,
 }
 
 /// A channel of a record.
@@ -85,7 +85,7 @@ pub struct RecordAnswer {
 
 impl RecordRequest {
     /// Keys: `file`, `drive`, `response` (see [`RecordKeys`]); the body: the CSV text, given by
-    /// [`Self::with_text`].
+    /// [`Self::with_upload`].
     ///
     /// # Errors
     /// A 400 naming the key at fault.
@@ -95,13 +95,13 @@ impl RecordRequest {
         q.finish(&RECORD_KEYS)?;
         Ok(Self {
             keys,
-            text: String::new(),
+            upload: Upload::None,
         })
     }
 
-    /// The request with the record's text (the body, read after the keys were checked).
-    pub fn with_text(mut self, text: String) -> Self {
-        self.text = text;
+    /// The request with the record (the body, read after the keys were checked).
+    pub fn with_upload(mut self, upload: Upload) -> Self {
+        self.upload = upload;
         self
     }
 
@@ -110,7 +110,7 @@ impl RecordRequest {
     /// # Errors
     /// The reader's refusal, a 400 naming the file and the line.
     pub fn run(self, _budget: &Arc<Budget>) -> Result<RecordAnswer, ApiError> {
-        let (record, m) = self.keys.read(&self.text)?;
+        let (record, m) = self.keys.read(&self.upload)?;
         let t0 = record.time[0];
         Ok(RecordAnswer {
             file: record.file.clone(),

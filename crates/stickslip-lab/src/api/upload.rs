@@ -1,12 +1,15 @@
 //! What the endpoints that take a measurement share (`POST /api/record`, `POST /api/fit`):
-//! the body (a scope record's CSV text, at most [`Caps::upload_bytes`](stickslip::limits::Caps)
-//! bytes), its name and channels as query keys, and the library's readers
-//! ([`stickslip::measure`]): the lab reads no file, only the text the page sends.
+//! the body (at most [`Caps::upload_bytes`](stickslip::limits::Caps) bytes: a scope record's
+//! CSV text, or JSON `{"files": [{"name", "text"}, …]}` with the texts of several files on the
+//! same times, such as a Tektronix export's file per channel), its name and channels as query
+//! keys, and the library's readers ([`stickslip::measure`]): the lab reads no file, only the
+//! text the page sends.
 
 use super::caps::CAPS;
 use crate::query::{ApiError, Query};
 use axum::body::{Body, HttpBody};
 use axum::http::{header, HeaderMap, StatusCode};
+use serde::Deserialize;
 use std::pin::Pin;
 use std::time::Duration;
 use stickslip::measure::{read_scope, MeasureError, Measurement, Record};
@@ -33,6 +36,93 @@ fn too_large(size: Option<u64>) -> ApiError {
             cap_text()
         ),
     )
+}
+
+/// Most files of one JSON body.
+pub const MAX_FILES: usize = 4;
+
+/// What the page sends: one CSV text, or the texts of several files to merge.
+#[derive(Debug, Clone, Default)]
+pub enum Upload {
+    /// Nothing yet (the body is read after the keys were checked).
+    #[default]
+    None,
+    /// One record's CSV text (named by the key `file`).
+    Csv(String),
+    /// Files on the same times, merged channel after channel ([`Record::merge`]): name, text.
+    Files(Vec<(String, String)>),
+}
+
+/// A JSON body: `{"files": [{"name": "ch1.csv", "text": "…"}, …]}`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FilesBody {
+    files: Vec<FileText>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileText {
+    name: String,
+    text: String,
+}
+
+/// A file's name as messages show it: at most 120 characters, no control characters.
+fn clean_name(name: &str) -> String {
+    let name: String = name
+        .trim()
+        .chars()
+        .take(120)
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    if name.is_empty() {
+        "record.csv".to_string()
+    } else {
+        name
+    }
+}
+
+/// The body as an [`Upload`]: JSON files when its `Content-Type` is `application/json`, else
+/// one CSV text ([`read_body`]).
+///
+/// # Errors
+/// Those of [`read_body`]; JSON that is not `{"files": [{"name", "text"}, …]}` with 1 to
+/// [`MAX_FILES`] files (a 400 about the record).
+pub async fn read_upload(headers: &HeaderMap, body: Body) -> Result<Upload, ApiError> {
+    let json = headers
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .is_some_and(|v| {
+            v.trim()
+                .to_ascii_lowercase()
+                .starts_with("application/json")
+        });
+    let text = read_body(headers, body).await?;
+    if !json {
+        return Ok(Upload::Csv(text));
+    }
+    let files: FilesBody = serde_json::from_str(&text).map_err(|e| {
+        ApiError::field(
+            RECORD_FIELD,
+            format!("the JSON body must be {{\"files\": [{{\"name\": …, \"text\": …}}, …]}}: {e}"),
+        )
+    })?;
+    if files.files.is_empty() || files.files.len() > MAX_FILES {
+        return Err(ApiError::field(
+            RECORD_FIELD,
+            format!(
+                "{} files: send 1 to {MAX_FILES} files of the same record",
+                files.files.len()
+            ),
+        ));
+    }
+    Ok(Upload::Files(
+        files
+            .files
+            .into_iter()
+            .map(|f| (clean_name(&f.name), f.text))
+            .collect(),
+    ))
 }
 
 /// The body as text: at most the cap (a 413 naming it, from the `Content-Length` header
@@ -142,14 +232,30 @@ impl RecordKeys {
         })
     }
 
-    /// Read `text` as a scope export and prepare it for fitting, as `stickslip fit --data`
-    /// does: a 400 with the reader's one line (file and line) naming the field at fault
+    /// Read the upload as a scope export (several files merged, as `stickslip fit --data
+    /// a.csv+b.csv` merges them) and prepare it for fitting, as `stickslip fit --data` does: a 400 with the reader's one line (file and line) naming the field at fault
     /// (`drive` or `response` for a channel that is not there, else `record`).
     ///
     /// # Errors
     /// As above.
-    pub fn read(&self, text: &str) -> Result<(Record, Measurement), ApiError> {
-        let record = read_scope(text, &self.file).map_err(|e| measure_error(&e))?;
+    pub fn read(&self, upload: &Upload) -> Result<(Record, Measurement), ApiError> {
+        let record = match upload {
+            Upload::None => {
+                return Err(ApiError::field(
+                    RECORD_FIELD,
+                    "no record: the request's body must be the scope record's CSV text",
+                ))
+            }
+            Upload::Csv(text) => read_scope(text, &self.file).map_err(|e| measure_error(&e))?,
+            Upload::Files(files) => {
+                let parts = files
+                    .iter()
+                    .map(|(name, text)| read_scope(text, name))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|e| measure_error(&e))?;
+                Record::merge(parts).map_err(|e| measure_error(&e))?
+            }
+        };
         for (key, name) in [("drive", &self.drive), ("response", &self.response)] {
             if let Some(name) = name {
                 record
