@@ -5,7 +5,9 @@
 // scripts/test runs it. Set LAB_LATENCY_OUT=file.json to keep the slider latencies.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { requireTools, startLab, startBrowser, stickslip } from './harness.mjs';
 
 let lab;
@@ -545,6 +547,112 @@ test('issue 21 (6): at 800 × 900 the knobs, the scope and the gain are on scree
     } finally {
       await small.close();
     }
+  }
+});
+
+test('issue 20: a scope record dropped on the screen is drawn as REF1 and REF2, and Fit recovers its circuit', async () => {
+  // The record: `stickslip simulate` of a circuit other than the paper's (R = 80 Ω,
+  // U_t = 0.6 V), in volts, the last 3 of 40 drive periods from rest (the steady state), as a
+  // plain CSV with a time column.
+  const truth = { resistance: 80, ut: 0.6 };
+  const dir = mkdtempSync(join(tmpdir(), 'stickslip-lab-record-'));
+  const simFile = join(dir, 'sim.csv');
+  stickslip(['simulate', '--inductance', '11.5m', '--capacitance', '20n', '--resistance', '80', '--ut', '0.6', '--rd', '3', '--freq', '5.25k', '--amplitude', '1.5', '--periods', '40', '--samples-per-period', '400', '--out', simFile]);
+  const sim = parseCsv(readFileSync(simFile, 'utf8'));
+  const col = (name) => sim.header.indexOf(name);
+  const kept = sim.rows.slice(37 * 400, 40 * 400);
+  const rows = kept.map((r) => `${r[col('t_s')]},${r[col('u_V')]},${r[col('uc_V')]}`);
+  // The same record as a Tektronix export: a file per channel, its header in the first columns.
+  const tektronix = (k, column) =>
+    kept
+      .map((r, i) => {
+        const [key, value] = [['Record Length', '1.200000e+03'], ['Sample Interval', String(r[col('t_s')] - kept[0][col('t_s')] || 4.7619e-7)], ['Trigger Point', '0'], ['', ''], ['Source', `CH${k}`], ['Vertical Units', 'V']][i] || ['', ''];
+        return `${key},${value},,${r[col('t_s')]},${r[col(column)]},`;
+      })
+      .join('\r\n');
+  const text = `t_s,u_V,uc_V\n${rows.join('\n')}\n`;
+  try {
+    await page.selectOption('select[name="system"]', 'pwl');
+    await ready();
+    await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+    await ready();
+    await page.check('input[name="mode"][value="yt"]');
+    await page.check('input[name="ch1-on"]');
+    await page.check('input[name="ch2-on"]');
+    // Dropped on the screen (a real drop event carrying the file).
+    const transfer = await page.evaluateHandle((csvText) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([csvText], 'run1.csv', { type: 'text/csv' }));
+      return dt;
+    }, text);
+    await page.dispatchEvent('#screen', 'drop', { dataTransfer: transfer });
+    await page.waitForFunction(() => document.querySelector('[data-record="status"]').dataset.state === 'ready', null, { timeout: 30000 });
+    await ready();
+    assert.match(await page.$eval('[data-record="status"]', (e) => e.textContent), /run1\.csv: plain, 1200 samples/);
+    // The generator takes the record's drive; the screen shows both reference traces in Y-T
+    // and the reference loop in X-Y.
+    const freq = Number(await page.inputValue('input[name="freq"]'));
+    assert.ok(Math.abs(freq / 5250 - 1) < 1e-6, `frequency ${freq}`);
+    const amplitude = Number(await page.inputValue('input[name="amplitude"]'));
+    assert.ok(Math.abs(amplitude / 1.5 - 1) < 1e-5, `amplitude ${amplitude}`);
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    await page.check('input[name="mode"][value="xy"]');
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '1');
+    await page.check('input[name="mode"][value="fft"]');
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '0');
+    await page.check('input[name="mode"][value="yt"]');
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    // Fit R and U_t (ticked by default), from the paper's 68 Ω and 0.7 V.
+    assert.equal(await page.isChecked('input[name="free-resistance"]'), true);
+    assert.equal(await page.isChecked('input[name="free-ut"]'), true);
+    await page.click('[data-action="fit"]');
+    await page.waitForFunction(() => ['ready', 'error'].includes(document.querySelector('[data-fit="status"]').dataset.state), null, { timeout: 60000 });
+    assert.equal(await page.$eval('[data-fit="status"]', (e) => e.dataset.state), 'ready', await page.$eval('#fit', (e) => e.textContent));
+    for (const [name, value] of Object.entries(truth)) {
+      const fitted = Number(await page.$eval(`[data-fit="${name}"]`, (e) => e.textContent.trim()));
+      assert.ok(Math.abs(fitted / value - 1) < 0.01, `${name}: fitted ${fitted}, truth ${value}`);
+      const stderr = Number(await page.$eval(`[data-fit-stderr="${name}"]`, (e) => e.textContent.trim()));
+      assert.ok(Number.isFinite(stderr) && stderr >= 0, `${name} ± ${stderr}`);
+      // The fitted value is in its field, and the screen computes with it.
+      const shown = Number(await page.inputValue(`input[name="${name}"]`));
+      assert.ok(Math.abs(shown / fitted - 1) < 1e-6, `${name} field ${shown}`);
+    }
+    assert.ok(Number(await page.$eval('[data-fit="rms_residual_V"]', (e) => e.textContent)) < 1e-6);
+    await ready();
+    const query = new URLSearchParams(await shownQuery());
+    assert.ok(Math.abs(Number(query.get('resistance')) / truth.resistance - 1) < 0.01, await shownQuery());
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    // A Tektronix export: both channels' files picked at once, merged by the lab.
+    writeFileSync(join(dir, 'ch1.csv'), tektronix(1, 'u_V'));
+    writeFileSync(join(dir, 'ch2.csv'), tektronix(2, 'uc_V'));
+    await page.setInputFiles('input[name="record-file"]', [join(dir, 'ch1.csv'), join(dir, 'ch2.csv')]);
+    await page.waitForFunction(() => /merged/.test(document.querySelector('[data-record="status"]').textContent), null, { timeout: 30000 });
+    assert.match(await page.$eval('[data-record="status"]', (e) => e.textContent), /^ch1\.csv\+ch2\.csv: merged, 1200 samples, 5\.25 kHz, 1\.5 V/);
+    await ready();
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    // Picked with the button instead: a garbage row is refused with the file and the line,
+    // beside the record, and the record on the screen stays.
+    expectedConsole = /status of 400/;
+    const bad = join(dir, 'bad.csv');
+    writeFileSync(bad, text.replace(/\n([^\n]*)\n/, '\n$1\n0.00705,abc,1\n'));
+    await page.setInputFiles('input[name="record-file"]', bad);
+    await page.waitForFunction(() => document.querySelector('[data-error-for~="record"]').textContent !== '', null, { timeout: 30000 });
+    assert.match(await page.$eval('[data-error-for~="record"]', (e) => e.textContent), /bad\.csv: line 3: .*abc/);
+    // A file over the lab's cap is refused in the page, naming the cap.
+    const big = join(dir, 'big.csv');
+    writeFileSync(big, text + '\n'.repeat(2 * 1024 * 1024));
+    await page.setInputFiles('input[name="record-file"]', big);
+    await page.waitForFunction(() => /cap of/.test(document.querySelector('[data-record="status"]').textContent), null, { timeout: 30000 });
+    assert.match(await page.$eval('[data-record="status"]', (e) => e.textContent), /big\.csv is \d+ bytes: over the lab's cap of 2 MB \(2097152 bytes\)/);
+    expectedConsole = null;
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '2');
+    // Removed: no reference trace, no Fit.
+    await page.click('[data-action="clear-record"]');
+    assert.equal(await page.getAttribute('#screen', 'data-ref-count'), '0');
+    assert.equal(await page.isDisabled('[data-action="fit"]'), true);
+  } finally {
+    expectedConsole = null;
+    rmSync(dir, { recursive: true, force: true });
   }
 });
 

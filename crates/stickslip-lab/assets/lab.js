@@ -9,6 +9,7 @@ import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPre
 import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
+import { wireRecord } from './lab/record.js';
 
 // ---------------------------------------------------------------- computing
 // One computation in flight at a time. Inputs that arrive meanwhile are merged: when the
@@ -270,6 +271,7 @@ export function wire() {
   $('[data-action="sweep"]').addEventListener('click', runSweep);
   $('[data-action="copy-measurements"]').addEventListener('click', copyMeasurements);
   $('[data-action="map"]').addEventListener('click', runMap);
+  wireRecord({ schedule, redraw, leavePresetPoint });
   window.addEventListener('resize', () => {
     redraw();
     drawSweep();

@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::ThreadId;
 use std::time::{Duration, Instant};
+use stickslip::cancel::Cancel;
 use stickslip::steady::SolverFactory;
 use stickslip::{Error, Event, Params, Phase, Result, Sample, Solver, State, Stats};
 
@@ -24,6 +25,10 @@ pub struct Budget {
     total: AtomicUsize,
     /// The computation's turn at the workers, when it takes turns.
     turns: Mutex<Option<Turns>>,
+    /// The library's token of the same budget, for computations that check an
+    /// experiment's token rather than a wrapped solver (the fit): it passes its deadline with
+    /// the budget and is cancelled when the budget is abandoned.
+    cancel: Cancel,
 }
 
 /// A computation's turn, given back and taken again from the thread that runs it.
@@ -48,8 +53,10 @@ impl std::fmt::Debug for Turns {
 impl Budget {
     /// A budget of `limit` from now.
     pub fn new(limit: Duration) -> Arc<Self> {
+        let deadline = Instant::now() + limit;
         Arc::new(Self {
-            deadline: Instant::now() + limit,
+            deadline,
+            cancel: Cancel::new().with_deadline(deadline),
             limit,
             abandoned: AtomicBool::new(false),
             done: AtomicUsize::new(0),
@@ -130,6 +137,14 @@ impl Budget {
     /// Nobody waits for the answer any more.
     pub fn abandon(&self) {
         self.abandoned.store(true, Ordering::Relaxed);
+        self.cancel.cancel();
+    }
+
+    /// The library's cancellation token of this budget ([`Cancel`]): past the deadline, or
+    /// once nobody waits for the answer, every solver of an experiment carrying it
+    /// ([`stickslip::Experiment::with_cancel`]) stops within a step.
+    pub fn cancel(&self) -> &Cancel {
+        &self.cancel
     }
 
     /// Whether nobody waits for the answer.
@@ -302,5 +317,29 @@ mod tests {
         )
         .unwrap_err();
         assert!(matches!(err, Error::Cancelled { .. }), "{err}");
+    }
+
+    #[test]
+    fn the_budgets_token_stops_with_it() {
+        let e = Experiment::paper()
+            .with_w(0.95)
+            .unwrap()
+            .with_beta(2.14)
+            .unwrap();
+        // Abandoned: the experiment carrying the token stops.
+        let budget = Budget::new(Duration::from_secs(600));
+        assert!(budget.cancel().check().is_ok());
+        budget.abandon();
+        let err = e
+            .clone()
+            .with_cancel(budget.cancel().clone())
+            .steady()
+            .unwrap_err();
+        assert!(matches!(err, Error::Cancelled { .. }), "{err}");
+        // Past its deadline: the same.
+        let budget = Budget::new(Duration::from_millis(1));
+        std::thread::sleep(Duration::from_millis(5));
+        let err = e.with_cancel(budget.cancel().clone()).steady().unwrap_err();
+        assert!(matches!(err, Error::DeadlineExceeded), "{err}");
     }
 }

@@ -13,10 +13,11 @@ use super::serve::Peer;
 use axum::body::Body;
 use axum::extract::{FromRequestParts, RawQuery, Request, State};
 use axum::http::request::Parts;
+use axum::http::HeaderMap;
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
-use axum::routing::get;
+use axum::routing::{get, post};
 use axum::Router;
 use serde::Serialize;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -28,10 +29,11 @@ const INDEX_HTML: &str = include_str!("../assets/index.html");
 /// Its script: the entry module, which imports the modules of [`MODULES`].
 const LAB_JS: &str = include_str!("../assets/lab.js");
 /// The page's ES modules, served at `/lab/<name>` (loaded as they are: no build step).
-const MODULES: [(&str, &str); 7] = [
+const MODULES: [(&str, &str); 8] = [
     ("api.js", include_str!("../assets/lab/api.js")),
     ("export.js", include_str!("../assets/lab/export.js")),
     ("panels.js", include_str!("../assets/lab/panels.js")),
+    ("record.js", include_str!("../assets/lab/record.js")),
     ("scope.js", include_str!("../assets/lab/scope.js")),
     ("state.js", include_str!("../assets/lab/state.js")),
     ("sweepmap.js", include_str!("../assets/lab/sweepmap.js")),
@@ -220,6 +222,8 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
         .route("/api/keys", get(keys))
+        .route("/api/record", post(record))
+        .route("/api/fit", post(fit))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .with_state(lab)
@@ -382,7 +386,7 @@ async fn not_found(request: Request) -> Response {
         StatusCode::NOT_FOUND,
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
-             /api/map, /api/theory, /api/presets, /api/keys)",
+             /api/map, /api/theory, /api/presets, /api/keys; POST /api/record, /api/fit)",
             clip(request.uri().path(), 80)
         ),
     )
@@ -393,7 +397,8 @@ async fn method_not_allowed(request: Request) -> Response {
     ApiError::status(
         StatusCode::METHOD_NOT_ALLOWED,
         format!(
-            "{} is not served here: the lab answers GET (and HEAD) only",
+            "{} is not served here: the lab answers GET (and HEAD), and POST at /api/record \
+             and /api/fit only",
             request.method()
         ),
     )
@@ -431,6 +436,45 @@ async fn map(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) ->
 async fn theory(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::TheoryRequest::parse(raw.as_deref()) {
         Ok(request) => lab.compute(client, move |b| request.run(b)).await,
+        Err(err) => err.into_response(),
+    }
+}
+
+async fn record(
+    State(lab): State<Lab>,
+    client: Client,
+    RawQuery(raw): RawQuery,
+    headers: HeaderMap,
+    body: Body,
+) -> Response {
+    match api::RecordRequest::parse(raw.as_deref()) {
+        Ok(request) => match api::upload::read_upload(&headers, body).await {
+            Ok(upload) => {
+                let request = request.with_upload(upload);
+                lab.compute(client, move |b| request.run(b)).await
+            }
+            Err(err) => err.into_response(),
+        },
+        Err(err) => err.into_response(),
+    }
+}
+
+async fn fit(
+    State(lab): State<Lab>,
+    client: Client,
+    RawQuery(raw): RawQuery,
+    headers: HeaderMap,
+    body: Body,
+) -> Response {
+    // The keys first: a bad key costs no upload.
+    match api::FitRequest::parse(raw.as_deref()) {
+        Ok(request) => match api::upload::read_upload(&headers, body).await {
+            Ok(upload) => {
+                let request = request.with_upload(upload);
+                lab.compute(client, move |b| request.run(b)).await
+            }
+            Err(err) => err.into_response(),
+        },
         Err(err) => err.into_response(),
     }
 }

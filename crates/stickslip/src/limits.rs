@@ -177,6 +177,9 @@ pub struct Caps {
     pub map_side: usize,
     /// Most points of a map.
     pub map_points: usize,
+    /// Most bytes of a measurement (a scope record's CSV text) sent to a server; the
+    /// library itself reads text of any length.
+    pub upload_bytes: usize,
 }
 
 impl Caps {
@@ -194,6 +197,7 @@ impl Caps {
             sweep_steps: 100_000,
             map_side: 100_000,
             map_points: MAX_GRID_POINTS,
+            upload_bytes: usize::MAX,
         }
     }
 
@@ -211,6 +215,7 @@ impl Caps {
             sweep_steps: 400,
             map_side: 1000,
             map_points: 40_000,
+            upload_bytes: 2 * 1024 * 1024,
         }
     }
 
@@ -368,6 +373,7 @@ mod tests {
         let (lib, lab) = (Caps::library(), Caps::shared_server());
         assert!(lab.max_period <= lib.max_period && lab.max_periods <= lib.max_periods);
         assert!(lab.map_points <= lib.map_points && lab.sweep_steps <= lib.sweep_steps);
+        assert!(lab.upload_bytes <= lib.upload_bytes);
         let steady = crate::SteadyOptions::default();
         assert!(lab.check_steady(&steady).is_ok());
         let long = crate::SteadyOptions {

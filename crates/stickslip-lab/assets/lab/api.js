@@ -11,11 +11,19 @@ export class ApiFailure extends Error {
   }
 }
 
-/** GET /api/<name>?<params>; the JSON answer, or an ApiFailure with the server's line. */
+/** GET /api/<name>?<params> (POST with a body); the JSON answer, or an ApiFailure with the
+ * server's line. */
 // The page's own name for the server's fair queues (one per open page, not stored).
 export const CLIENT_ID = Array.from(crypto.getRandomValues(new Uint8Array(12)), (b) => b.toString(16).padStart(2, '0')).join('');
-export async function api(name, params, signal) {
-  const response = await fetch(`/api/${name}?${params}`, { signal, headers: { 'X-Lab-Client': CLIENT_ID } });
+export async function api(name, params, signal, upload = null) {
+  const init = { signal, headers: { 'X-Lab-Client': CLIENT_ID } };
+  if (upload !== null) {
+    // POST /api/record and /api/fit: { body, type }, a scope record's CSV text or JSON files.
+    init.method = 'POST';
+    init.headers['Content-Type'] = upload.type;
+    init.body = upload.body;
+  }
+  const response = await fetch(`/api/${name}?${params}`, init);
   let body = null;
   try {
     body = await response.json();
@@ -28,12 +36,12 @@ export async function api(name, params, signal) {
 
 /** One request per slot at a time: a new one aborts the one before (a stale answer is dropped). */
 export const slots = {};
-export async function latest(slot, name, params) {
+export async function latest(slot, name, params, upload = null) {
   if (slots[slot]) slots[slot].abort();
   const controller = new AbortController();
   slots[slot] = controller;
   try {
-    return await api(name, params, controller.signal);
+    return await api(name, params, controller.signal, upload);
   } finally {
     if (slots[slot] === controller) delete slots[slot];
   }

@@ -3,6 +3,7 @@
 import { $, field, si, STEPS, niceAtLeast, nice125, FFT_MIN_HARMONICS } from './util.js';
 import { state } from './state.js';
 import { scales, units } from './panels.js';
+import { drawRefsYT, drawRefsXY, drawRefLabel } from './record.js';
 
 // ---------------------------------------------------------------- scope settings
 export const tdiv = () => Number(field('tdiv').value);
@@ -239,9 +240,12 @@ export function redraw() {
   g.beginPath();
   g.rect(box.x0, box.y0 - 6, SCREEN.divX * box.dx, SCREEN.divY * box.dy + 12);
   g.clip();
-  if (state.mode === 'yt') drawYT(g, box);
-  else if (state.mode === 'xy') drawXY(g, box);
+  // The record's reference traces beside the computed ones (Y-T and X-Y): how many.
+  let refs = 0;
+  if (state.mode === 'yt') refs = drawYT(g, box);
+  else if (state.mode === 'xy') refs = drawXY(g, box);
   else drawFFT(g, box);
+  canvas.dataset.refCount = String(refs);
   g.restore();
   drawFooter(g, box);
   showCursorReadout();
@@ -268,6 +272,7 @@ export function drawYT(g, box) {
     // Channel ground marker.
     label(g, `${k}▸`, box.x0 + 2, yOf(box, k, 0) + 4, COLORS[`ch${k}`]);
   }
+  const refs = drawRefsYT(g, box, xOf);
   // Trigger marker: t = 0 is the start of the drive period (phase φ).
   const xt = xOf(0);
   if (xt >= box.x0 && xt <= box.x0 + SCREEN.divX * box.dx) label(g, '▼T', xt, box.y0 + 4, '#ffffff', 'center');
@@ -283,6 +288,7 @@ export function drawYT(g, box) {
     g.stroke();
     g.setLineDash([]);
   }
+  return refs;
 }
 
 export function drawXY(g, box) {
@@ -298,6 +304,7 @@ export function drawXY(g, box) {
     ys.push(ys[0]);
   }
   drawTrace(g, box, xs, ys, '#7cf08a');
+  const refs = drawRefsXY(g, box, xOf);
   if (field('cursors').checked) {
     for (const c of [1, 2]) {
       const t = cursorTime(c);
@@ -310,6 +317,7 @@ export function drawXY(g, box) {
       label(g, `t${c}`, xOf(v.ch1) + 6, yOf(box, 2, v.ch2) - 6, '#ffffff');
     }
   }
+  return refs;
 }
 
 /** Bars of the steady cycle's harmonics of one channel (the library's exact spectrum). */
@@ -389,6 +397,7 @@ export function drawFooter(g, box) {
       label(g, text, x, y, COLORS[`ch${k}`]);
       x += g.measureText(text).width + 18;
     }
+    drawRefLabel(g, box, y);
     const trig = state.trigger === 'transient' ? 'from rest (t = 0: start)' : 'steady cycle, trigger on the drive';
     const head = state.mode === 'xy' ? `X-Y: X = CH1, Y = CH2; ${trig}` : `${si(tdiv(), 's')}/div; ${trig}`;
     label(g, head, box.x0, 16);

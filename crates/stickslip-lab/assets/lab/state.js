@@ -28,6 +28,10 @@ export const state = {
   seq: 0, // input counter
   shownSeq: 0,
   pendingInputs: [], // [seq, time] of inputs not yet on the screen
+  record: null, // the scope record on the screen (/api/record), its upload, and its fit (/api/fit)
+  recordUpload: null,
+  recordFileKey: null,
+  fit: null,
 };
 // Latency of input → redraw, in ms, for every input (see docs/lab.md).
 window.stickslipLab = { latencies: [], redraws: 0, state };

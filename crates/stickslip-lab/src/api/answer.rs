@@ -78,7 +78,7 @@ impl About {
 pub struct Columns(Vec<(&'static str, Vec<f64>)>);
 
 impl Columns {
-    fn push(&mut self, name: &'static str, values: Vec<f64>) {
+    pub(crate) fn push(&mut self, name: &'static str, values: Vec<f64>) {
         self.0.push((name, values));
     }
 }

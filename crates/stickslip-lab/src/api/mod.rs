@@ -4,22 +4,28 @@
 //! description of the experiment and its physical scales beside them.
 //!
 //! One file per endpoint; [`answer`] and [`request`] hold what they share, [`caps`] what one
-//! request may ask for.
+//! request may ask for, [`upload`] what the endpoints that take a record (`POST /api/record`,
+//! `POST /api/fit`) share.
 
 pub mod answer;
 pub mod caps;
+mod fit;
 mod keys;
 mod map;
 mod presets;
+mod record;
 pub mod request;
 mod simulate;
 mod steady;
 mod sweep;
 mod theory;
+pub mod upload;
 
+pub use fit::*;
 pub use keys::*;
 pub use map::*;
 pub use presets::*;
+pub use record::*;
 pub use simulate::*;
 pub use steady::*;
 pub use sweep::*;
