@@ -148,3 +148,121 @@ fn an_overdamped_orbit_matches_finite_differences() {
     let class = orbit(&params).2;
     check(params, class, 1, &[0, 1, 2, 3]);
 }
+
+/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+    fn gauss(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+}
+
+/// A Keysight export of the circuit R = 80 Ω, U_t = 0.6 V at (w, β, φ): 1200 samples over
+/// 3.4 periods, 8 bits over 1.25 times each channel's peak-to-peak, one step of noise, an
+/// offset of 30 mV on u_C.
+fn record(w: f64, beta: f64, phi: f64, rng: &mut Rng) -> stickslip::measure::Measurement {
+    use std::f64::consts::TAU;
+    use stickslip::physical::{Circuit, Diode, PwlDiode};
+    use stickslip::steady::SolverFactory;
+    let e = stickslip::experiment::Experiment::circuit(Circuit {
+        resistance: 80.0,
+        diode: Diode::Pwl(PwlDiode {
+            turn_on: 0.6,
+            resistance: 3.0,
+        }),
+        ..Circuit::paper()
+    })
+    .unwrap()
+    .with_w(w)
+    .and_then(|e| e.with_beta(beta))
+    .and_then(|e| e.with_phi(phi))
+    .unwrap();
+    let steady = e.steady().unwrap();
+    let scales = e.scales().unwrap();
+    let mut solver = e
+        .factory()
+        .make(e.params().unwrap(), steady.final_state())
+        .unwrap();
+    let n = 1200;
+    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
+    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
+    let samples = stickslip::solver::sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
+    let drive: Vec<f64> = taus
+        .iter()
+        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
+        .collect();
+    let response: Vec<f64> = samples
+        .iter()
+        .map(|s| s.y * scales.position + 0.03)
+        .collect();
+    let mut quantise = |v: &[f64]| -> Vec<f64> {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let q = 1.25 * (hi - lo) / 256.0;
+        v.iter()
+            .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
+            .collect::<Vec<f64>>()
+    };
+    let (drive, response) = (quantise(&drive), quantise(&response));
+    let mut text = "x-axis,1,2\nsecond,Volt,Volt\n".to_string();
+    for k in 0..n {
+        text += &format!(
+            "{:.9e},{:.6e},{:.6e}\n",
+            k as f64 * dt,
+            drive[k],
+            response[k]
+        );
+    }
+    let r = stickslip::measure::read_scope(&text, "k.csv").unwrap();
+    stickslip::measure::Measurement::new(&r, None, None).unwrap()
+}
+
+#[test]
+fn fits_with_exact_and_finite_difference_jacobians_agree_within_their_errors() {
+    use stickslip::fit::{fit_records, FitOptions, FitParameter, Jacobian};
+    let mut rng = Rng(2027);
+    let data: Vec<_> = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)]
+        .iter()
+        .map(|&(w, beta, phi)| record(w, beta, phi, &mut rng))
+        .collect();
+    let free = [FitParameter::Resistance, FitParameter::Ut];
+    let start = stickslip::experiment::Experiment::paper();
+    let exact = fit_records(&start, &data, &free, &FitOptions::default()).unwrap();
+    let fd = fit_records(
+        &start,
+        &data,
+        &free,
+        &FitOptions {
+            exact_jacobian: false,
+            ..FitOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(exact.jacobian, Jacobian::Exact);
+    assert_eq!(fd.jacobian, Jacobian::FiniteDifferences);
+    assert_eq!(exact.to_json().jacobian, "exact");
+    assert!(exact.converged && fd.converged);
+    for (e, f) in exact.parameters.iter().zip(&fd.parameters) {
+        eprintln!(
+            "{}: exact {} ± {}, finite differences {} ± {}",
+            e.parameter, e.value, e.stderr, f.value, f.stderr
+        );
+        // The same minimum, to a thousandth of the error bars, which agree to 10⁻⁴.
+        assert!((e.value - f.value).abs() < 1e-3 * e.stderr, "{e:?} {f:?}");
+        assert!((e.stderr - f.stderr).abs() < 1e-4 * e.stderr, "{e:?} {f:?}");
+    }
+    // And the truth within 1 %.
+    assert!((exact.parameters[0].value - 80.0).abs() < 0.8);
+    assert!((exact.parameters[1].value - 0.6).abs() < 0.006);
+}

@@ -26,12 +26,19 @@
 //! tens of unknowns), which 150 lines over a Cholesky solver handle. It runs over the free
 //! parameters (scaled by their starting values) and the nuisance
 //! parameters. The Jacobian: the drive's columns on the drive samples and the offsets'
-//! columns exactly; the others by forward differences (step 10⁻⁶ with PWL diodes, whose
+//! columns exactly. The response's columns, with PWL diodes wherever every record's model is
+//! a periodic orbit, from the exact tangent dynamics with respect to the parameters
+//! ([`crate::stability::periodic_orbit_sensitivity`]: the closed-form slides, the saltations,
+//! the releases' moving times and dx*/dp = (I − M)⁻¹ ∂P/∂p), carried through the circuit's
+//! scales (ζ = (R + R_D)/2·√(C/L), ω0 = 1/√(LC), w = 2πf/ω0, β = U/U_t, τ = ω0·s,
+//! u_C = U_t·y), from the steady states the residuals were computed with. Otherwise (Shockley
+//! diodes, a model that does not repeat, a tangential release, a multiplier 1) by forward
+//! differences (step 10⁻⁶ with PWL diodes, whose
 //! exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
 //! solver is accurate to its tolerance; relative to a free parameter's value, but never
 //! smaller than that fraction of its starting value, so that a value fitted near zero, such
 //! as a diode's R_s, keeps a step above the solver's error), a record's own nuisance columns
-//! from that record only. The exact tangent dynamics with respect to the parameters are not used yet.
+//! from that record only. The report says which served at the solution ([`Jacobian`]).
 //!
 //! **What is reported** ([`FitReport`]): each free parameter's value, standard error from
 //! s²(JᵀJ)⁻¹ with s² the weighted SSR/(N − P) (N residuals, P fitted values with the nuisance
@@ -63,6 +70,7 @@ use crate::experiment::{DiodeModel, Experiment};
 use crate::measure::{AmplitudeTable, Direction, MeasureError, Measurement};
 use crate::params::{Params, State};
 use crate::physical::Circuit;
+use crate::scan::Monitor;
 use crate::shockley::DiodePair;
 use crate::solver::sample_at;
 use crate::stability::{periodic_orbit_sensitivity, OrbitSample};
@@ -71,6 +79,7 @@ use crate::steady::{MotionClass, SteadyOptions};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
+use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// What can go wrong in a fit.
@@ -150,6 +159,60 @@ impl Default for FitOptions {
             time_shift: true,
             offset: true,
             exact_jacobian: true,
+        }
+    }
+}
+
+/// A fit's progress, told to a [`FitMonitor`] after every Levenberg–Marquardt iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitProgress {
+    /// Iterations done, over every pass and (per record) every record so far.
+    pub iteration: usize,
+    /// The most iterations the fit may take (the passes' and records' maxima together); the
+    /// fit usually converges well before.
+    pub total: usize,
+    /// The sum of squares of the weighted residuals reached (records: dimensionless, each
+    /// residual in units of its channel's noise; a table: V²).
+    pub sum_squares: f64,
+}
+
+/// Watches a fit: told after every iteration, and able to stop it (the fit then returns
+/// [`FitError::Stopped`] with [`crate::Error::Cancelled`]). Every scan monitor
+/// ([`crate::scan::Monitor`], such as `()` or a closure `Fn(done, total) -> bool`) is one and
+/// sees (iterations done, most iterations).
+pub trait FitMonitor: Sync {
+    /// `progress` was reached; [`ControlFlow::Break`] stops the fit.
+    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()>;
+}
+
+impl<M: Monitor + ?Sized> FitMonitor for M {
+    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()> {
+        self.step(progress.iteration, progress.total)
+    }
+}
+
+/// Where a problem's iterations stand in the whole fit, and who watches.
+#[derive(Clone, Copy)]
+struct Watch<'a> {
+    monitor: &'a dyn FitMonitor,
+    /// Iterations done before this minimisation.
+    before: usize,
+    total: usize,
+}
+
+impl Watch<'_> {
+    fn tell(&self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        let progress = FitProgress {
+            iteration: self.before + iteration,
+            total: self.total,
+            sum_squares,
+        };
+        match self.monitor.iteration(&progress) {
+            ControlFlow::Continue(()) => Ok(()),
+            ControlFlow::Break(()) => Err(FitError::Stopped(crate::Error::Cancelled {
+                done: progress.iteration,
+                total: progress.total,
+            })),
         }
     }
 }
@@ -489,6 +552,8 @@ struct Records<'a> {
     exact: bool,
     /// How the last Jacobian was computed.
     jacobian: Jacobian,
+    /// Who is told of each iteration.
+    watch: Watch<'a>,
 }
 
 /// Where the exact Jacobian of a record starts: the dimensionless parameters of its model,
@@ -727,6 +792,10 @@ impl lm::Problem for Records<'_> {
         self.jacobian = Jacobian::FiniteDifferences;
         self.finite_difference_jacobian(x, r)
     }
+
+    fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        self.watch.tell(iteration, sum_squares)
+    }
 }
 
 impl Records<'_> {
@@ -868,6 +937,7 @@ impl<'a> Records<'a> {
         setup: &'a Setup,
         data: &'a [Measurement],
         options: &FitOptions,
+        watch: Watch<'a>,
     ) -> Result<(Self, Vec<f64>), FitError> {
         let free = &setup.free;
         let mut x: Vec<f64> = vec![1.0; free.len()];
@@ -947,6 +1017,7 @@ impl<'a> Records<'a> {
             orbits: None,
             exact: options.exact_jacobian,
             jacobian: Jacobian::FiniteDifferences,
+            watch,
         };
         Ok((problem, x))
     }
@@ -980,11 +1051,41 @@ pub fn fit_records(
     free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<FitReport, FitError> {
+    fit_records_monitored(experiment, data, free, options, &())
+}
+
+/// [`fit_records`], telling `monitor` of every iteration (of both passes: at most
+/// 2·[`FitOptions::max_iterations`]), which can stop the fit.
+///
+/// # Errors
+/// As [`fit_records`]; [`FitError::Stopped`] when the monitor stops the fit.
+pub fn fit_records_monitored(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<FitReport, FitError> {
+    let watch = Watch {
+        monitor,
+        before: 0,
+        total: 2 * options.max_iterations,
+    };
+    records_watched(experiment, data, free, options, watch)
+}
+
+fn records_watched(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    watch: Watch<'_>,
+) -> Result<FitReport, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
     let setup = Setup::new(experiment, free)?;
-    let (mut problem, x) = Records::new(&setup, data, options)?;
+    let (mut problem, x) = Records::new(&setup, data, options, watch)?;
     let n_values = x.len();
     let settings = lm::Settings {
         max_iterations: options.max_iterations,
@@ -1016,6 +1117,7 @@ pub fn fit_records(
         })
         .collect();
     problem.weights = weights;
+    problem.watch.before += first.iterations;
     let second = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
     let iterations = first.iterations + second.iterations;
     let solution = second;
@@ -1111,11 +1213,35 @@ pub fn fit_per_record(
     free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<Vec<FitReport>, FitError> {
+    fit_per_record_monitored(experiment, data, free, options, &())
+}
+
+/// [`fit_per_record`], telling `monitor` of every iteration (at most
+/// 2·[`FitOptions::max_iterations`] per record), which can stop the fits.
+///
+/// # Errors
+/// As [`fit_per_record`]; [`FitError::Stopped`] when the monitor stops the fits.
+pub fn fit_per_record_monitored(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<Vec<FitReport>, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
+    let per = 2 * options.max_iterations;
     data.iter()
-        .map(|m| fit_records(experiment, std::slice::from_ref(m), free, options))
+        .enumerate()
+        .map(|(j, m)| {
+            let watch = Watch {
+                monitor,
+                before: j * per,
+                total: data.len() * per,
+            };
+            records_watched(experiment, std::slice::from_ref(m), free, options, watch)
+        })
         .collect()
 }
 
@@ -1133,6 +1259,31 @@ pub fn compare_models(
     shockley_free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<ModelComparison, FitError> {
+    compare_models_monitored(
+        experiment,
+        pair,
+        data,
+        pwl_free,
+        shockley_free,
+        options,
+        &(),
+    )
+}
+
+/// [`compare_models`], telling `monitor` of every iteration of both fits (at most
+/// 4·[`FitOptions::max_iterations`]), which can stop them.
+///
+/// # Errors
+/// As [`compare_models`]; [`FitError::Stopped`] when the monitor stops the fits.
+pub fn compare_models_monitored(
+    experiment: &Experiment,
+    pair: DiodePair,
+    data: &[Measurement],
+    pwl_free: &[FitParameter],
+    shockley_free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<ModelComparison, FitError> {
     if experiment.diode_model() != DiodeModel::Pwl {
         return Err(FitError::WrongLaw {
             parameter: FitParameter::Ut,
@@ -1147,8 +1298,20 @@ pub fn compare_models(
                 file: "(comparison)".into(),
                 error,
             })?;
-    let pwl = fit_records(experiment, data, pwl_free, options)?;
-    let shockley = fit_records(&shockley_experiment, data, shockley_free, options)?;
+    let per = 2 * options.max_iterations;
+    let watch = |before| Watch {
+        monitor,
+        before,
+        total: 2 * per,
+    };
+    let pwl = records_watched(experiment, data, pwl_free, options, watch(0))?;
+    let shockley = records_watched(
+        &shockley_experiment,
+        data,
+        shockley_free,
+        options,
+        watch(per),
+    )?;
     let delta_aic = shockley.aic - pwl.aic;
     Ok(ModelComparison {
         preferred: if delta_aic < 0.0 {
@@ -1169,6 +1332,8 @@ struct Table<'a> {
     /// Rows in computing order: legs (each a list of row indices, each row settling from the
     /// previous one) and single rows from rest.
     legs: Vec<Vec<usize>>,
+    /// Who is told of each iteration.
+    watch: Watch<'a>,
 }
 
 impl Table<'_> {
@@ -1248,6 +1413,10 @@ impl lm::Problem for Table<'_> {
             })
             .collect()
     }
+
+    fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        self.watch.tell(iteration, sum_squares)
+    }
 }
 
 /// Fit the free parameters of `experiment` to a table of measured amplitudes (see the module
@@ -1260,6 +1429,21 @@ pub fn fit_table(
     table: &AmplitudeTable,
     free: &[FitParameter],
     options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    fit_table_monitored(experiment, table, free, options, &())
+}
+
+/// [`fit_table`], telling `monitor` of every iteration (at most
+/// [`FitOptions::max_iterations`]), which can stop the fit.
+///
+/// # Errors
+/// As [`fit_table`]; [`FitError::Stopped`] when the monitor stops the fit.
+pub fn fit_table_monitored(
+    experiment: &Experiment,
+    table: &AmplitudeTable,
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
 ) -> Result<FitReport, FitError> {
     if table.rows.is_empty() {
         return Err(FitError::NoData);
@@ -1304,6 +1488,11 @@ pub fn fit_table(
         setup: &setup,
         table,
         legs: order,
+        watch: Watch {
+            monitor,
+            before: 0,
+            total: options.max_iterations,
+        },
     };
     let x = vec![1.0; free.len()];
     if problem.amplitudes(&x).is_none() {
@@ -1436,7 +1625,12 @@ mod tests {
             FitParameter::MuS,
         ];
         let setup = Setup::new(&start, &free).unwrap();
-        let (mut problem, x) = Records::new(&setup, &data, &FitOptions::default()).unwrap();
+        let watch = Watch {
+            monitor: &(),
+            before: 0,
+            total: 1,
+        };
+        let (mut problem, x) = Records::new(&setup, &data, &FitOptions::default(), watch).unwrap();
         let r = lm::Problem::residuals(&mut problem, &x).unwrap().unwrap();
         let exact = problem.exact_jacobian(&x).expect("periodic PWL models");
         let classes: Vec<MotionClass> = (0..data.len())
