@@ -12,8 +12,12 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::Path;
 use stickslip::experiment::Key;
-use stickslip::fit::{fit_per_record, fit_records, fit_table, FitOptions, FitParameter, FitReport};
+use stickslip::fit::{
+    fit_per_record_monitored, fit_records_monitored, fit_table_monitored, FitMonitor, FitOptions,
+    FitParameter, FitProgress, FitReport,
+};
 use stickslip::measure::{self, AmplitudeTable, MeasureError, Measurement, Record};
+use stickslip::scan::Monitor;
 
 fn measure_error(e: MeasureError) -> PyErr {
     PyValueError::new_err(e.to_string())
@@ -186,6 +190,15 @@ fn report_dict<'py>(py: Python<'py>, report: &FitReport) -> PyResult<Bound<'py, 
     Ok(out)
 }
 
+/// The runner's monitor told of a fit's iterations (done, most allowed).
+struct Iterations<'a>(&'a dyn Monitor);
+
+impl FitMonitor for Iterations<'_> {
+    fn iteration(&self, p: &FitProgress) -> std::ops::ControlFlow<()> {
+        self.0.step(p.iteration, p.total)
+    }
+}
+
 /// The fit of `experiment` to records (each `(paths, drive, response)`) or to the table
 /// `table`; see `stickslip.fit`.
 #[pyfunction]
@@ -213,12 +226,18 @@ pub fn fit<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     let e = experiment.experiment().clone();
     let options = FitOptions::default();
-    let result = run_with(py, progress.as_ref(), |_, cancel| {
+    // `progress(done, total)`: Levenberg–Marquardt iterations done, of the most allowed.
+    let result = run_with(py, progress.as_ref(), |monitor, cancel| {
         let e = e.with_cancel(cancel.clone());
+        let monitor = &Iterations(monitor);
         Ok(match &table {
-            Some(t) => fit_table(&e, t, &parameters, &options).map(|r| vec![r]),
-            None if per_record => fit_per_record(&e, &data, &parameters, &options),
-            None => fit_records(&e, &data, &parameters, &options).map(|r| vec![r]),
+            Some(t) => fit_table_monitored(&e, t, &parameters, &options, monitor).map(|r| vec![r]),
+            None if per_record => {
+                fit_per_record_monitored(&e, &data, &parameters, &options, monitor)
+            }
+            None => {
+                fit_records_monitored(&e, &data, &parameters, &options, monitor).map(|r| vec![r])
+            }
         })
     })?;
     let reports = result.map_err(|e| PyValueError::new_err(e.to_string()))?;

@@ -101,6 +101,24 @@ def test_fit_to_dict_equals_the_cli_json(cli, records):
     assert stickslip.steady(result.exp.replace(w=0.95, beta=2.14)).motion == "sliding"
 
 
+def test_progress_counts_iterations_and_its_exception_stops_the_fit(records):
+    exp = stickslip.Experiment.paper()
+    seen = []
+    result = stickslip.fit(exp, data=[str(p) for p in records],
+                           progress=lambda done, total: seen.append((done, total)))
+    # As every call with progress: polled while the fit runs and told once at the end, the
+    # iterations done of the most allowed (two passes of 50).
+    assert seen and seen[-1] == (result.iterations, 100)
+    assert all(a[0] <= b[0] for a, b in zip(seen, seen[1:]))
+    assert result.jacobian == "exact"
+
+    def stop(done, total):
+        raise RuntimeError(f"stopped at {done} of {total}")
+
+    with pytest.raises(RuntimeError, match=r"^stopped at \d+ of 100$"):
+        stickslip.fit(exp, data=[str(p) for p in records], progress=stop)
+
+
 def test_records_from_read_scope_and_channel_choice_match_the_cli(cli, records):
     exp = stickslip.Experiment.paper()
     data = [stickslip.read_scope(records[0], drive="CH1", response="CH2"),

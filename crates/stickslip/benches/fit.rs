@@ -3,6 +3,9 @@
 //! `records`: the joint fit of three 1200-sample records (w = 0.29, 0.95, 1.43, synthesised
 //! by the exact solver at R = 80 Ω, U_t = 0.6 V, 8-bit quantisation and one step of noise)
 //! with R and U_t free, from the paper's values; the target is at most 1 s.
+//! `records_3x1200_two_free_finite_differences`: the same fit with the Jacobian by finite
+//! differences throughout (`FitOptions::exact_jacobian = false`, the fit before the exact
+//! Jacobians), to compare in one run.
 //! `table`: the fit of a table of 45 amplitudes (15 frequencies at three drive levels) with R
 //! and U_t free; the target is at most 0.5 s.
 
@@ -37,8 +40,11 @@ fn bench_fit(c: &mut Criterion) {
     let options = FitOptions::default();
     let report = pool.install(|| fit_records(&start, &data, &FREE, &options).expect("fits"));
     eprintln!(
-        "records: {} iterations, R = {:.3} ohm, U_t = {:.5} V",
-        report.iterations, report.parameters[0].value, report.parameters[1].value
+        "records: {} iterations, R = {:.3} ohm, U_t = {:.5} V, {} Jacobian",
+        report.iterations,
+        report.parameters[0].value,
+        report.parameters[1].value,
+        report.jacobian.label()
     );
     let report = pool.install(|| fit_table(&start, &amplitudes, &FREE, &options).expect("fits"));
     eprintln!(
@@ -51,6 +57,19 @@ fn bench_fit(c: &mut Criterion) {
         b.iter(|| {
             pool.install(|| {
                 fit_records(&start, black_box(&data), &FREE, &options)
+                    .expect("fits")
+                    .iterations
+            })
+        })
+    });
+    let fd = FitOptions {
+        exact_jacobian: false,
+        ..options
+    };
+    group.bench_function("records_3x1200_two_free_finite_differences", |b| {
+        b.iter(|| {
+            pool.install(|| {
+                fit_records(&start, black_box(&data), &FREE, &fd)
                     .expect("fits")
                     .iterations
             })

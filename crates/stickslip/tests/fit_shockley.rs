@@ -15,7 +15,7 @@
 
 use std::f64::consts::TAU;
 use stickslip::experiment::{DiodeModel, Experiment};
-use stickslip::fit::{compare_models, FitOptions, FitParameter};
+use stickslip::fit::{compare_models, FitOptions, FitParameter, Jacobian};
 use stickslip::measure::{read_scope, Measurement};
 use stickslip::shockley::{netlist, DiodePair, NetlistOptions};
 use stickslip::{Circuit, State};
@@ -130,6 +130,12 @@ fn shockley_fit_of_ngspice_records_gives_the_forward_voltage() {
     )
     .unwrap();
     let (pwl, shockley) = (&comparison.pwl, &comparison.shockley);
+    // The PWL fit's Jacobian comes from the exact tangent dynamics; the Shockley law has
+    // none, and is fitted with finite differences.
+    assert_eq!(
+        (pwl.jacobian, shockley.jacobian),
+        (Jacobian::Exact, Jacobian::FiniteDifferences)
+    );
     let value = |p: FitParameter| shockley.value(p).unwrap().value;
     let fitted = DiodePair::new(
         value(FitParameter::DiodeIs),

@@ -8,8 +8,8 @@ use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stickslip::fit::{
-    compare_models, fit_per_record, fit_records, fit_table, FitError, FitOptions, FitParameter,
-    FitReport, RecordFit,
+    compare_models_monitored, fit_per_record_monitored, fit_records_monitored, fit_table_monitored,
+    FitError, FitMonitor, FitOptions, FitParameter, FitProgress, FitReport, RecordFit,
 };
 use stickslip::measure::{
     read_amplitudes, read_scope, AmplitudeTable, MeasureError, Measurement, Record,
@@ -42,7 +42,8 @@ use stickslip::shockley::DiodePair;
 /// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi]}}, correlation,
 /// records [{file, freq_Hz, amplitude_V, w, beta, class, periods, clipped, rms_residual_V,
 /// offset_V, time_shift_s}], rows (a table) [{line, freq_Hz, U_V, direction, measured_V,
-/// model_V, class}], rms_residual_V, chi2_dof, converged, iterations, aic, bic; with
+/// model_V, class}], rms_residual_V, chi2_dof, converged, iterations, jacobian (exact or
+/// finite-differences: how the Jacobian at the solution was computed), aic, bic; with
 /// --per-record a list of such objects; with --compare {pwl, shockley, preferred,
 /// delta_aic}.
 ///
@@ -188,8 +189,32 @@ pub(crate) fn record_to_draw(
     Measurement::new(&record, drive, response).map_err(measure)
 }
 
+/// The progress line on a terminal: iterations done of the most allowed, and the sum of
+/// squares reached.
+struct Line(indicatif::ProgressBar);
+
+impl FitMonitor for Line {
+    fn iteration(&self, p: &FitProgress) -> std::ops::ControlFlow<()> {
+        self.0.set_length(p.total as u64);
+        self.0.set_position(p.iteration as u64);
+        self.0.set_message(format!("fit {:.3e}", p.sum_squares));
+        if crate::output::interrupted() {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    }
+}
+
 /// Run `stickslip fit`.
 pub fn run(args: Args) -> Result<()> {
+    let line = Line(crate::output::progress(0, "fit"));
+    let result = run_with(args, &line);
+    line.0.finish_and_clear();
+    result
+}
+
+fn run_with(args: Args, line: &Line) -> Result<()> {
     if args.data.is_empty() && args.gain_table.is_none() {
         usage!("give the measurements: --data FILE (repeatable) or --gain-table FILE");
     }
@@ -212,7 +237,8 @@ pub fn run(args: Args) -> Result<()> {
         let name = path.display().to_string();
         let table = read_amplitudes(&read_text(path)?, &name).map_err(measure)?;
         eprintln!("fit: {} rows of {name}; {experiment}", table.rows.len());
-        let report = fit_table(&experiment, &table, &free, &options).map_err(refused)?;
+        let report =
+            fit_table_monitored(&experiment, &table, &free, &options, line).map_err(refused)?;
         report_json = to_json(&report)?;
         residual_reports.push(report);
         fitted_table = Some(table);
@@ -228,24 +254,27 @@ pub fn run(args: Args) -> Result<()> {
         eprintln!("fit: {} records; {experiment}", data.len());
         if args.compare {
             let shockley_free = parse_free(&args.free_shockley, "--free-shockley")?;
-            let c = compare_models(
+            let c = compare_models_monitored(
                 &experiment,
                 DiodePair::one_n4148(),
                 &data,
                 &free,
                 &shockley_free,
                 &options,
+                line,
             )
             .map_err(refused)?;
             report_json = serde_json::to_value(c.to_json())?;
             residual_reports.push(c.pwl);
             residual_reports.push(c.shockley);
         } else if args.per_record {
-            let reports = fit_per_record(&experiment, &data, &free, &options).map_err(refused)?;
+            let reports = fit_per_record_monitored(&experiment, &data, &free, &options, line)
+                .map_err(refused)?;
             report_json = Value::Array(reports.iter().map(to_json).collect::<Result<_>>()?);
             residual_reports = reports;
         } else {
-            let report = fit_records(&experiment, &data, &free, &options).map_err(refused)?;
+            let report = fit_records_monitored(&experiment, &data, &free, &options, line)
+                .map_err(refused)?;
             report_json = to_json(&report)?;
             residual_reports.push(report);
         }
@@ -405,6 +434,7 @@ fn describe(text: &mut String, r: &FitReport) {
             "not converged"
         }
     );
+    outln!(text, "jacobian          {}", r.jacobian.label());
 }
 
 /// The report in the library's JSON shape.

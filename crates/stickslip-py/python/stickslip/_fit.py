@@ -220,6 +220,8 @@ class FitResult:
             class); empty for records.
         rms_residual_V: RMS of all residuals (V); chi2_dof: χ²/dof with the noise estimated
             from the data (None when unknown); converged, iterations: of Levenberg–Marquardt;
+            jacobian: how its Jacobian at the solution was computed, 'exact' (from the
+            tangent dynamics of the PWL model's periodic orbits) or 'finite-differences';
             aic, bic: information criteria; model: the diode law, 'pwl' or 'shockley'.
         exp: the fitted experiment (the experiment with the fitted values).
         experiment: the experiment fitted from (the starting values).
@@ -248,6 +250,7 @@ class FitResult:
         self.chi2_dof: Optional[float] = r["chi2_dof"]
         self.converged: bool = r["converged"]
         self.iterations: int = r["iterations"]
+        self.jacobian: str = r["jacobian"]
         self.aic: float = r["aic"]
         self.bic: float = r["bic"]
         self.model: str = r["model"]
@@ -356,7 +359,11 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         model: the diode law, 'pwl' or 'shockley' [default: the experiment's].
         per_record: fit each record alone (how a parameter drifts with the drive): returns a
             list of results, one per record, as ``stickslip fit --per-record --json``.
-        progress: unused by the fit today, accepted like the other calls.
+        progress: ``progress(done, total)`` is called from the calling thread as the fit
+            goes on (at most every 50 ms, and once at the end): Levenberg–Marquardt
+            iterations done, of the most it may take (2·50 per fit of records, both passes;
+            50 for a table; summed over the records with ``per_record``). An exception it
+            raises stops the fit and propagates.
 
     Returns:
         A ``FitResult`` (values in SI units, standard errors, covariance, residuals, the

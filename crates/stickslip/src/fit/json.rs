@@ -74,7 +74,7 @@ pub struct RowJson {
 
 /// A fit's report as JSON: `model`, `parameters` keyed by the flag names
 /// (`{"resistance": {"value", "stderr", "ci95"}}`), `correlation`, `records` (records only),
-/// `rows` (a table only), `rms_residual_V`, `chi2_dof`, `converged`, `iterations`, `aic`,
+/// `rows` (a table only), `rms_residual_V`, `chi2_dof`, `converged`, `iterations`, `jacobian`, `aic`,
 /// `bic`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReportJson {
@@ -99,6 +99,8 @@ pub struct FitReportJson {
     pub converged: bool,
     /// Its iterations.
     pub iterations: usize,
+    /// How the Jacobian at the solution was computed: `exact` or `finite-differences`.
+    pub jacobian: &'static str,
     /// Akaike's information criterion.
     pub aic: f64,
     /// The Bayesian information criterion.
@@ -182,6 +184,7 @@ impl FitReport {
             chi2_dof: self.chi2_dof,
             converged: self.converged,
             iterations: self.iterations,
+            jacobian: self.jacobian.label(),
             aic: self.aic,
             bic: self.bic,
         }

@@ -21,6 +21,11 @@ pub(crate) trait Problem {
     /// The Jacobian at `x` with residuals `r`, column by column (`columns[j][i]` =
     /// ∂r_i/∂x_j).
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, Self::Error>;
+    /// Told after every iteration (`iteration` from 1, the sum of squares reached); an error
+    /// stops the minimisation with it.
+    fn iteration(&mut self, _iteration: usize, _sum_squares: f64) -> Result<(), Self::Error> {
+        Ok(())
+    }
 }
 
 /// Stopping rules.
@@ -120,6 +125,7 @@ pub(crate) fn minimise<P: Problem>(
                 }
             }
         }
+        problem.iteration(iterations, ssr)?;
         if !accepted && !converged {
             break;
         }

@@ -26,12 +26,19 @@
 //! tens of unknowns), which 150 lines over a Cholesky solver handle. It runs over the free
 //! parameters (scaled by their starting values) and the nuisance
 //! parameters. The Jacobian: the drive's columns on the drive samples and the offsets'
-//! columns exactly; the others by forward differences (step 10⁻⁶ with PWL diodes, whose
+//! columns exactly. The response's columns, with PWL diodes wherever every record's model is
+//! a periodic orbit, from the exact tangent dynamics with respect to the parameters
+//! ([`crate::stability::periodic_orbit_sensitivity`]: the closed-form slides, the saltations,
+//! the releases' moving times and dx*/dp = (I − M)⁻¹ ∂P/∂p), carried through the circuit's
+//! scales (ζ = (R + R_D)/2·√(C/L), ω0 = 1/√(LC), w = 2πf/ω0, β = U/U_t, τ = ω0·s,
+//! u_C = U_t·y), from the steady states the residuals were computed with. Otherwise (Shockley
+//! diodes, a model that does not repeat, a tangential release, a multiplier 1) by forward
+//! differences (step 10⁻⁶ with PWL diodes, whose
 //! exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
 //! solver is accurate to its tolerance; relative to a free parameter's value, but never
 //! smaller than that fraction of its starting value, so that a value fitted near zero, such
 //! as a diode's R_s, keeps a step above the solver's error), a record's own nuisance columns
-//! from that record only. The exact tangent dynamics with respect to the parameters are not used yet.
+//! from that record only. The report says which served at the solution ([`Jacobian`]).
 //!
 //! **What is reported** ([`FitReport`]): each free parameter's value, standard error from
 //! s²(JᵀJ)⁻¹ with s² the weighted SSR/(N − P) (N residuals, P fitted values with the nuisance
@@ -61,15 +68,18 @@ pub use parameter::FitParameter;
 
 use crate::experiment::{DiodeModel, Experiment};
 use crate::measure::{AmplitudeTable, Direction, MeasureError, Measurement};
-use crate::params::State;
+use crate::params::{Params, State};
 use crate::physical::Circuit;
+use crate::scan::Monitor;
 use crate::shockley::DiodePair;
 use crate::solver::sample_at;
+use crate::stability::{periodic_orbit_sensitivity, OrbitSample};
 use crate::steady::SolverFactory;
 use crate::steady::{MotionClass, SteadyOptions};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
+use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// What can go wrong in a fit.
@@ -125,6 +135,7 @@ pub enum FitError {
 
 /// How a fit runs. The defaults are listed field by field.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct FitOptions {
     /// Most Levenberg–Marquardt iterations. Default 50.
     pub max_iterations: usize,
@@ -135,6 +146,9 @@ pub struct FitOptions {
     pub time_shift: bool,
     /// Fit a DC offset of each record's u_C channel. Default true.
     pub offset: bool,
+    /// Jacobians of records from the exact tangent dynamics wherever they serve ([`Jacobian`]);
+    /// false: finite differences always (to compare). Default true.
+    pub exact_jacobian: bool,
 }
 
 impl Default for FitOptions {
@@ -144,6 +158,85 @@ impl Default for FitOptions {
             tolerance: 1e-9,
             time_shift: true,
             offset: true,
+            exact_jacobian: true,
+        }
+    }
+}
+
+/// A fit's progress, told to a [`FitMonitor`] after every Levenberg–Marquardt iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitProgress {
+    /// Iterations done, over every pass and (per record) every record so far.
+    pub iteration: usize,
+    /// The most iterations the fit may take (the passes' and records' maxima together); the
+    /// fit usually converges well before.
+    pub total: usize,
+    /// The sum of squares of the weighted residuals reached (records: dimensionless, each
+    /// residual in units of its channel's noise; a table: V²).
+    pub sum_squares: f64,
+}
+
+/// Watches a fit: told after every iteration, and able to stop it (the fit then returns
+/// [`FitError::Stopped`] with [`crate::Error::Cancelled`]). Every scan monitor
+/// ([`crate::scan::Monitor`], such as `()` or a closure `Fn(done, total) -> bool`) is one and
+/// sees (iterations done, most iterations).
+pub trait FitMonitor: Sync {
+    /// `progress` was reached; [`ControlFlow::Break`] stops the fit.
+    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()>;
+}
+
+impl<M: Monitor + ?Sized> FitMonitor for M {
+    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()> {
+        self.step(progress.iteration, progress.total)
+    }
+}
+
+/// Where a problem's iterations stand in the whole fit, and who watches.
+#[derive(Clone, Copy)]
+struct Watch<'a> {
+    monitor: &'a dyn FitMonitor,
+    /// Iterations done before this minimisation.
+    before: usize,
+    total: usize,
+}
+
+impl Watch<'_> {
+    fn tell(&self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        let progress = FitProgress {
+            iteration: self.before + iteration,
+            total: self.total,
+            sum_squares,
+        };
+        match self.monitor.iteration(&progress) {
+            ControlFlow::Continue(()) => Ok(()),
+            ControlFlow::Break(()) => Err(FitError::Stopped(crate::Error::Cancelled {
+                done: progress.iteration,
+                total: progress.total,
+            })),
+        }
+    }
+}
+
+/// How a fit's Jacobian was computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum Jacobian {
+    /// From the exact tangent dynamics with respect to the parameters
+    /// ([`crate::stability::periodic_orbit_sensitivity`]): PWL diodes, every record's model a
+    /// periodic orbit.
+    Exact,
+    /// By finite differences: Shockley diodes, a model that does not repeat (chaos) or whose
+    /// orbit's derivative does not exist there (a tangential release), or a table.
+    FiniteDifferences,
+}
+
+impl Jacobian {
+    /// The label in reports: `exact` or `finite-differences`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Jacobian::Exact => "exact",
+            Jacobian::FiniteDifferences => "finite-differences",
         }
     }
 }
@@ -250,6 +343,8 @@ pub struct FitReport {
     pub iterations: usize,
     /// Whether the fit met its tolerance within the iterations.
     pub converged: bool,
+    /// How the Jacobian at the solution, the one the error bars come from, was computed.
+    pub jacobian: Jacobian,
     /// The experiment with the fitted values.
     pub experiment: Experiment,
 }
@@ -371,12 +466,17 @@ impl Setup {
     }
 }
 
-/// The model of one record: u_C at the used times, and the motion's class, w and β.
+/// The model of one record: u_C at the used times, and the motion's class, w and β; the
+/// dimensionless parameters, the steady state's strobe state and period (what the exact
+/// Jacobian starts from).
 struct Evaluated {
     model: Vec<f64>,
     class: MotionClass,
     w: f64,
     beta: f64,
+    params: Params,
+    strobe: State,
+    period: Option<usize>,
 }
 
 fn wrap(phase: f64) -> f64 {
@@ -414,6 +514,9 @@ fn evaluate(
         class: steady.class,
         w: params.w,
         beta: params.beta,
+        params,
+        strobe: steady.final_state(),
+        period: steady.period,
     })
 }
 
@@ -442,6 +545,24 @@ struct Records<'a> {
     response: Vec<Vec<f64>>,
     /// 1/σ of the drive and response channels of each record.
     weights: Vec<(f64, f64)>,
+    /// The values of the last evaluation of the residuals and each record's orbit there
+    /// (Levenberg–Marquardt asks for the Jacobian where it last accepted a step).
+    orbits: Option<(Vec<f64>, Vec<Orbit>)>,
+    /// Whether to try the exact Jacobian ([`FitOptions::exact_jacobian`]).
+    exact: bool,
+    /// How the last Jacobian was computed.
+    jacobian: Jacobian,
+    /// Who is told of each iteration.
+    watch: Watch<'a>,
+}
+
+/// Where the exact Jacobian of a record starts: the dimensionless parameters of its model,
+/// the steady state's strobe state and its period.
+#[derive(Debug, Clone, Copy)]
+struct Orbit {
+    params: Params,
+    strobe: State,
+    period: Option<usize>,
 }
 
 /// A record's drive as the values x hold it.
@@ -491,8 +612,14 @@ impl Records<'_> {
         )
     }
 
-    /// Weighted residuals of record j: its drive samples, then its response samples.
-    fn record_residuals(&self, experiment: &Experiment, x: &[f64], j: usize) -> Option<Vec<f64>> {
+    /// Weighted residuals of record j: its drive samples, then its response samples; and the
+    /// orbit of its model.
+    fn record_residuals(
+        &self,
+        experiment: &Experiment,
+        x: &[f64],
+        j: usize,
+    ) -> Option<(Vec<f64>, Orbit)> {
         let e = self.response_model(experiment, x, j).ok()?;
         let d = self.drive(x, j);
         let (offset, _) = self.offset_and_shift(x, j);
@@ -505,15 +632,117 @@ impl Records<'_> {
         for (m, v) in e.model.iter().zip(&self.response[j]) {
             out.push(wr * (m + offset - v));
         }
-        Some(out)
+        let orbit = Orbit {
+            params: e.params,
+            strobe: e.strobe,
+            period: e.period,
+        };
+        Some((out, orbit))
     }
 
-    fn all(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
+    /// Every record's residuals and orbit at x.
+    fn evaluate_all(&self, x: &[f64]) -> Option<Vec<(Vec<f64>, Orbit)>> {
         let experiment = self.setup.at(&x[..self.setup.free.len()])?;
         (0..self.data.len())
             .into_par_iter()
             .map(|j| self.record_residuals(&experiment, x, j))
             .collect()
+    }
+
+    fn all(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
+        self.evaluate_all(x)
+            .map(|records| records.into_iter().map(|(r, _)| r).collect())
+    }
+
+    /// The drive channels' columns, exact (the sine's derivatives), and the offsets' columns.
+    fn fill_drive_columns(&self, x: &[f64], columns: &mut [Vec<f64>]) {
+        for (j, &(start, len)) in self.spans().iter().enumerate() {
+            let half = len / 2;
+            let (wd, wr) = self.weights[j];
+            let slots = self.slots[j];
+            let d = self.drive(x, j);
+            let sine = &self.data[j].drive;
+            for (t, s) in self.time[j].iter().enumerate() {
+                let (sn, cs) = (TAU * d.frequency * s + d.phase).sin_cos();
+                columns[slots.drive][start + t] = wd * cs * sine.amplitude;
+                columns[slots.drive + 1][start + t] =
+                    -wd * d.amplitude * sn * TAU * s * sine.frequency;
+                columns[slots.drive + 2][start + t] = -wd * d.amplitude * sn;
+                columns[slots.drive + 3][start + t] = wd;
+            }
+            if let Some(i) = slots.offset {
+                columns[i][start + half..start + len].fill(wr);
+            }
+        }
+    }
+
+    /// The Jacobian from the exact tangent dynamics with respect to the parameters
+    /// ([`crate::stability::periodic_orbit_sensitivity`]), or `None` where it cannot serve:
+    /// Shockley diodes, a record whose model has no period (chaos), a tangential release, a
+    /// multiplier 1.
+    fn exact_jacobian(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
+        if !self.exact || self.setup.experiment.diode_model() != DiodeModel::Pwl {
+            return None;
+        }
+        let free = self.setup.free.len();
+        let orbits = match &self.orbits {
+            Some((at, orbits)) if at.as_slice() == x => orbits.clone(),
+            _ => self.evaluate_all(x)?.into_iter().map(|(_, o)| o).collect(),
+        };
+        let experiment = self.setup.at(&x[..free])?;
+        let circuit = *experiment.circuit_ref()?;
+        let scales = circuit.scales();
+        let (omega0, zeta, ut) = (scales.omega0, scales.zeta(), scales.position);
+        let (inductance, capacitance) = (circuit.inductance, circuit.capacitance);
+        // ∂ζ/∂R = ∂ζ/∂R_D, ∂ζ/∂L, ∂ζ/∂C; ∂ω0/∂L, ∂ω0/∂C (ζ = (R + R_D)/2·√(C/L),
+        // ω0 = 1/√(LC)).
+        let zeta_r = 0.5 * (capacitance / inductance).sqrt();
+        let (zeta_l, zeta_c) = (-zeta / (2.0 * inductance), zeta / (2.0 * capacitance));
+        let (omega_l, omega_c) = (-omega0 / (2.0 * inductance), -omega0 / (2.0 * capacitance));
+        let sensitivities: Vec<Vec<OrbitSample>> = (0..self.data.len())
+            .into_par_iter()
+            .map(|j| {
+                let orbit = orbits[j];
+                let taus: Vec<f64> = self.time[j].iter().map(|&s| s * omega0).collect();
+                periodic_orbit_sensitivity(&orbit.params, orbit.strobe, orbit.period?, &taus).ok()
+            })
+            .collect::<Option<_>>()?;
+        let n_res = 2 * self.time.iter().map(Vec::len).sum::<usize>();
+        let mut columns = vec![vec![0.0; n_res]; x.len()];
+        self.fill_drive_columns(x, &mut columns);
+        for (j, &(start, len)) in self.spans().iter().enumerate() {
+            let half = len / 2;
+            let wr = self.weights[j].1;
+            let slots = self.slots[j];
+            let params = orbits[j].params;
+            let sine = &self.data[j].drive;
+            for (i, (sample, &seconds)) in sensitivities[j].iter().zip(&self.time[j]).enumerate() {
+                let [dz, db, dw, dphi, dmu] = sample.dy;
+                let row = start + half + i;
+                // dy/dω0 at a fixed time in seconds: w = Ω/ω0 and τ = ω0·s.
+                let along = |zeta_p: f64, omega_p: f64| {
+                    dz * zeta_p + (sample.v * seconds - dw * params.w / omega0) * omega_p
+                };
+                for (k, p) in self.setup.free.iter().enumerate() {
+                    let du = match p {
+                        FitParameter::Resistance | FitParameter::Rd => ut * dz * zeta_r,
+                        FitParameter::Ut => sample.y - params.beta * db,
+                        FitParameter::Inductance => ut * along(zeta_l, omega_l),
+                        FitParameter::Capacitance => ut * along(zeta_c, omega_c),
+                        FitParameter::MuS => ut * dmu,
+                        _ => return None,
+                    };
+                    columns[k][row] = wr * du * self.setup.scale[k];
+                }
+                columns[slots.drive][row] = wr * db * sine.amplitude;
+                columns[slots.drive + 1][row] = wr * ut * dw * TAU * sine.frequency / omega0;
+                columns[slots.drive + 2][row] = wr * ut * dphi;
+                if let Some(k) = slots.shift {
+                    columns[k][row] = wr * ut * dphi;
+                }
+            }
+        }
+        Some(columns)
     }
 
     /// Where each record's residuals start, and how many it has.
@@ -546,11 +775,32 @@ impl lm::Problem for Records<'_> {
 
     fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, FitError> {
         self.setup.check_stop()?;
-        Ok(self.all(x).map(|r| r.concat()))
+        let Some(records) = self.evaluate_all(x) else {
+            return Ok(None);
+        };
+        let (residuals, orbits): (Vec<Vec<f64>>, Vec<Orbit>) = records.into_iter().unzip();
+        self.orbits = Some((x.to_vec(), orbits));
+        Ok(Some(residuals.concat()))
     }
 
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
         self.setup.check_stop()?;
+        if let Some(columns) = self.exact_jacobian(x) {
+            self.jacobian = Jacobian::Exact;
+            return Ok(columns);
+        }
+        self.jacobian = Jacobian::FiniteDifferences;
+        self.finite_difference_jacobian(x, r)
+    }
+
+    fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        self.watch.tell(iteration, sum_squares)
+    }
+}
+
+impl Records<'_> {
+    /// The Jacobian by finite differences (see the module documentation).
+    fn finite_difference_jacobian(&self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
         let n = x.len();
         let spans = self.spans();
         let mut columns = vec![vec![0.0; r.len()]; n];
@@ -589,7 +839,7 @@ impl lm::Problem for Records<'_> {
                 for (q, step) in steps.iter().enumerate() {
                     let mut xp = x.to_vec();
                     xp[k + q] += step;
-                    let rp = self.record_residuals(&experiment, &xp, j)?;
+                    let (rp, _) = self.record_residuals(&experiment, &xp, j)?;
                     out[q] = rp[half..]
                         .iter()
                         .zip(base)
@@ -599,32 +849,19 @@ impl lm::Problem for Records<'_> {
                 Some(out)
             })
             .collect();
+        self.fill_drive_columns(x, &mut columns);
         for j in 0..self.data.len() {
             let (start, len) = spans[j];
             let half = len / 2;
-            let (wd, wr) = self.weights[j];
             let slots = self.slots[j];
-            let d = self.drive(x, j);
-            let sine = &self.data[j].drive;
             let dr = derivatives[j]
                 .as_ref()
-                .ok_or_else(|| no_value(&self.data[j].file, d.frequency))?;
-            for (t, s) in self.time[j].iter().enumerate() {
-                let (sn, cs) = (TAU * d.frequency * s + d.phase).sin_cos();
-                columns[slots.drive][start + t] = wd * cs * sine.amplitude;
-                columns[slots.drive + 1][start + t] =
-                    -wd * d.amplitude * sn * TAU * s * sine.frequency;
-                columns[slots.drive + 2][start + t] = -wd * d.amplitude * sn;
-                columns[slots.drive + 3][start + t] = wd;
-            }
+                .ok_or_else(|| no_value(&self.data[j].file, self.drive(x, j).frequency))?;
             for q in 0..3 {
                 columns[slots.drive + q][start + half..start + len].copy_from_slice(&dr[q]);
             }
             if let Some(i) = slots.shift {
                 columns[i][start + half..start + len].copy_from_slice(&dr[2]);
-            }
-            if let Some(i) = slots.offset {
-                columns[i][start + half..start + len].fill(wr);
             }
         }
         Ok(columns)
@@ -693,6 +930,107 @@ fn rms(values: &[f64]) -> f64 {
     (values.iter().map(|v| v * v).sum::<f64>() / values.len().max(1) as f64).sqrt()
 }
 
+impl<'a> Records<'a> {
+    /// The problem of `data` with the free parameters of `setup`, and the starting values
+    /// (free values scaled to 1, then each record's nuisance values).
+    fn new(
+        setup: &'a Setup,
+        data: &'a [Measurement],
+        options: &FitOptions,
+        watch: Watch<'a>,
+    ) -> Result<(Self, Vec<f64>), FitError> {
+        let free = &setup.free;
+        let mut x: Vec<f64> = vec![1.0; free.len()];
+        let pick = |values: &[f64], used: &[bool]| -> Vec<f64> {
+            values
+                .iter()
+                .zip(used)
+                .filter(|(_, &u)| u)
+                .map(|(&v, _)| v)
+                .collect()
+        };
+        let time: Vec<Vec<f64>> = data.iter().map(|m| pick(&m.time, &m.used)).collect();
+        let drive: Vec<Vec<f64>> = data
+            .iter()
+            .map(|m| pick(&m.drive_values, &m.used))
+            .collect();
+        let response: Vec<Vec<f64>> = data.iter().map(|m| pick(&m.response, &m.used)).collect();
+        let mut slots = Vec::with_capacity(data.len());
+        for (m, values) in data.iter().zip(&response) {
+            let offset = options.offset.then(|| {
+                x.push(values.iter().sum::<f64>() / values.len().max(1) as f64);
+                x.len() - 1
+            });
+            let shift = options.time_shift.then(|| {
+                x.push(0.0);
+                x.len() - 1
+            });
+            slots.push(Slots {
+                offset,
+                shift,
+                drive: x.len(),
+            });
+            x.extend([1.0, 1.0, m.drive.phase, m.drive.offset]);
+        }
+        let n_res: usize = 2 * time.iter().map(Vec::len).sum::<usize>();
+        if n_res <= x.len() {
+            return Err(FitError::TooFewSamples {
+                residuals: n_res,
+                values: x.len(),
+            });
+        }
+        let start = setup.at(&x[..free.len()]).ok_or(FitError::FreeParameters(
+            "the starting values are outside the parameters' ranges",
+        ))?;
+        for (m, t) in data.iter().zip(&time) {
+            evaluate(
+                &start,
+                m.drive.frequency,
+                m.drive.amplitude,
+                m.drive.phase,
+                t,
+                &setup.steady,
+            )
+            .map_err(|error| FitError::Model {
+                file: m.file.clone(),
+                error,
+            })?;
+        }
+        let weights = data
+            .iter()
+            .zip(drive.iter().zip(&response))
+            .map(|(m, (d, r))| {
+                (
+                    1.0 / noise_floor(m.drive_noise, d, None),
+                    1.0 / noise_floor(m.noise, r, m.resolution),
+                )
+            })
+            .collect();
+        let problem = Records {
+            setup,
+            data,
+            slots,
+            time,
+            drive,
+            response,
+            weights,
+            orbits: None,
+            exact: options.exact_jacobian,
+            jacobian: Jacobian::FiniteDifferences,
+            watch,
+        };
+        Ok((problem, x))
+    }
+}
+
+/// A floor under a channel's noise σ: a noise-free record must not get an infinite weight
+/// (a twelfth of the resolution's variance, 10⁻⁹ of the channel's scale).
+fn noise_floor(sigma: f64, values: &[f64], q: Option<f64>) -> f64 {
+    let scale = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let quantum = q.unwrap_or(0.0) / 12f64.sqrt();
+    sigma.max(quantum).max(1e-9 * scale).max(f64::MIN_POSITIVE)
+}
+
 /// Fit the free parameters of `experiment` (a circuit, PWL or Shockley) to every record of
 /// `data` at once. The experiment's values are the starting point; its drive is not used
 /// (each record has its own).
@@ -713,91 +1051,41 @@ pub fn fit_records(
     free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<FitReport, FitError> {
+    fit_records_monitored(experiment, data, free, options, &())
+}
+
+/// [`fit_records`], telling `monitor` of every iteration (of both passes: at most
+/// 2·[`FitOptions::max_iterations`]), which can stop the fit.
+///
+/// # Errors
+/// As [`fit_records`]; [`FitError::Stopped`] when the monitor stops the fit.
+pub fn fit_records_monitored(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<FitReport, FitError> {
+    let watch = Watch {
+        monitor,
+        before: 0,
+        total: 2 * options.max_iterations,
+    };
+    records_watched(experiment, data, free, options, watch)
+}
+
+fn records_watched(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    watch: Watch<'_>,
+) -> Result<FitReport, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
     let setup = Setup::new(experiment, free)?;
-    let mut x: Vec<f64> = vec![1.0; free.len()];
-    let pick = |values: &[f64], used: &[bool]| -> Vec<f64> {
-        values
-            .iter()
-            .zip(used)
-            .filter(|(_, &u)| u)
-            .map(|(&v, _)| v)
-            .collect()
-    };
-    let time: Vec<Vec<f64>> = data.iter().map(|m| pick(&m.time, &m.used)).collect();
-    let drive: Vec<Vec<f64>> = data
-        .iter()
-        .map(|m| pick(&m.drive_values, &m.used))
-        .collect();
-    let response: Vec<Vec<f64>> = data.iter().map(|m| pick(&m.response, &m.used)).collect();
-    let mut slots = Vec::with_capacity(data.len());
-    for (m, values) in data.iter().zip(&response) {
-        let offset = options.offset.then(|| {
-            x.push(values.iter().sum::<f64>() / values.len().max(1) as f64);
-            x.len() - 1
-        });
-        let shift = options.time_shift.then(|| {
-            x.push(0.0);
-            x.len() - 1
-        });
-        slots.push(Slots {
-            offset,
-            shift,
-            drive: x.len(),
-        });
-        x.extend([1.0, 1.0, m.drive.phase, m.drive.offset]);
-    }
-    let n_res: usize = 2 * time.iter().map(Vec::len).sum::<usize>();
-    if n_res <= x.len() {
-        return Err(FitError::TooFewSamples {
-            residuals: n_res,
-            values: x.len(),
-        });
-    }
-    let start = setup.at(&x[..free.len()]).ok_or(FitError::FreeParameters(
-        "the starting values are outside the parameters' ranges",
-    ))?;
-    for (m, t) in data.iter().zip(&time) {
-        evaluate(
-            &start,
-            m.drive.frequency,
-            m.drive.amplitude,
-            m.drive.phase,
-            t,
-            &setup.steady,
-        )
-        .map_err(|error| FitError::Model {
-            file: m.file.clone(),
-            error,
-        })?;
-    }
-    // A floor under the noise: a noise-free record must not get an infinite weight.
-    let floor = |sigma: f64, values: &[f64], q: Option<f64>| {
-        let scale = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let quantum = q.unwrap_or(0.0) / 12f64.sqrt();
-        sigma.max(quantum).max(1e-9 * scale).max(f64::MIN_POSITIVE)
-    };
-    let weights = data
-        .iter()
-        .zip(drive.iter().zip(&response))
-        .map(|(m, (d, r))| {
-            (
-                1.0 / floor(m.drive_noise, d, None),
-                1.0 / floor(m.noise, r, m.resolution),
-            )
-        })
-        .collect();
-    let mut problem = Records {
-        setup: &setup,
-        data,
-        slots,
-        time,
-        drive,
-        response,
-        weights,
-    };
+    let (mut problem, x) = Records::new(&setup, data, options, watch)?;
     let n_values = x.len();
     let settings = lm::Settings {
         max_iterations: options.max_iterations,
@@ -822,10 +1110,14 @@ pub fn fit_records(
             let half = len / 2;
             let sd = rms(&first.residuals[start..start + half]) / wd;
             let sr = rms(&first.residuals[start + half..start + len]) / wr;
-            (1.0 / floor(sd, d, None), 1.0 / floor(sr, r, m.resolution))
+            (
+                1.0 / noise_floor(sd, d, None),
+                1.0 / noise_floor(sr, r, m.resolution),
+            )
         })
         .collect();
     problem.weights = weights;
+    problem.watch.before += first.iterations;
     let second = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
     let iterations = first.iterations + second.iterations;
     let solution = second;
@@ -857,8 +1149,8 @@ pub fn fit_records(
             .collect();
         let ssr_d: f64 = drive_residuals.iter().map(|r| r * r).sum();
         let ssr_r: f64 = residuals.iter().map(|r| r * r).sum();
-        chi2 += ssr_d / floor(m.drive_noise, &problem.drive[j], None).powi(2)
-            + ssr_r / floor(m.noise, &problem.response[j], m.resolution).powi(2);
+        chi2 += ssr_d / noise_floor(m.drive_noise, &problem.drive[j], None).powi(2)
+            + ssr_r / noise_floor(m.noise, &problem.response[j], m.resolution).powi(2);
         groups.push((ssr_d, half));
         groups.push((ssr_r, half));
         all_response.extend_from_slice(&residuals);
@@ -905,6 +1197,7 @@ pub fn fit_records(
         bic,
         iterations,
         converged: solution.converged,
+        jacobian: problem.jacobian,
         experiment: fitted,
     })
 }
@@ -920,11 +1213,35 @@ pub fn fit_per_record(
     free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<Vec<FitReport>, FitError> {
+    fit_per_record_monitored(experiment, data, free, options, &())
+}
+
+/// [`fit_per_record`], telling `monitor` of every iteration (at most
+/// 2·[`FitOptions::max_iterations`] per record), which can stop the fits.
+///
+/// # Errors
+/// As [`fit_per_record`]; [`FitError::Stopped`] when the monitor stops the fits.
+pub fn fit_per_record_monitored(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<Vec<FitReport>, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
+    let per = 2 * options.max_iterations;
     data.iter()
-        .map(|m| fit_records(experiment, std::slice::from_ref(m), free, options))
+        .enumerate()
+        .map(|(j, m)| {
+            let watch = Watch {
+                monitor,
+                before: j * per,
+                total: data.len() * per,
+            };
+            records_watched(experiment, std::slice::from_ref(m), free, options, watch)
+        })
         .collect()
 }
 
@@ -942,6 +1259,31 @@ pub fn compare_models(
     shockley_free: &[FitParameter],
     options: &FitOptions,
 ) -> Result<ModelComparison, FitError> {
+    compare_models_monitored(
+        experiment,
+        pair,
+        data,
+        pwl_free,
+        shockley_free,
+        options,
+        &(),
+    )
+}
+
+/// [`compare_models`], telling `monitor` of every iteration of both fits (at most
+/// 4·[`FitOptions::max_iterations`]), which can stop them.
+///
+/// # Errors
+/// As [`compare_models`]; [`FitError::Stopped`] when the monitor stops the fits.
+pub fn compare_models_monitored(
+    experiment: &Experiment,
+    pair: DiodePair,
+    data: &[Measurement],
+    pwl_free: &[FitParameter],
+    shockley_free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<ModelComparison, FitError> {
     if experiment.diode_model() != DiodeModel::Pwl {
         return Err(FitError::WrongLaw {
             parameter: FitParameter::Ut,
@@ -956,8 +1298,20 @@ pub fn compare_models(
                 file: "(comparison)".into(),
                 error,
             })?;
-    let pwl = fit_records(experiment, data, pwl_free, options)?;
-    let shockley = fit_records(&shockley_experiment, data, shockley_free, options)?;
+    let per = 2 * options.max_iterations;
+    let watch = |before| Watch {
+        monitor,
+        before,
+        total: 2 * per,
+    };
+    let pwl = records_watched(experiment, data, pwl_free, options, watch(0))?;
+    let shockley = records_watched(
+        &shockley_experiment,
+        data,
+        shockley_free,
+        options,
+        watch(per),
+    )?;
     let delta_aic = shockley.aic - pwl.aic;
     Ok(ModelComparison {
         preferred: if delta_aic < 0.0 {
@@ -978,6 +1332,8 @@ struct Table<'a> {
     /// Rows in computing order: legs (each a list of row indices, each row settling from the
     /// previous one) and single rows from rest.
     legs: Vec<Vec<usize>>,
+    /// Who is told of each iteration.
+    watch: Watch<'a>,
 }
 
 impl Table<'_> {
@@ -1057,6 +1413,10 @@ impl lm::Problem for Table<'_> {
             })
             .collect()
     }
+
+    fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
+        self.watch.tell(iteration, sum_squares)
+    }
 }
 
 /// Fit the free parameters of `experiment` to a table of measured amplitudes (see the module
@@ -1069,6 +1429,21 @@ pub fn fit_table(
     table: &AmplitudeTable,
     free: &[FitParameter],
     options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    fit_table_monitored(experiment, table, free, options, &())
+}
+
+/// [`fit_table`], telling `monitor` of every iteration (at most
+/// [`FitOptions::max_iterations`]), which can stop the fit.
+///
+/// # Errors
+/// As [`fit_table`]; [`FitError::Stopped`] when the monitor stops the fit.
+pub fn fit_table_monitored(
+    experiment: &Experiment,
+    table: &AmplitudeTable,
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
 ) -> Result<FitReport, FitError> {
     if table.rows.is_empty() {
         return Err(FitError::NoData);
@@ -1113,6 +1488,11 @@ pub fn fit_table(
         setup: &setup,
         table,
         legs: order,
+        watch: Watch {
+            monitor,
+            before: 0,
+            total: options.max_iterations,
+        },
     };
     let x = vec![1.0; free.len()];
     if problem.amplitudes(&x).is_none() {
@@ -1172,6 +1552,7 @@ pub fn fit_table(
         bic,
         iterations: solution.iterations,
         converged: solution.converged,
+        jacobian: Jacobian::FiniteDifferences,
         experiment: fitted,
     })
 }
@@ -1185,6 +1566,108 @@ mod tests {
         // Student's t, 0.975: 2.571 (5), 2.228 (10), 2.042 (30), 1.984 (100).
         for (dof, t) in [(5, 2.5706), (10, 2.2281), (30, 2.0423), (100, 1.9840)] {
             assert!((t_quantile_975(dof) - t).abs() < 2e-3 * t, "{dof}");
+        }
+    }
+    /// A plain-CSV record of `truth` at (w, β, φ): 600 samples over 2.5 drive periods, with
+    /// a deterministic ripple of 0.3 % as noise and an offset of 20 mV on u_C.
+    fn record(truth: &Experiment, w: f64, beta: f64, phi: f64) -> Measurement {
+        let e = truth
+            .clone()
+            .with_w(w)
+            .and_then(|e| e.with_beta(beta))
+            .and_then(|e| e.with_phi(phi))
+            .unwrap();
+        let steady = e.steady().unwrap();
+        let scales = e.scales().unwrap();
+        let mut solver = e
+            .factory()
+            .make(e.params().unwrap(), steady.final_state())
+            .unwrap();
+        let n = 600;
+        let dt = 2.5 * TAU / (w * scales.omega0) / n as f64;
+        let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
+        let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
+        let mut text = "time_s,u_V,uc_V\n".to_string();
+        for (k, (tau, s)) in taus.iter().zip(&samples).enumerate() {
+            let ripple = 0.003 * ((k * k % 97) as f64 / 48.0 - 1.0);
+            let drive = beta * scales.force * (w * tau + phi).cos() * (1.0 + ripple);
+            let response = (s.y + ripple) * scales.position + 0.02;
+            text += &format!("{:.12e},{drive:.12e},{response:.12e}\n", k as f64 * dt);
+        }
+        let r = crate::measure::read_scope(&text, "plain.csv").unwrap();
+        Measurement::new(&r, None, None).unwrap()
+    }
+
+    /// The exact Jacobian of records against Richardson-extrapolated central differences of
+    /// the residuals, column by column, for every PWL parameter and every nuisance value:
+    /// sliding records and a stick-slip record with μs > 1 (the releases move with the
+    /// parameters).
+    #[test]
+    fn the_exact_jacobian_of_records_matches_central_differences() {
+        let truth = Experiment::circuit(Circuit {
+            resistance: 80.0,
+            ..Circuit::paper()
+        })
+        .unwrap()
+        .with_mu_s(1.25)
+        .unwrap();
+        let data: Vec<Measurement> = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)]
+            .iter()
+            .map(|&(w, beta, phi)| record(&truth, w, beta, phi))
+            .collect();
+        let start = Experiment::paper().with_mu_s(1.2).unwrap();
+        let free = [
+            FitParameter::Resistance,
+            FitParameter::Ut,
+            FitParameter::Rd,
+            FitParameter::Inductance,
+            FitParameter::Capacitance,
+            FitParameter::MuS,
+        ];
+        let setup = Setup::new(&start, &free).unwrap();
+        let watch = Watch {
+            monitor: &(),
+            before: 0,
+            total: 1,
+        };
+        let (mut problem, x) = Records::new(&setup, &data, &FitOptions::default(), watch).unwrap();
+        let r = lm::Problem::residuals(&mut problem, &x).unwrap().unwrap();
+        let exact = problem.exact_jacobian(&x).expect("periodic PWL models");
+        let classes: Vec<MotionClass> = (0..data.len())
+            .map(|j| {
+                problem
+                    .response_model(&setup.at(&x[..6]).unwrap(), &x, j)
+                    .unwrap()
+                    .class
+            })
+            .collect();
+        assert!(classes.contains(&MotionClass::PeriodicStick), "{classes:?}");
+        assert!(classes.contains(&MotionClass::Sliding), "{classes:?}");
+        let central = |k: usize, h: f64| -> Vec<f64> {
+            let mut up = x.clone();
+            let mut down = x.clone();
+            up[k] += h;
+            down[k] -= h;
+            let (a, b) = (problem.all(&up).unwrap(), problem.all(&down).unwrap());
+            a.concat()
+                .iter()
+                .zip(&b.concat())
+                .map(|(a, b)| (a - b) / (2.0 * h))
+                .collect()
+        };
+        for k in 0..x.len() {
+            let h = 1e-5 * x[k].abs().max(1.0);
+            let (coarse, fine) = (central(k, h), central(k, h / 2.0));
+            let size = fine.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let mut worst = 0.0f64;
+            for i in 0..r.len() {
+                let richardson = (4.0 * fine[i] - coarse[i]) / 3.0;
+                worst = worst.max((exact[k][i] - richardson).abs());
+            }
+            assert!(
+                worst <= 1e-6 * size,
+                "column {k}: deviation {worst:e} against a largest entry {size:e}"
+            );
         }
     }
 }

@@ -42,6 +42,13 @@
 //! events and stops, its monodromy matrix, Floquet multipliers and [`Stability`].
 //! [`periodic_orbit_from_steady`] starts it from a settled [`crate::SteadyState`].
 //!
+//! # Parameter sensitivities
+//!
+//! [`periodic_orbit_sensitivity`] carries, beside J, the derivatives of the flow by the
+//! parameters (ζ, β, w, φ, μs) through the closed-form slides and the events (a release's
+//! time moves with the drive and μs), and gives the derivatives of a periodic orbit's samples
+//! through dx*/dp = (I − M)⁻¹ ∂P/∂p: the exact Jacobians of [`crate::fit`].
+//!
 //! # Lyapunov exponents
 //!
 //! [`lyapunov_exponents`] gives the largest exponent from the renormalised tangent, per unit τ
@@ -63,6 +70,7 @@ pub mod periodic_orbit;
 pub mod report;
 pub mod saltation;
 pub mod segment;
+pub mod sensitivity;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
@@ -80,6 +88,7 @@ pub use nonperiodic::{
 pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stability, Stop};
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
+pub use sensitivity::{periodic_orbit_sensitivity, OrbitSample, SENSITIVITY_PARAMETERS};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::TangentSolver;
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
