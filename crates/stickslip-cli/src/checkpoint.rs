@@ -17,6 +17,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use stickslip::checkpoint::{Checkpoint, Identity};
+use stickslip::OptionKey;
 
 /// Flags of a command that can save its work and resume.
 #[derive(Debug, Clone, clap::Args)]
@@ -27,14 +28,13 @@ pub struct CheckpointFlags {
     /// it belongs to other parameters or is damaged, and removed once the output is written.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    /// Least time between two saves of the checkpoint, in seconds (0: after every finished
-    /// row or step); a save also waits twenty times as long as the last one took.
     #[arg(
         long = "checkpoint-every",
+        help = crate::flags::help(OptionKey::CheckpointEvery),
+        default_value_t = crate::flags::default_number(OptionKey::CheckpointEvery),
         value_name = "SECONDS",
-        default_value_t = 10.0,
         value_parser = crate::model::finite,
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
     )]
     pub every: f64,
 }

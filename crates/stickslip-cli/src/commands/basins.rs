@@ -58,28 +58,36 @@ pub struct Args {
     /// Largest initial velocity y0'.
     #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
     v0_max: f64,
-    /// Grid points along each axis (the map has --steps × --steps cells).
-    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::BasinSteps),
+        default_value_t = crate::flags::default_count(OptionKey::BasinSteps) as _,
+        allow_hyphen_values = true,
+    )]
     steps: i64,
     /// Drive phase φ (radians) at which the initial states are given (the same as --phi)
     /// [default: 0].
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     phase: Option<f64>,
-    /// Drive periods run at most to find a period.
     #[arg(
         long = "max-periods",
-        default_value_t = 1000,
-        allow_hyphen_values = true
+        help = crate::flags::help(OptionKey::BasinMaxPeriods),
+        default_value_t = crate::flags::default_count(OptionKey::BasinMaxPeriods) as _,
+        allow_hyphen_values = true,
     )]
     max_periods: i64,
-    /// Longest period looked for, in drive periods (1 to 64).
-    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(
+        long = "max-period",
+        help = crate::flags::help(OptionKey::BasinMaxPeriod),
+        default_value_t = crate::flags::default_count(OptionKey::BasinMaxPeriod) as _,
+        allow_hyphen_values = true,
+    )]
     max_period: i64,
-    /// Drive periods over which the exponent of a motion without a period is measured.
     #[arg(
         long = "lyapunov-periods",
-        default_value_t = 1000,
-        allow_hyphen_values = true
+        help = crate::flags::help(OptionKey::BasinLyapunovPeriods),
+        default_value_t = crate::flags::default_count(OptionKey::BasinLyapunovPeriods) as _,
+        allow_hyphen_values = true,
     )]
     lyapunov_periods: i64,
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
@@ -87,9 +95,12 @@ pub struct Args {
     /// steady state and classified).
     #[arg(long, value_parser = choice::<BasinMethod>(), default_value_t = BasinMethod::Recurrence)]
     method: BasinMethod,
-    /// Recurrence: cells of the state-space grid across the map's extent along each axis
-    /// (16 to 1e6; at least 4 per grid spacing of the map are used).
-    #[arg(long, default_value_t = 1024, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::Resolution),
+        default_value_t = crate::flags::default_count(OptionKey::Resolution) as _,
+        allow_hyphen_values = true,
+    )]
     resolution: i64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]

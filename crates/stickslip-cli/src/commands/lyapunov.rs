@@ -43,20 +43,39 @@ use stickslip::OptionKey;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Drive periods run before measuring (0 to 1e9).
-    #[arg(long, default_value_t = 1000, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::LyapunovTransient),
+        default_value_t = crate::flags::default_count(OptionKey::LyapunovTransient) as _,
+        allow_hyphen_values = true,
+    )]
     transient: i64,
-    /// Drive periods measured (rounded down to a multiple of --blocks; up to 1e9).
-    #[arg(long, default_value_t = 20_000, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::LyapunovMeasured),
+        default_value_t = crate::flags::default_count(OptionKey::LyapunovMeasured) as _,
+        allow_hyphen_values = true,
+    )]
     periods: i64,
-    /// Blocks the measured periods are cut into for the error (even, 4 to 10000).
-    #[arg(long, default_value_t = 20, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::Blocks),
+        default_value_t = crate::flags::default_count(OptionKey::Blocks) as _,
+        allow_hyphen_values = true,
+    )]
     blocks: i64,
-    /// Standard errors k that make λ1 significantly positive or negative.
-    #[arg(long, default_value_t = 4.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::Significance),
+        default_value_t = crate::flags::default_number(OptionKey::Significance),
+        value_parser = crate::model::finite,
+        allow_hyphen_values = true,
+    )]
     significance: f64,
-    /// Measure all --periods, even when the verdict is decided sooner.
-    #[arg(long)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::Fixed),
+    )]
     fixed: bool,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -70,8 +89,7 @@ pub fn run(args: Args) -> Result<()> {
     let options = LyapunovOptions {
         transient_periods: count(OptionKey::LyapunovTransient, args.transient)?,
         blocks: count(OptionKey::Blocks, args.blocks)?,
-        periods: usize::try_from(args.periods)
-            .map_err(|_| OptionKey::LyapunovMeasured.invalid(args.periods as f64))?,
+        periods: OptionKey::LyapunovMeasured.whole(args.periods)?,
         significance: args.significance,
         sequential: !args.fixed,
     }

@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use stickslip::options::SimulateOptions;
 use stickslip::report::{EventRow, TrajectoryRecord};
 use stickslip::EventKind;
+use stickslip::OptionKey;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
 ///
@@ -21,14 +22,19 @@ use stickslip::EventKind;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Number of drive periods to simulate (> 0).
-    #[arg(long, default_value_t = 20.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::SimulatePeriods),
+        default_value_t = crate::flags::default_number(OptionKey::SimulatePeriods),
+        value_parser = crate::model::finite,
+        allow_hyphen_values = true,
+    )]
     periods: f64,
-    /// Samples per drive period in the CSV (≥ 1).
     #[arg(
         long = "samples-per-period",
-        default_value_t = 200,
-        allow_hyphen_values = true
+        help = crate::flags::help(OptionKey::SimulateSamples),
+        default_value_t = crate::flags::default_count(OptionKey::SimulateSamples) as _,
+        allow_hyphen_values = true,
     )]
     samples_per_period: u64,
     /// Trajectory CSV file [default: standard output].

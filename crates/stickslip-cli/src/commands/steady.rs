@@ -42,8 +42,12 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    /// Number of drive harmonics reported (at least 9).
-    #[arg(long, default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::ReportHarmonics),
+        default_value_t = crate::flags::default_count(OptionKey::ReportHarmonics) as _,
+        allow_hyphen_values = true,
+    )]
     harmonics: i64,
     /// Print JSON instead of text.
     #[arg(long)]

@@ -45,8 +45,12 @@ pub struct Args {
     /// Last value of the swept parameter (dimensionless, ≥ --from).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    /// Number of values from --from to --to, both included (≥ 2, or 1 when they are equal).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        help = crate::flags::help(OptionKey::SweepSteps),
+        default_value_t = crate::flags::default_count(OptionKey::SweepSteps) as _,
+        allow_hyphen_values = true,
+    )]
     steps: i64,
     /// Which way to sweep: up (from --from to --to), down (from --to to --from), or both (up,
     /// then down again from where the up sweep ended).
