@@ -50,7 +50,6 @@ pub struct Args {
     #[arg(
         long,
         help = crate::flags::help(OptionKey::BifurcationSteps),
-        default_value_t = crate::flags::default_count(OptionKey::BifurcationSteps) as _,
         allow_hyphen_values = true,
     )]
     steps: i64,

@@ -48,7 +48,6 @@ pub struct Args {
     #[arg(
         long,
         help = crate::flags::help(OptionKey::SweepSteps),
-        default_value_t = crate::flags::default_count(OptionKey::SweepSteps) as _,
         allow_hyphen_values = true,
     )]
     steps: i64,
