@@ -11,6 +11,7 @@
 //! lock on `.NAME.lock` beside the checkpoint, so that a second run on the same file is
 //! refused with one line instead of mixing its rows in.
 
+use crate::flags::{help, num};
 use crate::output::{usage, UsageError};
 use anyhow::{Context, Result};
 use std::io::Write;
@@ -28,14 +29,7 @@ pub struct CheckpointFlags {
     /// it belongs to other parameters or is damaged, and removed once the output is written.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    #[arg(
-        long = "checkpoint-every",
-        help = crate::flags::help(OptionKey::CheckpointEvery),
-        default_value_t = crate::flags::default_number(OptionKey::CheckpointEvery),
-        value_name = "SECONDS",
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "checkpoint-every", help = help(OptionKey::CheckpointEvery), default_value_t = num(OptionKey::CheckpointEvery), value_name = "SECONDS", value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub every: f64,
 }
 

@@ -15,38 +15,15 @@ use stickslip::{Experiment, OptionKey, Parameter};
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Steady state")]
 pub struct SteadyFlags {
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Tolerance),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::Tolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub tolerance: Option<f64>,
-    #[arg(
-        long = "max-periods",
-        help = crate::flags::help(OptionKey::MaxPeriods),
-        default_value_t = crate::flags::default_count(OptionKey::MaxPeriods) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::MaxPeriods), default_value_t = int(OptionKey::MaxPeriods) as _, allow_hyphen_values = true)]
     pub max_periods: i64,
-    #[arg(
-        long = "max-period",
-        help = crate::flags::help(OptionKey::MaxPeriod),
-        default_value_t = crate::flags::default_count(OptionKey::MaxPeriod) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-period", help = help(OptionKey::MaxPeriod), default_value_t = int(OptionKey::MaxPeriod) as _, allow_hyphen_values = true)]
     pub max_period: i64,
-    #[arg(
-        long = "no-extrapolation",
-        help = crate::flags::help(OptionKey::Accelerate),
-    )]
+    #[arg(long = "no-extrapolation", help = help(OptionKey::Accelerate))]
     pub no_extrapolation: bool,
-    #[arg(
-        long = "lyapunov-periods",
-        help = crate::flags::help(OptionKey::LyapunovPeriods),
-        default_value_t = crate::flags::default_count(OptionKey::LyapunovPeriods) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "lyapunov-periods", help = help(OptionKey::LyapunovPeriods), default_value_t = int(OptionKey::LyapunovPeriods) as _, allow_hyphen_values = true)]
     pub lyapunov_periods: i64,
 }
 
@@ -91,7 +68,7 @@ pub fn help(option: OptionKey) -> &'static str {
 ///
 /// # Panics
 /// When the row has no default: a flag with a default of its own has one in the table.
-pub fn default_count(option: OptionKey) -> i64 {
+pub fn int(option: OptionKey) -> i64 {
     option
         .default_value()
         .unwrap_or_else(|| panic!("{option:?} has a default in the option table")) as i64
@@ -101,7 +78,7 @@ pub fn default_count(option: OptionKey) -> i64 {
 ///
 /// # Panics
 /// When the row has no default.
-pub fn default_number(option: OptionKey) -> f64 {
+pub fn num(option: OptionKey) -> f64 {
     option
         .default_value()
         .unwrap_or_else(|| panic!("{option:?} has a default in the option table"))

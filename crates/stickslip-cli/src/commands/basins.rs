@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{count, range_from_flags};
+use crate::flags::{count, help, int, range_from_flags};
 use crate::model::{finite, flag, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
@@ -58,49 +58,24 @@ pub struct Args {
     /// Largest initial velocity y0'.
     #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
     v0_max: f64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::BasinSteps),
-        default_value_t = crate::flags::default_count(OptionKey::BasinSteps) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::BasinSteps), default_value_t = int(OptionKey::BasinSteps) as _, allow_hyphen_values = true)]
     steps: i64,
     /// Drive phase φ (radians) at which the initial states are given (the same as --phi)
     /// [default: 0].
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     phase: Option<f64>,
-    #[arg(
-        long = "max-periods",
-        help = crate::flags::help(OptionKey::BasinMaxPeriods),
-        default_value_t = crate::flags::default_count(OptionKey::BasinMaxPeriods) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(
-        long = "max-period",
-        help = crate::flags::help(OptionKey::BasinMaxPeriod),
-        default_value_t = crate::flags::default_count(OptionKey::BasinMaxPeriod) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-period", help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(
-        long = "lyapunov-periods",
-        help = crate::flags::help(OptionKey::BasinLyapunovPeriods),
-        default_value_t = crate::flags::default_count(OptionKey::BasinLyapunovPeriods) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "lyapunov-periods", help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
     lyapunov_periods: i64,
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its
     /// steady state and classified).
     #[arg(long, value_parser = choice::<BasinMethod>(), default_value_t = BasinMethod::Recurrence)]
     method: BasinMethod,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Resolution),
-        default_value_t = crate::flags::default_count(OptionKey::Resolution) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::Resolution), default_value_t = int(OptionKey::Resolution) as _, allow_hyphen_values = true)]
     resolution: i64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]

@@ -2,7 +2,7 @@
 //! parameter, state carried from value to value, with the branches of periodic orbits.
 
 use crate::choice::choice;
-use crate::flags::{count, range_from_flags, reject_swept_flags};
+use crate::flags::{count, help, int, range_from_flags, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use anyhow::Result;
@@ -47,43 +47,19 @@ pub struct Args {
     /// Last value of the parameter (dimensionless, ≥ --from).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::BifurcationSteps),
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::BifurcationSteps), allow_hyphen_values = true)]
     steps: i64,
     /// Which way to step: up (from --from to --to), down (from --to to --from), or both (up,
     /// then down again from where the up leg ended).
     #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
     direction: SweepDirection,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Points),
-        default_value_t = crate::flags::default_count(OptionKey::Points) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::Points), default_value_t = int(OptionKey::Points) as _, allow_hyphen_values = true)]
     points: i64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::BifurcationTransient),
-        default_value_t = crate::flags::default_count(OptionKey::BifurcationTransient) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::BifurcationTransient), default_value_t = int(OptionKey::BifurcationTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(
-        long = "first-transient",
-        help = crate::flags::help(OptionKey::FirstTransient),
-        default_value_t = crate::flags::default_count(OptionKey::FirstTransient) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "first-transient", help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
     first_transient: i64,
-    #[arg(
-        long = "max-period",
-        help = crate::flags::help(OptionKey::BifurcationMaxPeriod),
-        default_value_t = crate::flags::default_count(OptionKey::BifurcationMaxPeriod) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-period", help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]

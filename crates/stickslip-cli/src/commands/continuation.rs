@@ -1,7 +1,7 @@
 //! `stickslip continue`: a branch of periodic orbits by pseudo-arclength continuation.
 
 use crate::choice::choice;
-use crate::flags::{count, number, reject_swept_flags};
+use crate::flags::{count, help, int, num, number, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use anyhow::Result;
@@ -42,34 +42,13 @@ pub struct Args {
     /// The continued parameter (the others come from the model flags).
     #[arg(long, value_parser = choice::<Parameter>())]
     over: Parameter,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::ContinuationFrom),
-        value_parser = finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::ContinuationFrom), value_parser = finite, allow_hyphen_values = true)]
     from: f64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::ContinuationTo),
-        value_parser = finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::ContinuationTo), value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    #[arg(
-        long = "max-points",
-        help = crate::flags::help(OptionKey::MaxPoints),
-        default_value_t = crate::flags::default_count(OptionKey::MaxPoints) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-points", help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
     max_points: i64,
-    #[arg(
-        long = "max-step",
-        help = crate::flags::help(OptionKey::MaxStep),
-        default_value_t = crate::flags::default_number(OptionKey::MaxStep),
-        value_parser = finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-step", help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
     max_step: f64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]

@@ -1,6 +1,6 @@
 //! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
 
-use crate::flags::count;
+use crate::flags::{count, help, int, num};
 use crate::model::ModelArgs;
 use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
@@ -43,39 +43,15 @@ use stickslip::OptionKey;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::LyapunovTransient),
-        default_value_t = crate::flags::default_count(OptionKey::LyapunovTransient) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::LyapunovTransient), default_value_t = int(OptionKey::LyapunovTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::LyapunovMeasured),
-        default_value_t = crate::flags::default_count(OptionKey::LyapunovMeasured) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::LyapunovMeasured), default_value_t = int(OptionKey::LyapunovMeasured) as _, allow_hyphen_values = true)]
     periods: i64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Blocks),
-        default_value_t = crate::flags::default_count(OptionKey::Blocks) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::Blocks), default_value_t = int(OptionKey::Blocks) as _, allow_hyphen_values = true)]
     blocks: i64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Significance),
-        default_value_t = crate::flags::default_number(OptionKey::Significance),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::Significance), default_value_t = num(OptionKey::Significance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     significance: f64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::Fixed),
-    )]
+    #[arg(long, help = help(OptionKey::Fixed))]
     fixed: bool,
     /// Print JSON instead of text.
     #[arg(long)]

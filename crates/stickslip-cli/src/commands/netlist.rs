@@ -1,5 +1,6 @@
 //! `stickslip netlist`: the circuit as a SPICE netlist with Shockley diodes.
 
+use crate::flags::{help, int, num};
 use crate::model::ModelArgs;
 use crate::output::Sink;
 use anyhow::Result;
@@ -23,54 +24,19 @@ use stickslip::{Error, Unsupported};
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::NetlistPeriods),
-        default_value_t = crate::flags::default_number(OptionKey::NetlistPeriods),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::NetlistPeriods), default_value_t = num(OptionKey::NetlistPeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    #[arg(
-        long = "points-per-period",
-        help = crate::flags::help(OptionKey::NetlistPoints),
-        default_value_t = crate::flags::default_count(OptionKey::NetlistPoints) as _,
-    )]
+    #[arg(long = "points-per-period", help = help(OptionKey::NetlistPoints), default_value_t = int(OptionKey::NetlistPoints) as _)]
     points_per_period: u32,
-    #[arg(
-        long = "max-step",
-        help = crate::flags::help(OptionKey::NetlistMaxStep),
-        default_value_t = crate::flags::default_number(OptionKey::NetlistMaxStep),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-step", help = help(OptionKey::NetlistMaxStep), default_value_t = num(OptionKey::NetlistMaxStep), value_parser = crate::model::finite, allow_hyphen_values = true)]
     max_step: f64,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::NetlistReltol),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::NetlistReltol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     reltol: Option<f64>,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::NetlistAbstol),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::NetlistAbstol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     abstol: Option<f64>,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::NetlistVntol),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::NetlistVntol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     vntol: Option<f64>,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::NetlistWrdata),
-        value_name = "FILE",
-    )]
+    #[arg(long, help = help(OptionKey::NetlistWrdata), value_name = "FILE")]
     wrdata: Option<String>,
     /// Netlist file [default: standard output].
     #[arg(long, short)]

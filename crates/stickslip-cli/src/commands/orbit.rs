@@ -1,6 +1,6 @@
 //! `stickslip orbit`: a periodic orbit by Newton's method, with its Floquet multipliers.
 
-use crate::flags::{count, number};
+use crate::flags::{count, help, int, num, number};
 use crate::model::ModelArgs;
 use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
@@ -35,47 +35,17 @@ use stickslip::{Error, EventKind, OptionKey};
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::OrbitPeriod),
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::OrbitPeriod), allow_hyphen_values = true)]
     period: Option<i64>,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::OrbitTransient),
-        default_value_t = crate::flags::default_count(OptionKey::OrbitTransient) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::OrbitTransient), default_value_t = int(OptionKey::OrbitTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(
-        long = "max-periods",
-        help = crate::flags::help(OptionKey::OrbitMaxPeriods),
-        default_value_t = crate::flags::default_count(OptionKey::OrbitMaxPeriods) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(
-        long = "max-period",
-        help = crate::flags::help(OptionKey::OrbitMaxPeriod),
-        default_value_t = crate::flags::default_count(OptionKey::OrbitMaxPeriod) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-period", help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(
-        long = "newton-tolerance",
-        help = crate::flags::help(OptionKey::NewtonTolerance),
-        default_value_t = crate::flags::default_number(OptionKey::NewtonTolerance),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "newton-tolerance", help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     newton_tolerance: f64,
-    #[arg(
-        long = "max-iterations",
-        help = crate::flags::help(OptionKey::MaxIterations),
-        default_value_t = crate::flags::default_count(OptionKey::MaxIterations) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "max-iterations", help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
     max_iterations: i64,
     /// Print JSON instead of text.
     #[arg(long)]

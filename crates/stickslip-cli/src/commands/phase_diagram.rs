@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{key_value, range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::flags::{help, int, key_value, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -56,12 +56,7 @@ pub struct Args {
     /// Highest drive frequency w.
     #[arg(long = "w-max", default_value_t = 2.5, value_parser = finite, allow_hyphen_values = true)]
     w_max: f64,
-    #[arg(
-        long = "w-steps",
-        help = crate::flags::help(OptionKey::MapWSteps),
-        default_value_t = crate::flags::default_count(OptionKey::MapWSteps) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "w-steps", help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
     w_steps: i64,
     /// Lowest drive amplitude β.
     #[arg(long = "beta-min", default_value_t = 0.5, value_parser = finite, allow_hyphen_values = true)]
@@ -69,12 +64,7 @@ pub struct Args {
     /// Highest drive amplitude β.
     #[arg(long = "beta-max", default_value_t = 4.0, value_parser = finite, allow_hyphen_values = true)]
     beta_max: f64,
-    #[arg(
-        long = "beta-steps",
-        help = crate::flags::help(OptionKey::MapBetaSteps),
-        default_value_t = crate::flags::default_count(OptionKey::MapBetaSteps) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "beta-steps", help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
     beta_steps: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]

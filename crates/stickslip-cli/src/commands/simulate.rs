@@ -1,5 +1,6 @@
 //! `stickslip simulate`: one trajectory, written as CSV, with its events and a plot.
 
+use crate::flags::{help, int, num};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, AtomicFile, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -22,20 +23,9 @@ use stickslip::OptionKey;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::SimulatePeriods),
-        default_value_t = crate::flags::default_number(OptionKey::SimulatePeriods),
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::SimulatePeriods), default_value_t = num(OptionKey::SimulatePeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    #[arg(
-        long = "samples-per-period",
-        help = crate::flags::help(OptionKey::SimulateSamples),
-        default_value_t = crate::flags::default_count(OptionKey::SimulateSamples) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "samples-per-period", help = help(OptionKey::SimulateSamples), default_value_t = int(OptionKey::SimulateSamples) as _, allow_hyphen_values = true)]
     samples_per_period: u64,
     /// Trajectory CSV file [default: standard output].
     #[arg(long, short)]

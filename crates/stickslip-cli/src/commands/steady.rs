@@ -1,6 +1,6 @@
 //! `stickslip steady`: run to the steady state and report its class, period, spectrum and gain.
 
-use crate::flags::SteadyFlags;
+use crate::flags::{help, int, SteadyFlags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, outln, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
@@ -42,12 +42,7 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::ReportHarmonics),
-        default_value_t = crate::flags::default_count(OptionKey::ReportHarmonics) as _,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::ReportHarmonics), default_value_t = int(OptionKey::ReportHarmonics) as _, allow_hyphen_values = true)]
     harmonics: i64,
     /// Print JSON instead of text.
     #[arg(long)]

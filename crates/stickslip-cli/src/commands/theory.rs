@@ -2,7 +2,7 @@
 //! stick-slip boundary or gain curves.
 
 use crate::choice::choice;
-use crate::flags::reject_swept_flags;
+use crate::flags::{help, reject_swept_flags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -44,28 +44,11 @@ pub struct Args {
     /// Write a curve over w instead of one point: `boundary` or `gain`.
     #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
-    #[arg(
-        long = "w-min",
-        help = crate::flags::help(OptionKey::CurveWMin),
-        help_heading = "Theory",
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "w-min", help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_min: Option<f64>,
-    #[arg(
-        long = "w-max",
-        help = crate::flags::help(OptionKey::CurveWMax),
-        help_heading = "Theory",
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true,
-    )]
+    #[arg(long = "w-max", help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_max: Option<f64>,
-    #[arg(
-        long,
-        help = crate::flags::help(OptionKey::CurveSteps),
-        help_heading = "Theory",
-        allow_hyphen_values = true,
-    )]
+    #[arg(long, help = help(OptionKey::CurveSteps), help_heading = "Theory", allow_hyphen_values = true)]
     steps: Option<i64>,
     /// Space the frequencies of the curve logarithmically (and plot them on a logarithmic
     /// axis; the boundary's β_c axis is logarithmic in any case).
