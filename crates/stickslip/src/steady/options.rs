@@ -206,7 +206,8 @@ impl Caps {
     /// Check a steady-state search against the caps (after its own `validate()`).
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] with [`Allowed::Cap`] naming the first field over its cap.
+    /// [`crate::Error::InvalidOption`] with [`crate::options::Allowed::Cap`] naming the first
+    /// field over its cap.
     pub fn check_steady(&self, options: &SteadyOptions) -> Result<()> {
         Self::over(
             OptionKey::MaxPeriods,
