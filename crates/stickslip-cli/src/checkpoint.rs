@@ -11,12 +11,14 @@
 //! lock on `.NAME.lock` beside the checkpoint, so that a second run on the same file is
 //! refused with one line instead of mixing its rows in.
 
+use crate::flags::{help, num};
 use crate::output::{usage, UsageError};
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use stickslip::checkpoint::{Checkpoint, Identity};
+use stickslip::OptionKey;
 
 /// Flags of a command that can save its work and resume.
 #[derive(Debug, Clone, clap::Args)]
@@ -27,15 +29,7 @@ pub struct CheckpointFlags {
     /// it belongs to other parameters or is damaged, and removed once the output is written.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    /// Least time between two saves of the checkpoint, in seconds (0: after every finished
-    /// row or step); a save also waits twenty times as long as the last one took.
-    #[arg(
-        long = "checkpoint-every",
-        value_name = "SECONDS",
-        default_value_t = 10.0,
-        value_parser = crate::model::finite,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "checkpoint-every", help = help(OptionKey::CheckpointEvery), default_value_t = num(OptionKey::CheckpointEvery), value_name = "SECONDS", value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub every: f64,
 }
 

@@ -15,32 +15,15 @@ use stickslip::{Experiment, OptionKey, Parameter};
 #[derive(Debug, Clone, clap::Args)]
 #[command(next_help_heading = "Steady state")]
 pub struct SteadyFlags {
-    /// Relative tolerance of the once-per-period (stroboscopic) repetition [default: 1e-10
-    /// with the exact PWL solver, 1e-6 (its rtol) with the Shockley solver].
-    #[arg(long, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::Tolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub tolerance: Option<f64>,
-    /// Drive periods run at most before calling the motion non-periodic.
-    #[arg(
-        long = "max-periods",
-        default_value_t = 5000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::MaxPeriods), default_value_t = int(OptionKey::MaxPeriods) as _, allow_hyphen_values = true)]
     pub max_periods: i64,
-    /// Longest period looked for, in drive periods (1 to 64).
-    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(long = "max-period", help = help(OptionKey::MaxPeriod), default_value_t = int(OptionKey::MaxPeriod) as _, allow_hyphen_values = true)]
     pub max_period: i64,
-    /// Never extrapolate the stroboscopic map to its fixed point nor settle it by Newton's
-    /// method (slower; finds the same cycle).
-    #[arg(long = "no-extrapolation")]
+    #[arg(long = "no-extrapolation", help = help(OptionKey::Accelerate))]
     pub no_extrapolation: bool,
-    /// Drive periods over which a motion that does not repeat is measured by its largest
-    /// Lyapunov exponent (exact PWL model; after 100 periods that align the tangent, in 20
-    /// blocks): chaotic when it is positive beyond 4 standard errors. 0: not measured.
-    #[arg(
-        long = "lyapunov-periods",
-        default_value_t = 5000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "lyapunov-periods", help = help(OptionKey::LyapunovPeriods), default_value_t = int(OptionKey::LyapunovPeriods) as _, allow_hyphen_values = true)]
     pub lyapunov_periods: i64,
 }
 
@@ -72,6 +55,33 @@ impl SteadyFlags {
             ..SteadyOptions::DEFAULT_LYAPUNOV
         }))
     }
+}
+
+/// The help of `option`'s flag: the option table's one line, without its final period (as
+/// the tool's help is written).
+pub fn help(option: OptionKey) -> &'static str {
+    let text = option.help();
+    text.strip_suffix('.').unwrap_or(text)
+}
+
+/// The default of `option`'s flag from the option table (a whole number).
+///
+/// # Panics
+/// When the row has no default: a flag with a default of its own has one in the table.
+pub fn int(option: OptionKey) -> i64 {
+    option
+        .default_value()
+        .unwrap_or_else(|| panic!("{option:?} has a default in the option table")) as i64
+}
+
+/// The default of `option`'s flag from the option table (a number).
+///
+/// # Panics
+/// When the row has no default.
+pub fn num(option: OptionKey) -> f64 {
+    option
+        .default_value()
+        .unwrap_or_else(|| panic!("{option:?} has a default in the option table"))
 }
 
 /// A whole number given to the flag of `option`, checked against the library's option table

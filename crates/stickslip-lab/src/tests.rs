@@ -330,7 +330,12 @@ async fn bad_input_is_refused_with_one_line_naming_the_key() {
     )
     .await;
     refused("/api/sweep?preset=paper&over=w&w=1&beta=2", bad, "drop w").await;
-    refused("/api/sweep?preset=paper&beta=2&from=2&to=1", bad, "above").await;
+    refused(
+        "/api/sweep?preset=paper&beta=2&from=2&to=1",
+        bad,
+        "invalid from 2: range start must not exceed the range end",
+    )
+    .await;
     refused(
         "/api/sweep?preset=paper&beta=2&over=gamma",
         bad,

@@ -11,7 +11,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
-use stickslip::options::{Allowed, OptionKey};
+use stickslip::options::OptionKey;
 use stickslip::report::{SweepReport, TrajectoryReport};
 use stickslip::scan::{Axis, Grid, Sweep, SweepDirection};
 use stickslip::stability::{LyapunovOptions, LyapunovReport, NewtonOptions, OrbitReport};
@@ -484,23 +484,11 @@ pub fn lyapunov<'py>(
     let e = experiment.experiment().clone();
     let blocks = count(OptionKey::Blocks, blocks)?;
     let transient_periods = count(OptionKey::LyapunovTransient, transient)?;
-    // The measured periods' range starts at the number of blocks: the table's words with
-    // that number (`must be from blocks (20) to 1e9`).
-    let measured = OptionKey::LyapunovMeasured;
-    if !(measured.allows(periods as f64) && periods >= blocks as i64) {
-        return Err(error(Error::InvalidOption {
-            option: measured,
-            value: periods as f64,
-            allowed: Allowed::FromOption {
-                other: OptionKey::Blocks,
-                value: blocks as f64,
-                to: "1e9",
-            },
-        }));
-    }
+    // The measured periods' range starts at the number of blocks: the options' own rule
+    // (`validate`: `must be from blocks (20) to 1e9`).
     let options = LyapunovOptions {
         transient_periods,
-        periods: periods as usize,
+        periods: OptionKey::LyapunovMeasured.whole(periods).map_err(error)?,
         blocks,
         significance,
         sequential: !fixed,

@@ -27,7 +27,7 @@ pub enum Error {
         allowed: &'static str,
     },
     /// An option of a computation is outside its range ([`crate::options`]).
-    #[error("invalid {} = {}: {}", option.name(), Number(*value), allowed.render(*option, Spelling::Python))]
+    #[error("{}", option.message(*value, allowed, Spelling::Python))]
     InvalidOption {
         /// The option.
         option: OptionKey,

@@ -24,9 +24,7 @@
 
 use crate::error::{Error, Result};
 use crate::options::{Allowed, OptionKey, SimulateOptions};
-use crate::params::Params;
 use serde::Serialize;
-use std::f64::consts::TAU;
 
 /// Largest damping ratio ζ.
 pub const ZETA_MAX: f64 = 1e4;
@@ -46,6 +44,10 @@ pub const STATE_MAX: f64 = 1e9;
 /// (about a day of one core per millisecond a point, and gigabytes of results: a cluster's
 /// job). The command-line tool allows 4·10⁶ (2000 × 2000).
 pub const MAX_GRID_POINTS: usize = 100_000_000;
+/// Most points of a map whose every point is kept in memory (for a plot or a checkpoint):
+/// 4·10⁶ (2000 × 2000, about 520 MB); a map streamed to its file is limited by its axes
+/// alone ([`MAX_GRID_POINTS`]).
+pub const MAX_KEPT_GRID_POINTS: usize = 4_000_000;
 /// Most initial states along each axis of a basin map ([`crate::basins::Basins`]): a
 /// 2000 × 2000 map, each cell run to its steady state.
 pub const MAX_BASIN_STEPS: usize = 2000;
@@ -96,59 +98,9 @@ pub(crate) fn state_ok(x: f64) -> bool {
     x.abs() <= STATE_MAX
 }
 
-/// Check an initial state (y0, v0) given by a user: finite and within ±[`STATE_MAX`].
-///
-/// States the solvers reach themselves (the end of a sweep step, say) may grow beyond it and
-/// are only required to be finite ([`crate::State::new`]).
-///
-/// # Errors
-/// [`Error::InvalidParameter`] naming `y0` or `v0`.
-pub fn check_state(y0: f64, v0: f64) -> Result<crate::State> {
-    crate::error::check("y0", y0, state_ok(y0), STATE_ALLOWED)?;
-    crate::error::check("v0", v0, state_ok(v0), STATE_ALLOWED)?;
-    Ok(crate::State { y: y0, v: v0 })
-}
-
-/// The most drive periods a run from τ = 0 may last at these parameters: the end time τ and
-/// the drive phase w·τ both within [`TAU_MAX`], i.e. 2³²/(2π)·min(1, w) periods.
-pub fn max_periods(params: &Params) -> f64 {
-    TAU_MAX / TAU * params.w.min(1.0)
-}
-
-/// Check that a run of `periods` drive periods from τ = 0 stays within the time range the
-/// solvers resolve ([`max_periods`]).
-///
-/// # Errors
-/// [`Error::HorizonTooLong`] with the largest number of periods allowed.
-pub fn check_horizon(params: &Params, periods: f64) -> Result<()> {
-    let max = max_periods(params);
-    if periods <= max {
-        Ok(())
-    } else {
-        Err(Error::HorizonTooLong {
-            periods,
-            w: params.w,
-            max_periods: max,
-        })
-    }
-}
-
-/// Check that the time τ (from τ = 0) lies within the time range the solvers resolve: τ and
-/// w·τ at most [`TAU_MAX`].
-///
-/// # Errors
-/// [`Error::HorizonTooLong`] as [`check_horizon`] for τ/T periods.
-pub fn check_time(params: &Params, tau: f64) -> Result<()> {
-    if tau <= TAU_MAX && params.w * tau <= TAU_MAX {
-        Ok(())
-    } else {
-        Err(Error::HorizonTooLong {
-            periods: tau / params.drive_period(),
-            w: params.w,
-            max_periods: max_periods(params),
-        })
-    }
-}
+// The checks that take a `Params` or give a `State` live beside them (`crate::params`), so
+// that this module sits below the parameters; their old paths stay.
+pub use crate::params::{check_horizon, check_state, check_time, max_periods};
 
 /// Caps on the sizes of a request: how much work one request may ask for. The library's
 /// own ranges ([`Caps::library`], what the command line and Python allow) and a stricter
@@ -219,7 +171,8 @@ impl Caps {
         }
     }
 
-    fn over(option: OptionKey, value: f64, min: f64, max: f64) -> Result<()> {
+    /// `value` of `option` at most `max` (the error says from `min` to `max`).
+    pub(crate) fn over(option: OptionKey, value: f64, min: f64, max: f64) -> Result<()> {
         if value <= max {
             Ok(())
         } else {
@@ -231,32 +184,19 @@ impl Caps {
         }
     }
 
-    /// Check a steady-state search against the caps (after its own `validate()`).
+    /// Check the samples per drive period of a steady cycle's trace: within the cap, then a
+    /// power of two from the table ([`OptionKey::TraceSamples`]).
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] with [`Allowed::Cap`] naming the first field over its cap.
-    pub fn check_steady(&self, options: &crate::SteadyOptions) -> Result<()> {
+    /// [`Error::InvalidOption`] naming [`OptionKey::TraceSamples`].
+    pub fn check_trace_samples(&self, samples: usize) -> Result<usize> {
         Self::over(
-            OptionKey::MaxPeriods,
-            options.max_periods as f64,
-            1.0,
-            self.max_periods as f64,
+            OptionKey::TraceSamples,
+            samples as f64,
+            16.0,
+            self.steady_samples as f64,
         )?;
-        Self::over(
-            OptionKey::MaxPeriod,
-            options.max_period as f64,
-            1.0,
-            self.max_period as f64,
-        )?;
-        if let Some(n) = options.samples_per_period {
-            Self::over(
-                OptionKey::SpectrumSamples,
-                n as f64,
-                16.0,
-                self.steady_samples as f64,
-            )?;
-        }
-        Ok(())
+        OptionKey::TraceSamples.check_count(samples)
     }
 
     /// Check a run from the initial state against the caps.
@@ -343,9 +283,27 @@ impl Caps {
     }
 }
 
+/// Check a map whose every point is kept in memory (a plot of it, or a checkpoint) against
+/// [`MAX_KEPT_GRID_POINTS`].
+///
+/// # Errors
+/// [`Error::OptionProduct`] naming the two counts.
+pub fn check_kept_map(w_steps: usize, beta_steps: usize) -> Result<()> {
+    crate::options::check_product(
+        "points kept in memory (with a plot or a checkpoint)",
+        (OptionKey::MapWSteps, w_steps),
+        (OptionKey::MapBetaSteps, beta_steps),
+        MAX_KEPT_GRID_POINTS as f64,
+        "4000000",
+    )
+    .map(|_| ())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::Params;
+    use std::f64::consts::TAU;
 
     #[test]
     fn the_horizon_is_in_time_and_in_phase() {
@@ -392,6 +350,14 @@ mod tests {
             "invalid points = 90000: w_steps × beta_steps must be at most 40000"
         );
         assert!(lib.check_map(300, 300).is_ok());
+        assert!(check_kept_map(2000, 2000).is_ok());
+        assert_eq!(
+            check_kept_map(2001, 2000)
+                .unwrap_err()
+                .render(crate::Spelling::Flag),
+            "--w-steps × --beta-steps = 4002000 points kept in memory (with a plot or a \
+             checkpoint): at most 4000000 allowed"
+        );
     }
 
     #[test]

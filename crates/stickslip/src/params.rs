@@ -14,6 +14,7 @@
 use crate::error::{check, Result};
 use crate::limits;
 use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
 
 /// Parameters of the dimensionless model. Build with [`Params::new`] (validated) and the
 /// `with_*` setters; fields are public for reading.
@@ -198,6 +199,63 @@ impl State {
     /// Mechanical energy v²/2 + y²/2 (spring plus kinetic, in units of F0²/k).
     pub fn energy(&self) -> f64 {
         0.5 * (self.y * self.y + self.v * self.v)
+    }
+}
+
+// The ranges a run from the parameters must stay within (`crate::limits` re-exports these
+// under their old paths).
+
+/// Check an initial state (y0, v0) given by a user: finite and within ±[`limits::STATE_MAX`].
+///
+/// States the solvers reach themselves (the end of a sweep step, say) may grow beyond it and
+/// are only required to be finite ([`State::new`]).
+///
+/// # Errors
+/// [`crate::Error::InvalidParameter`] naming `y0` or `v0`.
+pub fn check_state(y0: f64, v0: f64) -> Result<State> {
+    check("y0", y0, limits::state_ok(y0), limits::STATE_ALLOWED)?;
+    check("v0", v0, limits::state_ok(v0), limits::STATE_ALLOWED)?;
+    Ok(State { y: y0, v: v0 })
+}
+
+/// The most drive periods a run from τ = 0 may last at these parameters: the end time τ and
+/// the drive phase w·τ both within [`limits::TAU_MAX`], i.e. 2³²/(2π)·min(1, w) periods.
+pub fn max_periods(params: &Params) -> f64 {
+    limits::TAU_MAX / TAU * params.w.min(1.0)
+}
+
+/// Check that a run of `periods` drive periods from τ = 0 stays within the time range the
+/// solvers resolve ([`max_periods`]).
+///
+/// # Errors
+/// [`crate::Error::HorizonTooLong`] with the largest number of periods allowed.
+pub fn check_horizon(params: &Params, periods: f64) -> Result<()> {
+    let max = max_periods(params);
+    if periods <= max {
+        Ok(())
+    } else {
+        Err(crate::Error::HorizonTooLong {
+            periods,
+            w: params.w,
+            max_periods: max,
+        })
+    }
+}
+
+/// Check that the time τ (from τ = 0) lies within the time range the solvers resolve: τ and
+/// w·τ at most [`limits::TAU_MAX`].
+///
+/// # Errors
+/// [`crate::Error::HorizonTooLong`] as [`check_horizon`] for τ/T periods.
+pub fn check_time(params: &Params, tau: f64) -> Result<()> {
+    if tau <= limits::TAU_MAX && params.w * tau <= limits::TAU_MAX {
+        Ok(())
+    } else {
+        Err(crate::Error::HorizonTooLong {
+            periods: tau / params.drive_period(),
+            w: params.w,
+            max_periods: max_periods(params),
+        })
     }
 }
 

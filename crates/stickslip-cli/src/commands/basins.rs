@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{count, range_from_flags};
+use crate::flags::{count, help, int, range_from_flags};
 use crate::model::{finite, flag, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
@@ -58,38 +58,24 @@ pub struct Args {
     /// Largest initial velocity y0'.
     #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
     v0_max: f64,
-    /// Grid points along each axis (the map has --steps × --steps cells).
-    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::BasinSteps), default_value_t = int(OptionKey::BasinSteps) as _, allow_hyphen_values = true)]
     steps: i64,
     /// Drive phase φ (radians) at which the initial states are given (the same as --phi)
     /// [default: 0].
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     phase: Option<f64>,
-    /// Drive periods run at most to find a period.
-    #[arg(
-        long = "max-periods",
-        default_value_t = 1000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    /// Longest period looked for, in drive periods (1 to 64).
-    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(long = "max-period", help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    /// Drive periods over which the exponent of a motion without a period is measured.
-    #[arg(
-        long = "lyapunov-periods",
-        default_value_t = 1000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "lyapunov-periods", help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
     lyapunov_periods: i64,
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its
     /// steady state and classified).
     #[arg(long, value_parser = choice::<BasinMethod>(), default_value_t = BasinMethod::Recurrence)]
     method: BasinMethod,
-    /// Recurrence: cells of the state-space grid across the map's extent along each axis
-    /// (16 to 1e6; at least 4 per grid spacing of the map are used).
-    #[arg(long, default_value_t = 1024, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::Resolution), default_value_t = int(OptionKey::Resolution) as _, allow_hyphen_values = true)]
     resolution: i64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]

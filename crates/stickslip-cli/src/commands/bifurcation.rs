@@ -2,7 +2,7 @@
 //! parameter, state carried from value to value, with the branches of periodic orbits.
 
 use crate::choice::choice;
-use crate::flags::{count, range_from_flags, reject_swept_flags};
+use crate::flags::{count, help, int, range_from_flags, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use anyhow::Result;
@@ -47,28 +47,19 @@ pub struct Args {
     /// Last value of the parameter (dimensionless, ≥ --from).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    /// Number of values from --from to --to, both included.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::BifurcationSteps), allow_hyphen_values = true)]
     steps: i64,
     /// Which way to step: up (from --from to --to), down (from --to to --from), or both (up,
     /// then down again from where the up leg ended).
     #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
     direction: SweepDirection,
-    /// Strobe points recorded at each value (drive periods).
-    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::Points), default_value_t = int(OptionKey::Points) as _, allow_hyphen_values = true)]
     points: i64,
-    /// Drive periods of transient at each value before recording.
-    #[arg(long, default_value_t = 200, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::BifurcationTransient), default_value_t = int(OptionKey::BifurcationTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    /// Drive periods of transient at the first value, from the initial state.
-    #[arg(
-        long = "first-transient",
-        default_value_t = 2000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "first-transient", help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
     first_transient: i64,
-    /// Longest period looked for in the recorded points (drive periods).
-    #[arg(long = "max-period", default_value_t = 32, allow_hyphen_values = true)]
+    #[arg(long = "max-period", help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]

@@ -1,9 +1,9 @@
 //! `stickslip continue`: a branch of periodic orbits by pseudo-arclength continuation.
 
 use crate::choice::choice;
-use crate::flags::{count, number, reject_swept_flags};
+use crate::flags::{count, help, int, num, number, reject_swept_flags};
 use crate::model::{finite, ModelArgs};
-use crate::output::{check_plot_path, usage, Sink};
+use crate::output::{check_plot_path, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
@@ -42,21 +42,13 @@ pub struct Args {
     /// The continued parameter (the others come from the model flags).
     #[arg(long, value_parser = choice::<Parameter>())]
     over: Parameter,
-    /// Start value: the orbit the motion settles on here is continued.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::ContinuationFrom), value_parser = finite, allow_hyphen_values = true)]
     from: f64,
-    /// Value to continue towards (above or below --from); the branch stays between the two.
-    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::ContinuationTo), value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    /// Most points of the branch.
-    #[arg(
-        long = "max-points",
-        default_value_t = 5000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "max-points", help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
     max_points: i64,
-    /// Largest step of arclength in (y, y', parameter).
-    #[arg(long = "max-step", default_value_t = 0.1, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = "max-step", help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
     max_step: f64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]
@@ -73,9 +65,7 @@ pub struct Args {
 /// Run `stickslip continue`.
 pub fn run(args: Args) -> Result<()> {
     let parameter = args.over;
-    if args.from == args.to {
-        usage!("invalid --to {}: must differ from --from", args.to);
-    }
+    stickslip::continuation::check_ends(args.from, args.to)?;
     let max_points = count(OptionKey::MaxPoints, args.max_points)?;
     let max_step = number(OptionKey::MaxStep, args.max_step)?;
     reject_swept_flags(&args.model, parameter, "--over")?;

@@ -1,6 +1,6 @@
 //! `stickslip lyapunov`: the Lyapunov exponents of a motion, from the exact tangent dynamics.
 
-use crate::flags::count;
+use crate::flags::{count, help, int, num};
 use crate::model::ModelArgs;
 use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
@@ -43,20 +43,15 @@ use stickslip::OptionKey;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Drive periods run before measuring (0 to 1e9).
-    #[arg(long, default_value_t = 1000, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::LyapunovTransient), default_value_t = int(OptionKey::LyapunovTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    /// Drive periods measured (rounded down to a multiple of --blocks; up to 1e9).
-    #[arg(long, default_value_t = 20_000, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::LyapunovMeasured), default_value_t = int(OptionKey::LyapunovMeasured) as _, allow_hyphen_values = true)]
     periods: i64,
-    /// Blocks the measured periods are cut into for the error (even, 4 to 10000).
-    #[arg(long, default_value_t = 20, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::Blocks), default_value_t = int(OptionKey::Blocks) as _, allow_hyphen_values = true)]
     blocks: i64,
-    /// Standard errors k that make λ1 significantly positive or negative.
-    #[arg(long, default_value_t = 4.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::Significance), default_value_t = num(OptionKey::Significance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     significance: f64,
-    /// Measure all --periods, even when the verdict is decided sooner.
-    #[arg(long)]
+    #[arg(long, help = help(OptionKey::Fixed))]
     fixed: bool,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -70,8 +65,7 @@ pub fn run(args: Args) -> Result<()> {
     let options = LyapunovOptions {
         transient_periods: count(OptionKey::LyapunovTransient, args.transient)?,
         blocks: count(OptionKey::Blocks, args.blocks)?,
-        periods: usize::try_from(args.periods)
-            .map_err(|_| OptionKey::LyapunovMeasured.invalid(args.periods as f64))?,
+        periods: OptionKey::LyapunovMeasured.whole(args.periods)?,
         significance: args.significance,
         sequential: !args.fixed,
     }

@@ -1,12 +1,14 @@
 //! `stickslip netlist`: the circuit as a SPICE netlist with Shockley diodes.
 
+use crate::flags::{help, int, num};
 use crate::model::ModelArgs;
-use crate::output::{usage, Sink};
+use crate::output::Sink;
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::experiment::DiodeModel;
 use stickslip::shockley::{netlist, NetlistOptions};
+use stickslip::OptionKey;
 use stickslip::{Error, Unsupported};
 
 /// Write the circuit as a SPICE netlist, to cross-check a simulation in ngspice or any SPICE:
@@ -22,27 +24,19 @@ use stickslip::{Error, Unsupported};
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Simulated time in drive periods (> 0).
-    #[arg(long, default_value_t = 300.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::NetlistPeriods), default_value_t = num(OptionKey::NetlistPeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    /// Output points per drive period (the .tran print step), ≥ 1.
-    #[arg(long = "points-per-period", default_value_t = 200)]
+    #[arg(long = "points-per-period", help = help(OptionKey::NetlistPoints), default_value_t = int(OptionKey::NetlistPoints) as _)]
     points_per_period: u32,
-    /// Largest SPICE time step as a fraction of the drive period, in (0, 1].
-    #[arg(long = "max-step", default_value_t = 1e-3, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = "max-step", help = help(OptionKey::NetlistMaxStep), default_value_t = num(OptionKey::NetlistMaxStep), value_parser = crate::model::finite, allow_hyphen_values = true)]
     max_step: f64,
-    /// SPICE relative tolerance (.options reltol) [default: SPICE's, 1e-3].
-    #[arg(long, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::NetlistReltol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     reltol: Option<f64>,
-    /// SPICE absolute current tolerance in A (.options abstol) [default: SPICE's, 1e-12].
-    #[arg(long, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::NetlistAbstol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     abstol: Option<f64>,
-    /// SPICE absolute voltage tolerance in V (.options vntol) [default: SPICE's, 1e-6].
-    #[arg(long, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::NetlistVntol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     vntol: Option<f64>,
-    /// Add an ngspice .control block that runs the analysis and writes time, u_C and i to
-    /// this file with wrdata (a name without spaces; relative to where ngspice runs).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, help = help(OptionKey::NetlistWrdata), value_name = "FILE")]
     wrdata: Option<String>,
     /// Netlist file [default: standard output].
     #[arg(long, short)]
@@ -69,26 +63,7 @@ pub fn run(args: Args) -> Result<()> {
         vntol: args.vntol,
         wrdata: args.wrdata.clone(),
     };
-    let text = match netlist(circuit, &params, experiment.initial(), &options) {
-        Ok(text) => text,
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            allowed,
-        }) => {
-            let flag = match name {
-                "periods" => "--periods".to_string(),
-                "points_per_period" => "--points-per-period".to_string(),
-                "max_step_fraction" => "--max-step".to_string(),
-                "wrdata" => {
-                    usage!("invalid --wrdata: {allowed}")
-                }
-                other => format!("--{other}"),
-            };
-            usage!("invalid {flag} {value}: {allowed}");
-        }
-        Err(e) => return Err(e.into()),
-    };
+    let text = netlist(circuit, &params, experiment.initial(), &options)?;
     eprintln!("netlist: {experiment}");
     let mut sink = Sink::open(args.out.as_deref())?;
     sink.write_all(text.as_bytes())?;

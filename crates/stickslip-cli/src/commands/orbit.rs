@@ -1,8 +1,8 @@
 //! `stickslip orbit`: a periodic orbit by Newton's method, with its Floquet multipliers.
 
-use crate::flags::{count, number};
+use crate::flags::{count, help, int, num, number};
 use crate::model::ModelArgs;
-use crate::output::{check_interrupt, interrupted, progress, usage};
+use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
 use stickslip::options::OrbitOptions;
 use stickslip::stability::{
@@ -35,31 +35,17 @@ use stickslip::{Error, EventKind, OptionKey};
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Period p of the orbit in drive periods (1 to 1000) [default: that of the steady state].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::OrbitPeriod), allow_hyphen_values = true)]
     period: Option<i64>,
-    /// With --period: drive periods run from the initial state before Newton's method starts.
-    #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::OrbitTransient), default_value_t = int(OptionKey::OrbitTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    /// Without --period: drive periods run at most to find the steady state's period.
-    #[arg(
-        long = "max-periods",
-        default_value_t = 5000,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "max-periods", help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    /// Without --period: longest period looked for (1 to 64).
-    #[arg(long = "max-period", default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(long = "max-period", help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    /// Relative tolerance of Newton's method on max(|Δy|, |Δy'|) of P^p(x) − x.
-    #[arg(long = "newton-tolerance", default_value_t = 1e-12, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = "newton-tolerance", help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     newton_tolerance: f64,
-    /// Most Newton steps (1 to 1000).
-    #[arg(
-        long = "max-iterations",
-        default_value_t = 30,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "max-iterations", help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
     max_iterations: i64,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -73,9 +59,6 @@ pub fn run(args: Args) -> Result<()> {
         .map(|p| count(OptionKey::OrbitPeriod, p))
         .transpose()?;
     let transient = count(OptionKey::OrbitTransient, args.transient)?;
-    if transient > 0 && period.is_none() {
-        usage!("--transient needs --period (without it the steady state gives the guess)");
-    }
     let orbit = OrbitOptions {
         period,
         transient,

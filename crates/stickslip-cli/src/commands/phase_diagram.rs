@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{key_value, range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::flags::{help, int, key_value, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -56,8 +56,7 @@ pub struct Args {
     /// Highest drive frequency w.
     #[arg(long = "w-max", default_value_t = 2.5, value_parser = finite, allow_hyphen_values = true)]
     w_max: f64,
-    /// Number of frequencies from --w-min to --w-max, both included.
-    #[arg(long = "w-steps", default_value_t = 100, allow_hyphen_values = true)]
+    #[arg(long = "w-steps", help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
     w_steps: i64,
     /// Lowest drive amplitude β.
     #[arg(long = "beta-min", default_value_t = 0.5, value_parser = finite, allow_hyphen_values = true)]
@@ -65,8 +64,7 @@ pub struct Args {
     /// Highest drive amplitude β.
     #[arg(long = "beta-max", default_value_t = 4.0, value_parser = finite, allow_hyphen_values = true)]
     beta_max: f64,
-    /// Number of amplitudes from --beta-min to --beta-max, both included.
-    #[arg(long = "beta-steps", default_value_t = 100, allow_hyphen_values = true)]
+    #[arg(long = "beta-steps", help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
     beta_steps: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -103,11 +101,8 @@ pub fn run(args: Args) -> Result<()> {
     key_value(Key::Beta, "beta-max", beta.to())?;
     // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
     // memory; a streamed one only by its axes (docs/limits.md).
-    let points = w.steps() * beta.steps();
-    if points > MAX_KEPT_POINTS && (args.plot.is_some() || args.checkpoint.checkpoint.is_some()) {
-        usage!(
-            "--w-steps × --beta-steps = {points}: with --plot or --checkpoint at most {MAX_KEPT_POINTS} points (every point is kept in memory; without them the map is streamed to its file and only each axis is limited)"
-        );
+    if args.plot.is_some() || args.checkpoint.checkpoint.is_some() {
+        stickslip::limits::check_kept_map(w.steps(), beta.steps())?;
     }
     reject_swept_flags(&args.model, Parameter::W, "phase-diagram (--w-min/--w-max)")?;
     reject_swept_flags(
@@ -259,10 +254,6 @@ pub fn run(args: Args) -> Result<()> {
     );
     Ok(())
 }
-
-/// Most points of a map kept in memory whole: for the plot, or in a checkpoint (at most
-/// about 100 bytes a point; docs/limits.md).
-const MAX_KEPT_POINTS: usize = 4_000_000;
 
 /// What the run reports after the rows are written: the points per class, the largest
 /// exponent, and (for the plot) every point.

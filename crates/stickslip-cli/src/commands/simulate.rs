@@ -1,5 +1,6 @@
 //! `stickslip simulate`: one trajectory, written as CSV, with its events and a plot.
 
+use crate::flags::{help, int, num};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, AtomicFile, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -9,6 +10,7 @@ use std::path::PathBuf;
 use stickslip::options::SimulateOptions;
 use stickslip::report::{EventRow, TrajectoryRecord};
 use stickslip::EventKind;
+use stickslip::OptionKey;
 
 /// Integrate the motion exactly from the initial state and write the trajectory.
 ///
@@ -21,15 +23,9 @@ use stickslip::EventKind;
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
-    /// Number of drive periods to simulate (> 0).
-    #[arg(long, default_value_t = 20.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::SimulatePeriods), default_value_t = num(OptionKey::SimulatePeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    /// Samples per drive period in the CSV (≥ 1).
-    #[arg(
-        long = "samples-per-period",
-        default_value_t = 200,
-        allow_hyphen_values = true
-    )]
+    #[arg(long = "samples-per-period", help = help(OptionKey::SimulateSamples), default_value_t = int(OptionKey::SimulateSamples) as _, allow_hyphen_values = true)]
     samples_per_period: u64,
     /// Trajectory CSV file [default: standard output].
     #[arg(long, short)]

@@ -1,6 +1,6 @@
 //! `stickslip steady`: run to the steady state and report its class, period, spectrum and gain.
 
-use crate::flags::SteadyFlags;
+use crate::flags::{help, int, SteadyFlags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, outln, AtomicFile};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
@@ -44,8 +44,7 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    /// Number of drive harmonics reported (at least 9).
-    #[arg(long, default_value_t = 16, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::ReportHarmonics), default_value_t = int(OptionKey::ReportHarmonics) as _, allow_hyphen_values = true)]
     harmonics: i64,
     /// Print JSON instead of text.
     #[arg(long)]

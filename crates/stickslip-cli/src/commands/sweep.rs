@@ -2,7 +2,7 @@
 
 use crate::checkpoint::{CheckpointFile, CheckpointFlags};
 use crate::choice::choice;
-use crate::flags::{range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::flags::{help, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
@@ -45,8 +45,7 @@ pub struct Args {
     /// Last value of the swept parameter (dimensionless, ≥ --from).
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    /// Number of values from --from to --to, both included (≥ 2, or 1 when they are equal).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, help = help(OptionKey::SweepSteps), allow_hyphen_values = true)]
     steps: i64,
     /// Which way to sweep: up (from --from to --to), down (from --to to --from), or both (up,
     /// then down again from where the up sweep ended).

@@ -2,7 +2,7 @@
 //! stick-slip boundary or gain curves.
 
 use crate::choice::choice;
-use crate::flags::{key_value, reject_swept_flags};
+use crate::flags::{help, reject_swept_flags};
 use crate::model::ModelArgs;
 use crate::output::{check_plot_path, usage, Sink};
 use crate::plot::{Figure, Legend, Panel, Quantity};
@@ -10,9 +10,9 @@ use anyhow::Result;
 use std::path::PathBuf;
 use stickslip::experiment::Key;
 use stickslip::report::{TheoryRow, TheoryTable};
-use stickslip::scan::grid_value;
-use stickslip::solver::grid;
-use stickslip::theory::curves::{theory_curve, CurveKind as Curve, Theory, TheoryQuantity};
+use stickslip::theory::curves::{
+    theory_curve, CurveKind as Curve, CurveRange, Theory, TheoryQuantity,
+};
 use stickslip::theory::TheoryReport;
 use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Unsupported};
 
@@ -44,16 +44,12 @@ pub struct Args {
     /// Write a curve over w instead of one point: `boundary` or `gain`.
     #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
-    /// Smallest w of the curve (> 0) [default: 0.2].
-    #[arg(long = "w-min", help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = "w-min", help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_min: Option<f64>,
-    /// Largest w of the curve (> --w-min) [default: 3].
-    #[arg(long = "w-max", help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = "w-max", help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_max: Option<f64>,
-    /// Number of points of the curve, both ends included: it has this many rows (2 to
-    /// 100000) [default: 200]. (--steps counts points in every command.)
-    #[arg(long, help_heading = "Theory", allow_hyphen_values = true)]
-    steps: Option<u64>,
+    #[arg(long, help = help(OptionKey::CurveSteps), help_heading = "Theory", allow_hyphen_values = true)]
+    steps: Option<i64>,
     /// Space the frequencies of the curve logarithmically (and plot them on a logarithmic
     /// axis; the boundary's β_c axis is logarithmic in any case).
     #[arg(long, help_heading = "Theory")]
@@ -172,13 +168,15 @@ fn point(args: &Args) -> Result<()> {
 }
 
 fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
-    let (lo, hi) = (args.w_min.unwrap_or(0.2), args.w_max.unwrap_or(3.0));
-    key_value(Key::W, "w-min", lo)?;
-    key_value(Key::W, "w-max", hi)?;
-    if !(hi > lo) {
-        usage!("invalid --w-max {hi}: must be greater than --w-min {lo}");
+    let defaults = CurveRange::default();
+    let range = CurveRange {
+        w_min: args.w_min.unwrap_or(defaults.w_min),
+        w_max: args.w_max.unwrap_or(defaults.w_max),
+        steps: OptionKey::CurveSteps.whole(args.steps.unwrap_or(defaults.steps as i64))?,
+        log: args.log,
     }
-    let steps = OptionKey::CurveSteps.check(args.steps.unwrap_or(200) as f64)? as u64;
+    .validate()?;
+    let (lo, hi, steps) = (range.w_min, range.w_max, range.steps);
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
@@ -221,19 +219,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         if args.log { ", logarithmic" } else { "" }
     );
 
-    let ws: Vec<f64> = if args.log {
-        let mut ws: Vec<f64> = grid(lo.ln(), hi.ln(), steps as usize - 1)
-            .into_iter()
-            .map(f64::exp)
-            .collect();
-        // The ends exactly as given, not through ln and exp.
-        ws[0] = lo;
-        *ws.last_mut().expect("at least two points") = hi;
-        ws
-    } else {
-        let n = steps as usize - 1;
-        (0..=n).map(|i| grid_value(lo, hi, i, n)).collect()
-    };
+    let ws = range.values();
     let quantity = match curve {
         Curve::Boundary => TheoryQuantity::Boundary,
         Curve::Gain => TheoryQuantity::Gain,

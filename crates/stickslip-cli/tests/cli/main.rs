@@ -14,6 +14,7 @@ mod lab;
 mod limits;
 mod lyapunov;
 mod netlist;
+mod options_help;
 mod orbit;
 mod phase_diagram;
 mod reproduce;

@@ -72,7 +72,7 @@ fn bad_grids_give_one_line_and_exit_code_2() {
                 "--plot",
                 "m.png",
             ],
-            "4002000: with --plot or --checkpoint at most 4000000 points",
+            "--w-steps × --beta-steps = 4002000 points kept in memory (with a plot or a checkpoint): at most 4000000 allowed",
         ),
         (
             &[
@@ -83,7 +83,7 @@ fn bad_grids_give_one_line_and_exit_code_2() {
                 "--checkpoint",
                 "run.ckpt",
             ],
-            "4002000: with --plot or --checkpoint at most 4000000 points",
+            "--w-steps × --beta-steps = 4002000 points kept in memory (with a plot or a checkpoint): at most 4000000 allowed",
         ),
     ];
     for (args, needle) in cases {

@@ -101,26 +101,25 @@ pub(crate) fn range(
             ));
         }
     }
-    if from > to {
-        return Err(ApiError::field(
-            keys[0],
-            format!(
-                "invalid range: {} {from} is above {} {to}",
-                keys[0], keys[1]
-            ),
-        ));
-    }
-    if steps == 1 && from != to {
-        return Err(ApiError::field(
-            keys[2],
-            format!(
-                "invalid {} 1: a range from {from} to {to} needs at least 2 points",
+    // The order of the ends and the points a range needs are the library's
+    // (`ParameterRange::new`); its error is named by the key that gave the value.
+    ParameterRange::new(parameter.label(), from, to, steps).map_err(|e| match e {
+        Error::InvalidParameter {
+            name,
+            value,
+            allowed,
+        } => {
+            let key = if name != parameter.label() {
                 keys[2]
-            ),
-        ));
-    }
-    ParameterRange::new(parameter.label(), from, to, steps)
-        .map_err(|e| ApiError::field(keys[0], e.to_string()))
+            } else if value == from {
+                keys[0]
+            } else {
+                keys[1]
+            };
+            ApiError::field(key, format!("invalid {key} {}: {allowed}", short(value)))
+        }
+        other => ApiError::library(&other),
+    })
 }
 
 /// The axis of a map's range.

@@ -49,16 +49,10 @@ impl SteadyRequest {
         OptionKey::ReportHarmonics
             .check_count(harmonics)
             .map_err(|e| ApiError::library(&e))?;
-        let samples = q.count("samples", 512, 16, CAPS.steady_samples)?;
-        if !samples.is_power_of_two() {
-            return Err(ApiError::field(
-                "samples",
-                format!(
-                    "invalid samples {samples}: must be a power of two from 16 to {}",
-                    CAPS.steady_samples
-                ),
-            ));
-        }
+        let samples = q.whole("samples", 512)?;
+        let samples = CAPS
+            .check_trace_samples(samples)
+            .map_err(|e| ApiError::library(&e))?;
         let options = steady_options(&mut q, &experiment)?
             .with_harmonics(harmonics)
             .map_err(|e| ApiError::library(&e))?;

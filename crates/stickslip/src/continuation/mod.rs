@@ -721,6 +721,27 @@ fn aim_at(
     Ok(inside)
 }
 
+/// Check the ends of a branch before any work: both finite and `to` another value than
+/// `from` (the ranges of the parameter are the experiment's to check).
+///
+/// # Errors
+/// [`Error::InvalidOption`] naming [`OptionKey::ContinuationFrom`] or
+/// [`OptionKey::ContinuationTo`] (`invalid --to 1.2: must differ from --from`).
+pub fn check_ends(from: f64, to: f64) -> Result<()> {
+    OptionKey::ContinuationFrom.check(from)?;
+    OptionKey::ContinuationTo.check(to)?;
+    if to == from {
+        return Err(Error::InvalidOption {
+            option: OptionKey::ContinuationTo,
+            value: to,
+            allowed: Allowed::Differs {
+                other: OptionKey::ContinuationFrom,
+            },
+        });
+    }
+    Ok(())
+}
+
 /// Continue the branch of `start` (a periodic orbit at `params`, found by
 /// [`crate::stability::find_periodic_orbit`]) in `parameter` from its value in `params`
 /// towards `to`, within the range between the two (see the module documentation); `monitor`

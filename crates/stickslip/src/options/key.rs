@@ -45,6 +45,8 @@ pub enum OptionGroup {
     SteadyReport,
     /// Saving finished work as a long computation goes (`--checkpoint`).
     Checkpoint,
+    /// A SPICE netlist of the circuit (`netlist`).
+    Netlist,
 }
 
 /// What values an option takes.
@@ -57,6 +59,8 @@ pub enum OptionKind {
     Number,
     /// On or off.
     Switch,
+    /// A name (a file name, say).
+    Text,
 }
 
 /// One end of a range.
@@ -181,6 +185,30 @@ pub enum OptionKey {
     ReportHarmonics,
     /// Least time between two saves of a checkpoint, in seconds.
     CheckpointEvery,
+    /// Samples per drive period of the trace in the report of one steady state.
+    TraceSamples,
+    /// Value of the parameter where a branch starts.
+    ContinuationFrom,
+    /// Value of the parameter a branch is continued towards.
+    ContinuationTo,
+    /// Smallest frequency w of a theory curve.
+    CurveWMin,
+    /// Largest frequency w of a theory curve.
+    CurveWMax,
+    /// Drive periods of a netlist's transient analysis.
+    NetlistPeriods,
+    /// Output points per drive period of a netlist.
+    NetlistPoints,
+    /// Largest SPICE time step, as a fraction of the drive period.
+    NetlistMaxStep,
+    /// SPICE's relative tolerance.
+    NetlistReltol,
+    /// SPICE's absolute current tolerance (A).
+    NetlistAbstol,
+    /// SPICE's absolute voltage tolerance (V).
+    NetlistVntol,
+    /// File ngspice writes the analysis to.
+    NetlistWrdata,
 }
 
 /// One row of [`OptionKey::table`]: everything a front end needs to offer, parse, check and
@@ -351,7 +379,7 @@ rows! {
         "Largest step of arclength in (y, y', parameter).";
     CurveSteps, Curve, "steps", "steps", Count, incl(2.0), incl(100000.0), Range,
         "must be from 2 to 100000 (the number of points)", Some(200.0),
-        "Number of points of the curve.";
+        "Number of points of the curve, both ends included: it has this many rows (2 to 100000) [default: 200]. (--steps counts points in every command.)";
     Threads, Pool, "threads", "threads", Count, incl(1.0), incl(1024.0), Range,
         "must be from 1 to 1024", None,
         "Threads of the pool [default: one per core].";
@@ -360,7 +388,43 @@ rows! {
         "Number of drive harmonics reported (at least 9).";
     CheckpointEvery, Checkpoint, "checkpoint-every", "checkpoint_every", Number, incl(0.0),
         incl(86400.0), Range, "must be from 0 to 86400 seconds", Some(10.0),
-        "Least time between two saves of the checkpoint, in seconds (0: after every finished row or step).";
+        "Least time between two saves of the checkpoint, in seconds (0: after every finished row or step); a save also waits twenty times as long as the last one took.";
+    TraceSamples, SteadyReport, "samples", "samples", Count, incl(16.0), incl(1048576.0),
+        PowerOfTwo, "must be a power of two from 16 to 1048576", Some(512.0),
+        "Samples per drive period of the steady cycle's trace.";
+    ContinuationFrom, Continuation, "from", "start", Number, None, None, Range,
+        "must be a finite value of the parameter", None,
+        "Start value: the orbit the motion settles on here is continued.";
+    ContinuationTo, Continuation, "to", "to", Number, None, None, Range,
+        "must be a finite value of the parameter", None,
+        "Value to continue towards (above or below --from); the branch stays between the two.";
+    CurveWMin, Curve, "w-min", "w_min", Number, incl(1e-5), incl(1e5), Range,
+        "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(0.2),
+        "Smallest w of the curve (> 0) [default: 0.2].";
+    CurveWMax, Curve, "w-max", "w_max", Number, incl(1e-5), incl(1e5), Range,
+        "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(3.0),
+        "Largest w of the curve (> --w-min) [default: 3].";
+    NetlistPeriods, Netlist, "periods", "periods", Number, excl(0.0), None, Range,
+        "must be finite and > 0", Some(300.0),
+        "Simulated time in drive periods (> 0).";
+    NetlistPoints, Netlist, "points-per-period", "points_per_period", Count, incl(1.0),
+        incl(4294967295.0), Range, "must be > 0", Some(200.0),
+        "Output points per drive period (the .tran print step), ≥ 1.";
+    NetlistMaxStep, Netlist, "max-step", "max_step_fraction", Number, excl(0.0), incl(1.0),
+        Range, "must be > 0 and at most 1", Some(1e-3),
+        "Largest SPICE time step as a fraction of the drive period, in (0, 1].";
+    NetlistReltol, Netlist, "reltol", "reltol", Number, excl(0.0), None, Range,
+        "must be finite and > 0", None,
+        "SPICE relative tolerance (.options reltol) [default: SPICE's, 1e-3].";
+    NetlistAbstol, Netlist, "abstol", "abstol", Number, excl(0.0), None, Range,
+        "must be finite and > 0", None,
+        "SPICE absolute current tolerance in A (.options abstol) [default: SPICE's, 1e-12].";
+    NetlistVntol, Netlist, "vntol", "vntol", Number, excl(0.0), None, Range,
+        "must be finite and > 0", None,
+        "SPICE absolute voltage tolerance in V (.options vntol) [default: SPICE's, 1e-6].";
+    NetlistWrdata, Netlist, "wrdata", "wrdata", Text, None, None, Range,
+        "must be a file name without spaces, quotes or line breaks", None,
+        "Add an ngspice .control block that runs the analysis and writes time, u_C and i to this file with wrdata (a name without spaces; relative to where ngspice runs).";
 }
 
 /// What an option allows, in an [`crate::Error::InvalidOption`].
@@ -386,5 +450,24 @@ pub enum Allowed {
         min: f64,
         /// Largest value the profile allows.
         max: f64,
+    },
+    /// Another value than that of another option: `must differ from --from`.
+    Differs {
+        /// The other option.
+        other: OptionKey,
+    },
+    /// Only together with another option: `--transient needs --period (why)`.
+    Needs {
+        /// The other option.
+        other: OptionKey,
+        /// Why, in words.
+        why: &'static str,
+    },
+    /// Above the value of another option: `must be greater than --w-min (2)`.
+    Above {
+        /// The other option.
+        other: OptionKey,
+        /// Its value.
+        value: f64,
     },
 }

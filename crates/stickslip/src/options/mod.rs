@@ -14,9 +14,11 @@
 //! 1 to 64 for a steady state, 1 to 1000 for a bifurcation diagram): each is its own key.
 
 pub mod key;
+mod newton;
 mod run;
 
 pub use key::{Allowed, Bound, OptionGroup, OptionInfo, OptionKey, OptionKind, Rule, Spelling};
+pub use newton::NewtonOptions;
 pub use run::{OrbitOptions, SimulateOptions, MAX_SIMULATE_SAMPLES};
 
 use crate::error::{Error, Number, Result};
@@ -130,6 +132,22 @@ impl OptionKey {
         self.check(value as f64).map(|_| value)
     }
 
+    /// The message of a bad `value` of this option, one line, with options spelled by
+    /// `spelling` (see [`Error::render`]).
+    pub fn message(self, value: f64, allowed: &Allowed, spelling: Spelling) -> String {
+        render_invalid(self, value, allowed, spelling)
+    }
+
+    /// A whole number as a front end receives it (signed, so that `-4` is this option's
+    /// error, not a parser's), without the table's range: for a count whose range depends on
+    /// other fields, which the options type's `validate()` checks.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming this option for a negative number.
+    pub fn whole(self, value: i64) -> Result<usize> {
+        usize::try_from(value).map_err(|_| self.invalid(value as f64))
+    }
+
     /// The error of a bad value of this option (the table's words).
     pub fn invalid(self, value: f64) -> Error {
         Error::InvalidOption {
@@ -154,6 +172,13 @@ impl Allowed {
             Allowed::Cap { min, max } => {
                 format!("must be from {} to {}", Number(min), Number(max))
             }
+            Allowed::Differs { other } => format!("must differ from {}", other.spelled(spelling)),
+            Allowed::Needs { other, why } => format!("needs {} ({why})", other.spelled(spelling)),
+            Allowed::Above { other, value } => format!(
+                "must be greater than {} {}",
+                other.spelled(spelling),
+                Number(value)
+            ),
         }
     }
 }
@@ -203,7 +228,16 @@ pub(crate) fn render_invalid(
     allowed: &Allowed,
     spelling: Spelling,
 ) -> String {
-    let allowed = allowed.render(option, spelling);
+    let rendered = allowed.render(option, spelling);
+    // A rule between two options reads as one: `--transient needs --period (...)`.
+    if let Allowed::Needs { .. } = allowed {
+        return format!("{} {rendered}", option.spelled(spelling));
+    }
+    let allowed = rendered;
+    // A name (not a number): `invalid --wrdata: must be a file name ...`.
+    if option.info().kind == OptionKind::Text {
+        return format!("invalid {}: {allowed}", option.spelled(spelling));
+    }
     match spelling {
         Spelling::Flag => format!("invalid --{} {}: {allowed}", option.flag(), Number(value)),
         Spelling::Python | Spelling::Query => format!(

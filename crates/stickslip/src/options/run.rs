@@ -65,7 +65,7 @@ pub struct OrbitOptions {
     /// Without a period: longest period looked for. Default 16.
     pub max_period: usize,
     /// Newton's method.
-    pub newton: crate::stability::NewtonOptions,
+    pub newton: super::NewtonOptions,
 }
 
 impl Default for OrbitOptions {
@@ -75,7 +75,7 @@ impl Default for OrbitOptions {
             transient: 0,
             max_periods: 5000,
             max_period: 16,
-            newton: crate::stability::NewtonOptions::default(),
+            newton: super::NewtonOptions::default(),
         }
     }
 }
@@ -94,9 +94,10 @@ impl OrbitOptions {
             return Err(Error::InvalidOption {
                 option: OptionKey::OrbitTransient,
                 value: self.transient as f64,
-                allowed: Allowed::Text(
-                    "needs a period (without it the steady state gives the guess)",
-                ),
+                allowed: Allowed::Needs {
+                    other: OptionKey::OrbitPeriod,
+                    why: "without it the steady state gives the guess",
+                },
             });
         }
         OptionKey::OrbitMaxPeriods.check_count(self.max_periods)?;

@@ -20,7 +20,8 @@
 //!
 //! The generator is a pure function returning the text; it does no I/O.
 
-use crate::error::{check, Error, Result, Unsupported};
+use crate::error::{Error, Result, Unsupported};
+use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::physical::{Circuit, Diode};
 use serde::{Deserialize, Serialize};
@@ -70,15 +71,45 @@ fn number(x: f64) -> String {
     format!("{x:e}")
 }
 
+impl NetlistOptions {
+    /// Check every field against the option table ([`OptionKey::NetlistPeriods`] and the
+    /// rows after it).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the first bad field: periods ≤ 0, no output points, a
+    /// step fraction outside (0, 1], a tolerance ≤ 0, or a `wrdata` file name that is empty
+    /// or contains white space or a quote.
+    pub fn validate(&self) -> Result<()> {
+        OptionKey::NetlistPeriods.check(self.periods)?;
+        OptionKey::NetlistPoints.check(f64::from(self.points_per_period))?;
+        OptionKey::NetlistMaxStep.check(self.max_step_fraction)?;
+        for (key, value) in [
+            (OptionKey::NetlistReltol, self.reltol),
+            (OptionKey::NetlistAbstol, self.abstol),
+            (OptionKey::NetlistVntol, self.vntol),
+        ] {
+            if let Some(x) = value {
+                key.check(x)?;
+            }
+        }
+        if let Some(file) = &self.wrdata {
+            if file.is_empty() || file.contains(|c: char| c.is_whitespace() || c == '"') {
+                return Err(OptionKey::NetlistWrdata.invalid(f64::NAN));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The SPICE netlist of `circuit` driven by U cos(Ω t + φ) with U = β U_t, Ω = w ω0 and φ
 /// from `params` (its ζ and μs are not used: the circuit's parts decide the damping), started
 /// from `initial` (dimensionless: u_C(0) = y0·U_t, i(0) = v0·U_t/√(L/C)).
 ///
 /// # Errors
 /// [`Error::Unsupported`] for a circuit with PWL diodes;
-/// [`crate::Error::InvalidParameter`] when the circuit, the parameters, the initial state or
-/// an option is invalid (periods ≤ 0, no output points, a step fraction outside (0, 1], a
-/// tolerance ≤ 0), or when `wrdata` is empty or contains white space or a quote.
+/// [`crate::Error::InvalidParameter`] when the circuit, the parameters or the initial state
+/// is invalid; [`crate::Error::InvalidOption`] for an option
+/// ([`NetlistOptions::validate`]).
 pub fn netlist(
     circuit: &Circuit,
     params: &Params,
@@ -91,42 +122,7 @@ pub fn netlist(
     };
     let p = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
-    check(
-        "periods",
-        options.periods,
-        options.periods > 0.0,
-        "must be finite and > 0",
-    )?;
-    check(
-        "points_per_period",
-        options.points_per_period as f64,
-        options.points_per_period > 0,
-        "must be > 0",
-    )?;
-    check(
-        "max_step_fraction",
-        options.max_step_fraction,
-        options.max_step_fraction > 0.0 && options.max_step_fraction <= 1.0,
-        "must be > 0 and at most 1",
-    )?;
-    for (name, value) in [
-        ("reltol", options.reltol),
-        ("abstol", options.abstol),
-        ("vntol", options.vntol),
-    ] {
-        if let Some(x) = value {
-            check(name, x, x > 0.0, "must be finite and > 0")?;
-        }
-    }
-    if let Some(file) = &options.wrdata {
-        if file.is_empty() || file.contains(|c: char| c.is_whitespace() || c == '"') {
-            return Err(Error::InvalidParameter {
-                name: "wrdata",
-                value: f64::NAN,
-                allowed: "a file name without spaces, quotes or line breaks",
-            });
-        }
-    }
+    options.validate()?;
 
     let s = c.scales();
     let amplitude = s.drive_amplitude(p.beta);
@@ -329,7 +325,18 @@ mod tests {
             },
         ];
         for o in bad {
-            assert!(netlist(&c, &p, State::default(), &o).is_err(), "{o:?}");
+            let e = netlist(&c, &p, State::default(), &o).unwrap_err();
+            assert!(e.option().is_some(), "{o:?}: {e}");
         }
+        let e = NetlistOptions {
+            wrdata: Some("a b".into()),
+            ..Default::default()
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(
+            e.render(crate::Spelling::Flag),
+            "invalid --wrdata: must be a file name without spaces, quotes or line breaks"
+        );
     }
 }

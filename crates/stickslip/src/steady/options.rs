@@ -199,3 +199,36 @@ impl SteadyOptions {
         Ok(options)
     }
 }
+
+/// The caps of a steady-state search live beside its options, so that `limits` sits below
+/// the steady state.
+impl Caps {
+    /// Check a steady-state search against the caps (after its own `validate()`).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidOption`] with [`crate::options::Allowed::Cap`] naming the first
+    /// field over its cap.
+    pub fn check_steady(&self, options: &SteadyOptions) -> Result<()> {
+        Self::over(
+            OptionKey::MaxPeriods,
+            options.max_periods as f64,
+            1.0,
+            self.max_periods as f64,
+        )?;
+        Self::over(
+            OptionKey::MaxPeriod,
+            options.max_period as f64,
+            1.0,
+            self.max_period as f64,
+        )?;
+        if let Some(n) = options.samples_per_period {
+            Self::over(
+                OptionKey::SpectrumSamples,
+                n as f64,
+                16.0,
+                self.steady_samples as f64,
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -270,9 +270,112 @@ pub fn abscissae(from: f64, to: f64, steps: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The frequencies of a curve over w (`stickslip theory --curve`): from `w_min` to `w_max`,
+/// both included, `steps` points, evenly or logarithmically spaced.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CurveRange {
+    /// Smallest w (within the range of w). Default 0.2.
+    pub w_min: f64,
+    /// Largest w (> `w_min`, within the range of w). Default 3.
+    pub w_max: f64,
+    /// Points, both ends included (2 to 100000). Default 200.
+    pub steps: usize,
+    /// Logarithmic spacing. Default false.
+    pub log: bool,
+}
+
+impl Default for CurveRange {
+    fn default() -> Self {
+        Self {
+            w_min: 0.2,
+            w_max: 3.0,
+            steps: 200,
+            log: false,
+        }
+    }
+}
+
+impl CurveRange {
+    /// Check every field against the option table, and that `w_max` > `w_min`.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidOption`] naming the first bad field.
+    pub fn validate(self) -> crate::Result<Self> {
+        use crate::options::{Allowed, OptionKey};
+        OptionKey::CurveWMin.check(self.w_min)?;
+        OptionKey::CurveWMax.check(self.w_max)?;
+        if !(self.w_max > self.w_min) {
+            return Err(crate::Error::InvalidOption {
+                option: OptionKey::CurveWMax,
+                value: self.w_max,
+                allowed: Allowed::Above {
+                    other: OptionKey::CurveWMin,
+                    value: self.w_min,
+                },
+            });
+        }
+        OptionKey::CurveSteps.check_count(self.steps)?;
+        Ok(self)
+    }
+
+    /// The frequencies, the ends exactly as given (a validated range).
+    pub fn values(&self) -> Vec<f64> {
+        let (lo, hi, n) = (self.w_min, self.w_max, self.steps.max(2) - 1);
+        if self.log {
+            let mut ws: Vec<f64> = crate::solver::grid(lo.ln(), hi.ln(), n)
+                .into_iter()
+                .map(f64::exp)
+                .collect();
+            // The ends exactly as given, not through ln and exp.
+            ws[0] = lo;
+            ws[n] = hi;
+            ws
+        } else {
+            (0..=n)
+                .map(|i| crate::scan::grid_value(lo, hi, i, n))
+                .collect()
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_curve_range_is_checked_and_keeps_its_ends() {
+        let e = CurveRange {
+            w_min: 2.0,
+            w_max: 1.0,
+            ..Default::default()
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(
+            e.render(crate::Spelling::Flag),
+            "invalid --w-max 1: must be greater than --w-min 2"
+        );
+        let e = CurveRange {
+            w_min: 0.0,
+            ..Default::default()
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(e.option(), Some(crate::OptionKey::CurveWMin));
+        for log in [false, true] {
+            let r = CurveRange {
+                w_min: 0.05,
+                w_max: 10.0,
+                steps: 7,
+                log,
+            }
+            .validate()
+            .unwrap();
+            let ws = r.values();
+            assert_eq!((ws.len(), ws[0], ws[6]), (7, 0.05, 10.0));
+            assert!(ws.windows(2).all(|p| p[1] > p[0]));
+        }
+    }
 
     #[test]
     fn abscissae_cover_the_range_ends_included() {
