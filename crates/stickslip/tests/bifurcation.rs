@@ -915,11 +915,13 @@ fn a_stop_appearing_mid_swing_is_a_grazing() {
         last,
         multiplier,
         slide,
+        beyond,
     } = branch.end.clone()
     else {
         panic!("end {:?}", branch.end)
     };
     assert!((value - 0.28621).abs() < 1e-4, "grazing at {value}");
+    assert!(beyond.is_none(), "{beyond:?}");
     assert!(value >= last && multiplier < 1.0);
     assert!(slide.speed < 1e-4, "speed {}", slide.speed);
     assert_eq!(slide.after, EventKind::Slip);
@@ -979,4 +981,51 @@ fn a_stop_appearing_mid_swing_is_a_grazing() {
     assert_eq!(five.stops.len(), 12);
     assert!(five.multipliers[0].modulus() < 1.0);
     assert!(five.stops.iter().any(|s| s.duration < 0.5));
+}
+
+/// Going down in w from 0.21 (ζ = 0, μs = 3, β = 9) the orbit with 3 stops meets a stop
+/// appearing mid-swing at w = 0.200404: the branch ends there as a grazing and names the orbit
+/// with the new stop that Newton's method finds just past it. That orbit is not the branch's
+/// continuation: it lies a jump away and exists on both sides of the grazing.
+#[test]
+fn past_a_grazing_mid_swing_lies_another_branch() {
+    let (pr, orbit) = settled_orbit(&experiment(0.0, 3.0, 0.21, 9.0)).unwrap();
+    assert_eq!(orbit.stops.len(), 3);
+    let branch = continue_orbit(
+        &pr,
+        Parameter::W,
+        &orbit,
+        0.19,
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .unwrap();
+    let BranchEnd::Grazing {
+        value,
+        last,
+        slide,
+        beyond: Some(beyond),
+        ..
+    } = branch.end.clone()
+    else {
+        panic!("end {:?}", branch.end)
+    };
+    assert!((value - 0.200404).abs() < 1e-5, "grazing at {value}");
+    assert!(value <= last && slide.speed < 1e-6);
+    assert!(beyond.value < value && beyond.stops == 4, "{beyond:?}");
+    let end = branch.points.last().unwrap();
+    assert_eq!(end.stops, 3);
+    let jump = (beyond.state.y - end.orbit.state.y).hypot(beyond.state.v - end.orbit.state.v);
+    assert!(jump > 0.1, "a jump of {jump}");
+    // The orbit past it, confirmed there, and on the branch's side of the grazing too.
+    for w in [beyond.value, value + 1e-3] {
+        let at = Parameter::W.set(pr, w).unwrap();
+        let o = find_periodic_orbit(&at, beyond.state, 1, &NewtonOptions::default()).unwrap();
+        assert_eq!(o.stops.len(), 4, "w {w}");
+        assert!((o.state.y - beyond.state.y).abs() < 0.05, "w {w}: {o:?}");
+    }
+    assert!(branch
+        .end
+        .to_string()
+        .contains("another orbit of this period with the new stop"));
 }

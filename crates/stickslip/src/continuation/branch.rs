@@ -1,6 +1,6 @@
 //! A branch of periodic orbits: its points and why it ends.
 
-use super::{Obstacle, SlideMinimum, SpecialPoint};
+use super::{Obstacle, Side, SlideMinimum, SpecialPoint};
 use crate::params::{Parameter, Params, State};
 use crate::stability::PeriodicOrbit;
 use serde::{Deserialize, Serialize};
@@ -95,9 +95,9 @@ pub enum BranchEnd {
         obstacle: Obstacle,
     },
     /// A slide of the last orbit grazes rest with the net force within the static limit
-    /// (μs > 1): a stop of finite length appears mid-swing there, the strobe map jumps, and no
-    /// orbit of the period with the new stop lies just past it (the motion goes elsewhere:
-    /// another orbit, or chaos).
+    /// (μs > 1): a stop of finite length appears mid-swing there and the strobe map jumps, so
+    /// the branch ends (its orbit ceases to exist past it; the motion goes to another orbit,
+    /// or chaos).
     Grazing {
         /// Where the slide's lowest speed reaches zero, by the secant of the last two points
         /// (the last point's value when it cannot be extrapolated).
@@ -108,6 +108,10 @@ pub enum BranchEnd {
         multiplier: f64,
         /// The slide that grazes, at the last point.
         slide: SlideMinimum,
+        /// An orbit of the same period with the new stop just past the grazing (by Newton's
+        /// method from the last strobe state and from its image), when there is one: it lies
+        /// on another branch, a finite jump away.
+        beyond: Option<Side>,
     },
     /// No step, however small, could be corrected onto the branch.
     Failed {
@@ -140,14 +144,30 @@ impl std::fmt::Display for BranchEnd {
                 last,
                 multiplier,
                 slide,
-            } => write!(
-                f,
-                "a grazing at {value:.8} (last point {last:.8}, largest multiplier modulus \
-                 {multiplier:.3e}): {}, within the static limit; a stop of finite length \
-                 appears mid-swing there, the strobe map jumps, and no orbit of this period \
-                 with the new stop lies just past it",
-                slide.describe()
-            ),
+                beyond,
+            } => {
+                write!(
+                    f,
+                    "a grazing at {value:.8} (last point {last:.8}, largest multiplier modulus \
+                     {multiplier:.3e}): {}, within the static limit; a stop of finite length \
+                     appears mid-swing there and the strobe map jumps",
+                    slide.describe()
+                )?;
+                match beyond {
+                    Some(s) => write!(
+                        f,
+                        "; past it lies another orbit of this period with the new stop, on a \
+                         branch of its own ({} stops, {} turns, strobe y = {:.6}, y' = {:.6}, \
+                         |μ1| = {:.4})",
+                        s.stops,
+                        s.turns,
+                        s.state.y,
+                        s.state.v,
+                        s.multipliers[0].modulus()
+                    ),
+                    None => f.write_str("; no orbit of this period with the new stop lies just past it"),
+                }
+            }
             BranchEnd::Failed { value, obstacle } => write!(
                 f,
                 "no orbit could be corrected past {value:.8}: the strobe map breaks there{obstacle}"

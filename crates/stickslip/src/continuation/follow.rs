@@ -3,7 +3,7 @@
 //! `stickslip continue` starts.
 
 use super::corrector::{self, counts, norm, Problem, Solution};
-use super::grazing::{past, Past};
+use super::grazing::end_at;
 use super::step::{aim_at, angle, natural_step};
 use super::{detect, Branch, BranchEnd, BranchPoint, ContinuationOptions};
 use crate::error::{Error, Result};
@@ -49,11 +49,6 @@ fn branch_point(problem: &Problem, s: &Solution, arclength: f64) -> Result<Branc
         turns,
         stops,
     })
-}
-
-/// The distance of two solutions in (y, y', λ).
-fn distance(a: &Solution, b: &Solution) -> f64 {
-    norm(&[b.u[0] - a.u[0], b.u[1] - a.u[1], b.u[2] - a.u[2]])
 }
 
 /// Continue the branch of `start` (a periodic orbit at `params`, found by
@@ -151,31 +146,14 @@ pub fn continue_orbit(
                 Some(next) => (next, true),
                 None => {
                     if ds <= options.min_step {
-                        let index = points.len() - 1;
-                        match past(
+                        break end_at(
                             &problem,
                             previous.as_ref(),
                             &current,
                             direction,
                             (lo, hi),
-                            index,
                             false,
-                        )? {
-                            Past::End(end) => break end,
-                            Past::Across {
-                                next,
-                                special: point,
-                            } => {
-                                special.push(*point);
-                                arclength += distance(&current, &next);
-                                points.push(branch_point(&problem, &next, arclength)?);
-                                previous = None;
-                                current = *next;
-                                ds = options.initial_step;
-                                crawling = 0;
-                                continue;
-                            }
-                        }
+                        )?;
                     }
                     ds = (0.5 * ds).max(options.min_step);
                     continue;
@@ -261,31 +239,7 @@ pub fn continue_orbit(
             0
         };
         if crawling >= 25 {
-            let index = points.len() - 1;
-            match past(
-                &problem,
-                Some(&current),
-                &next,
-                direction,
-                (lo, hi),
-                index,
-                true,
-            )? {
-                Past::End(end) => break end,
-                Past::Across {
-                    next: across,
-                    special: point,
-                } => {
-                    special.push(*point);
-                    arclength += distance(&next, &across);
-                    points.push(branch_point(&problem, &across, arclength)?);
-                    previous = None;
-                    current = *across;
-                    ds = options.initial_step;
-                    crawling = 0;
-                    continue;
-                }
-            }
+            break end_at(&problem, Some(&current), &next, direction, (lo, hi), true)?;
         }
         previous = Some(current);
         current = next;

@@ -1,45 +1,37 @@
 //! Past the end of a branch's smooth pieces: where a slide grazes rest with the net force
-//! within the static limit, a stop of finite length appears mid-swing and the strobe map
-//! jumps. The branch is named there as a grazing and goes on when an orbit with the new
-//! events (a stop where the slide grazed) lies just past it.
+//! within the static limit (μs > 1), a stop of finite length appears mid-swing and the strobe
+//! map jumps. The branch ends there, named as a grazing. An orbit of the same period with the
+//! new stop just past it is found when there is one and reported beside it, but not continued:
+//! the stop it gains has a finite length at once, so that orbit lies a finite distance away
+//! (the jump), on a branch of its own that does not end at the grazing (it exists on both
+//! sides of it, as at w = 0.2004 for ζ = 0, μs = 3, β = 9), and joining the two would draw one
+//! branch through a jump.
 
 use super::corrector::{counts, Problem, Solution};
 use super::detect::side;
 use super::obstacle::{obstacle, slide_minimum};
-use super::{BranchEnd, Obstacle, SpecialKind, SpecialPoint};
+use super::{BranchEnd, Obstacle};
 use crate::error::Result;
 use crate::solver::EventKind;
 use crate::stability::strobe_map;
 
-/// What lies past the last point of a branch that can go no further by steps.
-pub(super) enum Past {
-    /// An orbit with the new events just past a grazing, and the grazing between the two.
-    Across {
-        next: Box<Solution>,
-        special: Box<SpecialPoint>,
-    },
-    /// The branch ends here.
-    End(BranchEnd),
-}
-
-/// What lies past `last` (the last point of the branch, `previous` the one before it, `index`
-/// its position in the branch), continued with λ moving with the sign of `direction` within
-/// `range`; `stalled` says whether the steps stalled (else they failed).
-pub(super) fn past(
+/// Why the branch ends at `last` (its last point, `previous` the one before it), continued
+/// with λ moving with the sign of `direction` within `range`; `stalled` says whether the steps
+/// stalled (else they failed).
+pub(super) fn end_at(
     problem: &Problem,
     previous: Option<&Solution>,
     last: &Solution,
     direction: f64,
     (lo, hi): (f64, f64),
-    index: usize,
     stalled: bool,
-) -> Result<Past> {
+) -> Result<BranchEnd> {
     let lambda = last.u[2];
     let params = problem.params(lambda)?;
     let multiplier = last.orbit.multipliers[0].modulus();
     let obstacle = obstacle(&params, &last.orbit)?;
     let Obstacle::Grazing(slide) = obstacle else {
-        return Ok(Past::End(if stalled {
+        return Ok(if stalled {
             BranchEnd::Stalled {
                 value: lambda,
                 multiplier,
@@ -50,7 +42,7 @@ pub(super) fn past(
                 value: lambda,
                 obstacle,
             }
-        }));
+        });
     };
     // The speed at the minimum falls linearly in λ towards the grazing: its secant through the
     // last two points says where it reaches zero (the last point when that is not ahead).
@@ -69,8 +61,8 @@ pub(super) fn past(
         }
     }
     // An orbit of the new events: Newton's method at λ just past the grazing, from the last
-    // orbit's strobe state and from its image there (which has the new stop); accepted when
-    // its event counts differ and it stops near where the slide grazed.
+    // orbit's strobe state and from its image there (which has the new stop); taken when its
+    // event counts differ and it stops near where the slide grazed.
     let scale = value.abs().max(0.1);
     let period = problem.period as f64 * last.orbit.drive_period;
     for offset in [1e-9, 1e-7, 1e-5, 1e-3] {
@@ -94,30 +86,21 @@ pub(super) fn past(
                     e.kind == EventKind::Stick && (e.tau - slide.tau).abs() <= 0.05 * period
                 });
             if counts(&next.orbit) != counts(&last.orbit) && stops_there {
-                let (a, b) = (&last.u, &next.u);
-                let width =
-                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-                let special = SpecialPoint {
-                    kind: SpecialKind::Grazing,
+                return Ok(BranchEnd::Grazing {
                     value,
-                    state: last.orbit.state,
-                    width,
-                    located: width <= problem.options.locate_tolerance,
-                    after_point: index,
-                    before: side(last),
-                    after: side(&next),
-                };
-                return Ok(Past::Across {
-                    next: Box::new(next),
-                    special: Box::new(special),
+                    last: lambda,
+                    multiplier,
+                    slide,
+                    beyond: Some(side(&next)),
                 });
             }
         }
     }
-    Ok(Past::End(BranchEnd::Grazing {
+    Ok(BranchEnd::Grazing {
         value,
         last: lambda,
         multiplier,
         slide,
-    }))
+        beyond: None,
+    })
 }

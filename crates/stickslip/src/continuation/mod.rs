@@ -50,9 +50,9 @@
 //! **A stop mid-swing.** Where a slide's lowest speed reaches zero with the net force within
 //! μs > 1, the motion stops there for a finite time: the strobe map jumps, and the steps stall
 //! against the jump. The last orbit's slides are then searched for that minimum
-//! ([`Obstacle::Grazing`]); an orbit of the same period with the new stop just past it
-//! continues the branch (a [`SpecialKind::Grazing`] between the two, its width the jump), and
-//! without one the branch ends as [`BranchEnd::Grazing`].
+//! ([`Obstacle::Grazing`]) and the branch ends as [`BranchEnd::Grazing`], with the orbit of the
+//! same period and the new stop found just past it, if any: that one lies a finite jump away on
+//! a branch of its own, so it is named, not joined.
 //!
 //! ```
 //! use stickslip::continuation::{continue_orbit, ContinuationOptions, SpecialKind};
