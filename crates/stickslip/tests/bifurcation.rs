@@ -7,8 +7,8 @@ use stickslip::attractor::{record_strobes, AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::{
-    continue_both_ways, continue_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions,
-    Obstacle, SpecialKind,
+    continue_both_ways, continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport,
+    ContinuationOptions, Obstacle, SpecialKind,
 };
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 use stickslip::solver::run_until;
@@ -891,4 +891,141 @@ fn a_tiny_max_step_does_not_stall_on_a_stable_orbit() {
             );
         }
     }
+}
+
+/// Regression: `continue --zeta 0 --mu-s 3 --beta 9 --over w --from 0.27 --to 0.34` stalled
+/// with `obstacle: none` near w = 0.2862, where a slide's lowest speed reaches zero with the
+/// net force within μs, so that a stop of finite length appears mid-swing (the strobe map
+/// jumps). It is a grazing, named with its slide; past it no period-1 orbit with the new stop
+/// lies near, and the motion settles on a period-5 orbit instead.
+#[test]
+fn a_stop_appearing_mid_swing_is_a_grazing() {
+    let (pr, orbit) = settled_orbit(&experiment(0.0, 3.0, 0.27, 9.0)).unwrap();
+    let branch = continue_orbit(
+        &pr,
+        Parameter::W,
+        &orbit,
+        0.34,
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .unwrap();
+    let BranchEnd::Grazing {
+        value,
+        last,
+        multiplier,
+        slide,
+        beyond,
+    } = branch.end.clone()
+    else {
+        panic!("end {:?}", branch.end)
+    };
+    assert!((value - 0.28621).abs() < 1e-4, "grazing at {value}");
+    assert!(beyond.is_none(), "{beyond:?}");
+    assert!(value >= last && multiplier < 1.0);
+    assert!(slide.speed < 1e-4, "speed {}", slide.speed);
+    assert_eq!(slide.after, EventKind::Slip);
+    assert!(slide.net_force < 3.0 && (slide.net_force - 1.0).abs() < 1e-6);
+    assert!(branch.end.to_string().starts_with("a grazing at 0.28621"));
+    let json = serde_json::to_value(BranchReport::from(&branch)).unwrap();
+    assert_eq!(json["end"]["reason"], "grazing");
+
+    // The slide minimum against the motion sampled densely over the orbit's period.
+    let point = branch.points.last().unwrap();
+    let at = Parameter::W.set(pr, last).unwrap();
+    let mut solver = ExactSolver::new(at, point.orbit.state);
+    let times: Vec<f64> = (0..=40_000)
+        .map(|k| slide.tau - 1.0 + 2.0 * k as f64 / 40_000.0)
+        .collect();
+    run_until(&mut solver, times[0], |_| {}).unwrap();
+    let samples = stickslip::solver::sample_at(&mut solver, &times, |_| {}).unwrap();
+    let lowest = samples
+        .iter()
+        .min_by(|a, b| a.v.abs().total_cmp(&b.v.abs()))
+        .unwrap();
+    assert!(
+        (lowest.tau - slide.tau).abs() < 1e-3,
+        "{} {}",
+        lowest.tau,
+        slide.tau
+    );
+    assert!((lowest.v.abs() - slide.velocity).abs() < 1e-7);
+    assert!(
+        samples.iter().all(|s| s.v * lowest.v > 0.0),
+        "the slide goes on through the minimum"
+    );
+
+    // The orbit before the grazing: the steady state there is that orbit, with the same
+    // period and multipliers.
+    let steady = experiment(0.0, 3.0, last, 9.0).steady().unwrap();
+    assert_eq!(steady.period, Some(1));
+    let settled =
+        find_periodic_orbit(&at, steady.strobes[0], 1, &NewtonOptions::default()).unwrap();
+    assert!((settled.state.y - point.orbit.state.y).abs() < 1e-8);
+    assert!((settled.state.v - point.orbit.state.v).abs() < 1e-8);
+    let (a, b) = (settled.multipliers[0], point.orbit.multipliers[0]);
+    assert!((a.re - b.re).abs() < 1e-6 && a.im == b.im, "{a:?} {b:?}");
+    assert_eq!(point.stops, 2);
+
+    // Past it: no period-1 orbit near (Newton's method from the last strobe state fails or
+    // lands elsewhere), and the motion settles on a period-5 orbit with 12 stops, a stop of
+    // finite length mid-swing among them.
+    let past = Parameter::W.set(pr, 0.2863).unwrap();
+    match find_periodic_orbit(&past, point.orbit.state, 1, &NewtonOptions::default()) {
+        Err(_) => {}
+        Ok(o) => assert!((o.state.y - point.orbit.state.y).abs() > 0.5, "{o:?}"),
+    }
+    let steady = experiment(0.0, 3.0, 0.2863, 9.0).steady().unwrap();
+    assert_eq!(steady.period, Some(5));
+    let five = find_periodic_orbit(&past, steady.strobes[0], 5, &NewtonOptions::default()).unwrap();
+    assert_eq!(five.stops.len(), 12);
+    assert!(five.multipliers[0].modulus() < 1.0);
+    assert!(five.stops.iter().any(|s| s.duration < 0.5));
+}
+
+/// Going down in w from 0.21 (ζ = 0, μs = 3, β = 9) the orbit with 3 stops meets a stop
+/// appearing mid-swing at w = 0.200404: the branch ends there as a grazing and names the orbit
+/// with the new stop that Newton's method finds just past it. That orbit is not the branch's
+/// continuation: it lies a jump away and exists on both sides of the grazing.
+#[test]
+fn past_a_grazing_mid_swing_lies_another_branch() {
+    let (pr, orbit) = settled_orbit(&experiment(0.0, 3.0, 0.21, 9.0)).unwrap();
+    assert_eq!(orbit.stops.len(), 3);
+    let branch = continue_orbit(
+        &pr,
+        Parameter::W,
+        &orbit,
+        0.19,
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .unwrap();
+    let BranchEnd::Grazing {
+        value,
+        last,
+        slide,
+        beyond: Some(beyond),
+        ..
+    } = branch.end.clone()
+    else {
+        panic!("end {:?}", branch.end)
+    };
+    assert!((value - 0.200404).abs() < 1e-5, "grazing at {value}");
+    assert!(value <= last && slide.speed < 1e-6);
+    assert!(beyond.value < value && beyond.stops == 4, "{beyond:?}");
+    let end = branch.points.last().unwrap();
+    assert_eq!(end.stops, 3);
+    let jump = (beyond.state.y - end.orbit.state.y).hypot(beyond.state.v - end.orbit.state.v);
+    assert!(jump > 0.1, "a jump of {jump}");
+    // The orbit past it, confirmed there, and on the branch's side of the grazing too.
+    for w in [beyond.value, value + 1e-3] {
+        let at = Parameter::W.set(pr, w).unwrap();
+        let o = find_periodic_orbit(&at, beyond.state, 1, &NewtonOptions::default()).unwrap();
+        assert_eq!(o.stops.len(), 4, "w {w}");
+        assert!((o.state.y - beyond.state.y).abs() < 0.05, "w {w}: {o:?}");
+    }
+    assert!(branch
+        .end
+        .to_string()
+        .contains("another orbit of this period with the new stop"));
 }

@@ -93,7 +93,8 @@ fn the_sequential_verdict_is_the_fixed_verdict_and_stops_early() {
 /// the exponent map (sequential, chaotic motions reported after a shortened search) has the
 /// verdict of the long run it replaces (the full strobe search, then a fixed measurement of
 /// 5000 periods) wherever the long run's exponent is beyond 4 standard errors; classes and
-/// periods are those of the long run.
+/// periods are those of the long run, except where the map decided a motion contracting before
+/// it reached its orbit (the long run then finds the orbit, contracting too).
 #[test]
 fn the_exponent_map_keeps_every_verdict_of_the_long_run() {
     let n = 30;
@@ -122,7 +123,7 @@ fn the_exponent_map_keeps_every_verdict_of_the_long_run() {
     .run(&())
     .unwrap();
     let long_options = steady.with_lyapunov(Some(fixed(measure))).unwrap();
-    let (mut compared, mut chaotic, mut early) = (0, 0, 0);
+    let (mut compared, mut chaotic, mut early, mut settled_later) = (0, 0, 0, 0);
     for point in &map.points {
         let long = steady_state_from(
             &exact_solver,
@@ -132,12 +133,15 @@ fn the_exponent_map_keeps_every_verdict_of_the_long_run() {
         )
         .unwrap();
         let long_exponent = steady_exponent(&long, &fixed(measure)).unwrap();
-        assert_eq!(
-            (point.class, point.period),
-            (long.class, long.period),
-            "{:?}",
-            point.params
-        );
+        if (point.class, point.period) != (long.class, long.period) {
+            // Decided contracting after the shortened search, before the motion reached its
+            // orbit: non-periodic there, and contracting in the long run too.
+            let new = point.lyapunov.expect("a measured exponent");
+            assert!(point.period.is_none() && sign(&new, 4.0) == -1, "{point:?}");
+            let old = long_exponent.expect("the long run's exponent");
+            assert!(old.per_tau < -4.0 * old.error_per_tau, "{point:?}: {old:?}");
+            settled_later += 1;
+        }
         let (Some(new), Some(old)) = (point.lyapunov, long_exponent) else {
             assert_eq!(point.lyapunov.is_some(), long_exponent.is_some());
             continue;
@@ -160,6 +164,9 @@ fn the_exponent_map_keeps_every_verdict_of_the_long_run() {
     assert!(compared > 850, "{compared} cells compared");
     assert!(chaotic > 100, "{chaotic} chaotic cells");
     assert_eq!(early, chaotic, "every chaotic cell decided before the cap");
+    // The cells whose motion reaches a periodic orbit between the shortened search and the
+    // full one are few.
+    assert!(settled_later <= 30, "{settled_later} cells settled later");
 }
 
 /// Drive periods the map's measurement of a chaotic cell ran (the shortened search, then the

@@ -1029,3 +1029,59 @@ fn orbit_at_the_edge_of_the_neutral_family_at_zeta_0_w_half_is_neutral_not_stabl
     durations.sort_by(f64::total_cmp);
     assert!(durations[2] - durations[0] > 1e-5, "{durations:?}");
 }
+
+/// At ζ = 0, w = 1/(2n) the sliding orbit is one of a family (docs/stability.md, "A neutral
+/// family"): y + A·cos(τ − τ_turn) is a periodic orbit for every small A, so the strobe map
+/// has a line of fixed points and its Jacobian the eigenvalue 1, with the eigenvector
+/// (cos τ_turn, sin τ_turn). The computed multiplier is 1 to rounding there, and the verdict
+/// neutral; at nearby w it is not.
+#[test]
+fn the_sliding_orbit_at_zeta_0_w_one_over_2n_has_multiplier_one() {
+    use stickslip::theory::{stick_slip_boundary, PeriodicSolution};
+    for n in 1..=3u32 {
+        let w = 1.0 / (2.0 * f64::from(n));
+        let beta = 1.5 * stick_slip_boundary(0.0, w, 1.0).unwrap().beta_c;
+        let params = Params::new(0.0, w, beta).unwrap();
+        let solution = PeriodicSolution::new(&params).unwrap();
+        let orbit = find_periodic_orbit(
+            &params,
+            solution.state_at(0.0),
+            1,
+            &NewtonOptions::default(),
+        )
+        .unwrap();
+        assert!(orbit.events.iter().all(|e| e.kind == EventKind::Turn));
+        let m = orbit.multipliers;
+        assert!(
+            (m[0].re - 1.0).abs() < 1e-12 && m[0].im == 0.0,
+            "n {n}: {m:?}"
+        );
+        assert_eq!(orbit.stability, Stability::Neutral, "n {n}");
+        // The family's direction is the eigenvector of 1.
+        let t = solution.first_lower_turn();
+        let e = [t.cos(), t.sin()];
+        let j = orbit.monodromy.0;
+        let me = [
+            j[0][0] * e[0] + j[0][1] * e[1],
+            j[1][0] * e[0] + j[1][1] * e[1],
+        ];
+        assert!(
+            (me[0] - e[0]).abs() < 1e-10 && (me[1] - e[1]).abs() < 1e-10,
+            "n {n}: M·e = {me:?}, e = {e:?}"
+        );
+        for factor in [0.98, 1.02] {
+            let near = Params::new(0.0, w * factor, beta).unwrap();
+            let s = PeriodicSolution::new(&near).unwrap();
+            let o =
+                find_periodic_orbit(&near, s.state_at(0.0), 1, &NewtonOptions::default()).unwrap();
+            let m = o.multipliers;
+            let distance = (m[0].re - 1.0).hypot(m[0].im);
+            assert!(distance > 1e-3, "n {n}, w × {factor}: {m:?}");
+            assert_ne!(
+                o.stability,
+                Stability::Neutral,
+                "n {n}, w × {factor}: {m:?}"
+            );
+        }
+    }
+}

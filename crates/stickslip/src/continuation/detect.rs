@@ -21,10 +21,17 @@ pub(crate) type Sampler<'a> = dyn Fn(f64) -> Result<Option<Solution>> + 'a;
 
 impl Sample {
     fn side(&self) -> Side {
-        let o = &self.solution.orbit;
+        side(&self.solution)
+    }
+}
+
+/// The orbit of a solution as one side of a special point.
+pub(crate) fn side(solution: &Solution) -> Side {
+    {
+        let o = &solution.orbit;
         let (turns, stops) = counts(o);
         Side {
-            value: self.solution.u[2],
+            value: solution.u[2],
             state: o.state,
             multipliers: o.multipliers,
             // Strictly: the bracket's ends lie within its width of the special point.

@@ -189,9 +189,9 @@ impl Grid {
     /// [`crate::stability::steady_exponent`]): exactly, from the Floquet multipliers of the periodic orbit, where
     /// the motion repeats (a Newton step or two from the recorded cycle), and measured with
     /// `options` where it does not (unless the steady-state search measured it already, with
-    /// [`SteadyOptions::lyapunov`]). A motion decided chaotic early in its search stops there
-    /// ([`steady_state_with_exponent`]). Points still differ only by what they compute, so the
-    /// map stays the same for any number of threads.
+    /// [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting early in its
+    /// search stops there ([`steady_state_with_exponent`]). Points still differ only by what
+    /// they compute, so the map stays the same for any number of threads.
     ///
     /// # Errors
     /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are

@@ -98,11 +98,16 @@ pub const SEARCH_BEFORE_MEASURING: usize = 300;
 /// the exponent: the result of [`crate::steady::steady_state_from`] followed by
 /// [`steady_exponent`], except that a motion which has not repeated after
 /// [`SEARCH_BEFORE_MEASURING`] drive periods of the search is measured there (with
-/// `options.lyapunov`, normally sequential: [`crate::stability::lyapunov`]) and, when it is decided
-/// chaotic, is reported so at once ([`crate::MotionClass::Chaotic`], the record of the
-/// shortened search) instead of running the rest of `options.max_periods` first. Every other
-/// motion gets exactly the full search's result. The shortcut differs from the full search
-/// only for a chaotic transient that ends in a periodic motion between the two lengths.
+/// `options.lyapunov`, normally sequential: [`crate::stability::lyapunov`]) and, when its
+/// verdict is decided (chaotic or contracting beyond the stated significance), is reported so
+/// at once instead of running the rest of `options.max_periods` first: a chaotic motion as
+/// [`crate::MotionClass::Chaotic`], a contracting one with the class of the shortened search
+/// (non-periodic: it has not reached its orbit yet), each with the record of the shortened
+/// search and the measured exponent with its error. Every other motion gets exactly the full
+/// search's result. The shortcut differs from the full search in the verdict only for a
+/// chaotic transient that ends in a periodic motion between the two lengths (or the reverse);
+/// in the class also where a contracting motion reaches its orbit between the two lengths
+/// (the full search then calls it periodic, with the exact exponent of its orbit).
 ///
 /// The solvers from `factory` must be exact ([`crate::Solver::is_exact`]); without
 /// `options.lyapunov` this is the full search and [`steady_exponent`] with
@@ -142,9 +147,15 @@ pub fn steady_state_with_exponent<F: SolverFactory + ?Sized>(
     match lyapunov_exponents(params, steady.final_state(), &measure) {
         Ok(exponents) => {
             let c = NonperiodicClassification::new(exponents, measure.significance);
-            if c.verdict == NonperiodicVerdict::Chaotic {
+            let decided = matches!(
+                c.verdict,
+                NonperiodicVerdict::Chaotic | NonperiodicVerdict::Contracting
+            );
+            if decided {
                 let largest = c.exponents.largest;
-                steady.class = MotionClass::Chaotic;
+                if c.verdict == NonperiodicVerdict::Chaotic {
+                    steady.class = MotionClass::Chaotic;
+                }
                 steady.lyapunov = Some(c);
                 return Ok((steady, Some(largest)));
             }
