@@ -142,7 +142,9 @@ pub(crate) fn event_rows(events: &[Event]) -> Vec<EventRow> {
 /// say so; anything else is the library's message.
 pub(crate) fn failed(err: Error, budget: &Budget, what: &str) -> ApiError {
     match err {
-        Error::Cancelled { .. } if budget.timed_out() || !budget.abandoned() => {
+        Error::Cancelled { .. } | Error::DeadlineExceeded
+            if budget.timed_out() || !budget.abandoned() =>
+        {
             let progress = match budget.progress() {
                 (done, total) if total > 1 => format!(" ({done} of {total} done)"),
                 _ => String::new(),
@@ -156,7 +158,7 @@ pub(crate) fn failed(err: Error, budget: &Budget, what: &str) -> ApiError {
                 ),
             )
         }
-        Error::Cancelled { .. } => ApiError::status(
+        Error::Cancelled { .. } | Error::DeadlineExceeded => ApiError::status(
             StatusCode::SERVICE_UNAVAILABLE,
             format!("the {what} was stopped: the request was dropped"),
         ),

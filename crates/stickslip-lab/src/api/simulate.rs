@@ -3,7 +3,7 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
@@ -67,9 +67,10 @@ impl SimulateRequest {
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<SimulateAnswer, ApiError> {
         use stickslip::steady::SolverFactory;
-        let e = &self.experiment;
+        let e = &budget.limit_experiment(&self.experiment);
         let params = e.params().map_err(|err| ApiError::library(&err))?;
-        let mut solver = LimitedFactory::new(e.factory(), budget.clone())
+        let mut solver = e
+            .factory()
             .make(params, e.initial())
             .map_err(|err| ApiError::library(&err))?;
         let total = (self.periods * self.samples as f64).ceil() as usize;

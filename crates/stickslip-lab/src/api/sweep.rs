@@ -3,7 +3,7 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::f64::consts::TAU;
@@ -136,7 +136,7 @@ impl SweepRequest {
     /// # Errors
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<SweepAnswer, ApiError> {
-        let e = &self.experiment;
+        let e = &budget.limit_experiment(&self.experiment);
         let library = |err: Error| ApiError::library(&err);
         let sweep = Sweep::new(
             e,
@@ -145,8 +145,7 @@ impl SweepRequest {
         .map_err(library)?
         .direction(self.direction)
         .options(self.options)
-        .map_err(library)?
-        .with_factory(LimitedFactory::new(e.factory(), budget.clone()));
+        .map_err(library)?;
         budget.start(sweep.plan().len());
         let points = sweep
             .run(&budget.keep_going())
