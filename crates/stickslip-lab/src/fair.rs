@@ -5,9 +5,9 @@
 //! queued per client, and a freed turn goes to the next client in round-robin order, not to
 //! the oldest request: a client with six maps queued waits behind every other client's single
 //! request. A long computation gives its turn back every [`SLICE`] while others wait (the
-//! [`Budget`](super::limit::Budget) does so from inside the solvers and between the blocks of
-//! a map) and queues again behind them. Each client may hold at most [`PER_CLIENT`]
-//! computations, waiting or running.
+//! [`Budget`](super::limit::Budget) does so from inside the solvers, through the hook of its
+//! cancellation token, and between the blocks of a map) and queues again behind them. Each
+//! client may hold at most [`PER_CLIENT`] computations, waiting or running.
 
 use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Mutex, MutexGuard};

@@ -1,9 +1,14 @@
 //! The lab's limits on one request: a time limit, and a stop as soon as nobody waits for
-//! the answer (the page dropped a stale request). Both reach into the computation: every
-//! solver the request builds checks its [`Budget`] as it advances, and sweeps and maps check
-//! it between points through the library's [`Monitor`](stickslip::scan::Monitor). The same
-//! checks give the computation's turn to another client every [`SLICE`] while others wait
-//! (see [`super::fair`]).
+//! the answer (the page dropped a stale request). Both reach into the computation through
+//! the library's cancellation token ([`stickslip::cancel::Cancel`]): the request's
+//! experiment carries its [`Budget::cancel`] token ([`Experiment::with_cancel`]), whose
+//! deadline is the time limit and which the budget cancels when the request is dropped, so
+//! every solver the computation builds checks it as it advances; sweeps and maps also check
+//! the budget between points through the library's [`Monitor`](stickslip::scan::Monitor).
+//! The token's hook ([`Cancel::with_hook`]) gives the computation's turn to another client
+//! every [`SLICE`] while others wait (see [`super::fair`]).
+//!
+//! [`Experiment::with_cancel`]: stickslip::experiment::Experiment::with_cancel
 
 use super::fair::{Fair, Turn, SLICE};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -11,8 +16,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::ThreadId;
 use std::time::{Duration, Instant};
 use stickslip::cancel::Cancel;
-use stickslip::steady::SolverFactory;
-use stickslip::{Error, Event, Params, Phase, Result, Sample, Solver, State, Stats};
+use stickslip::experiment::Experiment;
 
 /// Why a computation must stop, shared between the request and its computation.
 #[derive(Debug)]
@@ -20,15 +24,14 @@ pub struct Budget {
     deadline: Instant,
     limit: Duration,
     abandoned: AtomicBool,
+    /// The token the computation's solvers check: the deadline, cancelled when abandoned,
+    /// and a hook that calls [`Budget::share`].
+    cancel: Cancel,
     /// Steps or points finished, and their number, of a sweep or a map.
     done: AtomicUsize,
     total: AtomicUsize,
     /// The computation's turn at the workers, when it takes turns.
     turns: Mutex<Option<Turns>>,
-    /// The library's token of the same budget, for computations that check an
-    /// experiment's token rather than a wrapped solver (the fit): it passes its deadline with
-    /// the budget and is cancelled when the budget is abandoned.
-    cancel: Cancel,
 }
 
 /// A computation's turn, given back and taken again from the thread that runs it.
@@ -54,15 +57,36 @@ impl Budget {
     /// A budget of `limit` from now.
     pub fn new(limit: Duration) -> Arc<Self> {
         let deadline = Instant::now() + limit;
-        Arc::new(Self {
-            deadline,
-            cancel: Cancel::new().with_deadline(deadline),
-            limit,
-            abandoned: AtomicBool::new(false),
-            done: AtomicUsize::new(0),
-            total: AtomicUsize::new(0),
-            turns: Mutex::new(None),
+        Arc::new_cyclic(|budget: &std::sync::Weak<Self>| {
+            let budget = budget.clone();
+            Self {
+                deadline,
+                limit,
+                abandoned: AtomicBool::new(false),
+                // The hook holds the budget weakly: the budget holds the token.
+                cancel: Cancel::new()
+                    .with_deadline(deadline)
+                    .with_hook(Arc::new(move || {
+                        if let Some(budget) = budget.upgrade() {
+                            budget.share();
+                        }
+                    })),
+                done: AtomicUsize::new(0),
+                total: AtomicUsize::new(0),
+                turns: Mutex::new(None),
+            }
         })
+    }
+
+    /// The token that stops the computation's solvers when the budget is spent, and gives
+    /// the turn to waiting clients from inside them.
+    pub fn cancel(&self) -> Cancel {
+        self.cancel.clone()
+    }
+
+    /// `experiment` with this budget's token: every solver it builds checks the budget.
+    pub fn limit_experiment(&self, experiment: &Experiment) -> Experiment {
+        experiment.clone().with_cancel(self.cancel())
     }
 
     /// The computation runs on this thread, in `turn`: from now on [`Budget::share`] on this
@@ -92,7 +116,8 @@ impl Budget {
     /// Give the turn to a waiting client when this computation has had its [`SLICE`], and
     /// wait for the next turn (at most until the deadline, or until nobody waits for the
     /// answer). Only on the thread that took the turn (never on a thread of a parallel
-    /// map, which must not block); elsewhere, and without turns, nothing happens.
+    /// map, which must not block); elsewhere, and without turns, nothing happens. The
+    /// budget's token calls it from inside the solvers every few hundred steps.
     pub fn share(&self) {
         let Ok(mut guard) = self.turns.try_lock() else {
             return;
@@ -138,13 +163,6 @@ impl Budget {
     pub fn abandon(&self) {
         self.abandoned.store(true, Ordering::Relaxed);
         self.cancel.cancel();
-    }
-
-    /// The library's cancellation token of this budget ([`Cancel`]): past the deadline, or
-    /// once nobody waits for the answer, every solver of an experiment carrying it
-    /// ([`stickslip::Experiment::with_cancel`]) stops within a step.
-    pub fn cancel(&self) -> &Cancel {
-        &self.cancel
     }
 
     /// Whether nobody waits for the answer.
@@ -198,105 +216,36 @@ impl Drop for AbandonOnDrop {
     }
 }
 
-/// Solver calls between two looks at the clock: a look costs about as much as a few events
-/// of the exact solver, so the clock is read once per this many calls.
-const CALLS_PER_CHECK: u32 = 64;
-
-/// A solver that stops with [`Error::Cancelled`] once its budget is spent; otherwise it is
-/// the solver it wraps, call for call (results are bit-identical).
-pub struct Limited {
-    inner: Box<dyn Solver + Send>,
-    budget: Arc<Budget>,
-    calls: u32,
-}
-
-impl Solver for Limited {
-    fn params(&self) -> &Params {
-        self.inner.params()
-    }
-    fn time(&self) -> f64 {
-        self.inner.time()
-    }
-    fn state(&self) -> State {
-        self.inner.state()
-    }
-    fn phase(&self) -> Phase {
-        self.inner.phase()
-    }
-    fn drive(&self, tau: f64) -> f64 {
-        self.inner.drive(tau)
-    }
-    fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
-        self.calls = self.calls.wrapping_add(1);
-        if self.calls.is_multiple_of(CALLS_PER_CHECK) {
-            if self.budget.spent() {
-                return Err(Error::Cancelled { done: 0, total: 1 });
-            }
-            self.budget.share();
-        }
-        self.inner.advance(t_end)
-    }
-    fn interval(&self) -> (f64, f64) {
-        self.inner.interval()
-    }
-    fn dense(&self, tau: f64) -> Sample {
-        self.inner.dense(tau)
-    }
-    fn stats(&self) -> Stats {
-        self.inner.stats()
-    }
-    fn is_exact(&self) -> bool {
-        self.inner.is_exact()
-    }
-}
-
-/// A factory whose solvers are [`Limited`] by one budget.
-#[derive(Clone)]
-pub struct LimitedFactory<F> {
-    inner: F,
-    budget: Arc<Budget>,
-}
-
-impl<F: SolverFactory> LimitedFactory<F> {
-    /// Solvers of `inner`, limited by `budget`.
-    pub fn new(inner: F, budget: Arc<Budget>) -> Self {
-        Self { inner, budget }
-    }
-}
-
-impl<F: SolverFactory> SolverFactory for LimitedFactory<F> {
-    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
-        Ok(Box::new(Limited {
-            inner: self.inner.make(params, initial)?,
-            budget: self.budget.clone(),
-            calls: 0,
-        }))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use stickslip::experiment::Experiment;
-    use stickslip::steady::steady_state_from;
+    use stickslip::Error;
 
     #[test]
-    fn a_limited_solver_gives_the_same_steady_state() {
+    fn a_limited_experiment_gives_the_same_steady_state() {
         let e = Experiment::paper()
             .with_w(0.29)
             .unwrap()
             .with_beta(2.14)
             .unwrap();
         let budget = Budget::new(Duration::from_secs(600));
-        let limited = LimitedFactory::new(e.factory(), budget);
-        let s = steady_state_from(
-            &limited,
-            &e.params().unwrap(),
-            e.initial(),
-            &e.steady_options(),
-        )
-        .unwrap();
-        assert_eq!(s, e.steady().unwrap());
+        let limited = budget.limit_experiment(&e);
+        assert_eq!(limited.steady().unwrap(), e.steady().unwrap());
+        // The solvers charged their steps to the budget's token.
+        assert!(budget.cancel().spent() > 0);
+    }
+
+    #[test]
+    fn a_budget_without_time_stops_the_solver_at_its_deadline() {
+        let e = Experiment::paper()
+            .with_w(0.95)
+            .unwrap()
+            .with_beta(2.14)
+            .unwrap();
+        let budget = Budget::new(Duration::ZERO);
+        let err = budget.limit_experiment(&e).steady().unwrap_err();
+        assert!(matches!(err, Error::DeadlineExceeded), "{err}");
+        assert!(budget.timed_out() && !budget.abandoned());
     }
 
     #[test]
@@ -307,15 +256,9 @@ mod tests {
             .with_beta(2.14)
             .unwrap();
         let budget = Budget::new(Duration::from_secs(600));
+        let limited = budget.limit_experiment(&e);
         budget.abandon();
-        let limited = LimitedFactory::new(e.factory(), budget);
-        let err = steady_state_from(
-            &limited,
-            &e.params().unwrap(),
-            e.initial(),
-            &e.steady_options(),
-        )
-        .unwrap_err();
+        let err = limited.steady().unwrap_err();
         assert!(matches!(err, Error::Cancelled { .. }), "{err}");
     }
 
@@ -332,14 +275,14 @@ mod tests {
         budget.abandon();
         let err = e
             .clone()
-            .with_cancel(budget.cancel().clone())
+            .with_cancel(budget.cancel())
             .steady()
             .unwrap_err();
         assert!(matches!(err, Error::Cancelled { .. }), "{err}");
         // Past its deadline: the same.
         let budget = Budget::new(Duration::from_millis(1));
         std::thread::sleep(Duration::from_millis(5));
-        let err = e.with_cancel(budget.cancel().clone()).steady().unwrap_err();
+        let err = e.with_cancel(budget.cancel()).steady().unwrap_err();
         assert!(matches!(err, Error::DeadlineExceeded), "{err}");
     }
 }

@@ -8,6 +8,7 @@ use axum::http::{Request, StatusCode};
 use serde_json::Value;
 use std::time::Duration;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset};
+use stickslip::report::{MapReport, SweepReport};
 use stickslip::scan::{Axis, Grid, ParameterRange, Sweep, SweepDirection};
 use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
@@ -202,8 +203,21 @@ async fn theory_equals_the_library() {
     assert_eq!(answer, expected);
 }
 
+/// The keys of `answer` that `report` has, with their values: the report inside an answer
+/// beside the experiment's description.
+fn report_part(answer: &Value, report: &Value) -> Value {
+    let answer = answer.as_object().unwrap();
+    let report = report.as_object().unwrap();
+    Value::Object(
+        report
+            .keys()
+            .filter_map(|k| answer.get(k).map(|v| (k.clone(), v.clone())))
+            .collect(),
+    )
+}
+
 #[tokio::test]
-async fn simulate_equals_the_library() {
+async fn simulate_is_the_library_trajectory_report() {
     let (status, answer) =
         get("/api/simulate?preset=paper&w=0.7&beta=1.2&periods=3&samples=50").await;
     assert_eq!(status, StatusCode::OK, "{answer}");
@@ -212,11 +226,22 @@ async fn simulate_equals_the_library() {
         .unwrap()
         .with_beta(1.2)
         .unwrap();
+    // The report's shape, every key: the answer is the library's trajectory report beside the
+    // description.
+    let report = e.trajectory(3.0, 50).unwrap().collect_report().unwrap();
+    let expected = serde_json::to_value(&report).unwrap();
+    assert_eq!(report_part(&answer, &expected), expected);
+    // The paper's circuit: the physical columns follow the dimensionless ones.
+    assert_eq!(
+        answer["columns"],
+        serde_json::json!(["tau", "y", "v", "drive", "phase", "t_s", "uc_V", "i_A", "u_V"])
+    );
+    // The samples and events of one pass of the solver over the grid.
     let mut solver = e.solver().unwrap();
     let times = grid(0.0, 3.0 * e.params().unwrap().drive_period(), 150);
     let mut events = Vec::new();
     let samples = sample_at(solver.as_mut(), &times, |ev| events.push(*ev)).unwrap();
-    let y: Vec<f64> = answer["trace"]["columns"]["y"]
+    let y: Vec<f64> = answer["y"]
         .as_array()
         .unwrap()
         .iter()
@@ -226,6 +251,23 @@ async fn simulate_equals_the_library() {
     assert_eq!(answer["events"].as_array().unwrap().len(), events.len());
     assert!(events.iter().any(|e| e.kind == stickslip::EventKind::Stick));
     assert_eq!(answer["phase"][0], samples[0].phase.label());
+    assert_eq!(answer["experiment"], e.to_string());
+
+    // A physical description: the physical columns at the top level, named in `columns`.
+    let (status, answer) =
+        get("/api/simulate?preset=paper&freq=9.97k&amplitude=1.498&periods=2&samples=40").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let e = spec(
+        Some(Preset::Paper),
+        None,
+        &[(Key::Frequency, 9970.0), (Key::Amplitude, 1.498)],
+    );
+    let expected =
+        serde_json::to_value(e.trajectory(2.0, 40).unwrap().collect_report().unwrap()).unwrap();
+    assert_eq!(report_part(&answer, &expected), expected);
+    assert_eq!(answer["columns"][6], "uc_V");
+    assert_eq!(answer["uc_V"].as_array().unwrap().len(), 81);
+    assert!(answer.get("trace").is_none());
 }
 
 #[tokio::test]
@@ -244,15 +286,26 @@ async fn sweep_and_map_equal_the_library() {
         .unwrap()
         .run(&())
         .unwrap();
+    // The library's sweep report, row for row and key for key (`stickslip sweep --json`).
+    let report = serde_json::to_value(SweepReport::new(
+        &e,
+        Parameter::W,
+        SweepDirection::Both,
+        &points,
+    ))
+    .unwrap();
+    assert_eq!(report_part(&answer, &report), report);
     let rows = answer["points"].as_array().unwrap();
     assert_eq!(rows.len(), points.len());
     for (row, p) in rows.iter().zip(&points) {
         assert_eq!(row["value"].as_f64().unwrap(), p.value);
-        assert_eq!(row["leg"], p.leg.label());
+        assert_eq!(row["direction"], p.leg.label());
         assert_eq!(row["gain"].as_f64().unwrap(), p.steady.gain);
         assert_eq!(row["A1"].as_f64(), p.steady.harmonic(1));
         assert_eq!(row["class"], p.steady.class.label());
     }
+    assert_eq!(answer["over"], "w");
+    assert_eq!(answer["direction"], "both");
     assert!(answer["theory"]["x"].as_array().unwrap().len() >= 200);
 
     let (status, answer) = get(
@@ -273,10 +326,21 @@ async fn sweep_and_map_equal_the_library() {
     let classes = answer["classes"].as_array().unwrap();
     let class = answer["class"].as_array().unwrap();
     assert_eq!(class.len(), 12);
-    for (k, p) in map.points.iter().enumerate() {
+    // The library's map rows, column for column (`stickslip phase-diagram --json`), with
+    // `class` as indices into `classes`.
+    let rows = serde_json::to_value(MapReport::new(&map.points, false)).unwrap();
+    let rows = rows["points"].as_array().unwrap();
+    assert_eq!(rows.len(), 12);
+    let nb = answer["beta"].as_array().unwrap().len();
+    for (k, row) in rows.iter().enumerate() {
         let label = &classes[class[k].as_u64().unwrap() as usize];
-        assert_eq!(label, p.class.label(), "point {k}");
-        assert_eq!(answer["gain"][k].as_f64().unwrap(), p.gain);
+        assert_eq!(label, &row["class"], "point {k}");
+        assert_eq!(answer["w"][k / nb], row["w"], "point {k}");
+        assert_eq!(answer["beta"][k % nb], row["beta"], "point {k}");
+        for name in ["period", "stops_per_cycle", "gain"] {
+            assert_eq!(answer[name][k], row[name], "{name} of point {k}");
+        }
+        assert_eq!(row.as_object().unwrap().len(), 6, "{row}");
     }
 }
 

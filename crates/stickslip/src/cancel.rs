@@ -20,6 +20,12 @@
 //! [`Cancel::default`] (= [`Cancel::never`]) is a token nobody holds: it never stops and costs
 //! one branch per check.
 //!
+//! A token may carry a hook ([`Cancel::with_hook`]): the caller's code, called from
+//! [`Cancel::charge`] once every [`HOOK_EVERY`] charged steps, on the thread that charges
+//! them. A server uses it to let a long computation give its worker to another client for a
+//! while (the hook blocks until the computation's next turn); the library itself calls
+//! nothing else from it and does no I/O.
+//!
 //! ```
 //! use stickslip::cancel::Cancel;
 //! let token = Cancel::new();
@@ -41,6 +47,13 @@ use std::time::Instant;
 /// within this many solver steps, well under a millisecond).
 const CLOCK_EVERY: u64 = 256;
 
+/// How many charged steps pass between two calls of a token's hook ([`Cancel::with_hook`]).
+pub const HOOK_EVERY: u64 = CLOCK_EVERY;
+
+/// The caller's code that a token calls every [`HOOK_EVERY`] charged steps
+/// ([`Cancel::with_hook`]).
+pub type Hook = Arc<dyn Fn() + Send + Sync>;
+
 /// A clone-able cancellation token with an optional deadline and step budget (see the
 /// module documentation).
 #[derive(Debug, Clone, Default)]
@@ -48,16 +61,31 @@ pub struct Cancel {
     inner: Option<Arc<Inner>>,
 }
 
-#[derive(Debug)]
 struct Inner {
     cancelled: AtomicBool,
     deadline: Option<Instant>,
     budget: Option<u64>,
+    /// Called every [`HOOK_EVERY`] charged steps.
+    hook: Option<Hook>,
     spent: AtomicU64,
     /// Set once the deadline has passed (so that later checks need no clock).
     expired: AtomicBool,
     /// The work counters of the solvers dropped so far: events, evaluations, steps, rejected.
     work: [AtomicU64; 4],
+}
+
+impl std::fmt::Debug for Inner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Cancel")
+            .field("cancelled", &self.cancelled)
+            .field("deadline", &self.deadline)
+            .field("budget", &self.budget)
+            .field("hook", &self.hook.is_some())
+            .field("spent", &self.spent)
+            .field("expired", &self.expired)
+            .field("work", &self.work)
+            .finish()
+    }
 }
 
 /// Why a computation was stopped by its [`Cancel`] token.
@@ -90,6 +118,7 @@ impl Cancel {
                 cancelled: AtomicBool::new(false),
                 deadline: None,
                 budget: None,
+                hook: None,
                 spent: AtomicU64::new(0),
                 expired: AtomicBool::new(false),
                 work: Default::default(),
@@ -106,7 +135,7 @@ impl Cancel {
     /// new one: cancelling the old one does not reach it.
     pub fn with_deadline(self, deadline: Instant) -> Self {
         let (budget, cancelled) = self.parts();
-        Self::build(cancelled, Some(deadline), budget)
+        Self::build(cancelled, Some(deadline), budget, self.hook())
     }
 
     /// A new token like this one (cancellable) that also stops after `steps` solver steps
@@ -115,7 +144,19 @@ impl Cancel {
     pub fn with_budget(self, steps: u64) -> Self {
         let deadline = self.inner.as_ref().and_then(|i| i.deadline);
         let (_, cancelled) = self.parts();
-        Self::build(cancelled, deadline, Some(steps))
+        Self::build(cancelled, deadline, Some(steps), self.hook())
+    }
+
+    /// A new token like this one (cancellable, with its deadline and budget) that also calls
+    /// `hook` from [`Cancel::charge`] once every [`HOOK_EVERY`] charged steps, on the thread
+    /// that charges them (the first call after the first [`HOOK_EVERY`] steps). The hook may
+    /// block (the computation waits) and may cancel a clone of the token; it must not hold a
+    /// clone of the token it is given to (that would keep the token alive for ever), so hold
+    /// whatever it needs by a weak reference. Checks without a hook cost nothing more.
+    pub fn with_hook(self, hook: Hook) -> Self {
+        let deadline = self.deadline();
+        let (budget, cancelled) = self.parts();
+        Self::build(cancelled, deadline, budget, Some(hook))
     }
 
     fn parts(&self) -> (Option<u64>, bool) {
@@ -125,12 +166,22 @@ impl Cancel {
         }
     }
 
-    fn build(cancelled: bool, deadline: Option<Instant>, budget: Option<u64>) -> Self {
+    fn hook(&self) -> Option<Hook> {
+        self.inner.as_ref().and_then(|i| i.hook.clone())
+    }
+
+    fn build(
+        cancelled: bool,
+        deadline: Option<Instant>,
+        budget: Option<u64>,
+        hook: Option<Hook>,
+    ) -> Self {
         Self {
             inner: Some(Arc::new(Inner {
                 cancelled: AtomicBool::new(cancelled),
                 deadline,
                 budget,
+                hook,
                 spent: AtomicU64::new(0),
                 expired: AtomicBool::new(false),
                 work: Default::default(),
@@ -202,7 +253,8 @@ impl Cancel {
     }
 
     /// Charge `steps` solver steps to the token and check it (the clock is read once every
-    /// few hundred steps). What every solver calls at every step.
+    /// few hundred steps, and the hook, if any, called as often: [`Cancel::with_hook`]). What
+    /// every solver calls at every step.
     ///
     /// # Errors
     /// As [`Cancel::check`].
@@ -221,7 +273,14 @@ impl Cancel {
                 return Err(Stop::Budget(budget).error());
             }
         }
-        if i.deadline.is_some() && (before / CLOCK_EVERY != after / CLOCK_EVERY || before == 0) {
+        if (i.deadline.is_some() || i.hook.is_some())
+            && (before / CLOCK_EVERY != after / CLOCK_EVERY || before == 0)
+        {
+            if let Some(hook) = &i.hook {
+                if before != 0 {
+                    hook();
+                }
+            }
             if let Some(stop) = self.stopped() {
                 return Err(stop.error());
             }
@@ -291,6 +350,7 @@ impl crate::scan::Monitor for Cancel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Mutex;
     use std::time::Duration;
 
     #[test]
@@ -324,6 +384,38 @@ mod tests {
         }
         assert_eq!(t.charge(1), Err(Error::BudgetExceeded { budget: 10 }));
         assert_eq!(t.stopped(), Some(Stop::Budget(10)));
+    }
+
+    #[test]
+    fn the_hook_is_called_every_so_many_steps_and_may_cancel() {
+        use std::sync::atomic::AtomicUsize;
+        use std::sync::Weak;
+        let calls = Arc::new(AtomicUsize::new(0));
+        let seen = calls.clone();
+        let t = Cancel::new()
+            .with_budget(100 * HOOK_EVERY)
+            .with_hook(Arc::new(move || {
+                seen.fetch_add(1, Ordering::Relaxed);
+            }));
+        assert_eq!(t.budget(), Some(100 * HOOK_EVERY));
+        for _ in 0..10 * HOOK_EVERY {
+            t.charge(1).unwrap();
+        }
+        // Once each time the steps charged reach a multiple of HOOK_EVERY.
+        assert_eq!(calls.load(Ordering::Relaxed), 10);
+        // The hook survives a new deadline; one that cancels stops the next check.
+        let t = t.with_deadline(Instant::now() + Duration::from_secs(3600));
+        let slot: Arc<Mutex<Weak<Inner>>> = Arc::default();
+        let weak = slot.clone();
+        let t = t.with_hook(Arc::new(move || {
+            if let Some(inner) = weak.lock().unwrap().upgrade() {
+                inner.cancelled.store(true, Ordering::Relaxed);
+            }
+        }));
+        *slot.lock().unwrap() = Arc::downgrade(t.inner.as_ref().unwrap());
+        let stopped = (0..2 * HOOK_EVERY).find(|_| t.charge(1).is_err());
+        assert_eq!(stopped, Some(HOOK_EVERY - 1));
+        assert_eq!(t.check(), Err(Error::Cancelled { done: 0, total: 1 }));
     }
 
     #[test]

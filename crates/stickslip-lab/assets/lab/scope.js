@@ -47,10 +47,17 @@ export function autoscale() {
   for (const k of [1, 2, 3]) field(`ch${k}-pos`).value = '0';
 }
 
-/** The physical columns of a trace: t (s, from its start), ch1 drive, ch2 position, ch3 velocity. */
+/** The dimensionless columns of a trajectory; the physical ones follow them in its `columns`. */
+const DIMENSIONLESS = ['tau', 'y', 'v', 'drive', 'phase'];
+
+/** The physical columns of a trace: t (s, from its start), ch1 drive, ch2 position, ch3 velocity.
+ * A steady state's recorded cycle is in its `trace.columns` and its `columns` names the four
+ * physical ones; a simulation is a trajectory report, its columns at the top level and its
+ * `columns` naming every one. */
 export function channelColumns(answer = state.steady) {
-  const cols = answer.trace.columns;
-  const names = answer.columns || ['t_s', 'uc_V', 'i_A', 'u_V'];
+  const cols = answer.trace ? answer.trace.columns : answer;
+  const physical = (answer.columns || []).filter((name) => !DIMENSIONLESS.includes(name));
+  const names = physical.length ? physical : ['t_s', 'uc_V', 'i_A', 'u_V'];
   const t = cols[names[0]] || cols.tau;
   const t0 = t[0];
   return {

@@ -162,7 +162,7 @@ export function drawSweep() {
     polyline(o, th.x.map((x, i) => [X(x), th.paper_gain[i] === null || th.paper_gain[i] > ymax ? NaN : Y(th.paper_gain[i])]), '#cc79a7', 2, [6, 4]);
     polyline(o, th.x.map((x, i) => [X(x), th.exact_peak_gain[i] === null ? NaN : Y(th.exact_peak_gain[i])]), '#000000', 2);
     for (const [leg, color, dash] of [['up', '#0072b2', []], ['down', '#d55e00', [5, 3]]]) {
-      const pts = sw.points.filter((p) => p.leg === leg);
+      const pts = sw.points.filter((p) => p.direction === leg);
       polyline(o, pts.map((p) => [X(p.value), Y(p.gain)]), color, 2, dash);
       o.fillStyle = color;
       for (const p of pts) {

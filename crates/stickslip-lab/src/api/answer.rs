@@ -27,8 +27,32 @@ pub struct About {
     /// Physical units per dimensionless unit: `position` (V or m per unit of y), `velocity`
     /// (A or m/s per unit of y'), `force` (V or N per unit of β), `omega0` (rad/s).
     pub scales: Option<Scales>,
-    /// Names of the physical columns of traces: `t_s, uc_V, i_A, u_V` or `t_s, r_m, rdot_m_s, F_N`.
-    pub columns: Option<[&'static str; 4]>,
+    /// Names of the physical columns of traces: `t_s, uc_V, i_A, u_V` or `t_s, r_m, rdot_m_s, F_N`
+    /// (left out where the answer's own `columns` lists every column, as in `/api/simulate`).
+    #[serde(skip_serializing_if = "PhysicalColumns::omitted")]
+    pub columns: PhysicalColumns,
+}
+
+/// The names of the physical columns of traces (`null` for a dimensionless description), or
+/// nothing where the answer is a trajectory report, whose own `columns` lists every column.
+#[derive(Debug)]
+pub struct PhysicalColumns {
+    /// The four names, if the description is physical.
+    pub names: Option<[&'static str; 4]>,
+    /// Left out of the answer.
+    pub omit: bool,
+}
+
+impl PhysicalColumns {
+    fn omitted(&self) -> bool {
+        self.omit
+    }
+}
+
+impl Serialize for PhysicalColumns {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.names.serialize(s)
+    }
 }
 
 /// The drive in physical units.
@@ -68,8 +92,19 @@ impl About {
                 unit,
             }),
             scales,
-            columns: e.units().map(|u| u.columns()),
+            columns: PhysicalColumns {
+                names: e.units().map(|u| u.columns()),
+                omit: false,
+            },
         }
+    }
+
+    /// The description beside a trajectory report ([`stickslip::report::TrajectoryReport`]),
+    /// whose `columns` names every column (the physical ones among them).
+    pub(crate) fn trajectory(e: &Experiment) -> Self {
+        let mut about = Self::new(e);
+        about.columns.omit = true;
+        about
     }
 }
 
@@ -142,7 +177,9 @@ pub(crate) fn event_rows(events: &[Event]) -> Vec<EventRow> {
 /// say so; anything else is the library's message.
 pub(crate) fn failed(err: Error, budget: &Budget, what: &str) -> ApiError {
     match err {
-        Error::Cancelled { .. } if budget.timed_out() || !budget.abandoned() => {
+        Error::Cancelled { .. } | Error::DeadlineExceeded
+            if budget.timed_out() || !budget.abandoned() =>
+        {
             let progress = match budget.progress() {
                 (done, total) if total > 1 => format!(" ({done} of {total} done)"),
                 _ => String::new(),
@@ -156,7 +193,7 @@ pub(crate) fn failed(err: Error, budget: &Budget, what: &str) -> ApiError {
                 ),
             )
         }
-        Error::Cancelled { .. } => ApiError::status(
+        Error::Cancelled { .. } | Error::DeadlineExceeded => ApiError::status(
             StatusCode::SERVICE_UNAVAILABLE,
             format!("the {what} was stopped: the request was dropped"),
         ),

@@ -158,7 +158,7 @@ impl FitRequest {
     /// (503), a model that cannot be computed (the library's status).
     pub fn run(self, budget: &Arc<Budget>) -> Result<FitAnswer, ApiError> {
         let (_, m) = self.keys.read(&self.upload)?;
-        let e = self.experiment.with_cancel(budget.cancel().clone());
+        let e = self.experiment.with_cancel(budget.cancel());
         let report = fit_records(
             &e,
             std::slice::from_ref(&m),

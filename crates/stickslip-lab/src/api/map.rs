@@ -3,7 +3,7 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
@@ -129,7 +129,7 @@ impl MapRequest {
     /// # Errors
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<MapAnswer, ApiError> {
-        let e = &self.experiment;
+        let e = &budget.limit_experiment(&self.experiment);
         let library = |err: Error| ApiError::library(&err);
         let grid = Grid::new(
             e,
@@ -138,8 +138,7 @@ impl MapRequest {
         )
         .map_err(library)?
         .options(self.options)
-        .map_err(library)?
-        .with_factory(LimitedFactory::new(e.factory(), budget.clone()));
+        .map_err(library)?;
         let (rows, cols) = grid.shape();
         let total = rows * cols;
         budget.start(total);

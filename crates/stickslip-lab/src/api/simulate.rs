@@ -3,13 +3,13 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
 use stickslip::options::SimulateOptions;
-use stickslip::solver::{grid, sample_at};
+use stickslip::report::TrajectoryReport;
 
 /// `GET /api/simulate`.
 #[derive(Debug)]
@@ -20,18 +20,17 @@ pub struct SimulateRequest {
 }
 
 /// The answer of `/api/simulate`: the run from the initial state, as `stickslip simulate`
-/// writes it.
+/// writes it: the experiment's description beside the library's trajectory report
+/// ([`TrajectoryReport`]: `periods`, `samples_per_period`, `columns` naming every column, the
+/// columns `tau`, `y`, `v`, `drive`, `phase` and the physical ones, and `events`).
 #[derive(Debug, Serialize)]
 pub struct SimulateAnswer {
     /// The experiment.
     #[serde(flatten)]
     pub about: About,
-    /// The samples; `phase` holds `slip+`, `slip-` or `stick` for each.
-    pub trace: Trace,
-    /// Phase of the motion at each sample.
-    pub phase: Vec<&'static str>,
-    /// Every event of the run.
-    pub events: Vec<EventRow>,
+    /// The run.
+    #[serde(flatten)]
+    pub report: TrajectoryReport,
 }
 
 impl SimulateRequest {
@@ -66,30 +65,15 @@ impl SimulateRequest {
     /// # Errors
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<SimulateAnswer, ApiError> {
-        use stickslip::steady::SolverFactory;
-        let e = &self.experiment;
-        let params = e.params().map_err(|err| ApiError::library(&err))?;
-        let mut solver = LimitedFactory::new(e.factory(), budget.clone())
-            .make(params, e.initial())
-            .map_err(|err| ApiError::library(&err))?;
-        let total = (self.periods * self.samples as f64).ceil() as usize;
-        let times = grid(0.0, self.periods * params.drive_period(), total);
-        let mut events = Vec::new();
-        let samples = sample_at(solver.as_mut(), &times, |ev| events.push(*ev))
+        let e = &budget.limit_experiment(&self.experiment);
+        let report = e
+            .trajectory(self.periods, self.samples)
+            .map_err(|err| ApiError::library(&err))?
+            .collect_report()
             .map_err(|err| failed(err, budget, "simulation"))?;
-        let rows = samples
-            .iter()
-            .map(|s| (s.tau, s.y, s.v, params.drive(s.tau)));
         Ok(SimulateAnswer {
-            about: About::new(e),
-            trace: Trace {
-                samples_per_period: self.samples,
-                periods: self.periods,
-                start: 0.0,
-                columns: columns(e, rows),
-            },
-            phase: samples.iter().map(|s| s.phase.label()).collect(),
-            events: event_rows(&events),
+            about: About::trajectory(e),
+            report,
         })
     }
 }

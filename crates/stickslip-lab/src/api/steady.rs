@@ -3,7 +3,7 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
@@ -76,10 +76,9 @@ impl SteadyRequest {
     /// # Errors
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<SteadyAnswer, ApiError> {
-        let e = &self.experiment;
+        let e = &budget.limit_experiment(&self.experiment);
         let params = e.params().map_err(|err| ApiError::library(&err))?;
-        let factory = LimitedFactory::new(e.factory(), budget.clone());
-        let steady = steady_state_from(&factory, &params, e.initial(), &self.options)
+        let steady = steady_state_from(&e.factory(), &params, e.initial(), &self.options)
             .map_err(|err| failed(err, budget, "steady state"))?;
         let per_period = steady.spectrum.as_ref().map_or(1, |s| s.samples_per_period);
         let stride = (per_period / self.samples).max(1);

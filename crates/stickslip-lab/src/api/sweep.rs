@@ -3,12 +3,12 @@
 use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
-use crate::limit::{Budget, LimitedFactory};
+use crate::limit::Budget;
 use crate::query::{ApiError, Query};
 use serde::Serialize;
-use std::f64::consts::TAU;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
+use stickslip::report::SweepReport;
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection};
 use stickslip::steady::SteadyOptions;
 use stickslip::theory::curves::SweepTheory;
@@ -25,48 +25,18 @@ pub struct SweepRequest {
     options: SteadyOptions,
 }
 
-/// One step of a sweep: the columns of `stickslip sweep`'s CSV.
-#[derive(Debug, Serialize)]
-pub struct SweepRow {
-    /// The swept parameter's value.
-    pub value: f64,
-    /// `up` or `down`.
-    pub leg: &'static str,
-    /// w of the step.
-    pub w: f64,
-    /// β of the step.
-    pub beta: f64,
-    /// Gain (y_max − y_min)/(2β).
-    pub gain: f64,
-    /// Amplitude of the fundamental of y.
-    #[serde(rename = "A1")]
-    pub a1: Option<f64>,
-    /// Amplitude of the third harmonic of y.
-    #[serde(rename = "A3")]
-    pub a3: Option<f64>,
-    /// Motion class.
-    pub class: &'static str,
-    /// Stops per drive period.
-    pub stops_per_cycle: f64,
-    /// Period in drive periods (`null`: none found).
-    pub period: Option<usize>,
-    /// Drive frequency in Hz, for a physical description.
-    #[serde(rename = "f_Hz")]
-    pub f_hz: Option<f64>,
-}
-
-/// The answer of `/api/sweep`.
+/// The answer of `/api/sweep`: the experiment's description, the library's sweep report
+/// ([`SweepReport`]: `over`, `direction` and the rows `points`, as `stickslip sweep --json`
+/// writes them) and the theory's curves.
 #[derive(Debug, Serialize)]
 pub struct SweepAnswer {
     /// The experiment.
     #[serde(flatten)]
     pub about: About,
-    /// The swept parameter: `w`, `beta`, `zeta` or `mu-s`.
-    pub over: String,
-    /// `up`, `down` or `both`.
-    pub direction: &'static str,
-    /// The steps in the order they were computed.
-    pub points: Vec<SweepRow>,
+    /// The swept parameter (`w`, `beta`, `zeta` or `mu_s`), the direction asked for (`up`,
+    /// `down` or `both`) and the steps in the order they were computed.
+    #[serde(flatten)]
+    pub report: SweepReport,
     /// The theory's gains over the range (null where there is none).
     pub theory: SweepTheoryCurves,
 }
@@ -136,7 +106,7 @@ impl SweepRequest {
     /// # Errors
     /// The time limit; the library's errors.
     pub fn run(self, budget: &Arc<Budget>) -> Result<SweepAnswer, ApiError> {
-        let e = &self.experiment;
+        let e = &budget.limit_experiment(&self.experiment);
         let library = |err: Error| ApiError::library(&err);
         let sweep = Sweep::new(
             e,
@@ -145,8 +115,7 @@ impl SweepRequest {
         .map_err(library)?
         .direction(self.direction)
         .options(self.options)
-        .map_err(library)?
-        .with_factory(LimitedFactory::new(e.factory(), budget.clone()));
+        .map_err(library)?;
         budget.start(sweep.plan().len());
         let points = sweep
             .run(&budget.keep_going())
@@ -161,27 +130,9 @@ impl SweepRequest {
             (self.range.from(), self.range.to(), self.range.steps()),
             e.diode_model() == DiodeModel::Shockley,
         );
-        let scales = e.scales();
         Ok(SweepAnswer {
             about: About::new(e),
-            over: self.parameter.flag().to_string(),
-            direction: self.direction.label(),
-            points: points
-                .iter()
-                .map(|p| SweepRow {
-                    value: p.value,
-                    leg: p.leg.label(),
-                    w: p.params.w,
-                    beta: p.params.beta,
-                    gain: p.steady.gain,
-                    a1: p.steady.harmonic(1),
-                    a3: p.steady.harmonic(3),
-                    class: p.steady.class.label(),
-                    stops_per_cycle: p.steady.stops_per_period,
-                    period: p.steady.period,
-                    f_hz: scales.map(|s| s.drive_omega(p.params.w) / TAU),
-                })
-                .collect(),
+            report: SweepReport::new(e, self.parameter, self.direction, &points),
             theory: SweepTheoryCurves {
                 x: theory.paper.x,
                 paper_gain: theory.paper.y,

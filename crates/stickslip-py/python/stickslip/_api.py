@@ -54,6 +54,23 @@ def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
     return _core.with_diode(experiment, model)
 
 
+#: The columns of a sweep's report, by their names (``SweepResult[name]``).
+SWEEP_COLUMNS = ("value", "w", "beta", "zeta", "mu_s", "direction", "gain", "peak", "A1", "A3",
+                 "class", "stops_per_cycle", "period", "phase_lag", "f_Hz")
+
+
+def _plain(values: Any) -> List[Any]:
+    """A numpy array as a list of plain values, as the library's JSON writes them: NaN and
+    infinities as None (JSON has no such numbers)."""
+    out = np.asarray(values).tolist()
+    return [None if isinstance(x, float) and not np.isfinite(x) else x for x in out]
+
+
+def _optional_period(period: np.ndarray) -> List[Optional[int]]:
+    """Periods as the reports write them: None where the array holds -1 (none found)."""
+    return [None if p < 0 else int(p) for p in np.asarray(period).tolist()]
+
+
 def _events(tau: np.ndarray, y: np.ndarray, kind: np.ndarray) -> np.ndarray:
     events = np.empty(len(tau), dtype=EVENT_DTYPE)
     events["tau"] = tau
@@ -165,9 +182,15 @@ class Trajectory:
             CSV: tau, y, v, drive, phase, then for a circuit t_s, uc_V, i_A, u_V (seconds,
             volts, amperes, volts) or for a mechanical oscillator t_s, r_m, rdot_m_s, F_N,
             each also an attribute.
+        periods, samples_per_period: the run's length in drive periods and its samples per
+            drive period.
         experiment: the experiment that ran.
 
-    ``to_xarray()`` and ``to_pandas()`` give the samples as a dataset or a data frame.
+    ``to_dict()`` is the library's trajectory report, the shape every front end gives (the
+    lab's ``/api/simulate`` answers it): ``periods``, ``samples_per_period``, ``columns``,
+    one list per column (``phase`` as the labels slip+/slip-/stick) and ``events`` as rows
+    ``{"tau", "y", "kind"}``. ``to_xarray()`` and ``to_pandas()`` give the samples as a
+    dataset or a data frame.
     """
 
     #: Time t in seconds (circuits and mechanical oscillators only; AttributeError otherwise).
@@ -197,9 +220,29 @@ class Trajectory:
         for name in self.physical:
             setattr(self, name, data[name])
         self.columns: Tuple[str, ...] = ("tau", "y", "v", "drive", "phase") + self.physical
+        self.periods: Optional[float] = data.get("periods")
+        self.samples_per_period: Optional[int] = data.get("samples_per_period")
 
     def __len__(self) -> int:
         return len(self.tau)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's trajectory report (a new dict of plain values): ``periods``,
+        ``samples_per_period``, ``columns`` (every column's name, the header of
+        ``stickslip simulate``'s CSV), one list per column under its name (``phase`` as
+        'slip+', 'slip-' or 'stick') and ``events``, one dict ``{"tau", "y", "kind"}`` per
+        event."""
+        out: Dict[str, Any] = {
+            "periods": self.periods,
+            "samples_per_period": self.samples_per_period,
+            "columns": list(self.columns),
+        }
+        for name in self.columns:
+            out[name] = (self.phase_labels().tolist() if name == "phase"
+                         else _plain(self[name]))
+        out["events"] = [{"tau": float(e["tau"]), "y": float(e["y"]), "kind": str(e["kind"])}
+                         for e in self.events]
+        return out
 
     def __getitem__(self, column: str) -> np.ndarray:
         if column not in self.columns:
@@ -376,8 +419,15 @@ class SweepResult:
         gain, peak: float64 arrays (peak: the largest |y|).
         phase_lag: float64, lag of the fundamental behind the drive (radians; NaN without one).
         harmonics: float64 array (steps × harmonics): A_1, A_2, ... of y (NaN where absent).
+        A1, A3, f_Hz: float64 arrays, the report's names: the first and third harmonics (NaN
+            where not measured) and the drive frequency in Hz (NaN for a dimensionless
+            experiment).
         symmetric: bool array; periods_to_settle: int64 array.
         experiment, options: what was run.
+
+    ``result[name]`` gives a column by the report's name (the CSV's and the JSON's):
+    ``result["class"]`` the labels (the codes are ``motion``), ``result["direction"]`` the
+    legs; the older names ``leg`` and ``motion`` stay (deprecated aliases).
 
     ``to_dict()`` is the library's sweep report, the JSON shape every front end gives: the
     swept parameter ``over``, the ``direction`` asked for and one dict per step in ``points``
@@ -408,6 +458,24 @@ class SweepResult:
         self.direction = self.leg
         self.harmonics = data["harmonics"].reshape(len(self.value), data["harmonic_count"])
         self._report: Dict[str, Any] = data["report"]
+        points = self._report["points"]
+
+        def column(name: str) -> np.ndarray:
+            return np.asarray([np.nan if p[name] is None else p[name] for p in points],
+                              dtype=np.float64)
+
+        self.A1: np.ndarray = column("A1")
+        self.A3: np.ndarray = column("A3")
+        self.f_Hz: np.ndarray = column("f_Hz")
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """A column by the report's name (``class`` gives the labels), or by an attribute's."""
+        if name == "class":
+            return self.motion_labels()
+        if name in SWEEP_COLUMNS or name in ("leg", "motion", "harmonics", "symmetric",
+                                             "periods_to_settle"):
+            return np.asarray(getattr(self, name))
+        raise KeyError(f"no column {name!r}: the columns are {', '.join(SWEEP_COLUMNS)}")
 
     def to_dict(self) -> Dict[str, Any]:
         """The library's sweep report (a new dict of plain values): ``over``, ``direction``
@@ -523,6 +591,15 @@ class PhaseDiagram:
             motion repeats (error 0), measured where it does not; -inf where both multipliers
             vanish, NaN where the flow has no derivative.
         experiment, options: what was run.
+
+    ``to_dict()`` is the library's map report, the shape of ``stickslip phase-diagram``'s
+    CSV: ``lyapunov`` (whether the exponents were measured) and ``points``, one dict per
+    point in the order of the grid's rows (``w``, ``beta``, ``class``, ``period``,
+    ``stops_per_cycle``, ``gain``, and with exponents ``lambda``, ``lambda_error``).
+    ``diagram[name]`` gives a field by the report's name: ``diagram["class"]`` the labels
+    (the codes are ``motion``), ``diagram["lambda"]`` and ``diagram["lambda_error"]`` the
+    exponents (also ``lambda_error``; ``lyapunov`` and ``lyapunov_error`` stay, deprecated
+    aliases).
     """
 
     def __init__(self, experiment: Experiment, dims: Sequence[str],
@@ -545,6 +622,55 @@ class PhaseDiagram:
     FIELDS = ("motion", "period", "stops_per_cycle", "gain", "symmetric", "periods_to_settle")
     #: Fields of a map asked for its exponents.
     EXPONENT_FIELDS = ("lyapunov", "lyapunov_error")
+
+    @property
+    def lambda_error(self) -> Optional[np.ndarray]:
+        """The standard error of the exponents (the report's name; ``lyapunov_error``)."""
+        return self.lyapunov_error
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """A field by the report's name (``class``: the labels; ``lambda``,
+        ``lambda_error``: the exponents), or by an attribute's."""
+        aliases = {"lambda": "lyapunov", "lambda_error": "lyapunov_error"}
+        if name == "class":
+            return self.motion_labels()
+        field = aliases.get(name, name)
+        value = getattr(self, field, None) if field in self.FIELDS + self.EXPONENT_FIELDS else None
+        if value is None:
+            raise KeyError(f"no field {name!r}: the fields are class, period, stops_per_cycle, "
+                           "gain, symmetric, periods_to_settle (lambda, lambda_error with "
+                           "lyapunov=True)")
+        return value
+
+    def _parameter(self, name: str) -> np.ndarray:
+        """The value of ``name`` at every point: its axis broadcast, or the experiment's."""
+        if name in self.dims:
+            axis = self.dims.index(name)
+            shape = [1] * len(self.dims)
+            shape[axis] = -1
+            return np.broadcast_to(np.reshape(self.coords[name], shape), self.shape)
+        value = getattr(self.experiment, name)
+        return np.full(self.shape, np.nan if value is None else value)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's map report (a new dict of plain values): ``lyapunov`` and ``points``,
+        one dict per point, the grid's rows one after the other (as ``stickslip
+        phase-diagram`` writes its CSV)."""
+        columns: Dict[str, List[Any]] = {
+            "w": _plain(self._parameter("w").ravel()),
+            "beta": _plain(self._parameter("beta").ravel()),
+            "class": self.motion_labels().ravel().tolist(),
+            "period": _optional_period(self.period.ravel()),
+            "stops_per_cycle": _plain(self.stops_per_cycle.ravel()),
+            "gain": _plain(self.gain.ravel()),
+        }
+        lyapunov = self.lyapunov is not None and self.lyapunov_error is not None
+        if self.lyapunov is not None and self.lyapunov_error is not None:
+            columns["lambda"] = _plain(self.lyapunov.ravel())
+            columns["lambda_error"] = _plain(self.lyapunov_error.ravel())
+        names = list(columns)
+        points = [dict(zip(names, row)) for row in zip(*columns.values())]
+        return {"lyapunov": lyapunov, "points": points}
 
     @property
     def shape(self) -> Tuple[int, ...]:
@@ -658,6 +784,8 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
     periods = _checks.number("periods", periods)
     samples = _checks.integer("samples_per_period", samples_per_period, "simulate")
     data = _core.simulate(experiment, periods, samples, progress)
+    data["periods"] = periods
+    data["samples_per_period"] = samples
     return Trajectory(experiment, data)
 
 

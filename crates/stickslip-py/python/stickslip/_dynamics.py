@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Un
 import numpy as np
 
 from . import _checks, _core
-from ._api import (Progress, _coordinate, _fixed_attributes, _physical_coordinates, _values,
-                   _with_model)
+from ._api import (Progress, _coordinate, _fixed_attributes, _optional_period,
+                   _physical_coordinates, _plain, _values, _with_model)
 from ._core import Experiment
 
 if TYPE_CHECKING:
@@ -51,6 +51,13 @@ class BifurcationDiagram:
         period: int16, the period in drive periods, -1 without one.
         events, stops: int64, events and stops while recording.
         experiment, options: what was run.
+
+    ``to_dict()`` is the library's bifurcation report, the rows of ``stickslip
+    bifurcation``'s CSV: ``parameter`` and ``points``, one dict per strobe point (``value``,
+    ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period``). ``direction`` is the
+    report's name of ``leg``; ``diagram[name]`` gives a per-value column by the report's name
+    (``direction``, ``lambda``: the exponent, ``class``: the kind's labels); ``leg``,
+    ``exponent`` and ``kind`` stay (deprecated aliases of the report's names).
     """
 
     def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
@@ -70,9 +77,42 @@ class BifurcationDiagram:
         self.period: np.ndarray = data["period"]
         self.events: np.ndarray = data["events"]
         self.stops: np.ndarray = data["stops"]
+        self.direction: np.ndarray = self.leg
 
     def __len__(self) -> int:
         return len(self.value)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """A per-value column by the report's name (``direction``, ``lambda``, ``class`` as
+        labels, ``period``, ``value``), or by an attribute's."""
+        report = {"lambda": "exponent", "direction": "leg"}
+        if name == "class":
+            return self.kind_labels()
+        field = report.get(name, name)
+        if field in ("value", "leg", "exponent", "exponent_error", "kind", "period", "events",
+                     "stops", "y", "v"):
+            return np.asarray(getattr(self, field))
+        raise KeyError(f"no column {name!r}: the columns are value, y, v, direction, lambda, "
+                       "class, period")
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's bifurcation report (a new dict of plain values): ``parameter`` (the
+        stepped one) and ``points``, one dict per strobe point in the order run (``value``,
+        ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period``; None where the CSV's
+        cell is empty)."""
+        rows = self.rows()
+        columns: Dict[str, List[Any]] = {
+            "value": _plain(rows[self.over]),
+            "y": _plain(rows["y"]),
+            "v": _plain(rows["v"]),
+            "direction": rows["direction"].tolist(),
+            "lambda": _plain(rows["lambda"]),
+            "class": rows["class"].tolist(),
+            "period": _optional_period(rows["period"]),
+        }
+        names = list(columns)
+        return {"parameter": self.over,
+                "points": [dict(zip(names, row)) for row in zip(*columns.values())]}
 
     @property
     def points(self) -> int:
