@@ -179,6 +179,25 @@ fn a_mechanical_fit_recovers_gamma_and_f0() {
     assert_eq!(json["units"]["response"], "m");
     assert!(json["parameters"]["damping"]["value"].is_number());
     assert!(json["parameters"]["friction"]["ci95"][1].is_number());
+    // Finite differences reach the same minimum (the chain rule through the mechanical
+    // scales is checked column by column in the library's unit test).
+    let options = FitOptions {
+        exact_jacobian: false,
+        ..FitOptions::default()
+    };
+    let fd = fit_records(&start(), &data, &FREE, &options).unwrap();
+    assert_eq!(fd.jacobian, Jacobian::FiniteDifferences);
+    for (a, b) in report.parameters.iter().zip(&fd.parameters) {
+        assert!(
+            (a.value - b.value).abs() < 0.05 * a.stderr,
+            "{}: {} (exact) against {} (finite differences) ± {}",
+            a.parameter,
+            a.value,
+            b.value,
+            a.stderr
+        );
+        assert!((a.stderr / b.stderr - 1.0).abs() < 0.01, "{a:?} {b:?}");
+    }
     // The fitted experiment holds the fitted values and the known ones.
     match report.experiment.system() {
         Some(stickslip::physical::System::Mechanics(m)) => {
