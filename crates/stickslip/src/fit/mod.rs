@@ -837,6 +837,12 @@ impl Records<'_> {
         let (omega0, zeta, position, force) =
             (scales.omega0, scales.zeta(), scales.position, scales.force);
         let chain = Chain::new(&system, zeta, omega0);
+        let links: Vec<Link> = self
+            .setup
+            .free
+            .iter()
+            .map(|&p| chain.of(p))
+            .collect::<Option<_>>()?;
         let sensitivities: Vec<Vec<OrbitSample>> = (0..self.data.len())
             .into_par_iter()
             .map(|j| {
@@ -861,8 +867,8 @@ impl Records<'_> {
                 let along = |zeta_p: f64, omega_p: f64| {
                     dz * zeta_p + (sample.v * seconds - dw * params.w / omega0) * omega_p
                 };
-                for (k, p) in self.setup.free.iter().enumerate() {
-                    let du = match chain.of(*p)? {
+                for (k, link) in links.iter().enumerate() {
+                    let du = match *link {
                         // u = position·y with y(ζ(p), β(p), w(p), τ(p)) and position(p).
                         Link::Scales {
                             zeta: zeta_p,
