@@ -50,6 +50,10 @@ fn symbol(p: FitParameter) -> (&'static str, &'static str) {
         FitParameter::Inductance => ("L", "H"),
         FitParameter::Capacitance => ("C", "F"),
         FitParameter::MuS => ("μs", ""),
+        FitParameter::Damping => ("γ", "kg/s"),
+        FitParameter::Friction => ("F0", "N"),
+        FitParameter::Mass => ("m", "kg"),
+        FitParameter::Stiffness => ("k", "N/m"),
     }
 }
 
@@ -781,6 +785,8 @@ mod tests {
             resolution: None,
             noise: 0.0,
             drive_noise: 0.0,
+            drive_unit: "V".into(),
+            response_unit: "V".into(),
         };
         let aligned = align(&record, TAU, 0.3, 1e3, 10.0);
         for &(t, v) in &aligned.drive {

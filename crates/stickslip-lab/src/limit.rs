@@ -273,11 +273,7 @@ mod tests {
         let budget = Budget::new(Duration::from_secs(600));
         assert!(budget.cancel().check().is_ok());
         budget.abandon();
-        let err = e
-            .clone()
-            .with_cancel(budget.cancel())
-            .steady()
-            .unwrap_err();
+        let err = e.clone().with_cancel(budget.cancel()).steady().unwrap_err();
         assert!(matches!(err, Error::Cancelled { .. }), "{err}");
         // Past its deadline: the same.
         let budget = Budget::new(Duration::from_millis(1));

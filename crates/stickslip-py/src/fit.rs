@@ -208,10 +208,23 @@ pub fn fit<'py>(
     experiment: PyRef<'py, PyExperiment>,
     records: Vec<(Vec<String>, Option<String>, Option<String>)>,
     table: Option<String>,
-    free: Vec<String>,
+    free: Option<Vec<String>>,
     per_record: bool,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
+    // The default: a circuit's resistance and U_t, a mechanical oscillator's γ and F0.
+    let mechanics = matches!(
+        experiment.experiment().system(),
+        Some(stickslip::physical::System::Mechanics(_))
+    );
+    let free = free.unwrap_or_else(|| {
+        let names: &[&str] = if mechanics {
+            &["damping", "friction"]
+        } else {
+            &["resistance", "ut"]
+        };
+        names.iter().map(|n| n.to_string()).collect()
+    });
     let mut parameters = Vec::new();
     for name in &free {
         let p: FitParameter = name

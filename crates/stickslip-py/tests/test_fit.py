@@ -188,3 +188,54 @@ def test_bad_input_raises_value_error_naming_the_file(tmp_path, records):
         stickslip.fit(stickslip.Experiment.paper(), data=records, free=("zeta",))
     with pytest.raises(ValueError, match="no data"):
         stickslip.fit(stickslip.Experiment.paper(), data=[])
+
+
+MECHANICS = dict(m=0.5, k=200.0, gamma=2.0, F0=0.3)
+
+
+def mechanical_export(path: pathlib.Path, w: float, beta: float, seed: int) -> None:
+    """A plain CSV ``time_s,F (N),r (m)`` of a mechanical oscillator's steady state: 2400
+    samples over 3.4 drive periods, quantised to 8 bits with a step of uniform noise."""
+    exp = stickslip.Experiment.mechanics(w=w, beta=beta, **MECHANICS)
+    periods = 3.4
+    n = 2400
+    run = stickslip.simulate(exp, periods=60 + periods, samples_per_period=int(round(n / periods)))
+    t = run.t_s[-n:] - run.t_s[-n]
+    f, r = run.F_N[-n:], run.r_m[-n:]
+    rng = np.random.default_rng(seed)
+
+    def q(v: np.ndarray) -> np.ndarray:
+        step = 2.5 * np.max(np.abs(v)) / 256
+        return np.round((v + 2 * step * (rng.random(len(v)) - 0.5)) / step) * step
+
+    drive, resp = q(f), q(r) + 1e-4  # an offset of the displacement channel
+    lines = ["time_s,F (N),r (m)"]
+    lines += [f"{t[k]:.9e},{drive[k]:.6e},{resp[k]:.6e}" for k in range(n)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_a_mechanical_fit_recovers_damping_and_friction_and_matches_the_cli(cli, tmp_path):
+    paths = [tmp_path / "slow.csv", tmp_path / "near.csv"]
+    mechanical_export(paths[0], 0.45, 2.6, 3)
+    mechanical_export(paths[1], 0.95, 2.0, 4)
+    start = stickslip.Experiment.mechanics(m=0.5, k=200.0, gamma=1.5, F0=0.4)
+    result = stickslip.fit(start, data=paths)
+    expected = cli.json("fit", "--mass", 0.5, "--stiffness", 200, "--damping", 1.5,
+                        "--friction", 0.4, "--data", paths[0], "--data", paths[1])
+    assert result.to_dict() == expected
+    assert result.names == ("damping", "friction")
+    assert result.units == {"drive": "N", "response": "m"}
+    assert result.to_dict()["units"] == {"drive": "N", "response": "m"}
+    for name, truth in (("damping", 2.0), ("friction", 0.3)):
+        assert result.parameters[name] == pytest.approx(truth, rel=0.01)
+        lo, hi = result.ci95[name]
+        assert lo <= truth <= hi
+    assert result.jacobian == "exact" and result.converged
+    assert result.exp.to_dict()["gamma"] == result.parameters["damping"]
+    assert result.exp.to_dict()["F0"] == result.parameters["friction"]
+    # A circuit's parameter on a mechanical oscillator, and mechanical records on a circuit.
+    with pytest.raises(ValueError, match="resistance is not a parameter of a mechanical "
+                                         r"oscillator \(its parameters are damping, friction"):
+        stickslip.fit(start, data=paths, free="resistance")
+    with pytest.raises(ValueError, match="slow.csv: a circuit is fitted to voltages"):
+        stickslip.fit(stickslip.Experiment.paper(), data=paths)

@@ -1,5 +1,5 @@
-//! `stickslip fit`: fit the circuit's parameters to scope records or a table of measured
-//! amplitudes.
+//! `stickslip fit`: fit the circuit's (or the mechanical oscillator's) parameters to scope
+//! records or a table of measured amplitudes.
 
 use crate::model::ModelArgs;
 use crate::output::{check_output_path, check_plot_path, outln, usage, AtomicFile};
@@ -39,6 +39,13 @@ use stickslip::shockley::DiodePair;
 /// residual below) or the table (measured amplitudes on the fitted resonance curves, with
 /// the exact theory and the paper's).
 ///
+/// A mechanical oscillator (--mass, --stiffness, --damping, --friction) is fitted to records
+/// of the drive force and the displacement, whose header says their units in N and m (a
+/// plain CSV: time_s,F (N),r (m)). Free parameters: damping, friction, mass, stiffness, mu-s
+/// (default damping,friction). The keys and columns named in V then hold N (the drive) and m
+/// (the displacement), and the JSON says so: units {drive: N, response: m}. Tables and
+/// --compare are for circuits.
+///
 /// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi]}}, correlation,
 /// records [{file, freq_Hz, amplitude_V, w, beta, class, periods, clipped, rms_residual_V,
 /// offset_V, time_shift_s}], rows (a table) [{line, freq_Hz, U_V, direction, measured_V,
@@ -72,14 +79,10 @@ pub struct Args {
     /// The u_C channel of each record [default: the second].
     #[arg(long, value_name = "COL", help_heading = "Measurements")]
     response: Option<String>,
-    /// Free parameters, comma-separated.
-    #[arg(
-        long,
-        value_name = "KEYS",
-        default_value = "resistance,ut",
-        help_heading = "Fit"
-    )]
-    free: String,
+    /// Free parameters, comma-separated [default: resistance,ut; a mechanical oscillator:
+    /// damping,friction].
+    #[arg(long, value_name = "KEYS", help_heading = "Fit")]
+    free: Option<String>,
     /// Fit each record alone (how a parameter drifts with the drive).
     #[arg(long = "per-record", help_heading = "Fit", conflicts_with = "compare")]
     per_record: bool,
@@ -98,7 +101,8 @@ pub struct Args {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
-    /// Residuals as CSV: model,file,t_s,measured_V,model_V,residual_V (records) or
+    /// Residuals as CSV: model,file,t_s,measured_V,model_V,residual_V (records; a mechanical
+    /// oscillator's in m: measured_m, model_m, residual_m) or
     /// line,freq_Hz,U_V,measured_V,model_V,residual_V (a table).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
@@ -224,8 +228,27 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
-    let free = parse_free(&args.free, "--free")?;
     let experiment = args.model.experiment()?;
+    let mechanics = matches!(
+        experiment.system(),
+        Some(stickslip::physical::System::Mechanics(_))
+    );
+    let default_free = if mechanics {
+        "damping,friction"
+    } else {
+        "resistance,ut"
+    };
+    let free = parse_free(args.free.as_deref().unwrap_or(default_free), "--free")?;
+    // A parameter of the other twin or diode law is refused before any file is read.
+    for p in &free {
+        p.get(&experiment).map_err(refused)?;
+    }
+    if mechanics && args.compare {
+        usage!("--compare compares diode laws: it takes a circuit, not a mechanical oscillator");
+    }
+    if mechanics && args.plot.is_some() {
+        usage!("--plot draws a circuit's records in volts: it takes a circuit, not a mechanical oscillator (use --out for the residuals)");
+    }
     let options = FitOptions::default();
     let mut report_json: Value;
     let mut residual_reports: Vec<FitReport> = Vec::new();
@@ -354,7 +377,8 @@ fn write_residuals(file: &mut impl Write, reports: &[FitReport]) -> Result<()> {
     if table {
         writeln!(file, "line,freq_Hz,U_V,measured_V,model_V,residual_V")?;
     } else {
-        writeln!(file, "model,file,t_s,measured_V,model_V,residual_V")?;
+        let u = reports.first().map_or("V", |r| r.units().1);
+        writeln!(file, "model,file,t_s,measured_{u},model_{u},residual_{u}")?;
     }
     for r in reports {
         for row in &r.rows {
@@ -402,11 +426,12 @@ fn describe(text: &mut String, r: &FitReport) {
             p.initial
         );
     }
+    let (du, ru) = r.units();
     for rec in &r.records {
         outln!(
             text,
-            "record {}: {:.6} Hz, {:.6} V (w = {:.5}, β = {:.5}), {}, {} periods, {} clipped, \
-             RMS residual {:.3e} V (noise {:.3e} V)",
+            "record {}: {:.6} Hz, {:.6} {du} (w = {:.5}, β = {:.5}), {}, {} periods, {} clipped, \
+             RMS residual {:.3e} {ru} (noise {:.3e} {ru})",
             rec.file,
             rec.freq_hz,
             rec.amplitude_v,
@@ -419,7 +444,8 @@ fn describe(text: &mut String, r: &FitReport) {
             rec.noise_v
         );
     }
-    outln!(text, "RMS residual      {:.6e} V", r.rms_residual_v);
+    let unit = if r.records.is_empty() { "V" } else { ru };
+    outln!(text, "RMS residual      {:.6e} {unit}", r.rms_residual_v);
     if let Some(c) = r.chi2_dof {
         outln!(text, "chi2/dof          {c:.4}");
     }

@@ -374,7 +374,7 @@ def fit(
     experiment: Experiment,
     records: List[Tuple[List[str], Optional[str], Optional[str]]],
     table: Optional[str],
-    free: List[str],
+    free: Optional[List[str]],
     per_record: bool,
     progress: _Progress = None,
 ) -> List[Dict[str, Any]]: ...

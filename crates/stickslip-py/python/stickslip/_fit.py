@@ -209,9 +209,10 @@ class FitResult:
 
     Attributes:
         names: the free parameters, in the order given ('resistance', 'ut', 'rd', 'diode-is',
-            'diode-n', 'diode-rs', 'inductance', 'capacitance', 'mu-s').
-        parameters: name → fitted value, in SI units (Ω, V, A, H, F; n and μs are pure
-            numbers); stderr: name → its standard error (NaN for a singular fit); ci95:
+            'diode-n', 'diode-rs', 'inductance', 'capacitance', 'mu-s'; mechanics: 'damping',
+            'friction', 'mass', 'stiffness', 'mu-s').
+        parameters: name → fitted value, in SI units (Ω, V, A, H, F; N·s/m, N, kg, N/m; n
+            and μs are pure numbers); stderr: name → its standard error (NaN for a singular fit); ci95:
             name → the 95 % confidence interval (lo, hi).
         covariance: float64 array (len(names) × len(names)) of the parameters' covariance
             (SI units squared); correlation: float64 array of their correlation.
@@ -222,7 +223,12 @@ class FitResult:
             from the data (None when unknown); converged, iterations: of Levenberg–Marquardt;
             jacobian: how its Jacobian at the solution was computed, 'exact' (from the
             tangent dynamics of the PWL model's periodic orbits) or 'finite-differences';
-            aic, bic: information criteria; model: the diode law, 'pwl' or 'shockley'.
+            aic, bic: information criteria; model: the diode law, 'pwl' or 'shockley' (a
+            mechanical oscillator's Coulomb law is 'pwl').
+        units: the units of the drive and of the response, ``{'drive': 'V', 'response':
+            'V'}`` for a circuit, ``{'drive': 'N', 'response': 'm'}`` for a mechanical
+            oscillator: the values named in V are in these units (``to_dict()`` has the key
+            ``units`` for a mechanical oscillator only, as the command line's JSON).
         exp: the fitted experiment (the experiment with the fitted values).
         experiment: the experiment fitted from (the starting values).
     """
@@ -254,6 +260,7 @@ class FitResult:
         self.aic: float = r["aic"]
         self.bic: float = r["bic"]
         self.model: str = r["model"]
+        self.units: Dict[str, str] = dict(r.get("units", {"drive": "V", "response": "V"}))
         self.exp: Experiment = experiment.replace(**data["keys"])
 
     def to_dict(self) -> Dict[str, Any]:
@@ -275,7 +282,7 @@ class FitResult:
         for name in self.names:
             attrs[name] = self.parameters[name]
             attrs[f"{name}_stderr"] = self.stderr[name]
-        volts = {"units": "V"}
+        volts = {"units": self.units["response"]}
         if self.records:
             def joined(name: str) -> _FloatArray:
                 return np.concatenate([getattr(r, name) for r in self.records])
@@ -315,7 +322,7 @@ class FitResult:
         values = ", ".join(f"{n} = {self.parameters[n]:.6g} ± {self.stderr[n]:.2g}"
                            for n in self.names)
         return (f"<stickslip.FitResult {self.model}: {values}; RMS residual "
-                f"{self.rms_residual_V:.3g} V, {'converged' if self.converged else 'NOT converged'}>")
+                f"{self.rms_residual_V:.3g} {self.units['response']}, {'converged' if self.converged else 'NOT converged'}>")
 
 
 Measurements = Union[ScopeRecord, AmplitudeTable, PathLike]
@@ -323,39 +330,50 @@ Measurements = Union[ScopeRecord, AmplitudeTable, PathLike]
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
-        free: Union[str, Sequence[str]] = ..., model: Optional[str] = ...,
+        free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
         per_record: Literal[False] = ..., *, progress: Progress = ...) -> FitResult: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
-        free: Union[str, Sequence[str]] = ..., model: Optional[str] = ...,
+        free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
         *, per_record: Literal[True], progress: Progress = ...) -> List[FitResult]: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
-        free: Union[str, Sequence[str]] = ..., model: Optional[str] = ...,
+        free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
         per_record: bool = ..., *, progress: Progress = ...
         ) -> Union[FitResult, List[FitResult]]: ...
 
 
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
-        free: Union[str, Sequence[str]] = ("resistance", "ut"), model: Optional[str] = None,
+        free: Union[str, Sequence[str], None] = None, model: Optional[str] = None,
         per_record: bool = False, *, progress: Progress = None
         ) -> Union[FitResult, List[FitResult]]:
-    """Fit the circuit's parameters to measurements: least squares of the model's steady u_C
-    against every scope record at once (with the drive of each record as measured, a DC
-    offset of u_C and a time shift per record), or of the steady amplitudes against a table.
-    The same fit as ``stickslip fit``.
+    """Fit the circuit's (or the mechanical oscillator's) parameters to measurements: least
+    squares of the model's steady u_C (or displacement) against every scope record at once
+    (with the drive of each record as measured, a DC offset of the response and a time shift
+    per record), or of the steady amplitudes against a table. The same fit as
+    ``stickslip fit``.
+
+    A mechanical oscillator (``Experiment(mass=..., stiffness=..., damping=...,
+    friction=...)``) is fitted to records of the drive force and the displacement whose
+    header gives their units, N and m (a plain CSV ``time_s,F (N),r (m)``); its free
+    parameters are 'damping' (γ), 'friction' (F0), 'mass', 'stiffness' and 'mu-s'. The
+    values named in V (``rms_residual_V``, a record's ``amplitude_V``, ``measured_V`` …) then
+    hold newtons (the drive) and metres (the response), as ``units`` says. Tables are for
+    circuits.
 
     Args:
-        exp: the circuit, with the starting values (a circuit or a preset).
+        exp: the circuit or the mechanical oscillator, with the starting values.
         data: ``ScopeRecord``\\ s (``read_scope``) or file paths of scope records (read with
             the default channels), or one ``AmplitudeTable`` (``read_amplitudes``).
         free: the free parameters: 'resistance', 'ut', 'rd' (PWL), 'diode-is', 'diode-n',
             'diode-rs' (Shockley), 'inductance', 'capacitance', 'mu-s' (underscores are
-            accepted); a comma-separated string or a sequence.
+            accepted); for mechanics 'damping', 'friction', 'mass', 'stiffness', 'mu-s'; a
+            comma-separated string or a sequence [default: ('resistance', 'ut'); mechanics:
+            ('damping', 'friction')].
         model: the diode law, 'pwl' or 'shockley' [default: the experiment's].
         per_record: fit each record alone (how a parameter drifts with the drive): returns a
             list of results, one per record, as ``stickslip fit --per-record --json``.
@@ -371,8 +389,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
 
     Raises:
         ValueError: bad measurements (naming the file and line), an unknown or repeated free
-            parameter, a parameter of the other diode law, no data, or a model that cannot be
-            computed at the starting values.
+            parameter, a parameter of the other diode law or of the other twin (a circuit's
+            on a mechanical oscillator or the other way round), a record whose units do not
+            fit the twin, no data, or a model that cannot be computed at the starting values.
         KeyboardInterrupt: Ctrl-C stops a long fit.
 
     Example:
@@ -380,7 +399,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         >>> r.parameters["resistance"], r.stderr["resistance"]                # doctest: +SKIP
     """
     experiment = _with_model(exp, model)
-    names = [n.strip() for n in free.split(",")] if isinstance(free, str) else list(free)
+    names: Optional[List[str]] = (
+        None if free is None
+        else [n.strip() for n in free.split(",")] if isinstance(free, str) else list(free))
     items: List[Measurements] = (
         [data] if isinstance(data, (str, os.PathLike, ScopeRecord, AmplitudeTable))
         else list(data))

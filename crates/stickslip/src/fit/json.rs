@@ -72,10 +72,21 @@ pub struct RowJson {
     pub class: &'static str,
 }
 
+/// The units of a mechanical fit's channels in the JSON report: the keys named in volts
+/// (`amplitude_V`, `rms_residual_V`, `offset_V`) hold the drive's force in `drive` (N) and
+/// the displacement in `response` (m).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct UnitsJson {
+    /// The drive's unit (`N`).
+    pub drive: &'static str,
+    /// The response's unit (`m`).
+    pub response: &'static str,
+}
+
 /// A fit's report as JSON: `model`, `parameters` keyed by the flag names
 /// (`{"resistance": {"value", "stderr", "ci95"}}`), `correlation`, `records` (records only),
 /// `rows` (a table only), `rms_residual_V`, `chi2_dof`, `converged`, `iterations`, `jacobian`, `aic`,
-/// `bic`.
+/// `bic`, and for a mechanical oscillator `units` ([`UnitsJson`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReportJson {
     /// The diode law.
@@ -105,6 +116,10 @@ pub struct FitReportJson {
     pub aic: f64,
     /// The Bayesian information criterion.
     pub bic: f64,
+    /// A mechanical oscillator's channel units (omitted for a circuit, whose keys in volts
+    /// mean volts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub units: Option<UnitsJson>,
 }
 
 /// A model comparison as JSON: `pwl`, `shockley` (each a [`FitReportJson`]), `preferred`
@@ -187,6 +202,10 @@ impl FitReport {
             jacobian: self.jacobian.label(),
             aic: self.aic,
             bic: self.bic,
+            units: self.is_mechanics().then(|| {
+                let (drive, response) = self.units();
+                UnitsJson { drive, response }
+            }),
         }
     }
 }

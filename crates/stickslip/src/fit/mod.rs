@@ -1,4 +1,4 @@
-//! Fitting the circuit to measurements: least squares of the model's steady state against
+//! Fitting the circuit (or the mechanical oscillator) to measurements: least squares of the model's steady state against
 //! scope records ([`fit_records`]) or a table of measured amplitudes ([`fit_table`]), one
 //! record at a time ([`fit_per_record`]), and the PWL law against the Shockley law on the
 //! same data ([`compare_models`]).
@@ -51,6 +51,18 @@
 //! AIC = Σ_g N_g ln(SSR_g/N_g) + 2P and BIC (P ln N instead of 2P) over the channels g, for
 //! comparing models.
 //!
+//! **Mechanics.** A mechanical oscillator (mass, spring, viscous and dry friction) is fitted
+//! in the same way to records of its drive force F (N) and displacement r (m), with the
+//! free parameters `damping` (γ), `friction` (F0), `mass` (m), `stiffness` (k) and `mu-s`
+//! ([`FitParameter::MECHANICS`]); its scales take the circuit's place (ζ = γ/(2√(km)),
+//! ω0 = √(k/m), β = F/F0, r = (F0/k)·y), and its Coulomb law is the PWL law, so that its
+//! Jacobian is exact wherever every record's model is a periodic orbit. The record's channels
+//! must say their units (`N` and `m`: a plain CSV's header `time_s,F (N),r (m)`), a circuit's
+//! parameter on a mechanical oscillator (or the other way round) is refused naming the
+//! parameters allowed, and so is a table of amplitudes (read in volts). The report's fields
+//! named in volts then hold newtons (the drive) and metres (the response):
+//! [`FitReport::units`].
+//!
 //! **Tables** ([`fit_table`]): the residual of a row is the steady amplitude (half the
 //! peak-to-peak of u_C) minus the measured one. Rows with a `direction` are computed along
 //! their sweep (rows of one leg and one drive amplitude sorted by frequency, up or down, each
@@ -63,13 +75,13 @@ pub(crate) mod linalg;
 mod lm;
 mod parameter;
 
-pub use json::{ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson};
+pub use json::{ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson, UnitsJson};
 pub use parameter::FitParameter;
 
 use crate::experiment::{DiodeModel, Experiment};
 use crate::measure::{AmplitudeTable, Direction, MeasureError, Measurement};
 use crate::params::{Params, State};
-use crate::physical::Circuit;
+use crate::physical::System;
 use crate::scan::Monitor;
 use crate::shockley::DiodePair;
 use crate::solver::sample_at;
@@ -92,12 +104,43 @@ pub enum FitError {
     /// A name that is no fit parameter.
     #[error(
         "unknown fit parameter \"{0}\" (the parameters are resistance, ut, rd, diode-is, \
-         diode-n, diode-rs, inductance, capacitance, mu-s)"
+         diode-n, diode-rs, inductance, capacitance, mu-s for a circuit; damping, friction, \
+         mass, stiffness, mu-s for a mechanical oscillator)"
     )]
     UnknownParameter(String),
-    /// The experiment is not a circuit.
-    #[error("fitting needs a circuit (give its parts or a preset)")]
+    /// The experiment is neither a circuit nor a mechanical oscillator.
+    #[error(
+        "fitting needs a circuit or a mechanical oscillator (give its parts or a preset), not \
+         dimensionless parameters alone"
+    )]
     NeedsCircuit,
+    /// A circuit's parameter on a mechanical oscillator, or the other way round.
+    #[error(
+        "{parameter} is not a parameter of {} (its parameters are {})",
+        if *mechanics { "a mechanical oscillator" } else { "a circuit" },
+        FitParameter::names(if *mechanics { &FitParameter::MECHANICS } else { &FitParameter::CIRCUIT })
+    )]
+    WrongSystem {
+        /// The parameter.
+        parameter: FitParameter,
+        /// Whether the experiment is a mechanical oscillator (else a circuit).
+        mechanics: bool,
+    },
+    /// A record whose channels' units do not fit the experiment (a mechanical oscillator
+    /// needs the force in N and the displacement in m).
+    #[error("{file}: {message}")]
+    Units {
+        /// The record.
+        file: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// A table of amplitudes (read in volts) given for a mechanical oscillator.
+    #[error(
+        "a table of amplitudes is read in volts (U_V, response_V): a mechanical oscillator is \
+         fitted to records (a force in N and a displacement in m)"
+    )]
+    TableNeedsCircuit,
     /// A parameter of the other diode law.
     #[error("{parameter} is not a parameter of the {} diode law", model.label())]
     WrongLaw {
@@ -354,6 +397,23 @@ impl FitReport {
     pub fn value(&self, parameter: FitParameter) -> Option<&FittedParameter> {
         self.parameters.iter().find(|p| p.parameter == parameter)
     }
+
+    /// Whether the fitted experiment is a mechanical oscillator: then the fields and keys
+    /// named in volts hold the drive's force in N (`amplitude_v`) and the displacement in m
+    /// (the residuals, the model, the offset and the noise).
+    pub fn is_mechanics(&self) -> bool {
+        matches!(self.experiment.system(), Some(System::Mechanics(_)))
+    }
+
+    /// The units of the drive and of the response: (`V`, `V`) for a circuit, (`N`, `m`) for
+    /// a mechanical oscillator.
+    pub fn units(&self) -> (&'static str, &'static str) {
+        if self.is_mechanics() {
+            ("N", "m")
+        } else {
+            ("V", "V")
+        }
+    }
 }
 
 /// PWL against Shockley on the same data.
@@ -381,10 +441,11 @@ pub fn t_quantile_975(dof: usize) -> f64 {
         + (3.0 * z7 + 19.0 * z5 + 17.0 * z3 - 15.0 * z) / (384.0 * n * n * n)
 }
 
-/// Everything a fit keeps fixed: the experiment's circuit and options and the free list.
+/// Everything a fit keeps fixed: the experiment's circuit or mechanical oscillator and
+/// options and the free list.
 struct Setup {
     experiment: Experiment,
-    circuit: Circuit,
+    system: System,
     free: Vec<FitParameter>,
     scale: Vec<f64>,
     steady: SteadyOptions,
@@ -393,7 +454,7 @@ struct Setup {
 
 impl Setup {
     fn new(experiment: &Experiment, free: &[FitParameter]) -> Result<Self, FitError> {
-        let circuit = *experiment.circuit_ref().ok_or(FitError::NeedsCircuit)?;
+        let system = *experiment.system().ok_or(FitError::NeedsCircuit)?;
         if free.is_empty() {
             return Err(FitError::FreeParameters(
                 "no free parameter: name at least one",
@@ -421,7 +482,7 @@ impl Setup {
         };
         Ok(Self {
             experiment: experiment.clone(),
-            circuit,
+            system,
             free: free.to_vec(),
             scale,
             steady,
@@ -432,17 +493,20 @@ impl Setup {
     /// The experiment at scaled values `x` (value = x·scale), or `None` outside the
     /// parameters' ranges.
     fn at(&self, x: &[f64]) -> Option<Experiment> {
-        let mut c = self.circuit;
+        let mut system = self.system;
         let mut mu_s = self.experiment.mu_s();
         for ((p, &x), &s) in self.free.iter().zip(x).zip(&self.scale) {
             let v = x * s;
-            if *p == FitParameter::MuS {
-                mu_s = v;
-            } else {
-                p.set(&mut c, v);
+            match (*p, &mut system) {
+                (FitParameter::MuS, _) => mu_s = v,
+                (p, System::Circuit(c)) => p.set(c, v),
+                (p, System::Mechanics(m)) => p.set_mechanics(m, v),
             }
         }
-        let e = Experiment::circuit(c).ok()?;
+        let e = match system {
+            System::Circuit(c) => Experiment::circuit(c).ok()?,
+            System::Mechanics(m) => Experiment::mechanics(m).ok()?,
+        };
         let e = e
             .with_shockley_options(*self.experiment.shockley_options())
             .ok()?;
@@ -518,6 +582,84 @@ fn evaluate(
         strobe: steady.final_state(),
         period: steady.period,
     })
+}
+
+/// How a free parameter enters the dimensionless model, for the chain rule of the exact
+/// Jacobian.
+#[derive(Debug, Clone, Copy)]
+enum Link {
+    /// Through ζ, ω0 and the position scale (∂ζ/∂p, ∂ω0/∂p, ∂position/∂p).
+    Scales {
+        zeta: f64,
+        omega0: f64,
+        position: f64,
+    },
+    /// As the force scale that divides the drive (U_t, F0), β = drive/force; with the position
+    /// scale proportional to it.
+    Force,
+    /// As μs.
+    MuS,
+}
+
+/// The chain rule from a system's parameters to (ζ, β, w, φ, μs) and the position scale.
+struct Chain {
+    system: System,
+    zeta: f64,
+    omega0: f64,
+}
+
+impl Chain {
+    fn new(system: &System, zeta: f64, omega0: f64) -> Self {
+        Self {
+            system: *system,
+            zeta,
+            omega0,
+        }
+    }
+
+    /// How `p` enters, or `None` where the exact Jacobian does not serve.
+    fn of(&self, p: FitParameter) -> Option<Link> {
+        let (zeta, omega0) = (self.zeta, self.omega0);
+        let scales = |zeta, omega0, position| {
+            Some(Link::Scales {
+                zeta,
+                omega0,
+                position,
+            })
+        };
+        match (self.system, p) {
+            (_, FitParameter::MuS) => Some(Link::MuS),
+            // Circuit: ζ = (R + R_D)/2·√(C/L), ω0 = 1/√(LC), position U_t.
+            (System::Circuit(c), FitParameter::Resistance | FitParameter::Rd) => {
+                scales(0.5 * (c.capacitance / c.inductance).sqrt(), 0.0, 0.0)
+            }
+            (System::Circuit(_), FitParameter::Ut) => Some(Link::Force),
+            (System::Circuit(c), FitParameter::Inductance) => scales(
+                -zeta / (2.0 * c.inductance),
+                -omega0 / (2.0 * c.inductance),
+                0.0,
+            ),
+            (System::Circuit(c), FitParameter::Capacitance) => scales(
+                zeta / (2.0 * c.capacitance),
+                -omega0 / (2.0 * c.capacitance),
+                0.0,
+            ),
+            // Mechanics: ζ = γ/(2√(km)), ω0 = √(k/m), position F0/k.
+            (System::Mechanics(m), FitParameter::Damping) => {
+                scales(0.5 / (m.stiffness * m.mass).sqrt(), 0.0, 0.0)
+            }
+            (System::Mechanics(_), FitParameter::Friction) => Some(Link::Force),
+            (System::Mechanics(m), FitParameter::Mass) => {
+                scales(-zeta / (2.0 * m.mass), -omega0 / (2.0 * m.mass), 0.0)
+            }
+            (System::Mechanics(m), FitParameter::Stiffness) => scales(
+                -zeta / (2.0 * m.stiffness),
+                omega0 / (2.0 * m.stiffness),
+                -m.friction / (m.stiffness * m.stiffness),
+            ),
+            _ => None,
+        }
+    }
 }
 
 /// Per record, where its values sit in x.
@@ -690,15 +832,17 @@ impl Records<'_> {
             _ => self.evaluate_all(x)?.into_iter().map(|(_, o)| o).collect(),
         };
         let experiment = self.setup.at(&x[..free])?;
-        let circuit = *experiment.circuit_ref()?;
-        let scales = circuit.scales();
-        let (omega0, zeta, ut) = (scales.omega0, scales.zeta(), scales.position);
-        let (inductance, capacitance) = (circuit.inductance, circuit.capacitance);
-        // ∂ζ/∂R = ∂ζ/∂R_D, ∂ζ/∂L, ∂ζ/∂C; ∂ω0/∂L, ∂ω0/∂C (ζ = (R + R_D)/2·√(C/L),
-        // ω0 = 1/√(LC)).
-        let zeta_r = 0.5 * (capacitance / inductance).sqrt();
-        let (zeta_l, zeta_c) = (-zeta / (2.0 * inductance), zeta / (2.0 * capacitance));
-        let (omega_l, omega_c) = (-omega0 / (2.0 * inductance), -omega0 / (2.0 * capacitance));
+        let system = *experiment.system()?;
+        let scales = system.scales();
+        let (omega0, zeta, position, force) =
+            (scales.omega0, scales.zeta(), scales.position, scales.force);
+        let chain = Chain::new(&system, zeta, omega0);
+        let links: Vec<Link> = self
+            .setup
+            .free
+            .iter()
+            .map(|&p| chain.of(p))
+            .collect::<Option<_>>()?;
         let sensitivities: Vec<Vec<OrbitSample>> = (0..self.data.len())
             .into_par_iter()
             .map(|j| {
@@ -723,22 +867,25 @@ impl Records<'_> {
                 let along = |zeta_p: f64, omega_p: f64| {
                     dz * zeta_p + (sample.v * seconds - dw * params.w / omega0) * omega_p
                 };
-                for (k, p) in self.setup.free.iter().enumerate() {
-                    let du = match p {
-                        FitParameter::Resistance | FitParameter::Rd => ut * dz * zeta_r,
-                        FitParameter::Ut => sample.y - params.beta * db,
-                        FitParameter::Inductance => ut * along(zeta_l, omega_l),
-                        FitParameter::Capacitance => ut * along(zeta_c, omega_c),
-                        FitParameter::MuS => ut * dmu,
-                        _ => return None,
+                for (k, link) in links.iter().enumerate() {
+                    let du = match *link {
+                        // u = position·y with y(ζ(p), β(p), w(p), τ(p)) and position(p).
+                        Link::Scales {
+                            zeta: zeta_p,
+                            omega0: omega_p,
+                            position: position_p,
+                        } => position * along(zeta_p, omega_p) + position_p * sample.y,
+                        // u_C = U_t·y(β = U/U_t); r = (F0/k)·y(β = F/F0).
+                        Link::Force => (sample.y - params.beta * db) * position / force,
+                        Link::MuS => position * dmu,
                     };
                     columns[k][row] = wr * du * self.setup.scale[k];
                 }
-                columns[slots.drive][row] = wr * db * sine.amplitude;
-                columns[slots.drive + 1][row] = wr * ut * dw * TAU * sine.frequency / omega0;
-                columns[slots.drive + 2][row] = wr * ut * dphi;
+                columns[slots.drive][row] = wr * position * db * sine.amplitude / force;
+                columns[slots.drive + 1][row] = wr * position * dw * TAU * sine.frequency / omega0;
+                columns[slots.drive + 2][row] = wr * position * dphi;
                 if let Some(k) = slots.shift {
-                    columns[k][row] = wr * ut * dphi;
+                    columns[k][row] = wr * position * dphi;
                 }
             }
         }
@@ -940,6 +1087,9 @@ impl<'a> Records<'a> {
         watch: Watch<'a>,
     ) -> Result<(Self, Vec<f64>), FitError> {
         let free = &setup.free;
+        for m in data {
+            check_units(&setup.system, m)?;
+        }
         let mut x: Vec<f64> = vec![1.0; free.len()];
         let pick = |values: &[f64], used: &[bool]| -> Vec<f64> {
             values
@@ -1021,6 +1171,32 @@ impl<'a> Records<'a> {
         };
         Ok((problem, x))
     }
+}
+
+/// The units a record's drive and response must carry for `system`: a mechanical
+/// oscillator's force in N and displacement in m (a plain CSV names them in its header,
+/// `F (N)`, `r (m)`); a circuit's channels in anything but those.
+fn check_units(system: &System, m: &Measurement) -> Result<(), FitError> {
+    let (drive, response) = (m.drive_unit.as_str(), m.response_unit.as_str());
+    let message = match system {
+        System::Mechanics(_) if drive != "N" || response != "m" => format!(
+            "a mechanical oscillator is fitted to a drive force in N and a displacement in m \
+             (name the columns with their units, e.g. `F (N)` and `r (m)`); the record gives \
+             the drive {} in {drive} and the response {} in {response}",
+            m.drive_channel, m.response_channel
+        ),
+        System::Circuit(_) if drive == "N" || response == "m" => format!(
+            "a circuit is fitted to voltages; the record gives the drive {} in {drive} and the \
+             response {} in {response} (a mechanical record: give the mechanical oscillator's \
+             parts)",
+            m.drive_channel, m.response_channel
+        ),
+        _ => return Ok(()),
+    };
+    Err(FitError::Units {
+        file: m.file.clone(),
+        message,
+    })
 }
 
 /// A floor under a channel's noise σ: a noise-free record must not get an infinite weight
@@ -1449,6 +1625,9 @@ pub fn fit_table_monitored(
         return Err(FitError::NoData);
     }
     let setup = Setup::new(experiment, free)?;
+    if matches!(setup.system, System::Mechanics(_)) {
+        return Err(FitError::TableNeedsCircuit);
+    }
     if table.rows.len() <= free.len() {
         return Err(FitError::TooFewSamples {
             residuals: table.rows.len(),
@@ -1561,6 +1740,8 @@ pub fn fit_table_monitored(
 mod tests {
     use super::*;
 
+    use crate::physical::{Circuit, Mechanics};
+
     #[test]
     fn t_quantiles_match_tables() {
         // Student's t, 0.975: 2.571 (5), 2.228 (10), 2.042 (30), 1.984 (100).
@@ -1587,11 +1768,15 @@ mod tests {
         let dt = 2.5 * TAU / (w * scales.omega0) / n as f64;
         let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
         let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-        let mut text = "time_s,u_V,uc_V\n".to_string();
+        let mut text = if e.circuit_ref().is_some() {
+            "time_s,u_V,uc_V\n".to_string()
+        } else {
+            "time_s,F (N),r (m)\n".to_string()
+        };
         for (k, (tau, s)) in taus.iter().zip(&samples).enumerate() {
             let ripple = 0.003 * ((k * k % 97) as f64 / 48.0 - 1.0);
             let drive = beta * scales.force * (w * tau + phi).cos() * (1.0 + ripple);
-            let response = (s.y + ripple) * scales.position + 0.02;
+            let response = (s.y + ripple + 0.03) * scales.position;
             text += &format!("{:.12e},{drive:.12e},{response:.12e}\n", k as f64 * dt);
         }
         let r = crate::measure::read_scope(&text, "plain.csv").unwrap();
@@ -1624,19 +1809,29 @@ mod tests {
             FitParameter::Capacitance,
             FitParameter::MuS,
         ];
-        let setup = Setup::new(&start, &free).unwrap();
+        exact_matches_central_differences(&start, &free, &data);
+    }
+
+    /// Every column of the exact Jacobian of `data` at `start` against Richardson-extrapolated
+    /// central differences; the records must include a sliding and a stick-slip one.
+    fn exact_matches_central_differences(
+        start: &Experiment,
+        free: &[FitParameter],
+        data: &[Measurement],
+    ) {
+        let setup = Setup::new(start, free).unwrap();
         let watch = Watch {
             monitor: &(),
             before: 0,
             total: 1,
         };
-        let (mut problem, x) = Records::new(&setup, &data, &FitOptions::default(), watch).unwrap();
+        let (mut problem, x) = Records::new(&setup, data, &FitOptions::default(), watch).unwrap();
         let r = lm::Problem::residuals(&mut problem, &x).unwrap().unwrap();
         let exact = problem.exact_jacobian(&x).expect("periodic PWL models");
         let classes: Vec<MotionClass> = (0..data.len())
             .map(|j| {
                 problem
-                    .response_model(&setup.at(&x[..6]).unwrap(), &x, j)
+                    .response_model(&setup.at(&x[..free.len()]).unwrap(), &x, j)
                     .unwrap()
                     .class
             })
@@ -1669,5 +1864,25 @@ mod tests {
                 "column {k}: deviation {worst:e} against a largest entry {size:e}"
             );
         }
+    }
+
+    /// The same for a mechanical oscillator: γ, F0, m, k and μs through the mechanical scales
+    /// (ζ = γ/(2√(km)), ω0 = √(k/m), β = F/F0, r = (F0/k)·y).
+    #[test]
+    fn the_exact_jacobian_of_mechanical_records_matches_central_differences() {
+        let truth = Experiment::mechanics(Mechanics::new(0.5, 200.0, 0.8, 0.3).unwrap())
+            .unwrap()
+            .with_mu_s(1.25)
+            .unwrap();
+        let data: Vec<Measurement> = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)]
+            .iter()
+            .map(|&(w, beta, phi)| record(&truth, w, beta, phi))
+            .collect();
+        let start = Experiment::mechanics(Mechanics::new(0.55, 180.0, 0.7, 0.32).unwrap())
+            .unwrap()
+            .with_mu_s(1.2)
+            .unwrap();
+        let free = FitParameter::MECHANICS;
+        exact_matches_central_differences(&start, &free, &data);
     }
 }

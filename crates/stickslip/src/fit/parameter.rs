@@ -2,12 +2,13 @@
 
 use super::FitError;
 use crate::experiment::{DiodeModel, Experiment};
-use crate::physical::{Circuit, Diode};
+use crate::physical::{Circuit, Diode, Mechanics, System};
 use serde::{Deserialize, Serialize};
 
-/// A parameter of the circuit that a fit may free, named as the command-line flag that sets
-/// it (`resistance`, `ut`, `rd`, `diode-is`, `diode-n`, `diode-rs`, `inductance`,
-/// `capacitance`, `mu-s`).
+/// A parameter of the circuit or of the mechanical oscillator that a fit may free, named as
+/// the command-line flag that sets it: a circuit's `resistance`, `ut`, `rd`, `diode-is`,
+/// `diode-n`, `diode-rs`, `inductance`, `capacitance`; a mechanical oscillator's `damping`
+/// (γ), `friction` (F0), `mass` (m), `stiffness` (k); either's `mu-s`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FitParameter {
@@ -27,13 +28,21 @@ pub enum FitParameter {
     Inductance,
     /// Capacitance C (F).
     Capacitance,
-    /// Static-to-kinetic friction ratio μs (PWL only).
+    /// Static-to-kinetic friction ratio μs (PWL circuits and mechanics).
     MuS,
+    /// Viscous damping γ of a mechanical oscillator (N·s/m).
+    Damping,
+    /// Kinetic friction force F0 of a mechanical oscillator (N).
+    Friction,
+    /// Mass m of a mechanical oscillator (kg).
+    Mass,
+    /// Spring constant k of a mechanical oscillator (N/m).
+    Stiffness,
 }
 
 impl FitParameter {
     /// Every parameter, in the order of reports.
-    pub const ALL: [FitParameter; 9] = [
+    pub const ALL: [FitParameter; 13] = [
         FitParameter::Resistance,
         FitParameter::Ut,
         FitParameter::Rd,
@@ -42,6 +51,32 @@ impl FitParameter {
         FitParameter::DiodeRs,
         FitParameter::Inductance,
         FitParameter::Capacitance,
+        FitParameter::MuS,
+        FitParameter::Damping,
+        FitParameter::Friction,
+        FitParameter::Mass,
+        FitParameter::Stiffness,
+    ];
+
+    /// The parameters of a circuit, in the order of reports.
+    pub const CIRCUIT: [FitParameter; 9] = [
+        FitParameter::Resistance,
+        FitParameter::Ut,
+        FitParameter::Rd,
+        FitParameter::DiodeIs,
+        FitParameter::DiodeN,
+        FitParameter::DiodeRs,
+        FitParameter::Inductance,
+        FitParameter::Capacitance,
+        FitParameter::MuS,
+    ];
+
+    /// The parameters of a mechanical oscillator, in the order of reports.
+    pub const MECHANICS: [FitParameter; 5] = [
+        FitParameter::Damping,
+        FitParameter::Friction,
+        FitParameter::Mass,
+        FitParameter::Stiffness,
         FitParameter::MuS,
     ];
 
@@ -57,7 +92,41 @@ impl FitParameter {
             FitParameter::Inductance => "inductance",
             FitParameter::Capacitance => "capacitance",
             FitParameter::MuS => "mu-s",
+            FitParameter::Damping => "damping",
+            FitParameter::Friction => "friction",
+            FitParameter::Mass => "mass",
+            FitParameter::Stiffness => "stiffness",
         }
+    }
+
+    /// The symbol's name in the experiment's key table (`gamma`, `F0`, `m`, `k`) for a
+    /// mechanical parameter, also accepted by [`std::str::FromStr`].
+    fn key_name(self) -> Option<&'static str> {
+        match self {
+            FitParameter::Damping => Some("gamma"),
+            FitParameter::Friction => Some("f0"),
+            FitParameter::Mass => Some("m"),
+            FitParameter::Stiffness => Some("k"),
+            _ => None,
+        }
+    }
+
+    /// Whether the parameter belongs to a mechanical oscillator (`mu-s` belongs to both).
+    pub fn is_mechanical(self) -> bool {
+        FitParameter::MECHANICS.contains(&self)
+    }
+
+    /// Whether the parameter belongs to a circuit (`mu-s` belongs to both).
+    pub fn is_circuit(self) -> bool {
+        FitParameter::CIRCUIT.contains(&self)
+    }
+
+    /// The names of `list`, comma-separated.
+    pub(crate) fn names(list: &[FitParameter]) -> String {
+        list.iter()
+            .map(|p| p.label())
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// The SI unit of the value (empty for a pure number).
@@ -68,15 +137,26 @@ impl FitParameter {
             FitParameter::DiodeIs => "A",
             FitParameter::Inductance => "H",
             FitParameter::Capacitance => "F",
+            FitParameter::Damping => "N s/m",
+            FitParameter::Friction => "N",
+            FitParameter::Mass => "kg",
+            FitParameter::Stiffness => "N/m",
             FitParameter::DiodeN | FitParameter::MuS => "",
         }
     }
 
-    /// Whether the parameter belongs to the diode law `model` (`ut`, `rd`, `mu-s`: PWL;
-    /// `diode-*`: Shockley; the others: both).
+    /// Whether the parameter belongs to the diode law `model` (`ut`, `rd`, `mu-s` and the
+    /// mechanical ones, whose Coulomb law is the PWL law: PWL; `diode-*`: Shockley; the
+    /// others: both).
     pub fn applies_to(self, model: DiodeModel) -> bool {
         match self {
-            FitParameter::Ut | FitParameter::Rd | FitParameter::MuS => model == DiodeModel::Pwl,
+            FitParameter::Ut
+            | FitParameter::Rd
+            | FitParameter::MuS
+            | FitParameter::Damping
+            | FitParameter::Friction
+            | FitParameter::Mass
+            | FitParameter::Stiffness => model == DiodeModel::Pwl,
             FitParameter::DiodeIs | FitParameter::DiodeN | FitParameter::DiodeRs => {
                 model == DiodeModel::Shockley
             }
@@ -84,26 +164,51 @@ impl FitParameter {
         }
     }
 
-    /// The parameter's value in `experiment` (a circuit).
+    /// The parameter's value in `experiment` (a circuit or a mechanical oscillator).
     ///
     /// # Errors
-    /// [`FitError::NeedsCircuit`] without a circuit; [`FitError::WrongLaw`] for a parameter of
-    /// the other diode law.
+    /// [`FitError::NeedsCircuit`] without a physical system; [`FitError::WrongSystem`] for a
+    /// circuit's parameter on a mechanical oscillator or the other way round;
+    /// [`FitError::WrongLaw`] for a parameter of the other diode law.
     pub fn get(self, experiment: &Experiment) -> Result<f64, FitError> {
-        let c = experiment.circuit_ref().ok_or(FitError::NeedsCircuit)?;
-        self.check_law(experiment.diode_model())?;
-        Ok(match (self, c.diode) {
-            (FitParameter::Resistance, _) => c.resistance,
-            (FitParameter::Inductance, _) => c.inductance,
-            (FitParameter::Capacitance, _) => c.capacitance,
-            (FitParameter::MuS, _) => experiment.mu_s(),
-            (FitParameter::Ut, Diode::Pwl(d)) => d.turn_on,
-            (FitParameter::Rd, Diode::Pwl(d)) => d.resistance,
-            (FitParameter::DiodeIs, Diode::Shockley(d)) => d.pair.saturation_current,
-            (FitParameter::DiodeN, Diode::Shockley(d)) => d.pair.emission,
-            (FitParameter::DiodeRs, Diode::Shockley(d)) => d.pair.series_resistance,
-            _ => unreachable!("the law was checked"),
-        })
+        match experiment.system().ok_or(FitError::NeedsCircuit)? {
+            System::Mechanics(m) => {
+                if !self.is_mechanical() {
+                    return Err(FitError::WrongSystem {
+                        parameter: self,
+                        mechanics: true,
+                    });
+                }
+                Ok(match self {
+                    FitParameter::Damping => m.damping,
+                    FitParameter::Friction => m.friction,
+                    FitParameter::Mass => m.mass,
+                    FitParameter::Stiffness => m.stiffness,
+                    _ => experiment.mu_s(),
+                })
+            }
+            System::Circuit(c) => {
+                if !self.is_circuit() {
+                    return Err(FitError::WrongSystem {
+                        parameter: self,
+                        mechanics: false,
+                    });
+                }
+                self.check_law(experiment.diode_model())?;
+                Ok(match (self, c.diode) {
+                    (FitParameter::Resistance, _) => c.resistance,
+                    (FitParameter::Inductance, _) => c.inductance,
+                    (FitParameter::Capacitance, _) => c.capacitance,
+                    (FitParameter::MuS, _) => experiment.mu_s(),
+                    (FitParameter::Ut, Diode::Pwl(d)) => d.turn_on,
+                    (FitParameter::Rd, Diode::Pwl(d)) => d.resistance,
+                    (FitParameter::DiodeIs, Diode::Shockley(d)) => d.pair.saturation_current,
+                    (FitParameter::DiodeN, Diode::Shockley(d)) => d.pair.emission,
+                    (FitParameter::DiodeRs, Diode::Shockley(d)) => d.pair.series_resistance,
+                    _ => unreachable!("the law was checked"),
+                })
+            }
+        }
     }
 
     fn check_law(self, model: DiodeModel) -> Result<(), FitError> {
@@ -132,6 +237,17 @@ impl FitParameter {
             _ => {}
         }
     }
+
+    /// `mechanics` with this parameter set to `value` (μs is left to the caller).
+    pub(crate) fn set_mechanics(self, mechanics: &mut Mechanics, value: f64) {
+        match self {
+            FitParameter::Damping => mechanics.damping = value,
+            FitParameter::Friction => mechanics.friction = value,
+            FitParameter::Mass => mechanics.mass = value,
+            FitParameter::Stiffness => mechanics.stiffness = value,
+            _ => {}
+        }
+    }
 }
 
 impl std::fmt::Display for FitParameter {
@@ -144,12 +260,13 @@ impl std::str::FromStr for FitParameter {
     type Err = FitError;
 
     /// A parameter by its name ([`FitParameter::label`]); `mu_s`, `diode_is` … with
-    /// underscores are accepted too.
+    /// underscores are accepted too, and the mechanical parameters by their symbols in the
+    /// key table (`gamma`, `F0`, `m`, `k`).
     fn from_str(s: &str) -> Result<Self, FitError> {
         let wanted = s.trim().replace('_', "-").to_ascii_lowercase();
         FitParameter::ALL
             .into_iter()
-            .find(|p| p.label() == wanted)
+            .find(|p| p.label() == wanted || p.key_name() == Some(wanted.as_str()))
             .ok_or_else(|| FitError::UnknownParameter(s.trim().chars().take(40).collect()))
     }
 }
@@ -167,5 +284,22 @@ mod tests {
         assert_eq!("mu_s".parse::<FitParameter>().unwrap(), FitParameter::MuS);
         let err = "zeta".parse::<FitParameter>().unwrap_err().to_string();
         assert!(err.contains("zeta") && err.contains("resistance"), "{err}");
+        assert!(
+            err.contains("damping") && err.contains("stiffness"),
+            "{err}"
+        );
+        for (symbol, p) in [
+            ("gamma", FitParameter::Damping),
+            ("F0", FitParameter::Friction),
+            ("m", FitParameter::Mass),
+            ("k", FitParameter::Stiffness),
+        ] {
+            assert_eq!(symbol.parse::<FitParameter>().unwrap(), p);
+        }
+        // Every parameter belongs to a circuit or to mechanics, and only μs to both.
+        for p in FitParameter::ALL {
+            assert!(p.is_circuit() || p.is_mechanical(), "{p}");
+            assert_eq!(p.is_circuit() && p.is_mechanical(), p == FitParameter::MuS);
+        }
     }
 }

@@ -79,6 +79,18 @@ pub struct Measurement {
     pub noise: f64,
     /// The drive channel's noise (V), estimated in the same way.
     pub drive_noise: f64,
+    /// The drive channel's unit as the file gives it (`V` when it says nothing; a mechanical
+    /// record's force in `N`). The fields above named in volts are in this unit.
+    #[serde(default = "volt")]
+    pub drive_unit: String,
+    /// The response channel's unit as the file gives it (`V`; a mechanical record's
+    /// displacement in `m`).
+    #[serde(default = "volt")]
+    pub response_unit: String,
+}
+
+fn volt() -> String {
+    "V".into()
 }
 
 impl Measurement {
@@ -177,6 +189,8 @@ impl Measurement {
             resolution: r.resolution,
             noise: response_noise,
             drive_noise,
+            drive_unit: d.unit.clone(),
+            response_unit: r.unit.clone(),
         })
     }
 
