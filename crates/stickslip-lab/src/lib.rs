@@ -24,6 +24,7 @@ use anyhow::{Context, Result};
 use std::io::Write;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
+use stickslip::{OptionKey, Spelling};
 
 /// How to serve the lab: what `stickslip lab` takes on its command line.
 #[derive(Debug, Clone)]
@@ -116,17 +117,16 @@ fn url_of(addr: SocketAddr) -> String {
 pub fn run(config: Config, stop: impl Fn() -> bool + Send + 'static) -> Result<()> {
     let args = config;
     let ip = host_address(&args.host)?;
-    if !(args.time_limit >= 0.1 && args.time_limit <= 600.0) {
-        invalid!(
-            "invalid --time-limit {}: must be from 0.1 to 600 (seconds)",
-            args.time_limit
-        );
+    if let Err(e) = OptionKey::LabTimeLimit.check(args.time_limit) {
+        invalid!("{}", e.render(Spelling::Flag));
     }
     let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
     let jobs = match args.jobs {
         None => cores,
-        Some(n) if (1..=256).contains(&n) => n as usize,
-        Some(n) => invalid!("invalid --jobs {n}: must be from 1 to 256"),
+        Some(n) => match OptionKey::LabJobs.check(n as f64) {
+            Ok(_) => n as usize,
+            Err(e) => invalid!("{}", e.render(Spelling::Flag)),
+        },
     };
     let mut hosts = Vec::new();
     for name in &args.allow_host {

@@ -362,12 +362,9 @@ pub fn grid<'py>(
     }
     if lyapunov {
         // As the tool's --color lyapunov: the measurement of the steady-state options.
-        let Some(measure) = options.lyapunov else {
-            return Err(PyValueError::new_err(
-                "lyapunov=True measures the motions that do not repeat: lyapunov_periods must not be 0",
-            ));
-        };
-        grid = grid.lyapunov(measure).map_err(error)?;
+        grid = grid
+            .lyapunov(options.lyapunov_for_map().map_err(error)?)
+            .map_err(error)?;
     }
     let (r0, r1, c0, c1) = block.unwrap_or((0, rows, 0, cols));
     let points = run(py, progress.as_ref(), |monitor| {

@@ -2,6 +2,7 @@
 
 use crate::output::UsageError;
 use anyhow::Result;
+use stickslip::OptionKey;
 
 /// Serve the lab: an oscilloscope and a function generator in the browser, on the exact solver.
 ///
@@ -38,12 +39,9 @@ pub struct Args {
     /// Open the page in the default browser.
     #[arg(long)]
     open: bool,
-    /// Time limit of one request in seconds, waiting for a worker included (0.1 to 600).
-    #[arg(long = "time-limit", default_value_t = 10.0, value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = "time-limit", help = crate::flags::help(OptionKey::LabTimeLimit), default_value_t = crate::flags::num(OptionKey::LabTimeLimit), value_parser = crate::model::finite, allow_hyphen_values = true)]
     time_limit: f64,
-    /// Computations at once; further requests wait for a turn within their time limit
-    /// [default: the number of cores].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, help = crate::flags::help(OptionKey::LabJobs), allow_hyphen_values = true)]
     jobs: Option<i64>,
     /// Print one line per request on standard error (method, path, status, milliseconds),
     /// and one per request or connection that ended early.

@@ -4,7 +4,7 @@ use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
 use crate::flags::{help, int, key_value, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
-use crate::output::{check_plot_path, usage, Sink};
+use crate::output::{check_plot_path, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
 use anyhow::Result;
 use std::io::Write;
@@ -115,9 +115,6 @@ pub fn run(args: Args) -> Result<()> {
     }
     Sink::check(args.out.as_deref())?;
     let lyapunov = args.color == Color::Lyapunov;
-    if lyapunov && args.steady.lyapunov_periods == 0 {
-        usage!("--color lyapunov measures motions that do not repeat: --lyapunov-periods must not be 0");
-    }
     args.checkpoint.check()?;
     let mut checkpoint_file = None;
     let experiment = args.model.experiment()?;
@@ -128,8 +125,8 @@ pub fn run(args: Args) -> Result<()> {
         Axis::range(Parameter::Beta, &beta)?,
     )?
     .options(options)?;
-    if let (true, Some(measure)) = (lyapunov, options.lyapunov) {
-        grid = grid.lyapunov(measure)?;
+    if lyapunov {
+        grid = grid.lyapunov(options.lyapunov_for_map()?)?;
     }
     // A checkpoint of other parameters, or a damaged one, is refused before any work.
     let checkpoint = args.checkpoint.open(identity(&grid)?, w.steps())?;

@@ -23,6 +23,7 @@ fn commands(group: OptionGroup) -> &'static [&'static str] {
         OptionGroup::SteadyReport => &["steady"],
         OptionGroup::Checkpoint => &["sweep", "phase-diagram", "basins"],
         OptionGroup::Netlist => &["netlist"],
+        OptionGroup::Lab => &["lab"],
         OptionGroup::Pool => &[],
     }
 }

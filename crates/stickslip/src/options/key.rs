@@ -47,6 +47,8 @@ pub enum OptionGroup {
     Checkpoint,
     /// A SPICE netlist of the circuit (`netlist`).
     Netlist,
+    /// The lab server's own settings (`stickslip lab`).
+    Lab,
 }
 
 /// What values an option takes.
@@ -209,6 +211,10 @@ pub enum OptionKey {
     NetlistVntol,
     /// File ngspice writes the analysis to.
     NetlistWrdata,
+    /// The lab server's time limit of one request, in seconds.
+    LabTimeLimit,
+    /// The lab server's computations at once.
+    LabJobs,
 }
 
 /// One row of [`OptionKey::table`]: everything a front end needs to offer, parse, check and
@@ -425,6 +431,12 @@ rows! {
     NetlistWrdata, Netlist, "wrdata", "wrdata", Text, None, None, Range,
         "must be a file name without spaces, quotes or line breaks", None,
         "Add an ngspice .control block that runs the analysis and writes time, u_C and i to this file with wrdata (a name without spaces; relative to where ngspice runs).";
+    LabTimeLimit, Lab, "time-limit", "time_limit", Number, incl(0.1), incl(600.0), Range,
+        "must be from 0.1 to 600 (seconds)", Some(10.0),
+        "Time limit of one request in seconds, waiting for a worker included (0.1 to 600).";
+    LabJobs, Lab, "jobs", "jobs", Count, incl(1.0), incl(256.0), Range,
+        "must be from 1 to 256", None,
+        "Computations at once; further requests wait for a turn within their time limit [default: the number of cores].";
 }
 
 /// What an option allows, in an [`crate::Error::InvalidOption`].
@@ -460,6 +472,12 @@ pub enum Allowed {
     Needs {
         /// The other option.
         other: OptionKey,
+        /// Why, in words.
+        why: &'static str,
+    },
+    /// Not 0 (its "off") where the computation needs what the option turns on:
+    /// `--lyapunov-periods must not be 0 (why)`.
+    NotOff {
         /// Why, in words.
         why: &'static str,
     },

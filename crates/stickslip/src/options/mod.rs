@@ -174,6 +174,7 @@ impl Allowed {
             }
             Allowed::Differs { other } => format!("must differ from {}", other.spelled(spelling)),
             Allowed::Needs { other, why } => format!("needs {} ({why})", other.spelled(spelling)),
+            Allowed::NotOff { why } => format!("must not be 0 ({why})"),
             Allowed::Above { other, value } => format!(
                 "must be greater than {} {}",
                 other.spelled(spelling),
@@ -230,7 +231,7 @@ pub(crate) fn render_invalid(
 ) -> String {
     let rendered = allowed.render(option, spelling);
     // A rule between two options reads as one: `--transient needs --period (...)`.
-    if let Allowed::Needs { .. } = allowed {
+    if let Allowed::Needs { .. } | Allowed::NotOff { .. } = allowed {
         return format!("{} {rendered}", option.spelled(spelling));
     }
     let allowed = rendered;

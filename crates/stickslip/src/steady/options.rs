@@ -86,6 +86,22 @@ impl SteadyOptions {
         sequential: true,
     };
 
+    /// The measurement of motions that do not repeat, which a map of exponents needs
+    /// (`phase-diagram --color lyapunov`, Python's `phase_diagram(lyapunov=True)`).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidOption`] naming [`OptionKey::LyapunovPeriods`] when the
+    /// measurement is off (0 periods).
+    pub fn lyapunov_for_map(&self) -> Result<LyapunovOptions> {
+        self.lyapunov.ok_or(crate::Error::InvalidOption {
+            option: OptionKey::LyapunovPeriods,
+            value: 0.0,
+            allowed: crate::options::Allowed::NotOff {
+                why: "a map of exponents measures the motions that do not repeat",
+            },
+        })
+    }
+
     /// Measure motions that do not repeat with these options, or not at all (`None`).
     ///
     /// # Errors
