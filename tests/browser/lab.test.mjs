@@ -105,6 +105,46 @@ test('the page opens on the paper circuit at its Fig. 3 point (0.95, 2.14)', asy
   assert.equal(await page.inputValue('input[name="amplitude"]'), '1.498');
 });
 
+test('issue 19: the model form is built from /api/keys: a field per key, its symbol, unit and help, and the fit boxes served', async () => {
+  const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
+  const fields = await page.$$eval('fieldset[data-for-system] .field input[type="text"]', (inputs) =>
+    inputs.map((i) => ({ id: i.id, name: i.name, title: i.title, fieldset: i.closest('fieldset').dataset.forSystem, label: i.labels[0].innerHTML, unit: i.parentElement.querySelector('.unit')?.textContent ?? '', error: i.parentElement.querySelector('.error').dataset.errorFor })),
+  );
+  const byId = new Map(fields.map((f) => [f.id, f]));
+  // Every number of the system and the diodes has its field (ζ follows from the parts and
+  // is shown derived), with the key's flag as id and name, its help as title.
+  const numbers = keys.keys.filter((k) => ['system', 'diode'].includes(k.group) && k.form !== 'choice' && k.flag !== 'zeta');
+  assert.ok(numbers.length >= 14, `${numbers.length} keys`);
+  for (const k of numbers) {
+    const f = byId.get(k.flag);
+    assert.ok(f, `no field for ${k.flag}`);
+    assert.equal(f.name, k.flag);
+    assert.equal(f.title, k.help);
+    assert.equal(f.error, k.flag);
+    assert.ok(f.label.length > 0, `${k.flag} has no label`);
+  }
+  // Each in its fieldset in the table's order, as the page had them written by hand.
+  for (const fieldset of ['pwl shockley', 'pwl', 'shockley', 'mechanics']) {
+    assert.deepEqual(fields.filter((f) => f.fieldset === fieldset).map((f) => f.id), keys.form.filter((f) => f.fieldset === fieldset).map((f) => f.flag), fieldset);
+  }
+  assert.equal(fields.length, keys.form.length);
+  assert.deepEqual(
+    fields.map((f) => `${f.id}:${f.fieldset}:${f.label}:${f.unit}`),
+    ['inductance:pwl shockley:L:H', 'capacitance:pwl shockley:C:F', 'resistance:pwl shockley:R:Ω', 'ut:pwl shockley:U<sub>t</sub>:V', 'rd:pwl:R<sub>D</sub>:Ω', 'diode-is:shockley:I<sub>s</sub>:A', 'diode-n:shockley:n:', 'diode-rs:shockley:R<sub>s</sub>:Ω', 'temperature:shockley:T:°C', 'mu-s:mechanics:μ<sub>s</sub>:≥ 1', 'mass:mechanics:m:kg', 'stiffness:mechanics:k:N/m', 'damping:mechanics:γ:N·s/m', 'friction:mechanics:F<sub>0</sub>:N'],
+  );
+  assert.equal(await page.$eval('#ut', (e) => e.parentElement.outerHTML), `<div class="field"><label for="ut">U<sub>t</sub></label><input id="ut" name="ut" type="text" title="${keys.keys.find((k) => k.flag === 'ut').help}" data-part=""><span class="unit">V</span><label class="free" title="free in the fit: fitted to the record"><input type="checkbox" name="free-ut" data-free="ut" checked=""> fit</label><span class="error" data-error-for="ut" role="alert"></span></div>`);
+  assert.equal(await page.$eval('#mu-s', (e) => e.getAttribute('value')), '1');
+  assert.deepEqual(await page.$$eval('[data-part]', (els) => els.map((e) => e.id)), ['inductance', 'capacitance', 'resistance', 'ut', 'rd']);
+  // The fit boxes: the served fit parameters that have a field beside the fit (μs is the
+  // mechanical oscillator's there), ticked as the fit frees them by default.
+  const boxes = await page.$$eval('input[data-free]', (els) => els.map((e) => ({ name: e.name, free: e.dataset.free, checked: e.checked })));
+  const fitFields = keys.form.filter((f) => keys.fit.parameters.includes(f.flag) && f.fieldset !== 'mechanics').map((f) => f.flag);
+  assert.deepEqual(boxes.map((b) => b.free), fitFields);
+  assert.deepEqual(fitFields, ['inductance', 'capacitance', 'resistance', 'ut', 'rd', 'diode-is', 'diode-n', 'diode-rs']);
+  for (const b of boxes) assert.equal(b.name, `free-${b.free}`);
+  assert.deepEqual(boxes.filter((b) => b.checked).map((b) => b.free), keys.fit.free);
+});
+
 test('sweep up and down and the (w, beta) map, computed on load', async () => {
   await page.waitForFunction(() => document.querySelector('[data-map="status"]').dataset.state === 'ready', null, { timeout: 60000 });
   const sweep = await page.$eval('[data-sweep="status"]', (e) => e.textContent);

@@ -10,6 +10,7 @@ import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
 import { wireRecord } from './lab/record.js';
+import { buildForm } from './lab/form.js';
 
 // ---------------------------------------------------------------- computing
 // One computation in flight at a time. Inputs that arrive meanwhile are merged: when the
@@ -292,6 +293,8 @@ export async function start() {
     setStatus('error', `cannot reach the lab server: ${e.message}`);
     return;
   }
+  // The model's fields come from the key table: before anything below reads them.
+  buildForm(keys);
   state.caps = keys.caps;
   state.stuckVelocity = keys.stuck_velocity;
   state.presets = presets.presets;

@@ -519,7 +519,7 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
         assert!(!module.is_empty(), "{path}");
         modules += 1;
     }
-    assert_eq!(modules, 8);
+    assert_eq!(modules, 9);
     let (status, _, _) = get_with(&lab, "/lab/nothing.js").await;
     assert_eq!(status, StatusCode::NOT_FOUND);
     let (status, _, _) = get_with(&lab, "/lab.css").await;
@@ -570,6 +570,37 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
         "periods",
     )
     .await;
+    // The form: the fields of the circuit's, the diodes' and the mechanical parts and μs,
+    // in the table's order; the fit boxes are the circuit's fit parameters.
+    let form: Vec<(&str, &str)> = keys["form"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| (f["flag"].as_str().unwrap(), f["fieldset"].as_str().unwrap()))
+        .collect();
+    let expected: Vec<&str> = Key::ALL
+        .into_iter()
+        .filter(|k| {
+            k.is_circuit_part()
+                || k.is_mechanics_part()
+                || k.section() == Some(stickslip::experiment::Section::Shockley)
+                || *k == Key::MuS
+        })
+        .map(Key::flag)
+        .collect();
+    assert_eq!(form.iter().map(|f| f.0).collect::<Vec<_>>(), expected);
+    assert!(form.contains(&("rd", "pwl")) && form.contains(&("ut", "pwl shockley")));
+    assert!(form.contains(&("diode-n", "shockley")) && form.contains(&("mu-s", "mechanics")));
+    let fit: Vec<&str> = keys["fit"]["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.as_str().unwrap())
+        .collect();
+    assert_eq!(fit.len(), stickslip::fit::FitParameter::CIRCUIT.len());
+    assert!(fit.contains(&"rd") && fit.contains(&"diode-is") && !fit.contains(&"mass"));
+    assert_eq!(keys["fit"]["free"], serde_json::json!(["resistance", "ut"]));
+    assert_eq!(keys["keys"][Key::TurnOn as usize]["symbol"], "U_t");
     assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
     assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);
     refused("/api/keys?w=1", StatusCode::BAD_REQUEST, "takes no keys").await;

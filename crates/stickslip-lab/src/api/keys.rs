@@ -3,7 +3,9 @@
 //! which the mechanical view draws the block stuck.
 
 use super::caps::CAPS;
-use stickslip::experiment::Key;
+use super::fit::default_free;
+use stickslip::experiment::{DiodeModel, Key, KeyForm, KeyGroup};
+use stickslip::fit::FitParameter;
 
 /// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
 /// exact PWL solver holds v = 0 exactly while stuck; the stiff Shockley solver's current
@@ -15,12 +17,79 @@ pub fn caps_json() -> serde_json::Value {
     serde_json::to_value(CAPS).unwrap_or_default()
 }
 
+/// The fieldset of the page's form a key's field goes in, by the systems it is shown for
+/// (the fieldset's `data-for-system`): the circuit's parts for both diode laws, the PWL
+/// diodes' resistance, the Shockley diodes' parameters, the mechanical oscillator's parts and
+/// μs; `None` for a key the form does not take as a field of its own (ζ follows from the
+/// parts; the drive, the initial state, the diode law and the preset have their own
+/// controls).
+pub fn fieldset(key: Key) -> Option<&'static str> {
+    if key == Key::DiodeResistance {
+        Some("pwl")
+    } else if key.is_circuit_part() {
+        Some("pwl shockley")
+    } else if key.group() == KeyGroup::Diode && key.form() != KeyForm::Choice {
+        Some("shockley")
+    } else if key.is_mechanics_part() || key == Key::MuS {
+        Some("mechanics")
+    } else {
+        None
+    }
+}
+
+/// A unit as the page writes it (`Ω` for `ohm`, `N·s/m`); for μs, which has none, its
+/// bound (`≥ 1`).
+fn shown_unit(key: Key) -> String {
+    match key.unit() {
+        Some("ohm") => "Ω".to_string(),
+        Some("N s/m") => "N·s/m".to_string(),
+        Some(unit) => unit.to_string(),
+        None if key == Key::MuS => format!("≥ {}", key.range().min),
+        None => String::new(),
+    }
+}
+
+/// The page's form, in the key table's order: for each field its key's `flag` (the input's
+/// id and name), `fieldset` ([`fieldset`]), `part` (a circuit's part: the input carries
+/// `data-part`), the `unit` it shows and its initial `value` (μs: 1, the paper's; the others
+/// are filled from the presets).
+fn form() -> Vec<serde_json::Value> {
+    Key::ALL
+        .into_iter()
+        .filter_map(|key| {
+            let fieldset = fieldset(key)?;
+            Some(serde_json::json!({
+                "flag": key.flag(),
+                "fieldset": fieldset,
+                "part": key.is_circuit_part(),
+                "unit": shown_unit(key),
+                "value": (key == Key::MuS)
+                    .then(|| key.default_value().map(|d| d.to_string()))
+                    .flatten(),
+            }))
+        })
+        .collect()
+}
+
+/// What a fit of a circuit may free (`parameters`, [`FitParameter::CIRCUIT`]) and what it
+/// frees when nothing is ticked (`free`: those of `stickslip fit`, [`default_free`]).
+fn fit() -> serde_json::Value {
+    serde_json::json!({
+        "parameters": FitParameter::CIRCUIT.iter().map(|p| p.label()).collect::<Vec<_>>(),
+        "free": default_free(DiodeModel::Pwl).split(',').collect::<Vec<_>>(),
+    })
+}
+
 /// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model
-/// key's query name `flag`, its `name`, group, unit, range, help and default), `caps` (as
-/// `/api/presets` has them) and `stuck_velocity` (by diode law).
+/// key's query name `flag`, its `name`, `symbol`, group, unit, range, help and default),
+/// `form` (the fields of the page's form, [`fieldset`]), `fit` (the parameters a fit of a
+/// circuit may free, and those it frees by default), `caps` (as `/api/presets` has them)
+/// and `stuck_velocity` (by diode law).
 pub fn keys() -> serde_json::Value {
     serde_json::json!({
         "keys": Key::table(),
+        "form": form(),
+        "fit": fit(),
         "caps": caps_json(),
         "stuck_velocity": STUCK_VELOCITY
             .iter()

@@ -251,6 +251,7 @@ enum Part {
 struct Row {
     key: Key,
     name: &'static str,
+    symbol: &'static str,
     name_aliases: &'static [&'static str],
     flag: &'static str,
     aliases: &'static [&'static str],
@@ -278,6 +279,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Zeta,
         name: "zeta",
+        symbol: "ζ",
         name_aliases: &[],
         flag: "zeta",
         aliases: &[],
@@ -299,6 +301,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::W,
         name: "w",
+        symbol: "w",
         name_aliases: &[],
         flag: "w",
         aliases: &[],
@@ -320,6 +323,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Beta,
         name: "beta",
+        symbol: "β",
         name_aliases: &[],
         flag: "beta",
         aliases: &[],
@@ -341,6 +345,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Phi,
         name: "phi",
+        symbol: "φ",
         name_aliases: &[],
         flag: "phi",
         aliases: &[],
@@ -362,6 +367,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::MuS,
         name: "mu_s",
+        symbol: "μ_s",
         name_aliases: &[],
         flag: "mu-s",
         aliases: &[],
@@ -383,6 +389,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Y0,
         name: "y0",
+        symbol: "y_0",
         name_aliases: &[],
         flag: "y0",
         aliases: &[],
@@ -404,6 +411,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::V0,
         name: "v0",
+        symbol: "v_0",
         name_aliases: &[],
         flag: "v0",
         aliases: &[],
@@ -425,6 +433,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Inductance,
         name: "L",
+        symbol: "L",
         name_aliases: &[],
         flag: "inductance",
         aliases: &["L"],
@@ -446,6 +455,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Capacitance,
         name: "C",
+        symbol: "C",
         name_aliases: &[],
         flag: "capacitance",
         aliases: &["C"],
@@ -467,6 +477,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Resistance,
         name: "R",
+        symbol: "R",
         name_aliases: &[],
         flag: "resistance",
         aliases: &["R"],
@@ -488,6 +499,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::TurnOn,
         name: "U_t",
+        symbol: "U_t",
         name_aliases: &[],
         flag: "ut",
         aliases: &[],
@@ -509,6 +521,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::DiodeResistance,
         name: "R_D",
+        symbol: "R_D",
         name_aliases: &[],
         flag: "rd",
         aliases: &[],
@@ -530,6 +543,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Mass,
         name: "m",
+        symbol: "m",
         name_aliases: &[],
         flag: "mass",
         aliases: &[],
@@ -551,6 +565,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Stiffness,
         name: "k",
+        symbol: "k",
         name_aliases: &[],
         flag: "stiffness",
         aliases: &[],
@@ -572,6 +587,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Damping,
         name: "gamma",
+        symbol: "γ",
         name_aliases: &[],
         flag: "damping",
         aliases: &[],
@@ -593,6 +609,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Friction,
         name: "F0",
+        symbol: "F_0",
         name_aliases: &[],
         flag: "friction",
         aliases: &[],
@@ -614,6 +631,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Amplitude,
         name: "U",
+        symbol: "U",
         name_aliases: &["F"],
         flag: "amplitude",
         aliases: &["U"],
@@ -638,6 +656,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Frequency,
         name: "f",
+        symbol: "f",
         name_aliases: &[],
         flag: "freq",
         aliases: &[],
@@ -662,6 +681,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Omega,
         name: "omega",
+        symbol: "Ω",
         name_aliases: &[],
         flag: "omega",
         aliases: &[],
@@ -686,6 +706,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Uc0,
         name: "uc0",
+        symbol: "u_C(0)",
         name_aliases: &[],
         flag: "uc0",
         aliases: &[],
@@ -710,6 +731,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::I0,
         name: "i0",
+        symbol: "i(0)",
         name_aliases: &[],
         flag: "i0",
         aliases: &[],
@@ -734,6 +756,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::SaturationCurrent,
         name: "Is",
+        symbol: "I_s",
         name_aliases: &[],
         flag: "diode-is",
         aliases: &[],
@@ -755,6 +778,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Emission,
         name: "n",
+        symbol: "n",
         name_aliases: &[],
         flag: "diode-n",
         aliases: &[],
@@ -776,6 +800,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::SeriesResistance,
         name: "Rs",
+        symbol: "R_s",
         name_aliases: &[],
         flag: "diode-rs",
         aliases: &[],
@@ -797,6 +822,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Temperature,
         name: "temperature",
+        symbol: "T",
         name_aliases: &[],
         flag: "temperature",
         aliases: &[],
@@ -823,6 +849,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Diode,
         name: "diode",
+        symbol: "",
         name_aliases: &[],
         flag: "model",
         aliases: &[],
@@ -844,6 +871,7 @@ const ROWS: &[Row] = &[
     Row {
         key: Key::Preset,
         name: "preset",
+        symbol: "",
         name_aliases: &[],
         flag: "preset",
         aliases: &[],
@@ -874,6 +902,9 @@ pub struct KeyInfo {
     pub key: Key,
     /// TOML key and Python keyword ([`Key::name`]).
     pub name: &'static str,
+    /// The symbol in formulas, `_` opening a subscript that runs to a `(` or the end (`U_t`,
+    /// `μ_s`, `u_C(0)`); empty for a key whose value is a name ([`Key::symbol`]).
+    pub symbol: &'static str,
     /// Other names the TOML file and the Python package accept ([`Key::name_aliases`]).
     pub name_aliases: &'static [&'static str],
     /// Command-line flag without the dashes, and the lab's query key ([`Key::flag`]).
@@ -935,6 +966,13 @@ impl Key {
     /// Messages of the library name keys by it.
     pub fn name(self) -> &'static str {
         self.row().name
+    }
+
+    /// The key's symbol in formulas, as the paper writes it: `_` opens a subscript that runs
+    /// to a `(` or the end (`U_t`, `R_D`, `μ_s`, `F_0`, `u_C(0)`); empty for a key whose
+    /// value is a name (the diode law, the preset). The lab labels its form with it.
+    pub fn symbol(self) -> &'static str {
+        self.row().symbol
     }
 
     /// Other names the TOML file and the Python package accept: `F` (newtons) for the drive
@@ -1168,6 +1206,7 @@ impl Key {
         KeyInfo {
             key: self,
             name: row.name,
+            symbol: row.symbol,
             name_aliases: row.name_aliases,
             flag: row.flag,
             aliases: row.aliases,
@@ -1310,6 +1349,21 @@ mod tests {
             assert_eq!(k as usize, i);
             assert_eq!(ROWS[i].key, k);
         }
+    }
+
+    /// Every number has a symbol and every name none; a subscript follows a letter.
+    #[test]
+    fn symbols_are_given_for_numbers() {
+        for k in Key::ALL {
+            let symbol = k.symbol();
+            assert_eq!(symbol.is_empty(), k.form() == KeyForm::Choice, "{k}");
+            assert!(
+                !symbol.starts_with('_') && !symbol.ends_with('_'),
+                "{k}: {symbol}"
+            );
+        }
+        assert_eq!(Key::TurnOn.symbol(), "U_t");
+        assert_eq!(Key::MuS.info().symbol, "μ_s");
     }
 
     #[test]
