@@ -49,7 +49,8 @@ pub enum Upload {
     None,
     /// One record's CSV text (named by the key `file`).
     Csv(String),
-    /// Files on the same times, merged channel after channel ([`Record::merge`]): name, text.
+    /// Files on the same times, merged channel after channel
+    /// (`stickslip::measure::Record::merge`): name, text.
     Files(Vec<(String, String)>),
 }
 
