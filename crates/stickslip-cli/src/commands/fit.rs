@@ -164,14 +164,35 @@ pub(crate) fn read_record(spec: &str) -> Result<Record> {
     Record::merge(parts).map_err(measure)
 }
 
+/// The channels of the record that `simulate --data` and `steady --data` draw (the
+/// command's own `--data` flag names the record).
+#[derive(Debug, clap::Args)]
+pub(crate) struct RecordChannels {
+    /// The record's drive channel (name, CHn or position) [default: the first].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    drive: Option<String>,
+    /// The record's u_C channel [default: the second].
+    #[arg(
+        long,
+        value_name = "COL",
+        help_heading = "Measurements",
+        requires = "data"
+    )]
+    response: Option<String>,
+}
+
 /// The scope record that `simulate --data` and `steady --data` draw beside the computed
 /// trace (`spec` as `fit --data`, channels picked as `fit --drive/--response`). The record is
 /// in volts and seconds: the experiment must be a circuit, and the record is drawn in the
 /// plot, which must be asked for.
 pub(crate) fn record_to_draw(
     spec: &str,
-    drive: Option<&str>,
-    response: Option<&str>,
+    channels: &RecordChannels,
     experiment: &stickslip::Experiment,
     plot: Option<&Path>,
 ) -> Result<Measurement> {
@@ -190,7 +211,12 @@ pub(crate) fn record_to_draw(
         ),
     }
     let record = read_record(spec)?;
-    Measurement::new(&record, drive, response).map_err(measure)
+    Measurement::new(
+        &record,
+        channels.drive.as_deref(),
+        channels.response.as_deref(),
+    )
+    .map_err(measure)
 }
 
 /// The progress line on a terminal: iterations done of the most allowed, and the sum of

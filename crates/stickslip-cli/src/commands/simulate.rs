@@ -41,22 +41,8 @@ pub struct Args {
     /// computed drive's, as late in the run as it fits. Needs a circuit and --plot.
     #[arg(long, value_name = "FILE", help_heading = "Measurements")]
     data: Option<String>,
-    /// The record's drive channel (name, CHn or position) [default: the first].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
-    drive: Option<String>,
-    /// The record's u_C channel [default: the second].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
-    response: Option<String>,
+    #[command(flatten)]
+    channels: crate::commands::fit::RecordChannels,
 }
 
 /// Run `stickslip simulate`.
@@ -79,8 +65,7 @@ pub fn run(args: Args) -> Result<()> {
     let record = match &args.data {
         Some(spec) => Some(crate::commands::fit::record_to_draw(
             spec,
-            args.drive.as_deref(),
-            args.response.as_deref(),
+            &args.channels,
             &experiment,
             args.plot.as_deref(),
         )?),

@@ -60,22 +60,8 @@ pub struct Args {
     /// meets the computed drive's; the plot is then in volts. Needs a circuit and --plot.
     #[arg(long, value_name = "FILE", help_heading = "Measurements")]
     data: Option<String>,
-    /// The record's drive channel (name, CHn or position) [default: the first].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
-    drive: Option<String>,
-    /// The record's u_C channel [default: the second].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
-    response: Option<String>,
+    #[command(flatten)]
+    channels: crate::commands::fit::RecordChannels,
 }
 
 /// Run `stickslip steady`.
@@ -98,8 +84,7 @@ pub fn run(args: Args) -> Result<()> {
     let record = match &args.data {
         Some(spec) => Some(crate::commands::fit::record_to_draw(
             spec,
-            args.drive.as_deref(),
-            args.response.as_deref(),
+            &args.channels,
             &experiment,
             args.plot.as_deref(),
         )?),
