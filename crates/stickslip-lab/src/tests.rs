@@ -530,6 +530,17 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     assert_eq!(status, StatusCode::OK);
     assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
     assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+    // The Shockley diodes' starting values are the 1N4148's, by query key.
+    let d = stickslip::DiodePair::one_n4148();
+    assert_eq!(
+        presets["shockley"],
+        serde_json::json!({
+            "diode-is": d.saturation_current,
+            "diode-n": d.emission,
+            "diode-rs": d.series_resistance,
+            "temperature": d.temperature,
+        })
+    );
 }
 
 #[tokio::test]
