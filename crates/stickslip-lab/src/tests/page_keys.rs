@@ -162,18 +162,12 @@ fn words(source: &str) -> Vec<(usize, String)> {
             i += 1;
             split(&text, line, &mut out);
             last = 'a';
-        } else if c == '`' {
-            i += 1;
-            if template(&mut i, &mut line, &mut out) {
-                depth += 1;
-                templates.push(depth);
-                last = '(';
-            } else {
-                last = 'a';
+        } else if c == '`' || (c == '}' && templates.last() == Some(&depth)) {
+            // A template literal's text: from its start, or from the end of one of its `${…}`.
+            if c == '}' {
+                templates.pop();
+                depth -= 1;
             }
-        } else if c == '}' && templates.last() == Some(&depth) {
-            templates.pop();
-            depth -= 1;
             i += 1;
             if template(&mut i, &mut line, &mut out) {
                 depth += 1;
