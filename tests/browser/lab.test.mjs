@@ -696,6 +696,44 @@ test('issue 20: a scope record dropped on the screen is drawn as REF1 and REF2, 
   }
 });
 
+test('issue 19: the query of each system holds exactly the served keys of its fieldsets', async () => {
+  const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
+  const drive = new Set(keys.keys.filter((k) => k.group === 'drive').map((k) => k.flag));
+  const fieldsOf = (system, part) => keys.form.filter((f) => f.fieldset.split(' ').includes(system) && (part === undefined || f.part === part)).map((f) => f.flag);
+  // The model keys of the query on the screen (the drive has its own controls).
+  const modelKeys = async () => [...new URLSearchParams(await shownQuery()).keys()].filter((k) => !drive.has(k));
+  /** Commit a field's own value again: the value is now the user's. */
+  const retype = async (name) => type(name, await page.inputValue(`input[name="${name}"]`));
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  // The paper's parts are sent as its preset until one is edited; then every field of the
+  // PWL fieldsets (the parts and R_D), in the table's order.
+  assert.deepEqual(await modelKeys(), ['preset']);
+  await retype('resistance');
+  assert.deepEqual(await modelKeys(), fieldsOf('pwl'));
+  assert.deepEqual(fieldsOf('pwl'), ['inductance', 'capacitance', 'resistance', 'ut', 'rd']);
+  // Shockley diodes: the parts and the diode law; the diodes' fields once one is edited.
+  await page.selectOption('select[name="system"]', 'shockley');
+  await ready();
+  assert.deepEqual(await modelKeys(), [...fieldsOf('shockley', true), 'model']);
+  assert.equal(new URLSearchParams(await shownQuery()).get('model'), 'shockley');
+  await retype('diode-n');
+  assert.deepEqual(await modelKeys(), [...fieldsOf('shockley', true), 'model', ...fieldsOf('shockley', false)]);
+  assert.deepEqual(fieldsOf('shockley', false), ['diode-is', 'diode-n', 'diode-rs', 'temperature']);
+  // The mechanical oscillator: every field of its fieldset.
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  assert.deepEqual(await modelKeys(), fieldsOf('mechanics'));
+  assert.deepEqual([...fieldsOf('mechanics')].sort(), ['damping', 'friction', 'mass', 'mu-s', 'stiffness']);
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  assert.equal(await shownQuery(), 'preset=paper&w=0.95&beta=2.14');
+});
+
 test('no console errors', () => {
   assert.deepEqual(consoleErrors, []);
 });

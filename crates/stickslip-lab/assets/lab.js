@@ -2,15 +2,15 @@
 // JSON API (docs/lab.md); these modules only ask, draw and export. No framework, no build:
 // the browser loads the ES modules of lab/ as they are. This one computes and wires the page.
 
-import { $, $$, field, num, siText } from './lab/util.js';
+import { $, $$, field, num } from './lab/util.js';
 import { api, slots, latest, isAbort } from './lab/api.js';
-import { state, statusEl, setStatus, clearErrors, showError, PART_KEYS, SHOCKLEY_KEYS, MECHANICS_KEYS, value, modelParams } from './lab/state.js';
+import { state, statusEl, setStatus, clearErrors, showError, value, modelParams } from './lab/state.js';
 import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPreset, fillMapSizes, showSystem } from './lab/panels.js';
 import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
 import { wireRecord } from './lab/record.js';
-import { buildForm } from './lab/form.js';
+import { buildForm, fieldsOf, isPart, fieldText } from './lab/form.js';
 
 // ---------------------------------------------------------------- computing
 // One computation in flight at a time. Inputs that arrive meanwhile are merged: when the
@@ -189,19 +189,21 @@ export function wire() {
     leavePresetPoint();
   });
   typed('phase', () => {});
-  for (const k of PART_KEYS.concat(['rd'])) {
+  // The circuit's parts (a preset's, or the paper's until one is edited), the Shockley
+  // diodes' parameters (the library's defaults until one is edited), the mechanical parts.
+  for (const k of fieldsOf('pwl').filter(isPart)) {
     typed(k, () => {
       state.paperParts = false;
       field('preset-choice').value = 'custom';
     });
   }
-  for (const k of SHOCKLEY_KEYS) {
+  for (const k of fieldsOf('shockley').filter((f) => !isPart(f))) {
     typed(k, () => {
       state.shockleyEdited = true;
       field('preset-choice').value = 'custom';
     });
   }
-  for (const k of MECHANICS_KEYS) typed(k, () => {});
+  for (const k of fieldsOf('mechanics')) typed(k, () => {});
 
   // Knobs: every movement computes at once; a newer request drops the one before.
   field('freq-knob').addEventListener('input', (event) => {
@@ -310,12 +312,10 @@ export async function start() {
   custom.value = 'custom';
   custom.textContent = 'custom (values of your own)';
   select.append(custom);
-  for (const k of SHOCKLEY_KEYS) field(k).value = siText(state.shockley[k]);
-  field('temperature').value = num(state.shockley.temperature, 6);
-  field('diode-n').value = num(state.shockley['diode-n'], 6);
+  for (const k of fieldsOf('shockley').filter((f) => !isPart(f))) field(k).value = fieldText(k, state.shockley[k]);
   // Mechanical parts start as the example, for when the model is switched.
   const m = state.presets.find((p) => p.id === 'mechanics');
-  for (const k of MECHANICS_KEYS) field(k).value = num(m.values[k], 6);
+  for (const k of fieldsOf('mechanics')) field(k).value = num(m.values[k], 6);
   // The paper's circuit at its Fig. 3 point (2b): Ω/ω0 = 0.95, β = 2.14.
   select.value = 'fig3-2b';
   applyPreset('fig3-2b');

@@ -27,9 +27,9 @@ use std::time::{Duration, Instant};
 /// The page.
 const INDEX_HTML: &str = include_str!("../assets/index.html");
 /// Its script: the entry module, which imports the modules of [`MODULES`].
-const LAB_JS: &str = include_str!("../assets/lab.js");
+pub(crate) const LAB_JS: &str = include_str!("../assets/lab.js");
 /// The page's ES modules, served at `/lab/<name>` (loaded as they are: no build step).
-const MODULES: [(&str, &str); 9] = [
+pub(crate) const MODULES: [(&str, &str); 9] = [
     ("api.js", include_str!("../assets/lab/api.js")),
     ("export.js", include_str!("../assets/lab/export.js")),
     ("form.js", include_str!("../assets/lab/form.js")),

@@ -2,6 +2,8 @@
 //! command-line tool's) for the same point; bad input, caps and unknown paths are refused
 //! with one line of JSON; the time limit stops a computation.
 
+mod page_keys;
+
 use super::router::{router, Lab, Settings};
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
@@ -528,6 +530,17 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     assert_eq!(status, StatusCode::OK);
     assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
     assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+    // The Shockley diodes' starting values are the 1N4148's, by query key.
+    let d = stickslip::DiodePair::one_n4148();
+    assert_eq!(
+        presets["shockley"],
+        serde_json::json!({
+            "diode-is": d.saturation_current,
+            "diode-n": d.emission,
+            "diode-rs": d.series_resistance,
+            "temperature": d.temperature,
+        })
+    );
 }
 
 #[tokio::test]
@@ -600,6 +613,40 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
     assert_eq!(fit.len(), stickslip::fit::FitParameter::CIRCUIT.len());
     assert!(fit.contains(&"rd") && fit.contains(&"diode-is") && !fit.contains(&"mass"));
     assert_eq!(keys["fit"]["free"], serde_json::json!(["resistance", "ut"]));
+    // By diode law: the library's circuit parameters of that law, in the order of reports.
+    for law in DiodeModel::ALL {
+        let expected: Vec<&str> = stickslip::fit::FitParameter::CIRCUIT
+            .into_iter()
+            .filter(|p| p.applies_to(law))
+            .map(|p| p.label())
+            .collect();
+        assert_eq!(
+            keys["fit"]["by_law"][law.label()],
+            serde_json::json!(expected)
+        );
+    }
+    assert_eq!(
+        keys["fit"]["by_law"]["shockley"],
+        serde_json::json!([
+            "resistance",
+            "diode-is",
+            "diode-n",
+            "diode-rs",
+            "inductance",
+            "capacitance"
+        ])
+    );
+    assert_eq!(
+        keys["fit"]["by_law"]["pwl"],
+        serde_json::json!([
+            "resistance",
+            "ut",
+            "rd",
+            "inductance",
+            "capacitance",
+            "mu-s"
+        ])
+    );
     assert_eq!(keys["keys"][Key::TurnOn as usize]["symbol"], "U_t");
     assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
     assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);

@@ -2,8 +2,37 @@
 // per key of `form`, in the table's order, in the fieldset for the systems it is shown for,
 // labelled with the key's symbol, titled with its help; a "fit" box on the values a fit of
 // a circuit may free (`fit.parameters`), ticked on those it frees by default (`fit.free`).
+// The rest of the page asks this module which keys each system has (the query it sends, the
+// fields a preset fills), which a fit may free by diode law, and each key's symbol and unit:
+// no list of the model's keys is written anywhere else.
 
-import { $ } from './util.js';
+import { $, num, siText } from './util.js';
+
+/** The served key table (/api/keys), kept by `buildForm`: the form's fields in the table's
+ * order, each key's row by its flag, and what a fit may free. */
+const served = { form: [], keys: new Map(), fit: { parameters: [], by_law: {}, free: [] } };
+
+/** The flags of the fields shown for `system` (`pwl`, `shockley`, `mechanics`: the fieldsets'
+ * `data-for-system`), in the table's order. */
+export const fieldsOf = (system) => served.form.filter((f) => f.fieldset.split(' ').includes(system)).map((f) => f.flag);
+
+/** Whether the field is a part of the circuit (L, C, R, U_t, R_D: a preset gives them). */
+export const isPart = (flag) => served.form.some((f) => f.flag === flag && f.part);
+
+/** The fit parameters of a diode law (`pwl`, `shockley`) that have a field, in the table's order. */
+export const fitParametersOf = (law) => served.form.map((f) => f.flag).filter((flag) => (served.fit.by_law[law] || []).includes(flag));
+
+/** A value as its field shows it: a plain number (n, T, the mechanical parts) to `digits`
+ * significant digits, a physical one with its SI prefix (`11.5m`). */
+export const fieldText = (flag, x, digits = 6) => (served.keys.get(flag)?.form === 'plain' ? num(x, digits) : siText(x));
+
+/** A key's symbol (`U_t`) and the unit its field shows (`Ω`; none for a pure number). */
+export function symbolAndUnit(flag) {
+  const key = served.keys.get(flag);
+  if (!key) return [flag, ''];
+  const f = served.form.find((g) => g.flag === flag);
+  return [key.symbol, key.unit === null || !f ? '' : f.unit];
+}
 
 const el = (tag, attributes = {}, children = []) => {
   const e = document.createElement(tag);
@@ -22,6 +51,9 @@ export function symbolNodes(symbol) {
 /** Build the form's fields from the answer of /api/keys; call it before anything reads them. */
 export function buildForm(answer) {
   const keys = new Map(answer.keys.map((k) => [k.flag, k]));
+  served.form = answer.form;
+  served.keys = keys;
+  served.fit = answer.fit;
   const fitSystems = $('#fit').dataset.forSystem.split(' ');
   for (const f of answer.form) {
     const key = keys.get(f.flag);

@@ -2,7 +2,8 @@
 // theory, the mechanical view, the presets and the model's fieldsets.
 
 import { $, $$, field, num, si, siText } from './util.js';
-import { state, PART_KEYS, MECHANICS_KEYS, value } from './state.js';
+import { state, value } from './state.js';
+import { fieldsOf, isPart } from './form.js';
 import { channelColumns, prepare, COLORS, label, displayed } from './scope.js';
 
 // ---------------------------------------------------------------- derived readouts
@@ -239,16 +240,16 @@ export function animate(now) {
 
 // ---------------------------------------------------------------- presets
 export function applyPreset(id) {
-  const preset = state.presets.find((p) => p.id === id);
-  if (!preset) return;
-  const v = preset.values;
-  if (preset.system === 'mechanics') {
+  const chosen = state.presets.find((p) => p.id === id);
+  if (!chosen) return;
+  const v = chosen.values;
+  if (chosen.system === 'mechanics') {
     state.system = 'mechanics';
-    for (const k of MECHANICS_KEYS) if (k in v) field(k).value = num(v[k], 6);
+    for (const k of fieldsOf('mechanics')) if (k in v) field(k).value = num(v[k], 6);
   } else {
     if (state.system === 'mechanics') state.system = 'pwl';
-    for (const k of PART_KEYS.concat(['rd'])) if (k in v) field(k).value = siText(v[k]);
-    state.paperParts = preset.paper;
+    for (const k of fieldsOf('pwl').filter(isPart)) if (k in v) field(k).value = siText(v[k]);
+    state.paperParts = chosen.paper;
   }
   field('system').value = state.system;
   if ('w' in v) state.drive.w = v.w;

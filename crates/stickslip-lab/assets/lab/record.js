@@ -5,18 +5,13 @@
 // Fit is pressed, and the lab keeps nothing. Several files dropped at once are the channels of
 // one record (a Tektronix export writes a file per channel), merged by the lab.
 
-import { $, field, num, si, siText } from './util.js';
+import { $, field, num, si } from './util.js';
 import { latest, slots, isAbort } from './api.js';
 import { state, clearErrors, showError, modelParams } from './state.js';
 import { drawTrace, ysOf, chOn, label, SCREEN } from './scope.js';
+import { fieldsOf, isPart, fitParametersOf, fieldText, symbolAndUnit, symbolNodes } from './form.js';
 
 export const REF_COLORS = { ref1: '#fff6c2', ref2: '#c4f4ff', xy: '#f0f0f0' };
-/** The values a fit may free, by diode law (the names of the fields and of `free`). */
-export const FREE = {
-  pwl: ['inductance', 'capacitance', 'resistance', 'ut', 'rd'],
-  shockley: ['inductance', 'capacitance', 'resistance', 'diode-is', 'diode-n', 'diode-rs'],
-};
-const LABELS = { inductance: ['L', 'H'], capacitance: ['C', 'F'], resistance: ['R', 'Ω'], ut: ['U_t', 'V'], rd: ['R_D', 'Ω'], 'diode-is': ['I_s', 'A'], 'diode-n': ['n', ''], 'diode-rs': ['R_s', 'Ω'], 'mu-s': ['μs', ''] };
 // Degrees to a millionth (a phase of 1e-12° is 0).
 const deg = (rad) => Math.round((rad * 180e6) / Math.PI) / 1e6;
 
@@ -165,7 +160,8 @@ export async function runFit(hooks) {
   const box = $('#fit');
   clearErrors(box);
   const system = state.system === 'shockley' ? 'shockley' : 'pwl';
-  const free = FREE[system].filter((k) => field(`free-${k}`).checked);
+  // The values of the diode law a fit may free (/api/keys), those with a ticked box.
+  const free = fitParametersOf(system).filter((k) => field(`free-${k}`)?.checked);
   if (!free.length) {
     out.dataset.state = 'error';
     out.textContent = 'tick “fit” beside at least one value';
@@ -201,11 +197,11 @@ function showFit(a) {
   const rows = $('[data-fit="rows"]');
   rows.replaceChildren();
   for (const [name, p] of Object.entries(a.parameters)) {
-    const [symbol, unit] = LABELS[name] || [name, ''];
+    const [symbol, unit] = symbolAndUnit(name);
     const tr = document.createElement('tr');
     const th = document.createElement('th');
     th.scope = 'row';
-    th.textContent = symbol;
+    th.append(...symbolNodes(symbol));
     const value = document.createElement('td');
     value.dataset.fit = name;
     value.dataset.value = String(p.value);
@@ -230,8 +226,8 @@ function applyFit(a) {
   for (const [name, v] of Object.entries(k)) {
     if (['freq', 'amplitude', 'phi'].includes(name)) continue;
     const input = field(name);
-    if (input) input.value = name === 'diode-n' ? num(v, 8) : siText(v);
-    if (name.startsWith('diode-')) state.shockleyEdited = true;
+    if (input) input.value = fieldText(name, v, 8);
+    if (fieldsOf('shockley').includes(name) && !isPart(name)) state.shockleyEdited = true;
   }
   state.paperParts = false;
   field('preset-choice').value = 'custom';

@@ -3,6 +3,7 @@
 
 import { $, $$, field } from './util.js';
 import { fftAxes } from './scope.js';
+import { fieldsOf, isPart } from './form.js';
 
 // ---------------------------------------------------------------- state
 export const state = {
@@ -62,26 +63,24 @@ export function showError(failure, fallbackScope) {
 }
 
 // ---------------------------------------------------------------- the model query
-export const PART_KEYS = ['inductance', 'capacitance', 'resistance', 'ut'];
-export const SHOCKLEY_KEYS = ['diode-is', 'diode-n', 'diode-rs', 'temperature'];
-export const MECHANICS_KEYS = ['mass', 'stiffness', 'damping', 'friction', 'mu-s'];
 export const value = (name) => (field(name).value || '').trim();
 
-/** The model keys for the API: the description, and the drive unless `withoutDrive`. */
+/** The model keys for the API: the description, and the drive unless `withoutDrive`. The
+ * keys are the fields of the system's fieldsets (form.js, from /api/keys). Two keys have
+ * behaviour of their own: `preset` (the paper's parts, while none is edited, are sent by the
+ * preset's name) and `model` (the diode law, from the system's selector). */
 export function modelParams({ frequency = true, amplitude = true } = {}) {
   const p = new URLSearchParams();
+  const fields = fieldsOf(state.system);
   if (state.system === 'mechanics') {
-    for (const k of MECHANICS_KEYS) p.set(k, value(k));
+    for (const k of fields) p.set(k, value(k));
   } else {
     if (state.paperParts) p.set('preset', 'paper');
-    else {
-      for (const k of PART_KEYS) p.set(k, value(k));
-      if (state.system === 'pwl') p.set('rd', value('rd'));
-    }
+    else for (const k of fields.filter(isPart)) p.set(k, value(k));
     if (state.system === 'shockley') {
       p.set('model', 'shockley');
       // The 1N4148 defaults are the library's own until a value is edited.
-      if (state.shockleyEdited) for (const k of SHOCKLEY_KEYS) p.set(k, value(k));
+      if (state.shockleyEdited) for (const k of fields.filter((f) => !isPart(f))) p.set(k, value(k));
     }
   }
   if (frequency) {

@@ -71,11 +71,23 @@ fn form() -> Vec<serde_json::Value> {
         .collect()
 }
 
-/// What a fit of a circuit may free (`parameters`, [`FitParameter::CIRCUIT`]) and what it
-/// frees when nothing is ticked (`free`: those of `stickslip fit`, [`default_free`]).
+/// What a fit of a circuit may free (`parameters`, [`FitParameter::CIRCUIT`]), those of each
+/// diode law (`by_law`: `pwl` and `shockley`, [`FitParameter::applies_to`]), and what it frees
+/// when nothing is ticked (`free`: those of `stickslip fit`, [`default_free`]).
 fn fit() -> serde_json::Value {
+    let labels = |law: Option<DiodeModel>| {
+        FitParameter::CIRCUIT
+            .iter()
+            .filter(|p| law.is_none_or(|law| p.applies_to(law)))
+            .map(|p| p.label())
+            .collect::<Vec<_>>()
+    };
     serde_json::json!({
-        "parameters": FitParameter::CIRCUIT.iter().map(|p| p.label()).collect::<Vec<_>>(),
+        "parameters": labels(None),
+        "by_law": DiodeModel::ALL
+            .iter()
+            .map(|&law| (law.label().to_string(), serde_json::json!(labels(Some(law)))))
+            .collect::<serde_json::Map<_, _>>(),
         "free": default_free(DiodeModel::Pwl).split(',').collect::<Vec<_>>(),
     })
 }
@@ -83,7 +95,7 @@ fn fit() -> serde_json::Value {
 /// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model
 /// key's query name `flag`, its `name`, `symbol`, group, unit, range, help and default),
 /// `form` (the fields of the page's form, [`fieldset`]), `fit` (the parameters a fit of a
-/// circuit may free, and those it frees by default), `caps` (as `/api/presets` has them)
+/// circuit may free, those of each diode law, and those it frees by default), `caps` (as `/api/presets` has them)
 /// and `stuck_velocity` (by diode law).
 pub fn keys() -> serde_json::Value {
     serde_json::json!({

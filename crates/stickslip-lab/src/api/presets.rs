@@ -3,7 +3,6 @@
 use crate::query::api_name;
 use serde::Serialize;
 use stickslip::physical::Circuit;
-use stickslip::DiodePair;
 
 /// The points of the paper's Fig. 3: (label, w = Ω/ω0, β), panels (1a)–(2c).
 pub const FIG3_POINTS: [(&str, f64, f64); 6] = [
@@ -31,9 +30,10 @@ pub struct PresetRow {
 }
 
 /// `GET /api/presets`: the paper's circuit, its Fig. 3 points, the 1N4148 Shockley
-/// parameters and a mechanical oscillator with the paper's damping ratio.
+/// parameters (the defaults of the key table's diode group) and a mechanical oscillator with
+/// the paper's damping ratio.
 pub fn presets() -> serde_json::Value {
-    use stickslip::experiment::Key;
+    use stickslip::experiment::{Key, KeyDefault, KeyGroup};
     use stickslip::physical::Diode;
     let paper = Circuit::paper();
     let (turn_on, rd) = match paper.diode {
@@ -85,7 +85,16 @@ pub fn presets() -> serde_json::Value {
         ],
         paper: false,
     });
-    let d = DiodePair::one_n4148();
+    // The Shockley diodes' values the page starts from: every number of the diode group at
+    // its default (the 1N4148's), from the key table.
+    let shockley: serde_json::Map<_, _> = Key::ALL
+        .into_iter()
+        .filter(|k| k.group() == KeyGroup::Diode)
+        .filter_map(|k| match k.default_value()? {
+            KeyDefault::Number(x) => Some((api_name(k), serde_json::json!(x))),
+            KeyDefault::Name(_) => None,
+        })
+        .collect();
     serde_json::json!({
         "presets": rows.iter().map(|r| serde_json::json!({
             "id": r.id,
@@ -95,12 +104,7 @@ pub fn presets() -> serde_json::Value {
             "values": r.values.iter().map(|(k, v)| (k.clone(), serde_json::json!(v)))
                 .collect::<serde_json::Map<_, _>>(),
         })).collect::<Vec<_>>(),
-        "shockley": {
-            api_name(Key::SaturationCurrent): d.saturation_current,
-            api_name(Key::Emission): d.emission,
-            api_name(Key::SeriesResistance): d.series_resistance,
-            api_name(Key::Temperature): d.temperature,
-        },
+        "shockley": shockley,
         "caps": super::keys::caps_json(),
     })
 }
