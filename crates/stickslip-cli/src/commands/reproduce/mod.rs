@@ -44,6 +44,9 @@ pub struct Context {
     pub scales: Scales,
     /// Whether to use coarse grids.
     pub quick: bool,
+    /// The paper's map with the largest Lyapunov exponent of every point, computed once for
+    /// fig. 7 (a) and the chapter "Beyond the paper" ([`beyond::paper_exponent_map`]).
+    pub paper_exponents: std::sync::OnceLock<Vec<stickslip::scan::GridPoint>>,
 }
 
 pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
@@ -61,6 +64,7 @@ pub fn run(args: Args) -> Result<()> {
         diode,
         scales: circuit.scales(),
         quick: args.quick,
+        paper_exponents: std::sync::OnceLock::new(),
     };
     let mut jobs: Vec<Job> = vec![
         ("Table 1", figures::table1),

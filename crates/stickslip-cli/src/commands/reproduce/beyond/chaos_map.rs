@@ -8,22 +8,50 @@ use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
-use stickslip::stability::LyapunovOptions;
+use stickslip::stability::{LyapunovOptions, SEARCH_BEFORE_MEASURING};
 use stickslip::steady::MotionClass;
 use stickslip::theory::curves::{abscissae, theory_curve, theory_value, Theory, TheoryQuantity};
 use stickslip::{Parameter, SteadyOptions};
 
-/// Drive periods of the steady-state search, and measured, at every point of the map.
-const PERIODS: usize = 2000;
+/// Drive periods of the steady-state search, and the most measured, at every point of the
+/// map. 1600 = 20 blocks of 80 periods: the sequential measurement looks after 200, 400, 800
+/// and 1600 periods (2000 looked after 240, 500, 1000, 2000). The test
+/// `the_reports_exponent_map_keeps_every_verdict_of_the_long_run`
+/// (crates/stickslip/tests/lyapunov_sequential.rs) checks these options and [`TRANSIENT`]
+/// against the long run.
+const PERIODS: usize = 1600;
+
+/// Drive periods that align the tangent before a motion is measured. The measurement starts
+/// where the strobe search left the motion, 300 periods from rest, so only the tangent needs
+/// aligning with the most unstable direction; every chaotic motion of this map sticks, and a
+/// stop leaves the Jacobian of rank one, aligned at once.
+const TRANSIENT: usize = 20;
+
+/// Points per axis of the map: the largest square with which `reproduce` takes no more CPU
+/// than it did with 41 × 45 points before (BENCHMARKS.md, "The report's exponent map").
+const SIZE: usize = 78;
+/// Points per axis of the quick report's map.
+const QUICK_SIZE: usize = 22;
 
 /// The map of λ1 and of the classes over w 0.2–0.6, β 3–14, from rest.
 pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
-    let (nw, nb) = if ctx.quick { (21, 23) } else { (41, 45) };
+    let n = if ctx.quick { QUICK_SIZE } else { SIZE };
+    let (nw, nb) = (n, n);
     let w = ParameterRange::new("w", 0.2, 0.6, nw)?;
     let beta = ParameterRange::new("beta", 3.0, 14.0, nb)?;
     let measure = LyapunovOptions {
         periods: PERIODS,
+        transient_periods: TRANSIENT,
         ..SteadyOptions::DEFAULT_LYAPUNOV
+    };
+    let looks = measure
+        .looks()
+        .iter()
+        .map(|l| l.to_string())
+        .collect::<Vec<_>>();
+    let looks = match looks.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => looks.join(""),
     };
     let options = SteadyOptions::default()
         .with_spectrum(false)
@@ -182,6 +210,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "w": [w.from(), w.to()], "beta": [beta.from(), beta.to()],
             "grid": [nw, nb],
             "max_periods": PERIODS, "lyapunov_periods": PERIODS,
+            "lyapunov_transient": TRANSIENT,
             "sliding": count(MotionClass::Sliding),
             "periodic_stick": count(MotionClass::PeriodicStick),
             "nonperiodic_stick": count(MotionClass::NonperiodicStick),
@@ -199,11 +228,16 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         title: "Chaos at ζ = 0, μs = 3: the (w, β) map of the largest Lyapunov exponent".into(),
         caption: format!(
             "(a) The motion class and (b) the largest Lyapunov exponent λ1 at every point of a \
-             {nw} × {nb} grid (w from 0.2 to 0.6, β from 3 to 14), each from rest. Every point is run to its steady state (a \
-             period up to 16 within {PERIODS} drive periods); where it repeats, λ1 is the \
-             exact ln|μ1|/(pT) of its orbit's largest Floquet multiplier; where it does not, λ1 \
-             is measured over {PERIODS} more periods, and the point is chaotic when λ1 exceeds \
-             4 standard errors. Red: chaos (λ1 > 0); blue: contraction onto a periodic motion \
+             {nw} × {nb} grid (w from 0.2 to 0.6, β from 3 to 14), each from rest. Every point \
+             is followed until its strobe repeats (a period up to 16); where it repeats, λ1 is \
+             the exact ln|μ1|/(pT) of its orbit's largest Floquet multiplier. A motion that has \
+             not repeated after {SEARCH_BEFORE_MEASURING} drive periods is measured from there \
+             by its exact tangent dynamics ({TRANSIENT} periods to align the tangent, then \
+             at most {PERIODS} periods in 20 blocks, stopping at the first look, after {looks} \
+             periods, where λ1 is beyond 4 standard errors and the halves of the blocks agree): \
+             chaotic when λ1 > 0, contracting onto a periodic motion not reached yet when \
+             λ1 &lt; 0; a motion still undecided is followed for up to {PERIODS} periods from rest \
+             and measured again there. Red: chaos (λ1 > 0); blue: contraction onto a periodic motion \
              (the bar's lower end is the 2nd percentile of the negative values, lower ones take \
              its colour); white or nearly: λ1 within {} of 0, that is {at_rest} points with \
              λ1 = 0 (at rest: β ≤ μs never moves from rest) and {slow} periodic motions that \
@@ -231,9 +265,9 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             chaotic.len(),
             below,
             if ctx.quick {
-                "--quick: a coarser grid than the full report's 41 × 45"
+                format!("--quick: a coarser grid than the full report's {SIZE} × {SIZE}")
             } else {
-                "--quick uses 21 × 23"
+                format!("--quick uses {QUICK_SIZE} × {QUICK_SIZE}")
             }
         ),
         figures: vec!["chaos-map".into()],

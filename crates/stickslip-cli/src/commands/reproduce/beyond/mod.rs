@@ -10,6 +10,8 @@ mod chaos_map;
 mod chaos_sweep;
 mod paper_exponents;
 
+pub use paper_exponents::paper_exponent_map;
+
 use super::report::Report;
 use super::{Context, Job};
 use crate::plot::class_color;
