@@ -139,6 +139,9 @@ pub(crate) struct Forcing {
     secular: f64,
     /// √(P² + Q²), amplitude of the drive's particular solution.
     drive_amplitude: f64,
+    /// Coefficients (P_k, Q_k) of the k-th derivative of the particular solution,
+    /// P_k cos(wt+θ) + Q_k sin(wt+θ): (P, Q) rotated k times by (P, Q) → (wQ, −wP).
+    drive_orders: [(f64, f64); ORDERS],
     /// Drive amplitude times w³ and w⁴.
     drive_bound: [f64; 2],
     /// Complex amplitudes P_k − i Q_k of the drive in orders 3 and 4.
@@ -166,12 +169,14 @@ impl Forcing {
             drive_q,
             secular,
             drive_amplitude,
+            drive_orders: [(0.0, 0.0); ORDERS],
             drive_bound: [0.0; 2],
             drive_phasors: [(0.0, 0.0); 2],
         };
         // Drive coefficients of order k: (P, Q) rotated k times by (P, Q) → (wQ, −wP).
         let (mut dp, mut dq) = (drive_p, drive_q);
         for k in 0..ORDERS {
+            forcing.drive_orders[k] = (dp, dq);
             if k >= 3 {
                 forcing.drive_bound[k - 3] = drive_amplitude * w.powi(k as i32);
                 forcing.drive_phasors[k - 3] = (dp, -dq);
@@ -323,13 +328,13 @@ impl LinearSegment {
         }
         let (ec, es, envelope, e_sin) = self.forcing.damping.basis(t);
         let (s, c) = sin_cos(self.forcing.w * t + self.theta);
-        // Drive: derivatives of P c + Q s rotate (P, Q) → (wQ, −wP).
-        let (mut p, mut q) = (self.forcing.drive_p, self.forcing.drive_q);
+        // Drive: P_k c + Q_k s.
         let mut d = [0.0; ORDERS];
         let mut hom_v = 0.0;
         let mut drive_v = 0.0;
         for (k, dk) in d.iter_mut().enumerate() {
             let (hp, hq) = self.hom[k];
+            let (p, q) = self.forcing.drive_orders[k];
             let h = hp * ec + hq * es;
             let f = p * c + q * s;
             if k == 1 {
@@ -337,7 +342,6 @@ impl LinearSegment {
                 drive_v = f.abs() + (p * c).abs() + (q * s).abs();
             }
             *dk = h + f;
-            (p, q) = (self.forcing.w * q, -self.forcing.w * p);
         }
         d[0] += self.offset;
         if self.forcing.secular != 0.0 {
@@ -363,18 +367,17 @@ impl LinearSegment {
         let slow = (-damping.decay * t).exp();
         let fast = (-damping.fast * t).exp();
         let (s, c) = sin_cos(self.forcing.w * t + self.theta);
-        let (mut p, mut q) = (self.forcing.drive_p, self.forcing.drive_q);
         let mut d = [0.0; ORDERS];
         let (mut hom_v, mut drive_v) = (0.0, 0.0);
         for (k, dk) in d.iter_mut().enumerate() {
             let (a, b) = self.modes[k];
+            let (p, q) = self.forcing.drive_orders[k];
             let f = p * c + q * s;
             if k == 1 {
                 hom_v = (a * slow).abs() + (b * fast).abs();
                 drive_v = f.abs() + (p * c).abs() + (q * s).abs();
             }
             *dk = a * slow + b * fast + f;
-            (p, q) = (self.forcing.w * q, -self.forcing.w * p);
         }
         d[0] += self.offset;
         Derivatives {

@@ -62,8 +62,9 @@ pub(super) struct Zero {
 enum Predicted {
     /// The first zero.
     Zero(Zero),
-    /// No zero in (0, t]: the careful search continues from t.
-    Clear(f64),
+    /// No zero in (0, t]: the careful search continues from t, with the closed form there
+    /// when the predicted search evaluated it (always when t > 0).
+    Clear(f64, Option<Derivatives>),
 }
 
 /// The state of the search on the current sliding segment, and what it learns from one
@@ -72,6 +73,9 @@ enum Predicted {
 pub(super) struct ZeroSearch {
     /// Local time up to which the current sliding segment is known to have no velocity zero.
     searched: f64,
+    /// The closed form at `searched` when the predicted search left it there (the careful
+    /// search takes it instead of evaluating the same point again).
+    resume: Option<Derivatives>,
     /// The first velocity zero of the current sliding segment, once found.
     zero: Option<Zero>,
     /// Whether the predicted search has run on the current sliding segment.
@@ -90,6 +94,7 @@ impl ZeroSearch {
     pub(super) fn new() -> Self {
         Self {
             searched: 0.0,
+            resume: None,
             zero: None,
             predicted_tried: false,
             kind: 0,
@@ -102,6 +107,7 @@ impl ZeroSearch {
     /// Start on a new sliding segment of the given kind.
     pub(super) fn begin(&mut self, kind: usize) {
         self.searched = 0.0;
+        self.resume = None;
         self.zero = None;
         self.predicted_tried = false;
         self.kind = kind;
@@ -124,8 +130,9 @@ impl ZeroSearch {
             self.predicted_tried = true;
             match self.predicted(sign, linear) {
                 Predicted::Zero(zero) => self.zero = Some(zero),
-                Predicted::Clear(t) => {
+                Predicted::Clear(t, at) => {
                     self.searched = t;
+                    self.resume = at;
                     self.stats.rejected += 1;
                 }
             }
@@ -163,7 +170,7 @@ impl ZeroSearch {
         const NEWTON: usize = 4;
         let (predicted, miss) = self.durations[self.kind];
         if !(predicted > 0.0) || !linear.is_two_phasor() {
-            return Predicted::Clear(0.0);
+            return Predicted::Clear(0.0, None);
         }
         let jet = |e: &Derivatives| Jet {
             g: [sign * e.d[1], sign * e.d[2], sign * e.d[3], sign * e.d[4]],
@@ -176,35 +183,35 @@ impl ZeroSearch {
             start.g[1] = start.g[1].max(0.0);
         }
         if start.g[0] < 0.0 {
-            return Predicted::Clear(0.0);
+            return Predicted::Clear(0.0, None);
         }
         // Aim short of the prediction by more than its last miss, so that b is rarely past
         // the zero and the zero is close beyond it.
         let margin = 1e-7 * predicted + 2.0 * miss;
         let mut b = predicted - margin;
         if !(b > 0.0) {
-            return Predicted::Clear(0.0);
+            return Predicted::Clear(0.0, None);
         }
         let mut eb = self.evaluate(linear, b);
         let mut jb = jet(&eb);
         if jb.g[0] <= jb.noise {
             // Past the zero (or on it): step back twice the Newton distance.
             if !(jb.g[1] < 0.0) {
-                return Predicted::Clear(0.0);
+                return Predicted::Clear(0.0, None);
             }
             b -= 2.0 * (jb.g[0] - jb.noise) / jb.g[1] + margin;
             if !(b > 0.0) {
-                return Predicted::Clear(0.0);
+                return Predicted::Clear(0.0, None);
             }
             eb = self.evaluate(linear, b);
             jb = jet(&eb);
             if jb.g[0] <= jb.noise {
-                return Predicted::Clear(0.0);
+                return Predicted::Clear(0.0, None);
             }
         }
         // (0, b] has no zero: cover it from both ends.
         let (m2, m3) = linear.derivative_bounds(0.0, b, linear.start());
-        let (mut left, mut jl) = (0.0, start);
+        let (mut left, mut jl, mut el) = (0.0, start, None);
         let mut splits = 0;
         loop {
             if certify::covers(jl, jb, b - left, m2, m3) {
@@ -213,15 +220,17 @@ impl ZeroSearch {
             let ahead = certify::reach(jl, m2, m3, b - left);
             splits += 1;
             if splits > SPLITS || !(ahead > 0.0) || left + ahead >= b {
-                return Predicted::Clear(left);
+                return Predicted::Clear(left, el);
             }
             left += ahead;
             let e = self.evaluate(linear, left);
             jl = jet(&e);
+            el = Some(e);
         }
         // The zero beyond b.
         let (m3_all, m4_all) = linear.global_bounds();
         let (mut from, mut p, mut e) = (b, b, eb);
+        let mut e_from = eb;
         for _ in 0..NEWTON {
             match certify::locate(jet(&e), p, from, m3_all, m4_all) {
                 Location::Found(located) => {
@@ -242,13 +251,14 @@ impl ZeroSearch {
                     if sign * eq.d[1] > eq.velocity_noise && q > from {
                         // g decreases from `from` to q and is still positive at q.
                         from = q;
+                        e_from = eq;
                     }
                     (p, e) = (q, eq);
                 }
                 Location::Unknown => break,
             }
         }
-        Predicted::Clear(from)
+        Predicted::Clear(from, Some(e_from))
     }
 
     /// The careful search: first velocity zero of the current sliding segment in local times
@@ -261,8 +271,11 @@ impl ZeroSearch {
         tau0: f64,
     ) -> Result<Option<(f64, f64)>> {
         let mut a = self.searched;
+        let resume = self.resume.take();
         let mut e = if a == 0.0 {
             *linear.start()
+        } else if let Some(at) = resume {
+            at
         } else {
             self.stats.evaluations += 1;
             linear.eval(a)
