@@ -399,22 +399,23 @@ impl ZeroSearch {
         eb: Derivatives,
     ) -> (f64, f64) {
         let mut t = b;
-        let mut e = eb;
+        // y, y', y'' at t: all that Newton's method reads.
+        let mut d = [eb.d[0], eb.d[1], eb.d[2]];
         for _ in 0..100 {
-            let g = sign * e.d[1];
+            let g = sign * d[1];
             if g > 0.0 {
                 a = t;
             } else {
                 b = t;
             }
-            let g1 = sign * e.d[2];
+            let g1 = sign * d[2];
             let newton = if g1 != 0.0 { t - g / g1 } else { f64::NAN };
             // Newton converges quadratically: after a step below 1e-10 the next iterate is
             // exact to rounding, and y moves by v·Δt.
             if (newton - t).abs() <= 1e-10 * t.abs().max(1.0) || g == 0.0 {
                 let next = if g == 0.0 { t } else { newton.clamp(a, b) };
                 self.searched = a;
-                return (next, e.d[0] + e.d[1] * (next - t));
+                return (next, d[0] + d[1] * (next - t));
             }
             let next = if newton > a && newton < b {
                 newton
@@ -422,11 +423,11 @@ impl ZeroSearch {
                 0.5 * (a + b)
             };
             t = next;
-            e = linear.eval(t);
+            d = linear.eval_newton(t);
             self.stats.evaluations += 1;
         }
         self.searched = a;
-        (t, e.d[0])
+        (t, d[0])
     }
 }
 
