@@ -62,9 +62,9 @@ pub(super) struct Zero {
 enum Predicted {
     /// The first zero.
     Zero(Zero),
-    /// No zero in (0, t]: the careful search continues from t, with the closed form there
-    /// when the predicted search evaluated it (always when t > 0).
-    Clear(f64, Option<Derivatives>),
+    /// No zero in (0, t]: the careful search continues from t (with the closed form there
+    /// in `ZeroSearch::resume` when the predicted search has it).
+    Clear(f64),
 }
 
 /// The state of the search on the current sliding segment, and what it learns from one
@@ -130,9 +130,8 @@ impl ZeroSearch {
             self.predicted_tried = true;
             match self.predicted(sign, linear) {
                 Predicted::Zero(zero) => self.zero = Some(zero),
-                Predicted::Clear(t, at) => {
+                Predicted::Clear(t) => {
                     self.searched = t;
-                    self.resume = at;
                     self.stats.rejected += 1;
                 }
             }
@@ -170,7 +169,7 @@ impl ZeroSearch {
         const NEWTON: usize = 4;
         let (predicted, miss) = self.durations[self.kind];
         if !(predicted > 0.0) || !linear.is_two_phasor() {
-            return Predicted::Clear(0.0, None);
+            return Predicted::Clear(0.0);
         }
         let jet = |e: &Derivatives| Jet {
             g: [sign * e.d[1], sign * e.d[2], sign * e.d[3], sign * e.d[4]],
@@ -183,30 +182,30 @@ impl ZeroSearch {
             start.g[1] = start.g[1].max(0.0);
         }
         if start.g[0] < 0.0 {
-            return Predicted::Clear(0.0, None);
+            return Predicted::Clear(0.0);
         }
         // Aim short of the prediction by more than its last miss, so that b is rarely past
         // the zero and the zero is close beyond it.
         let margin = 1e-7 * predicted + 2.0 * miss;
         let mut b = predicted - margin;
         if !(b > 0.0) {
-            return Predicted::Clear(0.0, None);
+            return Predicted::Clear(0.0);
         }
         let mut eb = self.evaluate(linear, b);
         let mut jb = jet(&eb);
         if jb.g[0] <= jb.noise {
             // Past the zero (or on it): step back twice the Newton distance.
             if !(jb.g[1] < 0.0) {
-                return Predicted::Clear(0.0, None);
+                return Predicted::Clear(0.0);
             }
             b -= 2.0 * (jb.g[0] - jb.noise) / jb.g[1] + margin;
             if !(b > 0.0) {
-                return Predicted::Clear(0.0, None);
+                return Predicted::Clear(0.0);
             }
             eb = self.evaluate(linear, b);
             jb = jet(&eb);
             if jb.g[0] <= jb.noise {
-                return Predicted::Clear(0.0, None);
+                return Predicted::Clear(0.0);
             }
         }
         // (0, b] has no zero: cover it from both ends.
@@ -220,7 +219,8 @@ impl ZeroSearch {
             let ahead = certify::reach(jl, m2, m3, b - left);
             splits += 1;
             if splits > SPLITS || !(ahead > 0.0) || left + ahead >= b {
-                return Predicted::Clear(left, el);
+                self.resume = el;
+                return Predicted::Clear(left);
             }
             left += ahead;
             let e = self.evaluate(linear, left);
@@ -230,7 +230,6 @@ impl ZeroSearch {
         // The zero beyond b.
         let (m3_all, m4_all) = linear.global_bounds();
         let (mut from, mut p, mut e) = (b, b, eb);
-        let mut e_from = eb;
         for _ in 0..NEWTON {
             match certify::locate(jet(&e), p, from, m3_all, m4_all) {
                 Location::Found(located) => {
@@ -251,14 +250,21 @@ impl ZeroSearch {
                     if sign * eq.d[1] > eq.velocity_noise && q > from {
                         // g decreases from `from` to q and is still positive at q.
                         from = q;
-                        e_from = eq;
                     }
                     (p, e) = (q, eq);
                 }
                 Location::Unknown => break,
             }
         }
-        Predicted::Clear(from, Some(e_from))
+        // The closed form at `from`, when it is one of the points evaluated last.
+        self.resume = if from == p {
+            Some(e)
+        } else if from == b {
+            Some(eb)
+        } else {
+            None
+        };
+        Predicted::Clear(from)
     }
 
     /// The careful search: first velocity zero of the current sliding segment in local times
