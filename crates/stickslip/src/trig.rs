@@ -61,15 +61,21 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     // Round to the nearest integer by adding and removing 1.5·2⁵²: exact for |x·2/π| < 2⁵¹,
     // and cheaper than `round` on targets without a rounding instruction.
     const TO_INT: f64 = 1.5 / f64::EPSILON;
-    let n = (x * FRAC_2_PI + TO_INT) - TO_INT;
+    let big = x * FRAC_2_PI + TO_INT;
+    let n = big - TO_INT;
     let r = ((x - n * P1) - n * P2) - n * P3;
     let (s, c) = (kernel_sin(r), kernel_cos(r));
-    match (n as i64) & 3 {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    // The quadrant n mod 4 is in the last two bits of `big` (its unit in the last place is 1
+    // and 1.5·2⁵² leaves them alone): (s, c), (c, −s), (−s, −c), (−c, s) for quadrants 0 to
+    // 3, by a swap and two sign flips instead of a four-way branch.
+    let quadrant = big.to_bits();
+    let (s, c) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
+    let flip_sin = (quadrant & 2) << 62;
+    let flip_cos = (quadrant.wrapping_add(1) & 2) << 62;
+    (
+        f64::from_bits(s.to_bits() ^ flip_sin),
+        f64::from_bits(c.to_bits() ^ flip_cos),
+    )
 }
 
 #[cfg(test)]
@@ -84,6 +90,51 @@ mod tests {
             (s - rs).abs() <= f64::EPSILON && (c - rc).abs() <= f64::EPSILON,
             "x = {x:e}: ({s:e}, {c:e}) against ({rs:e}, {rc:e})"
         );
+    }
+
+    /// The quadrant's swap and sign flips give the same bits as the four-way choice
+    /// `match n & 3 { 0 => (s, c), 1 => (c, −s), 2 => (−s, −c), _ => (−c, s) }` on the
+    /// integer n, for every quadrant and sign of the argument and at signed zeros.
+    #[test]
+    fn the_quadrant_from_the_rounding_constant_is_the_integer_quadrant() {
+        let reference = |x: f64| {
+            let n = (x * FRAC_2_PI + 1.5 / f64::EPSILON) - 1.5 / f64::EPSILON;
+            let r = ((x - n * P1) - n * P2) - n * P3;
+            let (s, c) = (kernel_sin(r), kernel_cos(r));
+            match (n as i64) & 3 {
+                0 => (s, c),
+                1 => (c, -s),
+                2 => (-s, -c),
+                _ => (-c, s),
+            }
+        };
+        let mut rng = TestRng::new(0x0bad_5eed_1234_5678);
+        let mut quadrants = [0u32; 4];
+        for i in 0..400_000 {
+            let scale = [1.0, 10.0, 1e3, 9.9e4][i % 4];
+            let x = rng.range(-scale, scale);
+            let x = if i % 7 == 0 {
+                (x / 1.57).round() * std::f64::consts::FRAC_PI_2
+            } else {
+                x
+            };
+            let (s, c) = sin_cos(x);
+            let (rs, rc) = reference(x);
+            assert!(
+                s.to_bits() == rs.to_bits() && c.to_bits() == rc.to_bits(),
+                "x = {x:e}: ({s:e}, {c:e}) against ({rs:e}, {rc:e})"
+            );
+            let n = (x * FRAC_2_PI).round() as i64;
+            quadrants[(n & 3) as usize] += 1;
+        }
+        assert!(quadrants.iter().all(|&q| q > 50_000), "{quadrants:?}");
+        for x in [0.0, -0.0, 1e-300, -1e-300] {
+            let ((s, c), (rs, rc)) = (sin_cos(x), reference(x));
+            assert!(
+                s.to_bits() == rs.to_bits() && c.to_bits() == rc.to_bits(),
+                "{x:e}"
+            );
+        }
     }
 
     #[test]

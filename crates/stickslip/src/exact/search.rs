@@ -62,7 +62,8 @@ pub(super) struct Zero {
 enum Predicted {
     /// The first zero.
     Zero(Zero),
-    /// No zero in (0, t]: the careful search continues from t.
+    /// No zero in (0, t]: the careful search continues from t (with the closed form there
+    /// in `ZeroSearch::resume` when the predicted search has it).
     Clear(f64),
 }
 
@@ -72,6 +73,9 @@ enum Predicted {
 pub(super) struct ZeroSearch {
     /// Local time up to which the current sliding segment is known to have no velocity zero.
     searched: f64,
+    /// The closed form at `searched` when the predicted search left it there (the careful
+    /// search takes it instead of evaluating the same point again).
+    resume: Option<Derivatives>,
     /// The first velocity zero of the current sliding segment, once found.
     zero: Option<Zero>,
     /// Whether the predicted search has run on the current sliding segment.
@@ -90,6 +94,7 @@ impl ZeroSearch {
     pub(super) fn new() -> Self {
         Self {
             searched: 0.0,
+            resume: None,
             zero: None,
             predicted_tried: false,
             kind: 0,
@@ -102,6 +107,7 @@ impl ZeroSearch {
     /// Start on a new sliding segment of the given kind.
     pub(super) fn begin(&mut self, kind: usize) {
         self.searched = 0.0;
+        self.resume = None;
         self.zero = None;
         self.predicted_tried = false;
         self.kind = kind;
@@ -204,7 +210,7 @@ impl ZeroSearch {
         }
         // (0, b] has no zero: cover it from both ends.
         let (m2, m3) = linear.derivative_bounds(0.0, b, linear.start());
-        let (mut left, mut jl) = (0.0, start);
+        let (mut left, mut jl, mut el) = (0.0, start, None);
         let mut splits = 0;
         loop {
             if certify::covers(jl, jb, b - left, m2, m3) {
@@ -213,11 +219,13 @@ impl ZeroSearch {
             let ahead = certify::reach(jl, m2, m3, b - left);
             splits += 1;
             if splits > SPLITS || !(ahead > 0.0) || left + ahead >= b {
+                self.resume = el;
                 return Predicted::Clear(left);
             }
             left += ahead;
             let e = self.evaluate(linear, left);
             jl = jet(&e);
+            el = Some(e);
         }
         // The zero beyond b.
         let (m3_all, m4_all) = linear.global_bounds();
@@ -248,6 +256,14 @@ impl ZeroSearch {
                 Location::Unknown => break,
             }
         }
+        // The closed form at `from`, when it is one of the points evaluated last.
+        self.resume = if from == p {
+            Some(e)
+        } else if from == b {
+            Some(eb)
+        } else {
+            None
+        };
         Predicted::Clear(from)
     }
 
@@ -261,8 +277,11 @@ impl ZeroSearch {
         tau0: f64,
     ) -> Result<Option<(f64, f64)>> {
         let mut a = self.searched;
+        let resume = self.resume.take();
         let mut e = if a == 0.0 {
             *linear.start()
+        } else if let Some(at) = resume {
+            at
         } else {
             self.stats.evaluations += 1;
             linear.eval(a)
@@ -386,22 +405,23 @@ impl ZeroSearch {
         eb: Derivatives,
     ) -> (f64, f64) {
         let mut t = b;
-        let mut e = eb;
+        // y, y', y'' at t: all that Newton's method reads.
+        let mut d = [eb.d[0], eb.d[1], eb.d[2]];
         for _ in 0..100 {
-            let g = sign * e.d[1];
+            let g = sign * d[1];
             if g > 0.0 {
                 a = t;
             } else {
                 b = t;
             }
-            let g1 = sign * e.d[2];
+            let g1 = sign * d[2];
             let newton = if g1 != 0.0 { t - g / g1 } else { f64::NAN };
             // Newton converges quadratically: after a step below 1e-10 the next iterate is
             // exact to rounding, and y moves by v·Δt.
             if (newton - t).abs() <= 1e-10 * t.abs().max(1.0) || g == 0.0 {
                 let next = if g == 0.0 { t } else { newton.clamp(a, b) };
                 self.searched = a;
-                return (next, e.d[0] + e.d[1] * (next - t));
+                return (next, d[0] + d[1] * (next - t));
             }
             let next = if newton > a && newton < b {
                 newton
@@ -409,11 +429,11 @@ impl ZeroSearch {
                 0.5 * (a + b)
             };
             t = next;
-            e = linear.eval(t);
+            d = linear.eval_newton(t);
             self.stats.evaluations += 1;
         }
         self.searched = a;
-        (t, e.d[0])
+        (t, d[0])
     }
 }
 

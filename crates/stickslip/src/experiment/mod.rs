@@ -764,9 +764,7 @@ impl SolverFactory for ExperimentFactory {
                 self.options,
                 self.cancel.clone(),
             )?)),
-            None => Ok(Box::new(
-                ExactSolver::new(params, initial).with_cancel(self.cancel.clone()),
-            )),
+            None => Ok(ExactSolver::boxed(params, initial, self.cancel.clone())),
         }
     }
 
