@@ -45,9 +45,13 @@
 //! periods, stops and symmetry at all 160 000 points, gains to 2·10⁻¹⁰ relative), and the
 //! chaos map at ζ = 0, μs = 3 (w 0.2–0.6, β 3–14), where the check on one step and without
 //! the events had settled 34 cells on orbits the trajectory leaves. The cycle is then
-//! recorded from x* on a new solver (x* is a fixed point to Newton's tolerance,
-//! 10⁻¹²·max(1, |x*|)·max(1, |M|)), with period 1; motions of longer period, and points where
+//! recorded from x* on a new solver, with period 1; motions of longer period, and points where
 //! Newton fails or the checks never pass, are settled by the repetition test as before.
+//! Newton's iteration stops at a residual of 10⁻⁸·max(1, |x|)·max(1, |M|) and takes one more
+//! step without evaluating the map there (its error is quadratic in that residual): that
+//! saves the map's last evaluation, a tangent period. The recorded period checks x*: it must
+//! repeat to tol·scale·(1 − ρ) (which puts x* within about tol·scale of the orbit), or the
+//! point is settled again without Newton.
 //!
 //! `periods_to_settle` of a motion that settles counts the strobe periods run and the periods
 //! of the Newton attempts (the image at the guess and one per step). The attempts do not
@@ -101,9 +105,10 @@ use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{run_until, Event, EventKind, Phase, Sample, Solver};
+use crate::stability::periodic_orbit::find_periodic_orbit_finished;
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions,
-    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
+    lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
+    NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
 };
 use std::collections::VecDeque;
 
@@ -139,6 +144,10 @@ struct Settled {
     scale: f64,
     /// Events per period over the last cycle (for the automatic sample count).
     events_per_period: f64,
+    /// The spectral radius ρ of the monodromy of the orbit Newton's method settled the motion
+    /// on (the record starts at its fixed point, which the record's own period must
+    /// confirm); `None` when settled by repetition.
+    by_newton: Option<f64>,
 }
 
 /// Where to restart after an extrapolation of the stroboscopic map, if the last strobes
@@ -318,7 +327,7 @@ const MAX_NEWTON_ATTEMPTS: usize = 3;
 /// Newton's options for settling: an attempt that does not converge quickly is abandoned (the
 /// trajectory goes on), so few steps and halvings.
 const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
-    tolerance: 1e-12,
+    tolerance: 1e-8,
     max_iterations: 6,
     max_halvings: 2,
     neutral_band: 1e-9,
@@ -365,7 +374,7 @@ impl NewtonSettling {
         {
             self.attempts += 1;
             self.last_step = step;
-            match find_periodic_orbit(params, x, 1, &SETTLING_NEWTON) {
+            match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON) {
                 Ok(orbit) => {
                     self.periods += orbit.residuals.len();
                     if orbit.stability == Stability::Stable {
@@ -554,6 +563,7 @@ fn run_to_cycle<H: Holder>(
                     strobe_index: 0,
                     scale: scale.max(orbit.state.y.abs()).max(orbit.state.v.abs()),
                     events_per_period: orbit.events.len() as f64,
+                    by_newton: Some(orbit.multipliers[0].modulus()),
                 });
             }
         }
@@ -579,6 +589,7 @@ fn run_to_cycle<H: Holder>(
         strobe_index: base + local as u64,
         scale,
         events_per_period: events as f64 / cycle as f64,
+        by_newton: None,
     })
 }
 
@@ -667,6 +678,17 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
     let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
     let exact = holder.solver.is_exact();
     let steady = record(holder.solver.as_mut(), params, &options, &settled)?;
+    if settled.by_newton.is_some_and(|radius| {
+        distance(steady.strobes[0], steady.strobes[1])
+            > options.tolerance * settled.scale * (1.0 - radius)
+    }) {
+        // Newton's fixed point ends in a step the map was not evaluated at (see
+        // `find_periodic_orbit_finished`): the period recorded from it must repeat to
+        // tol·scale·(1 − ρ), which puts it within tol·scale of the orbit (to first order,
+        // |x − x*| ≤ |P(x) − x|/(1 − ρ)), or the point is settled without Newton.
+        drop(holder);
+        return steady_state_from(factory, params, initial, &options.with_newton(false));
+    }
     measure(steady, exact, &options, &factory.cancel())
 }
 
