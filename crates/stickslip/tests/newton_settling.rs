@@ -1,6 +1,7 @@
-//! Map points settled by Newton's method on the stroboscopic map
-//! ([`SteadyOptions::newton`]) against the same points settled by iterating the map until it
-//! repeats (the path without Newton, kept callable by `with_newton(false)`).
+//! Map points settled by Newton's method on the stroboscopic map ([`SteadyOptions::newton`],
+//! on by default) against the same points settled by iterating the map until it repeats (the
+//! path without Newton, kept callable by `with_newton(false)`), and a map's point against the
+//! steady state of the same point.
 
 use stickslip::experiment::Experiment;
 use stickslip::report::MapRow;
@@ -35,8 +36,8 @@ fn fnv1a(bytes: &[u8]) -> u64 {
     })
 }
 
-/// The default path (without Newton) gives the paper's 400 × 400 map byte for byte as the
-/// commit before the map's speed-ups did (the settling's bookkeeping was made cheaper without
+/// The plain iteration (Newton turned off explicitly: the oracle of the tests below) gives the
+/// paper's 400 × 400 map byte for byte as the commit before the map's speed-ups did (the settling's bookkeeping was made cheaper without
 /// changing one operation on the numbers): the digest is that of the rows (no header) of
 /// `stickslip phase-diagram --preset paper --w-steps 400 --beta-steps 400 --out m.csv` at
 /// commit d51dcd8, 10 805 560 bytes. A change of any class, period, stop count or gain, even
@@ -276,4 +277,132 @@ fn chaos_map_is_unchanged_by_newton() {
     eprintln!(
         "{settled_by_newton} cells shortened by Newton, {rerun} checked against the long run"
     );
+}
+
+/// A map's point is the steady state of the same point, whichever way it settled: the CLI's
+/// and Python's `steady` ([`Experiment::steady`], with the spectrum) and the lab's endpoint
+/// (`steady_state_from` with the experiment's factory and options) give the same class,
+/// period, stops, symmetry and gain, to the bit, as the map (which computes no spectrum), at
+/// points settled by Newton and by repetition, sliding, sticking and static. Also with Newton
+/// turned off: the record does not depend on the spectrum either way.
+#[test]
+fn a_map_point_is_the_steady_state_of_the_same_point() {
+    let base = Experiment::paper();
+    let grid = Grid::new(
+        &base,
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.1, 2.5, 13).unwrap(),
+        )
+        .unwrap(),
+        Axis::range(
+            Parameter::Beta,
+            &ParameterRange::new("beta", 0.5, 4.0, 11).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    assert!(grid.steady_options().newton, "Newton is on by default");
+    let mut by_newton = 0;
+    for newton in [true, false] {
+        let options = grid.steady_options().with_newton(newton);
+        let map = grid.clone().options(options).unwrap().run(&()).unwrap();
+        let plain = grid
+            .clone()
+            .options(options.with_newton(false))
+            .unwrap()
+            .run(&())
+            .unwrap();
+        for (point, old) in map.points.iter().zip(&plain.points) {
+            let at = (point.params.w, point.params.beta);
+            let e = base
+                .clone()
+                .with_w(point.params.w)
+                .unwrap()
+                .with_beta(point.params.beta)
+                .unwrap();
+            let steady_options = e.steady_options().with_newton(newton);
+            assert!(steady_options.spectrum);
+            let cli = e.steady_with(&steady_options).unwrap();
+            let lab = steady_state_from(&e.factory(), &point.params, e.initial(), &steady_options)
+                .unwrap();
+            for s in [&cli, &lab] {
+                assert!(s.spectrum.is_some());
+                assert_eq!(
+                    (s.class, s.period, s.stops_per_period, s.symmetric),
+                    (
+                        point.class,
+                        point.period,
+                        point.stops_per_period,
+                        point.symmetric
+                    ),
+                    "at {at:?}, newton {newton}"
+                );
+                assert_eq!(
+                    s.gain.to_bits(),
+                    point.gain.to_bits(),
+                    "gain at {at:?}, newton {newton}: {} steady, {} map",
+                    s.gain,
+                    point.gain
+                );
+                assert_eq!(s.periods_to_settle, point.periods_to_settle, "at {at:?}");
+            }
+            if newton && point.periods_to_settle < old.periods_to_settle {
+                by_newton += 1;
+            }
+        }
+    }
+    // The comparison means something only if Newton settled many of the points.
+    assert!(by_newton > 40, "Newton settled {by_newton} of 143 points");
+}
+
+/// The spectrum's samples are read from the intervals the solver advances through anyway:
+/// with and without them the record holds the same events, strobes and half-period states,
+/// bit for bit (at a point of every kind, settled by Newton and not), and the samples are the
+/// exact dense output (they agree with a separate solver started at the record's start).
+#[test]
+fn the_record_does_not_depend_on_the_spectrum() {
+    let factory = Experiment::paper().factory();
+    for (w, beta) in [
+        (0.9, 1.6),
+        (0.6, 1.2),
+        (0.15, 2.0),
+        (0.7, 1.0),
+        (1.868, 3.877),
+    ] {
+        let params = Params::new(0.0468, w, beta).unwrap();
+        for newton in [true, false] {
+            let options = SteadyOptions::default().with_newton(newton);
+            let with = steady_state_from(&factory, &params, State::default(), &options).unwrap();
+            let without = steady_state_from(
+                &factory,
+                &params,
+                State::default(),
+                &options.with_spectrum(false),
+            )
+            .unwrap();
+            let at = (w, beta, newton);
+            assert_eq!(with.events, without.events, "events at {at:?}");
+            assert_eq!(with.strobes, without.strobes, "strobes at {at:?}");
+            assert_eq!(with.half_strobes, without.half_strobes, "at {at:?}");
+            assert_eq!(with.gain.to_bits(), without.gain.to_bits(), "at {at:?}");
+            let n = with.spectrum.as_ref().unwrap().samples_per_period;
+            assert_eq!(with.trace.len(), n * with.recorded_periods, "at {at:?}");
+            // The samples against a run of the exact solver from the record's first strobe,
+            // stopped at every sample (the way the samples were taken before).
+            let mut solver = stickslip::ExactSolver::new(params, with.strobes[0]);
+            let times: Vec<f64> = with.trace.iter().map(|s| s.tau - with.start).collect();
+            let fresh = stickslip::solver::sample_at(&mut solver, &times, |_| {}).unwrap();
+            let scale = with.peak.max(1.0);
+            for (a, b) in with.trace.iter().zip(&fresh) {
+                assert!(
+                    (a.y - b.y).abs() <= 1e-9 * scale && (a.v - b.v).abs() <= 1e-9 * scale,
+                    "sample at {} of {at:?}: {} against {}",
+                    a.tau,
+                    a.y,
+                    b.y
+                );
+            }
+        }
+    }
 }

@@ -156,6 +156,32 @@ pub fn find_periodic_orbit(
     period: usize,
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
+    find_orbit(params, guess, period, options, false)
+}
+
+/// [`find_periodic_orbit`] to `options.tolerance`, and then one more Newton step from the
+/// last iterate, without evaluating the map there: the orbit's state is that step's end, its
+/// monodromy, events and multipliers those of the last image (one step before). Near the
+/// orbit the step's error is quadratic in the last residual, so a loose tolerance saves the
+/// map's last evaluation; the caller must check the state it gets (the steady-state search
+/// checks it by the repetition of the cycle it records from it).
+pub(crate) fn find_periodic_orbit_finished(
+    params: &Params,
+    guess: State,
+    period: usize,
+    options: &NewtonOptions,
+) -> Result<PeriodicOrbit> {
+    find_orbit(params, guess, period, options, true)
+}
+
+/// See [`find_periodic_orbit`] and [`find_periodic_orbit_finished`].
+fn find_orbit(
+    params: &Params,
+    guess: State,
+    period: usize,
+    options: &NewtonOptions,
+    finish: bool,
+) -> Result<PeriodicOrbit> {
     let options = options.validate()?;
     let mut x = State::new(guess.y, guess.v)?;
     let mut image = strobe_map(params, x, period)?;
@@ -243,6 +269,20 @@ pub fn find_periodic_orbit(
     } else {
         Stability::Unstable
     };
+    if finish {
+        let m = image.jacobian;
+        let step = if image.stuck_at_start && image.stuck_at_end {
+            let slope = m.0[0][0] - 1.0;
+            [if slope != 0.0 { -r[0] / slope } else { 0.0 }, 0.0]
+        } else {
+            m.minus_identity()
+                .solve([-r[0], -r[1]])
+                .unwrap_or([0.0, 0.0])
+        };
+        if let Ok(next) = State::new(x.y + step[0], x.v + step[1]) {
+            x = next;
+        }
+    }
     let drive_period = params.drive_period();
     let end = period as f64 * drive_period;
     Ok(PeriodicOrbit {

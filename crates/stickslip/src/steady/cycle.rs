@@ -12,8 +12,8 @@
 //! periods without a special case. Without a period within [`SteadyOptions::max_periods`]
 //! the motion is called non-periodic.
 //!
-//! **Settling by Newton** ([`SteadyOptions::newton`], exact solver, with a factory and
-//! [`SteadyOptions::accelerate`]). From the second strobe on, whenever the strobe step
+//! **Settling by Newton** ([`SteadyOptions::newton`], on by default; exact solver, with a
+//! factory and [`SteadyOptions::accelerate`]). From the second strobe on, whenever the strobe step
 //! |x_k − x_{k−1}| shrinks (and is at most a quarter of the step at the last attempt, at most
 //! three attempts of six steps each), Newton's method on the strobe map
 //! ([`crate::stability::find_periodic_orbit`], period 1) is started from x_k. A stable fixed
@@ -45,9 +45,13 @@
 //! periods, stops and symmetry at all 160 000 points, gains to 2·10⁻¹⁰ relative), and the
 //! chaos map at ζ = 0, μs = 3 (w 0.2–0.6, β 3–14), where the check on one step and without
 //! the events had settled 34 cells on orbits the trajectory leaves. The cycle is then
-//! recorded from x* on a new solver (x* is a fixed point to Newton's tolerance,
-//! 10⁻¹²·max(1, |x*|)·max(1, |M|)), with period 1; motions of longer period, and points where
+//! recorded from x* on a new solver, with period 1; motions of longer period, and points where
 //! Newton fails or the checks never pass, are settled by the repetition test as before.
+//! Newton's iteration stops at a residual of 10⁻⁸·max(1, |x|)·max(1, |M|) and takes one more
+//! step without evaluating the map there (its error is quadratic in that residual): that
+//! saves the map's last evaluation, a tangent period. The recorded period checks x*: it must
+//! repeat to tol·scale·(1 − ρ) (which puts x* within about tol·scale of the orbit), or the
+//! point is settled again without Newton.
 //!
 //! `periods_to_settle` of a motion that settles counts the strobe periods run and the periods
 //! of the Newton attempts (the image at the guess and one per step). The attempts do not
@@ -68,6 +72,19 @@
 //! recorded: the exact event log, the states at every strobe and half-period, and optionally
 //! N samples per period of the dense output for the [`Spectrum`]. Extremes of y are exact:
 //! y has its extremes where y' = 0, that is at events, which the log holds with their exact y.
+//! The solver is advanced to the same half-period and period ends with or without the samples,
+//! which are read from the dense output of the intervals it advances through, and the
+//! extremes are taken from the events and strobes alone: the record, and with it the class,
+//! period, stops, symmetry and gain, does not depend on [`SteadyOptions::spectrum`].
+//!
+//! **One search for every front end.** A map's point (which computes no spectrum), a sweep's
+//! first step, `stickslip steady`, Python's `steady` and the lab's steady endpoint all settle
+//! a point from its initial state by [`steady_state_from`] with the experiment's factory and
+//! options; since the spectrum changes nothing in the record, a map's point is the steady
+//! state of the same point to the bit, whether it settled by Newton or by repetition (test
+//! `a_map_point_is_the_steady_state_of_the_same_point`). That is why Newton can be on by
+//! default: the cycle it records from the fixed point differs from the plain iteration's in
+//! the last bits (within 10⁻⁹ relative on the paper's map), but the same way everywhere.
 //!
 //! **Symmetry.** The equation is unchanged by (y, y', τ) → (−y, −y', τ + T/2), so a cycle is
 //! symmetric when the state half a period after a strobe is minus the state at some strobe of
@@ -87,10 +104,11 @@ use super::SolverFactory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::solver::{run_until, sample_at, Event, EventKind, Phase, Solver};
+use crate::solver::{run_until, Event, EventKind, Phase, Sample, Solver};
+use crate::stability::periodic_orbit::find_periodic_orbit_finished;
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions,
-    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
+    lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
+    NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
 };
 use std::collections::VecDeque;
 
@@ -126,6 +144,10 @@ struct Settled {
     scale: f64,
     /// Events per period over the last cycle (for the automatic sample count).
     events_per_period: f64,
+    /// The spectral radius ρ of the monodromy of the orbit Newton's method settled the motion
+    /// on (the record starts at its fixed point, which the record's own period must
+    /// confirm); `None` when settled by repetition.
+    by_newton: Option<f64>,
 }
 
 /// Where to restart after an extrapolation of the stroboscopic map, if the last strobes
@@ -228,6 +250,8 @@ trait Holder {
     fn restart(&mut self, state: State) -> Result<bool>;
     /// Whether [`Holder::restart`] can start a new solver.
     fn can_restart(&self) -> bool;
+    /// The token the solvers check (charged with the work of Newton's tangent periods too).
+    fn cancel(&self) -> Cancel;
 }
 
 /// A solver that cannot be restarted.
@@ -243,6 +267,9 @@ impl<S: Solver + ?Sized> Holder for Plain<'_, S> {
     }
     fn can_restart(&self) -> bool {
         false
+    }
+    fn cancel(&self) -> Cancel {
+        Cancel::never()
     }
 }
 
@@ -264,6 +291,9 @@ impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
     }
     fn can_restart(&self) -> bool {
         true
+    }
+    fn cancel(&self) -> Cancel {
+        self.factory.cancel()
     }
 }
 
@@ -297,7 +327,7 @@ const MAX_NEWTON_ATTEMPTS: usize = 3;
 /// Newton's options for settling: an attempt that does not converge quickly is abandoned (the
 /// trajectory goes on), so few steps and halvings.
 const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
-    tolerance: 1e-12,
+    tolerance: 1e-8,
     max_iterations: 6,
     max_halvings: 2,
     neutral_band: 1e-9,
@@ -344,7 +374,7 @@ impl NewtonSettling {
         {
             self.attempts += 1;
             self.last_step = step;
-            match find_periodic_orbit(params, x, 1, &SETTLING_NEWTON) {
+            match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON) {
                 Ok(orbit) => {
                     self.periods += orbit.residuals.len();
                     if orbit.stability == Stability::Stable {
@@ -509,10 +539,21 @@ fn run_to_cycle<H: Holder>(
                 tau: e.tau - last_start,
                 ..*e
             });
-        if let Some(orbit) = newton
+        let events_last = recent.iter().filter(|(m, _)| *m == local).count();
+        let before = spent(&newton);
+        let accepted = newton
             .as_mut()
-            .and_then(|n| n.step(params, &history, last_period, budget))
-        {
+            .and_then(|n| n.step(params, &history, last_period, budget));
+        let tangent = spent(&newton) - before;
+        if tangent > 0 {
+            // Newton's periods run on a tangent solver of their own: charge them to the token
+            // of the factory's solvers like the strobes' (a step an event, and one a period),
+            // so that budgets, deadlines and cancellation see them.
+            holder
+                .cancel()
+                .charge((tangent * (events_last + 1)) as u64)?;
+        }
+        if let Some(orbit) = accepted {
             // Record the cycle from the orbit's strobe, on a new solver started there.
             if holder.restart(orbit.state)? {
                 let tangent_periods = spent(&newton);
@@ -522,6 +563,7 @@ fn run_to_cycle<H: Holder>(
                     strobe_index: 0,
                     scale: scale.max(orbit.state.y.abs()).max(orbit.state.v.abs()),
                     events_per_period: orbit.events.len() as f64,
+                    by_newton: Some(orbit.multipliers[0].modulus()),
                 });
             }
         }
@@ -547,6 +589,7 @@ fn run_to_cycle<H: Holder>(
         strobe_index: base + local as u64,
         scale,
         events_per_period: events as f64 / cycle as f64,
+        by_newton: None,
     })
 }
 
@@ -635,6 +678,17 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
     let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
     let exact = holder.solver.is_exact();
     let steady = record(holder.solver.as_mut(), params, &options, &settled)?;
+    if settled.by_newton.is_some_and(|radius| {
+        distance(steady.strobes[0], steady.strobes[1])
+            > options.tolerance * settled.scale * (1.0 - radius)
+    }) {
+        // Newton's fixed point ends in a step the map was not evaluated at (see
+        // `find_periodic_orbit_finished`): the period recorded from it must repeat to
+        // tol·scale·(1 − ρ), which puts it within tol·scale of the orbit (to first order,
+        // |x − x*| ≤ |P(x) − x|/(1 − ρ)), or the point is settled without Newton.
+        drop(holder);
+        return steady_state_from(factory, params, initial, &options.with_newton(false));
+    }
     measure(steady, exact, &options, &factory.cancel())
 }
 
@@ -692,57 +746,81 @@ fn record<S: Solver + ?Sized>(
     let mut strobes = Vec::with_capacity(recorded + 1);
     strobes.push(solver.state());
     let mut half_strobes = Vec::with_capacity(recorded);
-    let mut trace = Vec::new();
-    let mut spectrum = None;
-    if options.spectrum {
-        let n = options.samples_per_period.unwrap_or_else(|| {
+    // The samples of the spectrum, if asked for, are read from the dense output of the
+    // intervals the solver advances through anyway: the solver is advanced to the same
+    // half-period and period ends with or without them, so the events, strobes and extremes
+    // (and with them the class, gain, stops and symmetry) do not depend on the spectrum, and
+    // a map's point (which has none) equals the steady state of the same point.
+    let samples = options.spectrum.then(|| {
+        options.samples_per_period.unwrap_or_else(|| {
             auto_samples(settled.events_per_period, params, options.harmonics, scale)
-        });
+        })
+    });
+    let times: Vec<f64> = samples.map_or_else(Vec::new, |n| {
         let base = start_index * n as u64;
-        let times: Vec<f64> = (0..(recorded * n) as u64)
+        (0..(recorded * n) as u64)
             .map(|j| (base + j) as f64 / n as f64 * period)
-            .collect();
-        trace = sample_at(solver, &times, |e| events.push(*e))?;
-        run_until(solver, strobe(start_index + recorded as u64, period), |e| {
-            events.push(*e)
-        })?;
-        for j in 0..recorded {
-            let at = |i: usize| State {
-                y: trace[i].y,
-                v: trace[i].v,
-            };
-            if j > 0 {
-                strobes.push(at(j * n));
-            }
-            half_strobes.push(at(j * n + n / 2));
-        }
-        strobes.push(solver.state());
-        let y: Vec<f64> = trace.iter().map(|s| s.y).collect();
-        spectrum = Some(Spectrum::from_samples(
-            &y,
-            recorded,
-            options.harmonics,
-            params.phi,
-        )?);
-    } else {
-        for j in 0..recorded as u64 {
-            let half = (2 * (start_index + j) + 1) as f64 / 2.0 * period;
-            run_until(solver, half, |e| events.push(*e))?;
-            half_strobes.push(solver.state());
-            run_until(solver, strobe(start_index + j + 1, period), |e| {
-                events.push(*e)
-            })?;
-            strobes.push(solver.state());
-        }
+            .collect()
+    });
+    let mut trace = Vec::with_capacity(times.len());
+    let mut next = 0;
+    while next < times.len() && times[next] <= solver.time() {
+        let s = solver.state();
+        trace.push(Sample {
+            tau: times[next],
+            y: s.y,
+            v: s.v,
+            phase: solver.phase(),
+        });
+        next += 1;
     }
+    let mut run_to = |solver: &mut S, t_end: f64, events: &mut Vec<Event>| -> Result<()> {
+        if t_end < solver.time() {
+            return Err(Error::TimeBeforeCurrent {
+                requested: t_end,
+                current: solver.time(),
+            });
+        }
+        while solver.time() < t_end {
+            if let Some(event) = solver.advance(t_end)? {
+                events.push(event);
+            }
+            let to = solver.interval().1;
+            while next < times.len() && times[next] <= to {
+                trace.push(solver.dense(times[next]));
+                next += 1;
+            }
+        }
+        Ok(())
+    };
+    for j in 0..recorded as u64 {
+        let half = (2 * (start_index + j) + 1) as f64 / 2.0 * period;
+        run_to(solver, half, &mut events)?;
+        half_strobes.push(solver.state());
+        run_to(solver, strobe(start_index + j + 1, period), &mut events)?;
+        strobes.push(solver.state());
+    }
+    let spectrum = match samples {
+        Some(_) => {
+            let y: Vec<f64> = trace.iter().map(|s| s.y).collect();
+            Some(Spectrum::from_samples(
+                &y,
+                recorded,
+                options.harmonics,
+                params.phi,
+            )?)
+        }
+        None => None,
+    };
 
     let mut y_min = f64::INFINITY;
     let mut y_max = f64::NEG_INFINITY;
+    // Extremes of y are where y' = 0, at events (and the record's ends): the samples of the
+    // spectrum add nothing, and are left out so that the gain does not depend on them.
     let ys = events
         .iter()
         .map(|e| e.y)
-        .chain(strobes.iter().chain(&half_strobes).map(|s| s.y))
-        .chain(trace.iter().map(|s| s.y));
+        .chain(strobes.iter().chain(&half_strobes).map(|s| s.y));
     for y in ys {
         y_min = y_min.min(y);
         y_max = y_max.max(y);

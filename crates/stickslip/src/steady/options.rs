@@ -31,15 +31,16 @@ pub struct SteadyOptions {
     /// stroboscopic map to its fixed point and restart there when it converges linearly.
     /// Default true. The cycle is always confirmed by the plain repetition test afterwards.
     pub accelerate: bool,
-    /// Whether [`steady_state_from`](super::steady_state_from) (and so sweeps and phase diagrams) may settle the motion
-    /// by Newton's method on the stroboscopic map once its strobes contract (exact solver
-    /// only, together with [`SteadyOptions::accelerate`]): the stable fixed point found is
-    /// accepted when the trajectory is within its basin by the checks of the documentation
-    /// of `steady/cycle.rs` (two strobe steps that follow the orbit's linearisation through the
-    /// orbit's events), and the cycle is recorded from it. Default false: a point settled by
-    /// Newton's method records its cycle from the fixed point, which can differ in the last
-    /// bit from the cycle the plain iteration records, and the steady state of one point must
-    /// equal the same point of a map computed either way.
+    /// Whether [`steady_state_from`](super::steady_state_from) (and so every front end's
+    /// steady state, sweeps, phase diagrams and basins) may settle the motion by Newton's
+    /// method on the stroboscopic map once its strobes contract (exact solver only, together
+    /// with [`SteadyOptions::accelerate`]): the stable fixed point found is accepted when the
+    /// trajectory is within its basin by the checks of the documentation of
+    /// `steady/cycle.rs` (two strobe steps that follow the orbit's linearisation through the
+    /// orbit's events), and the cycle is recorded from it. Default true. A map's point and
+    /// the steady state of the same point go through the same search with the same options
+    /// (the spectrum, which a map does not compute, changes nothing in the record), so they
+    /// are equal whichever way the motion settles.
     #[serde(default = "default_newton")]
     pub newton: bool,
     /// How a motion that does not repeat within the cap is measured (exact model only, see
@@ -60,7 +61,7 @@ impl Default for SteadyOptions {
             samples_per_period: None,
             harmonics: 16,
             accelerate: true,
-            newton: false,
+            newton: true,
             lyapunov: Some(Self::DEFAULT_LYAPUNOV),
         }
     }
