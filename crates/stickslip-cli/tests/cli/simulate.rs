@@ -135,13 +135,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         ),
         (&["--w", "1", "--beta", "2", "--bogus"], "--bogus"),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["simulate"];
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&["simulate"], cases);
 }
 
 #[test]
