@@ -3,66 +3,21 @@
 //! line with exit status 2.
 
 use super::common::{assert_usage_error, run, run_in, stderr, stdout};
-use std::f64::consts::TAU;
 use stickslip::experiment::Experiment;
-use stickslip::physical::{Circuit, Diode, Mechanics, PwlDiode};
-use stickslip::solver::sample_at;
-use stickslip::steady::SolverFactory;
+use stickslip::physical::Mechanics;
+use stickslip_testkit::{stepped_record, truth, Format};
 
-fn truth() -> Experiment {
-    Experiment::circuit(Circuit {
-        resistance: 80.0,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: 0.6,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .unwrap()
-}
-
-/// A Rigol export (or Keysight with `keysight`) of 1200 samples over 3.4 drive periods, 8-bit
-/// quantised with a step of uniform noise (a fixed xorshift sequence).
+/// A Rigol export (or Keysight with `keysight`) of 1200 samples over 3.4 drive periods of
+/// [`truth`] at (w, β), 8-bit quantised with a step of uniform noise (a fixed xorshift
+/// sequence).
 fn export(w: f64, beta: f64, keysight: bool) -> String {
     let e = truth().with_w(w).unwrap().with_beta(beta).unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
-    let n = 1200;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut noise = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut q = |v: f64, peak: f64| {
-        let step = 2.5 * peak / 256.0;
-        ((v + 2.0 * step * noise()) / step).round() * step
-    };
-    let u = beta * scales.force;
-    let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
-    let mut text = if keysight {
-        "x-axis,1,2\nsecond,Volt,Volt\n".to_string()
+    let format = if keysight {
+        Format::Keysight
     } else {
-        format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,0.000000e+00,{dt:.6e}\n")
+        Format::Rigol
     };
-    for k in 0..n {
-        let drive = q(u * (w * taus[k]).cos(), u);
-        let uc = q(samples[k].y * scales.position, peak);
-        if keysight {
-            text += &format!("{:.9e},{drive:.6e},{uc:.6e}\n", k as f64 * dt);
-        } else {
-            text += &format!("{k},{drive:.6e},{uc:.6e},\n");
-        }
-    }
-    text
+    stepped_record(&e, 1200, 3.4, 0x2545_f491_4f6c_dd1d, format)
 }
 
 #[test]
@@ -439,36 +394,8 @@ fn mechanical_export(w: f64, beta: f64) -> String {
         .unwrap()
         .with_beta(beta)
         .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
-    let n = 2400;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut noise = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut q = |v: f64, peak: f64| {
-        let step = 2.5 * peak / 256.0;
-        ((v + 2.0 * step * noise()) / step).round() * step
-    };
-    let f = beta * scales.force;
-    let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
-    let mut text = "time_s,F (N),r (m)\n".to_string();
-    for k in 0..n {
-        let drive = q(f * (w * taus[k]).cos(), f);
-        let r = q(samples[k].y * scales.position, peak);
-        text += &format!("{:.9e},{drive:.6e},{r:.6e}\n", k as f64 * dt);
-    }
-    text
+    let format = Format::Timed("time_s,F (N),r (m)\n");
+    stepped_record(&e, 2400, 3.4, 0x9e37_79b9_7f4a_7c15, format)
 }
 
 #[test]
