@@ -16,7 +16,9 @@ use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
 use stickslip::theory::TheoryReport;
 use stickslip::Parameter;
-use stickslip_testkit::{quantise, rigol, sample_steady, truth, Rng, Synthetic, TRUE_R, TRUE_UT};
+use stickslip_testkit::{
+    driven, quantise, rigol, sample_steady, truth, Rng, Synthetic, TRUE_R, TRUE_UT,
+};
 use tower::ServiceExt;
 
 /// The experiment of a preset, a diode law and values, as the library builds it.
@@ -957,13 +959,7 @@ fn rigol_record(w: f64, beta: f64, phi: f64) -> String {
 
 /// [`rigol_record`] quantised to `bits` bits.
 fn rigol_record_bits(w: f64, beta: f64, phi: f64, bits: i32) -> String {
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 1200;
     let increment = 3.4 * std::f64::consts::TAU / (w * e.scales().unwrap().omega0) / n as f64;
     let s = sample_steady(&e, n, increment);

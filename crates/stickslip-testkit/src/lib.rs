@@ -63,6 +63,14 @@ pub fn truth() -> Experiment {
     circuit(TRUE_R, TRUE_UT)
 }
 
+/// `e` driven at (w, β, φ).
+pub fn driven(e: Experiment, w: f64, beta: f64, phi: f64) -> Experiment {
+    e.with_w(w)
+        .and_then(|e| e.with_beta(beta))
+        .and_then(|e| e.with_phi(phi))
+        .unwrap()
+}
+
 /// A steady state sampled: the drive (V or N) and the response (u_C in V, or the
 /// displacement in m) at the instants `taus` (dimensionless time from the first sample).
 pub struct Samples {
@@ -158,13 +166,7 @@ pub fn synthesise(
     noise: f64,
     rng: &mut Rng,
 ) -> Synthetic {
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 1200;
     let period = TAU / (w * e.scales().unwrap().omega0);
     let increment = 3.4 * period / n as f64;

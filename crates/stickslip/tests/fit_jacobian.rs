@@ -4,7 +4,7 @@
 use stickslip::stability::{find_periodic_orbit, periodic_orbit_sensitivity, NewtonOptions};
 use stickslip::steady::{steady_state_from, SteadyOptions};
 use stickslip::{ExactSolver, MotionClass, Params, State};
-use stickslip_testkit::{keysight, quantise, sample_steady, truth, Rng, Synthetic};
+use stickslip_testkit::{driven, keysight, quantise, sample_steady, truth, Rng, Synthetic};
 
 /// The periodic orbit the motion from rest settles on, polished by Newton's method:
 /// (fixed point, period, class).
@@ -154,11 +154,7 @@ fn an_overdamped_orbit_matches_finite_differences() {
 /// 3.4 periods, 8 bits over 1.25 times each channel's peak-to-peak, one step of noise, an
 /// offset of 30 mV on u_C.
 fn record(w: f64, beta: f64, phi: f64, rng: &mut Rng) -> stickslip::measure::Measurement {
-    let e = truth()
-        .with_w(w)
-        .and_then(|e| e.with_beta(beta))
-        .and_then(|e| e.with_phi(phi))
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 1200;
     let dt = 3.4 * std::f64::consts::TAU / (w * e.scales().unwrap().omega0) / n as f64;
     let s = sample_steady(&e, n, dt);

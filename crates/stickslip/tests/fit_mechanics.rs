@@ -11,7 +11,7 @@ use stickslip::fit::{fit_records, fit_table, FitOptions, FitParameter, FitReport
 use stickslip::measure::{read_amplitudes, read_scope, Measurement};
 use stickslip::physical::Mechanics;
 use stickslip::steady::MotionClass;
-use stickslip_testkit::{quantise, sample_steady, timed, Rng, Synthetic};
+use stickslip_testkit::{driven, quantise, sample_steady, timed, Rng, Synthetic};
 
 /// m = 0.5 kg, k = 200 N/m (ω0 = 20 rad/s, f0 = 3.18 Hz), γ = 2 N·s/m (ζ = 0.1), F0 = 0.3 N
 /// (a displacement scale F0/k of 1.5 mm).
@@ -33,13 +33,7 @@ fn start() -> Experiment {
 /// 3.4 drive periods, each channel quantised to 8 bits of a screen 1.25 times its
 /// peak-to-peak with one step of Gaussian noise, and an offset of r by `offset` m.
 fn record(w: f64, beta: f64, phi: f64, offset: f64, rng: &mut Rng) -> String {
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 2400;
     let increment = 3.4 * TAU / (w * e.scales().unwrap().omega0) / n as f64;
     let s = sample_steady(&e, n, increment);
