@@ -10,6 +10,7 @@ use stickslip::experiment::Experiment;
 use stickslip::physical::{Circuit, Diode, PwlDiode, Scales};
 use stickslip::solver::sample_at;
 use stickslip::steady::SolverFactory;
+use stickslip::DiodePair;
 
 /// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
 pub struct Rng(pub u64);
@@ -61,6 +62,17 @@ pub fn circuit(r: f64, ut: f64) -> Experiment {
 /// The circuit of [`TRUE_R`] and [`TRUE_UT`].
 pub fn truth() -> Experiment {
     circuit(TRUE_R, TRUE_UT)
+}
+
+/// The paper's circuit with two 1N4148 diodes (Shockley's law) at w = 0.95, β = 2.14.
+pub fn paper_shockley() -> Experiment {
+    Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .unwrap()
+        .with_w(0.95)
+        .unwrap()
+        .with_beta(2.14)
+        .unwrap()
 }
 
 /// `e` driven at (w, β, φ).

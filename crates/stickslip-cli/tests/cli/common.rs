@@ -101,3 +101,6 @@ pub const MIRROR: [&str; 8] = [
 pub const BASIN_BOX: [&str; 8] = [
     "--y0-min", "-8", "--y0-max", "8", "--v0-min", "-8", "--v0-max", "8",
 ];
+
+/// The paper's circuit (PWL diodes) at w = 0.7, β = 1.2, where most commands are tried.
+pub const PAPER: [&str; 6] = ["--preset", "paper", "--w", "0.7", "--beta", "1.2"];

@@ -110,22 +110,20 @@ fn check_golden(index: usize, args: &[&str], out: &(Vec<u8>, Vec<(String, Vec<u8
 fn every_command_gives_the_same_bytes_with_1_2_and_8_threads() {
     let commands: &[&[&str]] = &[
         &[
-            "simulate",
-            "--preset",
-            "paper",
-            "--w",
-            "0.7",
-            "--beta",
-            "1.2",
-            "--periods",
-            "40",
-            "--out",
-            "t.csv",
-            "--events",
-            "e.csv",
-            "--plot",
-            "t.svg",
-        ],
+            &["simulate"][..],
+            &PAPER,
+            &[
+                "--periods",
+                "40",
+                "--out",
+                "t.csv",
+                "--events",
+                "e.csv",
+                "--plot",
+                "t.svg",
+            ],
+        ]
+        .concat(),
         &[
             "simulate",
             "--w",

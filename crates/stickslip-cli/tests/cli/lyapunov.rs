@@ -101,18 +101,11 @@ fn text_output_says_what_the_exponent_means() {
     }
     // With a physical description, the rate per second too.
     let (_dir, out) = run(&[
-        "lyapunov",
-        "--preset",
-        "paper",
-        "--w",
-        "0.7",
-        "--beta",
-        "1.2",
-        "--periods",
-        "400",
-        "--transient",
-        "100",
-    ]);
+        &["lyapunov"][..],
+        &PAPER,
+        &["--periods", "400", "--transient", "100"],
+    ]
+    .concat());
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(stdout(&out).contains("per second"), "{}", stdout(&out));
 }

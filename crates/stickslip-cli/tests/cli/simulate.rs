@@ -5,24 +5,22 @@ use crate::common::*;
 #[test]
 fn writes_trajectory_events_and_plot_with_physical_columns() {
     let (dir, out) = run(&[
-        "simulate",
-        "--preset",
-        "paper",
-        "--w",
-        "0.7",
-        "--beta",
-        "1.2",
-        "--periods",
-        "5",
-        "--samples-per-period",
-        "50",
-        "--out",
-        "t.csv",
-        "--events",
-        "e.csv",
-        "--plot",
-        "t.png",
-    ]);
+        &["simulate"][..],
+        &PAPER,
+        &[
+            "--periods",
+            "5",
+            "--samples-per-period",
+            "50",
+            "--out",
+            "t.csv",
+            "--events",
+            "e.csv",
+            "--plot",
+            "t.png",
+        ],
+    ]
+    .concat());
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
         stderr(&out).contains("preset paper"),
