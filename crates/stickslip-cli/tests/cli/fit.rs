@@ -20,11 +20,17 @@ fn export(w: f64, beta: f64, keysight: bool) -> String {
     stepped_record(&e, 1200, 3.4, 0x2545_f491_4f6c_dd1d, format)
 }
 
+/// The two records the fits take, in `dir`: `a.csv` (Rigol, w = 0.29, β = 2.6) and `b.csv`
+/// (Keysight, w = 0.95, β = 2.14).
+fn write_records(dir: &std::path::Path) {
+    std::fs::write(dir.join("a.csv"), export(0.29, 2.6, false)).unwrap();
+    std::fs::write(dir.join("b.csv"), export(0.95, 2.14, true)).unwrap();
+}
+
 #[test]
 fn fit_recovers_r_and_ut_from_two_scope_formats() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     let out = run_in(
         dir.path(),
         &[
@@ -148,8 +154,7 @@ fn gain_table() -> String {
 #[test]
 fn fit_plots_records_and_tables() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     std::fs::write(dir.path().join("gain.csv"), gain_table()).unwrap();
     let out = run_in(
         dir.path(),
@@ -242,8 +247,7 @@ fn fit_refuses_a_bad_plot_path_and_leaves_no_file() {
 #[test]
 fn simulate_and_steady_draw_a_record_beside_the_trace() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     let circuit = ["--preset", "paper", "--resistance", "80", "--ut", "0.6"];
     let with = |rest: &[&'static str]| -> Vec<&'static str> {
         circuit.iter().chain(rest).copied().collect()
@@ -268,24 +272,29 @@ fn simulate_and_steady_draw_a_record_beside_the_trace() {
         count_color(&png, [0, 0, 0]) > 2000,
         "the record's black dots"
     );
-    // Simulate: a Rigol record at the end of the run; driven as the model, so no note.
-    let mut args = vec!["simulate"];
-    args.extend(with(&[
-        "--w",
-        "0.29",
-        "--beta",
-        "2.6",
-        "--periods",
-        "8",
-        "--data",
-        "a.csv",
-        "--out",
-        "t.csv",
-        "--plot",
-        "simulate.png",
-    ]));
-    let out = run_in(dir.path(), &args);
-    assert!(out.status.success(), "{}", stderr(&out));
+    // Simulate: 8 periods at β = 2.6 with the Rigol record drawn at the end of the run.
+    let simulate = |w: &'static str, csv: &'static str, plot: &'static str| {
+        let mut args = vec!["simulate"];
+        args.extend(with(&[
+            "--w",
+            w,
+            "--beta",
+            "2.6",
+            "--periods",
+            "8",
+            "--data",
+            "a.csv",
+            "--out",
+            csv,
+            "--plot",
+            plot,
+        ]));
+        let out = run_in(dir.path(), &args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        out
+    };
+    // Driven as the model: no note.
+    let out = simulate("0.29", "t.csv", "simulate.png");
     assert!(!stderr(&out).contains("note"), "{}", stderr(&out));
     let png = std::fs::read(dir.path().join("simulate.png")).unwrap();
     assert_eq!(png_size(&png), (1000, 480));
@@ -294,23 +303,7 @@ fn simulate_and_steady_draw_a_record_beside_the_trace() {
         "the record's black dots"
     );
     // Driven otherwise than the model: a note says so.
-    let mut args = vec!["simulate"];
-    args.extend(with(&[
-        "--w",
-        "0.5",
-        "--beta",
-        "2.6",
-        "--periods",
-        "8",
-        "--data",
-        "a.csv",
-        "--out",
-        "t2.csv",
-        "--plot",
-        "simulate2.png",
-    ]));
-    let out = run_in(dir.path(), &args);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let out = simulate("0.5", "t2.csv", "simulate2.png");
     assert!(
         stderr(&out).contains("note: a.csv was driven at"),
         "{}",
