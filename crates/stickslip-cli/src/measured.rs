@@ -526,72 +526,19 @@ pub fn record_series(record: &AlignedRecord, file: &str) -> Vec<Series> {
 /// U_t = 0.6 V.
 #[cfg(test)]
 pub(crate) mod synthetic {
-    use std::f64::consts::TAU;
-    use stickslip::experiment::Experiment;
-    use stickslip::physical::{Circuit, Diode, PwlDiode};
-    use stickslip::solver::sample_at;
-    use stickslip::steady::SolverFactory;
-
-    /// The paper's circuit with resistance `r` (Ω) and PWL diodes of turn-on `ut` (V).
-    pub fn circuit(r: f64, ut: f64) -> Experiment {
-        Experiment::circuit(Circuit {
-            resistance: r,
-            diode: Diode::Pwl(PwlDiode {
-                turn_on: ut,
-                resistance: 3.0,
-            }),
-            ..Circuit::paper()
-        })
-        .unwrap()
-    }
-
-    /// The circuit the records are made of.
-    pub fn truth() -> Experiment {
-        circuit(80.0, 0.6)
-    }
+    pub use stickslip_testkit::{circuit, truth};
+    use stickslip_testkit::{stepped_record, Format};
 
     /// A Rigol export (Keysight with `keysight`) of 800 samples over 2.6 drive periods of the
-    /// steady state at (w, β), 8-bit quantised with a step of uniform noise.
+    /// steady state of [`truth`] at (w, β), 8-bit quantised with a step of uniform noise.
     pub fn record(w: f64, beta: f64, keysight: bool) -> String {
         let e = truth().with_w(w).unwrap().with_beta(beta).unwrap();
-        let steady = e.steady().unwrap();
-        let scales = e.scales().unwrap();
-        let mut solver = e
-            .factory()
-            .make(e.params().unwrap(), steady.final_state())
-            .unwrap();
-        let n = 800;
-        let dt = 2.6 * TAU / (w * scales.omega0) / n as f64;
-        let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-        let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut noise = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
-        let mut q = |v: f64, peak: f64| {
-            let step = 2.5 * peak / 256.0;
-            ((v + 2.0 * step * noise()) / step).round() * step
-        };
-        let u = beta * scales.force;
-        let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
-        let mut text = if keysight {
-            "x-axis,1,2\nsecond,Volt,Volt\n".to_string()
+        let format = if keysight {
+            Format::Keysight
         } else {
-            format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,0.000000e+00,{dt:.6e}\n")
+            Format::Rigol
         };
-        for k in 0..n {
-            let drive = q(u * (w * taus[k]).cos(), u);
-            let uc = q(samples[k].y * scales.position, peak);
-            if keysight {
-                text += &format!("{:.9e},{drive:.6e},{uc:.6e}\n", k as f64 * dt);
-            } else {
-                text += &format!("{k},{drive:.6e},{uc:.6e},\n");
-            }
-        }
-        text
+        stepped_record(&e, 800, 2.6, 0x2545_f491_4f6c_dd1d, format)
     }
 
     /// A table of amplitudes of the truth, 1 % above the model, over 0.5 … 1.5 f0 at each

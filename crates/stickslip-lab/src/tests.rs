@@ -16,6 +16,9 @@ use stickslip::solver::{grid, sample_at};
 use stickslip::steady::SteadyReport;
 use stickslip::theory::TheoryReport;
 use stickslip::Parameter;
+use stickslip_testkit::{
+    driven, quantise, rigol, sample_steady, truth, Rng, Synthetic, TRUE_R, TRUE_UT,
+};
 use tower::ServiceExt;
 
 /// The experiment of a preset, a diode law and values, as the library builds it.
@@ -947,39 +950,6 @@ fn library_errors_about_options_and_stops_are_never_500() {
 
 // ---------------------------------------------------------------- records and fits (issue 20)
 
-/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-    }
-}
-
-/// The circuit the records are made of: the paper's, with R = 80 Ω and U_t = 0.6 V.
-const TRUE_R: f64 = 80.0;
-const TRUE_UT: f64 = 0.6;
-
-fn truth() -> Experiment {
-    use stickslip::physical::{Circuit, Diode, PwlDiode};
-    Experiment::circuit(Circuit {
-        resistance: TRUE_R,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: TRUE_UT,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .unwrap()
-}
-
 /// A Rigol CSV export of the steady state of [`truth`] at (w, β, φ), made by the exact
 /// solver: 1200 samples over 3.4 drive periods, each channel quantised to 8 bits of a screen
 /// 1.25 times its peak-to-peak with a step of Gaussian noise, and a u_C offset of 20 mV.
@@ -989,53 +959,17 @@ fn rigol_record(w: f64, beta: f64, phi: f64) -> String {
 
 /// [`rigol_record`] quantised to `bits` bits.
 fn rigol_record_bits(w: f64, beta: f64, phi: f64, bits: i32) -> String {
-    use std::f64::consts::TAU;
-    use stickslip::steady::SolverFactory;
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let params = e.params().unwrap();
-    let mut solver = e.factory().make(params, steady.final_state()).unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 1200;
-    let increment = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n)
-        .map(|k| k as f64 * increment * scales.omega0)
-        .collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let drive: Vec<f64> = taus
-        .iter()
-        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
-        .collect();
-    let response: Vec<f64> = samples
-        .iter()
-        .map(|s| s.y * scales.position + 0.02)
-        .collect();
+    let increment = 3.4 * std::f64::consts::TAU / (w * e.scales().unwrap().omega0) / n as f64;
+    let s = sample_steady(&e, n, increment);
+    let response: Vec<f64> = s.response.iter().map(|r| r + 0.02).collect();
     let mut rng = Rng(2026);
-    let mut quantise = |v: &[f64]| -> Vec<f64> {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let q = 1.25 * (hi - lo) / 2f64.powi(bits);
-        v.iter()
-            .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
-            .collect()
-    };
-    let (drive, response) = (quantise(&drive), quantise(&response));
+    let levels = 2f64.powi(bits);
+    let drive = quantise(&s.drive, levels, 1.0, &mut rng);
+    let response = quantise(&response, levels, 1.0, &mut rng);
     let start = -0.5 * n as f64 * increment;
-    let mut text =
-        format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,{start:.6e},{increment:.6e}\n");
-    for k in 0..n {
-        text += &format!("{k},{:.6e},{:.6e},\n", drive[k], response[k]);
-    }
-    text
+    rigol(&Synthetic::new(drive, response, start, increment))
 }
 
 /// POST `body` to `uri` of `lab`; status and JSON answer.

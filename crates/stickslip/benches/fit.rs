@@ -15,9 +15,7 @@ use stickslip::experiment::Experiment;
 use stickslip::fit::{fit_records, fit_table, FitOptions, FitParameter};
 use stickslip::measure::{read_amplitudes, read_scope, Measurement};
 
-#[path = "../tests/support/mod.rs"]
-mod support;
-use support::{amplitude_table, keysight, synthesise, Rng};
+use stickslip_testkit::{amplitude_table, keysight, synthesise, Rng};
 
 const FREE: [FitParameter; 2] = [FitParameter::Resistance, FitParameter::Ut];
 

@@ -33,7 +33,7 @@
 //! quasi-periodic or unsettled rather than chaotic.
 //! [`crate::stability::classify_nonperiodic`] decides at length.
 
-use crate::error::{Error, Result};
+use crate::error::{invalid, Result};
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{EventKind, Phase};
@@ -83,13 +83,7 @@ impl AttractorKind {
 
     /// The kind with this label.
     pub fn from_label(label: &str) -> Option<Self> {
-        AttractorKind::ALL.into_iter().find(|k| k.label() == label)
-    }
-}
-
-impl std::fmt::Display for AttractorKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.label())
+        label.parse().ok()
     }
 }
 
@@ -125,25 +119,18 @@ impl RecordOptions {
     /// Check every field.
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] naming the points, the transient or the longest period
-    /// ([`crate::options`]); [`Error::InvalidParameter`] naming the tolerance or the
+    /// [`Error::InvalidOption`](crate::Error::InvalidOption) naming the points, the transient or the longest period
+    /// ([`crate::options`]); [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the tolerance or the
     /// significance.
     pub fn validate(self) -> Result<Self> {
-        let bad = |name, value: f64, allowed| {
-            Err(Error::InvalidParameter {
-                name,
-                value,
-                allowed,
-            })
-        };
         OptionKey::Points.check_count(self.points)?;
         OptionKey::BifurcationTransient.check_count(self.transient_periods)?;
         OptionKey::BifurcationMaxPeriod.check_count(self.max_period)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad("tolerance", self.tolerance, "must be > 0 and < 1");
+            return invalid("tolerance", self.tolerance, "must be > 0 and < 1");
         }
         if !(self.significance > 0.0 && self.significance.is_finite()) {
-            return bad("significance", self.significance, "must be finite and > 0");
+            return invalid("significance", self.significance, "must be finite and > 0");
         }
         Ok(self)
     }
@@ -225,7 +212,7 @@ pub fn detect_period(strobes: &[State], max_period: usize, tolerance: f64) -> Op
 /// ```
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] for invalid parameters, state or options; whatever the solver
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for invalid parameters, state or options; whatever the solver
 /// reports.
 pub fn record_strobes(
     params: &Params,
@@ -325,6 +312,7 @@ pub fn record_strobes(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     fn s(y: f64, v: f64) -> State {
         State { y, v }

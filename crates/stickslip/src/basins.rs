@@ -58,7 +58,7 @@
 //! ```
 
 use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, RecordOptions};
-use crate::error::{Error, Result, Unsupported};
+use crate::error::{invalid, Error, Result, Unsupported};
 use crate::exact::ExactSolver;
 use crate::experiment::{DiodeModel, Experiment};
 use crate::options::OptionKey;
@@ -101,13 +101,7 @@ impl BasinMethod {
 
     /// The method with this label.
     pub fn from_label(label: &str) -> Option<Self> {
-        BasinMethod::ALL.into_iter().find(|m| m.label() == label)
-    }
-}
-
-impl std::fmt::Display for BasinMethod {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.label())
+        label.parse().ok()
     }
 }
 
@@ -185,29 +179,22 @@ impl BasinOptions {
     /// [`Error::InvalidOption`] naming the first bad field of the option table
     /// ([`crate::options`]), [`Error::InvalidParameter`] naming any other.
     pub fn validate(self) -> Result<Self> {
-        let bad = |name, value: f64, allowed| {
-            Err(Error::InvalidParameter {
-                name,
-                value,
-                allowed,
-            })
-        };
         OptionKey::BasinMaxPeriods.check_count(self.max_periods)?;
         OptionKey::BasinMaxPeriod.check_count(self.max_period)?;
         self.steady_options()?;
         OptionKey::BasinLyapunovPeriods.check_count(self.lyapunov_periods)?;
         if !(self.significance > 0.0 && self.significance.is_finite()) {
-            return bad("significance", self.significance, "must be finite and > 0");
+            return invalid("significance", self.significance, "must be finite and > 0");
         }
         if !(self.match_tolerance > 0.0 && self.match_tolerance < 1e-2) {
-            return bad(
+            return invalid(
                 "match_tolerance",
                 self.match_tolerance,
                 "must be > 0 and < 1e-2",
             );
         }
         if !(1..=self.lyapunov_periods).contains(&self.sample_points) {
-            return bad(
+            return invalid(
                 "sample_points",
                 self.sample_points as f64,
                 "must be from 1 to lyapunov_periods",
@@ -220,11 +207,11 @@ impl BasinOptions {
             ("basin_hits", self.basin_hits),
         ] {
             if !(1..=1_000_000).contains(&value) {
-                return bad(name, value as f64, "must be from 1 to 1e6");
+                return invalid(name, value as f64, "must be from 1 to 1e6");
             }
         }
         if !(1..=100_000_000).contains(&self.max_steps) {
-            return bad("max_steps", self.max_steps as f64, "must be from 1 to 1e8");
+            return invalid("max_steps", self.max_steps as f64, "must be from 1 to 1e8");
         }
         Ok(self)
     }

@@ -398,10 +398,16 @@ pub(crate) fn check(
     if value.is_finite() && ok {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            allowed,
-        })
+        invalid(name, value, allowed)
     }
+}
+
+/// [`Error::InvalidParameter`] as a result: `value` of `name` refused, `allowed` saying what
+/// is allowed.
+pub(crate) fn invalid<T>(name: &'static str, value: f64, allowed: &'static str) -> Result<T> {
+    Err(Error::InvalidParameter {
+        name,
+        value,
+        allowed,
+    })
 }

@@ -79,8 +79,8 @@ names!(MotionClass, "motion class", display);
 names!(Theory, "theory", display);
 names!(CurveKind, "curve", display);
 names!(MapColor, "map colour", display);
-names!(AttractorKind, "attractor kind");
-names!(BasinMethod, "basin method");
+names!(AttractorKind, "attractor kind", display);
+names!(BasinMethod, "basin method", display);
 
 impl SweepDirection {
     /// Every direction.

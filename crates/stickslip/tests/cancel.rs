@@ -5,7 +5,8 @@ use std::time::{Duration, Instant};
 use stickslip::cancel::Cancel;
 use stickslip::scan::{Axis, ParameterRange, Sweep};
 use stickslip::stability::LyapunovOptions;
-use stickslip::{DiodePair, Error, Experiment, Parameter, SteadyOptions};
+use stickslip::{Error, Experiment, Parameter, SteadyOptions};
+use stickslip_testkit::paper_shockley;
 
 fn point() -> Experiment {
     Experiment::dimensionless(0.05, 0.7, 2.0).unwrap()
@@ -51,13 +52,7 @@ fn the_budget_stops_the_exact_and_the_stiff_solver() {
         .steady()
         .unwrap_err();
     assert_eq!(e, Error::BudgetExceeded { budget });
-    let shockley = Experiment::paper()
-        .with_shockley(DiodePair::one_n4148())
-        .unwrap()
-        .with_w(0.95)
-        .unwrap()
-        .with_beta(2.14)
-        .unwrap();
+    let shockley = paper_shockley();
     let token = Cancel::new().with_budget(200);
     let e = shockley.with_cancel(token.clone()).steady().unwrap_err();
     assert_eq!(e, Error::BudgetExceeded { budget: 200 });

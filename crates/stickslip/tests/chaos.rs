@@ -15,6 +15,7 @@ use stickslip::{
     Circuit, DiodePair, Error, ExactSolver, Experiment, Parameter, Params, Solver, State,
     Unsupported,
 };
+use stickslip_testkit::paper_shockley;
 
 /// ζ = 0, μs = 3, β = 9: chaotic from rest for w in 0.29–0.37 and 0.46–0.48, periodic
 /// elsewhere in 0.2–0.55 (the literature's setting).
@@ -180,13 +181,7 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
     let s = steady_state(&mut exact, &options).unwrap();
     assert_eq!(s.class, MotionClass::Chaotic);
     // Shockley diodes: the stiff solver is not the exact model.
-    let shockley = Experiment::paper()
-        .with_shockley(DiodePair::one_n4148())
-        .unwrap()
-        .with_w(0.95)
-        .unwrap()
-        .with_beta(2.14)
-        .unwrap();
+    let shockley = paper_shockley();
     let s = shockley
         .steady_with(
             &shockley

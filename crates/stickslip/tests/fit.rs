@@ -8,8 +8,7 @@ use stickslip::fit::{fit_per_record, fit_records, fit_table, FitOptions, FitPara
 use stickslip::measure::{read_amplitudes, read_scope, Measurement, Record, ScopeFormat};
 use stickslip::physical::Circuit;
 
-mod support;
-use support::{
+use stickslip_testkit::{
     amplitude_table, keysight, plain, rigol, siglent, synthesise, tektronix, truth, Rng, TRUE_R,
     TRUE_UT,
 };

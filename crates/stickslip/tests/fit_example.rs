@@ -26,7 +26,8 @@ use stickslip::shockley::{netlist, DiodePair, NetlistOptions};
 use stickslip::{Circuit, State};
 
 mod support;
-use support::{interpolate, ngspice_available, run_ngspice, work_dir, Rng};
+use stickslip_testkit::Rng;
+use support::{interpolate, ngspice_available, run_ngspice, work_dir};
 
 /// The D1N4148 card's IS, N and RS at 27 °C.
 fn d1n4148() -> DiodePair {

@@ -4,6 +4,7 @@
 use stickslip::stability::{find_periodic_orbit, periodic_orbit_sensitivity, NewtonOptions};
 use stickslip::steady::{steady_state_from, SteadyOptions};
 use stickslip::{ExactSolver, MotionClass, Params, State};
+use stickslip_testkit::{driven, keysight, quantise, sample_steady, truth, Rng, Synthetic};
 
 /// The periodic orbit the motion from rest settles on, polished by Newton's method:
 /// (fixed point, period, class).
@@ -149,81 +150,18 @@ fn an_overdamped_orbit_matches_finite_differences() {
     check(params, class, 1, &[0, 1, 2, 3]);
 }
 
-/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-    }
-}
-
 /// A Keysight export of the circuit R = 80 Ω, U_t = 0.6 V at (w, β, φ): 1200 samples over
 /// 3.4 periods, 8 bits over 1.25 times each channel's peak-to-peak, one step of noise, an
 /// offset of 30 mV on u_C.
 fn record(w: f64, beta: f64, phi: f64, rng: &mut Rng) -> stickslip::measure::Measurement {
-    use std::f64::consts::TAU;
-    use stickslip::physical::{Circuit, Diode, PwlDiode};
-    use stickslip::steady::SolverFactory;
-    let e = stickslip::experiment::Experiment::circuit(Circuit {
-        resistance: 80.0,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: 0.6,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .unwrap()
-    .with_w(w)
-    .and_then(|e| e.with_beta(beta))
-    .and_then(|e| e.with_phi(phi))
-    .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 1200;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = stickslip::solver::sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let drive: Vec<f64> = taus
-        .iter()
-        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
-        .collect();
-    let response: Vec<f64> = samples
-        .iter()
-        .map(|s| s.y * scales.position + 0.03)
-        .collect();
-    let mut quantise = |v: &[f64]| -> Vec<f64> {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let q = 1.25 * (hi - lo) / 256.0;
-        v.iter()
-            .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
-            .collect::<Vec<f64>>()
-    };
-    let (drive, response) = (quantise(&drive), quantise(&response));
-    let mut text = "x-axis,1,2\nsecond,Volt,Volt\n".to_string();
-    for k in 0..n {
-        text += &format!(
-            "{:.9e},{:.6e},{:.6e}\n",
-            k as f64 * dt,
-            drive[k],
-            response[k]
-        );
-    }
+    let dt = 3.4 * std::f64::consts::TAU / (w * e.scales().unwrap().omega0) / n as f64;
+    let s = sample_steady(&e, n, dt);
+    let response: Vec<f64> = s.response.iter().map(|r| r + 0.03).collect();
+    let drive = quantise(&s.drive, 256.0, 1.0, rng);
+    let response = quantise(&response, 256.0, 1.0, rng);
+    let text = keysight(&Synthetic::new(drive, response, 0.0, dt));
     let r = stickslip::measure::read_scope(&text, "k.csv").unwrap();
     stickslip::measure::Measurement::new(&r, None, None).unwrap()
 }

@@ -10,24 +10,8 @@ use stickslip::experiment::Experiment;
 use stickslip::fit::{fit_records, fit_table, FitOptions, FitParameter, FitReport, Jacobian};
 use stickslip::measure::{read_amplitudes, read_scope, Measurement};
 use stickslip::physical::Mechanics;
-use stickslip::solver::sample_at;
-use stickslip::steady::{MotionClass, SolverFactory};
-
-/// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn gauss(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (TAU * v).cos()
-    }
-}
+use stickslip::steady::MotionClass;
+use stickslip_testkit::{driven, quantise, sample_steady, timed, Rng, Synthetic};
 
 /// m = 0.5 kg, k = 200 N/m (ω0 = 20 rad/s, f0 = 3.18 Hz), γ = 2 N·s/m (ζ = 0.1), F0 = 0.3 N
 /// (a displacement scale F0/k of 1.5 mm).
@@ -49,55 +33,17 @@ fn start() -> Experiment {
 /// 3.4 drive periods, each channel quantised to 8 bits of a screen 1.25 times its
 /// peak-to-peak with one step of Gaussian noise, and an offset of r by `offset` m.
 fn record(w: f64, beta: f64, phi: f64, offset: f64, rng: &mut Rng) -> String {
-    let e = truth()
-        .with_w(w)
-        .unwrap()
-        .with_beta(beta)
-        .unwrap()
-        .with_phi(phi)
-        .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
+    let e = driven(truth(), w, beta, phi);
     let n = 2400;
-    let increment = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n)
-        .map(|k| k as f64 * increment * scales.omega0)
-        .collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let force: Vec<f64> = taus
-        .iter()
-        .map(|&tau| beta * scales.force * (w * tau + phi).cos())
-        .collect();
-    let displacement: Vec<f64> = samples
-        .iter()
-        .map(|s| s.y * scales.position + offset)
-        .collect();
-    let quantise = |v: &[f64], rng: &mut Rng| -> Vec<f64> {
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        let q = 1.25 * (hi - lo) / 256.0;
-        v.iter()
-            .map(|&x| ((x + q * rng.gauss()) / q).round() * q)
-            .collect()
-    };
-    let (force, displacement) = (quantise(&force, rng), quantise(&displacement, rng));
-    let mut text = "time_s,F (N),r (m)\n".to_string();
-    for k in 0..n {
-        text += &format!(
-            "{:.9e},{:.6e},{:.6e}\n",
-            k as f64 * increment,
-            force[k],
-            displacement[k]
-        );
-    }
-    text
+    let increment = 3.4 * TAU / (w * e.scales().unwrap().omega0) / n as f64;
+    let s = sample_steady(&e, n, increment);
+    let displacement: Vec<f64> = s.response.iter().map(|r| r + offset).collect();
+    let force = quantise(&s.drive, 256.0, 1.0, rng);
+    let displacement = quantise(&displacement, 256.0, 1.0, rng);
+    timed(
+        &Synthetic::new(force, displacement, 0.0, increment),
+        "time_s,F (N),r (m)\n",
+    )
 }
 
 /// Two drive frequencies: well below resonance with stick-slip, and near it sliding (where

@@ -21,10 +21,8 @@ use stickslip::shockley::{netlist, DiodePair, NetlistOptions};
 use stickslip::{Circuit, State};
 
 mod support;
-use support::{
-    interpolate, keysight, ngspice_available, quantise, rigol, run_ngspice, work_dir, Rng,
-    Synthetic,
-};
+use stickslip_testkit::{keysight, quantise, rigol, Rng, Synthetic};
+use support::{interpolate, ngspice_available, run_ngspice, work_dir};
 
 /// The diodes ngspice simulates: `.model DPAIR D(IS=2n N=1.8 RS=1)` at 27 °C.
 fn true_pair() -> DiodePair {

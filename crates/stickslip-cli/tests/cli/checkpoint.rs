@@ -359,38 +359,27 @@ fn bad_checkpoint_flags_give_one_line_and_exit_code_2() {
 
 /// A basin map whose every cell is chaotic (the costliest kind), short caps, by the
 /// exhaustive method (every cell on its own, in parallel).
-const BASINS: &[&str] = &[
-    "basins",
-    "--method",
-    "exhaustive",
-    "--zeta",
-    "0",
-    "--mu-s",
-    "3",
-    "--w",
-    "0.33",
-    "--beta",
-    "9",
-    "--y0-min",
-    "-8",
-    "--y0-max",
-    "8",
-    "--v0-min",
-    "-8",
-    "--v0-max",
-    "8",
-    "--steps",
-    "40",
-    "--max-periods",
-    "300",
-    "--lyapunov-periods",
-    "300",
-    "--out",
-    "basins.csv",
-    "--plot",
-    "basins.png",
-    "--json",
-];
+fn basins() -> Vec<&'static str> {
+    [
+        &["basins", "--method", "exhaustive"][..],
+        &CHAOTIC,
+        &BASIN_BOX,
+        &[
+            "--steps",
+            "40",
+            "--max-periods",
+            "300",
+            "--lyapunov-periods",
+            "300",
+            "--out",
+            "basins.csv",
+            "--plot",
+            "basins.png",
+            "--json",
+        ],
+    ]
+    .concat()
+}
 
 /// Bytes of a saved row of that map: 40 chaotic cells with 64 strobe points each, index
 /// and length.
@@ -399,7 +388,7 @@ const BASIN_ROW: u64 = 40 * (1 + 4 * 8 + 64 * 16) + 16;
 #[test]
 fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
     let reference = tempfile::tempdir().unwrap();
-    let first = run_in(reference.path(), BASINS);
+    let first = run_in(reference.path(), &basins());
     assert!(first.status.success(), "{}", stderr(&first));
     assert_eq!(
         number_after(&stderr(&first), "cells ("),
@@ -408,7 +397,7 @@ fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
     );
 
     let dir = tempfile::tempdir().unwrap();
-    let args = with_checkpoint(BASINS);
+    let args = with_checkpoint(&basins());
     kill_part_way(dir.path(), &args, 4, BASIN_ROW);
     assert!(!dir.path().join("basins.csv").exists(), "no output yet");
     let saved = std::fs::read(dir.path().join("run.ckpt")).unwrap();
@@ -445,30 +434,15 @@ fn a_killed_basin_map_resumes_to_the_same_bytes_with_less_work() {
 
 /// A basin map by recurrence (rows in order, each saved with the labels it left): two
 /// coexisting orbits.
-const RECURRENCE: &[&str] = &[
-    "basins",
-    "--zeta",
-    "0",
-    "--mu-s",
-    "3",
-    "--w",
-    "0.6",
-    "--beta",
-    "3.269",
-    "--y0-min",
-    "-8",
-    "--y0-max",
-    "8",
-    "--v0-min",
-    "-8",
-    "--v0-max",
-    "8",
-    "--steps",
-    "150",
-    "--out",
-    "basins.csv",
-    "--json",
-];
+fn recurrence() -> Vec<&'static str> {
+    [
+        &["basins"][..],
+        &MIRROR,
+        &BASIN_BOX,
+        &["--steps", "150", "--out", "basins.csv", "--json"],
+    ]
+    .concat()
+}
 
 /// Least bytes of a saved row of that map: 150 periodic cells with one strobe point each,
 /// index and length (the labels it left come on top).
@@ -477,11 +451,11 @@ const RECURRENCE_ROW: u64 = 150 * (1 + 4 * 8 + 16) + 16;
 #[test]
 fn a_killed_recurrence_basin_map_resumes_to_the_same_bytes() {
     let reference = tempfile::tempdir().unwrap();
-    let first = run_in(reference.path(), RECURRENCE);
+    let first = run_in(reference.path(), &recurrence());
     assert!(first.status.success(), "{}", stderr(&first));
 
     let dir = tempfile::tempdir().unwrap();
-    let args = with_checkpoint(RECURRENCE);
+    let args = with_checkpoint(&recurrence());
     kill_part_way(dir.path(), &args, 3, RECURRENCE_ROW);
     let out = run_in(dir.path(), &args);
     let err = stderr(&out);

@@ -1,7 +1,8 @@
 //! Running the real binary in a temporary directory.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// Run `stickslip` with `args` in `dir`.
 pub fn run_in(dir: &Path, args: &[&str]) -> Output {
@@ -44,3 +45,62 @@ pub fn assert_usage_error(dir: &Path, out: &Output, needle: &str) {
     let left: Vec<_> = std::fs::read_dir(dir).expect("dir").collect();
     assert!(left.is_empty(), "files left behind: {left:?}");
 }
+
+/// Assert that `command` followed by each case's arguments is a usage error naming the case's
+/// needle (see [`assert_usage_error`]), each run in a fresh directory.
+pub fn assert_usage_errors(command: &[&str], cases: &[(&[&str], &str)]) {
+    for (args, needle) in cases {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let out = run_in(dir.path(), &[command, args].concat());
+        assert_usage_error(dir.path(), &out, needle);
+    }
+}
+
+/// Start `stickslip` with `args` in `dir`, send it SIGINT (Ctrl-C) 700 ms later and wait for
+/// it to end; returns its output and the time it took to stop after the signal.
+pub fn interrupt_in(dir: &Path, args: &[&str]) -> (Output, Duration) {
+    let child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the stickslip binary starts");
+    std::thread::sleep(Duration::from_millis(700));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(status.success());
+    let signalled = Instant::now();
+    let out = child.wait_with_output().expect("the stickslip binary ends");
+    (out, signalled.elapsed())
+}
+
+/// Assert that `stickslip` with `args`, interrupted by Ctrl-C while it computes, fails,
+/// says it was interrupted and leaves no file behind.
+pub fn assert_ctrl_c_leaves_nothing(args: &[&str]) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (out, _) = interrupt_in(dir.path(), args);
+    assert!(!out.status.success(), "{}", args[0]);
+    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    let left: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
+    assert!(left.is_empty(), "files left behind: {left:?}");
+}
+
+/// The chaotic point of the dry-friction oscillator the dynamics tests measure: ζ = 0,
+/// μs = 3, w = 0.33, β = 9.
+pub const CHAOTIC: [&str; 8] = ["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"];
+
+/// The point with two coexisting mirror orbits: ζ = 0, μs = 3, w = 0.6, β = 3.269.
+pub const MIRROR: [&str; 8] = [
+    "--zeta", "0", "--mu-s", "3", "--w", "0.6", "--beta", "3.269",
+];
+
+/// The box of initial states a basin map covers in these tests: y0 and v0 from -8 to 8.
+pub const BASIN_BOX: [&str; 8] = [
+    "--y0-min", "-8", "--y0-max", "8", "--v0-min", "-8", "--v0-max", "8",
+];
+
+/// The paper's circuit (PWL diodes) at w = 0.7, β = 1.2, where most commands are tried.
+pub const PAPER: [&str; 6] = ["--preset", "paper", "--w", "0.7", "--beta", "1.2"];

@@ -115,11 +115,7 @@ fn bad_input_is_a_one_line_usage_error() {
             "mechanical",
         ),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let out = run_in(dir.path(), args);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&[], cases);
 }
 
 /// The description goes to standard error, as with every command; standard output holds the

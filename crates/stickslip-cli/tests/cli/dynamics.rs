@@ -147,31 +147,20 @@ fn bifurcation_plot_draws_branches_and_special_points() {
 #[test]
 fn basins_find_the_mirror_pair() {
     let (dir, out) = run(&[
-        "basins",
-        "--zeta",
-        "0",
-        "--mu-s",
-        "3",
-        "--w",
-        "0.6",
-        "--beta",
-        "3.269",
-        "--y0-min",
-        "-8",
-        "--y0-max",
-        "8",
-        "--v0-min",
-        "-8",
-        "--v0-max",
-        "8",
-        "--steps",
-        "12",
-        "--json",
-        "--out",
-        "basins.csv",
-        "--plot",
-        "basins.png",
-    ]);
+        &["basins"][..],
+        &MIRROR,
+        &BASIN_BOX,
+        &[
+            "--steps",
+            "12",
+            "--json",
+            "--out",
+            "basins.csv",
+            "--plot",
+            "basins.png",
+        ],
+    ]
+    .concat());
     assert!(out.status.success(), "{}", stderr(&out));
     let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let attractors = summary["attractors"].as_array().unwrap();
@@ -469,50 +458,21 @@ fn ctrl_c_leaves_no_output_file() {
             "--plot",
             "bif.png",
         ],
-        vec![
-            "basins",
-            "--zeta",
-            "0",
-            "--mu-s",
-            "3",
-            "--w",
-            "0.33",
-            "--beta",
-            "9",
-            "--y0-min",
-            "-8",
-            "--y0-max",
-            "8",
-            "--v0-min",
-            "-8",
-            "--v0-max",
-            "8",
-            "--steps",
-            "2000",
-            "--out",
-            "basins.csv",
-            "--plot",
-            "basins.png",
-        ],
+        [
+            &["basins"][..],
+            &CHAOTIC,
+            &BASIN_BOX,
+            &[
+                "--steps",
+                "2000",
+                "--out",
+                "basins.csv",
+                "--plot",
+                "basins.png",
+            ],
+        ]
+        .concat(),
     ] {
-        let dir = tempfile::tempdir().unwrap();
-        let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .args(&args)
-            .current_dir(dir.path())
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(std::time::Duration::from_millis(700));
-        let status = std::process::Command::new("kill")
-            .args(["-INT", &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(status.success());
-        let out = child.wait_with_output().unwrap();
-        assert!(!out.status.success(), "{}", args[0]);
-        assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
-        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-        assert!(left.is_empty(), "files left behind: {left:?}");
+        assert_ctrl_c_leaves_nothing(&args);
     }
 }

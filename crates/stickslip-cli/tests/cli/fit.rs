@@ -3,73 +3,34 @@
 //! line with exit status 2.
 
 use super::common::{assert_usage_error, run, run_in, stderr, stdout};
-use std::f64::consts::TAU;
 use stickslip::experiment::Experiment;
-use stickslip::physical::{Circuit, Diode, Mechanics, PwlDiode};
-use stickslip::solver::sample_at;
-use stickslip::steady::SolverFactory;
+use stickslip::physical::Mechanics;
+use stickslip_testkit::{stepped_record, truth, Format};
 
-fn truth() -> Experiment {
-    Experiment::circuit(Circuit {
-        resistance: 80.0,
-        diode: Diode::Pwl(PwlDiode {
-            turn_on: 0.6,
-            resistance: 3.0,
-        }),
-        ..Circuit::paper()
-    })
-    .unwrap()
-}
-
-/// A Rigol export (or Keysight with `keysight`) of 1200 samples over 3.4 drive periods, 8-bit
-/// quantised with a step of uniform noise (a fixed xorshift sequence).
+/// A Rigol export (or Keysight with `keysight`) of 1200 samples over 3.4 drive periods of
+/// [`truth`] at (w, β), 8-bit quantised with a step of uniform noise (a fixed xorshift
+/// sequence).
 fn export(w: f64, beta: f64, keysight: bool) -> String {
     let e = truth().with_w(w).unwrap().with_beta(beta).unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
-    let n = 1200;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut noise = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut q = |v: f64, peak: f64| {
-        let step = 2.5 * peak / 256.0;
-        ((v + 2.0 * step * noise()) / step).round() * step
-    };
-    let u = beta * scales.force;
-    let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
-    let mut text = if keysight {
-        "x-axis,1,2\nsecond,Volt,Volt\n".to_string()
+    let format = if keysight {
+        Format::Keysight
     } else {
-        format!("X,CH1,CH2,Start,Increment,\nSequence,Volt,Volt,0.000000e+00,{dt:.6e}\n")
+        Format::Rigol
     };
-    for k in 0..n {
-        let drive = q(u * (w * taus[k]).cos(), u);
-        let uc = q(samples[k].y * scales.position, peak);
-        if keysight {
-            text += &format!("{:.9e},{drive:.6e},{uc:.6e}\n", k as f64 * dt);
-        } else {
-            text += &format!("{k},{drive:.6e},{uc:.6e},\n");
-        }
-    }
-    text
+    stepped_record(&e, 1200, 3.4, 0x2545_f491_4f6c_dd1d, format)
+}
+
+/// The two records the fits take, in `dir`: `a.csv` (Rigol, w = 0.29, β = 2.6) and `b.csv`
+/// (Keysight, w = 0.95, β = 2.14).
+fn write_records(dir: &std::path::Path) {
+    std::fs::write(dir.join("a.csv"), export(0.29, 2.6, false)).unwrap();
+    std::fs::write(dir.join("b.csv"), export(0.95, 2.14, true)).unwrap();
 }
 
 #[test]
 fn fit_recovers_r_and_ut_from_two_scope_formats() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     let out = run_in(
         dir.path(),
         &[
@@ -193,8 +154,7 @@ fn gain_table() -> String {
 #[test]
 fn fit_plots_records_and_tables() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     std::fs::write(dir.path().join("gain.csv"), gain_table()).unwrap();
     let out = run_in(
         dir.path(),
@@ -287,8 +247,7 @@ fn fit_refuses_a_bad_plot_path_and_leaves_no_file() {
 #[test]
 fn simulate_and_steady_draw_a_record_beside_the_trace() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("a.csv"), export(0.29, 2.6, false)).unwrap();
-    std::fs::write(dir.path().join("b.csv"), export(0.95, 2.14, true)).unwrap();
+    write_records(dir.path());
     let circuit = ["--preset", "paper", "--resistance", "80", "--ut", "0.6"];
     let with = |rest: &[&'static str]| -> Vec<&'static str> {
         circuit.iter().chain(rest).copied().collect()
@@ -313,24 +272,29 @@ fn simulate_and_steady_draw_a_record_beside_the_trace() {
         count_color(&png, [0, 0, 0]) > 2000,
         "the record's black dots"
     );
-    // Simulate: a Rigol record at the end of the run; driven as the model, so no note.
-    let mut args = vec!["simulate"];
-    args.extend(with(&[
-        "--w",
-        "0.29",
-        "--beta",
-        "2.6",
-        "--periods",
-        "8",
-        "--data",
-        "a.csv",
-        "--out",
-        "t.csv",
-        "--plot",
-        "simulate.png",
-    ]));
-    let out = run_in(dir.path(), &args);
-    assert!(out.status.success(), "{}", stderr(&out));
+    // Simulate: 8 periods at β = 2.6 with the Rigol record drawn at the end of the run.
+    let simulate = |w: &'static str, csv: &'static str, plot: &'static str| {
+        let mut args = vec!["simulate"];
+        args.extend(with(&[
+            "--w",
+            w,
+            "--beta",
+            "2.6",
+            "--periods",
+            "8",
+            "--data",
+            "a.csv",
+            "--out",
+            csv,
+            "--plot",
+            plot,
+        ]));
+        let out = run_in(dir.path(), &args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        out
+    };
+    // Driven as the model: no note.
+    let out = simulate("0.29", "t.csv", "simulate.png");
     assert!(!stderr(&out).contains("note"), "{}", stderr(&out));
     let png = std::fs::read(dir.path().join("simulate.png")).unwrap();
     assert_eq!(png_size(&png), (1000, 480));
@@ -339,23 +303,7 @@ fn simulate_and_steady_draw_a_record_beside_the_trace() {
         "the record's black dots"
     );
     // Driven otherwise than the model: a note says so.
-    let mut args = vec!["simulate"];
-    args.extend(with(&[
-        "--w",
-        "0.5",
-        "--beta",
-        "2.6",
-        "--periods",
-        "8",
-        "--data",
-        "a.csv",
-        "--out",
-        "t2.csv",
-        "--plot",
-        "simulate2.png",
-    ]));
-    let out = run_in(dir.path(), &args);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let out = simulate("0.5", "t2.csv", "simulate2.png");
     assert!(
         stderr(&out).contains("note: a.csv was driven at"),
         "{}",
@@ -439,36 +387,8 @@ fn mechanical_export(w: f64, beta: f64) -> String {
         .unwrap()
         .with_beta(beta)
         .unwrap();
-    let steady = e.steady().unwrap();
-    let scales = e.scales().unwrap();
-    let mut solver = e
-        .factory()
-        .make(e.params().unwrap(), steady.final_state())
-        .unwrap();
-    let n = 2400;
-    let dt = 3.4 * TAU / (w * scales.omega0) / n as f64;
-    let taus: Vec<f64> = (0..n).map(|k| k as f64 * dt * scales.omega0).collect();
-    let samples = sample_at(solver.as_mut(), &taus, |_| {}).unwrap();
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut noise = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut q = |v: f64, peak: f64| {
-        let step = 2.5 * peak / 256.0;
-        ((v + 2.0 * step * noise()) / step).round() * step
-    };
-    let f = beta * scales.force;
-    let peak = samples.iter().fold(0.0f64, |a, s| a.max(s.y.abs())) * scales.position;
-    let mut text = "time_s,F (N),r (m)\n".to_string();
-    for k in 0..n {
-        let drive = q(f * (w * taus[k]).cos(), f);
-        let r = q(samples[k].y * scales.position, peak);
-        text += &format!("{:.9e},{drive:.6e},{r:.6e}\n", k as f64 * dt);
-    }
-    text
+    let format = Format::Timed("time_s,F (N),r (m)\n");
+    stepped_record(&e, 2400, 3.4, 0x9e37_79b9_7f4a_7c15, format)
 }
 
 #[test]

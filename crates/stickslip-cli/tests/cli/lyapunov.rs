@@ -4,8 +4,6 @@ use crate::common::*;
 use stickslip::experiment::Experiment;
 use stickslip::stability::{LyapunovOptions, LyapunovReport};
 
-const CHAOTIC: [&str; 8] = ["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"];
-
 fn json(args: &[&str]) -> serde_json::Value {
     let mut full = vec!["lyapunov", "--json"];
     full.extend_from_slice(args);
@@ -103,18 +101,11 @@ fn text_output_says_what_the_exponent_means() {
     }
     // With a physical description, the rate per second too.
     let (_dir, out) = run(&[
-        "lyapunov",
-        "--preset",
-        "paper",
-        "--w",
-        "0.7",
-        "--beta",
-        "1.2",
-        "--periods",
-        "400",
-        "--transient",
-        "100",
-    ]);
+        &["lyapunov"][..],
+        &PAPER,
+        &["--periods", "400", "--transient", "100"],
+    ]
+    .concat());
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(stdout(&out).contains("per second"), "{}", stdout(&out));
 }
@@ -133,14 +124,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         // Beyond the time range the solvers resolve (2^32/(2π)·w periods at w < 1).
         (&["--periods", "1000000000"], "too long"),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["lyapunov"];
-        full.extend_from_slice(&CHAOTIC);
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&[&["lyapunov"][..], &CHAOTIC].concat(), cases);
     let dir = tempfile::tempdir().unwrap();
     let out = run_in(
         dir.path(),
@@ -156,27 +140,19 @@ fn bad_input_gives_one_line_and_exit_code_2() {
 
 #[test]
 fn ctrl_c_stops_a_long_measurement() {
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .arg("lyapunov")
-        .args(CHAOTIC)
-        .args(["--periods", "100000000", "--json"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(700));
-    let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let started = std::time::Instant::now();
-    let out = child.wait_with_output().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        &["lyapunov"][..],
+        &CHAOTIC,
+        &["--periods", "100000000", "--json"],
+    ]
+    .concat();
+    let (out, stopping) = interrupt_in(dir.path(), &args);
     assert!(!out.status.success());
     assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
     assert!(out.stdout.is_empty());
     // It stops within 1000 periods, not at the end of 1e8 periods.
-    assert!(started.elapsed() < std::time::Duration::from_secs(20));
+    assert!(stopping < std::time::Duration::from_secs(20));
 }
 
 #[test]

@@ -59,7 +59,7 @@ fn json_is_the_librarys_report_with_the_keys_of_the_issue() {
 
 #[test]
 fn an_unstable_orbit_in_a_chaotic_window_is_found_with_a_period_and_a_guess() {
-    let chaotic = ["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"];
+    let chaotic = CHAOTIC;
     // Without --period the motion does not repeat: a clear error, no output.
     let mut args = vec!["orbit"];
     args.extend_from_slice(&chaotic);
@@ -137,14 +137,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         (&["--max-iterations", "0"], "--max-iterations"),
         (&["--mu-s", "0.5"], "mu"),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["orbit"];
-        full.extend_from_slice(&point);
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&[&["orbit"][..], &point].concat(), cases);
     // Shockley diodes: the stability analysis is that of the exact PWL model.
     let dir = tempfile::tempdir().unwrap();
     let out = run_in(

@@ -86,13 +86,7 @@ fn bad_grids_give_one_line_and_exit_code_2() {
             "--w-steps × --beta-steps = 4002000 points kept in memory (with a plot or a checkpoint): at most 4000000 allowed",
         ),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["phase-diagram"];
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&["phase-diagram"], cases);
 }
 
 /// Streamed to its file or kept for the plot, a map stopped by Ctrl-C leaves no file (the
@@ -100,9 +94,9 @@ fn bad_grids_give_one_line_and_exit_code_2() {
 #[test]
 fn ctrl_c_leaves_no_output_file() {
     let map = ["phase-diagram", "--w-steps", "1000", "--beta-steps", "1000"];
-    ctrl_c_leaves_nothing(&[&map[..], &["--out", "map.csv", "--plot", "map.png"]].concat());
+    assert_ctrl_c_leaves_nothing(&[&map[..], &["--out", "map.csv", "--plot", "map.png"]].concat());
     // Without the plot: 3000 × 3000, beyond the cap of a kept map.
-    ctrl_c_leaves_nothing(&[
+    assert_ctrl_c_leaves_nothing(&[
         "phase-diagram",
         "--w-steps",
         "3000",
@@ -111,28 +105,6 @@ fn ctrl_c_leaves_no_output_file() {
         "--out",
         "map.csv",
     ]);
-}
-
-fn ctrl_c_leaves_nothing(args: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(args)
-        .current_dir(dir.path())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(700));
-    let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
-    assert!(!out.status.success());
-    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
-    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-    assert!(left.is_empty(), "files left behind: {left:?}");
 }
 
 #[test]

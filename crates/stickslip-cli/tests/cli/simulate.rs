@@ -5,24 +5,22 @@ use crate::common::*;
 #[test]
 fn writes_trajectory_events_and_plot_with_physical_columns() {
     let (dir, out) = run(&[
-        "simulate",
-        "--preset",
-        "paper",
-        "--w",
-        "0.7",
-        "--beta",
-        "1.2",
-        "--periods",
-        "5",
-        "--samples-per-period",
-        "50",
-        "--out",
-        "t.csv",
-        "--events",
-        "e.csv",
-        "--plot",
-        "t.png",
-    ]);
+        &["simulate"][..],
+        &PAPER,
+        &[
+            "--periods",
+            "5",
+            "--samples-per-period",
+            "50",
+            "--out",
+            "t.csv",
+            "--events",
+            "e.csv",
+            "--plot",
+            "t.png",
+        ],
+    ]
+    .concat());
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
         stderr(&out).contains("preset paper"),
@@ -135,13 +133,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         ),
         (&["--w", "1", "--beta", "2", "--bogus"], "--bogus"),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["simulate"];
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&["simulate"], cases);
 }
 
 #[test]

@@ -123,19 +123,13 @@ fn bad_input_gives_one_line_and_exit_code_2() {
             "no/such",
         ),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["steady"];
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&["steady"], cases);
 }
 
 #[test]
 fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
     // ζ = 0, μs = 3, β = 9, w = 0.33: chaos.
-    let v = json(&["--zeta", "0", "--mu-s", "3", "--w", "0.33", "--beta", "9"]);
+    let v = json(&CHAOTIC);
     assert_eq!(v["class"], "chaotic");
     assert_eq!(v["verdict"], "chaotic");
     assert_eq!(v["period"], serde_json::Value::Null);
@@ -153,18 +147,7 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
     );
     assert!(v["lambda_per_period"].as_f64().unwrap() > 0.0);
     // Fewer periods measured: the same verdict.
-    let short = json(&[
-        "--zeta",
-        "0",
-        "--mu-s",
-        "3",
-        "--w",
-        "0.33",
-        "--beta",
-        "9",
-        "--lyapunov-periods",
-        "1000",
-    ]);
+    let short = json(&[&CHAOTIC[..], &["--lyapunov-periods", "1000"]].concat());
     assert_eq!(short["class"], "chaotic");
     let measured = short["lambda_periods"].as_u64().unwrap();
     assert!(
@@ -172,18 +155,7 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
         "{measured} periods measured"
     );
     // Not measured: the class from the event log alone, and no exponent keys.
-    let off = json(&[
-        "--zeta",
-        "0",
-        "--mu-s",
-        "3",
-        "--w",
-        "0.33",
-        "--beta",
-        "9",
-        "--lyapunov-periods",
-        "0",
-    ]);
+    let off = json(&[&CHAOTIC[..], &["--lyapunov-periods", "0"]].concat());
     assert_eq!(off["class"], "nonperiodic-stick");
     assert!(off.get("lambda_per_tau").is_none() && off.get("verdict").is_none());
     // A periodic motion has no exponent keys at all.

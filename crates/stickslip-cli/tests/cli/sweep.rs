@@ -106,13 +106,7 @@ fn bad_ranges_give_one_line_and_exit_code_2() {
             "nope",
         ),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = base.to_vec();
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&base, cases);
     let dir = tempfile::tempdir().unwrap();
     let out = run_in(
         dir.path(),

@@ -190,11 +190,5 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         ),
         (&["--curve", "sideways"], "--curve"),
     ];
-    for (args, needle) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let mut full = vec!["theory"];
-        full.extend_from_slice(args);
-        let out = run_in(dir.path(), &full);
-        assert_usage_error(dir.path(), &out, needle);
-    }
+    assert_usage_errors(&["theory"], cases);
 }

@@ -213,16 +213,7 @@ impl Problem {
         let Some((u, orbit)) = self.confirm([orbit.state.y, orbit.state.v, lambda])? else {
             return Ok(None);
         };
-        let dp = self.dparam(&u)?;
-        let Some(tangent) = Self::tangent(&orbit, dp, &[0.0, 0.0, direction]) else {
-            return Ok(None);
-        };
-        Ok(Some(Solution {
-            u,
-            orbit,
-            dp,
-            tangent,
-        }))
+        self.oriented(u, orbit, direction)
     }
 
     /// A solution from an orbit found by Newton's method at the parameter value `lambda`,
@@ -233,7 +224,12 @@ impl Problem {
         lambda: f64,
         direction: f64,
     ) -> Result<Option<Solution>> {
-        let u = [orbit.state.y, orbit.state.v, lambda];
+        self.oriented([orbit.state.y, orbit.state.v, lambda], orbit, direction)
+    }
+
+    /// The solution at `u` on `orbit`, with its tangent oriented so that λ moves with the sign
+    /// of `direction`; `None` without a tangent.
+    fn oriented(&self, u: Point, orbit: PeriodicOrbit, direction: f64) -> Result<Option<Solution>> {
         let dp = self.dparam(&u)?;
         let Some(tangent) = Self::tangent(&orbit, dp, &[0.0, 0.0, direction]) else {
             return Ok(None);

@@ -1,6 +1,6 @@
 //! The options of a continuation.
 
-use crate::error::{Error, Result};
+use crate::error::{invalid, Error, Result};
 use crate::options::{Allowed, OptionKey};
 use serde::{Deserialize, Serialize};
 
@@ -73,16 +73,9 @@ impl ContinuationOptions {
     /// # Errors
     /// [`Error::InvalidParameter`] naming the first bad field.
     pub fn validate(self) -> Result<Self> {
-        let bad = |name, value: f64, allowed| {
-            Err(Error::InvalidParameter {
-                name,
-                value,
-                allowed,
-            })
-        };
         let positive = |x: f64| x > 0.0 && x.is_finite();
         if !positive(self.min_step) {
-            return bad("min_step", self.min_step, "must be finite and > 0");
+            return invalid("min_step", self.min_step, "must be finite and > 0");
         }
         if !(positive(self.max_step) && self.max_step >= self.min_step) {
             return Err(Error::InvalidOption {
@@ -93,38 +86,38 @@ impl ContinuationOptions {
         }
         OptionKey::MaxStep.check(self.max_step)?;
         if !(self.initial_step >= self.min_step && self.initial_step <= self.max_step) {
-            return bad(
+            return invalid(
                 "initial_step",
                 self.initial_step,
                 "must lie between min_step and max_step",
             );
         }
         if !(positive(self.max_parameter_step) && self.max_parameter_step <= 1.0) {
-            return bad(
+            return invalid(
                 "max_parameter_step",
                 self.max_parameter_step,
                 "must be > 0 and <= 1",
             );
         }
         if !(positive(self.max_angle) && self.max_angle < std::f64::consts::FRAC_PI_2) {
-            return bad("max_angle", self.max_angle, "must be > 0 and < pi/2");
+            return invalid("max_angle", self.max_angle, "must be > 0 and < pi/2");
         }
         OptionKey::MaxPoints.check_count(self.max_points)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-3) {
-            return bad("tolerance", self.tolerance, "must be > 0 and < 1e-3");
+            return invalid("tolerance", self.tolerance, "must be > 0 and < 1e-3");
         }
         if self.corrector_iterations == 0 {
-            return bad("corrector_iterations", 0.0, "must be at least 1");
+            return invalid("corrector_iterations", 0.0, "must be at least 1");
         }
         if !positive(self.locate_tolerance) {
-            return bad(
+            return invalid(
                 "locate_tolerance",
                 self.locate_tolerance,
                 "must be finite and > 0",
             );
         }
         if !(self.derivative_step > 1e-12 && self.derivative_step < 1e-2) {
-            return bad(
+            return invalid(
                 "derivative_step",
                 self.derivative_step,
                 "must be > 1e-12 and < 1e-2",
