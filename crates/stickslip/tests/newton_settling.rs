@@ -168,8 +168,8 @@ fn regression_newton_settled_on_a_sliding_orbit_the_trajectory_leaves() {
     }
 }
 
-/// The map of the report's chapter "Beyond the paper" (ζ = 0, μs = 3, w 0.2–0.6, β 3–14,
-/// 41 × 45 points from rest, 2000 periods), where chaotic motions, stick-slip cycles of
+/// A map of the window of the report's chapter "Beyond the paper" (ζ = 0, μs = 3, w 0.2–0.6,
+/// β 3–14, 41 × 45 points from rest, 2000 periods), where chaotic motions, stick-slip cycles of
 /// several periods and sliding orbits lie side by side. Every class, period, stop count and
 /// symmetry flag is the same with Newton as without, the gains to 1e-9·max(1, G), except
 /// where the plain iteration has not settled within the cap: there Newton's cycle must be the
