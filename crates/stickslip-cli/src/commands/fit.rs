@@ -169,33 +169,35 @@ pub(crate) fn read_record(spec: &str) -> Result<Record> {
 #[derive(Debug, clap::Args)]
 pub(crate) struct RecordChannels {
     /// The record's drive channel (name, CHn or position) [default: the first].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
+    #[arg(long, value_name = "COL", help_heading = "Measurements")]
     drive: Option<String>,
     /// The record's u_C channel [default: the second].
-    #[arg(
-        long,
-        value_name = "COL",
-        help_heading = "Measurements",
-        requires = "data"
-    )]
+    #[arg(long, value_name = "COL", help_heading = "Measurements")]
     response: Option<String>,
 }
 
 /// The scope record that `simulate --data` and `steady --data` draw beside the computed
-/// trace (`spec` as `fit --data`, channels picked as `fit --drive/--response`). The record is
-/// in volts and seconds: the experiment must be a circuit, and the record is drawn in the
-/// plot, which must be asked for.
+/// trace (`spec` as `fit --data`, channels picked as `fit --drive/--response`), or none
+/// without `--data`. The record is in volts and seconds: the experiment must be a circuit,
+/// and the record is drawn in the plot, which must be asked for. A channel picked without
+/// a record is refused, naming `--data`.
 pub(crate) fn record_to_draw(
-    spec: &str,
+    spec: Option<&str>,
     channels: &RecordChannels,
     experiment: &stickslip::Experiment,
     plot: Option<&Path>,
-) -> Result<Measurement> {
+) -> Result<Option<Measurement>> {
+    let Some(spec) = spec else {
+        for (flag, picked) in [("drive", &channels.drive), ("response", &channels.response)] {
+            if let Some(column) = picked {
+                usage!(
+                    "--{flag} {column} picks a channel of a scope record: give the record \
+                     with --data FILE (CSV, as `fit --data`)"
+                );
+            }
+        }
+        return Ok(None);
+    };
     if plot.is_none() {
         usage!("--data {spec} is drawn in the plot: add --plot FILE (.png or .svg)");
     }
@@ -216,6 +218,7 @@ pub(crate) fn record_to_draw(
         channels.drive.as_deref(),
         channels.response.as_deref(),
     )
+    .map(Some)
     .map_err(measure)
 }
 

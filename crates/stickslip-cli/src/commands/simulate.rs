@@ -62,15 +62,12 @@ pub fn run(args: Args) -> Result<()> {
     let params = experiment.params()?;
     // Before any work: a run longer than the solvers resolve is refused (exit code 2).
     stickslip::limits::check_horizon(&params, args.periods)?;
-    let record = match &args.data {
-        Some(spec) => Some(crate::commands::fit::record_to_draw(
-            spec,
-            &args.channels,
-            &experiment,
-            args.plot.as_deref(),
-        )?),
-        None => None,
-    };
+    let record = crate::commands::fit::record_to_draw(
+        args.data.as_deref(),
+        &args.channels,
+        &experiment,
+        args.plot.as_deref(),
+    )?;
     eprintln!("simulate: {experiment}");
 
     let period = params.drive_period();

@@ -81,15 +81,12 @@ pub fn run(args: Args) -> Result<()> {
         .options(&experiment)?
         .with_harmonics(harmonics)?;
     stickslip::steady::check_horizon(&params, &options, 0.0)?;
-    let record = match &args.data {
-        Some(spec) => Some(crate::commands::fit::record_to_draw(
-            spec,
-            &args.channels,
-            &experiment,
-            args.plot.as_deref(),
-        )?),
-        None => None,
-    };
+    let record = crate::commands::fit::record_to_draw(
+        args.data.as_deref(),
+        &args.channels,
+        &experiment,
+        args.plot.as_deref(),
+    )?;
     eprintln!("steady: {experiment}");
     let steady = experiment.steady_with(&options)?;
     crate::output::check_interrupt()?;

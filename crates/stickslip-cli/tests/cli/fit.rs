@@ -367,6 +367,27 @@ fn simulate_and_steady_draw_a_record_beside_the_trace() {
             ],
             "missing.csv",
         ),
+        (
+            vec![
+                "simulate", "--preset", "paper", "--w", "0.9", "--beta", "2", "--drive", "CH1",
+                "--out", "x.csv",
+            ],
+            "--drive CH1 picks a channel of a scope record: give the record with --data FILE",
+        ),
+        (
+            vec![
+                "steady",
+                "--preset",
+                "paper",
+                "--w",
+                "0.9",
+                "--beta",
+                "2",
+                "--response",
+                "CH2",
+            ],
+            "--response CH2 picks a channel of a scope record: give the record with --data FILE",
+        ),
     ] {
         let out = run_in(dir.path(), &args);
         let err = stderr(&out);
