@@ -152,6 +152,25 @@ pub fn run_until<S: Solver + ?Sized>(
     t_end: f64,
     mut on_event: impl FnMut(&Event),
 ) -> Result<()> {
+    run_steps(solver, t_end, |_, event| {
+        if let Some(event) = event {
+            on_event(event);
+        }
+    })
+}
+
+/// Advance `solver` to `t_end`, handing `on_step` the solver after every step (its
+/// [`Solver::interval`] is the stretch just covered, where [`Solver::dense`] holds) and the
+/// event that ended the step, if any.
+///
+/// # Errors
+/// [`Error::TimeBeforeCurrent`] when `t_end` is before the solver's time; whatever
+/// [`Solver::advance`] reports.
+pub fn run_steps<S: Solver + ?Sized>(
+    solver: &mut S,
+    t_end: f64,
+    mut on_step: impl FnMut(&S, Option<&Event>),
+) -> Result<()> {
     if t_end < solver.time() {
         return Err(Error::TimeBeforeCurrent {
             requested: t_end,
@@ -159,9 +178,8 @@ pub fn run_until<S: Solver + ?Sized>(
         });
     }
     while solver.time() < t_end {
-        if let Some(event) = solver.advance(t_end)? {
-            on_event(&event);
-        }
+        let event = solver.advance(t_end)?;
+        on_step(solver, event.as_ref());
     }
     Ok(())
 }
@@ -197,11 +215,7 @@ pub fn sample_at<S: Solver + ?Sized>(
             });
             continue;
         }
-        while solver.time() < tau {
-            if let Some(event) = solver.advance(tau)? {
-                on_event(&event);
-            }
-        }
+        run_until(solver, tau, &mut on_event)?;
         out.push(solver.dense(tau));
     }
     Ok(out)

@@ -104,7 +104,7 @@ use super::SolverFactory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::solver::{run_until, Event, EventKind, Phase, Sample, Solver};
+use crate::solver::{run_steps, run_until, Event, EventKind, Phase, Sample, Solver};
 use crate::stability::periodic_orbit::find_periodic_orbit_finished;
 use crate::stability::{
     lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
@@ -775,23 +775,14 @@ fn record<S: Solver + ?Sized>(
         next += 1;
     }
     let mut run_to = |solver: &mut S, t_end: f64, events: &mut Vec<Event>| -> Result<()> {
-        if t_end < solver.time() {
-            return Err(Error::TimeBeforeCurrent {
-                requested: t_end,
-                current: solver.time(),
-            });
-        }
-        while solver.time() < t_end {
-            if let Some(event) = solver.advance(t_end)? {
-                events.push(event);
-            }
+        run_steps(solver, t_end, |solver, event| {
+            events.extend(event.copied());
             let to = solver.interval().1;
             while next < times.len() && times[next] <= to {
                 trace.push(solver.dense(times[next]));
                 next += 1;
             }
-        }
-        Ok(())
+        })
     };
     for j in 0..recorded as u64 {
         let half = (2 * (start_index + j) + 1) as f64 / 2.0 * period;
