@@ -88,6 +88,6 @@ pub use options::{OptionKey, Spelling};
 pub use params::{Parameter, Params, State};
 pub use physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
 pub use shockley::{DiodePair, ShockleyOptions, ShockleySolver};
-pub use solver::{Event, EventKind, Phase, Sample, Solver, Stats};
+pub use solver::{Event, EventKind, Hints, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};
 pub use theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};

@@ -95,6 +95,18 @@ pub struct Stats {
     pub rejected: u64,
 }
 
+/// What a solver has learned of its motion that spares work to another solver started on the
+/// same motion: for the exact solver, how long its last slides of each kind lasted, where its
+/// predicted search of the next velocity zero looks first. A hint, never a result: a solver
+/// that takes it proves every event as it would without it, and finds the same events to
+/// rounding (see [`Solver::take_hints`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hints {
+    /// Per kind of slide (direction, from a stop or not): the duration of the last one, and
+    /// how far its prediction missed.
+    pub(crate) slides: [(f64, f64); 4],
+}
+
 /// A solver that advances the oscillator in time, reporting switching events and offering
 /// dense output over the interval it last advanced through.
 ///
@@ -141,6 +153,17 @@ pub trait Solver {
     /// wraps says. No default: a wrapper that forgot it would silently turn off the
     /// measurement.
     fn is_exact(&self) -> bool;
+
+    /// What this solver has learned that spares work to another one on the same motion
+    /// ([`Hints`]); `None` for solvers that learn nothing.
+    fn hints(&self) -> Option<Hints> {
+        None
+    }
+
+    /// Take the [`Hints`] of another solver on the same motion (solvers that learn nothing
+    /// ignore them). They change where the solver looks for its events first, not which
+    /// events it finds: those stay the same to rounding.
+    fn take_hints(&mut self, _hints: Hints) {}
 }
 
 /// Advance `solver` to `t_end`, handing every event to `on_event`.

@@ -19,7 +19,7 @@ use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::linear::{Damping, Forcing, LinearSegment};
 use crate::params::{Params, State};
-use crate::solver::{Event, EventKind, Phase, Sample, Solver, Stats};
+use crate::solver::{Event, EventKind, Hints, Phase, Sample, Solver, Stats};
 use crate::trig::sin_cos;
 use search::{slide_kind, Zero, ZeroSearch};
 use std::f64::consts::TAU;
@@ -421,6 +421,16 @@ impl Solver for ExactSolver {
 
     fn stats(&self) -> Stats {
         self.search.stats
+    }
+
+    fn hints(&self) -> Option<Hints> {
+        Some(Hints {
+            slides: self.search.durations,
+        })
+    }
+
+    fn take_hints(&mut self, hints: Hints) {
+        self.search.durations = hints.slides;
     }
 }
 

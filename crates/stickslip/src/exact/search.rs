@@ -83,7 +83,7 @@ pub(super) struct ZeroSearch {
     /// The kind of the current slide.
     kind: usize,
     /// Per kind of slide: the duration of the last one, and how far its prediction missed.
-    durations: [(f64, f64); KINDS],
+    pub(super) durations: [(f64, f64); KINDS],
     /// Whether to try the predicted search first (off only in tests that compare the two).
     pub(super) predict: bool,
     /// Work counters.

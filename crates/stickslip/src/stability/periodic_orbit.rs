@@ -47,11 +47,11 @@
 
 use super::error::StabilityError;
 use super::matrix::{Matrix2, Multiplier};
-use super::strobe::{strobe_map, StrobeImage};
+use super::strobe::{strobe_map_hinted, StrobeImage};
 use crate::error::{Error, Result};
 pub use crate::options::NewtonOptions;
 use crate::params::{Params, State};
-use crate::solver::{Event, EventKind};
+use crate::solver::{Event, EventKind, Hints};
 use serde::{Deserialize, Serialize};
 
 /// Stability of a periodic orbit from its largest Floquet multiplier modulus |μ|.
@@ -156,7 +156,7 @@ pub fn find_periodic_orbit(
     period: usize,
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
-    find_orbit(params, guess, period, options, false)
+    find_orbit(params, guess, period, options, false, None).map(|(orbit, _)| orbit)
 }
 
 /// [`find_periodic_orbit`] to `options.tolerance`, and then one more Newton step from the
@@ -164,14 +164,17 @@ pub fn find_periodic_orbit(
 /// monodromy, events and multipliers those of the last image (one step before). Near the
 /// orbit the step's error is quadratic in the last residual, so a loose tolerance saves the
 /// map's last evaluation; the caller must check the state it gets (the steady-state search
-/// checks it by the repetition of the cycle it records from it).
+/// checks it by the repetition of the cycle it records from it). The map's evaluations
+/// start from `hints` of a solver on the same motion and hand theirs on, one to the next
+/// (see [`Hints`]); the hints of the last are returned with the orbit.
 pub(crate) fn find_periodic_orbit_finished(
     params: &Params,
     guess: State,
     period: usize,
     options: &NewtonOptions,
-) -> Result<PeriodicOrbit> {
-    find_orbit(params, guess, period, options, true)
+    hints: Option<Hints>,
+) -> Result<(PeriodicOrbit, Option<Hints>)> {
+    find_orbit(params, guess, period, options, true, hints)
 }
 
 /// See [`find_periodic_orbit`] and [`find_periodic_orbit_finished`].
@@ -181,10 +184,13 @@ fn find_orbit(
     period: usize,
     options: &NewtonOptions,
     finish: bool,
-) -> Result<PeriodicOrbit> {
+    hints: Option<Hints>,
+) -> Result<(PeriodicOrbit, Option<Hints>)> {
     let options = options.validate()?;
     let mut x = State::new(guess.y, guess.v)?;
-    let mut image = strobe_map(params, x, period)?;
+    // Every evaluation of the map starts from the hints the one before left (the first from
+    // the caller's): the iterates follow one motion.
+    let (mut image, mut hints) = strobe_map_hinted(params, x, period, hints)?;
     let (mut norm, mut r) = residual(&image, x);
     let mut residuals = vec![norm];
     let mut iterations = 0;
@@ -241,7 +247,8 @@ fn find_orbit(
         let mut halvings = 0;
         loop {
             let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
-            let trial_image = strobe_map(params, trial, period)?;
+            let (trial_image, trial_hints) = strobe_map_hinted(params, trial, period, hints)?;
+            hints = trial_hints.or(hints);
             let (trial_norm, trial_r) = residual(&trial_image, trial);
             if trial_norm < norm || halvings == options.max_halvings {
                 (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
@@ -261,7 +268,7 @@ fn find_orbit(
     let multipliers = image.jacobian.eigenvalues();
     let modulus = multipliers[0].modulus();
     let stability = if (1.0 - modulus).abs() <= options.neutral_band
-        || tends_to_one(params, x, &image, r, period, modulus)
+        || tends_to_one(params, x, &image, r, period, modulus, hints)
     {
         Stability::Neutral
     } else if modulus < 1.0 {
@@ -285,7 +292,7 @@ fn find_orbit(
     }
     let drive_period = params.drive_period();
     let end = period as f64 * drive_period;
-    Ok(PeriodicOrbit {
+    let orbit = PeriodicOrbit {
         period,
         drive_period,
         state: x,
@@ -297,7 +304,8 @@ fn find_orbit(
         stability,
         iterations,
         residuals,
-    })
+    };
+    Ok((orbit, hints))
 }
 
 /// Beyond this distance from 1 the largest multiplier modulus is taken as Newton's method
@@ -327,6 +335,7 @@ fn tends_to_one(
     r: [f64; 2],
     period: usize,
     modulus: f64,
+    hints: Option<Hints>,
 ) -> bool {
     let d = 1.0 - modulus;
     if d.abs() > TANGENCY_PROBE_BELOW {
@@ -348,7 +357,7 @@ fn tends_to_one(
     let Ok(next) = State::new(x.y + step[0], x.v + step[1]) else {
         return false;
     };
-    let Ok(next_image) = strobe_map(params, next, period) else {
+    let Ok((next_image, _)) = strobe_map_hinted(params, next, period, hints) else {
         return false;
     };
     let ratio = (1.0 - next_image.jacobian.eigenvalues()[0].modulus()) / d;

@@ -5,7 +5,7 @@ use super::matrix::Matrix2;
 use super::tangent::TangentSolver;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::solver::{Event, Phase};
+use crate::solver::{Event, Hints, Phase, Solver};
 use serde::{Deserialize, Serialize};
 
 /// The image of a state under the p-fold strobe map P^p: the state p drive periods later,
@@ -50,6 +50,17 @@ pub struct StrobeImage {
 /// [`Error::InvalidParameter`] for invalid parameters, state or p = 0;
 /// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver reports.
 pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
+    strobe_map_hinted(params, state, periods, None).map(|(image, _)| image)
+}
+
+/// [`strobe_map`] on a solver that takes `hints` of an earlier run on the same motion (see
+/// [`Hints`]: the image is the same to rounding), with the hints its own run leaves.
+pub(crate) fn strobe_map_hinted(
+    params: &Params,
+    state: State,
+    periods: usize,
+    hints: Option<Hints>,
+) -> Result<(StrobeImage, Option<Hints>)> {
     let params = params.validate()?;
     let state = State::new(state.y, state.v)?;
     if periods == 0 {
@@ -60,18 +71,22 @@ pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<Strob
         });
     }
     let mut tangent = TangentSolver::new(params, state);
+    if let Some(hints) = hints {
+        tangent.take_hints(hints);
+    }
     let stuck_at_start = tangent.phase() == Phase::Stick;
     let mut events = Vec::new();
     tangent.run_until(periods as f64 * params.drive_period(), |e| events.push(*e))?;
     if let Some(tau) = tangent.grazing() {
         return Err(StabilityError::NonFiniteJacobian { tau }.into());
     }
-    Ok(StrobeImage {
+    let image = StrobeImage {
         state: tangent.state(),
         jacobian: tangent.jacobian(),
         log_det: tangent.log_det(),
         events,
         stuck_at_start,
         stuck_at_end: tangent.phase() == Phase::Stick,
-    })
+    };
+    Ok((image, tangent.solver().hints()))
 }

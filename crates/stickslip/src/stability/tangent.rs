@@ -6,7 +6,7 @@ use super::segment::SlidingTransition;
 use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
-use crate::solver::{Event, EventKind, Phase, Solver};
+use crate::solver::{Event, EventKind, Hints, Phase, Solver};
 
 /// Outside [SCALE_BELOW, SCALE_ABOVE] the entries of J are rescaled into `log_scale`.
 const SCALE_BELOW: f64 = 1e-100;
@@ -109,6 +109,11 @@ impl TangentSolver {
     /// The exact solver underneath (for its state, dense output and statistics).
     pub fn solver(&self) -> &ExactSolver {
         &self.solver
+    }
+
+    /// Take the [`Hints`] of another solver on the same motion (see [`Solver::take_hints`]).
+    pub fn take_hints(&mut self, hints: Hints) {
+        self.solver.take_hints(hints);
     }
 
     /// The parameters of the model.

@@ -104,7 +104,7 @@ use super::SolverFactory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
-use crate::solver::{run_steps, run_until, Event, EventKind, Phase, Sample, Solver};
+use crate::solver::{run_steps, run_until, Event, EventKind, Hints, Phase, Sample, Solver};
 use crate::stability::periodic_orbit::find_periodic_orbit_finished;
 use crate::stability::{
     lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
@@ -303,6 +303,9 @@ impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
 struct NewtonSettling {
     /// The orbit found by the last attempt (stable), if any.
     orbit: Option<PeriodicOrbit>,
+    /// The hints of the last evaluation of the map near the orbit, for the solver that
+    /// records the cycle from it.
+    hints: Option<Hints>,
     /// Attempts made.
     attempts: usize,
     /// Tangent periods run by the attempts (counted in `periods_to_settle`).
@@ -341,6 +344,7 @@ impl NewtonSettling {
     fn new() -> Self {
         Self {
             orbit: None,
+            hints: None,
             attempts: 0,
             periods: 0,
             passes: 0,
@@ -350,13 +354,15 @@ impl NewtonSettling {
 
     /// After strobe x_k (the last of `history`, oldest first): the orbit, when it is stable
     /// and the trajectory is within its basin (see [`within_basin`]). Tries Newton from x_k
-    /// when the strobes contract and no orbit is at hand.
+    /// when the strobes contract and no orbit is at hand, its map's evaluations starting from
+    /// the trajectory's `hints`.
     fn step(
         &mut self,
         params: &Params,
         history: &VecDeque<State>,
         last_period: impl Iterator<Item = Event>,
         budget: usize,
+        hints: Option<Hints>,
     ) -> Option<PeriodicOrbit> {
         let n = history.len();
         if n < 2 {
@@ -374,11 +380,12 @@ impl NewtonSettling {
         {
             self.attempts += 1;
             self.last_step = step;
-            match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON) {
-                Ok(orbit) => {
+            match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON, hints) {
+                Ok((orbit, hints)) => {
                     self.periods += orbit.residuals.len();
                     if orbit.stability == Stability::Stable {
                         self.orbit = Some(orbit);
+                        self.hints = hints;
                     }
                 }
                 // A failed attempt costs at most its steps and halvings.
@@ -541,9 +548,10 @@ fn run_to_cycle<H: Holder>(
             });
         let events_last = recent.iter().filter(|(m, _)| *m == local).count();
         let before = spent(&newton);
+        let hints = holder.solver().hints();
         let accepted = newton
             .as_mut()
-            .and_then(|n| n.step(params, &history, last_period, budget));
+            .and_then(|n| n.step(params, &history, last_period, budget, hints));
         let tangent = spent(&newton) - before;
         if tangent > 0 {
             // Newton's periods run on a tangent solver of their own: charge them to the token
@@ -556,6 +564,9 @@ fn run_to_cycle<H: Holder>(
         if let Some(orbit) = accepted {
             // Record the cycle from the orbit's strobe, on a new solver started there.
             if holder.restart(orbit.state)? {
+                if let Some(hints) = newton.as_ref().and_then(|n| n.hints).or(hints) {
+                    holder.solver().take_hints(hints);
+                }
                 let tangent_periods = spent(&newton);
                 return Ok(Settled {
                     found: Some(1),
@@ -569,7 +580,11 @@ fn run_to_cycle<H: Holder>(
         }
         if accelerate && restarts < MAX_RESTARTS {
             if let Some(target) = extrapolate(&history, options.tolerance, scale) {
+                let hints = holder.solver().hints();
                 if holder.restart(target)? {
+                    if let Some(hints) = hints {
+                        holder.solver().take_hints(hints);
+                    }
                     restarts += 1;
                     base = 0;
                     local = 0;
