@@ -164,6 +164,13 @@ pub trait Solver {
     /// ignore them). They change where the solver looks for its events first, not which
     /// events it finds: those stay the same to rounding.
     fn take_hints(&mut self, _hints: Hints) {}
+
+    /// The exact solver this is, if it is one, for the tangent dynamics
+    /// ([`crate::stability`]) to ride along it; `None` for other solvers (and for wrappers,
+    /// which then lose only that shortcut).
+    fn as_exact_mut(&mut self) -> Option<&mut crate::ExactSolver> {
+        None
+    }
 }
 
 /// Advance `solver` to `t_end`, handing every event to `on_event`.

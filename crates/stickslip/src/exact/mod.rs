@@ -432,6 +432,10 @@ impl Solver for ExactSolver {
     fn take_hints(&mut self, hints: Hints) {
         self.search.durations = hints.slides;
     }
+
+    fn as_exact_mut(&mut self) -> Option<&mut ExactSolver> {
+        Some(self)
+    }
 }
 
 #[cfg(test)]

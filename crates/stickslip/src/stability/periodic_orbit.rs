@@ -156,7 +156,7 @@ pub fn find_periodic_orbit(
     period: usize,
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
-    find_orbit(params, guess, period, options, false, None).map(|(orbit, _)| orbit)
+    find_orbit(params, guess, period, options, false, None, None).map(|(orbit, _)| orbit)
 }
 
 /// [`find_periodic_orbit`] to `options.tolerance`, and then one more Newton step from the
@@ -166,15 +166,18 @@ pub fn find_periodic_orbit(
 /// map's last evaluation; the caller must check the state it gets (the steady-state search
 /// checks it by the repetition of the cycle it records from it). The map's evaluations
 /// start from `hints` of a solver on the same motion and hand theirs on, one to the next
-/// (see [`Hints`]); the hints of the last are returned with the orbit.
+/// (see [`Hints`]); the hints of the last are returned with the orbit. With `first`, the
+/// image of the guess computed already (see `strobe::image_along`), the map is not evaluated
+/// there again; the orbit's `residuals` still begin with the guess's.
 pub(crate) fn find_periodic_orbit_finished(
     params: &Params,
     guess: State,
     period: usize,
     options: &NewtonOptions,
     hints: Option<Hints>,
+    first: Option<StrobeImage>,
 ) -> Result<(PeriodicOrbit, Option<Hints>)> {
-    find_orbit(params, guess, period, options, true, hints)
+    find_orbit(params, guess, period, options, true, hints, first)
 }
 
 /// See [`find_periodic_orbit`] and [`find_periodic_orbit_finished`].
@@ -185,12 +188,16 @@ fn find_orbit(
     options: &NewtonOptions,
     finish: bool,
     hints: Option<Hints>,
+    first: Option<StrobeImage>,
 ) -> Result<(PeriodicOrbit, Option<Hints>)> {
     let options = options.validate()?;
     let mut x = State::new(guess.y, guess.v)?;
     // Every evaluation of the map starts from the hints the one before left (the first from
     // the caller's): the iterates follow one motion.
-    let (mut image, mut hints) = strobe_map_hinted(params, x, period, hints)?;
+    let (mut image, mut hints) = match first {
+        Some(image) => (image, hints),
+        None => strobe_map_hinted(params, x, period, hints)?,
+    };
     let (mut norm, mut r) = residual(&image, x);
     let mut residuals = vec![norm];
     let mut iterations = 0;

@@ -2,8 +2,9 @@
 
 use super::error::StabilityError;
 use super::matrix::Matrix2;
-use super::tangent::TangentSolver;
+use super::tangent::{Tangent, TangentSolver};
 use crate::error::{Error, Result};
+use crate::exact::ExactSolver;
 use crate::params::{Params, State};
 use crate::solver::{Event, Hints, Phase, Solver};
 use serde::{Deserialize, Serialize};
@@ -51,6 +52,43 @@ pub struct StrobeImage {
 /// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver reports.
 pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
     strobe_map_hinted(params, state, periods, None).map(|(image, _)| image)
+}
+
+/// The image under the strobe map of the state at which `solver` stands, a strobe, computed
+/// on `solver` itself as it runs on to the next strobe `t_end` (handing every event, with its
+/// absolute time, to `on_event`): the same image as [`strobe_map`] from that state, to the
+/// rounding of the absolute times, without a run of its own.
+///
+/// # Errors
+/// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
+/// reports.
+pub(crate) fn image_along(
+    solver: &mut ExactSolver,
+    t_end: f64,
+    mut on_event: impl FnMut(&Event),
+) -> Result<StrobeImage> {
+    let start = solver.time();
+    let stuck_at_start = solver.phase() == Phase::Stick;
+    let mut tangent = Tangent::new(solver);
+    let mut events = Vec::new();
+    tangent.run_until(solver, t_end, |e| {
+        on_event(e);
+        events.push(Event {
+            tau: e.tau - start,
+            ..*e
+        });
+    })?;
+    if let Some(tau) = tangent.grazing() {
+        return Err(StabilityError::NonFiniteJacobian { tau: tau - start }.into());
+    }
+    Ok(StrobeImage {
+        state: solver.state(),
+        jacobian: tangent.jacobian(),
+        log_det: tangent.log_det(),
+        events,
+        stuck_at_start,
+        stuck_at_end: solver.phase() == Phase::Stick,
+    })
 }
 
 /// [`strobe_map`] on a solver that takes `hints` of an earlier run on the same motion (see

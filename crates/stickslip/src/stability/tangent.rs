@@ -44,6 +44,15 @@ const FOLD_BELOW: f64 = 1e-150;
 #[derive(Debug, Clone)]
 pub struct TangentSolver {
     solver: ExactSolver,
+    tangent: Tangent,
+}
+
+/// The tangent dynamics alone: the Jacobian J carried along the advances of an exact solver
+/// it does not own (see [`TangentSolver`], which owns its solver, for the method). The
+/// steady-state search carries it along its own trajectory for the period whose image
+/// starts Newton's method.
+#[derive(Debug, Clone)]
+pub(crate) struct Tangent {
     transition: SlidingTransition,
     zeta: f64,
     mu_s: f64,
@@ -71,39 +80,19 @@ impl TangentSolver {
     /// Carry the Jacobian along an existing solver from its current time on, with J = I there
     /// (for example after a transient run without tangents).
     pub fn from_solver(solver: ExactSolver) -> Self {
-        let params = *solver.params();
-        let mut tangent = Self {
-            solver,
-            transition: SlidingTransition::new(params.zeta),
-            zeta: params.zeta,
-            mu_s: params.mu_s,
-            jacobian: Matrix2::IDENTITY,
-            log_scale: 0.0,
-            sliding_time: 0.0,
-            turn_log: 0.0,
-            turn_product: 1.0,
-            stops: 0,
-            grazing: None,
-        };
-        tangent.reset();
-        tangent
+        let tangent = Tangent::new(&solver);
+        Self { solver, tangent }
     }
 
     /// Start the Jacobian afresh at the current time: J = I, ln|det J| = 0, no stops.
     pub fn reset(&mut self) {
-        self.jacobian = Matrix2::IDENTITY;
-        self.log_scale = 0.0;
-        self.reset_log_det();
-        self.grazing = None;
+        self.tangent.reset(&self.solver);
     }
 
     /// Restart ln|det J| and the stop count at the current time, keeping J (for example to
     /// measure after a transient that has aligned J with the most unstable direction).
     pub fn reset_log_det(&mut self) {
-        self.sliding_time = 0.0;
-        self.turn_log = 0.0;
-        self.turn_product = 1.0;
-        self.stops = u64::from(self.solver.phase() == Phase::Stick);
+        self.tangent.reset_log_det(&self.solver);
     }
 
     /// The exact solver underneath (for its state, dense output and statistics).
@@ -140,7 +129,7 @@ impl TangentSolver {
     /// [`TangentSolver::renormalize`] took out, and by e^s with s =
     /// [`TangentSolver::log_scale`] (0 unless the entries left 10^±100).
     pub fn jacobian(&self) -> Matrix2 {
-        self.jacobian
+        self.tangent.jacobian
     }
 
     /// The logarithm s of the factor e^s taken out of [`TangentSolver::jacobian`] whenever its
@@ -148,31 +137,27 @@ impl TangentSolver {
     /// neither overflow nor underflow; 0 until then. [`TangentSolver::renormalize`] includes
     /// it and sets it back to 0.
     pub fn log_scale(&self) -> f64 {
-        self.log_scale
+        self.tangent.log_scale
     }
 
     /// Stops since the last reset (a motion stuck at the reset counts one). Each makes J
     /// singular.
     pub fn stops(&self) -> u64 {
-        self.stops
+        self.tangent.stops
     }
 
     /// ln|det J| since the last reset (not changed by renormalisation):
     /// −2ζ·(sliding time) + Σ_turns ln(a⁺/a⁻), or `None` when a stop has made J singular
     /// (det J = 0).
     pub fn log_det(&self) -> Option<f64> {
-        if self.stops > 0 || self.turn_product == 0.0 {
-            None
-        } else {
-            Some(-2.0 * self.zeta * self.sliding_time + self.turn_log + self.turn_product.ln())
-        }
+        self.tangent.log_det()
     }
 
     /// Time of the first tangential release (μs > 1 and the drive's rate zero at the
     /// release) since the last reset: the flow is not differentiable there and J is not
     /// finite from then on.
     pub fn grazing(&self) -> Option<f64> {
-        self.grazing
+        self.tangent.grazing
     }
 
     /// Go on from the current state with a new solver whose clock starts at τ = 0, keeping J,
@@ -189,10 +174,11 @@ impl TangentSolver {
     /// of [`TangentSolver::log_scale`] included (for Lyapunov exponents: the growth since the
     /// last renormalisation). ln|det J| is kept as it was.
     pub fn renormalize(&mut self) -> f64 {
-        let norm = self.jacobian.norm();
-        self.jacobian = self.jacobian.scaled(1.0 / norm);
-        let growth = norm.ln() + self.log_scale;
-        self.log_scale = 0.0;
+        let t = &mut self.tangent;
+        let norm = t.jacobian.norm();
+        t.jacobian = t.jacobian.scaled(1.0 / norm);
+        let growth = norm.ln() + t.log_scale;
+        t.log_scale = 0.0;
         growth
     }
 
@@ -202,10 +188,84 @@ impl TangentSolver {
     /// # Errors
     /// Whatever [`ExactSolver::advance`] reports.
     pub fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
-        let sign = self.solver.phase().sign();
-        let from = self.solver.time();
-        let event = self.solver.advance(t_end)?;
-        let elapsed = self.solver.time() - from;
+        self.tangent.advance(&mut self.solver, t_end)
+    }
+
+    /// Advance to `t_end`, handing every event to `on_event`.
+    ///
+    /// # Errors
+    /// [`Error::TimeBeforeCurrent`] when `t_end` lies before the current time; whatever
+    /// [`ExactSolver::advance`] reports.
+    pub fn run_until(&mut self, t_end: f64, on_event: impl FnMut(&Event)) -> Result<()> {
+        self.tangent.run_until(&mut self.solver, t_end, on_event)
+    }
+}
+
+impl Tangent {
+    /// J = I at the current time of `solver`.
+    pub(crate) fn new(solver: &ExactSolver) -> Self {
+        let params = *solver.params();
+        let mut tangent = Self {
+            transition: SlidingTransition::new(params.zeta),
+            zeta: params.zeta,
+            mu_s: params.mu_s,
+            jacobian: Matrix2::IDENTITY,
+            log_scale: 0.0,
+            sliding_time: 0.0,
+            turn_log: 0.0,
+            turn_product: 1.0,
+            stops: 0,
+            grazing: None,
+        };
+        tangent.reset(solver);
+        tangent
+    }
+
+    /// See [`TangentSolver::reset`].
+    fn reset(&mut self, solver: &ExactSolver) {
+        self.jacobian = Matrix2::IDENTITY;
+        self.log_scale = 0.0;
+        self.reset_log_det(solver);
+        self.grazing = None;
+    }
+
+    /// See [`TangentSolver::reset_log_det`].
+    fn reset_log_det(&mut self, solver: &ExactSolver) {
+        self.sliding_time = 0.0;
+        self.turn_log = 0.0;
+        self.turn_product = 1.0;
+        self.stops = u64::from(solver.phase() == Phase::Stick);
+    }
+
+    /// See [`TangentSolver::jacobian`].
+    pub(crate) fn jacobian(&self) -> Matrix2 {
+        self.jacobian
+    }
+
+    /// See [`TangentSolver::grazing`].
+    pub(crate) fn grazing(&self) -> Option<f64> {
+        self.grazing
+    }
+
+    /// See [`TangentSolver::log_det`].
+    pub(crate) fn log_det(&self) -> Option<f64> {
+        if self.stops > 0 || self.turn_product == 0.0 {
+            None
+        } else {
+            Some(-2.0 * self.zeta * self.sliding_time + self.turn_log + self.turn_product.ln())
+        }
+    }
+
+    /// Advance `solver` (the one this tangent started on) as [`TangentSolver::advance`].
+    pub(crate) fn advance(
+        &mut self,
+        solver: &mut ExactSolver,
+        t_end: f64,
+    ) -> Result<Option<Event>> {
+        let sign = solver.phase().sign();
+        let from = solver.time();
+        let event = solver.advance(t_end)?;
+        let elapsed = solver.time() - from;
         if sign == 0.0 {
             self.erase_velocity();
         } else if elapsed > 0.0 {
@@ -218,25 +278,26 @@ impl TangentSolver {
             }
         }
         if let Some(e) = &event {
-            self.jump(e);
+            self.jump(solver, e);
         }
         Ok(event)
     }
 
-    /// Advance to `t_end`, handing every event to `on_event`.
-    ///
-    /// # Errors
-    /// [`Error::TimeBeforeCurrent`] when `t_end` lies before the current time; whatever
-    /// [`ExactSolver::advance`] reports.
-    pub fn run_until(&mut self, t_end: f64, mut on_event: impl FnMut(&Event)) -> Result<()> {
-        if t_end < self.time() || t_end.is_nan() {
+    /// Advance `solver` as [`TangentSolver::run_until`].
+    pub(crate) fn run_until(
+        &mut self,
+        solver: &mut ExactSolver,
+        t_end: f64,
+        mut on_event: impl FnMut(&Event),
+    ) -> Result<()> {
+        if t_end < solver.time() || t_end.is_nan() {
             return Err(Error::TimeBeforeCurrent {
                 requested: t_end,
-                current: self.time(),
+                current: solver.time(),
             });
         }
-        while self.time() < t_end {
-            if let Some(event) = self.advance(t_end)? {
+        while solver.time() < t_end {
+            if let Some(event) = self.advance(solver, t_end)? {
                 on_event(&event);
             }
         }
@@ -249,16 +310,16 @@ impl TangentSolver {
         self.jacobian.0[1] = [0.0, 0.0];
     }
 
-    /// The saltation of `event`, from the start of the segment the solver has just begun.
+    /// The saltation of `event`, from the start of the segment `solver` has just begun.
     #[inline]
-    fn jump(&mut self, event: &Event) {
+    fn jump(&mut self, solver: &ExactSolver, event: &Event) {
         match event.kind {
             EventKind::Stick => {
                 self.erase_velocity();
                 self.stops += 1;
             }
             EventKind::Turn => {
-                let (sign, d) = self.solver.slide_start().expect("a turn starts a slide");
+                let (sign, d) = solver.slide_start().expect("a turn starts a slide");
                 // a⁺ = y'' at the start of the new slide; a⁻ = a⁺ + s⁺ − s⁻ = a⁺ + 2s⁺.
                 let ratio = d[2] / (d[2] + 2.0 * sign);
                 self.jacobian.0[1][0] *= ratio;
@@ -274,7 +335,7 @@ impl TangentSolver {
                     // S_release = I (see `saltation`).
                     return;
                 }
-                let (sign, d) = self.solver.slide_start().expect("a release starts a slide");
+                let (sign, d) = solver.slide_start().expect("a release starts a slide");
                 // F'(τ_r) from y''' = F' − y' − 2ζy'' at the start, where y' = 0.
                 let rate = sign * (d[3] + 2.0 * self.zeta * d[2]);
                 let shear = if rate > 0.0 {

@@ -106,9 +106,10 @@ use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{run_steps, run_until, Event, EventKind, Hints, Phase, Sample, Solver};
 use crate::stability::periodic_orbit::find_periodic_orbit_finished;
+use crate::stability::strobe::image_along;
 use crate::stability::{
     lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
-    NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
+    NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError, StrobeImage,
 };
 use std::collections::VecDeque;
 
@@ -352,18 +353,10 @@ impl NewtonSettling {
         }
     }
 
-    /// After strobe x_k (the last of `history`, oldest first): the orbit, when it is stable
-    /// and the trajectory is within its basin (see [`within_basin`]). Tries Newton from x_k
-    /// when the strobes contract and no orbit is at hand, its map's evaluations starting from
-    /// the trajectory's `hints`.
-    fn step(
-        &mut self,
-        params: &Params,
-        history: &VecDeque<State>,
-        last_period: impl Iterator<Item = Event>,
-        budget: usize,
-        hints: Option<Hints>,
-    ) -> Option<PeriodicOrbit> {
+    /// After strobe x_k (the last of `history`, oldest first): whether to try Newton from x_k,
+    /// and the strobe step |x_k − x_{k−1}| that decided it. Tried when the strobes contract
+    /// and no orbit is at hand.
+    fn wants_attempt(&self, history: &VecDeque<State>, budget: usize) -> Option<f64> {
         let n = history.len();
         if n < 2 {
             return None;
@@ -371,29 +364,64 @@ impl NewtonSettling {
         let (x, previous) = (history[n - 1], history[n - 2]);
         let step = distance(x, previous);
         let contracting = n < 3 || step < distance(previous, history[n - 3]);
-        if self.orbit.is_none()
+        (self.orbit.is_none()
             && self.attempts < MAX_NEWTON_ATTEMPTS
             && step > 0.0
             && contracting
             && step <= 0.25 * self.last_step
-            && budget >= MOST_NEWTON_PERIODS
-        {
-            self.attempts += 1;
-            self.last_step = step;
-            match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON, hints) {
-                Ok((orbit, hints)) => {
-                    self.periods += orbit.residuals.len();
-                    if orbit.stability == Stability::Stable {
-                        self.orbit = Some(orbit);
-                        self.hints = hints;
-                    }
-                }
-                // A failed attempt costs at most its steps and halvings.
-                Err(_) => self.periods += MOST_NEWTON_PERIODS,
+            && budget >= MOST_NEWTON_PERIODS)
+            .then_some(step)
+    }
+
+    /// Newton's method from x (decided with strobe step `step`), its map's evaluations
+    /// starting from the trajectory's `hints`. `first` is the image of x when the trajectory
+    /// has computed it along its own next period (`Some(None)` when that period grazed, which
+    /// fails the attempt); `None` when the map must be evaluated at x.
+    fn attempt(
+        &mut self,
+        params: &Params,
+        x: State,
+        step: f64,
+        hints: Option<Hints>,
+        first: Option<Option<StrobeImage>>,
+    ) {
+        self.attempts += 1;
+        self.last_step = step;
+        // The period of the trajectory that gave the first image is counted as a strobe.
+        let along = usize::from(first.is_some());
+        let first = match first {
+            Some(Some(image)) => Some(image),
+            Some(None) => {
+                self.periods += MOST_NEWTON_PERIODS - along;
+                return;
             }
+            None => None,
+        };
+        match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON, hints, first) {
+            Ok((orbit, hints)) => {
+                self.periods += orbit.residuals.len() - along;
+                if orbit.stability == Stability::Stable {
+                    self.orbit = Some(orbit);
+                    self.hints = hints;
+                }
+            }
+            // A failed attempt costs at most its steps and halvings.
+            Err(_) => self.periods += MOST_NEWTON_PERIODS - along,
         }
+    }
+
+    /// After the strobe step x_{k−1} → x_k (with the events of the period between, times
+    /// from its first strobe): the orbit, when it is stable and the trajectory is within its
+    /// basin (see [`within_basin`] and [`same_events`]).
+    fn check(
+        &mut self,
+        params: &Params,
+        previous: State,
+        x: State,
+        events: impl Iterator<Item = Event>,
+    ) -> Option<PeriodicOrbit> {
         let orbit = self.orbit.as_ref()?;
-        let passed = within_basin(orbit, previous, x) && same_events(params, orbit, last_period);
+        let passed = within_basin(orbit, previous, x) && same_events(params, orbit, events);
         self.passes = if passed { self.passes + 1 } else { 0 };
         (self.passes >= BASIN_PASSES).then(|| orbit.clone())
     }
@@ -495,12 +523,33 @@ fn run_to_cycle<H: Holder>(
     // not shorten the trajectory, so a motion that does not settle is run and recorded as
     // without Newton.
     let spent = |newton: &Option<NewtonSettling>| newton.as_ref().map_or(0, |n| n.periods);
+    // A Newton attempt decided at the last strobe x_k: x_k, the strobe step that decided it,
+    // and the events of the period that ended at x_k (times from its start). The image of x_k
+    // is computed along the trajectory's next period (`image_along`) instead of by a run of
+    // its own, and the attempt made at the next strobe, with the check of the step to x_k
+    // that would have followed it at x_k.
+    let mut pending: Option<(State, f64, Vec<Event>)> = None;
     while periods_run < options.max_periods {
         periods_run += 1;
         local += 1;
-        run_until(holder.solver(), strobe(base + local as u64, period), |e| {
-            recent.push_back((local, *e))
-        })?;
+        let next = strobe(base + local as u64, period);
+        let along = match (&pending, holder.solver().as_exact_mut()) {
+            (Some(_), Some(exact)) => {
+                let image = image_along(exact, next, |e| recent.push_back((local, *e)));
+                match image {
+                    Ok(image) => Some(Some(image)),
+                    Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => {
+                        run_until(holder.solver(), next, |e| recent.push_back((local, *e)))?;
+                        Some(None)
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            _ => {
+                run_until(holder.solver(), next, |e| recent.push_back((local, *e)))?;
+                None
+            }
+        };
         while recent
             .front()
             .is_some_and(|(m, _)| *m + max_period <= local)
@@ -549,9 +598,31 @@ fn run_to_cycle<H: Holder>(
         let events_last = recent.iter().filter(|(m, _)| *m == local).count();
         let before = spent(&newton);
         let hints = holder.solver().hints();
-        let accepted = newton
-            .as_mut()
-            .and_then(|n| n.step(params, &history, last_period, budget, hints));
+        // Where the strobes will restart after extrapolation (decided by the strobes alone).
+        let target = (accelerate && restarts < MAX_RESTARTS)
+            .then(|| extrapolate(&history, options.tolerance, scale))
+            .flatten();
+        let mut accepted = None;
+        if let Some(n) = newton.as_mut() {
+            let len = history.len();
+            if let Some((x_k, step, events)) = pending.take() {
+                n.attempt(params, x_k, step, hints, along);
+                // (This check cannot accept: it is the first after the attempt.)
+                n.check(params, history[len - 3], x_k, events.into_iter());
+            }
+            match n.wants_attempt(&history, budget) {
+                // The image along the next period, unless the strobes restart elsewhere (or
+                // the solver cannot carry the tangent).
+                Some(step) if target.is_none() && holder.solver().as_exact_mut().is_some() => {
+                    pending = Some((x, step, last_period.collect()));
+                }
+                Some(step) => {
+                    n.attempt(params, x, step, hints, None);
+                    accepted = n.check(params, history[len - 2], x, last_period);
+                }
+                None => accepted = n.check(params, history[len - 2], x, last_period),
+            }
+        }
         let tangent = spent(&newton) - before;
         if tangent > 0 {
             // Newton's periods run on a tangent solver of their own: charge them to the token
@@ -578,9 +649,8 @@ fn run_to_cycle<H: Holder>(
                 });
             }
         }
-        if accelerate && restarts < MAX_RESTARTS {
-            if let Some(target) = extrapolate(&history, options.tolerance, scale) {
-                let hints = holder.solver().hints();
+        {
+            if let Some(target) = target {
                 if holder.restart(target)? {
                     if let Some(hints) = hints {
                         holder.solver().take_hints(hints);
