@@ -165,10 +165,10 @@ pub trait Solver {
     /// events it finds: those stay the same to rounding.
     fn take_hints(&mut self, _hints: Hints) {}
 
-    /// The exact solver this is, if it is one, for the tangent dynamics
-    /// ([`crate::stability`]) to ride along it; `None` for other solvers (and for wrappers,
-    /// which then lose only that shortcut).
-    fn as_exact_mut(&mut self) -> Option<&mut crate::ExactSolver> {
+    /// This solver as [`Any`](std::any::Any), for code that does more with a solver type it
+    /// knows (the steady-state search carries the exact solver's tangent dynamics along it);
+    /// `None` by default (a wrapper then loses only that shortcut).
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         None
     }
 }

@@ -484,6 +484,17 @@ fn analysis_is_generic_over_the_solver_trait() {
         fn is_exact(&self) -> bool {
             self.0.is_exact()
         }
+        // Its hints, and the exact solver inside for the tangent dynamics, are handed on too:
+        // with them the search does on it what it does on the exact solver.
+        fn hints(&self) -> Option<stickslip::Hints> {
+            self.0.hints()
+        }
+        fn take_hints(&mut self, hints: stickslip::Hints) {
+            self.0.take_hints(hints)
+        }
+        fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+            self.0.as_any_mut()
+        }
     }
     let factory = |p: Params, s: State| -> stickslip::Result<Box<dyn Solver + Send>> {
         Ok(Box::new(Wrapped(ExactSolver::new(p, s))))

@@ -433,7 +433,7 @@ impl Solver for ExactSolver {
         self.search.durations = hints.slides;
     }
 
-    fn as_exact_mut(&mut self) -> Option<&mut ExactSolver> {
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
     }
 }

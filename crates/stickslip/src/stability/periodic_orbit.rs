@@ -192,12 +192,15 @@ fn find_orbit(
 ) -> Result<(PeriodicOrbit, Option<Hints>)> {
     let options = options.validate()?;
     let mut x = State::new(guess.y, guess.v)?;
-    // Every evaluation of the map starts from the hints the one before left (the first from
-    // the caller's): the iterates follow one motion.
+    // Given hints, every evaluation of the map starts from the hints the one before left (the
+    // first from the caller's): the iterates follow one motion. Without, none does (the
+    // public search: its iterates are the same to the bit as they always were).
+    let chain = hints.is_some();
     let (mut image, mut hints) = match first {
         Some(image) => (image, hints),
         None => strobe_map_hinted(params, x, period, hints)?,
     };
+    hints = hints.filter(|_| chain);
     let (mut norm, mut r) = residual(&image, x);
     let mut residuals = vec![norm];
     let mut iterations = 0;
@@ -255,7 +258,7 @@ fn find_orbit(
         loop {
             let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
             let (trial_image, trial_hints) = strobe_map_hinted(params, trial, period, hints)?;
-            hints = trial_hints.or(hints);
+            hints = trial_hints.filter(|_| chain).or(hints);
             let (trial_norm, trial_r) = residual(&trial_image, trial);
             if trial_norm < norm || halvings == options.max_halvings {
                 (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);

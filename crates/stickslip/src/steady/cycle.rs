@@ -103,6 +103,7 @@ use super::state::SteadyState;
 use super::SolverFactory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
+use crate::exact::ExactSolver;
 use crate::params::{Params, State};
 use crate::solver::{run_steps, run_until, Event, EventKind, Hints, Phase, Sample, Solver};
 use crate::stability::periodic_orbit::find_periodic_orbit_finished;
@@ -533,7 +534,7 @@ fn run_to_cycle<H: Holder>(
         periods_run += 1;
         local += 1;
         let next = strobe(base + local as u64, period);
-        let along = match (&pending, holder.solver().as_exact_mut()) {
+        let along = match (&pending, exact_of(holder.solver())) {
             (Some(_), Some(exact)) => {
                 let image = image_along(exact, next, |e| recent.push_back((local, *e)));
                 match image {
@@ -613,7 +614,7 @@ fn run_to_cycle<H: Holder>(
             match n.wants_attempt(&history, budget) {
                 // The image along the next period, unless the strobes restart elsewhere (or
                 // the solver cannot carry the tangent).
-                Some(step) if target.is_none() && holder.solver().as_exact_mut().is_some() => {
+                Some(step) if target.is_none() && exact_of(holder.solver()).is_some() => {
                     pending = Some((x, step, last_period.collect()));
                 }
                 Some(step) => {
@@ -652,9 +653,6 @@ fn run_to_cycle<H: Holder>(
         {
             if let Some(target) = target {
                 if holder.restart(target)? {
-                    if let Some(hints) = hints {
-                        holder.solver().take_hints(hints);
-                    }
                     restarts += 1;
                     base = 0;
                     local = 0;
@@ -676,6 +674,11 @@ fn run_to_cycle<H: Holder>(
         events_per_period: events as f64 / cycle as f64,
         by_newton: None,
     })
+}
+
+/// The exact solver `solver` is, if it is one.
+fn exact_of<S: Solver + ?Sized>(solver: &mut S) -> Option<&mut ExactSolver> {
+    solver.as_any_mut()?.downcast_mut::<ExactSolver>()
 }
 
 /// Most extrapolations of the stroboscopic map in one run.
