@@ -141,6 +141,30 @@ impl ExactSolver {
         }
     }
 
+    /// Start again from `initial` at τ = 0, in place: the solver [`ExactSolver::new`] would
+    /// build with the same parameters (and the same cancel token), to the bit, without
+    /// building the drive's share again; its work counters go on counting. With `hints` its
+    /// search starts from them ([`Solver::take_hints`]), otherwise from nothing, as a new
+    /// solver's.
+    pub(crate) fn restart_at(&mut self, initial: State, hints: Option<Hints>) {
+        self.slots[self.current] = Segment::Stick {
+            y: initial.y,
+            exit: f64::INFINITY,
+            exit_sign: 0.0,
+        };
+        self.tau0 = 0.0;
+        self.theta0 = self.params.phi.rem_euclid(TAU);
+        self.repeats = 0;
+        self.time = 0.0;
+        let stats = self.search.stats;
+        self.search = ZeroSearch::new();
+        self.search.stats = stats;
+        if let Some(hints) = hints {
+            self.search.durations = hints.slides;
+        }
+        self.start(initial);
+    }
+
     /// Begin the first segment from `initial` (see [`ExactSolver::new`]).
     fn start(&mut self, initial: State) {
         let params = self.params;

@@ -47,7 +47,8 @@
 
 use super::error::StabilityError;
 use super::matrix::{Matrix2, Multiplier};
-use super::strobe::{strobe_map_hinted, StrobeImage};
+use super::strobe::{strobe_map_on, StrobeImage};
+use super::tangent::TangentSolver;
 use crate::error::{Error, Result};
 pub use crate::options::NewtonOptions;
 use crate::params::{Params, State};
@@ -196,9 +197,11 @@ fn find_orbit(
     // first from the caller's): the iterates follow one motion. Without, none does (the
     // public search: its iterates are the same to the bit as they always were).
     let chain = hints.is_some();
+    // One solver for every evaluation, restarted in place.
+    let mut solver: Option<TangentSolver> = None;
     let (mut image, mut hints) = match first {
         Some(image) => (image, hints),
-        None => strobe_map_hinted(params, x, period, hints)?,
+        None => strobe_map_on(&mut solver, params, x, period, hints)?,
     };
     hints = hints.filter(|_| chain);
     let (mut norm, mut r) = residual(&image, x);
@@ -257,7 +260,8 @@ fn find_orbit(
         let mut halvings = 0;
         loop {
             let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
-            let (trial_image, trial_hints) = strobe_map_hinted(params, trial, period, hints)?;
+            let (trial_image, trial_hints) =
+                strobe_map_on(&mut solver, params, trial, period, hints)?;
             hints = trial_hints.filter(|_| chain).or(hints);
             let (trial_norm, trial_r) = residual(&trial_image, trial);
             if trial_norm < norm || halvings == options.max_halvings {
@@ -278,7 +282,7 @@ fn find_orbit(
     let multipliers = image.jacobian.eigenvalues();
     let modulus = multipliers[0].modulus();
     let stability = if (1.0 - modulus).abs() <= options.neutral_band
-        || tends_to_one(params, x, &image, r, period, modulus, hints)
+        || tends_to_one(params, x, &image, r, period, modulus, hints, &mut solver)
     {
         Stability::Neutral
     } else if modulus < 1.0 {
@@ -346,6 +350,7 @@ fn tends_to_one(
     period: usize,
     modulus: f64,
     hints: Option<Hints>,
+    solver: &mut Option<TangentSolver>,
 ) -> bool {
     let d = 1.0 - modulus;
     if d.abs() > TANGENCY_PROBE_BELOW {
@@ -367,7 +372,7 @@ fn tends_to_one(
     let Ok(next) = State::new(x.y + step[0], x.v + step[1]) else {
         return false;
     };
-    let Ok((next_image, _)) = strobe_map_hinted(params, next, period, hints) else {
+    let Ok((next_image, _)) = strobe_map_on(solver, params, next, period, hints) else {
         return false;
     };
     let ratio = (1.0 - next_image.jacobian.eigenvalues()[0].modulus()) / d;

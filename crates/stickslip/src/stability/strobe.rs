@@ -51,7 +51,7 @@ pub struct StrobeImage {
 /// [`Error::InvalidParameter`] for invalid parameters, state or p = 0;
 /// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver reports.
 pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
-    strobe_map_hinted(params, state, periods, None).map(|(image, _)| image)
+    strobe_map_on(&mut None, params, state, periods, None).map(|(image, _)| image)
 }
 
 /// The image under the strobe map of the state at which `solver` stands, a strobe, computed
@@ -91,9 +91,13 @@ pub(crate) fn image_along(
     })
 }
 
-/// [`strobe_map`] on a solver that takes `hints` of an earlier run on the same motion (see
-/// [`Hints`]: the image is the same to rounding), with the hints its own run leaves.
-pub(crate) fn strobe_map_hinted(
+/// [`strobe_map`] on the solver in `slot`, restarted in place at `state` (a new one when the
+/// slot is empty, left there for the next evaluation): its search starts from `hints` of an
+/// earlier run on the same motion (see [`Hints`]: the image is the same to rounding), or from
+/// nothing, as a new solver's (the image is then [`strobe_map`]'s to the bit). Returns the
+/// hints its own run leaves.
+pub(crate) fn strobe_map_on(
+    slot: &mut Option<TangentSolver>,
     params: &Params,
     state: State,
     periods: usize,
@@ -108,10 +112,19 @@ pub(crate) fn strobe_map_hinted(
             allowed: "must be at least 1",
         });
     }
-    let mut tangent = TangentSolver::new(params, state);
-    if let Some(hints) = hints {
-        tangent.take_hints(hints);
-    }
+    let tangent = match slot {
+        Some(tangent) if *tangent.params() == params => {
+            tangent.restart_at(state, hints);
+            tangent
+        }
+        _ => {
+            let mut tangent = TangentSolver::new(params, state);
+            if let Some(hints) = hints {
+                tangent.take_hints(hints);
+            }
+            slot.insert(tangent)
+        }
+    };
     let stuck_at_start = tangent.phase() == Phase::Stick;
     let mut events = Vec::new();
     tangent.run_until(periods as f64 * params.drive_period(), |e| events.push(*e))?;

@@ -167,7 +167,16 @@ impl TangentSolver {
     /// durations the Jacobian sees (by about 10⁻¹⁰ relative at τ ~ 10⁵) from one stretch of the
     /// run to the next.
     pub(crate) fn restart_clock(&mut self) {
-        self.solver = ExactSolver::new(*self.solver.params(), self.solver.state());
+        // (The search keeps what it learned of the slides: the motion goes on.)
+        let hints = self.solver.hints();
+        self.solver.restart_at(self.solver.state(), hints);
+    }
+
+    /// Start again from `initial` at τ = 0 with J = I, in place (see
+    /// `ExactSolver::restart_at`), the search starting from `hints`.
+    pub(crate) fn restart_at(&mut self, initial: State, hints: Option<Hints>) {
+        self.solver.restart_at(initial, hints);
+        self.tangent.reset(&self.solver);
     }
 
     /// Divide J by its Frobenius norm and return the logarithm of that norm, the factor e^s

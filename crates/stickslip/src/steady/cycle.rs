@@ -288,7 +288,14 @@ impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
         self.solver.as_mut()
     }
     fn restart(&mut self, state: State) -> Result<bool> {
-        self.solver = self.factory.make(self.params, state)?;
+        match exact_of(self.solver.as_mut()) {
+            // The exact solver starts again in place: what the factory built, without building
+            // it again.
+            Some(exact) if *exact.params() == self.params => {
+                exact.restart_at(State::new(state.y, state.v)?, None);
+            }
+            _ => self.solver = self.factory.make(self.params, state)?,
+        }
         Ok(true)
     }
     fn can_restart(&self) -> bool {
@@ -305,6 +312,8 @@ impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
 struct NewtonSettling {
     /// The orbit found by the last attempt (stable), if any.
     orbit: Option<PeriodicOrbit>,
+    /// Its events, as the comparison with the trajectory's reads them.
+    orbit_events: Vec<OrbitEvent>,
     /// The hints of the last evaluation of the map near the orbit, for the solver that
     /// records the cycle from it.
     hints: Option<Hints>,
@@ -346,6 +355,7 @@ impl NewtonSettling {
     fn new() -> Self {
         Self {
             orbit: None,
+            orbit_events: Vec::new(),
             hints: None,
             attempts: 0,
             periods: 0,
@@ -402,6 +412,11 @@ impl NewtonSettling {
             Ok((orbit, hints)) => {
                 self.periods += orbit.residuals.len() - along;
                 if orbit.stability == Stability::Stable {
+                    self.orbit_events = orbit
+                        .events
+                        .iter()
+                        .map(|e| OrbitEvent::new(params, e))
+                        .collect();
                     self.orbit = Some(orbit);
                     self.hints = hints;
                 }
@@ -422,7 +437,8 @@ impl NewtonSettling {
         events: impl Iterator<Item = Event>,
     ) -> Option<PeriodicOrbit> {
         let orbit = self.orbit.as_ref()?;
-        let passed = within_basin(orbit, previous, x) && same_events(params, orbit, events);
+        let passed =
+            within_basin(orbit, previous, x) && same_events(params, &self.orbit_events, events);
         self.passes = if passed { self.passes + 1 } else { 0 };
         (self.passes >= BASIN_PASSES).then(|| orbit.clone())
     }
@@ -457,13 +473,8 @@ fn within_basin(orbit: &PeriodicOrbit, previous: State, x: State) -> bool {
 /// moves with the stop before it and has no margin of its own. A stop that appears or
 /// vanishes, or a turn that becomes a stop (the edge of a sliding orbit's basin), fails this
 /// test: see the module documentation.
-fn same_events(
-    params: &Params,
-    orbit: &PeriodicOrbit,
-    events: impl Iterator<Item = Event>,
-) -> bool {
-    let force = |e: &Event| params.drive(e.tau) - e.y;
-    let mut orbit_events = orbit.events.iter();
+fn same_events(params: &Params, orbit: &[OrbitEvent], events: impl Iterator<Item = Event>) -> bool {
+    let mut orbit_events = orbit.iter();
     for e in events {
         let Some(o) = orbit_events.next() else {
             return false;
@@ -471,17 +482,44 @@ fn same_events(
         if e.kind != o.kind {
             return false;
         }
-        let margin = match o.kind {
-            EventKind::Turn => force(o).abs() - params.mu_s,
-            EventKind::Stick => params.mu_s - force(o).abs(),
-            EventKind::Slip => continue,
-        };
-        let shift = (params.drive(e.tau) - params.drive(o.tau)).abs() + (e.y - o.y).abs();
-        if !(margin > 0.0 && shift <= 0.5 * margin) {
+        if o.kind == EventKind::Slip {
+            continue;
+        }
+        let shift = (params.drive(e.tau) - o.drive).abs() + (e.y - o.y).abs();
+        if !(o.margin > 0.0 && shift <= 0.5 * o.margin) {
             return false;
         }
     }
     orbit_events.next().is_none()
+}
+
+/// An event of the orbit as [`same_events`] reads it, its drive computed once per orbit.
+#[derive(Debug, Clone, Copy)]
+struct OrbitEvent {
+    kind: EventKind,
+    y: f64,
+    /// The drive β cos(wτ + φ) at the event.
+    drive: f64,
+    /// |f| − μs at a turn, μs − |f| at a stop (f the net force drive − y); unused at a slip.
+    margin: f64,
+}
+
+impl OrbitEvent {
+    fn new(params: &Params, e: &Event) -> Self {
+        let drive = params.drive(e.tau);
+        let force = drive - e.y;
+        let margin = match e.kind {
+            EventKind::Turn => force.abs() - params.mu_s,
+            EventKind::Stick => params.mu_s - force.abs(),
+            EventKind::Slip => 0.0,
+        };
+        Self {
+            kind: e.kind,
+            y: e.y,
+            drive,
+            margin,
+        }
+    }
 }
 
 /// Iterate the stroboscopic map until it repeats (see the module documentation). With
