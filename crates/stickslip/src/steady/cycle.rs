@@ -341,7 +341,7 @@ const MAX_NEWTON_ATTEMPTS: usize = 3;
 /// Newton's options for settling: an attempt that does not converge quickly is abandoned (the
 /// trajectory goes on), so few steps and halvings.
 const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
-    tolerance: 1e-8,
+    tolerance: 1e-6,
     max_iterations: 6,
     max_halvings: 2,
     neutral_band: 1e-9,
