@@ -11,7 +11,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Key, Origin};
-use stickslip::report::MapRow;
+use stickslip::report::{AxisCells, MapRow};
 use stickslip::scan::{Axis, Grid, GridPoint, MapColor as Color, ParameterRange};
 use stickslip::stability::Estimate;
 use stickslip::steady::MotionClass;
@@ -173,8 +173,9 @@ pub fn run(args: Args) -> Result<()> {
                         },
                     )
                 });
+                let mut axes = AxisCells::default();
                 let written = receive.iter().try_for_each(|points| {
-                    write_points(&mut sink, &points, lyapunov, &mut summary)
+                    write_points(&mut sink, &points, lyapunov, &mut summary, &mut axes)
                 });
                 drop(receive);
                 let computed = worker
@@ -205,9 +206,10 @@ pub fn run(args: Args) -> Result<()> {
             // Opened once the checkpoint is complete: a killed run leaves only the
             // checkpoint.
             let mut sink = open()?;
+            let mut axes = AxisCells::default();
             for i in 0..grid.shape().0 {
                 let row = row_points(&grid, file.checkpoint(), i)?;
-                write_points(&mut sink, &row, lyapunov, &mut summary)?;
+                write_points(&mut sink, &row, lyapunov, &mut summary, &mut axes)?;
             }
             checkpoint_file = Some(file);
             (sink, computed)
@@ -289,16 +291,18 @@ impl Summary {
     }
 }
 
-/// Write rows of points as CSV lines and add them to the summary.
+/// Write rows of points as CSV lines (the text of the axes' values from `axes`) and add them
+/// to the summary.
 fn write_points(
     sink: &mut Sink,
     points: &[GridPoint],
     lyapunov: bool,
     summary: &mut Summary,
+    axes: &mut AxisCells,
 ) -> Result<()> {
     let mut text = String::new();
     for p in points {
-        MapRow::from(p).write_row(lyapunov, &mut text);
+        MapRow::from(p).write_row_with(lyapunov, axes, &mut text);
         summary.add(p);
     }
     sink.write_all(text.as_bytes())?;

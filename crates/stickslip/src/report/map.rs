@@ -78,16 +78,20 @@ impl MapRow {
 
     /// Append the row as a CSV line, with its newline, to `out`.
     pub fn write_row(&self, lyapunov: bool, out: &mut String) {
-        let _ = write!(
-            out,
-            "{},{},{},{},{},{}",
-            self.w,
-            self.beta,
-            self.class.label(),
-            optional(self.period),
-            self.stops_per_cycle,
-            self.gain
-        );
+        self.write_row_with(lyapunov, &mut AxisCells::default(), out);
+    }
+
+    /// [`MapRow::write_row`], the text of w and β taken from `axes` where it holds them (the
+    /// same bytes: a map's rows repeat a few values of each).
+    pub fn write_row_with(&self, lyapunov: bool, axes: &mut AxisCells, out: &mut String) {
+        out.push_str(axes.w(self.w));
+        out.push(',');
+        out.push_str(axes.beta(self.beta));
+        let _ = write!(out, ",{},", self.class.label());
+        if let Some(period) = self.period {
+            let _ = write!(out, "{period}");
+        }
+        let _ = write!(out, ",{},{}", self.stops_per_cycle, self.gain);
         if lyapunov {
             let _ = write!(
                 out,
@@ -97,6 +101,32 @@ impl MapRow {
             );
         }
         out.push('\n');
+    }
+}
+
+/// The text of the values of a map's two axes, each formatted once: w of the last row, and
+/// every β seen (the rows of a map run over the same β values).
+#[derive(Debug, Clone, Default)]
+pub struct AxisCells {
+    w: Option<(u64, String)>,
+    beta: std::collections::HashMap<u64, String>,
+}
+
+impl AxisCells {
+    /// The text of w.
+    fn w(&mut self, w: f64) -> &str {
+        match &mut self.w {
+            Some((bits, _)) if *bits == w.to_bits() => {}
+            slot => *slot = Some((w.to_bits(), w.to_string())),
+        }
+        self.w.as_ref().map_or("", |(_, text)| text)
+    }
+
+    /// The text of β.
+    fn beta(&mut self, beta: f64) -> &str {
+        self.beta
+            .entry(beta.to_bits())
+            .or_insert_with(|| beta.to_string())
     }
 }
 

@@ -42,7 +42,7 @@ pub use crate::steady::SteadyReport;
 pub use crate::theory::TheoryReport;
 pub use bifurcation::{BifurcationReport, BifurcationRow};
 pub use branch::{BasinsTable, BranchTable};
-pub use map::{MapReport, MapRow};
+pub use map::{AxisCells, MapReport, MapRow};
 pub use steady::{SteadyTrace, TheoryRow, TheoryTable};
 pub use sweep::{SweepReport, SweepRow};
 pub use trajectory::{
