@@ -2,7 +2,7 @@
 //! and Floquet multipliers.
 //!
 //! A periodic orbit of period p (in drive periods) is a fixed point x* = P^p(x*) of the p-fold
-//! strobe map ([`strobe_map`]); Newton's method solves P^p(x) − x = 0 with the exact Jacobian
+//! strobe map ([`strobe_map`](super::strobe_map)); Newton's method solves P^p(x) − x = 0 with the exact Jacobian
 //! M(x) = ∂P^p/∂x of [`super::tangent`]:
 //!
 //! ```text

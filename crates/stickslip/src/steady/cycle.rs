@@ -16,7 +16,11 @@
 //! factory and [`SteadyOptions::accelerate`]). From the second strobe on, whenever the strobe step
 //! |x_k − x_{k−1}| shrinks (and is at most a quarter of the step at the last attempt, at most
 //! three attempts of six steps each), Newton's method on the strobe map
-//! ([`crate::stability::find_periodic_orbit`], period 1) is started from x_k. A stable fixed
+//! ([`crate::stability::find_periodic_orbit`], period 1) is started from x_k. Its first
+//! image P(x_k), with the Jacobian, is the trajectory's own next period, run with the tangent
+//! dynamics along (`stability::strobe::image_along`): the attempt is made at the next strobe,
+//! followed by the checks below of the step to x_k that would have followed it at x_k, so
+//! every decision is the one an attempt at x_k would take. A stable fixed
 //! point x* (monodromy M, spectral radius ρ < 1) is kept, and the motion is settled on it as
 //! soon as two consecutive strobe steps (three strobes) each pass two checks:
 //!
@@ -45,16 +49,25 @@
 //! periods, stops and symmetry at all 160 000 points, gains to 2·10⁻¹⁰ relative), and the
 //! chaos map at ζ = 0, μs = 3 (w 0.2–0.6, β 3–14), where the check on one step and without
 //! the events had settled 34 cells on orbits the trajectory leaves. The cycle is then
-//! recorded from x* on a new solver, with period 1; motions of longer period, and points where
-//! Newton fails or the checks never pass, are settled by the repetition test as before.
-//! Newton's iteration stops at a residual of 10⁻⁸·max(1, |x|)·max(1, |M|) and takes one more
-//! step without evaluating the map there (its error is quadratic in that residual): that
-//! saves the map's last evaluation, a tangent period. The recorded period checks x*: it must
-//! repeat to tol·scale·(1 − ρ) (which puts x* within about tol·scale of the orbit), or the
-//! point is settled again without Newton.
+//! recorded from x*, with period 1, on the search's solver started again there in place;
+//! motions of longer period, and points where Newton fails or the checks never pass, are
+//! settled by the repetition test as before. Newton's iteration stops at a residual of
+//! 10⁻⁶·max(1, |x|)·max(1, |M|) and takes one more step without evaluating the map there
+//! (its error is quadratic in that residual, about 10⁻¹², a hundredth of the default
+//! repetition tolerance): that saves the map's last evaluations. The recorded period checks
+//! x*: it must repeat to tol·scale·(1 − ρ) (which puts x* within about tol·scale of the
+//! orbit), or the point is settled again without Newton.
+//!
+//! **What the solvers learn of the motion** ([`crate::Hints`]: how long its slides of each
+//! kind last, where the exact solver's search for the next velocity zero looks first) is
+//! handed from the trajectory to Newton's evaluations of the map, from each evaluation to the
+//! next, and from the last to the solver that records the cycle: each would otherwise search
+//! its first slides carefully, from nothing. The hints change where the search looks, not
+//! what it proves; the events it finds are the same to rounding.
 //!
 //! `periods_to_settle` of a motion that settles counts the strobe periods run and the periods
-//! of the Newton attempts (the image at the guess and one per step). The attempts do not
+//! of the Newton attempts (one per step, and the image at the guess where the trajectory did
+//! not compute it along its own period). The attempts do not
 //! shorten the trajectory: a motion that does not settle runs [`SteadyOptions::max_periods`]
 //! strobe periods and is recorded exactly as without Newton (its `periods_to_settle` is the
 //! cap); an attempt is made only while the cap leaves room for its longest run.
@@ -339,7 +352,8 @@ const BASIN_PASSES: usize = 2;
 const MAX_NEWTON_ATTEMPTS: usize = 3;
 
 /// Newton's options for settling: an attempt that does not converge quickly is abandoned (the
-/// trajectory goes on), so few steps and halvings.
+/// trajectory goes on), so few steps and halvings; a residual of 1e-6, after which the
+/// finishing step lands within about 1e-12 of the orbit (see the module documentation).
 const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
     tolerance: 1e-6,
     max_iterations: 6,
