@@ -157,28 +157,38 @@ pub fn find_periodic_orbit(
     period: usize,
     options: &NewtonOptions,
 ) -> Result<PeriodicOrbit> {
-    find_orbit(params, guess, period, options, false, None, None).map(|(orbit, _)| orbit)
+    find_orbit(params, guess, period, options, None).map(|(orbit, _)| orbit)
 }
 
-/// [`find_periodic_orbit`] to `options.tolerance`, and then one more Newton step from the
-/// last iterate, without evaluating the map there: the orbit's state is that step's end, its
-/// monodromy, events and multipliers those of the last image (one step before). Near the
-/// orbit the step's error is quadratic in the last residual, so a loose tolerance saves the
-/// map's last evaluation; the caller must check the state it gets (the steady-state search
-/// checks it by the repetition of the cycle it records from it). The map's evaluations
-/// start from `hints` of a solver on the same motion and hand theirs on, one to the next
-/// (see [`Hints`]); the hints of the last are returned with the orbit. With `first`, the
-/// image of the guess computed already (see `strobe::image_along`), the map is not evaluated
-/// there again; the orbit's `residuals` still begin with the guess's.
+/// What the steady-state search asks of [`find_periodic_orbit_finished`] beyond the options.
+pub(crate) struct Finish {
+    /// Hints of a solver on the same motion: the map's evaluations start from them and hand
+    /// theirs on, one to the next (see [`Hints`]).
+    pub hints: Option<Hints>,
+    /// The image of the guess, computed already (see `strobe::image_along`): the map is not
+    /// evaluated there again (the orbit's `residuals` still begin with the guess's).
+    pub first: Option<StrobeImage>,
+    /// A looser residual tolerance, and the largest modulus of the multipliers up to which
+    /// the iteration may stop at it.
+    pub loose: (f64, f64),
+}
+
+/// [`find_periodic_orbit`] to `options.tolerance` (or to `finish.loose` where the orbit
+/// contracts fast enough), and then one more Newton step from the last iterate, without
+/// evaluating the map there: the orbit's state is that step's end, its monodromy, events and
+/// multipliers those of the last image (one step before). Near the orbit the step's error is
+/// quadratic in the last residual, so a loose tolerance saves the map's last evaluations; the
+/// caller must check the state it gets (the steady-state search checks it by the repetition
+/// of the cycle it records from it). The hints of the last evaluation are returned with the
+/// orbit.
 pub(crate) fn find_periodic_orbit_finished(
     params: &Params,
     guess: State,
     period: usize,
     options: &NewtonOptions,
-    hints: Option<Hints>,
-    first: Option<StrobeImage>,
+    finish: Finish,
 ) -> Result<(PeriodicOrbit, Option<Hints>)> {
-    find_orbit(params, guess, period, options, true, hints, first)
+    find_orbit(params, guess, period, options, Some(finish))
 }
 
 /// See [`find_periodic_orbit`] and [`find_periodic_orbit_finished`].
@@ -187,10 +197,12 @@ fn find_orbit(
     guess: State,
     period: usize,
     options: &NewtonOptions,
-    finish: bool,
-    hints: Option<Hints>,
-    first: Option<StrobeImage>,
+    finish: Option<Finish>,
 ) -> Result<(PeriodicOrbit, Option<Hints>)> {
+    let (hints, first, loose) = match finish {
+        Some(f) => (f.hints, f.first, Some(f.loose)),
+        None => (None, None, None),
+    };
     let options = options.validate()?;
     let mut x = State::new(guess.y, guess.v)?;
     // Given hints, every evaluation of the map starts from the hints the one before left (the
@@ -224,7 +236,14 @@ fn find_orbit(
             net_force: params.beta * params.phi.cos() - x.y,
         })
     };
-    while !converged(norm, x, &image.jacobian, options.tolerance) {
+    let done = |norm: f64, x: State, image: &StrobeImage| {
+        converged(norm, x, &image.jacobian, options.tolerance)
+            || loose.is_some_and(|(tolerance, modulus)| {
+                converged(norm, x, &image.jacobian, tolerance)
+                    && image.jacobian.eigenvalues()[0].modulus() <= modulus
+            })
+    };
+    while !done(norm, x, &image) {
         if iterations == options.max_iterations {
             // Out of steps while creeping onto the jump (each step halved, y' shrinking with
             // the residual): the jump is why, not the step budget.
@@ -290,7 +309,7 @@ fn find_orbit(
     } else {
         Stability::Unstable
     };
-    if finish {
+    if loose.is_some() {
         let m = image.jacobian;
         let step = if image.stuck_at_start && image.stuck_at_end {
             let slope = m.0[0][0] - 1.0;

@@ -52,9 +52,10 @@
 //! recorded from x*, with period 1, on the search's solver started again there in place;
 //! motions of longer period, and points where Newton fails or the checks never pass, are
 //! settled by the repetition test as before. Newton's iteration stops at a residual of
-//! 10⁻⁶·max(1, |x|)·max(1, |M|) and takes one more step without evaluating the map there
-//! (its error is quadratic in that residual, about 10⁻¹², a hundredth of the default
-//! repetition tolerance): that saves the map's last evaluations. The recorded period checks
+//! 10⁻⁶·max(1, |x|)·max(1, |M|) where ρ ≤ 0.9 (10⁻⁸ where the orbit contracts more slowly)
+//! and takes one more step without evaluating the map there (its error is quadratic in that
+//! residual, about 10⁻¹², a hundredth of the default repetition tolerance): that saves the
+//! map's last evaluations. The recorded period checks
 //! x*: it must repeat to tol·scale·(1 − ρ) (which puts x* within about tol·scale of the
 //! orbit), or the point is settled again without Newton.
 //!
@@ -119,7 +120,7 @@ use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
 use crate::solver::{run_steps, run_until, Event, EventKind, Hints, Phase, Sample, Solver};
-use crate::stability::periodic_orbit::find_periodic_orbit_finished;
+use crate::stability::periodic_orbit::{find_periodic_orbit_finished, Finish};
 use crate::stability::strobe::image_along;
 use crate::stability::{
     lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
@@ -352,14 +353,19 @@ const BASIN_PASSES: usize = 2;
 const MAX_NEWTON_ATTEMPTS: usize = 3;
 
 /// Newton's options for settling: an attempt that does not converge quickly is abandoned (the
-/// trajectory goes on), so few steps and halvings; a residual of 1e-6, after which the
-/// finishing step lands within about 1e-12 of the orbit (see the module documentation).
+/// trajectory goes on), so few steps and halvings.
 const SETTLING_NEWTON: NewtonOptions = NewtonOptions {
-    tolerance: 1e-6,
+    tolerance: 1e-8,
     max_iterations: 6,
     max_halvings: 2,
     neutral_band: 1e-9,
 };
+
+/// Where the orbit contracts by 0.9 a period or faster, Newton's iteration for settling stops
+/// at a residual of 1e-6: the finishing step then lands within about 1e-12 of the orbit
+/// (quadratic in the residual), and the record's repetition check, to tol·scale·(1 − ρ),
+/// passes. A slower orbit needs x* closer: the iteration goes on to 1e-8.
+const SETTLING_LOOSE: (f64, f64) = (1e-6, 0.9);
 
 /// Most periods one attempt counts: its steps with every halving, and the first image.
 const MOST_NEWTON_PERIODS: usize =
@@ -422,7 +428,12 @@ impl NewtonSettling {
             }
             None => None,
         };
-        match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON, hints, first) {
+        let finish = Finish {
+            hints,
+            first,
+            loose: SETTLING_LOOSE,
+        };
+        match find_periodic_orbit_finished(params, x, 1, &SETTLING_NEWTON, finish) {
             Ok((orbit, hints)) => {
                 self.periods += orbit.residuals.len() - along;
                 if orbit.stability == Stability::Stable {
