@@ -469,7 +469,12 @@ impl NewtonSettling {
         let passed =
             within_basin(orbit, previous, x) && same_events(params, &self.orbit_events, events);
         self.passes = if passed { self.passes + 1 } else { 0 };
-        (self.passes >= BASIN_PASSES).then(|| orbit.clone())
+        // (Accepted, the orbit is handed on: the search ends with it.)
+        if self.passes >= BASIN_PASSES {
+            self.orbit.take()
+        } else {
+            None
+        }
     }
 }
 
