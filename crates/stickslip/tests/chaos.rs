@@ -70,14 +70,38 @@ fn a_motion_that_does_not_repeat_is_chaotic_when_its_exponent_is_positive() {
 }
 
 #[test]
-fn the_issues_point_does_not_repeat_within_the_cap_and_is_not_chaotic() {
+fn the_issues_slow_point_settles_on_its_period_1_orbit() {
     // (ζ, μs, w, β) = (0, 2.5, 0.4227, 3.627) contracts onto a period-1 orbit with multiplier
-    // 0.99911, reached after 13 806 periods: within 5000 it does not repeat.
+    // 0.99911: the plain iteration reaches it after 13 806 periods, so within 5000 it does not
+    // repeat; Newton's method finds the orbit, and the trajectory's steps pass the checks of
+    // its basin, well within the cap.
     let params = Params::new(0.0, 0.4227, 3.627)
         .unwrap()
         .with_mu_s(2.5)
         .unwrap();
     let s = settle(params, &no_spectrum());
+    assert_eq!(s.period, Some(1));
+    assert_eq!(s.class, MotionClass::PeriodicStick);
+    assert!(s.periods_to_settle < 5000, "{}", s.periods_to_settle);
+    assert!(s.lyapunov.is_none());
+    // The plain iteration, run long enough at a tighter tolerance, records the same cycle.
+    let long = no_spectrum()
+        .with_newton(false)
+        .with_tolerance(1e-12)
+        .unwrap()
+        .with_max_periods(40_000)
+        .unwrap();
+    let plain = settle(params, &long);
+    assert_eq!((plain.period, plain.class), (s.period, s.class));
+    assert!(plain.periods_to_settle > 5000);
+    assert!(
+        (plain.gain - s.gain).abs() <= 1e-8 * s.gain,
+        "{} against {}",
+        plain.gain,
+        s.gain
+    );
+    // Without Newton, within the default cap: no period, and not chaotic either.
+    let s = settle(params, &no_spectrum().with_newton(false));
     assert_eq!(s.period, None);
     assert_eq!(s.class, MotionClass::NonperiodicStick);
     let c = s.lyapunov.as_ref().expect("measured");
