@@ -578,9 +578,10 @@ fn run_to_cycle<H: Holder>(
     let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
     history.push_back(holder.solver().state());
     // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
-    let mut passes = vec![0usize; max_period + 1];
+    // (On the stack: a period is at most `MAX_PERIOD`.)
+    let mut passes = [0usize; MAX_PERIOD + 1];
     // |x_k − x_{k−lag}| for lag = 1, 2, …: one buffer for the whole run.
-    let mut gaps: Vec<f64> = Vec::with_capacity(max_period);
+    let mut gaps = [0.0f64; MAX_PERIOD];
     // Events of the last `max_period` periods, with the index of the period they fell in.
     // (Room for a few events a period: most motions never grow it.)
     let mut recent: VecDeque<(usize, Event)> = VecDeque::with_capacity(64);
@@ -641,8 +642,9 @@ fn run_to_cycle<H: Holder>(
         // periods long before it repeats after one.
         let distinct = options.tolerance.sqrt() * scale;
         let lags = history.len().min(max_period);
-        gaps.clear();
-        gaps.extend((1..=lags).map(|lag| distance(x, history[history.len() - lag])));
+        for lag in 1..=lags {
+            gaps[lag - 1] = distance(x, history[history.len() - lag]);
+        }
         for lag in 1..=lags {
             let repeats = gaps[lag - 1] <= limit
                 && (1..lag)
@@ -752,6 +754,10 @@ fn run_to_cycle<H: Holder>(
 fn exact_of<S: Solver + ?Sized>(solver: &mut S) -> Option<&mut ExactSolver> {
     solver.as_any_mut()?.downcast_mut::<ExactSolver>()
 }
+
+/// The longest period [`SteadyOptions::max_period`] allows (the repetition test's counters
+/// live on the stack; test `the_longest_period_is_the_options_limit`).
+const MAX_PERIOD: usize = 64;
 
 /// Most extrapolations of the stroboscopic map in one run.
 const MAX_RESTARTS: usize = 6;
@@ -1030,4 +1036,17 @@ fn record<S: Solver + ?Sized>(
         trace,
         lyapunov: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_longest_period_is_the_options_limit() {
+        assert!(SteadyOptions::default().with_max_period(MAX_PERIOD).is_ok());
+        assert!(SteadyOptions::default()
+            .with_max_period(MAX_PERIOD + 1)
+            .is_err());
+    }
 }
