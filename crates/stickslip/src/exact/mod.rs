@@ -160,7 +160,7 @@ impl ExactSolver {
         self.search = ZeroSearch::new();
         self.search.stats = stats;
         if let Some(hints) = hints {
-            self.search.durations = hints.slides;
+            self.take_hints(hints);
         }
         self.start(initial);
     }

@@ -48,8 +48,8 @@
 use super::error::StabilityError;
 use super::matrix::{Matrix2, Multiplier};
 use super::strobe::{strobe_map_on, StrobeImage};
-use super::tangent::TangentSolver;
 use crate::error::{Error, Result};
+use crate::exact::ExactSolver;
 pub use crate::options::NewtonOptions;
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind, Hints};
@@ -210,7 +210,7 @@ fn find_orbit(
     // public search: its iterates are the same to the bit as they always were).
     let chain = hints.is_some();
     // One solver for every evaluation, restarted in place.
-    let mut solver: Option<TangentSolver> = None;
+    let mut solver: Option<ExactSolver> = None;
     let (mut image, mut hints) = match first {
         Some(image) => (image, hints),
         None => strobe_map_on(&mut solver, params, x, period, hints)?,
@@ -369,7 +369,7 @@ fn tends_to_one(
     period: usize,
     modulus: f64,
     hints: Option<Hints>,
-    solver: &mut Option<TangentSolver>,
+    solver: &mut Option<ExactSolver>,
 ) -> bool {
     let d = 1.0 - modulus;
     if d.abs() > TANGENCY_PROBE_BELOW {

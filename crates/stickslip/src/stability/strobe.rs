@@ -2,7 +2,7 @@
 
 use super::error::StabilityError;
 use super::matrix::Matrix2;
-use super::tangent::{Tangent, TangentSolver};
+use super::tangent::Tangent;
 use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
@@ -60,8 +60,8 @@ pub fn strobe_map(params: &Params, state: State, periods: usize) -> Result<Strob
 /// rounding of the absolute times, without a run of its own.
 ///
 /// # Errors
-/// [`StabilityError::NonFiniteJacobian`] at a tangential release; whatever the solver
-/// reports.
+/// [`StabilityError::NonFiniteJacobian`] at a tangential release (the solver has run on to
+/// `t_end` all the same); whatever the solver reports.
 pub(crate) fn image_along(
     solver: &mut ExactSolver,
     t_end: f64,
@@ -92,12 +92,12 @@ pub(crate) fn image_along(
 }
 
 /// [`strobe_map`] on the solver in `slot`, restarted in place at `state` (a new one when the
-/// slot is empty, left there for the next evaluation): its search starts from `hints` of an
-/// earlier run on the same motion (see [`Hints`]: the image is the same to rounding), or from
-/// nothing, as a new solver's (the image is then [`strobe_map`]'s to the bit). Returns the
-/// hints its own run leaves.
+/// slot is empty, left there for the next evaluation), by [`image_along`]: its search starts
+/// from `hints` of an earlier run on the same motion (see [`Hints`]: the image is the same to
+/// rounding), or from nothing, as a new solver's (the image is then [`strobe_map`]'s to the
+/// bit). Returns the hints its own run leaves.
 pub(crate) fn strobe_map_on(
-    slot: &mut Option<TangentSolver>,
+    slot: &mut Option<ExactSolver>,
     params: &Params,
     state: State,
     periods: usize,
@@ -112,32 +112,19 @@ pub(crate) fn strobe_map_on(
             allowed: "must be at least 1",
         });
     }
-    let tangent = match slot {
-        Some(tangent) if *tangent.params() == params => {
-            tangent.restart_at(state, hints);
-            tangent
+    let solver = match slot {
+        Some(solver) if *solver.params() == params => {
+            solver.restart_at(state, hints);
+            solver
         }
         _ => {
-            let mut tangent = TangentSolver::new(params, state);
+            let mut solver = ExactSolver::new(params, state);
             if let Some(hints) = hints {
-                tangent.take_hints(hints);
+                solver.take_hints(hints);
             }
-            slot.insert(tangent)
+            slot.insert(solver)
         }
     };
-    let stuck_at_start = tangent.phase() == Phase::Stick;
-    let mut events = Vec::new();
-    tangent.run_until(periods as f64 * params.drive_period(), |e| events.push(*e))?;
-    if let Some(tau) = tangent.grazing() {
-        return Err(StabilityError::NonFiniteJacobian { tau }.into());
-    }
-    let image = StrobeImage {
-        state: tangent.state(),
-        jacobian: tangent.jacobian(),
-        log_det: tangent.log_det(),
-        events,
-        stuck_at_start,
-        stuck_at_end: tangent.phase() == Phase::Stick,
-    };
-    Ok((image, tangent.solver().hints()))
+    let image = image_along(solver, periods as f64 * params.drive_period(), |_| {})?;
+    Ok((image, solver.hints()))
 }

@@ -6,7 +6,7 @@ use super::segment::SlidingTransition;
 use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
-use crate::solver::{Event, EventKind, Hints, Phase, Solver};
+use crate::solver::{Event, EventKind, Phase, Solver};
 
 /// Outside [SCALE_BELOW, SCALE_ABOVE] the entries of J are rescaled into `log_scale`.
 const SCALE_BELOW: f64 = 1e-100;
@@ -100,11 +100,6 @@ impl TangentSolver {
         &self.solver
     }
 
-    /// Take the [`Hints`] of another solver on the same motion (see [`Solver::take_hints`]).
-    pub fn take_hints(&mut self, hints: Hints) {
-        self.solver.take_hints(hints);
-    }
-
     /// The parameters of the model.
     pub fn params(&self) -> &Params {
         self.solver.params()
@@ -170,13 +165,6 @@ impl TangentSolver {
         // (The search keeps what it learned of the slides: the motion goes on.)
         let hints = self.solver.hints();
         self.solver.restart_at(self.solver.state(), hints);
-    }
-
-    /// Start again from `initial` at τ = 0 with J = I, in place (see
-    /// `ExactSolver::restart_at`), the search starting from `hints`.
-    pub(crate) fn restart_at(&mut self, initial: State, hints: Option<Hints>) {
-        self.solver.restart_at(initial, hints);
-        self.tangent.reset(&self.solver);
     }
 
     /// Divide J by its Frobenius norm and return the logarithm of that norm, the factor e^s

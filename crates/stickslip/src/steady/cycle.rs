@@ -609,13 +609,10 @@ fn run_to_cycle<H: Holder>(
         let next = strobe(base + local as u64, period);
         let along = match (&pending, exact_of(holder.solver())) {
             (Some(_), Some(exact)) => {
-                let image = image_along(exact, next, |e| recent.push_back((local, *e)));
-                match image {
+                match image_along(exact, next, |e| recent.push_back((local, *e))) {
                     Ok(image) => Some(Some(image)),
-                    Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => {
-                        run_until(holder.solver(), next, |e| recent.push_back((local, *e)))?;
-                        Some(None)
-                    }
+                    // (The period has run all the same; only its Jacobian is not finite.)
+                    Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => Some(None),
                     Err(e) => return Err(e),
                 }
             }
@@ -672,7 +669,8 @@ fn run_to_cycle<H: Holder>(
             });
         let events_last = recent.iter().filter(|(m, _)| *m == local).count();
         let before = spent(&newton);
-        let hints = holder.solver().hints();
+        // (Only Newton's runs take the trajectory's hints.)
+        let hints = newton.is_some().then(|| holder.solver().hints()).flatten();
         // Where the strobes will restart after extrapolation (decided by the strobes alone).
         let target = (accelerate && restarts < MAX_RESTARTS)
             .then(|| extrapolate(&history, options.tolerance, scale))
@@ -724,17 +722,15 @@ fn run_to_cycle<H: Holder>(
                 });
             }
         }
-        {
-            if let Some(target) = target {
-                if holder.restart(target)? {
-                    restarts += 1;
-                    base = 0;
-                    local = 0;
-                    history.clear();
-                    history.push_back(holder.solver().state());
-                    passes.iter_mut().for_each(|p| *p = 0);
-                    recent.clear();
-                }
+        if let Some(target) = target {
+            if holder.restart(target)? {
+                restarts += 1;
+                base = 0;
+                local = 0;
+                history.clear();
+                history.push_back(holder.solver().state());
+                passes.iter_mut().for_each(|p| *p = 0);
+                recent.clear();
             }
         }
     }
