@@ -188,7 +188,7 @@ pub(crate) enum Location {
 
 /// Root δ of the cubic model g + g1·δ + g2·δ²/2 + g3·δ³/6 nearest to the Newton point −g/g1,
 /// by Newton's method (NaN if it does not settle).
-fn model_root([g, g1, g2, g3]: [f64; 4]) -> f64 {
+pub(crate) fn model_root([g, g1, g2, g3]: [f64; 4]) -> f64 {
     let model = |d: f64| g + d * (g1 + d * (0.5 * g2 + d * g3 / 6.0));
     let slope = |d: f64| g1 + d * (g2 + 0.5 * d * g3);
     let mut d = -g / g1;

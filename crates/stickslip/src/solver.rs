@@ -102,9 +102,8 @@ pub struct Stats {
 /// rounding (see [`Solver::take_hints`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hints {
-    /// Per kind of slide (direction, from a stop or not): the duration of the last one, and
-    /// how far its prediction missed.
-    pub(crate) slides: [(f64, f64); 4],
+    /// Per kind of slide (direction, from a stop or not): the duration of the last one.
+    pub(crate) slides: [f64; 4],
 }
 
 /// A solver that advances the oscillator in time, reporting switching events and offering

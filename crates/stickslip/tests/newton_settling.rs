@@ -37,20 +37,26 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// The plain iteration (Newton turned off explicitly: the oracle of the tests below) gives the
-/// paper's 400 × 400 map byte for byte as the commit before the map's speed-ups did (the settling's bookkeeping was made cheaper without
-/// changing one operation on the numbers): the digest is that of the rows (no header) of
-/// `stickslip phase-diagram --preset paper --w-steps 400 --beta-steps 400 --out m.csv` at
-/// commit d51dcd8, 10 805 560 bytes. A change of any class, period, stop count or gain, even
-/// in its last bit, changes it.
+/// paper's 400 × 400 map byte for byte as pinned here: the digest is that of the rows (no
+/// header) of the map with `with_newton(false)`, 10 805 701 bytes. A change of any class,
+/// period, stop count or gain, even in its last bit, changes it.
+///
+/// History: from commit d51dcd8 until the exact solver's search took first guesses for its
+/// predictions and stopped aiming short by the last miss, the rows were 10 805 560 bytes
+/// (digest 0xc85d_7e8f_1160_b48b; the map's speed-ups before that changed the bookkeeping,
+/// not one operation on the numbers). That change moves where the search evaluates the closed
+/// form, so the events come out different in their last bits: against the rows of the commit
+/// before it, every class, period and stop count is the same and the gains agree within
+/// 2.3e-12 relative.
 #[test]
-fn paper_map_400_is_the_same_bytes_as_before_the_speed_ups() {
+fn paper_map_400_plain_iteration_is_pinned_by_its_digest() {
     let map = paper_map(400, false);
     let mut rows = String::new();
     for point in &map.points {
         MapRow::from(point).write_row(false, &mut rows);
     }
-    assert_eq!(rows.len(), 10_805_560);
-    assert_eq!(fnv1a(rows.as_bytes()), 0xc85d_7e8f_1160_b48b);
+    assert_eq!(rows.len(), 10_805_701);
+    assert_eq!(fnv1a(rows.as_bytes()), 0xc8cb_9fc2_2cf4_0a96);
 }
 
 /// Every class, period, stop count, symmetry flag and gain of the paper's 400 × 400 map is the

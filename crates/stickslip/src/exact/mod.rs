@@ -135,7 +135,7 @@ impl ExactSolver {
             slots: [stuck; 2],
             current: 0,
             time: 0.0,
-            search: ZeroSearch::new(),
+            search: ZeroSearch::new(params.w),
             last: (0, 0.0, 0.0, 0.0),
             cancel: Cancel::never(),
         }
@@ -157,7 +157,7 @@ impl ExactSolver {
         self.repeats = 0;
         self.time = 0.0;
         let stats = self.search.stats;
-        self.search = ZeroSearch::new();
+        self.search = ZeroSearch::new(self.params.w);
         self.search.stats = stats;
         if let Some(hints) = hints {
             self.take_hints(hints);

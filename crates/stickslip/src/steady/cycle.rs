@@ -62,8 +62,8 @@
 //! **What the solvers learn of the motion** ([`crate::Hints`]: how long its slides of each
 //! kind last, where the exact solver's search for the next velocity zero looks first) is
 //! handed from the trajectory to Newton's evaluations of the map, from each evaluation to the
-//! next, and from the last to the solver that records the cycle: each would otherwise search
-//! its first slides carefully, from nothing. The hints change where the search looks, not
+//! next, and from the last to the solver that records the cycle: each would otherwise start
+//! from guesses of the drive frequency alone. The hints change where the search looks, not
 //! what it proves; the events it finds are the same to rounding.
 //!
 //! `periods_to_settle` of a motion that settles counts the strobe periods run and the periods
