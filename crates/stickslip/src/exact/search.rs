@@ -24,9 +24,9 @@
 //! Taylor data at 0 and at b alone, that (0, b] has no zero (lower bounds reaching from both
 //! ends, [`certify::reach`]) and that the zero lies in a bracket of rounding size just past b
 //! where g is strictly decreasing ([`certify::locate`]). Where b is already past the zero it
-//! steps back to just short of the root of the cubic model at b; where a proof fails it
-//! evaluates once more (a split point, a Newton point); where it still fails, the careful
-//! search continues from the last point up to which no zero is proved.
+//! steps back to just short of the root of the cubic model at b (by twice the model's error);
+//! where a proof fails it evaluates once more (a split point, a Newton point); where it still
+//! fails, the careful search continues from the last point up to which no zero is proved.
 //!
 //! **First guesses.** Before any slide of a kind has ended, the prediction is a guess from the
 //! drive frequency alone: half a drive period π/w for a slide that starts at a turn (each
@@ -209,13 +209,18 @@ impl ZeroSearch {
         let mut jb = jet(&eb);
         if jb.g[0] <= jb.noise {
             // Past the zero (or on it): step back to just short of the root of the cubic
-            // model at b (twice the Newton distance where the model has none behind b).
+            // model at b, by twice the model's error there over the slope, so that the zero is
+            // within reach of `certify::locate` from the next point (twice the Newton distance
+            // where the model has no root behind b).
             if !(jb.g[1] < 0.0) {
                 return Predicted::Clear(0.0);
             }
             let root = certify::model_root(jb.g);
             b += if root < 0.0 {
-                1.02 * root - margin
+                // (The model's error: the Taylor remainder m4·x⁴/24 and the noise of g.)
+                let (_, m4) = linear.global_bounds();
+                let error = m4 * root.powi(4) / 24.0 + jb.noise;
+                root - 2.0 * error / -jb.g[1] - margin
             } else {
                 -2.0 * (jb.g[0] - jb.noise) / jb.g[1] - margin
             };

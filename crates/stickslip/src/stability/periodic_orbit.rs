@@ -217,7 +217,9 @@ fn find_orbit(
     };
     hints = hints.filter(|_| chain);
     let (mut norm, mut r) = residual(&image, x);
-    let mut residuals = vec![norm];
+    // (Room for every step: one allocation.)
+    let mut residuals = Vec::with_capacity(options.max_iterations + 1);
+    residuals.push(norm);
     let mut iterations = 0;
     // Iterates on the jump of the map: y' = 0 (to `within`) with the net force in the band
     // between kinetic and static friction and y' along it (see the module documentation).

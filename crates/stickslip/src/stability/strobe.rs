@@ -70,7 +70,8 @@ pub(crate) fn image_along(
     let start = solver.time();
     let stuck_at_start = solver.phase() == Phase::Stick;
     let mut tangent = Tangent::new(solver);
-    let mut events = Vec::new();
+    // (Room for the events of most periods: one allocation.)
+    let mut events = Vec::with_capacity(8);
     tangent.run_until(solver, t_end, |e| {
         on_event(e);
         events.push(Event {
