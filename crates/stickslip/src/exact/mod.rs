@@ -623,6 +623,60 @@ mod tests {
         assert!(solver.stats().evaluations < 10_000, "{:?}", solver.stats());
     }
 
+    /// The first guesses (π/w from a turn, 0.6·min(π, π/w) from a stop) spare the careful
+    /// search of the first slides: over the first three periods from rest at the points below
+    /// (the paper's ζ), the solver finds the same events as one whose predictions start from
+    /// nothing, with at least 10 % fewer evaluations of the closed form and 20 % fewer search
+    /// steps in all (measured: 194 against 220, 102 against 135; at (0.2, 3.5) alone the
+    /// guesses cost two evaluations more).
+    #[test]
+    fn first_guesses_spare_evaluations_of_the_first_slides() {
+        let (mut guessed, mut blank) = (Stats::default(), Stats::default());
+        for (w, beta) in [
+            (0.9, 1.6),
+            (0.6, 1.2),
+            (0.7, 1.2),
+            (0.29, 2.14),
+            (1.43, 2.14),
+            (0.2, 3.5),
+        ] {
+            let params = Params::new(0.0468, w, beta).unwrap();
+            let run = |guesses: bool| {
+                let mut solver = ExactSolver::new(params, State::default());
+                if !guesses {
+                    // Started again with hints that predict nothing: as before the guesses.
+                    let nothing = Hints {
+                        slides: [f64::NAN; 4],
+                    };
+                    solver.restart_at(State::default(), Some(nothing));
+                }
+                let mut events = Vec::new();
+                crate::solver::run_until(&mut solver, 3.0 * params.drive_period(), |e| {
+                    events.push(*e)
+                })
+                .unwrap();
+                (events, solver.stats())
+            };
+            let ((with, stats_with), (without, stats_without)) = (run(true), run(false));
+            assert_eq!(with.len(), without.len(), "({w}, {beta})");
+            for (a, b) in with.iter().zip(&without) {
+                assert!(
+                    a.kind == b.kind && (a.tau - b.tau).abs() <= 1e-9 * a.tau.max(1.0),
+                    "({w}, {beta}): {a:?} {b:?}"
+                );
+            }
+            guessed.evaluations += stats_with.evaluations;
+            guessed.steps += stats_with.steps;
+            blank.evaluations += stats_without.evaluations;
+            blank.steps += stats_without.steps;
+        }
+        assert!(
+            10 * guessed.evaluations <= 9 * blank.evaluations
+                && 5 * guessed.steps <= 4 * blank.steps,
+            "with the first guesses {guessed:?}, without {blank:?}"
+        );
+    }
+
     /// The predicted search needs far fewer evaluations than the careful one (at least 2×
     /// fewer; measured: 4.6× on a pure slide, 2.9× with stops).
     #[test]
