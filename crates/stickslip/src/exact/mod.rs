@@ -623,6 +623,16 @@ mod tests {
         assert!(solver.stats().evaluations < 10_000, "{:?}", solver.stats());
     }
 
+    /// Points (w, β) of the paper's figures, at its ζ: sliding, stopping twice a period, and
+    /// stick-slip.
+    const PAPER_POINTS: [(f64, f64); 5] = [
+        (0.9, 1.6),
+        (0.6, 1.2),
+        (0.7, 1.2),
+        (0.29, 2.14),
+        (1.43, 2.14),
+    ];
+
     /// The first guesses (π/w from a turn, 0.6·min(π, π/w) from a stop) spare the careful
     /// search of the first slides: over the first three periods from rest at the points below
     /// (the paper's ζ), the solver finds the same events as one whose predictions start from
@@ -632,14 +642,7 @@ mod tests {
     #[test]
     fn first_guesses_spare_evaluations_of_the_first_slides() {
         let (mut guessed, mut blank) = (Stats::default(), Stats::default());
-        for (w, beta) in [
-            (0.9, 1.6),
-            (0.6, 1.2),
-            (0.7, 1.2),
-            (0.29, 2.14),
-            (1.43, 2.14),
-            (0.2, 3.5),
-        ] {
+        for (w, beta) in PAPER_POINTS.into_iter().chain([(0.2, 3.5)]) {
             let params = Params::new(0.0468, w, beta).unwrap();
             let run = |guesses: bool| {
                 let mut solver = ExactSolver::new(params, State::default());
@@ -681,13 +684,7 @@ mod tests {
     /// fewer; measured: 4.6× on a pure slide, 2.9× with stops).
     #[test]
     fn predicted_search_saves_evaluations() {
-        for (w, beta) in [
-            (0.9, 1.6),
-            (0.6, 1.2),
-            (0.7, 1.2),
-            (0.29, 2.14),
-            (1.43, 2.14),
-        ] {
+        for (w, beta) in PAPER_POINTS {
             let params = Params::new(0.0468, w, beta).unwrap();
             let count = |predict: bool| {
                 let mut solver = ExactSolver::new(params, State::default());
