@@ -8,8 +8,7 @@ use crate::experiment::{DiodeModel, Experiment};
 use crate::params::Params;
 use crate::stability::{Estimate, LyapunovOptions};
 use crate::steady::{
-    check_horizon, steady_state_from, steady_state_with_exponent, MotionClass, SolverFactory,
-    SteadyOptions,
+    check_horizon, settle_from, settle_with_exponent, MotionClass, SolverFactory, SteadyOptions,
 };
 
 use serde::{Deserialize, Serialize};
@@ -127,7 +126,8 @@ impl Grid {
             experiment.params_with(&[(p, first.values()[0]), (q, b)])?;
         }
         let grid = Self {
-            options: experiment.steady_options().with_spectrum(false),
+            // (Validated here, once: the points take them as they are.)
+            options: experiment.steady_options().validate()?.with_spectrum(false),
             factory: Arc::new(experiment.factory()),
             experiment: experiment.clone(),
             first,
@@ -186,12 +186,13 @@ impl Grid {
     }
 
     /// Also find the largest Lyapunov exponent of every point ([`GridPoint::lyapunov`], by
-    /// [`crate::stability::steady_exponent`]): exactly, from the Floquet multipliers of the periodic orbit, where
-    /// the motion repeats (a Newton step or two from the recorded cycle), and measured with
-    /// `options` where it does not (unless the steady-state search measured it already, with
-    /// [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting early in its
-    /// search stops there ([`steady_state_with_exponent`]). Points still differ only by what
-    /// they compute, so the map stays the same for any number of threads.
+    /// [`crate::stability::steady_exponent`]): exactly, from the Floquet multipliers of the
+    /// periodic orbit, where the motion repeats (a Newton step or two from the recorded cycle),
+    /// and measured with `options` where it does not (unless the steady-state search measured
+    /// it already, with [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting
+    /// early in its search stops there ([`crate::steady::steady_state_with_exponent`]). Points
+    /// still differ only by what they compute, so the map stays the same for any number of
+    /// threads.
     ///
     /// # Errors
     /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are
@@ -271,7 +272,8 @@ impl Grid {
     pub fn point(&self, i: usize, j: usize) -> Result<GridPoint> {
         let params = self.params(i, j)?;
         let (s, lyapunov) = match &self.lyapunov {
-            Some(options) => steady_state_with_exponent(
+            // (The options were validated when the grid took them.)
+            Some(options) => settle_with_exponent(
                 self.factory.as_ref(),
                 &params,
                 self.experiment.initial(),
@@ -279,7 +281,7 @@ impl Grid {
                 options,
             )?,
             None => (
-                steady_state_from(
+                settle_from(
                     self.factory.as_ref(),
                     &params,
                     self.experiment.initial(),

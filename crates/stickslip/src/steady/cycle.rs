@@ -830,7 +830,18 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
     initial: State,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
-    let options = options.validate()?;
+    settle_from(factory, params, initial, &options.validate()?)
+}
+
+/// [`steady_state_from`] with `options` already validated (a map's points share them: they
+/// are checked once, when the map is built).
+pub(crate) fn settle_from<F: SolverFactory + ?Sized>(
+    factory: &F,
+    params: &Params,
+    initial: State,
+    options: &SteadyOptions,
+) -> Result<SteadyState> {
+    let options = *options;
     check_horizon(params, &options, 0.0)?;
     let mut holder = FromFactory {
         factory,
@@ -849,7 +860,7 @@ pub fn steady_state_from<F: SolverFactory + ?Sized>(
         // tol·scale·(1 − ρ), which puts it within tol·scale of the orbit (to first order,
         // |x − x*| ≤ |P(x) − x|/(1 − ρ)), or the point is settled without Newton.
         drop(holder);
-        return steady_state_from(factory, params, initial, &options.with_newton(false));
+        return settle_from(factory, params, initial, &options.with_newton(false));
     }
     measure(steady, exact, &options, &factory.cancel())
 }

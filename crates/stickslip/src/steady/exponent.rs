@@ -4,7 +4,8 @@
 //! motions that do not repeat); what joins the two is here, so that `stability` does not
 //! depend on `steady`.
 
-use super::{steady_state_from, MotionClass, SolverFactory, SteadyOptions, SteadyState};
+use super::cycle::settle_from;
+use super::{MotionClass, SolverFactory, SteadyOptions, SteadyState};
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::stability::{
@@ -122,8 +123,20 @@ pub fn steady_state_with_exponent<F: SolverFactory + ?Sized>(
     options: &SteadyOptions,
     fallback: &LyapunovOptions,
 ) -> Result<(SteadyState, Option<Estimate>)> {
+    settle_with_exponent(factory, params, initial, &options.validate()?, fallback)
+}
+
+/// [`steady_state_with_exponent`] with `options` already validated (a map's points share
+/// them: they are checked once, when the map is built).
+pub(crate) fn settle_with_exponent<F: SolverFactory + ?Sized>(
+    factory: &F,
+    params: &Params,
+    initial: State,
+    options: &SteadyOptions,
+    fallback: &LyapunovOptions,
+) -> Result<(SteadyState, Option<Estimate>)> {
     let full = |options: &SteadyOptions| -> Result<(SteadyState, Option<Estimate>)> {
-        let steady = steady_state_from(factory, params, initial, options)?;
+        let steady = settle_from(factory, params, initial, options)?;
         let exponent = steady_exponent(&steady, fallback)?;
         Ok((steady, exponent))
     };
@@ -138,7 +151,7 @@ pub fn steady_state_with_exponent<F: SolverFactory + ?Sized>(
         lyapunov: None,
         ..*options
     };
-    let mut steady = steady_state_from(factory, params, initial, &short)?;
+    let mut steady = settle_from(factory, params, initial, &short)?;
     if steady.period.is_some() {
         // The search is causal: the full one finds the same cycle at the same strobe.
         let exponent = steady_exponent(&steady, fallback)?;

@@ -26,7 +26,9 @@ mod spectrum;
 mod state;
 
 pub use classify::{classify, Classification, MotionClass};
+pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
+pub(crate) use exponent::settle_with_exponent;
 pub use exponent::{
     periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
     SEARCH_BEFORE_MEASURING,
