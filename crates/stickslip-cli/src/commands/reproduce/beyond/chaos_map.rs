@@ -28,8 +28,9 @@ const PERIODS: usize = 1600;
 const TRANSIENT: usize = 20;
 
 /// Points per axis of the map: the largest square with which `reproduce` takes no more CPU
-/// than it did with 41 × 45 points before (BENCHMARKS.md, "The report's exponent map").
-const SIZE: usize = 78;
+/// than it did with 41 × 45 points before (e55716f; BENCHMARKS.md, "The report's exponent
+/// map, 104 × 104"), with a margin of about 2 %.
+const SIZE: usize = 104;
 /// Points per axis of the quick report's map.
 const QUICK_SIZE: usize = 22;
 
