@@ -7,9 +7,11 @@ mod figures;
 mod report;
 
 use crate::output::progress;
-use anyhow::Result;
+use anyhow::{anyhow, Result};
 use report::Report;
 use std::path::PathBuf;
+use std::sync::Mutex;
+use std::thread::JoinHandle;
 use stickslip::experiment::Experiment;
 use stickslip::{Circuit, Diode, PwlDiode, Scales};
 
@@ -47,9 +49,46 @@ pub struct Context {
     /// The paper's map with the largest Lyapunov exponent of every point, computed once for
     /// fig. 7 (a) and the chapter "Beyond the paper" ([`beyond::paper_exponent_map`]).
     pub paper_exponents: std::sync::OnceLock<Vec<stickslip::scan::GridPoint>>,
+    /// The Shockley map of fig. 7 (b), computed alongside the other figures ([`Later`]).
+    pub shockley_map: Later<figures::ShockleyMap>,
+    /// The chaos map of the chapter "Beyond the paper", computed alongside the other figures
+    /// ([`Later`]).
+    pub chaos_map: Later<beyond::ChaosMap>,
+    /// The bifurcation diagram of the chapter "Beyond the paper" and its branches, computed
+    /// alongside the other figures ([`Later`]).
+    pub bifurcation: Later<beyond::BifurcationDiagram>,
 }
 
 pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
+
+/// A result computed on a thread of its own from the start of `reproduce`, for the figure
+/// that shows it to take when its turn comes. The report's largest pieces of work that need
+/// nothing from the other figures (fig. 7 (b)'s map, the chaos map, the bifurcation diagram
+/// with its branches) are computed alongside them: their work goes to the pool's threads
+/// whenever the others leave one idle (a figure drawn, a branch followed, a basin map run on
+/// one thread). Their results are the same for any number of threads, so the report is the
+/// same, byte for byte.
+pub struct Later<T>(Mutex<Option<JoinHandle<Result<T>>>>);
+
+impl<T: Send + 'static> Later<T> {
+    /// Start computing.
+    pub fn start(compute: impl FnOnce() -> Result<T> + Send + 'static) -> Self {
+        Self(Mutex::new(Some(std::thread::spawn(compute))))
+    }
+
+    /// The result, once computed (an error if taken already or if its thread failed).
+    pub fn take(&self) -> Result<T> {
+        let handle = self
+            .0
+            .lock()
+            .map_err(|_| anyhow!("a background computation's lock was poisoned"))?
+            .take()
+            .ok_or_else(|| anyhow!("a background computation was taken twice"))?;
+        handle
+            .join()
+            .map_err(|_| anyhow!("a background computation panicked"))?
+    }
+}
 
 /// Run `stickslip reproduce`.
 pub fn run(args: Args) -> Result<()> {
@@ -65,6 +104,9 @@ pub fn run(args: Args) -> Result<()> {
         scales: circuit.scales(),
         quick: args.quick,
         paper_exponents: std::sync::OnceLock::new(),
+        shockley_map: figures::ShockleyMap::start(Experiment::paper(), args.quick),
+        chaos_map: beyond::ChaosMap::start(args.quick),
+        bifurcation: beyond::BifurcationDiagram::start(args.quick),
     };
     let mut jobs: Vec<Job> = vec![
         ("Table 1", figures::table1),

@@ -2,7 +2,7 @@
 //! continued through it.
 
 use super::super::report::{sig, Report, Section};
-use super::super::Context;
+use super::super::{Context, Later};
 use anyhow::Result;
 use serde_json::json;
 use stickslip::attractor::{AttractorKind, RecordOptions};
@@ -11,11 +11,32 @@ use stickslip::continuation::{ContinuationOptions, SpecialKind};
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 use stickslip::Parameter;
 
+/// The diagram and its branches, with the seconds each took, computed alongside the other
+/// figures from the start of `reproduce` ([`Later`]); [`bifurcation_w`] takes them.
+pub struct Diagram {
+    steps: Vec<BifurcationStep>,
+    branches: Vec<stickslip::continuation::Branch>,
+    diagram_seconds: f64,
+    branch_seconds: f64,
+}
+
+impl Diagram {
+    /// Start computing the diagram (coarser with `quick`).
+    pub fn start(quick: bool) -> Later<Self> {
+        Later::start(move || compute(quick))
+    }
+}
+
+/// The values of w (0.2 to 0.55) and the strobe points recorded at each.
+fn sizes(quick: bool) -> Result<(ParameterRange, usize)> {
+    let steps = if quick { 90 } else { 250 };
+    let points = if quick { 40 } else { 80 };
+    Ok((ParameterRange::new("w", 0.2, 0.55, steps)?, points))
+}
+
 /// The diagram over w from 0.2 to 0.55, up and down, and its branches.
-pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
-    let steps_n = if ctx.quick { 90 } else { 250 };
-    let points = if ctx.quick { 40 } else { 80 };
-    let w = ParameterRange::new("w", 0.2, 0.55, steps_n)?;
+fn compute(quick: bool) -> Result<Diagram> {
+    let (w, points) = sizes(quick)?;
     // The setting of the chaos figures above.
     let experiment = super::literature()?;
     let diagram = Bifurcation::new(&experiment, Axis::range(Parameter::W, &w)?)?
@@ -40,11 +61,28 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         },
         &keep_going,
     )?;
-    let branch_seconds = started.elapsed().as_secs_f64();
+    Ok(Diagram {
+        steps,
+        branches,
+        diagram_seconds,
+        branch_seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The bifurcation diagram in w and its branches ([`Diagram`]).
+pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
+    let Diagram {
+        steps,
+        branches,
+        diagram_seconds,
+        branch_seconds,
+    } = ctx.bifurcation.take()?;
+    let (w, points) = sizes(ctx.quick)?;
+    let steps_n = w.steps();
     // The times go to standard error: the report itself is the same on every run.
     eprintln!(
         "reproduce: bifurcation diagram of {} values in {diagram_seconds:.1} s, its branches in \
-         {branch_seconds:.1} s",
+         {branch_seconds:.1} s (alongside the chapters before it)",
         steps.len()
     );
     crate::output::check_interrupt()?;

@@ -1,7 +1,7 @@
 //! The largest Lyapunov exponent and the motion classes on a (w, β) map at ζ = 0, μs = 3.
 
 use super::super::report::{sig, Report, Section};
-use super::super::Context;
+use super::super::{Context, Later};
 use super::{frequency, literature};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity};
 use anyhow::Result;
@@ -34,26 +34,38 @@ const SIZE: usize = 104;
 /// Points per axis of the quick report's map.
 const QUICK_SIZE: usize = 22;
 
-/// The map of λ1 and of the classes over w 0.2–0.6, β 3–14, from rest.
-pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
-    let n = if ctx.quick { QUICK_SIZE } else { SIZE };
-    let (nw, nb) = (n, n);
-    let w = ParameterRange::new("w", 0.2, 0.6, nw)?;
-    let beta = ParameterRange::new("beta", 3.0, 14.0, nb)?;
+/// The map's grid: its axes (w, β) and the measurement of its exponents.
+fn axes(quick: bool) -> Result<(ParameterRange, ParameterRange, LyapunovOptions)> {
+    let n = if quick { QUICK_SIZE } else { SIZE };
     let measure = LyapunovOptions {
         periods: PERIODS,
         transient_periods: TRANSIENT,
         ..SteadyOptions::DEFAULT_LYAPUNOV
     };
-    let looks = measure
-        .looks()
-        .iter()
-        .map(|l| l.to_string())
-        .collect::<Vec<_>>();
-    let looks = match looks.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-        _ => looks.join(""),
-    };
+    Ok((
+        ParameterRange::new("w", 0.2, 0.6, n)?,
+        ParameterRange::new("beta", 3.0, 14.0, n)?,
+        measure,
+    ))
+}
+
+/// The points of the map and how long they took (seconds), computed alongside the other
+/// figures from the start of `reproduce` ([`super::super::Later`]); [`chaos_map`] takes them.
+pub struct ChaosMap {
+    points: Vec<GridPoint>,
+    seconds: f64,
+}
+
+impl ChaosMap {
+    /// Start computing the map (coarser with `quick`).
+    pub fn start(quick: bool) -> Later<Self> {
+        Later::start(move || compute(quick))
+    }
+}
+
+/// Every point of the map, from rest.
+fn compute(quick: bool) -> Result<ChaosMap> {
+    let (w, beta, measure) = axes(quick)?;
     let options = SteadyOptions::default()
         .with_spectrum(false)
         .with_max_periods(PERIODS)?
@@ -68,10 +80,29 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     .lyapunov(measure)?
     .run(&|_: usize, _: usize| !crate::output::interrupted())?
     .points;
+    Ok(ChaosMap {
+        points,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The map of λ1 and of the classes over w 0.2–0.6, β 3–14, from rest.
+pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
+    let (w, beta, measure) = axes(ctx.quick)?;
+    let (nw, nb) = (w.steps(), beta.steps());
+    let looks = measure
+        .looks()
+        .iter()
+        .map(|l| l.to_string())
+        .collect::<Vec<_>>();
+    let looks = match looks.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => looks.join(""),
+    };
+    let ChaosMap { points, seconds } = ctx.chaos_map.take()?;
     // The time goes to standard error: the report itself is the same on every run.
     eprintln!(
-        "reproduce: chaos map {nw} × {nb} in {:.1} s",
-        started.elapsed().as_secs_f64()
+        "reproduce: chaos map {nw} × {nb} in {seconds:.1} s (alongside the chapters before it)"
     );
     let lambda = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.per_tau);
     let error = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.error_per_tau);

@@ -10,6 +10,8 @@ mod chaos_map;
 mod chaos_sweep;
 mod paper_exponents;
 
+pub use bifurcation_w::Diagram as BifurcationDiagram;
+pub use chaos_map::ChaosMap;
 pub use paper_exponents::paper_exponent_map;
 
 use super::report::Report;

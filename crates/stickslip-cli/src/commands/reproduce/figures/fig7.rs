@@ -2,7 +2,7 @@
 
 use super::super::beyond::paper_exponent_map;
 use super::super::report::{Report, Section};
-use super::super::Context;
+use super::super::{Context, Later};
 use super::common::num;
 use crate::plot::{class_color, Cell, Figure, Legend, Panel};
 use anyhow::Result;
@@ -172,16 +172,29 @@ impl Map {
     }
 }
 
+/// The map of fig. 7 (b), the Shockley model's, computed alongside the other figures from the
+/// start of `reproduce` ([`Later`]); [`fig7`] takes it.
+pub struct ShockleyMap(Map);
+
+impl ShockleyMap {
+    /// Start computing the map of `paper` with Shockley diodes (coarser with `quick`).
+    pub fn start(paper: Experiment, quick: bool) -> Later<Self> {
+        Later::start(move || {
+            // The stiff solver's strobe map repeats only to its rtol (1e-6): the experiment's
+            // own steady-state options say so, with the search capped at SHOCKLEY_MAX_PERIODS.
+            Ok(Self(Map::compute(
+                &paper.with_shockley(DiodePair::one_n4148())?,
+                if quick { 24 } else { 64 },
+                SHOCKLEY_MAX_PERIODS,
+            )?))
+        })
+    }
+}
+
 /// Fig. 7 (a) the PWL model's map from rest, (b) the Shockley model's.
 pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
     let pwl = Map::paper(ctx)?;
-    // The stiff solver's strobe map repeats only to its rtol (1e-6): the experiment's own
-    // steady-state options say so, with the search capped at SHOCKLEY_MAX_PERIODS.
-    let shockley = Map::compute(
-        &ctx.paper.clone().with_shockley(DiodePair::one_n4148())?,
-        if ctx.quick { 24 } else { 64 },
-        SHOCKLEY_MAX_PERIODS,
-    )?;
+    let ShockleyMap(shockley) = ctx.shockley_map.take()?;
 
     let mut a = pwl.panel("(a) PWL diodes (exact solver)");
     a.series

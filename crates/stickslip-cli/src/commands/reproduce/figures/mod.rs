@@ -17,6 +17,6 @@ pub use fig3::fig3;
 pub use fig4::fig4;
 pub use fig5::fig5;
 pub use fig6::fig6;
-pub use fig7::fig7;
+pub use fig7::{fig7, ShockleyMap};
 pub use table1::table1;
 pub use theory_curves::boundary_curves;
