@@ -577,14 +577,19 @@ fn run_to_cycle<H: Holder>(
 
     let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
     history.push_back(holder.solver().state());
+    // The largest |y| or |y'| of `history`, at least 1 (kept as strobes come and go).
+    let magnitude = |s: &State| s.y.abs().max(s.v.abs());
+    let mut largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
     // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
     // (On the stack: a period is at most `MAX_PERIOD`.)
     let mut passes = [0usize; MAX_PERIOD + 1];
     // |x_k − x_{k−lag}| for lag = 1, 2, …: one buffer for the whole run.
     let mut gaps = [0.0f64; MAX_PERIOD];
-    // Events of the last `max_period` periods, with the index of the period they fell in.
+    // The events of the period just run (times from τ = 0 of the solver), and how many
+    // events each of the last periods had (period k at k mod MAX_PERIOD; 0 before the first).
     // (Room for a few events a period: most motions never grow it.)
-    let mut recent: VecDeque<(usize, Event)> = VecDeque::with_capacity(64);
+    let mut last: Vec<Event> = Vec::with_capacity(16);
+    let mut counts = [0usize; MAX_PERIOD];
     let mut found = None;
     let mut scale = 1.0f64;
     let mut local = 0usize;
@@ -607,9 +612,10 @@ fn run_to_cycle<H: Holder>(
         periods_run += 1;
         local += 1;
         let next = strobe(base + local as u64, period);
+        last.clear();
         let along = match (&pending, exact_of(holder.solver())) {
             (Some(_), Some(exact)) => {
-                match image_along(exact, next, |e| recent.push_back((local, *e))) {
+                match image_along(exact, next, |e| last.push(*e)) {
                     Ok(image) => Some(Some(image)),
                     // (The period has run all the same; only its Jacobian is not finite.)
                     Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => Some(None),
@@ -617,57 +623,55 @@ fn run_to_cycle<H: Holder>(
                 }
             }
             _ => {
-                run_until(holder.solver(), next, |e| recent.push_back((local, *e)))?;
+                run_until(holder.solver(), next, |e| last.push(*e))?;
                 None
             }
         };
-        while recent
-            .front()
-            .is_some_and(|(m, _)| *m + max_period <= local)
-        {
-            recent.pop_front();
-        }
+        let events_last = last.len();
+        counts[local % MAX_PERIOD] = events_last;
         let x = holder.solver().state();
-        scale = history
-            .iter()
-            .fold(1.0f64, |s, h| s.max(h.y.abs()).max(h.v.abs()))
-            .max(x.y.abs())
-            .max(x.v.abs());
+        scale = largest.max(magnitude(&x));
         let limit = options.tolerance * scale;
         // A cycle of p > 1 periods must not be close to one of a divisor of p: a slow
         // alternating transient towards a 1-cycle (eigenvalue near −1) repeats after two
         // periods long before it repeats after one.
         let distinct = options.tolerance.sqrt() * scale;
         let lags = history.len().min(max_period);
-        for lag in 1..=lags {
-            gaps[lag - 1] = distance(x, history[history.len() - lag]);
+        for (gap, h) in gaps.iter_mut().zip(history.iter().rev()).take(lags) {
+            *gap = distance(x, *h);
         }
+        // (A cycle is found only at a strobe where some lag repeats.)
+        let mut repeated = false;
         for lag in 1..=lags {
             let repeats = gaps[lag - 1] <= limit
                 && (1..lag)
                     .filter(|d| lag % d == 0)
                     .all(|d| gaps[d - 1] > distinct);
             passes[lag] = if repeats { passes[lag] + 1 } else { 0 };
+            repeated |= repeats;
         }
         history.push_back(x);
+        largest = scale;
         if history.len() > max_period.max(5) {
-            history.pop_front();
+            let gone = history.pop_front().map_or(0.0, |s| magnitude(&s));
+            if gone == largest {
+                largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
+            }
         }
-        if let Some(p) = (1..=max_period).find(|&p| passes[p] > p) {
+        if let Some(p) = repeated
+            .then(|| (1..=max_period).find(|&p| passes[p] > p))
+            .flatten()
+        {
             found = Some(p);
             break;
         }
         let budget = options.max_periods - periods_run;
         // The events of the period just run, times from its first strobe.
         let last_start = strobe(base + local as u64 - 1, period);
-        let last_period = recent
-            .iter()
-            .filter(|(m, _)| *m == local)
-            .map(|(_, e)| Event {
-                tau: e.tau - last_start,
-                ..*e
-            });
-        let events_last = recent.iter().filter(|(m, _)| *m == local).count();
+        let last_period = last.iter().map(|e| Event {
+            tau: e.tau - last_start,
+            ..*e
+        });
         let before = spent(&newton);
         // (Only Newton's runs take the trajectory's hints.)
         let hints = newton.is_some().then(|| holder.solver().hints()).flatten();
@@ -729,13 +733,17 @@ fn run_to_cycle<H: Holder>(
                 local = 0;
                 history.clear();
                 history.push_back(holder.solver().state());
+                largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
                 passes.iter_mut().for_each(|p| *p = 0);
-                recent.clear();
+                counts = [0; MAX_PERIOD];
             }
         }
     }
     let cycle = found.unwrap_or(max_period);
-    let events = recent.iter().filter(|(m, _)| *m + cycle > local).count();
+    // (The last `cycle` periods since the start or the last restart.)
+    let events: usize = (local.saturating_sub(cycle) + 1..=local)
+        .map(|m| counts[m % MAX_PERIOD])
+        .sum();
     Ok(Settled {
         found,
         periods_run: periods_run + if found.is_some() { spent(&newton) } else { 0 },
