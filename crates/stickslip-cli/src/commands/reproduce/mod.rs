@@ -57,6 +57,9 @@ pub struct Context {
     /// The bifurcation diagram of the chapter "Beyond the paper" and its branches, computed
     /// alongside the other figures ([`Later`]).
     pub bifurcation: Later<beyond::BifurcationDiagram>,
+    /// The basin map of the chapter "Beyond the paper", computed alongside the other figures
+    /// ([`Later`]).
+    pub basins: Later<beyond::BasinMap>,
 }
 
 pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
@@ -64,7 +67,7 @@ pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
 /// A result computed on a thread of its own from the start of `reproduce`, for the figure
 /// that shows it to take when its turn comes. The report's largest pieces of work that need
 /// nothing from the other figures (fig. 7 (b)'s map, the chaos map, the bifurcation diagram
-/// with its branches) are computed alongside them: their work goes to the pool's threads
+/// with its branches, the basin map) are computed alongside them: their work goes to the pool's threads
 /// whenever the others leave one idle (a figure drawn, a branch followed, a basin map run on
 /// one thread). Their results are the same for any number of threads, so the report is the
 /// same, byte for byte.
@@ -107,6 +110,7 @@ pub fn run(args: Args) -> Result<()> {
         shockley_map: figures::ShockleyMap::start(Experiment::paper(), args.quick),
         chaos_map: beyond::ChaosMap::start(args.quick),
         bifurcation: beyond::BifurcationDiagram::start(args.quick),
+        basins: beyond::BasinMap::start(args.quick),
     };
     let mut jobs: Vec<Job> = vec![
         ("Table 1", figures::table1),

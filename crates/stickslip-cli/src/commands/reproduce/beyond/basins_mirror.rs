@@ -2,7 +2,7 @@
 //! its mirror image, at ζ = 0, μs = 3, w = 0.6, β = 3.269.
 
 use super::super::report::{sig, Report, Section};
-use super::super::Context;
+use super::super::{Context, Later};
 use anyhow::Result;
 use serde_json::json;
 use stickslip::basins::Basins;
@@ -11,17 +11,52 @@ use stickslip::solver::run_until;
 use stickslip::{ExactSolver, Experiment, Solver, State};
 
 /// The basins of the mirror pair over initial states from −8 to 8.
+/// The basin map, its parameters and the seconds it took, computed alongside the other figures
+/// from the start of `reproduce` ([`Later`]; the method of recurrences runs on one thread);
+/// [`basins_mirror`] takes it.
+pub struct BasinMap {
+    map: stickslip::basins::BasinMap,
+    params: stickslip::Params,
+    seconds: f64,
+}
+
+impl BasinMap {
+    /// Start computing the map (coarser with `quick`).
+    pub fn start(quick: bool) -> Later<Self> {
+        Later::start(move || {
+            let range = ParameterRange::new("y0", -8.0, 8.0, side(quick))?;
+            let experiment = Experiment::dimensionless(0.0, 0.6, 3.269)?.with_mu_s(3.0)?;
+            let basins = Basins::new(&experiment, &range, &range)?;
+            let started = std::time::Instant::now();
+            let map = basins.run(&|_: usize, _: usize| !crate::output::interrupted())?;
+            Ok(Self {
+                map,
+                params: *basins.params(),
+                seconds: started.elapsed().as_secs_f64(),
+            })
+        })
+    }
+}
+
+/// Cells a side of the map.
+fn side(quick: bool) -> usize {
+    if quick {
+        50
+    } else {
+        120
+    }
+}
+
 pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
-    let n = if ctx.quick { 50 } else { 120 };
-    let range = ParameterRange::new("y0", -8.0, 8.0, n)?;
-    let experiment = Experiment::dimensionless(0.0, 0.6, 3.269)?.with_mu_s(3.0)?;
-    let basins = Basins::new(&experiment, &range, &range)?;
-    let started = std::time::Instant::now();
-    let map = basins.run(&|_: usize, _: usize| !crate::output::interrupted())?;
+    let n = side(ctx.quick);
+    let BasinMap {
+        map,
+        params,
+        seconds,
+    } = ctx.basins.take()?;
     // The time goes to standard error: the report itself is the same on every run.
     eprintln!(
-        "reproduce: {n} × {n} basin map in {:.1} s",
-        started.elapsed().as_secs_f64()
+        "reproduce: {n} × {n} basin map in {seconds:.1} s (alongside the chapters before it)"
     );
     crate::output::check_interrupt()?;
     let title = "basins of attraction at ζ = 0, μs = 3, w = 0.6, β = 3.269 (drive phase 0)";
@@ -50,7 +85,6 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     )?;
 
     // The two orbits are mirror images: half a period on, one is minus the other.
-    let params = *basins.params();
     let mirror_gap = match map.attractors.as_slice() {
         [a, b, ..] => {
             let mut solver = ExactSolver::new(params, a.state);
