@@ -577,9 +577,11 @@ fn run_to_cycle<H: Holder>(
 
     let mut history: VecDeque<State> = VecDeque::with_capacity(max_period + 1);
     history.push_back(holder.solver().state());
-    // The largest |y| or |y'| of `history`, at least 1 (kept as strobes come and go).
+    // The largest |y| or |y'| of `history`, at least 1 (kept as strobes come and go, and
+    // taken again over the whole history only when the largest leaves it).
     let magnitude = |s: &State| s.y.abs().max(s.v.abs());
-    let mut largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
+    let largest_of = |h: &VecDeque<State>| h.iter().map(magnitude).fold(1.0f64, f64::max);
+    let mut largest = largest_of(&history);
     // Consecutive strobes at which x_k matched x_{k−p}, per lag p.
     // (On the stack: a period is at most `MAX_PERIOD`.)
     let mut passes = [0usize; MAX_PERIOD + 1];
@@ -655,7 +657,7 @@ fn run_to_cycle<H: Holder>(
         if history.len() > max_period.max(5) {
             let gone = history.pop_front().map_or(0.0, |s| magnitude(&s));
             if gone == largest {
-                largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
+                largest = largest_of(&history);
             }
         }
         if let Some(p) = repeated
@@ -733,7 +735,7 @@ fn run_to_cycle<H: Holder>(
                 local = 0;
                 history.clear();
                 history.push_back(holder.solver().state());
-                largest = history.iter().map(magnitude).fold(1.0f64, f64::max);
+                largest = largest_of(&history);
                 passes.iter_mut().for_each(|p| *p = 0);
                 counts = [0; MAX_PERIOD];
             }
@@ -849,16 +851,15 @@ pub(crate) fn settle_from<F: SolverFactory + ?Sized>(
     initial: State,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
-    let options = *options;
-    check_horizon(params, &options, 0.0)?;
+    check_horizon(params, options, 0.0)?;
     let mut holder = FromFactory {
         factory,
         params: *params,
         solver: factory.make(*params, initial)?,
     };
-    let settled = run_to_cycle(&mut holder, params, &options, options.accelerate)?;
+    let settled = run_to_cycle(&mut holder, params, options, options.accelerate)?;
     let exact = holder.solver.is_exact();
-    let steady = record(holder.solver.as_mut(), params, &options, &settled)?;
+    let steady = record(holder.solver.as_mut(), params, options, &settled)?;
     if settled.by_newton.is_some_and(|radius| {
         distance(steady.strobes[0], steady.strobes[1])
             > options.tolerance * settled.scale * (1.0 - radius)
@@ -870,7 +871,7 @@ pub(crate) fn settle_from<F: SolverFactory + ?Sized>(
         drop(holder);
         return settle_from(factory, params, initial, &options.with_newton(false));
     }
-    measure(steady, exact, &options, &factory.cancel())
+    measure(steady, exact, options, &factory.cancel())
 }
 
 /// Measure a motion that did not repeat (see the module documentation).

@@ -4,8 +4,7 @@
 //! motions that do not repeat); what joins the two is here, so that `stability` does not
 //! depend on `steady`.
 
-use super::cycle::settle_from;
-use super::{MotionClass, SolverFactory, SteadyOptions, SteadyState};
+use super::{settle_from, MotionClass, SolverFactory, SteadyOptions, SteadyState};
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::stability::{

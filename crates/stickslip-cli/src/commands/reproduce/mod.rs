@@ -67,10 +67,10 @@ pub(crate) type Job = (&'static str, fn(&mut Report, &Context) -> Result<()>);
 /// A result computed on a thread of its own from the start of `reproduce`, for the figure
 /// that shows it to take when its turn comes. The report's largest pieces of work that need
 /// nothing from the other figures (fig. 7 (b)'s map, the chaos map, the bifurcation diagram
-/// with its branches, the basin map) are computed alongside them: their work goes to the pool's threads
-/// whenever the others leave one idle (a figure drawn, a branch followed, a basin map run on
-/// one thread). Their results are the same for any number of threads, so the report is the
-/// same, byte for byte.
+/// with its branches, the basin map) are computed alongside them: their work goes to the
+/// pool's threads whenever the others leave one idle (a figure drawn, a branch followed, a
+/// basin map run on one thread). Their results are the same for any number of threads, so
+/// the report is the same, byte for byte.
 pub struct Later<T>(Mutex<Option<JoinHandle<Result<T>>>>);
 
 impl<T: Send + 'static> Later<T> {
@@ -100,14 +100,15 @@ pub fn run(args: Args) -> Result<()> {
     let Diode::Pwl(diode) = circuit.diode else {
         unreachable!("the paper's circuit has PWL diodes")
     };
+    let paper = Experiment::paper();
     let ctx = Context {
-        paper: Experiment::paper(),
+        shockley_map: figures::ShockleyMap::start(paper.clone(), args.quick),
+        paper,
         circuit,
         diode,
         scales: circuit.scales(),
         quick: args.quick,
         paper_exponents: std::sync::OnceLock::new(),
-        shockley_map: figures::ShockleyMap::start(Experiment::paper(), args.quick),
         chaos_map: beyond::ChaosMap::start(args.quick),
         bifurcation: beyond::BifurcationDiagram::start(args.quick),
         basins: beyond::BasinMap::start(args.quick),

@@ -10,7 +10,6 @@ use stickslip::scan::ParameterRange;
 use stickslip::solver::run_until;
 use stickslip::{ExactSolver, Experiment, Solver, State};
 
-/// The basins of the mirror pair over initial states from −8 to 8.
 /// The basin map, its parameters and the seconds it took, computed alongside the other figures
 /// from the start of `reproduce` ([`Later`]; the method of recurrences runs on one thread);
 /// [`basins_mirror`] takes it.
@@ -47,6 +46,7 @@ fn side(quick: bool) -> usize {
     }
 }
 
+/// The basins of the mirror pair over initial states from −8 to 8.
 pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     let n = side(ctx.quick);
     let BasinMap {

@@ -50,7 +50,7 @@ fn axes(quick: bool) -> Result<(ParameterRange, ParameterRange, LyapunovOptions)
 }
 
 /// The points of the map and how long they took (seconds), computed alongside the other
-/// figures from the start of `reproduce` ([`super::super::Later`]); [`chaos_map`] takes them.
+/// figures from the start of `reproduce` ([`Later`]); [`chaos_map`] takes them.
 pub struct ChaosMap {
     points: Vec<GridPoint>,
     seconds: f64,
