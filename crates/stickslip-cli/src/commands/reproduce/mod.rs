@@ -6,8 +6,8 @@ mod beyond;
 mod figures;
 mod report;
 
-use crate::output::progress;
-use anyhow::{anyhow, Result};
+use crate::output::{interrupted, progress};
+use anyhow::{anyhow, bail, Result};
 use report::Report;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -134,7 +134,17 @@ pub fn run(args: Args) -> Result<()> {
     let bar = progress(jobs.len() as u64, "reproduce");
     for (name, job) in &jobs {
         bar.set_message(name.to_string());
-        job(&mut report, &ctx)?;
+        let done = job(&mut report, &ctx);
+        if interrupted() {
+            // Whatever the job's own error says (a grid counts the points it finished, and
+            // the grids computed alongside may have barely started), the reader wants this.
+            bar.finish_and_clear();
+            bail!(
+                "interrupted during {name}; the report was not written ({} is as it was)",
+                args.out.display()
+            );
+        }
+        done?;
         bar.inc(1);
     }
     bar.finish_and_clear();
