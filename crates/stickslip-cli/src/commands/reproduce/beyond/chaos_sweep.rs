@@ -9,6 +9,7 @@ use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
+use stickslip::stability::SEARCH_BEFORE_MEASURING;
 use stickslip::steady::MotionClass;
 use stickslip::{Parameter, SteadyOptions};
 
@@ -21,6 +22,8 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
     let w = ParameterRange::new("w", 0.2, 0.55, steps)?;
     let options = SteadyOptions::default().with_spectrum(false);
     let measure = options.lyapunov.expect("measured by default");
+    let (align, cap) = (measure.transient_periods, measure.periods);
+    let longest = options.max_periods;
     let started = std::time::Instant::now();
     let points = Grid::new(
         &literature()?,
@@ -222,10 +225,13 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
              of {steps} frequencies from w = 0.2 to 0.55 is run from rest to its steady state \
              (as <code>stickslip steady</code>: a period up to 16 within 5000 drive periods). \
              Where the motion repeats, λ1 = ln|μ1|/(pT) from the Floquet multiplier μ1 of its \
-             orbit, refined by Newton's method: exact, no error bar. Where it does not, λ1 is \
-             measured by the exact tangent dynamics over 5000 more periods in 20 blocks; the \
-             bars are ±4 standard errors, the chaos criterion (mostly smaller than the \
-             markers). The motion is chaotic at {} of the {steps} frequencies (w = {list}), \
+             orbit, refined by Newton's method: exact, no error bar. Where it has not repeated \
+             after {SEARCH_BEFORE_MEASURING} periods, λ1 is measured from there by the exact \
+             tangent dynamics ({align} periods to align the tangent, then at most {cap} periods \
+             in 20 blocks, stopping at the first look where λ1 is beyond 4 standard errors and \
+             the halves of the blocks agree; a motion still undecided is followed for up to \
+             {longest} periods from rest); the bars are ±4 standard errors, the chaos criterion \
+             (mostly smaller than the markers). The motion is chaotic at {} of the {steps} frequencies (w = {list}), \
              with λ1 from {} to {} per unit τ, and repeats at the others (periods {periods}), \
              where λ1 is negative, down to {} at w = {}.{unsettled} (b) shows λ1 above \
              {ZOOM_BELOW}, where the chaotic exponents lie ({zoomed_out} points fall below \
