@@ -78,14 +78,16 @@ pub fn interrupt_in(dir: &Path, args: &[&str]) -> (Output, Duration) {
 }
 
 /// Assert that `stickslip` with `args`, interrupted by Ctrl-C while it computes, fails,
-/// says it was interrupted and leaves no file behind.
-pub fn assert_ctrl_c_leaves_nothing(args: &[&str]) {
+/// says it was interrupted and leaves no file behind; returns its output and the time it took
+/// to stop after the signal, for more checks.
+pub fn assert_ctrl_c_leaves_nothing(args: &[&str]) -> (Output, Duration) {
     let dir = tempfile::tempdir().expect("temp dir");
-    let (out, _) = interrupt_in(dir.path(), args);
+    let (out, stopping) = interrupt_in(dir.path(), args);
     assert!(!out.status.success(), "{}", args[0]);
     assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
     let left: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
     assert!(left.is_empty(), "files left behind: {left:?}");
+    (out, stopping)
 }
 
 /// The chaotic point of the dry-friction oscillator the dynamics tests measure: ζ = 0,

@@ -165,17 +165,13 @@ fn writes_every_figure_table_and_the_report() {
 /// and leaves nothing behind: no report, no staging directory.
 #[test]
 fn ctrl_c_leaves_no_report() {
-    let dir = tempfile::tempdir().unwrap();
-    let (out, stopping) = interrupt_in(dir.path(), &["reproduce", "--out", "report"]);
-    assert!(!out.status.success());
+    let (out, stopping) = assert_ctrl_c_leaves_nothing(&["reproduce", "--out", "report"]);
     let err = stderr(&out);
     assert!(
         err.contains("interrupted during ") && err.contains("the report was not written"),
         "{err}"
     );
     assert!(!err.contains("cancelled after"), "{err}");
-    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-    assert!(left.is_empty(), "files left behind: {left:?}");
     assert!(
         stopping < std::time::Duration::from_secs(20),
         "took {stopping:?} to stop"

@@ -223,7 +223,8 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "The oscillator of the literature on chaos with dry friction (Licskó and Csernák \
              2014): no viscous damping, static friction three times the kinetic, β = 9. Each \
              of {steps} frequencies from w = 0.2 to 0.55 is run from rest to its steady state \
-             (as <code>stickslip steady</code>: a period up to 16 within 5000 drive periods). \
+             (as <code>stickslip steady</code>: a period up to 16 within {longest} drive \
+             periods). \
              Where the motion repeats, λ1 = ln|μ1|/(pT) from the Floquet multiplier μ1 of its \
              orbit, refined by Newton's method: exact, no error bar. Where it has not repeated \
              after {SEARCH_BEFORE_MEASURING} periods, λ1 is measured from there by the exact \
@@ -231,8 +232,9 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
              in 20 blocks, stopping at the first look where λ1 is beyond 4 standard errors and \
              the halves of the blocks agree; a motion still undecided is followed for up to \
              {longest} periods from rest); the bars are ±4 standard errors, the chaos criterion \
-             (mostly smaller than the markers). The motion is chaotic at {} of the {steps} frequencies (w = {list}), \
-             with λ1 from {} to {} per unit τ, and repeats at the others (periods {periods}), \
+             (mostly smaller than the markers). The motion is chaotic at {} of the {steps} \
+             frequencies (w = {list}), with λ1 from {} to {} per unit τ, and repeats at the \
+             others (periods {periods}), \
              where λ1 is negative, down to {} at w = {}.{unsettled} (b) shows λ1 above \
              {ZOOM_BELOW}, where the chaotic exponents lie ({zoomed_out} points fall below \
              it).",
