@@ -304,7 +304,7 @@ pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
     match class {
         MotionClass::Sliding => SLIDING,
         MotionClass::PeriodicStick => PALETTE[0],
-        MotionClass::NonperiodicStick => PALETTE[1],
+        MotionClass::Undecided => PALETTE[1],
         MotionClass::Static => PALETTE[2],
         MotionClass::Chaotic => CHAOTIC,
     }

@@ -192,7 +192,7 @@ pub fn basins<'py>(
         "kind",
         map.cells
             .iter()
-            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Unsettled, |a| a.kind)))
+            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Undecided, |a| a.kind)))
             .collect::<Vec<i8>>(),
     )?;
     put(

@@ -84,9 +84,9 @@ def test_sweep_grid_is_a_map_per_outer_value(local_cluster):
         for name in stickslip.PhaseDiagram.FIELDS:
             assert np.array_equal(getattr(stack, name)[k], getattr(local, name)), name
     # Static friction above kinetic changes the map.
-    assert not np.array_equal(stack.motion[0], stack.motion[2])
+    assert not np.array_equal(stack.class_code[0], stack.class_code[2])
     ds = stack.to_xarray()
-    assert ds["motion"].dims == ("mu_s", "w", "beta")
+    assert ds["motion_class"].dims == ("mu_s", "w", "beta")
     assert ds["mu_s"].attrs["long_name"] == stickslip.PARAMETERS["mu_s"]
     assert "mu_s" not in ds.attrs
 
@@ -99,7 +99,7 @@ def test_sweep_grid_over_two_outer_parameters(local_cluster):
     for i, z in enumerate(zeta):
         for j, m in enumerate(mu_s):
             local = stickslip.phase_diagram(Experiment(zeta=z, mu_s=m), w=W[::3], beta=BETA[::2])
-            assert np.array_equal(stack.motion[i, j], local.motion)
+            assert np.array_equal(stack.class_code[i, j], local.class_code)
             assert np.array_equal(stack.gain[i, j], local.gain)
 
 

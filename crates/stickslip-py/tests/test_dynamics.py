@@ -44,20 +44,20 @@ def test_bifurcation_is_the_tools_csv(cli, tmp_path):
     assert_same(rows["w"], w, "w")
     assert_same(rows["y"], numbers(table["y"]), "y")
     assert_same(rows["v"], numbers(table["v"]), "v")
-    assert_same(rows["lambda"], numbers(table["lambda"]), "lambda")
+    assert_same(rows["lambda1"], numbers(table["lambda1"]), "lambda1")
     assert list(rows["direction"]) == table["direction"]
     assert list(rows["class"]) == table["class"]
     assert list(rows["period"]) == list(period_cells(table["period"]))
     # The window holds periodic and chaotic values, so the comparison covers both.
-    kinds = set(d.kind_labels())
+    kinds = set(d.motion_class)
     assert {"periodic", "chaotic"} <= kinds, kinds
     # A period-p value has p distinct strobe points; a chaotic one many, and λ > 0.
     for k in range(len(d)):
         distinct = len(np.unique(np.round(d.y[k], 7)))
-        if d.kind_labels()[k] == "periodic":
+        if d.motion_class[k] == "periodic":
             assert distinct == d.period[k]
-        if d.kind_labels()[k] == "chaotic":
-            assert distinct > 30 and d.exponent[k] > 0
+        if d.motion_class[k] == "chaotic":
+            assert distinct > 30 and d.lambda1[k] > 0
 
 
 def test_bifurcation_directions_xarray_and_errors():
@@ -67,11 +67,11 @@ def test_bifurcation_directions_xarray_and_errors():
     up = stickslip.bifurcation(e, "w", values, "up", points=20, transient=50)
     down = stickslip.bifurcation(e, "w", values, "down", points=20, transient=50)
     assert_same(both.y[:4], up.y, "the up leg of both is the up run")
-    assert list(down.value) == list(values[::-1]) and set(down.leg) == {"down"}
+    assert list(down.value) == list(values[::-1]) and set(down.direction) == {"down"}
     ds = both.to_xarray()
-    assert ds["y"].dims == ("leg", "w", "point") and ds["y"].shape == (2, 4, 20)
-    assert_same(ds["y"].sel(leg="down").values, both.y[4:][::-1], "down leg reordered")
-    assert ds["kind"].attrs["flag_meanings"].split() == list(stickslip.ATTRACTOR_KINDS)
+    assert ds["y"].dims == ("direction", "w", "point") and ds["y"].shape == (2, 4, 20)
+    assert_same(ds["y"].sel(direction="down").values, both.y[4:][::-1], "down leg reordered")
+    assert ds["motion_class"].attrs["flag_meanings"].split() == list(stickslip.ATTRACTOR_KINDS)
     assert ds.attrs["beta"] == 9.0 and ds.attrs["points"] == 20
     with pytest.raises(ValueError, match=r"^invalid points = 0: must be from 1 to 1000000$"):
         stickslip.bifurcation(e, "w", values, points=0)
@@ -99,11 +99,11 @@ def test_basins_are_the_tools_csv_and_json(cli, tmp_path):
     assert_same(np.repeat(m.y0, 15), numbers(table["y0"]), "y0")
     assert_same(np.tile(m.v0, 15), numbers(table["v0"]), "v0")
     assert list(m.attractor.ravel()) == list(period_cells(table["attractor"]))
-    assert list(m.kind_labels().ravel()) == table["kind"]
+    assert list(m.motion_class.ravel()) == table["class"]
     assert list(m.period.ravel()) == list(period_cells(table["period"]))
     assert m.to_dict() == summary
-    assert [(a["kind"], a["period"]) for a in m.attractors] == [("periodic", 1), ("periodic", 1)]
-    assert sum(a["fraction"] for a in m.attractors) + m.unsettled / 225 == pytest.approx(1.0)
+    assert [(a["class"], a["period"]) for a in m.attractors] == [("periodic", 1), ("periodic", 1)]
+    assert sum(a["fraction"] for a in m.attractors) + m.undecided / 225 == pytest.approx(1.0)
     # Deterministic: any number of threads gives the same map.
     one = stickslip.basins(e, y0=(-8, 8), v0=(-8, 8), steps=15, threads=1)
     assert np.array_equal(one.attractor, m.attractor) and one.to_dict() == m.to_dict()
@@ -150,8 +150,8 @@ def test_basins_method_is_the_tools_method(cli, tmp_path):
         by[method] = m
     assert np.array_equal(by["recurrence"].attractor, by["exhaustive"].attractor)
     for a, b in zip(by["recurrence"].attractors, by["exhaustive"].attractors):
-        assert (a["kind"], a["period"], a["cells"], a["mirror"]) == \
-            (b["kind"], b["period"], b["cells"], b["mirror"])
+        assert (a["class"], a["period"], a["cells"], a["mirror"]) == \
+            (b["class"], b["period"], b["cells"], b["mirror"])
         assert a["state"]["y"] == pytest.approx(b["state"]["y"], abs=1e-9)
     with pytest.raises(ValueError, match=r"^invalid method 'fast': must be 'recurrence' or "
                                          r"'exhaustive'$"):

@@ -19,6 +19,7 @@ from stickslip import Experiment, _core
 from conftest import assert_same, numbers, read_csv
 
 
+
 def misaligned(values) -> np.ndarray:
     """A float64 array whose data starts one byte past an 8-byte boundary, as numpy arrays
     unpickled from pickle-5 buffers may on Dask workers."""
@@ -49,9 +50,9 @@ def test_sweep_is_the_tools_csv(cli, tmp_path, over):
     # sampling, so the same count gives the same numbers).
     s = stickslip.sweep(experiment, over, values, direction="both", harmonics=3)
     assert len(s) == len(table["w"]) == 2 * len(values)
-    assert list(s.leg) == table["direction"]
-    assert list(s.motion_labels()) == table["class"]
-    for name in ("w", "beta", "gain", "stops_per_cycle"):
+    assert list(s.direction) == table["direction"]
+    assert list(s.motion_class) == table["class"]
+    for name in ("w", "beta", "gain", "gain1", "stops_per_period"):
         assert_same(getattr(s, name), numbers(table[name]), name)
     assert_same(s.harmonics[:, 0], numbers(table["A1"]), "A1")
     assert_same(s.harmonics[:, 2], numbers(table["A3"]), "A3")
@@ -66,12 +67,13 @@ def test_sweep_directions_and_xarray():
     assert_same(both.gain[:9], up.gain, "up leg")
     assert list(down.value) == list(values[::-1])
     ds = both.to_xarray()
-    assert ds["gain"].dims == ("leg", "w") and list(ds["leg"].values) == ["up", "down"]
+    assert ds["gain"].dims == ("direction", "w")
+    assert list(ds["direction"].values) == ["up", "down"]
     # The down leg is put in the order of the values.
-    assert_same(ds["gain"].sel(leg="down").values, both.gain[9:][::-1], "down leg")
+    assert_same(ds["gain"].sel(direction="down").values, both.gain[9:][::-1], "down leg")
     assert_same(ds["w"].values, values, "w")
     assert ds["w"].attrs["long_name"] == stickslip.PARAMETERS["w"] and ds["w"].attrs["units"] == "1"
-    assert ds["harmonics"].dims == ("leg", "w", "harmonic")
+    assert ds["harmonics"].dims == ("direction", "w", "harmonic")
     assert ds.attrs["beta"] == 3.61 and ds.attrs["stickslip_version"] == stickslip.__version__
     with pytest.raises(ValueError, match="^invalid direction 'sideways'"):
         stickslip.sweep(Experiment.paper(beta=3.61), "w", values, direction="sideways")
@@ -99,12 +101,13 @@ def tool_map(cli, tmp_path_factory):
 def test_map_is_the_tools_csv(tool_map):
     w, beta, table = tool_map
     m = stickslip.phase_diagram(Experiment.paper(), w=w, beta=beta)
-    assert m.dims == ("w", "beta") and m.motion.shape == (60, 40) and m.motion.dtype == np.int8
+    assert m.dims == ("w", "beta") and m.class_code.shape == (60, 40)
+    assert m.class_code.dtype == np.int8 and m.motion_class.shape == (60, 40)
     # Same classes at every point of the 60 × 40 map.
-    assert list(m.motion_labels().ravel()) == table["class"]
+    assert list(m.motion_class.ravel()) == table["class"]
     period = np.array([int(p) if p else -1 for p in table["period"]]).reshape(60, 40)
     assert np.array_equal(m.period, period)
-    assert_same(m.stops_per_cycle, numbers(table["stops_per_cycle"]).reshape(60, 40), "stops")
+    assert_same(m.stops_per_period, numbers(table["stops_per_period"]).reshape(60, 40), "stops")
     assert_same(m.gain, numbers(table["gain"]).reshape(60, 40), "gain")
     assert set(m.counts().values()) != {0} and sum(m.counts().values()) == 2400
     # Several classes occur: the comparison means something.
@@ -115,7 +118,7 @@ def test_keyword_order_gives_the_axes(tool_map):
     w, beta, _ = tool_map
     a = stickslip.phase_diagram(Experiment.paper(), w=w[:12], beta=beta[:9])
     b = stickslip.phase_diagram(Experiment.paper(), beta=beta[:9], w=w[:12])
-    assert b.dims == ("beta", "w") and b.motion.shape == (9, 12)
+    assert b.dims == ("beta", "w") and b.motion_class.shape == (9, 12)
     for name in stickslip.PhaseDiagram.FIELDS:
         assert np.array_equal(getattr(a, name), getattr(b, name).T), name
 
@@ -128,8 +131,8 @@ def test_any_two_parameters_agree_with_steady_states():
     for i, z in enumerate(zeta):
         for j, mu in enumerate(mu_s):
             s = stickslip.steady(e.replace(zeta=z, mu_s=mu))
-            assert m.labels[m.motion[i, j]] == s.motion
-            assert m.gain[i, j] == s.gain and m.stops_per_cycle[i, j] == s.stops_per_cycle
+            assert m.labels[m.class_code[i, j]] == m.motion_class[i, j] == s.motion_class
+            assert m.gain[i, j] == s.gain and m.stops_per_period[i, j] == s.stops_per_period
             assert m.period[i, j] == (-1 if s.period is None else s.period)
 
 
@@ -161,10 +164,10 @@ def test_map_to_xarray(tool_map):
     m = stickslip.phase_diagram(Experiment.paper(mu_s=1.2), w=w[:10], beta=beta[:8],
                                 max_period=8)
     ds = m.to_xarray()
-    assert ds["motion"].dims == ("w", "beta") and ds["motion"].dtype == np.int8
-    assert list(ds["motion"].attrs["flag_values"]) == [0, 1, 2, 3, 4]
-    assert (ds["motion"].attrs["flag_meanings"]
-            == "sliding periodic-stick nonperiodic-stick static chaotic")
+    assert ds["motion_class"].dims == ("w", "beta") and ds["motion_class"].dtype == np.int8
+    assert list(ds["motion_class"].attrs["flag_values"]) == [0, 1, 2, 3, 4]
+    assert (ds["motion_class"].attrs["flag_meanings"]
+            == "sliding periodic-stick undecided static chaotic")
     for name in ("w", "beta"):
         assert ds[name].attrs == {"units": "1", "long_name": stickslip.PARAMETERS[name]}
     assert ds["period"].encoding["_FillValue"] == -1
@@ -226,7 +229,7 @@ def test_ctrl_c_stops_a_long_computation(what):
     # Stopped soon after the signal (the computation alone would take minutes).
     assert elapsed < 5.0, f"took {elapsed:.1f} s to stop"
     # Everything still works afterwards.
-    assert stickslip.phase_diagram(Experiment.paper(), w=[0.9], beta=[1.6]).motion.shape == (1, 1)
+    assert stickslip.phase_diagram(Experiment.paper(), w=[0.9], beta=[1.6]).motion_class.shape == (1, 1)
 
 
 def test_progress_callback_and_its_exceptions_stop_the_map():

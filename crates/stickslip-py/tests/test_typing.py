@@ -55,11 +55,11 @@ trajectory: xarray.Dataset = run.to_xarray()
 frame = run.to_pandas()
 events: npt.NDArray[Any] = run.events
 s = stickslip.steady(exp)
-motion: str = s.motion
-stops: float = s.stops_per_cycle
+motion: str = s.motion_class
+stops: float = s.stops_per_period
 period: Optional[int] = s.period
 m = stickslip.phase_diagram(exp, w=[0.7], beta=[1.2])
-stops_map: npt.NDArray[Any] = m.stops_per_cycle
+stops_map: npt.NDArray[Any] = m.stops_per_period
 dataset: xarray.Dataset = m.to_xarray()
 sweep_set: xarray.Dataset = stickslip.sweep(exp, "w", [0.7]).to_xarray()
 scales: Optional[Dict[str, Any]] = exp.scales()

@@ -24,13 +24,13 @@
 //! - *static* (rest): periodic without a single event while recording: the oscillator stays
 //!   stuck (a motion that slides has turning points or stops);
 //! - otherwise, with σ the standard error and k = [`RecordOptions::significance`]: *chaotic*
-//!   when λ₁ > kσ, *quasi-periodic* when |λ₁| ≤ kσ, and *unsettled* when λ₁ < −kσ (the motion
-//!   still contracts onto an attractor it has not reached, for example a periodic orbit whose
-//!   multiplier is close to 1, or one of a longer period than was looked for), or when too few
-//!   points were recorded (N < 8) to judge.
+//!   when λ₁ > kσ, *quasi-periodic* when |λ₁| ≤ kσ, and *undecided* (no verdict within the
+//!   budget) when λ₁ < −kσ (the motion still contracts onto an attractor it has not reached,
+//!   for example a periodic orbit whose multiplier is close to 1, or one of a longer period
+//!   than was looked for), or when too few points were recorded (N < 8) to judge.
 //!
 //! The verdict rests on N periods only: a short record calls a weakly chaotic motion
-//! quasi-periodic or unsettled rather than chaotic.
+//! quasi-periodic or undecided rather than chaotic.
 //! [`crate::stability::classify_nonperiodic`] decides at length.
 
 use crate::error::{invalid, Result};
@@ -54,9 +54,12 @@ pub enum AttractorKind {
     /// of zero (motion on a torus).
     #[serde(rename = "quasiperiodic")]
     QuasiPeriodic,
-    /// No verdict: the motion still contracts onto something it has not reached, or the
-    /// record is too short to judge.
-    Unsettled,
+    /// Not decided within the budget (label `undecided`, as the steady states'
+    /// [`crate::steady::MotionClass::Undecided`]; before: `unsettled`, which still reads): the
+    /// motion still contracts onto something it has not reached, or the record is too short
+    /// to judge. No kind of motion.
+    #[serde(alias = "unsettled")]
+    Undecided,
 }
 
 impl AttractorKind {
@@ -66,18 +69,27 @@ impl AttractorKind {
         AttractorKind::Static,
         AttractorKind::Chaotic,
         AttractorKind::QuasiPeriodic,
-        AttractorKind::Unsettled,
+        AttractorKind::Undecided,
     ];
 
+    /// Labels retired, with the kind each now reads as: `unsettled` (now `undecided`).
+    pub const RETIRED: [(&'static str, AttractorKind); 1] =
+        [("unsettled", AttractorKind::Undecided)];
+
+    /// The former name of [`AttractorKind::Undecided`].
+    #[deprecated(note = "the kind is `AttractorKind::Undecided` (label `undecided`)")]
+    #[allow(non_upper_case_globals)]
+    pub const Unsettled: AttractorKind = AttractorKind::Undecided;
+
     /// The label used in CSV and JSON: `periodic`, `static`, `chaotic`, `quasiperiodic`,
-    /// `unsettled`.
+    /// `undecided`.
     pub fn label(self) -> &'static str {
         match self {
             AttractorKind::Periodic => "periodic",
             AttractorKind::Static => "static",
             AttractorKind::Chaotic => "chaotic",
             AttractorKind::QuasiPeriodic => "quasiperiodic",
-            AttractorKind::Unsettled => "unsettled",
+            AttractorKind::Undecided => "undecided",
         }
     }
 
@@ -292,10 +304,10 @@ pub fn record_strobes(
     let kind = match found {
         Some(_) if events == 0 && stuck => AttractorKind::Static,
         Some(_) => AttractorKind::Periodic,
-        None if !(exponent_error.is_finite()) => AttractorKind::Unsettled,
+        None if !(exponent_error.is_finite()) => AttractorKind::Undecided,
         None if exponent > k * exponent_error => AttractorKind::Chaotic,
         None if exponent >= -k * exponent_error => AttractorKind::QuasiPeriodic,
-        None => AttractorKind::Unsettled,
+        None => AttractorKind::Undecided,
     };
     Ok(StrobeRecord {
         strobes,

@@ -29,7 +29,7 @@
 //! - a motion without a period gets its largest Lyapunov exponent measured over
 //!   [`BasinOptions::lyapunov_periods`] more periods ([`crate::attractor::record_strobes`]):
 //!   **chaotic** when it is positive beyond [`BasinOptions::significance`] standard errors,
-//!   **quasi-periodic** when it is within them of 0, and unsettled (no attractor) when it is
+//!   **quasi-periodic** when it is within them of 0, and undecided (no attractor) when it is
 //!   negative (a periodic orbit not reached within the cap) or a late period shows. Chaotic
 //!   and quasi-periodic cells of one attractor are told apart from those of another by their
 //!   strobe sets: a cell belongs to an attractor found before when at least 90 % of its
@@ -140,7 +140,7 @@ pub struct BasinOptions {
     /// assign a cell to it. Default 10.
     pub basin_hits: usize,
     /// Recurrence: drive periods run at most from one initial state before it is
-    /// unsettled. Default 100000.
+    /// undecided. Default 100000.
     pub max_steps: usize,
 }
 
@@ -285,13 +285,13 @@ pub struct BasinMap {
     pub y0: Vec<f64>,
     /// Initial velocities y0' (columns).
     pub v0: Vec<f64>,
-    /// The attractor of each cell (an index into `attractors`), `None` when unsettled;
+    /// The attractor of each cell (an index into `attractors`), `None` when undecided;
     /// row-major: `cells[i·n + j]` is (y0_i, v0_j), n = `v0.len()`.
     pub cells: Vec<Option<usize>>,
     /// The attractors, numbered in the order of their first cell.
     pub attractors: Vec<Attractor>,
     /// Cells without an attractor.
-    pub unsettled: usize,
+    pub undecided: usize,
 }
 
 impl BasinMap {
@@ -551,7 +551,7 @@ impl Basins {
         let tolerance = self.options.match_tolerance;
         for (k, cell) in cells.iter().enumerate() {
             let found = match cell.kind {
-                AttractorKind::Unsettled => {
+                AttractorKind::Undecided => {
                     assigned.push(None);
                     continue;
                 }
@@ -630,14 +630,14 @@ impl Basins {
             }
         }
         self.pair_mirrors(&mut attractors)?;
-        let unsettled = assigned.iter().filter(|a| a.is_none()).count();
+        let undecided = assigned.iter().filter(|a| a.is_none()).count();
         Ok(BasinMap {
             params: self.params,
             y0: self.y0.clone(),
             v0: self.v0.clone(),
             cells: assigned,
             attractors,
-            unsettled,
+            undecided,
         })
     }
 }
@@ -720,9 +720,9 @@ pub struct BasinReport {
     /// The attractors, numbered in the order of their first cell.
     pub attractors: Vec<AttractorReport>,
     /// Cells without an attractor.
-    pub unsettled: usize,
+    pub undecided: usize,
     /// Their fraction of the grid.
-    pub unsettled_fraction: f64,
+    pub undecided_fraction: f64,
 }
 
 /// The model's parameters in a [`BasinReport`] (dimensionless; φ in radians).
@@ -762,8 +762,9 @@ pub struct BasinGrid {
 pub struct AttractorReport {
     /// Its number, from 0.
     pub id: usize,
-    /// `periodic`, `static`, `chaotic` or `quasiperiodic`.
-    pub kind: AttractorKind,
+    /// What it is: `periodic`, `static`, `chaotic` or `quasiperiodic` (JSON `class`, as the
+    /// CSV's column).
+    pub class: AttractorKind,
     /// Period in drive periods (periodic and static), else `None`.
     pub period: Option<usize>,
     /// Its fraction of the grid.
@@ -774,9 +775,9 @@ pub struct AttractorReport {
     pub state: State,
     /// Its strobe points, at most [`AttractorReport::MAX_STROBES`].
     pub strobes: Vec<State>,
-    /// Largest Lyapunov exponent per unit τ; `None` where it is not finite (−∞ when both
+    /// Largest Lyapunov exponent λ1 per unit τ; `None` where it is not finite (−∞ when both
     /// multipliers of an orbit vanish).
-    pub exponent: Option<f64>,
+    pub lambda1: Option<f64>,
     /// Floquet multipliers of a periodic orbit as [re, im] pairs, the larger first.
     pub multipliers: Option<[[f64; 2]; 2]>,
     /// [min, max] of the rest positions (static only).
@@ -797,13 +798,13 @@ impl From<&Attractor> for AttractorReport {
     fn from(a: &Attractor) -> Self {
         Self {
             id: a.id,
-            kind: a.kind,
+            class: a.kind,
             period: a.period,
             fraction: a.fraction,
             cells: a.cells,
             state: a.state,
             strobes: a.strobes.iter().take(Self::MAX_STROBES).copied().collect(),
-            exponent: Some(a.exponent).filter(|x| x.is_finite()),
+            lambda1: Some(a.exponent).filter(|x| x.is_finite()),
             multipliers: a
                 .multipliers
                 .map(|m| [[m[0].re, m[0].im], [m[1].re, m[1].im]]),
@@ -838,8 +839,8 @@ impl From<&BasinMap> for BasinReport {
                 v0_steps: map.v0.len(),
             },
             attractors: map.attractors.iter().map(AttractorReport::from).collect(),
-            unsettled: map.unsettled,
-            unsettled_fraction: map.unsettled as f64 / map.cells.len().max(1) as f64,
+            undecided: map.undecided,
+            undecided_fraction: map.undecided as f64 / map.cells.len().max(1) as f64,
         }
     }
 }

@@ -84,7 +84,7 @@ fn measure(params: &Params, record: &mut StrobeRecord, significance: f64) -> Res
     record.kind = match c.verdict {
         NonperiodicVerdict::Chaotic => AttractorKind::Chaotic,
         NonperiodicVerdict::QuasiPeriodic => AttractorKind::QuasiPeriodic,
-        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Unsettled,
+        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Undecided,
     };
     Ok(())
 }

@@ -21,7 +21,7 @@ use stickslip::{OptionKey, State};
 /// in the order of the cells (rows of y0, then y0'): a periodic orbit by its period and its
 /// fixed point (refined by Newton's method), rest by never moving again, chaos by a positive
 /// largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
-/// its error of zero. Cells that settle on nothing within the caps are unsettled.
+/// its error of zero. Cells that settle on nothing within the caps are undecided.
 ///
 /// --method recurrence (the default) follows each initial state on a grid of the strobe
 /// map's state space with --resolution cells across the map, until it lands on cells already
@@ -30,14 +30,14 @@ use stickslip::{OptionKey, State};
 /// --method exhaustive runs every cell to its steady state and classifies it on its own, in
 /// parallel (the reference; costly where the motion is chaotic).
 ///
-/// Output CSV columns: y0,v0,attractor,kind,period
-/// (attractor = its number, empty when unsettled; kind = periodic|static|chaotic|
-/// quasiperiodic|unsettled; period in drive periods, empty without one).
-/// --json prints a summary: the model, the grid, and "attractors", each with id, kind,
+/// Output CSV columns: y0,v0,attractor,class,period
+/// (attractor = its number, empty when undecided; class = periodic|static|chaotic|
+/// quasiperiodic|undecided; period in drive periods, empty without one).
+/// --json prints a summary: the model, the grid, and "attractors", each with id, class,
 /// period (null without one), fraction (of the grid), cells, state (a representative state
 /// at the strobe: the fixed point of a periodic orbit), strobes (its strobe points, at most
-/// 64), exponent (largest Lyapunov exponent per unit τ), multipliers ([re, im] pairs, periodic
-/// only), rest_range ([min, max] of the rest positions, rest only); and "unsettled".
+/// 64), lambda1 (largest Lyapunov exponent per unit τ), multipliers ([re, im] pairs, periodic
+/// only), rest_range ([min, max] of the rest positions, rest only); and "undecided".
 ///
 /// Example: stickslip basins --zeta 0 --mu-s 3 --w 0.6 --beta 3.269 --y0-min -8 --y0-max 8 \
 ///          --v0-min -8 --v0-max 8 --steps 200 --plot basins.png --json
@@ -388,7 +388,7 @@ pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
     crate::output::write_table(out, &BasinsTable { map })
 }
 
-/// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 unsettled".
+/// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 undecided".
 pub fn describe(map: &BasinMap) -> String {
     let list: Vec<String> = map
         .attractors
@@ -396,10 +396,10 @@ pub fn describe(map: &BasinMap) -> String {
         .map(crate::diagrams::attractor_label)
         .collect();
     format!(
-        "{} attractor{}: {}; {} unsettled",
+        "{} attractor{}: {}; {} undecided",
         map.attractors.len(),
         if map.attractors.len() == 1 { "" } else { "s" },
         list.join(", "),
-        map.unsettled
+        map.undecided
     )
 }

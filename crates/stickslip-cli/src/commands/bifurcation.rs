@@ -19,13 +19,14 @@ use stickslip::{OptionKey, Parameter};
 /// the strobe points (y, y') once per drive period at drive phase φ, with the largest
 /// Lyapunov exponent over them and what the motion settled on. Each value starts from the
 /// state the one before ended in, as when turning a knob, so the two directions show
-/// coexisting branches. A period-p orbit gives p points; chaos a cloud and λ > 0.
+/// coexisting branches. A period-p orbit gives p points; chaos a cloud and λ1 > 0.
 ///
-/// Output CSV columns: <param>,y,v,direction,lambda,class,period
-/// (one row per strobe point; <param> = w|beta|zeta|mu_s; direction = up|down; lambda = the
+/// Output CSV columns: <param>,y,v,direction,lambda1,class,period
+/// (one row per strobe point; <param> = w|beta|zeta|mu_s; direction = up|down; lambda1 = the
 /// largest exponent per unit τ over the recorded periods; class = periodic|static|chaotic|
-/// quasiperiodic|unsettled (from the recorded periods only: the repetition of the points and
-/// the sign of λ beyond 4 standard errors); period in drive periods, empty without one).
+/// quasiperiodic|undecided (from the recorded periods only: the repetition of the points and
+/// the sign of λ1 beyond 4 standard errors; undecided: no verdict within them); period in
+/// drive periods, empty without one).
 ///
 /// The plot (--plot) draws the points as dots, the branches of the periodic orbits found by
 /// continuation on top (stable solid, unstable dashed, with folds, period doublings and

@@ -30,9 +30,10 @@ use stickslip::OptionKey;
 /// undecided (the two halves of the measurement disagree: a transient). λ2 is −∞ once the
 /// motion stops: a stop erases the velocity perturbation.
 ///
-/// JSON keys: lambda_per_tau, error_per_tau, lambda_per_period, error_per_period, class,
-/// verdict (what λ1 alone says), period (null unless periodic), converged, lambda2_per_tau
-/// (a number, or null when λ2 = −∞), lambda2_error_per_tau, lambda2_per_period,
+/// JSON keys: lambda1, lambda1_error (λ1 and σ per unit τ = ω0·t), lambda1_per_period,
+/// lambda1_error_per_period, class, verdict (what λ1 alone says), period (null unless
+/// periodic), converged, lambda2 (a number, or null when λ2 = −∞), lambda2_error,
+/// lambda2_per_period,
 /// lambda2_reason (why λ2 = −∞, or null), stops_per_period, transient_periods, periods
 /// (measured), cap_periods, sequential, blocks, significance, block_means, drive_period,
 /// final_y, final_v, w, beta, zeta, mu_s, phi.

@@ -23,7 +23,7 @@ use stickslip::{Error, EventKind, OptionKey};
 /// JSON keys: period (drive periods), drive_period (T = 2π/w, dimensionless time),
 /// y, v (the state at the orbit's strobe, τ = 0 mod pT), stuck_at_strobe, multipliers
 /// [{"re", "im"}, ...] (larger modulus first), moduli, stable, stability (stable, unstable,
-/// neutral), exponent_per_tau and exponent_per_period (ln|μ1|/(pT) and ln|μ1|/p, or "-inf"),
+/// neutral), lambda1 and lambda1_per_period (λ1 = ln|μ1|/(pT) and ln|μ1|/p, or "-inf"),
 /// monodromy [[a, b], [c, d]], iterations, residuals, stops_per_period, events
 /// [{"tau", "y", "kind"}] and stops [{"start", "duration"}] over one orbit period (times
 /// from the strobe), w, beta, zeta, mu_s, phi.

@@ -19,19 +19,20 @@ use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity}
 use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
-/// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
-/// nonperiodic-stick or static (the paper's Figs. 6 and 7), and chaotic: a motion that does
-/// not repeat and whose largest Lyapunov exponent is positive beyond 4 standard errors
-/// (exact PWL model; see `stickslip steady --help`).
+/// started from the initial state (rest by default), in parallel: sliding, periodic-stick
+/// or static (the paper's Figs. 6 and 7), chaotic (a motion that does not repeat and whose
+/// largest Lyapunov exponent is positive beyond 4 standard errors, exact PWL model), or
+/// undecided (no period found within the budget, and not chaotic: the paper's non-periodic
+/// class lands here; see `stickslip steady --help`).
 ///
-/// With --color lyapunov every point also gets its largest Lyapunov exponent λ1 per unit
+/// With --color lambda1 every point also gets its largest Lyapunov exponent λ1 per unit
 /// τ = ω0·t: exactly, ln|μ1|/(pT) from the Floquet multiplier μ1 of its periodic orbit
 /// (refined by Newton's method) where the motion repeats, and measured over
 /// --lyapunov-periods where it does not; the plot maps λ1 (red: chaos, blue: contraction,
 /// white: 0, e.g. rest).
 ///
-/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain, and with --color lyapunov
-/// also lambda,lambda_error (λ1 and its standard error per unit τ; 0 error for an exact
+/// Output CSV columns: w,beta,class,period,stops_per_period,gain, and with --color lambda1
+/// also lambda1,lambda1_error (λ1 and its standard error per unit τ; 0 error for an exact
 /// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
 /// --max-period was found.
 ///
@@ -42,7 +43,7 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 /// Example: stickslip phase-diagram --preset paper --w-steps 200 --beta-steps 200 \
 ///          --out map.csv --plot map.png
 ///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
-///          --beta-min 6 --beta-max 12 --color lyapunov --plot lyapunov.png
+///          --beta-min 6 --beta-max 12 --color lambda1 --plot lambda1.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -74,7 +75,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
-    /// every point, and written to the CSV as lambda,lambda_error).
+    /// every point, and written to the CSV as lambda1,lambda1_error; `lyapunov`, its name
+    /// before, still works).
     #[arg(long, value_parser = choice::<Color>(), default_value_t = Color::Class)]
     color: Color,
     #[command(flatten)]
@@ -114,7 +116,7 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
-    let lyapunov = args.color == Color::Lyapunov;
+    let lyapunov = args.color == Color::Lambda1;
     args.checkpoint.check()?;
     let mut checkpoint_file = None;
     let experiment = args.model.experiment()?;
@@ -310,7 +312,7 @@ fn write_points(
 }
 
 /// Everything that determines the map: the experiment (whatever file or flags described
-/// it), both axes, the steady-state options, and with --color lyapunov the options of the
+/// it), both axes, the steady-state options, and with --color lambda1 the options of the
 /// exponents (a map of classes and one of exponents never share a checkpoint).
 fn identity(grid: &Grid) -> Result<Identity> {
     let experiment = grid.experiment().clone().with_origin(Origin::Parts);

@@ -23,7 +23,7 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 /// state of the step before, as when turning a knob, so hysteresis and coexisting motions
 /// show up.
 ///
-/// Output CSV columns: w,beta,direction,gain,A1,A3,class,stops_per_cycle
+/// Output CSV columns: w,beta,direction,gain,gain1,A1,A3,class,stops_per_period
 /// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y); a sweep of
 /// zeta or mu_s puts the swept value first: zeta,w,beta,... or mu_s,w,beta,...
 ///
@@ -218,11 +218,15 @@ impl Row {
             mu_s: self.params.mu_s,
             direction: self.leg,
             gain: self.gain,
+            // As `SteadyState::gain1`: A1/β, absent at β = 0 or without a spectrum.
+            gain1: (self.params.beta > 0.0)
+                .then(|| self.a1 / self.params.beta)
+                .and_then(measured),
             peak: None,
             a1: measured(self.a1),
             a3: measured(self.a3),
             class: self.class,
-            stops_per_cycle: self.stops_per_period,
+            stops_per_period: self.stops_per_period,
             period: None,
             phase_lag: None,
             f_hz: experiment
@@ -365,7 +369,7 @@ impl Theory {
         let base = experiment.params_with(&[(parameter, range.from())])?;
         Ok(theory_curve(
             TheoryKind::Exact,
-            TheoryQuantity::Gain,
+            TheoryQuantity::Gain1,
             &base,
             parameter,
             &xs,
@@ -383,7 +387,7 @@ impl Theory {
         // peak/β (not its A1/β). The paper's gain is its A1/β, eq. (11).
         let curve = |theory, quantity| theory_curve(theory, quantity, &base, parameter, &xs);
         Ok(Self {
-            paper: curve(TheoryKind::Paper, TheoryQuantity::Gain),
+            paper: curve(TheoryKind::Paper, TheoryQuantity::Gain1),
             prefix: match experiment.diode_model() {
                 DiodeModel::Pwl => "",
                 DiodeModel::Shockley => "PWL theory: ",

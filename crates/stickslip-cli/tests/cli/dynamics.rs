@@ -42,7 +42,7 @@ fn bifurcation_csv_is_the_library_s_diagram() {
     let csv = std::fs::read_to_string(dir.path().join("bif.csv")).unwrap();
     assert_eq!(
         csv.lines().next().unwrap(),
-        "w,y,v,direction,lambda,class,period"
+        "w,y,v,direction,lambda1,class,period"
     );
     let rows = csv_rows(&csv);
     assert_eq!(rows.len(), 4 * 2 * 30);
@@ -167,16 +167,16 @@ fn basins_find_the_mirror_pair() {
     assert_eq!(attractors.len(), 2);
     let mut total = 0.0;
     for a in attractors {
-        assert_eq!(a["kind"], "periodic");
+        assert_eq!(a["class"], "periodic");
         assert_eq!(a["period"], 1);
         total += a["fraction"].as_f64().unwrap();
         assert!(a["state"]["y"].is_f64() && a["state"]["v"].is_f64());
         assert_eq!(a["multipliers"].as_array().unwrap().len(), 2);
     }
     assert!((total - 1.0).abs() < 1e-12);
-    assert_eq!(summary["unsettled"], 0);
+    assert_eq!(summary["undecided"], 0);
     let csv = std::fs::read_to_string(dir.path().join("basins.csv")).unwrap();
-    assert_eq!(csv.lines().next().unwrap(), "y0,v0,attractor,kind,period");
+    assert_eq!(csv.lines().next().unwrap(), "y0,v0,attractor,class,period");
     let rows = csv_rows(&csv);
     assert_eq!(rows.len(), 144);
     let zeros = rows.iter().filter(|r| r[2] == "0").count() as f64;

@@ -25,7 +25,7 @@ fn json_is_the_librarys_report_with_the_keys_of_the_issue() {
         "events",
         "stops",
         "monodromy",
-        "exponent_per_tau",
+        "lambda1",
     ] {
         assert!(v.get(key).is_some(), "missing {key}: {v}");
     }
@@ -80,7 +80,7 @@ fn an_unstable_orbit_in_a_chaotic_window_is_found_with_a_period_and_a_guess() {
     assert_eq!(v["stable"], false);
     assert_eq!(v["stability"], "unstable");
     assert!(v["moduli"][0].as_f64().unwrap() > 1.0);
-    assert!(v["exponent_per_tau"].as_f64().unwrap() > 0.0);
+    assert!(v["lambda1"].as_f64().unwrap() > 0.0);
     // Asked for period 2, the same orbit twice: the report says it repeats after 1.
     let mut args = chaotic.to_vec();
     args.extend(["--period", "2", "--transient", "2000"]);

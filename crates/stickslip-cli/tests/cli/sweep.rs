@@ -13,7 +13,7 @@ fn csv_columns_and_both_legs() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+        "w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
     );
     assert_eq!(lines.len(), 7);
     assert!(lines[1].starts_with("0.8,1.6,up,"));
@@ -56,8 +56,8 @@ fn hysteresis_shows_two_branches() {
             .collect()
     };
     let (up, down) = (row("up"), row("down"));
-    assert_eq!(up[6], "static");
-    assert_ne!(down[6], "static");
+    assert_eq!(up[7], "static");
+    assert_ne!(down[7], "static");
     let gain: f64 = down[3].parse().unwrap();
     assert!(gain > 1.0, "{gain}");
     assert!(stderr(&out).contains("differ"), "{}", stderr(&out));

@@ -55,7 +55,7 @@ export function captionText() {
   const parts = [s.experiment];
   if (s.drive) parts.push(`drive f = ${si(s.drive.f_Hz, 'Hz', 6)}, amplitude ${si(s.drive.amplitude, u.drive, 5)}`);
   parts.push(`w = Ω/ω0 = ${num(s.w, 6)}, β = ${num(s.beta, 6)}`);
-  parts.push(`class ${s.class}, gain G = ${num(s.gain, 6)}, ${s.stops_per_cycle} stops per period`);
+  parts.push(`class ${s.class}, gain G = ${num(s.gain, 6)}, ${s.stops_per_period} stops per period`);
   parts.push(`view ${state.mode === 'fft' ? `FFT (${field('fft-scale').value})` : state.mode}, ${state.trigger}; stickslip lab`);
   return parts.join('; ');
 }

@@ -73,7 +73,7 @@ export function showMeasurements() {
   const sc = scales();
   const deg = (rad) => (rad === null || rad === undefined ? null : (rad * 180) / Math.PI);
   setMeasure('class', s.class);
-  setMeasure('stops', num(s.stops_per_cycle, 4), s.stops_per_cycle);
+  setMeasure('stops', num(s.stops_per_period, 4), s.stops_per_period);
   setMeasure('period', s.period === null ? 'none found' : `${s.period} (settled after ${s.periods_to_settle})`, s.period);
   setMeasure('gain', num(s.gain, 6), s.gain);
   const a1 = s.harmonics[0] * sc.position;

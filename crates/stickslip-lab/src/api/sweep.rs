@@ -46,10 +46,11 @@ pub struct SweepAnswer {
 pub struct SweepTheoryCurves {
     /// Values of the swept parameter.
     pub x: Vec<f64>,
-    /// The paper's gain A1/β, eq. (11).
-    pub paper_gain: Vec<f64>,
-    /// The exact sliding orbit's peak/β.
-    pub exact_peak_gain: Vec<f64>,
+    /// The paper's eq. (11): the gain of the fundamental G1 = A1/β.
+    pub paper_gain1: Vec<f64>,
+    /// The exact sliding orbit's gain G = (y_max − y_min)/(2β) (its peak/β), as the
+    /// simulated `gain`.
+    pub exact_gain: Vec<f64>,
     /// `PWL theory: ` with Shockley diodes (the theory is that of the PWL model), else empty.
     pub prefix: &'static str,
 }
@@ -135,8 +136,8 @@ impl SweepRequest {
             report: SweepReport::new(e, self.parameter, self.direction, &points),
             theory: SweepTheoryCurves {
                 x: theory.paper.x,
-                paper_gain: theory.paper.y,
-                exact_peak_gain: theory.exact.y,
+                paper_gain1: theory.paper.y,
+                exact_gain: theory.exact.y,
                 prefix: theory.prefix,
             },
         })

@@ -14,6 +14,7 @@ import numpy.typing as npt
 from . import _checks, _core
 from ._api import Progress, _with_model
 from ._core import Experiment
+from ._names import Renamed
 
 if TYPE_CHECKING:
     import xarray
@@ -171,10 +172,13 @@ class FitRecord:
         measured_V, model_V, residual_V: float64 arrays of u_C measured, modelled, and
             model − measured (V).
         freq_Hz, amplitude_V: the drive (Hz, V peak); w, beta: dimensionless drive;
-        motion: the motion class of the fitted steady state; periods: whole drive periods;
+        motion_class: the motion class of the fitted steady state (``motion``, its name
+            before, still works with a ``DeprecationWarning``); periods: whole drive periods;
         clipped: clipped samples; rms_residual_V: RMS of the residuals (V); offset_V: the
         fitted DC offset of u_C (V); time_shift_s: the fitted time shift (s).
     """
+
+    motion = Renamed("motion_class")
 
     def __init__(self, arrays: Dict[str, Any], summary: Dict[str, Any]) -> None:
         self.file: str = arrays["file"]
@@ -186,7 +190,7 @@ class FitRecord:
         self.amplitude_V: float = summary["amplitude_V"]
         self.w: float = summary["w"]
         self.beta: float = summary["beta"]
-        self.motion: str = summary["class"]
+        self.motion_class: str = summary["class"]
         self.periods: int = summary["periods"]
         self.clipped: int = summary["clipped"]
         self.rms_residual_V: float = summary["rms_residual_V"]

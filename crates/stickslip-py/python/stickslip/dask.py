@@ -257,9 +257,9 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
             max_periods, max_period, min_stop_fraction, accelerate).
 
     Returns:
-        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)): ``motion`` (codes
-        into ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100
-        whether or not the motion stops) with ``stops_per_cycle`` beside it.
+        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)): ``motion_class``
+        (labels of ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100
+        whether or not the motion stops) with ``stops_per_period`` beside it.
 
     Raises:
         ValueError: bad input (checked on the client before any task), a map of more than
@@ -271,7 +271,7 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
         >>> import numpy as np, stickslip, stickslip.dask
         >>> m = stickslip.dask.phase_diagram(stickslip.Experiment.paper(), chunks=(10, 40),
         ...                                  w=np.linspace(0.1, 2.5, 60), beta=np.linspace(0.5, 4, 40))
-        >>> m.motion.shape
+        >>> m.motion_class.shape
         (60, 40)
     """
     experiment = _with_model(experiment, model)
@@ -295,14 +295,14 @@ def sweep_grid(experiment: Experiment, *, chunks: Chunks = "auto", client: Any =
 
     Returns:
         A ``stickslip.PhaseDiagram`` whose arrays have one dimension per parameter, e.g.
-        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them. ``motion``: codes into
-        ``MOTION_CLASSES`` ('static' is the paper's rule, an amplitude below β/100 whether or
-        not the motion stops), with ``stops_per_cycle`` beside it.
+        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them. ``motion_class``: labels
+        of ``MOTION_CLASSES`` ('static' is the paper's rule, an amplitude below β/100 whether
+        or not the motion stops), with ``stops_per_period`` beside it.
 
     Example:
         >>> s = stickslip.dask.sweep_grid(stickslip.Experiment.paper(), mu_s=[1.0, 1.5],
         ...                               w=np.linspace(0.1, 2.5, 30), beta=np.linspace(0.5, 4, 20))
-        >>> s.dims, s.motion.shape
+        >>> s.dims, s.motion_class.shape
         (('mu_s', 'w', 'beta'), (2, 30, 20))
     """
     experiment = _with_model(experiment, model)

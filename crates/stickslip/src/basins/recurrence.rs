@@ -20,7 +20,7 @@
 //!   [`BasinOptions::found_revisits`] steps in a row land on cells already labelled;
 //! - a motion at rest (stuck through a whole drive period) is rest, at its own position,
 //!   without further work;
-//! - after [`BasinOptions::max_steps`] drive periods without a verdict it is unsettled.
+//! - after [`BasinOptions::max_steps`] drive periods without a verdict it is undecided.
 //!
 //! Every initial condition sees the labels that the ones before it left, in the same order
 //! for any number of threads, so the map is the same for any number of threads. What one row
@@ -250,7 +250,7 @@ impl<'a> Recurrence<'a> {
                 periods,
             },
             Outcome::Unsettled => Cell {
-                kind: AttractorKind::Unsettled,
+                kind: AttractorKind::Undecided,
                 period: None,
                 strobes: Vec::new(),
                 exponent: f64::NAN,

@@ -923,7 +923,7 @@ mod tests {
         let curve = |t, q| theory_curve(t, q, &base, Parameter::W, &xs);
         assert_eq!(
             bits(&theory.paper),
-            bits(&curve(Theory::Paper, TheoryQuantity::Gain))
+            bits(&curve(Theory::Paper, TheoryQuantity::Gain1))
         );
         assert_eq!(
             bits(&theory.exact),
@@ -931,7 +931,7 @@ mod tests {
         );
         assert_eq!(
             bits(&e.sweep_theory_a1(Parameter::W, &range).unwrap()),
-            bits(&curve(Theory::Exact, TheoryQuantity::Gain))
+            bits(&curve(Theory::Exact, TheoryQuantity::Gain1))
         );
         assert!(theory.exact.present() > 0 && theory.paper.present() > 0);
         assert_eq!(theory.prefix, "");

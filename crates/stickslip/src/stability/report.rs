@@ -70,11 +70,11 @@ pub struct OrbitReport {
     pub stable: bool,
     /// `stable`, `unstable` or `neutral` (|μ₁| within 10⁻⁹ of 1).
     pub stability: Stability,
-    /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ₁|/(pT) (`"-inf"` when both
-    /// multipliers vanish).
-    pub exponent_per_tau: ExponentValue,
+    /// The largest Lyapunov exponent λ₁ of the orbit per unit τ, ln|μ₁|/(pT) (`"-inf"` when
+    /// both multipliers vanish).
+    pub lambda1: ExponentValue,
     /// The same per drive period, ln|μ₁|/p.
-    pub exponent_per_period: ExponentValue,
+    pub lambda1_per_period: ExponentValue,
     /// The monodromy matrix ∂P^p/∂(y, y') as rows [[a, b], [c, d]].
     pub monodromy: [[f64; 2]; 2],
     /// Newton steps taken.
@@ -120,8 +120,8 @@ impl OrbitReport {
             moduli: orbit.multipliers.map(|m| m.modulus()),
             stable: orbit.stability == Stability::Stable,
             stability: orbit.stability,
-            exponent_per_tau: exponent.into(),
-            exponent_per_period: (exponent * orbit.drive_period).into(),
+            lambda1: exponent.into(),
+            lambda1_per_period: (exponent * orbit.drive_period).into(),
             monodromy: orbit.monodromy.0,
             iterations: orbit.iterations,
             residuals: orbit.residuals.clone(),
@@ -168,14 +168,14 @@ fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
 /// or per drive period).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LyapunovReport {
-    /// The largest exponent λ₁ per unit τ.
-    pub lambda_per_tau: f64,
+    /// The largest exponent λ₁ per unit τ (JSON `lambda1`, the name of λ₁ in every report).
+    pub lambda1: f64,
     /// Its standard error per unit τ (from the block means).
-    pub error_per_tau: f64,
+    pub lambda1_error: f64,
     /// λ₁ per drive period, λ₁T.
-    pub lambda_per_period: f64,
+    pub lambda1_per_period: f64,
     /// Its standard error per drive period.
-    pub error_per_period: f64,
+    pub lambda1_error_per_period: f64,
     /// What the motion is: `periodic` when it is not chaotic and its strobe at the end of
     /// the measurement repeats with a period of at most 16 drive periods (`period`; rest has
     /// period 1); else what λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ),
@@ -193,9 +193,9 @@ pub struct LyapunovReport {
     pub converged: bool,
     /// The second exponent λ₂ per unit τ; `None` (JSON null) when λ₂ = −∞, with
     /// `lambda2_reason` saying why (JSON has no infinity).
-    pub lambda2_per_tau: Option<f64>,
+    pub lambda2: Option<f64>,
     /// Its standard error per unit τ (`None` when λ₂ = −∞).
-    pub lambda2_error_per_tau: Option<f64>,
+    pub lambda2_error: Option<f64>,
     /// λ₂ per drive period (`None` when λ₂ = −∞).
     pub lambda2_per_period: Option<f64>,
     /// Why λ₂ = −∞ (`None` when it is finite).
@@ -265,10 +265,10 @@ impl LyapunovReport {
             ),
         };
         Ok(Self {
-            lambda_per_tau: e.largest.per_tau,
-            error_per_tau: e.largest.error_per_tau,
-            lambda_per_period: e.largest.per_period,
-            error_per_period: e.largest.error_per_period,
+            lambda1: e.largest.per_tau,
+            lambda1_error: e.largest.error_per_tau,
+            lambda1_per_period: e.largest.per_period,
+            lambda1_error_per_period: e.largest.error_per_period,
             class: if period.is_some() {
                 "periodic"
             } else {
@@ -277,8 +277,8 @@ impl LyapunovReport {
             verdict: c.verdict.label(),
             period,
             converged: e.converged,
-            lambda2_per_tau: lambda2,
-            lambda2_error_per_tau: error2,
+            lambda2,
+            lambda2_error: error2,
             lambda2_per_period: lambda2.map(|l| l * e.drive_period),
             lambda2_reason: reason,
             stops_per_period: e.stops_per_period(),

@@ -181,7 +181,7 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             "up_periodic": count(AttractorKind::Periodic),
             "up_chaotic": count(AttractorKind::Chaotic),
             "up_quasiperiodic": count(AttractorKind::QuasiPeriodic),
-            "up_unsettled": count(AttractorKind::Unsettled),
+            "up_unsettled": count(AttractorKind::Undecided),
             "periods": periods,
             "chaotic_windows": chaotic.iter().map(|(a, b)| [*a, *b]).collect::<Vec<_>>(),
             "values_where_up_and_down_differ": both_differ,
@@ -248,7 +248,7 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", "),
         count(AttractorKind::QuasiPeriodic),
-        count(AttractorKind::Unsettled),
+        count(AttractorKind::Undecided),
     );
     report.sections.push(Section {
         id: "beyond-bifurcation".into(),

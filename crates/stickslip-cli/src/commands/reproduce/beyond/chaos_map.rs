@@ -245,7 +245,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "lyapunov_transient": TRANSIENT,
             "sliding": count(MotionClass::Sliding),
             "periodic_stick": count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": count(MotionClass::NonperiodicStick),
+            "nonperiodic_stick": count(MotionClass::Undecided),
             "static": count(MotionClass::Static),
             "chaotic": count(MotionClass::Chaotic),
             "periodic_with_positive_exponent": positive_periodic,
@@ -282,7 +282,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             sig(faint, 2),
             count(MotionClass::Chaotic),
             points.len(),
-            count(MotionClass::NonperiodicStick),
+            count(MotionClass::Undecided),
             if positive_periodic == 0 {
                 "every periodic orbit found has λ1 &lt; 0 (it attracts: it was reached from rest)"
                     .to_string()

@@ -65,7 +65,7 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
         if !at.is_empty() {
             let label = match class {
                 MotionClass::Chaotic => "chaotic (λ1 > 4σ, measured)".to_string(),
-                MotionClass::NonperiodicStick => "nonperiodic-stick (measured)".to_string(),
+                MotionClass::Undecided => "nonperiodic-stick (measured)".to_string(),
                 c => format!("{} (ln|μ1|/pT, exact)", c.label()),
             };
             series.push(Series::new(

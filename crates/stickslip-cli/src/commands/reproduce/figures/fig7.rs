@@ -154,7 +154,7 @@ impl Map {
             "grid": [self.w.steps(), self.beta.steps()],
             "sliding": self.count(MotionClass::Sliding),
             "periodic_stick": self.count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": self.count(MotionClass::NonperiodicStick),
+            "nonperiodic_stick": self.count(MotionClass::Undecided),
             "static": self.count(MotionClass::Static),
             "sliding_fraction": self.sliding_fraction(),
         })
@@ -165,7 +165,7 @@ impl Map {
             "{n} × {n} grid: {} sliding, {} periodic stick, {} non-periodic stick, {} static",
             self.count(MotionClass::Sliding),
             self.count(MotionClass::PeriodicStick),
-            self.count(MotionClass::NonperiodicStick),
+            self.count(MotionClass::Undecided),
             self.count(MotionClass::Static),
             n = self.w.steps(),
         )

@@ -74,7 +74,7 @@ pub fn gain_curves(ctx: &Context, betas: &[f64]) -> Result<Vec<Series>> {
         for theory in [Theory::Paper, Theory::Exact] {
             let curve = theory_curve(
                 theory,
-                TheoryQuantity::Gain,
+                TheoryQuantity::Gain1,
                 &base(ctx, 1.0, beta)?,
                 Parameter::W,
                 &ws,
