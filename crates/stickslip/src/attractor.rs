@@ -187,6 +187,58 @@ impl StrobeRecord {
     }
 }
 
+/// Whether the strobe points `sample` lie on the strobe set `reference`: at least 90 % of
+/// them within 10 % of the set's extent of one of its points (how a basin map tells the cells
+/// of one chaotic or quasi-periodic attractor from another's).
+pub fn strobe_sets_overlap(reference: &[State], sample: &[State]) -> bool {
+    if reference.is_empty() || sample.is_empty() {
+        return false;
+    }
+    let (mut ylo, mut yhi, mut vlo, mut vhi) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for s in reference {
+        (ylo, yhi, vlo, vhi) = (ylo.min(s.y), yhi.max(s.y), vlo.min(s.v), vhi.max(s.v));
+    }
+    let radius = 0.1 * (yhi - ylo).max(vhi - vlo).max(1e-9 * scale_of(reference));
+    let near = sample
+        .iter()
+        .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
+        .count();
+    near * 10 >= sample.len() * 9
+}
+
+/// Whether two records settled on the same attractor, compared as sets of strobe points the
+/// way a basin map identifies its attractors ([`crate::basins`]): rest is one attractor;
+/// periodic orbits are the same when their periods agree and a strobe point of one lies within
+/// `tolerance`·scale of one of the other's (the same orbit recorded at another phase);
+/// chaotic and quasi-periodic motions of one kind are the same when each strobe set lies on
+/// the other ([`strobe_sets_overlap`]: the same attractor sampled at other times). A record
+/// not decided ([`AttractorKind::Undecided`]) matches nothing.
+pub fn same_attractor(a: &StrobeRecord, b: &StrobeRecord, tolerance: f64) -> bool {
+    if a.kind != b.kind {
+        return false;
+    }
+    match a.kind {
+        AttractorKind::Undecided => false,
+        AttractorKind::Static => true,
+        AttractorKind::Periodic => {
+            let Some(&x) = a.strobes.first() else {
+                return false;
+            };
+            let limit = tolerance * scale_of(&[x]);
+            a.period == b.period && b.strobes.iter().any(|s| distance(*s, x) <= limit)
+        }
+        AttractorKind::Chaotic | AttractorKind::QuasiPeriodic => {
+            strobe_sets_overlap(&a.strobes, &b.strobes)
+                && strobe_sets_overlap(&b.strobes, &a.strobes)
+        }
+    }
+}
+
 /// Largest |component| difference of two states.
 pub(crate) fn distance(a: State, b: State) -> f64 {
     (a.y - b.y).abs().max((a.v - b.v).abs())
@@ -341,6 +393,55 @@ mod tests {
         // A period needs two repetitions in the record.
         let three: Vec<State> = (0..5).map(|k| s((k % 3) as f64, 0.0)).collect();
         assert_eq!(detect_period(&three, 8, 1e-12), None);
+    }
+
+    fn record(kind: AttractorKind, period: Option<usize>, strobes: Vec<State>) -> StrobeRecord {
+        StrobeRecord {
+            strobes,
+            exponent: 0.0,
+            exponent_error: 0.0,
+            period,
+            kind,
+            events: 0,
+            stops: 0,
+            drive_period: 1.0,
+        }
+    }
+
+    #[test]
+    fn attractors_are_compared_as_sets_of_strobe_points() {
+        let orbit: Vec<State> = (0..12).map(|k| s([1.0, 2.0, 3.0][k % 3], 0.0)).collect();
+        // The same period-3 orbit recorded at another phase: the same attractor, though its
+        // first strobe points differ.
+        let shifted: Vec<State> = orbit.iter().skip(1).copied().collect();
+        let a = record(AttractorKind::Periodic, Some(3), orbit.clone());
+        let b = record(AttractorKind::Periodic, Some(3), shifted);
+        assert!(a.strobes[0] != b.strobes[0] && same_attractor(&a, &b, 1e-6));
+        let other = record(AttractorKind::Periodic, Some(3), vec![s(1.5, 0.0); 12]);
+        assert!(!same_attractor(&a, &other, 1e-6));
+        let once = record(AttractorKind::Periodic, Some(1), vec![s(1.0, 0.0); 12]);
+        assert!(!same_attractor(&a, &once, 1e-6));
+        // A chaotic set sampled at other times: the same attractor; a set elsewhere is not.
+        let cloud = |phase: f64, shift: f64| -> Vec<State> {
+            (0..200)
+                .map(|k| {
+                    let t = phase + 2.399 * k as f64;
+                    s(t.cos() + shift, (1.3 * t).sin())
+                })
+                .collect()
+        };
+        let c1 = record(AttractorKind::Chaotic, None, cloud(0.0, 0.0));
+        let c2 = record(AttractorKind::Chaotic, None, cloud(0.7, 0.0));
+        let c3 = record(AttractorKind::Chaotic, None, cloud(0.0, 5.0));
+        assert!(same_attractor(&c1, &c2, 1e-6) && !same_attractor(&c1, &c3, 1e-6));
+        // Kinds differ: different attractors; undecided matches nothing, not even itself.
+        let q = record(AttractorKind::QuasiPeriodic, None, cloud(0.0, 0.0));
+        assert!(!same_attractor(&c1, &q, 1e-6));
+        let u = record(AttractorKind::Undecided, None, cloud(0.0, 0.0));
+        assert!(!same_attractor(&u, &u, 1e-6));
+        let rest = record(AttractorKind::Static, Some(1), vec![s(0.3, 0.0); 4]);
+        let rest2 = record(AttractorKind::Static, Some(1), vec![s(-0.2, 0.0); 4]);
+        assert!(same_attractor(&rest, &rest2, 1e-6));
     }
 
     #[test]

@@ -57,7 +57,11 @@
 //! assert!(kinds.contains(&AttractorKind::Static) && kinds.contains(&AttractorKind::Periodic));
 //! ```
 
-use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, RecordOptions};
+use crate::attractor::{
+    distance, record_strobes, scale_of, strobe_sets_overlap as overlaps, AttractorKind,
+    RecordOptions,
+};
+use crate::checkpoint::{UnitReader, UnitWriter};
 use crate::error::{invalid, Error, Result, Unsupported};
 use crate::exact::ExactSolver;
 use crate::experiment::{DiodeModel, Experiment};
@@ -241,6 +245,53 @@ pub struct Cell {
     pub exponent: f64,
     /// Drive periods simulated for this cell.
     pub periods: usize,
+}
+
+impl Cell {
+    /// Append the cell to a checkpoint unit (the one encoding of a cell, which the method of
+    /// recurrences keeps in its memory and `stickslip basins --checkpoint` in its rows): the
+    /// index of its kind in [`AttractorKind::ALL`], its period (0: none), its exponent, the
+    /// periods simulated and its strobe points (their count, then y and y' of each).
+    pub fn encode(&self, unit: &mut UnitWriter) {
+        let kind = AttractorKind::ALL
+            .iter()
+            .position(|&k| k == self.kind)
+            .expect("a kind of ALL");
+        unit.u8(kind as u8)
+            .u64(self.period.map_or(0, |p| p as u64))
+            .f64(self.exponent)
+            .u64(self.periods as u64)
+            .u64(self.strobes.len() as u64);
+        for x in &self.strobes {
+            unit.f64(x.y).f64(x.v);
+        }
+    }
+
+    /// The cell that [`Cell::encode`] wrote at the reader's position; `None` when the bytes
+    /// are not one (a damaged checkpoint).
+    pub fn decode(r: &mut UnitReader<'_>) -> Option<Cell> {
+        let kind = *AttractorKind::ALL.get(r.u8()? as usize)?;
+        let period = r.u64()?;
+        let exponent = r.f64()?;
+        let periods = usize::try_from(r.u64()?).ok()?;
+        let n = r.u64()?;
+        if n > 1 << 20 {
+            return None;
+        }
+        let mut strobes = Vec::with_capacity(n as usize);
+        for _ in 0..n {
+            let y = r.f64()?;
+            let v = r.f64()?;
+            strobes.push(State { y, v });
+        }
+        Some(Cell {
+            kind,
+            period: (period > 0).then_some(period as usize),
+            strobes,
+            exponent,
+            periods,
+        })
+    }
 }
 
 /// An attractor of a basin map.
@@ -686,29 +737,6 @@ impl Basins {
     }
 }
 
-/// Whether the strobe points `sample` lie on the strobe set `reference`: at least 90 % of
-/// them within 10 % of the set's extent of one of its points.
-fn overlaps(reference: &[State], sample: &[State]) -> bool {
-    if reference.is_empty() || sample.is_empty() {
-        return false;
-    }
-    let (mut ylo, mut yhi, mut vlo, mut vhi) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for s in reference {
-        (ylo, yhi, vlo, vhi) = (ylo.min(s.y), yhi.max(s.y), vlo.min(s.v), vhi.max(s.v));
-    }
-    let radius = 0.1 * (yhi - ylo).max(vhi - vlo).max(1e-9 * scale_of(reference));
-    let near = sample
-        .iter()
-        .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
-        .count();
-    near * 10 >= sample.len() * 9
-}
-
 /// What a basin map reports: exactly what `stickslip basins --json` prints and what the
 /// Python package's `basins` returns as its summary. Build it with `BasinReport::from(&map)`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -848,6 +876,47 @@ impl From<&BasinMap> for BasinReport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_cell_reads_back_as_it_was_written() {
+        let cells = [
+            Cell {
+                kind: AttractorKind::Periodic,
+                period: Some(3),
+                strobes: vec![State { y: 1.5, v: -0.25 }, State { y: -2.0, v: 1e-300 }],
+                exponent: f64::NEG_INFINITY,
+                periods: 417,
+            },
+            Cell {
+                kind: AttractorKind::Undecided,
+                period: None,
+                strobes: vec![],
+                exponent: -3.5e-4,
+                periods: 100_000,
+            },
+        ];
+        let mut unit = UnitWriter::new();
+        for c in &cells {
+            c.encode(&mut unit);
+        }
+        let bytes = unit.finish();
+        // The layout of the checkpoints written before the encoding moved here, field by
+        // field (kind as its index in ALL: periodic 0, undecided 4), so that they still read.
+        let mut old = UnitWriter::new();
+        old.u8(0).u64(3).f64(f64::NEG_INFINITY).u64(417).u64(2);
+        old.f64(1.5).f64(-0.25).f64(-2.0).f64(1e-300);
+        old.u8(4).u64(0).f64(-3.5e-4).u64(100_000).u64(0);
+        assert_eq!(old.finish(), bytes);
+        let mut r = UnitReader::new(&bytes);
+        for c in &cells {
+            assert_eq!(Cell::decode(&mut r).as_ref(), Some(c));
+        }
+        assert!(r.is_empty());
+        // A damaged unit is refused, not misread.
+        let mut short = UnitReader::new(&bytes[..bytes.len() - 3]);
+        assert!(Cell::decode(&mut short).is_some());
+        assert!(Cell::decode(&mut short).is_none());
+    }
 
     #[test]
     fn strobe_sets_overlap_when_they_share_their_region() {

@@ -8,13 +8,12 @@ use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::attractor::AttractorKind;
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, BasinReport, Basins, Cell};
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
 use stickslip::report::BasinsTable;
 use stickslip::scan::ParameterRange;
-use stickslip::{OptionKey, State};
+use stickslip::OptionKey;
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase. The attractors are found and numbered
@@ -248,23 +247,12 @@ fn identity(
         .with("options", serde_json::to_string(options)?))
 }
 
-/// A row of cells as a checkpoint unit: per cell its kind, period (0: none), exponent,
-/// periods simulated, and its strobe points (count, then y and y' of each).
+/// A row of cells as a checkpoint unit: each cell as the library encodes it
+/// ([`Cell::encode`]).
 fn encode_row(cells: &[Cell]) -> Vec<u8> {
     let mut unit = UnitWriter::new();
     for c in cells {
-        let kind = AttractorKind::ALL
-            .iter()
-            .position(|&k| k == c.kind)
-            .expect("a kind of ALL");
-        unit.u8(kind as u8)
-            .u64(c.period.map_or(0, |p| p as u64))
-            .f64(c.exponent)
-            .u64(c.periods as u64)
-            .u64(c.strobes.len() as u64);
-        for x in &c.strobes {
-            unit.f64(x.y).f64(x.v);
-        }
+        c.encode(&mut unit);
     }
     unit.finish()
 }
@@ -332,36 +320,11 @@ fn fill_recurrence(
     Ok((cells, computed))
 }
 
-/// The cells of one saved row.
+/// The cells of one saved row ([`Cell::decode`]).
 fn decode_row(r: &mut UnitReader, columns: usize) -> Result<Vec<Cell>> {
-    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
-    let mut cells = Vec::with_capacity(columns);
-    for _ in 0..columns {
-        let kind = *AttractorKind::ALL
-            .get(r.u8().ok_or_else(damaged)? as usize)
-            .ok_or_else(damaged)?;
-        let period = r.u64().ok_or_else(damaged)?;
-        let exponent = r.f64().ok_or_else(damaged)?;
-        let periods = r.u64().ok_or_else(damaged)? as usize;
-        let n = r.u64().ok_or_else(damaged)?;
-        if n > 1 << 20 {
-            return Err(damaged());
-        }
-        let mut strobes = Vec::with_capacity(n as usize);
-        for _ in 0..n {
-            let y = r.f64().ok_or_else(damaged)?;
-            let v = r.f64().ok_or_else(damaged)?;
-            strobes.push(State { y, v });
-        }
-        cells.push(Cell {
-            kind,
-            period: (period > 0).then_some(period as usize),
-            strobes,
-            exponent,
-            periods,
-        });
-    }
-    Ok(cells)
+    (0..columns)
+        .map(|_| Cell::decode(r).ok_or_else(|| anyhow::anyhow!("checkpoint holds a malformed row")))
+        .collect()
 }
 
 /// Every cell of the grid, row-major, from the rows of a complete checkpoint.

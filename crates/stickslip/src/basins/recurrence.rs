@@ -175,7 +175,7 @@ impl<'a> Recurrence<'a> {
         let mut unit = UnitWriter::new();
         unit.u64((self.found.len() - found_before) as u64);
         for cell in &self.found[found_before..] {
-            encode_cell(&mut unit, cell);
+            cell.encode(&mut unit);
         }
         unit.u64(self.log.len() as u64);
         for &((i, j), label) in &self.log {
@@ -206,7 +206,7 @@ impl<'a> Recurrence<'a> {
             return Err(bad());
         }
         for _ in 0..n {
-            let cell = decode_cell(&mut r).ok_or_else(bad)?;
+            let cell = Cell::decode(&mut r).ok_or_else(bad)?;
             self.found.push(cell);
         }
         let n = r.u64().ok_or_else(bad)?;
@@ -392,43 +392,4 @@ impl<'a> Recurrence<'a> {
         }
         Ok(k)
     }
-}
-
-fn encode_cell(unit: &mut UnitWriter, c: &Cell) {
-    let kind = AttractorKind::ALL
-        .iter()
-        .position(|&k| k == c.kind)
-        .expect("a kind of ALL");
-    unit.u8(kind as u8)
-        .u64(c.period.map_or(0, |p| p as u64))
-        .f64(c.exponent)
-        .u64(c.periods as u64)
-        .u64(c.strobes.len() as u64);
-    for x in &c.strobes {
-        unit.f64(x.y).f64(x.v);
-    }
-}
-
-fn decode_cell(r: &mut UnitReader) -> Option<Cell> {
-    let kind = *AttractorKind::ALL.get(r.u8()? as usize)?;
-    let period = r.u64()?;
-    let exponent = r.f64()?;
-    let periods = usize::try_from(r.u64()?).ok()?;
-    let n = r.u64()?;
-    if n > 1 << 20 {
-        return None;
-    }
-    let mut strobes = Vec::with_capacity(n as usize);
-    for _ in 0..n {
-        let y = r.f64()?;
-        let v = r.f64()?;
-        strobes.push(State { y, v });
-    }
-    Some(Cell {
-        kind,
-        period: (period > 0).then_some(period as usize),
-        strobes,
-        exponent,
-        periods,
-    })
 }
