@@ -131,6 +131,7 @@ fn writes_every_figure_table_and_the_report() {
     assert!(bif["up_chaotic"].as_u64().unwrap() > 0, "{bif}");
     assert!(bif["up_periodic"].as_u64().unwrap() > 0, "{bif}");
     assert!(bif["branches"].as_u64().unwrap() > 0, "{bif}");
+    legs_compared_as_attractors(&report, bif, &html);
     let basins = &summary["beyond_basins"];
     let attractors = basins["attractors"].as_array().unwrap();
     assert_eq!(attractors.len(), 2, "{basins}");
@@ -159,6 +160,80 @@ fn writes_every_figure_table_and_the_report() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     assert_eq!(left, vec!["report".to_string()]);
+}
+
+/// The bifurcation caption's comparison of the two directions, recomputed from
+/// beyond-bifurcation.csv: the records rebuilt from their strobe points, compared as
+/// attractors by the library's `same_attractor` at the basin map's tolerance.
+fn legs_compared_as_attractors(report: &Path, bif: &serde_json::Value, html: &str) {
+    use stickslip::attractor::{same_attractor, AttractorKind, StrobeRecord};
+    use stickslip::State;
+    let text = std::fs::read_to_string(report.join("beyond-bifurcation.csv")).unwrap();
+    let mut records: std::collections::BTreeMap<(String, String), StrobeRecord> =
+        Default::default();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let r = records
+            .entry((f[3].to_string(), f[0].to_string()))
+            .or_insert_with(|| StrobeRecord {
+                strobes: vec![],
+                exponent: f[4].parse().unwrap(),
+                exponent_error: 0.0,
+                period: (!f[6].is_empty()).then(|| f[6].parse().unwrap()),
+                kind: AttractorKind::from_label(f[5]).unwrap_or_else(|| panic!("{line}")),
+                events: 0,
+                stops: 0,
+                drive_period: 1.0,
+            });
+        r.strobes.push(State {
+            y: f[1].parse().unwrap(),
+            v: f[2].parse().unwrap(),
+        });
+    }
+    let tolerance = stickslip::basins::BasinOptions::default().match_tolerance;
+    let (mut differ, mut different, mut decided) = (0, 0, 0);
+    for ((leg, w), up) in &records {
+        if leg != "up" {
+            continue;
+        }
+        let down = &records[&("down".to_string(), w.clone())];
+        let (x, y) = (up.strobes[0].y, down.strobes[0].y);
+        if up.kind == down.kind
+            && up.period == down.period
+            && (x - y).abs() <= 1e-6 * (1.0 + x.abs())
+        {
+            continue;
+        }
+        differ += 1;
+        if !same_attractor(up, down, tolerance) {
+            different += 1;
+            decided += usize::from(
+                up.kind != AttractorKind::Undecided && down.kind != AttractorKind::Undecided,
+            );
+        }
+    }
+    assert_eq!(bif["values_where_up_and_down_differ"], differ, "{bif}");
+    assert_eq!(
+        bif["values_with_different_attractors_up_and_down"], different,
+        "{bif}"
+    );
+    assert_eq!(
+        bif["values_with_different_decided_attractors_up_and_down"], decided,
+        "{bif}"
+    );
+    // Sampled attractors: some records differ that are one attractor both ways.
+    assert!(different < differ, "{bif}");
+    let steps = bif["steps"].as_u64().unwrap();
+    for said in [
+        format!("records differ at {differ} of the {steps} values"),
+        format!(
+            "{} of those are the same attractor both ways and {different} values hold different \
+             attractors up and down",
+            differ - different
+        ),
+    ] {
+        assert!(html.contains(&said), "the caption does not say: {said}");
+    }
 }
 
 /// Ctrl-C stops the report at once, says so (not the progress of a grid computed alongside)

@@ -245,14 +245,14 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "lyapunov_transient": TRANSIENT,
             "sliding": count(MotionClass::Sliding),
             "periodic_stick": count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": count(MotionClass::Undecided),
+            "undecided": count(MotionClass::Undecided),
             "static": count(MotionClass::Static),
             "chaotic": count(MotionClass::Chaotic),
             "periodic_with_positive_exponent": positive_periodic,
             "chaotic_with_stops": sticking,
             "chaotic_below_exact_boundary": below,
             "largest": {"w": top.params.w, "beta": top.params.beta,
-                        "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
+                        "lambda1": lambda(top), "lambda1_error": error(top)},
         }),
     );
     report.sections.push(Section {

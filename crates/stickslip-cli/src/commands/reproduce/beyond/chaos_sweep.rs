@@ -196,7 +196,7 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "chaotic": chaotic.len(),
             "windows": windows,
             "lambda_chaotic": [lo, hi],
-            "largest": {"w": top.params.w, "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
+            "largest": {"w": top.params.w, "lambda1": lambda(top), "lambda1_error": error(top)},
             "periods": periods,
         }),
     );

@@ -154,7 +154,7 @@ impl Map {
             "grid": [self.w.steps(), self.beta.steps()],
             "sliding": self.count(MotionClass::Sliding),
             "periodic_stick": self.count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": self.count(MotionClass::Undecided),
+            "undecided": self.count(MotionClass::Undecided),
             "static": self.count(MotionClass::Static),
             "sliding_fraction": self.sliding_fraction(),
         })
