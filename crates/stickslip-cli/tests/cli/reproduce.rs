@@ -119,6 +119,7 @@ fn writes_every_figure_table_and_the_report() {
     );
     let map = &summary["beyond_chaos_map"];
     assert!(map["chaotic"].as_u64().unwrap() > 0, "{map}");
+    above_the_boundary_the_sliding_orbit_exists(&report, map, &html);
     assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
     let paper = &summary["beyond_paper_exponents"];
     assert_eq!(paper["positive"], 0, "{paper}");
@@ -160,6 +161,43 @@ fn writes_every_figure_table_and_the_report() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     assert_eq!(left, vec!["report".to_string()]);
+}
+
+/// The chaos map's exact boundary: its legend says that the sliding orbit exists above it
+/// (not that the motion slides there), and the caption counts the points above it that do
+/// not slide from rest, recounted here from chaos-map.csv and the exact boundary.
+fn above_the_boundary_the_sliding_orbit_exists(report: &Path, map: &serde_json::Value, html: &str) {
+    use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
+    for ext in ["svg", "png"] {
+        assert!(report.join(format!("chaos-map.{ext}")).is_file());
+    }
+    let svg = std::fs::read_to_string(report.join("chaos-map.svg")).unwrap();
+    assert!(
+        svg.contains("exact β_c: the sliding orbit exists above") && !svg.contains("sliding above"),
+        "the chaos map's legend"
+    );
+    let text = std::fs::read_to_string(report.join("chaos-map.csv")).unwrap();
+    let (mut above, mut not_sliding) = (0, 0);
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let mut params =
+            stickslip::Params::new(0.0, f[0].parse().unwrap(), f[1].parse().unwrap()).unwrap();
+        params.mu_s = 3.0;
+        let beta_c = theory_value(Theory::Exact, TheoryQuantity::Boundary, &params);
+        if beta_c.is_some_and(|b| params.beta >= b) {
+            above += 1;
+            not_sliding += usize::from(f[2] != "sliding");
+        }
+    }
+    assert_eq!(map["above_exact_boundary"], above, "{map}");
+    assert_eq!(
+        map["above_exact_boundary_not_sliding"], not_sliding,
+        "{map}"
+    );
+    // Rest does not always lead to the sliding orbit where it exists.
+    assert!(not_sliding > 0 && not_sliding < above, "{map}");
+    let said = format!("{not_sliding} of the {above} points above it do not slide from rest");
+    assert!(html.contains(&said), "the caption does not say: {said}");
 }
 
 /// The bifurcation caption's comparison of the two directions, recomputed from
