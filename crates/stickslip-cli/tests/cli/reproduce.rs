@@ -72,6 +72,35 @@ fn writes_every_figure_table_and_the_report() {
         html.contains("<span class=\"nw\">--v0-min</span>"),
         "flags in captions"
     );
+    // Every "<" of the page opens a tag (a comparison in a caption is "&lt;").
+    for (k, _) in html.match_indices('<') {
+        let next = html[k + 1..].chars().next().unwrap_or(' ');
+        assert!(
+            next.is_ascii_alphabetic() || next == '/' || next == '!',
+            "an unescaped '<' in index.html: {}",
+            &html[k..(k + 40).min(html.len())]
+        );
+    }
+    // Every figure is shown at its full size: the page gives each image its PNG's size and
+    // lets it be wider than the text.
+    for f in figures {
+        let (w, h) = decode_png(&report.join(format!("{f}.png")));
+        let img = format!("<img src=\"{f}.png\" width=\"{w}\" height=\"{h}\"");
+        assert!(
+            html.contains(&img),
+            "index.html does not show {f} at {w} × {h}"
+        );
+    }
+    assert!(
+        html.contains(".fig img{max-width:none"),
+        "figures scaled to the text"
+    );
+    // The paper's Fig. 2, a drawing, is said to be skipped; its LSODA is our reading.
+    assert!(html.contains("The paper's Fig. 2 is not reproduced"));
+    assert!(html.contains("The paper says only that it integrated with LSODA; our reading"));
+    assert!(!html.contains("The paper integrated"));
+    // A full report's caption does not speak of --quick's sizes.
+    assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.
     assert!(html.contains("\"static\" is the paper's rule, an amplitude below β/100"));
     // Every data file the page lists exists and has a header and rows.

@@ -291,7 +291,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
              (the bar's lower end is the 2nd percentile of the negative values, lower ones take \
              its colour); white or nearly: λ1 within {} of 0, that is {at_rest} points with \
              λ1 = 0 (at rest: β ≤ μs never moves from rest) and {slow} periodic motions that \
-             contract slowly (λ1 < 0 by less than 5 % of the bar's lower end). {} of the {} \
+             contract slowly (λ1 &lt; 0 by less than 5 % of the bar's lower end). {} of the {} \
              points are chaotic, {} do not repeat without being chaotic (they contract onto a \
              periodic motion not reached, or are undecided), and {}. The largest exponent, {} \
              ± {} per unit τ, is at (w, β) = ({}, {}). {} of the {} chaotic motions stick, and \

@@ -185,8 +185,8 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
     let absent = positive == 0 && repeating == points.len();
     let conclusion = if absent {
         " So the paper's non-periodic motion with sticking is no motion of its circuit as \
-         modelled (μs = 1): there it comes from integrating sgn(ẋ) without stick logic, which \
-         makes the velocity chatter at every stop (Fig. 6); with μs > 1 motions that do not \
+         modelled (μs = 1): in our reading it comes from integrating sgn(ẋ) without stick \
+         logic, which makes the velocity chatter at every stop (Fig. 6); with μs > 1 motions that do not \
          repeat exist, and the ones decided are chaos."
     } else {
         ""
