@@ -54,8 +54,9 @@ pub struct Args {
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
-    /// Plot of the gain against the swept parameter, up and down, with the theory's gain
-    /// (the paper's A1/β and the exact sliding orbit's peak/β) where it exists (.png or .svg).
+    /// Plot of the gain of the fundamental G1 = A1/β against the swept parameter, up and
+    /// down, with the paper's G1 (eq. 11) and the exact sliding orbit's G1 where it exists
+    /// (.png or .svg). The CSV has both gains: `gain` is G = (y_max − y_min)/(2β), `gain1` G1.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     #[command(flatten)]
@@ -396,9 +397,9 @@ impl Theory {
     }
 }
 
-/// The plot of a sweep: the gain G = A1/β (the fundamental of y over β, the paper's
-/// definition) of the simulated steady states, of the paper's eq. (11) and of the exact
-/// sliding orbit: one definition for all three. (The CSV also has the peak gain.)
+/// The plot of a sweep: the gain of the fundamental G1 = A1/β (the paper's definition) of the
+/// simulated steady states, of the paper's eq. (11) and of the exact sliding orbit: one
+/// definition for all three. (The CSV also has the gain G = (y_max − y_min)/(2β).)
 fn plot(
     points: &[Row],
     parameter: Parameter,
@@ -463,20 +464,20 @@ fn plot(
     let prefix = theory.prefix;
     if theory.paper.present() > 0 {
         series.push(Quantity::PaperTheory.series(
-            format!("{prefix}paper, eq. (11): A1/β"),
+            format!("{prefix}paper, eq. (11): G1"),
             theory.paper.points(),
         ));
     }
     if exact_a1.present() > 0 {
         series.push(Quantity::ExactTheory.series(
-            format!("{prefix}exact sliding orbit: A1/β"),
+            format!("{prefix}exact sliding orbit: G1"),
             exact_a1.points(),
         ));
     }
     let panel = Panel {
         title,
         x_label: parameter.label().into(),
-        y_label: "gain G = A1/β (fundamental of y over β)".into(),
+        y_label: "G1 = A1/β (gain of the fundamental)".into(),
         series,
         legend: Some(Legend::Best),
         ..Default::default()

@@ -271,8 +271,8 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
             Curve::Gain1 => (
                 "paper, eq. (11)",
                 "exact",
-                "gain A1/β",
-                format!("gain, ζ = {:.4}, β = {:.4}", params.zeta, params.beta),
+                "G1 = A1/β (gain of the fundamental)",
+                format!("G1, ζ = {:.4}, β = {:.4}", params.zeta, params.beta),
             ),
         };
         let panel = Panel {

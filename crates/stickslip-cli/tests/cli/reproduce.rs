@@ -99,6 +99,30 @@ fn writes_every_figure_table_and_the_report() {
     assert!(html.contains("The paper's Fig. 2 is not reproduced"));
     assert!(html.contains("The paper says only that it integrated with LSODA; our reading"));
     assert!(!html.contains("The paper integrated"));
+    // One symbol per gain: G1 = A1/β in Fig. 4 (its axis and its CSV's gain1), G the peak gain
+    // of Table 1 and of the CSV's gain; no CSV of the report uses a retired name.
+    let fig4 = std::fs::read_to_string(report.join("fig4.svg")).unwrap();
+    assert!(
+        fig4.contains("G1 = A1/β") && !fig4.contains("gain G "),
+        "fig4's axis"
+    );
+    assert!(html.contains("(y_max − y_min)/(2β)"), "Table 1's G");
+    for (csv, header) in [
+        ("fig4.csv", "w,beta,direction,gain1,gain,class"),
+        ("fig7a.csv", "w,beta,class,period,stops_per_period,gain"),
+        (
+            "chaos-map.csv",
+            "w,beta,class,period,stops_per_period,lambda1,lambda1_error",
+        ),
+        ("beyond-basins.csv", "y0,v0,attractor,class,period"),
+        (
+            "beyond-bifurcation.csv",
+            "w,y,v,direction,lambda1,class,period",
+        ),
+    ] {
+        let text = std::fs::read_to_string(report.join(csv)).unwrap();
+        assert_eq!(text.lines().next(), Some(header), "{csv}");
+    }
     // A full report's caption does not speak of --quick's sizes.
     assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.

@@ -80,7 +80,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     report.csv(
         "beyond-basins.csv",
-        &["y0", "v0", "attractor", "kind", "period"],
+        &["y0", "v0", "attractor", "class", "period"],
         &rows,
     )?;
 

@@ -109,7 +109,7 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     report.csv(
         "beyond-bifurcation.csv",
-        &["w", "y", "v", "direction", "lambda", "class", "period"],
+        &["w", "y", "v", "direction", "lambda1", "class", "period"],
         &rows,
     )?;
     let special: Vec<&stickslip::continuation::SpecialPoint> =

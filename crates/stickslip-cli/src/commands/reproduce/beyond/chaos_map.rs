@@ -202,9 +202,9 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "beta",
             "class",
             "period",
-            "stops_per_cycle",
-            "lambda",
-            "lambda_error",
+            "stops_per_period",
+            "lambda1",
+            "lambda1_error",
         ],
         &rows,
     )?;

@@ -138,9 +138,9 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "w",
             "class",
             "period",
-            "stops_per_cycle",
-            "lambda",
-            "lambda_error",
+            "stops_per_period",
+            "lambda1",
+            "lambda1_error",
         ],
         &rows,
     )?;

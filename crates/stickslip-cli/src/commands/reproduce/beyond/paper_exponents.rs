@@ -101,7 +101,7 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
         .collect();
     report.csv(
         "paper-exponents.csv",
-        &["w", "beta", "class", "period", "lambda", "lambda_error"],
+        &["w", "beta", "class", "period", "lambda1", "lambda1_error"],
         &rows,
     )?;
 

@@ -210,7 +210,7 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (640, 540),
         },
     )?;
-    let header = ["w", "beta", "class", "period", "stops_per_cycle", "gain"];
+    let header = ["w", "beta", "class", "period", "stops_per_period", "gain"];
     report.csv("fig7a.csv", &header, &pwl.rows())?;
     report.csv("fig7b.csv", &header, &shockley.rows())?;
     report.summary.insert("fig7a".into(), pwl.summary());

@@ -15,8 +15,9 @@ const POINTS: usize = 400;
 /// What the gain figure's theory curves are.
 pub const GAIN_NOTE: &str = "Dashed: the paper's series solution (its eq. 11); solid: the \
     exact symmetric sliding orbit, drawn where it exists (above the exact stick-slip boundary). \
-    G is A1/β here, as in the paper's formula: the simulated points are the fundamental of the \
-    simulated u_C over U (fig4.csv also lists the peak gain). Where the exact orbit exists the \
+    The gain here is G1 = A1/β, as in the paper's formula: the simulated points are the \
+    fundamental of the simulated u_C over U (fig4.csv's gain1; its gain is G = (y_max − \
+    y_min)/(2β), Table 1's G). Where the exact orbit exists the \
     simulation lands on it; the series formula is close far above the boundary and off by tens \
     of percent near it, and below it gives a gain where the oscillator in fact sticks.";
 
