@@ -123,6 +123,43 @@ fn writes_every_figure_table_and_the_report() {
         let text = std::fs::read_to_string(report.join(csv)).unwrap();
         assert_eq!(text.lines().next(), Some(header), "{csv}");
     }
+    // Fig. 5's legend lists only the theories drawn, and its caption counts the values of β
+    // of (b) that stick, recounted here from fig5.csv (the up sweep against β).
+    let fig5 = std::fs::read_to_string(report.join("fig5.svg")).unwrap();
+    // (The SVG writes a legend's text on a line of its own.)
+    let exact_entries = fig5.lines().filter(|l| l.trim() == "exact").count();
+    if html.contains("(in (b) nowhere") {
+        assert_eq!(
+            exact_entries, 1,
+            "fig5: an 'exact' entry in (b), which draws none"
+        );
+    } else {
+        assert_eq!(exact_entries, 2, "fig5");
+    }
+    let text = std::fs::read_to_string(report.join("fig5.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .filter(|f: &Vec<&str>| f[0] == "beta" && f[3] == "up")
+        .collect();
+    let sticking = rows.iter().filter(|f| f[6] != "sliding").count();
+    let said = if sticking == rows.len() {
+        format!(
+            "sticks at every one of the {} values of β shown",
+            rows.len()
+        )
+    } else {
+        format!(
+            "sticks at {sticking} of the {} values of β shown",
+            rows.len()
+        )
+    };
+    assert!(
+        sticking > 0 && html.contains(&said),
+        "fig5 does not say: {said}"
+    );
+    assert!(!html.contains("sticks for most β"));
     // A full report's caption does not speak of --quick's sizes.
     assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.

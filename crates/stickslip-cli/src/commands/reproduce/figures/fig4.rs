@@ -72,7 +72,8 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             .series("sweep down", vec![])
             .colored(INK),
     );
-    series.extend(style_legend());
+    let legend = style_legend(&series);
+    series.extend(legend);
     let panel = Panel {
         title: "Fig. 4: resonance of the gain of the fundamental G1 = A1/β".into(),
         x_label: "Ω/ω0".into(),
