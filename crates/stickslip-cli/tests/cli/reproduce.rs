@@ -160,6 +160,12 @@ fn writes_every_figure_table_and_the_report() {
         "fig5 does not say: {said}"
     );
     assert!(!html.contains("sticks for most β"));
+    // Fig. 7 (b): its curves are named the PWL model's, and its sliding share is said to
+    // depend on the stop threshold.
+    let fig7 = std::fs::read_to_string(report.join("fig7.svg")).unwrap();
+    let legend: Vec<&str> = fig7.lines().map(str::trim).collect();
+    assert!(legend.contains(&"PWL exact β_c") && legend.contains(&"PWL paper, eq. 13"));
+    assert!(html.contains("the sliding share of (b) depends on that threshold"));
     // A full report's caption does not speak of --quick's sizes.
     assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.
