@@ -219,7 +219,9 @@ pub struct ColorBar {
 impl ColorBar {
     /// A bar for `values`: from the 2nd percentile of the negative ones (a long tail of
     /// strongly negative values is clipped to the end colour) to the largest; non-finite
-    /// values are left out. Always includes 0.
+    /// values are left out. Always includes 0, and always has both halves: without a
+    /// positive value its top is as far above 0 as its bottom is below, so that the bar shows
+    /// the colours a positive value would take (a map without red then says "none positive").
     pub fn for_values(label: &str, values: &[f64]) -> Self {
         let mut negative: Vec<f64> = values
             .iter()
@@ -235,6 +237,8 @@ impl ColorBar {
             .fold(0.0f64, f64::max);
         let range = if lo == 0.0 && hi == 0.0 {
             (-1.0, 1.0)
+        } else if hi == 0.0 {
+            (lo, -lo)
         } else {
             (lo, hi)
         };
@@ -1150,4 +1154,23 @@ where
         .draw()
         .map_err(|e| e.to_string())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bar_of_negative_values_still_shows_where_positive_ones_would_go() {
+        let bar = ColorBar::for_values("λ1", &[-0.5, -0.1, 0.0, f64::NAN]);
+        assert_eq!(bar.range, (-0.5, 0.5));
+        // A positive value takes a red, distinct from white, on this bar.
+        let RGBColor(r, g, b) = bar.color(0.25);
+        assert!(r > g && r > b, "{:?}", (r, g, b));
+        // With positive values, the top is the largest of them.
+        assert_eq!(
+            ColorBar::for_values("λ1", &[-0.5, 0.02]).range,
+            (-0.5, 0.02)
+        );
+    }
 }

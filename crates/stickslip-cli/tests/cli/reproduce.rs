@@ -219,6 +219,8 @@ fn writes_every_figure_table_and_the_report() {
     assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
     let paper = &summary["beyond_paper_exponents"];
     assert_eq!(paper["positive"], 0, "{paper}");
+    // Its colour bar still has a red half, and the caption says that no point takes it.
+    assert!(html.contains("in reds that no point takes: no exponent is positive"));
     assert_eq!(paper["nonperiodic"], 0, "{paper}");
     assert!(paper["largest_moving"]["lambda1"].as_f64().unwrap() < 0.0);
     // The diagram in w at μs = 3 has periodic and chaotic values and branches found by

@@ -191,6 +191,12 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
     } else {
         ""
     };
+    let bar_top = if positive == 0 {
+        ", and its upper end is as far above 0, in reds that no point takes: no exponent is \
+         positive"
+    } else {
+        ", its upper end the largest exponent"
+    };
     report.sections.push(Section {
         id: "paper-exponents".into(),
         title: "The paper's \"non-periodic motion with sticking\": absent at μs = 1, chaos at \
@@ -204,7 +210,7 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
              0.5 to 4, each from rest): exactly ln|μ1|/(pT) from the Floquet multipliers where \
              the motion repeats, measured where it does not. {verdict} White: rest (λ1 = 0: \
              the oscillator stays wherever it stopped); the colour bar's lower end is the 2nd \
-             percentile of the negative values. {contrast}{conclusion}",
+             percentile of the negative values{bar_top}. {contrast}{conclusion}",
         ),
         figures: vec!["paper-exponents".into()],
         data: vec!["paper-exponents.csv".into()],
