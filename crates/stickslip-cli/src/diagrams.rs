@@ -390,11 +390,8 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
             _ => Style::Dots(2),
         };
         if !points.is_empty() {
-            let label = if series.is_empty() {
-                "the attractors at the strobe"
-            } else {
-                ""
-            };
+            // One entry per attractor, in its marker's colour.
+            let label = format!("#{} at the strobe", a.id);
             series.push(Series::new(label, points, color, style));
         }
     }
@@ -408,6 +405,8 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
         x_range: Some(y_range),
         y_range: Some(v_range),
         legend: Some(Legend::UpperRight),
+        // A phase plane: y and y' on one scale.
+        equal_aspect: true,
         ..Default::default()
     }
 }

@@ -202,6 +202,9 @@ pub struct Panel {
     pub x_log: bool,
     /// A logarithmic y axis (points with y ≤ 0 are left out).
     pub y_log: bool,
+    /// One unit of x as long as one unit of y (a phase plane): the plotting area shrinks
+    /// along its longer side. Linear axes only.
+    pub equal_aspect: bool,
 }
 
 /// The scale of cells coloured by a signed value, drawn as a bar beside the chart: white at
@@ -692,15 +695,34 @@ fn build_chart<'a, DB: DrawingBackend>(
     reserve: u32,
 ) -> Result<Chart<'a, DB>, String> {
     let (xr, yr) = ranges(panel);
-    ChartBuilder::on(area)
-        .margin(8)
-        .margin_top(top_margin(font))
-        // Room for the last tick label, centred on the right edge (and for a legend).
-        .margin_right(font * 2 + reserve)
-        .x_label_area_size(font * 3)
-        .y_label_area_size(font * 4)
-        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-        .map_err(|e| e.to_string())
+    let build = |right: u32, bottom: u32| {
+        ChartBuilder::on(area)
+            .margin(8)
+            .margin_top(top_margin(font))
+            // Room for the last tick label, centred on the right edge (and for a legend).
+            .margin_right(font * 2 + reserve + right)
+            .margin_bottom(8 + bottom)
+            .x_label_area_size(font * 3)
+            .y_label_area_size(font * 4)
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+            .map_err(|e| e.to_string())
+    };
+    let chart = build(0, 0)?;
+    if !panel.equal_aspect || panel.x_log || panel.y_log {
+        return Ok(chart);
+    }
+    // As many pixels per unit on both axes: the longer side gives up its excess.
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let (w, h) = (f64::from(xs.end - xs.start), f64::from(ys.end - ys.start));
+    let (dx, dy) = ((xr.1 - xr.0).abs(), (yr.1 - yr.0).abs());
+    if !(w > 0.0 && h > 0.0 && dx > 0.0 && dy > 0.0) {
+        return Ok(chart);
+    }
+    let scale = (w / dx).min(h / dy);
+    build(
+        (w - scale * dx).round() as u32,
+        (h - scale * dy).round() as u32,
+    )
 }
 
 /// The plotting area of `chart`, in pixels of `area`.

@@ -211,7 +211,7 @@ pub fn run(args: Args) -> Result<()> {
             short(map.params.mu_s),
             short(map.params.phi)
         );
-        crate::plot::Figure::single(crate::diagrams::basin_panel(&map, &title), (900, 760))
+        crate::plot::Figure::single(crate::diagrams::basin_panel(&map, &title), (900, 650))
             .render(path)?;
     }
     if args.json {

@@ -62,7 +62,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     let title = "basins of attraction at ζ = 0, μs = 3, w = 0.6, β = 3.269 (drive phase 0)";
     report.figure(
         "beyond-basins",
-        &crate::plot::Figure::single(crate::diagrams::basin_panel(&map, title), (900, 760)),
+        &crate::plot::Figure::single(crate::diagrams::basin_panel(&map, title), (900, 650)),
     )?;
     let mut rows = Vec::new();
     let nv = map.v0.len();
