@@ -188,9 +188,33 @@ def _gather(client: Any, futures: List[Any], points: List[int],
         results: List[Any] = client.gather(futures)
         return results
     except BaseException:
+        keys = {f.key for f in futures}
+        # A Ctrl-C soon after the submission can come while the scheduler is still taking
+        # the graph in: a cancel sent then finds no task to cancel (they would run after
+        # all), and a cluster closed then logs the interrupted submission as an error.
+        _wait_for_graph(client, keys)
         client.cancel(futures)
-        _wait_for_running(client, {f.key for f in futures})
+        _wait_for_running(client, keys)
         raise
+
+
+def _known_keys(keys: Set[Any], dask_scheduler: Any = None) -> bool:
+    """Whether the scheduler holds a task for each of ``keys`` (``client.run_on_scheduler``
+    calls it)."""
+    return all(key in dask_scheduler.tasks for key in keys)
+
+
+def _wait_for_graph(client: Any, keys: Set[Any], timeout: float = 60.0) -> None:
+    """Wait until the scheduler has taken in the tasks of ``keys``. A second Ctrl-C, or a
+    scheduler that does not answer, ends the wait early."""
+    deadline = time.monotonic() + timeout
+    try:
+        while time.monotonic() < deadline:
+            if client.run_on_scheduler(_known_keys, keys):
+                return
+            time.sleep(_POLL_SECONDS)
+    except BaseException:  # noqa: BLE001 - the first interrupt is the one that propagates
+        return
 
 
 def _executing_keys(dask_worker: Any) -> List[Any]:
