@@ -10,7 +10,8 @@
 //!
 //! Two scripts that try to stall the class, from other addresses:
 //! - `--hogs N`: N connections from 127.0.0.2 without a client id, each asking for the largest
-//!   map (200 × 200 points) again and again, during the whole run;
+//!   map (200 × 200 points) again and again, during the whole run (a connection refused or
+//!   closed connects again a second later);
 //! - `--half-open N`: before the clients start, N connections from 127.0.0.3 that send half a
 //!   request and wait; then one request of a client is timed alone (the first line printed).
 //!
@@ -157,6 +158,9 @@ fn hog(host: String, stop: Arc<AtomicBool>) -> (usize, usize) {
                 Err(_) => break,
             }
         }
+        // Refused (or closed): again a second later. The script runs on this computer too,
+        // and a loop without a pause would measure its own use of the cores.
+        std::thread::sleep(Duration::from_secs(1));
     }
     (maps, refused)
 }
