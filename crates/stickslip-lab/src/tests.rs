@@ -2,6 +2,7 @@
 //! command-line tool's) for the same point; bad input, caps and unknown paths are refused
 //! with one line of JSON; the time limit stops a computation.
 
+mod connections;
 mod page_keys;
 
 use super::router::{router, Lab, Settings};
@@ -42,7 +43,21 @@ fn lab(time_limit: Duration) -> Lab {
         jobs: 2,
         verbose: false,
         hosts: vec!["192.0.2.7".into(), "lab.school.example".into()],
+        hold: None,
     })
+}
+
+/// Wait until `lab` runs `count` computations (polled). A stop takes one check of the
+/// solvers; the bound (600 s) is on a hang, not on the machine's load.
+async fn until_active(lab: &Lab, count: usize) -> bool {
+    let give_up = tokio::time::Instant::now() + Duration::from_secs(600);
+    while lab.active() != count {
+        if tokio::time::Instant::now() > give_up {
+            return false;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    true
 }
 
 /// GET `uri` from a fresh router; status, content type and body.
@@ -533,6 +548,21 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     assert_eq!(status, StatusCode::OK);
     assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
     assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+    // Issue 38, item 2: a preset's generator setting is the drive of the steady state its
+    // query asks for, in Hz and V (or N), to the bit; the paper's circuit alone has none.
+    assert!(presets["presets"][0]["drive"].is_null());
+    for (k, query) in [
+        (5, "preset=paper&w=0.95&beta=2.14"),
+        (
+            7,
+            "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1&w=0.95&beta=2.14",
+        ),
+    ] {
+        let (status, steady) = get(&format!("/api/steady?{query}")).await;
+        assert_eq!(status, StatusCode::OK, "{steady}");
+        assert_eq!(presets["presets"][k]["drive"], steady["drive"], "{query}");
+    }
+    assert_eq!(presets["presets"][7]["drive"]["unit"], "N");
     // The Shockley diodes' starting values are the 1N4148's, by query key.
     let d = stickslip::DiodePair::one_n4148();
     assert_eq!(
@@ -653,6 +683,8 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
     assert_eq!(keys["keys"][Key::TurnOn as usize]["symbol"], "U_t");
     assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
     assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);
+    // The library's rule for a static motion, which the page states beside the class.
+    assert_eq!(keys["static_gain"], stickslip::steady::STATIC_GAIN);
     refused("/api/keys?w=1", StatusCode::BAD_REQUEST, "takes no keys").await;
 }
 
@@ -668,15 +700,8 @@ async fn the_time_limit_stops_a_computation() {
     assert!(message.contains("time limit of 0.3 s"), "{message}");
     assert!(message.contains("of 1600 done"), "{message}");
     // The workers stopped too (the answer does not wait for them).
-    for _ in 0..500 {
-        if lab.active() == 0 {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
-    assert_eq!(
-        lab.active(),
-        0,
+    assert!(
+        until_active(&lab, 0).await,
         "the computation kept running after its time limit"
     );
 }
@@ -688,24 +713,12 @@ async fn a_dropped_request_stops_its_computation() {
     let uri = "/api/map?preset=paper&model=shockley&w-steps=40&beta-steps=40&w-min=0.1&w-max=0.6";
     let app = router(lab.clone());
     let request = tokio::spawn(app.oneshot(Request::get(uri).body(Body::empty()).unwrap()));
-    let wait_for = |count: usize| {
-        let lab = lab.clone();
-        async move {
-            for _ in 0..500 {
-                if lab.active() == count {
-                    return true;
-                }
-                tokio::time::sleep(Duration::from_millis(20)).await;
-            }
-            false
-        }
-    };
-    assert!(wait_for(1).await, "the computation did not start");
+    assert!(until_active(&lab, 1).await, "the computation did not start");
     // The client goes away: the server drops the request's future.
     request.abort();
     assert!(request.await.unwrap_err().is_cancelled());
     assert!(
-        wait_for(0).await,
+        until_active(&lab, 0).await,
         "the computation kept running after its client went away"
     );
 }
@@ -1514,11 +1527,8 @@ async fn the_time_limit_stops_a_fit() {
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE, "{answer}");
     let message = answer["error"].as_str().unwrap();
     assert!(message.contains("time limit of 0.02 s"), "{message}");
-    for _ in 0..500 {
-        if lab.active() == 0 {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
-    assert_eq!(lab.active(), 0, "the fit kept running after its time limit");
+    assert!(
+        until_active(&lab, 0).await,
+        "the fit kept running after its time limit"
+    );
 }

@@ -6,6 +6,7 @@ use super::caps::CAPS;
 use super::fit::default_free;
 use stickslip::experiment::{DiodeModel, Key, KeyForm, KeyGroup};
 use stickslip::fit::FitParameter;
+use stickslip::steady::STATIC_GAIN;
 
 /// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
 /// exact PWL solver holds v = 0 exactly while stuck; the stiff Shockley solver's current
@@ -95,8 +96,9 @@ fn fit() -> serde_json::Value {
 /// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model
 /// key's query name `flag`, its `name`, `symbol`, group, unit, range, help and default),
 /// `form` (the fields of the page's form, [`fieldset`]), `fit` (the parameters a fit of a
-/// circuit may free, those of each diode law, and those it frees by default), `caps` (as `/api/presets` has them)
-/// and `stuck_velocity` (by diode law).
+/// circuit may free, those of each diode law, and those it frees by default), `caps` (as `/api/presets` has them),
+/// `stuck_velocity` (by diode law) and `static_gain` (the library's rule for `static`,
+/// [`STATIC_GAIN`]: a gain at most this).
 pub fn keys() -> serde_json::Value {
     serde_json::json!({
         "keys": Key::table(),
@@ -107,5 +109,6 @@ pub fn keys() -> serde_json::Value {
             .iter()
             .map(|&(model, v)| (model.to_string(), serde_json::json!(v)))
             .collect::<serde_json::Map<_, _>>(),
+        "static_gain": STATIC_GAIN,
     })
 }

@@ -1,6 +1,7 @@
 //! `GET /api/presets`: the page's presets.
 
-use crate::query::api_name;
+use super::answer::{About, Drive};
+use crate::query::{api_name, Query};
 use serde::Serialize;
 use stickslip::physical::Circuit;
 
@@ -29,9 +30,20 @@ pub struct PresetRow {
     pub paper: bool,
 }
 
+/// The generator's setting of a preset: the drive in Hz and V (or N) of the experiment its
+/// query describes (`preset=paper&w=0.95&beta=2.14`), as `/api/steady` answers it for that
+/// query; `None` for a preset without a drive.
+fn drive_of(query: &str) -> Option<Drive> {
+    let mut q = Query::parse(Some(query)).ok()?;
+    let e = q.experiment().ok()?;
+    About::new(&e).drive
+}
+
 /// `GET /api/presets`: the paper's circuit, its Fig. 3 points, the 1N4148 Shockley
 /// parameters (the defaults of the key table's diode group) and a mechanical oscillator with
-/// the paper's damping ratio.
+/// the paper's damping ratio. A preset with a drive point (w, β) also carries the generator's
+/// setting it stands for (`drive`: `f_Hz` and `amplitude` in V or N): the page sets its
+/// generator to it once, and changing a part afterwards leaves the generator where it is.
 pub fn presets() -> serde_json::Value {
     use stickslip::experiment::{Key, KeyDefault, KeyGroup};
     use stickslip::physical::Diode;
@@ -95,6 +107,15 @@ pub fn presets() -> serde_json::Value {
             KeyDefault::Name(_) => None,
         })
         .collect();
+    let query = |r: &PresetRow| -> String {
+        let values = r
+            .values
+            .iter()
+            .filter(|(k, _)| !r.paper || k == "w" || k == "beta");
+        let keys = values.map(|(k, v)| format!("{k}={v}"));
+        let preset = r.paper.then(|| "preset=paper".to_string());
+        preset.into_iter().chain(keys).collect::<Vec<_>>().join("&")
+    };
     serde_json::json!({
         "presets": rows.iter().map(|r| serde_json::json!({
             "id": r.id,
@@ -103,6 +124,7 @@ pub fn presets() -> serde_json::Value {
             "paper": r.paper,
             "values": r.values.iter().map(|(k, v)| (k.clone(), serde_json::json!(v)))
                 .collect::<serde_json::Map<_, _>>(),
+            "drive": drive_of(&query(r)),
         })).collect::<Vec<_>>(),
         "shockley": shockley,
         "caps": super::keys::caps_json(),
