@@ -33,14 +33,9 @@ pub struct NameError {
 
 impl NameError {
     fn new(what: &'static str, text: &str, allowed: impl Iterator<Item = &'static str>) -> Self {
-        let shown = crate::units::shown(text);
-        let mut clipped: String = shown.chars().take(40).collect();
-        if shown.chars().count() > 40 {
-            clipped.push('…');
-        }
         Self {
             what,
-            text: clipped,
+            text: crate::units::shown(text),
             allowed: allowed.collect(),
         }
     }
