@@ -15,6 +15,7 @@ use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::params::Parameter;
+use crate::physical::SystemKind;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
 use crate::steady::MotionClass;
 use crate::theory::curves::{CurveKind, Theory};
@@ -68,6 +69,7 @@ macro_rules! names {
 
 names!(DiodeModel, "diode law", display);
 names!(Preset, "preset", display);
+names!(SystemKind, "system", display);
 names!(SweepDirection, "sweep direction", display);
 names!(SweepLeg, "sweep leg", display);
 names!(MotionClass, "motion class", display);

@@ -274,4 +274,6 @@ export function fillMapSizes() {
 
 export function showSystem() {
   for (const fs of $$('fieldset[data-for-system]')) fs.hidden = !fs.dataset.forSystem.split(' ').includes(state.system);
+  // A value's "fit" box only with the diode laws whose fit may free it (U_t's not with Shockley diodes).
+  for (const box of $$('label[data-fit-laws]')) box.hidden = !box.dataset.fitLaws.split(' ').includes(state.system);
 }
