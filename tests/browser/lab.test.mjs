@@ -734,6 +734,76 @@ test('issue 19: the query of each system holds exactly the served keys of its fi
   assert.equal(await shownQuery(), 'preset=paper&w=0.95&beta=2.14');
 });
 
+test('issue 38 (3, 4): Fit ticks the default free set of the diode law, absurd values mark their own field, a decimal comma is read', async () => {
+  const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
+  // The boxes shown and ticked in each diode law's mode: the library's parameters of the law
+  // and its default free set (Shockley: R, I_s and n; U_t's box is not shown there).
+  const boxes = () =>
+    page.$$eval('label[data-fit-laws]', (labels) =>
+      labels.filter((l) => !l.hidden && !l.closest('fieldset').hidden).map((l) => {
+        const box = l.querySelector('input[data-free]');
+        return { free: box.dataset.free, checked: box.checked };
+      }),
+    );
+  for (const law of ['shockley', 'pwl']) {
+    await page.selectOption('select[name="system"]', law);
+    await ready();
+    const shown = await boxes();
+    assert.deepEqual(shown.map((b) => b.free).sort(), [...keys.fit.by_law[law]].filter((f) => f !== 'mu-s').sort(), law);
+    assert.deepEqual(shown.filter((b) => b.checked).map((b) => b.free).sort(), [...keys.fit.free[law]].sort(), law);
+  }
+  assert.deepEqual(keys.fit.free.shockley, ['resistance', 'diode-is', 'diode-n']);
+
+  // An absurd part is blamed on itself: C = 1e308 (was blamed on R), C = 1e-308 (was blamed
+  // on the frequency), L = 1e308 (marked no field).
+  expectedConsole = /status of 400/;
+  for (const [name, text] of [['capacitance', '1e308'], ['capacitance', '1e-308'], ['inductance', '1e308']]) {
+    const before = await page.inputValue(`input[name="${name}"]`);
+    await page.locator(`input[name="${name}"]`).fill(text);
+    await page.locator(`input[name="${name}"]`).press('Enter');
+    await page.waitForFunction((n) => document.querySelector(`[data-error-for~="${n}"]`).textContent !== '', name);
+    assert.match(await page.$eval(`[data-error-for~="${name}"]`, (e) => e.textContent), new RegExp(`^invalid ${name} ${text}: `));
+    assert.equal(await page.getAttribute(`input[name="${name}"]`, 'aria-invalid'), 'true', name);
+    for (const other of ['resistance', 'freq']) assert.equal(await page.$eval(`[data-error-for~="${other}"]`, (e) => e.textContent), '', `${name} ${text} blamed ${other}`);
+    await type(name, before);
+  }
+  // The mechanical oscillator's k and γ at 1e308 (marked no field).
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  for (const name of ['stiffness', 'damping']) {
+    const before = await page.inputValue(`input[name="${name}"]`);
+    await page.locator(`input[name="${name}"]`).fill('1e308');
+    await page.locator(`input[name="${name}"]`).press('Enter');
+    await page.waitForFunction((n) => document.querySelector(`[data-error-for~="${n}"]`).textContent !== '', name);
+    assert.match(await page.$eval(`[data-error-for~="${name}"]`, (e) => e.textContent), new RegExp(`^invalid ${name} 1e308: `));
+    assert.equal(await page.getAttribute(`input[name="${name}"]`, 'aria-invalid'), 'true', name);
+    await type(name, before);
+  }
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  // A map whose β-max is below its β-min marks β-max (it marked β-min).
+  await page.fill('input[name="map-beta-max"]', '0');
+  await page.click('[data-action="map"]');
+  await page.waitForFunction(() => document.querySelector('input[name="map-beta-max"]').getAttribute('aria-invalid') === 'true', null, { timeout: 30000 });
+  assert.equal(await page.getAttribute('input[name="map-beta-min"]', 'aria-invalid'), null);
+  assert.match(await page.$eval('[data-error-for~="beta-max"]', (e) => e.textContent), /invalid beta-max 0: must not be below beta-min 0\.5/);
+  await page.fill('input[name="map-beta-max"]', '4');
+  // A sweep of 0 steps is told the lab's cap (it said 1 to 100000).
+  await page.fill('input[name="sweep-steps"]', '0');
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('input[name="sweep-steps"]').getAttribute('aria-invalid') === 'true', null, { timeout: 30000 });
+  assert.match(await page.$eval('[data-error-for~="steps"]', (e) => e.textContent), /invalid steps 0: must be from 1 to 400/);
+  await page.fill('input[name="sweep-steps"]', '60');
+  expectedConsole = null;
+  // "9,97k": a decimal comma, read as the point would be.
+  await type('freq', '9,97k');
+  await type('amplitude', '0,749');
+  assert.equal(await page.$eval('[data-error-for~="freq"]', (e) => e.textContent), '');
+  await readoutsMatch(['--preset', 'paper', '--freq', '9.97k', '--amplitude', '0.749']);
+  await type('freq', '9.97k');
+  await type('amplitude', '0.749');
+});
+
 test('no console errors', () => {
   assert.deepEqual(consoleErrors, []);
 });
