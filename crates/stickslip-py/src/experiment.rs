@@ -209,8 +209,14 @@ fn preset_paper() -> ExperimentSpec {
 #[pymethods]
 impl PyExperiment {
     /// A dimensionless experiment (documented on the class: Python shows the class's docstring).
+    /// Any other keyword is refused with the keywords this constructor takes and where a
+    /// physical one (`omega`, `L`, ...) goes.
     #[new]
-    #[pyo3(signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None))]
+    #[pyo3(
+        signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None, **others),
+        text_signature = "(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0)"
+    )]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         zeta: Option<&Bound<'_, PyAny>>,
         w: Option<&Bound<'_, PyAny>>,
@@ -219,7 +225,35 @@ impl PyExperiment {
         mu_s: Option<&Bound<'_, PyAny>>,
         y0: Option<&Bound<'_, PyAny>>,
         v0: Option<&Bound<'_, PyAny>>,
+        others: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        if let Some((name, _)) = others.and_then(|o| o.iter().next()) {
+            let name: String = name.extract()?;
+            let known = "Experiment() takes the dimensionless model's keywords zeta, w, beta, \
+                         phi, mu_s, y0, v0";
+            let elsewhere = "Experiment.paper(...), Experiment.circuit(...), \
+                             Experiment.shockley(...), Experiment.mechanics(...) or \
+                             Experiment.from_dict(...)";
+            return Err(PyTypeError::new_err(match Key::from_name(&name) {
+                Some(key) => {
+                    let what = key.help().split(':').next().unwrap_or_default();
+                    let mut letters = what.chars();
+                    let what: String = letters
+                        .next()
+                        .map(|c| c.to_lowercase().chain(letters).collect())
+                        .unwrap_or_default();
+                    format!(
+                        "{known}; {name} ({what}) belongs to a physical description: give it \
+                         to {elsewhere}"
+                    )
+                }
+                None => format!(
+                    "unknown experiment keyword '{name}': {known}; a physical description \
+                     takes {} (through {elsewhere})",
+                    key_names()
+                ),
+            }));
+        }
         let named = [
             ("zeta", zeta),
             ("w", w),
