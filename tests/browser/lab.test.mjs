@@ -140,7 +140,7 @@ test('issue 19: the model form is built from /api/keys: a field per key, its sym
     fields.map((f) => `${f.id}:${f.fieldset}:${f.label}:${f.unit}`),
     ['inductance:pwl shockley:L:H', 'capacitance:pwl shockley:C:F', 'resistance:pwl shockley:R:Ω', 'ut:pwl shockley:U<sub>t</sub>:V', 'rd:pwl:R<sub>D</sub>:Ω', 'diode-is:shockley:I<sub>s</sub>:A', 'diode-n:shockley:n:', 'diode-rs:shockley:R<sub>s</sub>:Ω', 'temperature:shockley:T:°C', 'mu-s:mechanics:μ<sub>s</sub>:≥ 1', 'mass:mechanics:m:kg', 'stiffness:mechanics:k:N/m', 'damping:mechanics:γ:N·s/m', 'friction:mechanics:F<sub>0</sub>:N'],
   );
-  assert.equal(await page.$eval('#ut', (e) => e.parentElement.outerHTML), `<div class="field"><label for="ut">U<sub>t</sub></label><input id="ut" name="ut" type="text" title="${keys.keys.find((k) => k.flag === 'ut').help}" data-part=""><span class="unit">V</span><label class="free" title="free in the fit: fitted to the record"><input type="checkbox" name="free-ut" data-free="ut" checked=""> fit</label><span class="error" data-error-for="ut" role="alert"></span></div>`);
+  assert.equal(await page.$eval('#ut', (e) => e.parentElement.outerHTML), `<div class="field"><label for="ut">U<sub>t</sub></label><input id="ut" name="ut" type="text" title="${keys.keys.find((k) => k.flag === 'ut').help}" data-part=""><span class="unit">V</span><label class="free" data-fit-laws="pwl" title="free in the fit: fitted to the record"><input type="checkbox" name="free-ut" data-free="ut" checked=""> fit</label><span class="error" data-error-for="ut" role="alert"></span></div>`);
   assert.equal(await page.$eval('#mu-s', (e) => e.getAttribute('value')), '1');
   assert.deepEqual(await page.$$eval('[data-part]', (els) => els.map((e) => e.id)), ['inductance', 'capacitance', 'resistance', 'ut', 'rd']);
   // The fit boxes: the served fit parameters that have a field beside the fit (μs is the
@@ -150,7 +150,7 @@ test('issue 19: the model form is built from /api/keys: a field per key, its sym
   assert.deepEqual(boxes.map((b) => b.free), fitFields);
   assert.deepEqual(fitFields, ['inductance', 'capacitance', 'resistance', 'ut', 'rd', 'diode-is', 'diode-n', 'diode-rs']);
   for (const b of boxes) assert.equal(b.name, `free-${b.free}`);
-  assert.deepEqual(boxes.filter((b) => b.checked).map((b) => b.free), keys.fit.free);
+  assert.deepEqual(boxes.filter((b) => b.checked).map((b) => b.free), fitFields.filter((f) => Object.values(keys.fit.free).some((free) => free.includes(f))));
 });
 
 test('sweep up and down and the (w, beta) map, computed on load', async () => {
@@ -188,7 +188,7 @@ test('bad input shows the server message beside its field', async () => {
   await page.locator('input[name="freq"]').press('Enter');
   await page.waitForFunction(() => document.querySelector('#status').dataset.labStatus === 'error', null, { timeout: PATIENCE });
   const message = await page.$eval('[data-error-for~="freq"]', (e) => e.textContent);
-  assert.match(message, /invalid value for freq: 'ten kHz' is not a number/);
+  assert.match(message, /invalid freq: 'ten kHz' is not a number/);
   assert.equal(await page.getAttribute('input[name="freq"]', 'aria-invalid'), 'true');
   await page.locator('input[name="resistance"]').fill('-5');
   await page.locator('input[name="resistance"]').press('Enter');
@@ -1051,6 +1051,76 @@ test('issue 38 (4): 1e17 in a scope position neither freezes nor crashes the pag
     await own.close();
     await lone.stop();
   }
+});
+
+test('issue 38 (3, 4): Fit ticks the default free set of the diode law, absurd values mark their own field, a decimal comma is read', async () => {
+  const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
+  // The boxes shown and ticked in each diode law's mode: the library's parameters of the law
+  // and its default free set (Shockley: R, I_s and n; U_t's box is not shown there).
+  const boxes = () =>
+    page.$$eval('label[data-fit-laws]', (labels) =>
+      labels.filter((l) => !l.hidden && !l.closest('fieldset').hidden).map((l) => {
+        const box = l.querySelector('input[data-free]');
+        return { free: box.dataset.free, checked: box.checked };
+      }),
+    );
+  for (const law of ['shockley', 'pwl']) {
+    await page.selectOption('select[name="system"]', law);
+    await ready();
+    const shown = await boxes();
+    assert.deepEqual(shown.map((b) => b.free).sort(), [...keys.fit.by_law[law]].filter((f) => f !== 'mu-s').sort(), law);
+    assert.deepEqual(shown.filter((b) => b.checked).map((b) => b.free).sort(), [...keys.fit.free[law]].sort(), law);
+  }
+  assert.deepEqual(keys.fit.free.shockley, ['resistance', 'diode-is', 'diode-n']);
+
+  // An absurd part is blamed on itself: C = 1e308 (was blamed on R), C = 1e-308 (was blamed
+  // on the frequency), L = 1e308 (marked no field).
+  expectedConsole = /status of 400/;
+  for (const [name, text] of [['capacitance', '1e308'], ['capacitance', '1e-308'], ['inductance', '1e308']]) {
+    const before = await page.inputValue(`input[name="${name}"]`);
+    await page.locator(`input[name="${name}"]`).fill(text);
+    await page.locator(`input[name="${name}"]`).press('Enter');
+    await page.waitForFunction((n) => document.querySelector(`[data-error-for~="${n}"]`).textContent !== '', name, { timeout: PATIENCE });
+    assert.match(await page.$eval(`[data-error-for~="${name}"]`, (e) => e.textContent), new RegExp(`^invalid ${name} ${text}: `));
+    assert.equal(await page.getAttribute(`input[name="${name}"]`, 'aria-invalid'), 'true', name);
+    for (const other of ['resistance', 'freq']) assert.equal(await page.$eval(`[data-error-for~="${other}"]`, (e) => e.textContent), '', `${name} ${text} blamed ${other}`);
+    await type(name, before);
+  }
+  // The mechanical oscillator's k and γ at 1e308 (marked no field).
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  for (const name of ['stiffness', 'damping']) {
+    const before = await page.inputValue(`input[name="${name}"]`);
+    await page.locator(`input[name="${name}"]`).fill('1e308');
+    await page.locator(`input[name="${name}"]`).press('Enter');
+    await page.waitForFunction((n) => document.querySelector(`[data-error-for~="${n}"]`).textContent !== '', name, { timeout: PATIENCE });
+    assert.match(await page.$eval(`[data-error-for~="${name}"]`, (e) => e.textContent), new RegExp(`^invalid ${name} 1e308: `));
+    assert.equal(await page.getAttribute(`input[name="${name}"]`, 'aria-invalid'), 'true', name);
+    await type(name, before);
+  }
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  // A map whose β-max is below its β-min marks β-max (it marked β-min).
+  await page.fill('input[name="map-beta-max"]', '0');
+  await page.click('[data-action="map"]');
+  await page.waitForFunction(() => document.querySelector('input[name="map-beta-max"]').getAttribute('aria-invalid') === 'true', null, { timeout: PATIENCE });
+  assert.equal(await page.getAttribute('input[name="map-beta-min"]', 'aria-invalid'), null);
+  assert.match(await page.$eval('[data-error-for~="beta-max"]', (e) => e.textContent), /invalid beta-max 0: must not be below beta-min 0\.5/);
+  await page.fill('input[name="map-beta-max"]', '4');
+  // A sweep of 0 steps is told the lab's cap (it said 1 to 100000).
+  await page.fill('input[name="sweep-steps"]', '0');
+  await page.click('[data-action="sweep"]');
+  await page.waitForFunction(() => document.querySelector('input[name="sweep-steps"]').getAttribute('aria-invalid') === 'true', null, { timeout: PATIENCE });
+  assert.match(await page.$eval('[data-error-for~="steps"]', (e) => e.textContent), /invalid steps 0: must be from 1 to 400/);
+  await page.fill('input[name="sweep-steps"]', '60');
+  expectedConsole = null;
+  // "9,97k": a decimal comma, read as the point would be.
+  await type('freq', '9,97k');
+  await type('amplitude', '0,749');
+  assert.equal(await page.$eval('[data-error-for~="freq"]', (e) => e.textContent), '');
+  await readoutsMatch(['--preset', 'paper', '--freq', '9.97k', '--amplitude', '0.749']);
+  await type('freq', '9.97k');
+  await type('amplitude', '0.749');
 });
 
 test('no console errors', () => {

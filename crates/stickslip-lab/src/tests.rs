@@ -645,7 +645,31 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
         .collect();
     assert_eq!(fit.len(), stickslip::fit::FitParameter::CIRCUIT.len());
     assert!(fit.contains(&"rd") && fit.contains(&"diode-is") && !fit.contains(&"mass"));
-    assert_eq!(keys["fit"]["free"], serde_json::json!(["resistance", "ut"]));
+    // What a fit frees when nothing is ticked, by diode law: the library's default free
+    // sets, as `stickslip fit` and Python's `fit` free them (with Shockley diodes R, I_s and
+    // n, not U_t, which is no parameter of that law).
+    assert_eq!(
+        keys["fit"]["free"],
+        serde_json::json!({
+            "pwl": ["resistance", "ut"],
+            "shockley": ["resistance", "diode-is", "diode-n"],
+        })
+    );
+    for law in DiodeModel::ALL {
+        let expected: Vec<&str> =
+            stickslip::fit::FitParameter::defaults(stickslip::SystemKind::Circuit, law)
+                .iter()
+                .map(|p| p.label())
+                .collect();
+        assert_eq!(
+            keys["fit"]["free"][law.label()],
+            serde_json::json!(expected)
+        );
+        for name in expected {
+            let by_law = keys["fit"]["by_law"][law.label()].as_array().unwrap();
+            assert!(by_law.contains(&serde_json::json!(name)), "{law} {name}");
+        }
+    }
     // By diode law: the library's circuit parameters of that law, in the order of reports.
     for law in DiodeModel::ALL {
         let expected: Vec<&str> = stickslip::fit::FitParameter::CIRCUIT
@@ -807,7 +831,12 @@ async fn every_bad_value_of_the_review_is_a_400_naming_its_key() {
         assert_eq!(body["field"], key, "{body}");
     }
     // A capacitance that makes ζ too large is the capacitance's fault when it was given.
-    let body = refused(&format!("/api/steady?{point}&capacitance=1e6"), bad, "C =").await;
+    let body = refused(
+        &format!("/api/steady?{point}&capacitance=1e6"),
+        bad,
+        "invalid capacitance 1000000: it gives zeta = ",
+    )
+    .await;
     assert_eq!(body["field"], "capacitance", "{body}");
     // The end of a range that is out of range is named, not the other end.
     let body = refused(
@@ -857,6 +886,97 @@ async fn every_bad_value_of_the_review_is_a_400_naming_its_key() {
         assert_eq!(status, StatusCode::OK, "{query}: {body}");
     }
 }
+
+/// Issue 38: absurd values blamed the wrong field or none (C = 1e308 on R, C = 1e-308 on the
+/// frequency; L, k or γ = 1e308 on no field), a map's β-max = 0 marked β-min, a sweep of
+/// 0 steps was told the library's range, not the lab's cap; and a decimal comma was refused.
+/// The library names the value at fault, and the lab marks its field.
+#[tokio::test]
+async fn absurd_values_mark_their_own_field_and_decimal_commas_are_read() {
+    let bad = StatusCode::BAD_REQUEST;
+    let point = "preset=paper&w=0.95&beta=2.14";
+    let physical = "preset=paper&freq=9.97k&amplitude=1.498";
+    let mechanics = "mass=0.5&stiffness=200&damping=0.94&friction=1&omega=19&amplitude=2.14";
+    for (base, key, value) in [
+        (point, "capacitance", "1e308"),
+        (physical, "capacitance", "1e308"),
+        (physical, "capacitance", "1e-308"),
+        (point, "inductance", "1e308"),
+        (physical, "inductance", "1e308"),
+        (physical, "inductance", "1e-308"),
+        (mechanics, "stiffness", "1e308"),
+        (mechanics, "damping", "1e308"),
+        (mechanics, "mass", "1e308"),
+        (mechanics, "stiffness", "1e-308"),
+    ] {
+        // The base with the key's value replaced (or added).
+        let query: Vec<String> = base
+            .split('&')
+            .filter(|kv| !kv.starts_with(&format!("{key}=")))
+            .map(String::from)
+            .chain([format!("{key}={value}")])
+            .collect();
+        let query = query.join("&");
+        for endpoint in ["steady", "simulate", "theory"] {
+            let uri = format!("/api/{endpoint}?{query}");
+            let body = refused(&uri, bad, &format!("invalid {key} {value}")).await;
+            assert_eq!(body["field"], key, "{uri}: {body}");
+        }
+    }
+    let body = refused(
+        "/api/map?preset=paper&beta-max=0",
+        bad,
+        "invalid beta-max 0: must not be below beta-min 0.5",
+    )
+    .await;
+    assert_eq!(body["field"], "beta-max");
+    let body = refused(
+        "/api/map?preset=paper&w-min=3",
+        bad,
+        "invalid w-max 2.5: must not be below w-min 3",
+    )
+    .await;
+    assert_eq!(body["field"], "w-max");
+    for (uri, key) in [
+        ("/api/sweep?preset=paper&beta=2.14&steps=0", "steps"),
+        ("/api/sweep?preset=paper&beta=2.14&steps=401", "steps"),
+    ] {
+        let body = refused(uri, bad, &format!("must be from 1 to {}", CAPS_SWEEP)).await;
+        assert_eq!(body["field"], key, "{uri}");
+    }
+    let body = refused(
+        "/api/map?preset=paper&w-steps=0",
+        bad,
+        "invalid w-steps 0: must be from 1 to 1000",
+    )
+    .await;
+    assert_eq!(body["field"], "w-steps");
+    // "9,97k": one comma and no point is a decimal comma, as the point would be.
+    let (status, comma) = get("/api/steady?preset=paper&freq=9,97k&amplitude=1,4980").await;
+    assert_eq!(status, StatusCode::OK, "{comma}");
+    let (_, point) = get(&format!("/api/steady?{physical}")).await;
+    assert_eq!(comma, point);
+    let (status, body) = get("/api/steady?preset=paper&w=0,95&beta=2,14").await;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    // A comma that may separate thousands is refused naming both readings.
+    let body = refused(
+        "/api/steady?preset=paper&freq=9,970&amplitude=1.498",
+        bad,
+        "'9,970' is ambiguous: 9.97 with a decimal comma, 9970 with a thousands separator",
+    )
+    .await;
+    assert_eq!(body["field"], "freq");
+    let body = refused(
+        "/api/steady?preset=paper&freq=9.97k&amplitude=1,498",
+        bad,
+        "write 1.498 or 1498",
+    )
+    .await;
+    assert_eq!(body["field"], "amplitude");
+}
+
+/// The lab's cap of a sweep's steps.
+const CAPS_SWEEP: usize = stickslip::limits::Caps::shared_server().sweep_steps;
 
 /// GET `uri` with a `Host` header; status and body.
 async fn get_host(host: &str, uri: &str) -> (StatusCode, Value) {

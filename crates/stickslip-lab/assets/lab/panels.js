@@ -298,4 +298,6 @@ export function showSystem() {
   const mech = state.system === 'mechanics';
   $('#generator-title').textContent = mech ? 'Drive force' : 'Function generator';
   $('#circuit-title').textContent = mech ? 'Mass, spring and friction' : 'Circuit';
+  // A value's "fit" box only with the diode laws whose fit may free it (U_t's not with Shockley diodes).
+  for (const box of $$('label[data-fit-laws]')) box.hidden = !box.dataset.fitLaws.split(' ').includes(state.system);
 }

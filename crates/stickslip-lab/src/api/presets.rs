@@ -3,7 +3,8 @@
 use super::answer::{About, Drive};
 use crate::query::{api_name, Query};
 use serde::Serialize;
-use stickslip::physical::Circuit;
+use stickslip::physical::{Circuit, Mechanics};
+use stickslip::SystemKind;
 
 /// The points of the paper's Fig. 3: (label, w = Ω/ω0, β), panels (1a)–(2c).
 pub const FIG3_POINTS: [(&str, f64, f64); 6] = [
@@ -63,7 +64,7 @@ pub fn presets() -> serde_json::Value {
         id: "paper".into(),
         label: "the paper's circuit (L = 11.5 mH, C = 20 nF, R = 68 Ω, U_t = 0.7 V, R_D = 3 Ω)"
             .into(),
-        system: "circuit",
+        system: SystemKind::Circuit.label(),
         values: parts.clone(),
         paper: true,
     }];
@@ -74,23 +75,25 @@ pub fn presets() -> serde_json::Value {
         rows.push(PresetRow {
             id: format!("fig3-{panel}"),
             label: format!("paper, Fig. 3 ({panel}): Ω/ω0 = {w}, β = {beta}"),
-            system: "circuit",
+            system: SystemKind::Circuit.label(),
             values,
             paper: true,
         });
     }
     // A mass on a spring with dry friction, ζ = 0.94/(2·√(200·0.5)) = 0.047 as the paper's.
+    let example = Mechanics::example();
     rows.push(PresetRow {
-        id: "mechanics".into(),
-        label: "a mass on a spring with dry friction (m = 0.5 kg, k = 200 N/m, γ = 0.94 N·s/m, \
-                F0 = 1 N)"
-            .into(),
-        system: "mechanics",
+        id: SystemKind::Mechanics.label().into(),
+        label: format!(
+            "a mass on a spring with dry friction (m = {} kg, k = {} N/m, γ = {} N·s/m, F0 = {} N)",
+            example.mass, example.stiffness, example.damping, example.friction
+        ),
+        system: SystemKind::Mechanics.label(),
         values: vec![
-            (api_name(Key::Mass), 0.5),
-            (api_name(Key::Stiffness), 200.0),
-            (api_name(Key::Damping), 0.94),
-            (api_name(Key::Friction), 1.0),
+            (api_name(Key::Mass), example.mass),
+            (api_name(Key::Stiffness), example.stiffness),
+            (api_name(Key::Damping), example.damping),
+            (api_name(Key::Friction), example.friction),
             (api_name(Key::MuS), 1.0),
             (api_name(Key::W), 0.95),
             (api_name(Key::Beta), 2.14),

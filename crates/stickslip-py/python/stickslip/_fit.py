@@ -373,8 +373,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         free: the free parameters: 'resistance', 'ut', 'rd' (PWL), 'diode-is', 'diode-n',
             'diode-rs' (Shockley), 'inductance', 'capacitance', 'mu-s' (underscores are
             accepted); for mechanics 'damping', 'friction', 'mass', 'stiffness', 'mu-s'; a
-            comma-separated string or a sequence [default: ('resistance', 'ut'); mechanics:
-            ('damping', 'friction')].
+            comma-separated string or a sequence [default: the library's free set of the system
+            and diode law: ('resistance', 'ut') with PWL diodes, ('resistance', 'diode-is',
+            'diode-n') with Shockley diodes; mechanics: ('damping', 'friction')].
         model: the diode law, 'pwl' or 'shockley' [default: the experiment's].
         per_record: fit each record alone (how a parameter drifts with the drive): returns a
             list of results, one per record, as ``stickslip fit --per-record --json``.
