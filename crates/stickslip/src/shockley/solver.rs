@@ -1,13 +1,14 @@
 //! The stiff solver of the Shockley model behind the common [`Solver`] trait.
 
+use super::diode::DiodeLaw;
 use super::model::ShockleyModel;
 use super::options::ShockleyOptions;
-use super::radau::{Radau5, Settings, Step};
 use super::stops::{Classifier, Mark};
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{Event, Phase, Sample, Solver, Stats};
+use crate::stiff::{Radau5, Settings, Step};
 use std::collections::VecDeque;
 
 /// Radau IIA (order 5) solver of y'' + 2ζ_R y' + y + D(y') = β cos(w τ + φ), with turns and
@@ -36,7 +37,7 @@ use std::collections::VecDeque;
 pub struct ShockleySolver {
     model: ShockleyModel,
     options: ShockleyOptions,
-    radau: Radau5,
+    radau: Radau5<DiodeLaw>,
     classifier: Classifier,
     /// Integrated steps not yet passed by the reported time, contiguous, in time order.
     steps: VecDeque<Step>,
@@ -97,7 +98,13 @@ impl ShockleySolver {
             max_step: options.max_step,
             initial_step: 1e-4,
         };
-        let radau = Radau5::new(model, 0.0, [initial.y, initial.v], settings);
+        let radau = Radau5::new(
+            model.params,
+            model.law,
+            0.0,
+            [initial.y, initial.v],
+            settings,
+        );
         let min_stop = options.min_stop_fraction * model.params.drive_period();
         let classifier = Classifier::new(initial.v, options.stop_threshold, min_stop);
         let mut solver = Self {
