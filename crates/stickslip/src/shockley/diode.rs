@@ -335,7 +335,11 @@ impl SmoothLaw for DiodeLaw {
         Some(slope - self.resistance)
     }
 
-    /// See [`junction_step`].
+    /// A Newton step `delta` in the junction voltage, returned as the new current. Beyond the
+    /// edge of the range where the diode dominates the stage (junction slope a/√(ε² + V²)
+    /// above `diagonal`), an outward step is cut back to the edge plus a·ln(1 + excess/a), so
+    /// that ε·sinh(u/a) grows at most linearly in the excess instead of exponentially (as
+    /// SPICE limits junction voltages).
     #[inline]
     fn steep_step(&self, v: f64, value: f64, delta: f64, diagonal: f64) -> f64 {
         junction_step(self, v, value, delta, diagonal)

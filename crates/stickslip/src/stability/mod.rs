@@ -71,6 +71,7 @@ pub mod report;
 pub mod saltation;
 pub mod segment;
 pub mod sensitivity;
+pub mod smooth;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
@@ -89,8 +90,9 @@ pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stab
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
 pub use sensitivity::{periodic_orbit_sensitivity, OrbitSample, SENSITIVITY_PARAMETERS};
+pub use smooth::{ShockleyDynamics, ShockleyTangent, SmoothImage, SmoothOrbitSample};
 pub use strobe::{strobe_map, StrobeImage};
-pub use tangent::TangentSolver;
+pub use tangent::{TangentRun, TangentSolver};
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
 
 // What joins a steady state to its stability lives in `crate::steady`, which builds on this

@@ -10,11 +10,15 @@
 //!
 //! - [`law`]: the trait.
 //! - [`radau`]: the integrator, its steps ([`Step`]) and their dense output.
+//! - [`sensitivity`]: forward sensitivities on the integrator's own steps, by the initial
+//!   state (the tangent dynamics) and by the parameters.
 //! - [`cubic`]: the dense output's cubics: range and level crossings.
 
 pub mod cubic;
 pub mod law;
 pub mod radau;
+pub mod sensitivity;
 
 pub use law::{SmoothLaw, MAX_LAW_PARAMETERS};
 pub use radau::{Counters, Radau5, Settings, Step};
+pub use sensitivity::{Columns, Sensitivity, StepDerivative, Track};
