@@ -522,3 +522,154 @@ fn orbit_sample_sensitivities_match_richardson_differences() {
         assert!(samples.iter().all(|s| s.dy[4] == 0.0));
     }
 }
+
+/// The stability tools of an experiment with Shockley diodes: continuation (no grazing, no
+/// μs), a bifurcation diagram and a basin map, each consistent with the orbit found by
+/// Newton's method at the same drive.
+#[test]
+fn the_experiments_tools_take_shockley_diodes() {
+    use stickslip::attractor::AttractorKind;
+    use stickslip::basins::Basins;
+    use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
+    use stickslip::continuation::{continue_orbit_of, settled_orbit, ContinuationOptions};
+    use stickslip::scan::{Axis, ParameterRange, SweepDirection};
+    use stickslip::{DiodePair, Experiment, Parameter};
+
+    let e = Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .unwrap()
+        .with_beta(3.61)
+        .unwrap()
+        .with_w(1.1)
+        .unwrap();
+    let dynamics = e.dynamics().unwrap();
+    assert!(!dynamics.is_exact());
+    // A branch in w: every point a fixed point of the map to its accuracy, its multipliers
+    // the eigenvalues of the map's Jacobian there; no grazing reported.
+    let (params, orbit) = settled_orbit(&e).unwrap();
+    let branch = continue_orbit_of(
+        dynamics.as_ref(),
+        &params,
+        Parameter::W,
+        &orbit,
+        0.9,
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .unwrap();
+    assert!(branch.points.len() > 5, "{}", branch.points.len());
+    assert!(branch
+        .special
+        .iter()
+        .all(|s| s.kind != stickslip::continuation::SpecialKind::Grazing));
+    for p in branch.points.iter().step_by(7) {
+        let at = Parameter::W.set(params, p.value).unwrap();
+        let image = dynamics.strobe_map(&at, p.orbit.state, 1).unwrap();
+        let residual = (image.state.y - p.orbit.state.y)
+            .abs()
+            .max((image.state.v - p.orbit.state.v).abs());
+        let scale = 1f64.max(p.orbit.state.y.abs()).max(p.orbit.state.v.abs())
+            * image.jacobian.max_abs().max(1.0);
+        assert!(
+            residual <= 1e-6 * scale,
+            "{residual} at w = {}: {:?} {:?} {:?}",
+            p.value,
+            p.orbit.state,
+            image.state,
+            p.orbit.residuals
+        );
+        let mu = ShockleyDynamics::multipliers(&image)[0];
+        assert!((mu.modulus() - p.orbit.multipliers[0].modulus()).abs() < 1e-6);
+    }
+    // A bifurcation diagram: periodic at every value, the exponent that of the orbit.
+    let values = vec![0.9, 1.0, 1.1];
+    let diagram = Bifurcation::new(&e, Axis::new(Parameter::W, values).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Up)
+        .options(BifurcationOptions {
+            first_transient_periods: 300,
+            record: stickslip::attractor::RecordOptions {
+                transient_periods: 100,
+                points: 40,
+                ..Default::default()
+            },
+        })
+        .unwrap()
+        .run(&())
+        .unwrap();
+    for step in &diagram {
+        assert_eq!(
+            (step.record.kind, step.record.period),
+            (AttractorKind::Periodic, Some(1))
+        );
+        let at = e.clone().with_w(step.value).unwrap();
+        let orbit = at
+            .periodic_orbit(
+                None,
+                0,
+                &at.steady_options(),
+                &NewtonOptions::default(),
+                &(),
+            )
+            .unwrap();
+        // Over the 100 recorded periods the tangent of a focus (a complex pair) beats about
+        // its mean: the record's exponent lies within its error of the orbit's.
+        assert!(
+            (step.record.exponent - orbit.exponent()).abs()
+                <= 4.0 * step.record.exponent_error + 1e-6 * orbit.exponent().abs(),
+            "{} ± {} vs {}",
+            step.record.exponent,
+            step.record.exponent_error,
+            orbit.exponent()
+        );
+    }
+    // A basin map: one attractor, the periodic orbit, with its multipliers.
+    let range = ParameterRange::new("y0", -2.0, 2.0, 3).unwrap();
+    let map = Basins::new(&e, &range, &range).unwrap().run(&()).unwrap();
+    assert_eq!(map.attractors.len(), 1);
+    let a = &map.attractors[0];
+    assert_eq!(
+        (a.kind, a.period, a.cells),
+        (AttractorKind::Periodic, Some(1), 9)
+    );
+    let orbit = e
+        .periodic_orbit(None, 0, &e.steady_options(), &NewtonOptions::default(), &())
+        .unwrap();
+    let mu = a.multipliers.unwrap()[0];
+    assert!(
+        (mu.modulus() - orbit.multipliers[0].modulus()).abs() < 1e-6,
+        "{mu:?} at {:?} vs {:?} at {:?}",
+        a.state,
+        orbit.multipliers,
+        orbit.state
+    );
+}
+
+/// The multipliers of the computed strobe map against the flow's (Richardson differences of
+/// the map at rtol 1e-12) as the map's tolerance tightens: the Jacobian converges more slowly
+/// than the map (see `ShockleyDynamics::MAP_TOLERANCE`, the tolerance the tools use).
+#[test]
+fn multipliers_converge_with_the_tolerance() {
+    let (params, law) = paper_drive(9.97e3, 1.498);
+    let (_, _, reference) = orbit_at(9.97e3, 1.498, 1e-12);
+    let expected = difference_monodromy(&params, &law, reference.state, 1e-4).eigenvalues()[0];
+    let mut errors = Vec::new();
+    for tolerance in [1e-6, 1e-9, ShockleyDynamics::MAP_TOLERANCE] {
+        let dynamics = ShockleyDynamics::new(law, options(tolerance))
+            .unwrap()
+            .with_map_options(options(tolerance))
+            .unwrap();
+        let orbit = dynamics
+            .find_periodic_orbit(&params, reference.state, 1, &NewtonOptions::default())
+            .unwrap();
+        let mu = orbit.multipliers[0];
+        let error = (mu.re - expected.re).hypot(mu.im - expected.im);
+        eprintln!("rtol {tolerance:e}: μ1 {mu:?}, {error:.2e} from the flow's");
+        errors.push(error);
+    }
+    assert!(
+        errors[0] > 1e-3 && errors[1] < 1e-4 && errors[2] < 1e-5,
+        "{errors:?}"
+    );
+    assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
+}

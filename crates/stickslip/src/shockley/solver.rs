@@ -173,23 +173,52 @@ impl ShockleySolver {
     }
 
     /// The sensitivity ∂x(τ)/∂(y0, v0, p) at the current time τ, when the solver carries
-    /// them ([`ShockleySolver::with_sensitivities`]); `None` without.
+    /// them ([`ShockleySolver::with_sensitivities`]); `None` without. After
+    /// [`ShockleySolver::renormalize_sensitivity`], relative to the renormalised tangent.
     ///
     /// # Errors
     /// [`Error::StepSizeTooSmall`] at a step whose Newton matrix is singular at its converged
     /// stages (which its own convergence rules out in practice).
     pub fn sensitivity(&self) -> Option<Result<Sensitivity>> {
-        Some(self.tracked()?.map(|(s, _)| s))
+        let log_scale = self.track.as_ref()?.log_scale();
+        Some(self.tracked()?.map(|(mut s, _)| {
+            if log_scale != 0.0 {
+                s.scale(log_scale.exp());
+            }
+            s
+        }))
     }
 
     /// ln|det ∂x(τ)/∂x(0)| and its sign at the current time, when the solver carries
     /// sensitivities: the phase-area contraction of the computed flow, kept as a logarithm
-    /// (see [`crate::stiff::Track`]).
+    /// (see [`crate::stiff::Track`]; renormalisations do not change it).
     ///
     /// # Errors
     /// As [`ShockleySolver::sensitivity`].
     pub fn log_det(&self) -> Option<Result<(f64, f64)>> {
         Some(self.tracked()?.map(|(_, d)| d))
+    }
+
+    /// Divide the carried state Jacobian J = ∂x(τ)/∂x(0) by its Frobenius norm at the current
+    /// time and return the logarithm of that norm (the growth of a tangent since the last
+    /// renormalisation, for Lyapunov exponents); `None` without sensitivities.
+    ///
+    /// # Errors
+    /// As [`ShockleySolver::sensitivity`].
+    pub fn renormalize_sensitivity(&mut self) -> Option<Result<f64>> {
+        let now = match self.tracked()? {
+            Ok((s, _)) => s,
+            Err(e) => return Some(Err(e)),
+        };
+        let norm = now
+            .state()
+            .iter()
+            .flatten()
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
+        let track = self.track.as_mut()?;
+        Some(Ok(track.renormalize(norm)))
     }
 
     fn tracked(&self) -> Option<Result<(Sensitivity, (f64, f64))>> {
@@ -200,14 +229,6 @@ impl ShockleySolver {
                 .at(&step, &self.model.params, &self.model.law, theta)
                 .ok_or(singular(&step)),
         })
-    }
-
-    /// Scale the carried sensitivity by `factor` (renormalising a tangent); ln|det| moves by
-    /// 2 ln|factor|. Nothing without sensitivities.
-    pub fn scale_sensitivity(&mut self, factor: f64) {
-        if let Some(track) = self.track.as_mut() {
-            track.scale(factor);
-        }
     }
 
     /// The step the current time lies in, and where (θ), as the state was computed.

@@ -62,6 +62,7 @@
 //! [`steady_exponent`] gives the largest exponent of any steady motion (maps of it:
 //! [`crate::scan::Grid::lyapunov`]).
 
+pub mod dynamics;
 pub(crate) mod error;
 pub mod lyapunov;
 mod matrix;
@@ -77,6 +78,7 @@ pub mod tangent;
 pub mod two_trajectory;
 pub(crate) mod verdict;
 
+pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
@@ -84,7 +86,8 @@ pub use lyapunov::{
 };
 pub use matrix::{Matrix2, Multiplier};
 pub use nonperiodic::{
-    classify_nonperiodic, strobe_period, NonperiodicClassification, NonperiodicVerdict,
+    classify_nonperiodic, strobe_period, strobe_period_of, NonperiodicClassification,
+    NonperiodicVerdict,
 };
 pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stability, Stop};
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};

@@ -40,7 +40,7 @@ use super::strobe::StrobeImage;
 use super::tangent::TangentRun;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
-use crate::params::{Params, State};
+use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
 use crate::shockley::{DiodeLaw, ShockleyModel, ShockleyOptions, ShockleySolver};
 use crate::solver::{run_until, Event, EventKind, Phase, Solver};
@@ -52,7 +52,12 @@ use std::f64::consts::TAU;
 #[derive(Debug, Clone)]
 pub struct ShockleyDynamics {
     law: DiodeLaw,
+    /// The options of trajectories (the experiment's): transients, tangent dynamics, the
+    /// samples of an orbit for fitting.
     options: ShockleyOptions,
+    /// The options of the strobe map that Newton's method solves and whose Jacobian gives
+    /// the Floquet multipliers ([`ShockleyDynamics::MAP_TOLERANCE`]).
+    map: ShockleyOptions,
     cancel: Cancel,
 }
 
@@ -101,16 +106,43 @@ fn multipliers(m: &Matrix2, det: f64) -> [Multiplier; 2] {
 }
 
 impl ShockleyDynamics {
-    /// The stability tools of the Shockley model with `law`, integrated with `options`.
+    /// The relative and absolute tolerance of the strobe map that Newton's method solves and
+    /// differentiates (or the trajectories' own, when tighter). The Jacobian of the computed
+    /// map converges more slowly with the tolerance than the map itself: through a turn the
+    /// diode's slope peaks at a/ε over a time of the order of ε/|y''|, which loose steps do not
+    /// resolve. At the paper's 9.97 kHz and 1.498 V the first multiplier of the map at
+    /// rtol = atol = 10⁻⁶ is 3.4·10⁻³ from the flow's, at 10⁻⁹ 6·10⁻⁶, and at this tolerance
+    /// 1.4·10⁻⁷ (test `multipliers_converge_with_the_tolerance`, against Richardson
+    /// differences of the map at 10⁻¹²).
+    pub const MAP_TOLERANCE: f64 = 1e-10;
+
+    /// The stability tools of the Shockley model with `law`: trajectories integrated with
+    /// `options`, the strobe map of Newton's method at [`ShockleyDynamics::MAP_TOLERANCE`]
+    /// (or `options`' tolerances, when tighter).
     ///
     /// # Errors
     /// When the law or the options are invalid.
     pub fn new(law: DiodeLaw, options: ShockleyOptions) -> Result<Self> {
+        let options = options.validate()?;
+        let map = options
+            .with_rtol(options.rtol.min(Self::MAP_TOLERANCE))?
+            .with_atol(options.atol.min(Self::MAP_TOLERANCE))?;
         Ok(Self {
             law: SmoothLaw::validate(&law)?,
-            options: options.validate()?,
+            options,
+            map,
             cancel: Cancel::never(),
         })
+    }
+
+    /// The same with the strobe map of Newton's method integrated with `map` instead (for
+    /// studies of its accuracy).
+    ///
+    /// # Errors
+    /// When the options are invalid.
+    pub fn with_map_options(mut self, map: ShockleyOptions) -> Result<Self> {
+        self.map = map.validate()?;
+        Ok(self)
     }
 
     /// The same, its solvers checking `cancel`.
@@ -124,9 +156,15 @@ impl ShockleyDynamics {
         &self.law
     }
 
-    /// The stiff solver's options.
+    /// The stiff solver's options for trajectories.
     pub fn options(&self) -> &ShockleyOptions {
         &self.options
+    }
+
+    /// The stiff solver's options for the strobe map of Newton's method (see
+    /// [`ShockleyDynamics::MAP_TOLERANCE`]).
+    pub fn map_options(&self) -> &ShockleyOptions {
+        &self.map
     }
 
     /// The model at `params` (ζ is ζ_R).
@@ -137,7 +175,22 @@ impl ShockleyDynamics {
         ShockleyModel::new(*params, self.law)
     }
 
-    /// A solver from `state` at τ = 0, carrying the sensitivities of `columns`.
+    /// A solver from `state` at τ = 0 without sensitivities (as the experiment's factory
+    /// builds).
+    ///
+    /// # Errors
+    /// Invalid parameters or state; what the solver reports.
+    pub fn plain_solver(&self, params: &Params, state: State) -> Result<ShockleySolver> {
+        ShockleySolver::with_cancel(
+            self.model(params)?,
+            state,
+            self.options,
+            self.cancel.clone(),
+        )
+    }
+
+    /// A solver from `state` at τ = 0 with the trajectories' options, carrying the
+    /// sensitivities of `columns`.
     ///
     /// # Errors
     /// Invalid parameters or state; what the solver reports.
@@ -147,17 +200,28 @@ impl ShockleyDynamics {
         state: State,
         columns: Columns,
     ) -> Result<ShockleySolver> {
+        self.carrying(params, state, columns, self.options)
+    }
+
+    fn carrying(
+        &self,
+        params: &Params,
+        state: State,
+        columns: Columns,
+        options: ShockleyOptions,
+    ) -> Result<ShockleySolver> {
         ShockleySolver::with_sensitivities(
             self.model(params)?,
             state,
-            self.options,
+            options,
             self.cancel.clone(),
             columns,
         )
     }
 
     /// The image of `state` (at a strobe, drive phase φ) under the p-fold strobe map with its
-    /// sensitivities (see the module documentation).
+    /// sensitivities (see the module documentation), integrated with the map's options
+    /// ([`ShockleyDynamics::map_options`]).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for invalid parameters, state or p = 0; what the solver
@@ -176,7 +240,7 @@ impl ShockleyDynamics {
                 allowed: "must be at least 1",
             });
         }
-        let mut solver = self.solver(params, state, columns)?;
+        let mut solver = self.carrying(params, state, columns, self.map)?;
         let stuck_at_start = solver.phase() == Phase::Stick;
         let end = periods as f64 * params.drive_period();
         let mut events: Vec<Event> = Vec::with_capacity(8);
@@ -209,6 +273,43 @@ impl ShockleyDynamics {
         Ok(self
             .strobe_image(params, state, periods, Columns::State)?
             .image)
+    }
+
+    /// ∂P^p/∂λ at `state` for λ = ζ, w or β (for w with the strobe time pT = 2πp/w moving:
+    /// ẋ(pT)·d(pT)/dw added), from one run with the sensitivities.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for μs, which the Shockley law does not use; as
+    /// [`ShockleyDynamics::strobe_image`].
+    pub fn strobe_parameter_derivative(
+        &self,
+        params: &Params,
+        state: State,
+        periods: usize,
+        parameter: Parameter,
+    ) -> Result<[f64; 2]> {
+        // Columns: y0, v0, ζ, β, w, φ, ...
+        let column = match parameter {
+            Parameter::Zeta => 2,
+            Parameter::Beta => 3,
+            Parameter::W => 4,
+            Parameter::MuS => {
+                return Err(Error::InvalidParameter {
+                    name: "mu_s",
+                    value: params.mu_s,
+                    allowed: "is no parameter of the Shockley law (a smooth diode has no static \
+                              threshold): take w, beta or zeta",
+                })
+            }
+        };
+        let image = self.strobe_image(params, state, periods, Columns::Parameters)?;
+        let mut d = image.sensitivity.column(column);
+        if parameter == Parameter::W {
+            let moving = -TAU * periods as f64 / (params.w * params.w);
+            d[0] += image.field[0] * moving;
+            d[1] += image.field[1] * moving;
+        }
+        Ok(d)
     }
 
     /// The Floquet multipliers of the monodromy matrix of an image at a fixed point (see the
@@ -264,7 +365,7 @@ impl ShockleyDynamics {
                 * image.jacobian.max_abs().max(1.0)
         };
         // The map's own accuracy: its jumps where the solver's decisions change.
-        let rtol = self.options.rtol;
+        let rtol = self.map.rtol;
         let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
             norm <= rtol / options.tolerance * limit(x, image)
         };
@@ -347,7 +448,9 @@ impl ShockleyDynamics {
     /// derivatives of y by the parameters (see the module documentation): the same shape as
     /// [`crate::stability::periodic_orbit_sensitivity`] gives for the PWL model, with the
     /// law's own parameters beside. The samples are those of a solver started at
-    /// `fixed_point` (as [`crate::Experiment::factory`]'s), to the bit.
+    /// `fixed_point` with the trajectories' options (as [`crate::Experiment::factory`]'s),
+    /// to the bit, and so are the monodromy and ∂P/∂p of the fixed-point correction: the
+    /// derivatives of the computed samples.
     ///
     /// The fixed point is taken as given: a state that repeats to a tolerance ε gives the
     /// derivatives of the orbit it approximates to about ε relative.
@@ -456,15 +559,20 @@ impl ShockleyDynamics {
 }
 
 impl ShockleyDynamics {
-    /// The tangent dynamics of the motion from `initial` at τ = 0 ([`ShockleyTangent`]).
+    /// The tangent dynamics of the motion from `initial` at τ = 0 ([`ShockleyTangent`]),
+    /// integrated with the map's options ([`ShockleyDynamics::map_options`]: a tangent
+    /// carried through the turns at loose tolerances is as far off as the map's Jacobian; at
+    /// rtol 10⁻⁶ the exponent of the paper's circuit at w = 0.9, β = 3.61 came out 3 % from
+    /// its orbit's over 100 periods).
     ///
     /// # Errors
     /// Invalid parameters or state; what the solver reports.
     pub fn tangent(&self, params: &Params, initial: State) -> Result<ShockleyTangent> {
-        Ok(ShockleyTangent::new(self.solver(
+        Ok(ShockleyTangent::new(self.carrying(
             params,
             initial,
             Columns::State,
+            self.map,
         )?))
     }
 
@@ -502,9 +610,7 @@ pub struct ShockleyTangent {
     solver: ShockleySolver,
     /// The absolute time the clock counts from.
     origin: f64,
-    /// ln|det| taken out by renormalisations (2 ln(1/‖J‖) each), and ln|det J| at the last
-    /// reset of it.
-    removed: f64,
+    /// ln|det J| at the last reset of it.
     at_reset: f64,
     /// Stops (stick events) since the last reset of ln|det J|.
     stops: u64,
@@ -519,7 +625,6 @@ impl ShockleyTangent {
         Self {
             solver,
             origin: 0.0,
-            removed: 0.0,
             at_reset: 0.0,
             stops,
             failed: None,
@@ -542,7 +647,7 @@ impl ShockleyTangent {
     }
 
     fn total_log_det(&self) -> Result<f64> {
-        Ok(self.solver.log_det().expect("carried")?.0 - self.removed)
+        Ok(self.solver.log_det().expect("carried")?.0)
     }
 }
 
@@ -567,13 +672,8 @@ impl TangentRun for ShockleyTangent {
     }
 
     fn renormalize(&mut self) -> f64 {
-        match self.jacobian() {
-            Ok(j) => {
-                let norm = j.norm();
-                self.solver.scale_sensitivity(1.0 / norm);
-                self.removed += 2.0 * (1.0 / norm).ln();
-                norm.ln()
-            }
+        match self.solver.renormalize_sensitivity().expect("carried") {
+            Ok(growth) => growth,
             Err(e) => {
                 self.failed = Some(e);
                 f64::NAN
@@ -597,8 +697,7 @@ impl TangentRun for ShockleyTangent {
     }
 
     fn log_det(&self) -> Option<f64> {
-        let total = self.solver.log_det()?.ok()?.0 - self.removed;
-        Some(total - self.at_reset)
+        Some(self.total_log_det().ok()? - self.at_reset)
     }
 
     fn stops(&self) -> u64 {

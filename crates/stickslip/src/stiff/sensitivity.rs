@@ -323,14 +323,23 @@ fn log_det(m: [[f64; 2]; 2]) -> (f64, f64) {
     (det.abs().ln(), det.signum())
 }
 
+/// Outside [SCALE_BELOW, SCALE_ABOVE] the entries of a tracked state block are rescaled
+/// into [`Track`]'s logarithmic factor, so that long runs neither overflow nor underflow.
+const SCALE_BELOW: f64 = 1e-100;
+const SCALE_ABOVE: f64 = 1e100;
+
 /// The sensitivity carried along a run, step by step: it stands at the start of the step the
-/// run is in (where the last step passed ended), with ln|det| of its state block kept apart
-/// (the determinant of the product of the steps' state blocks, which the entries of the
-/// product lose where a steep law damps the velocity).
+/// run is in (where the last step passed ended). Its entries are kept within 10^±100 by a
+/// factor e^s taken out into a logarithm (a tangent over thousands of drive periods of a
+/// contracting orbit would underflow), and ln|det| of its state block is kept apart: the
+/// determinant of the product of the steps' state blocks, which the entries of the product
+/// lose where a steep law damps the velocity.
 #[derive(Debug, Clone)]
 pub struct Track {
+    /// The sensitivity divided by e^`log_scale`.
     base: Sensitivity,
-    /// ln|det| and sign of the state block at `base` (scaling by `factor` adds 2 ln|factor|).
+    log_scale: f64,
+    /// ln|det| and sign of the state block of the sensitivity at `base` (with the factor).
     log_det: f64,
     sign: f64,
 }
@@ -340,6 +349,7 @@ impl Track {
     pub fn new(columns: usize) -> Self {
         Self {
             base: Sensitivity::identity(columns),
+            log_scale: 0.0,
             log_det: 0.0,
             sign: 1.0,
         }
@@ -350,14 +360,20 @@ impl Track {
         self.base.columns
     }
 
-    /// The sensitivity where the track stands (the start of the current step), with ln|det|
-    /// and the sign of its state block.
+    /// ln of the factor e^s the entries are divided by (0 until they leave 10^±100).
+    pub fn log_scale(&self) -> f64 {
+        self.log_scale
+    }
+
+    /// The sensitivity where the track stands (the start of the current step), divided by
+    /// e^[`Track::log_scale`], with ln|det| and the sign of its state block.
     pub fn base(&self) -> (Sensitivity, (f64, f64)) {
         (self.base, (self.log_det, self.sign))
     }
 
-    /// The sensitivity at θ of `step`, the step the track stands at the start of, with ln|det|
-    /// and the sign of its state block; `None` when the step's Newton matrix is singular.
+    /// The sensitivity at θ of `step`, the step the track stands at the start of (divided by
+    /// e^[`Track::log_scale`]), with ln|det| and the sign of its state block; `None` when the
+    /// step's Newton matrix is singular.
     pub fn at<L: SmoothLaw>(
         &self,
         step: &Step,
@@ -383,13 +399,23 @@ impl Track {
         self.base = base;
         self.log_det = log_det;
         self.sign = sign;
+        let state = base.state();
+        let size = state.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        if !(SCALE_BELOW..=SCALE_ABOVE).contains(&size) && size > 0.0 && size.is_finite() {
+            self.base.scale(1.0 / size);
+            self.log_scale += size.ln();
+        }
         Some(())
     }
 
-    /// Scale the sensitivity by `factor` (a renormalisation of the tangent); ln|det| of its
-    /// state block moves by 2 ln|factor|.
-    pub fn scale(&mut self, factor: f64) {
-        self.base.scale(factor);
-        self.log_det += 2.0 * factor.abs().ln();
+    /// Divide the sensitivity by `factor` and fold the factor e^s out of its entries in with
+    /// it: the sensitivity becomes S/(`factor`·e^s) relative to the true one, and
+    /// ln(`factor`) + s is returned (a renormalisation of a tangent: the growth since the
+    /// last). ln|det| is kept (it is the flow's).
+    pub fn renormalize(&mut self, factor: f64) -> f64 {
+        self.base.scale(1.0 / factor);
+        let growth = factor.ln() + self.log_scale;
+        self.log_scale = 0.0;
+        growth
     }
 }
