@@ -15,7 +15,9 @@ use pyo3::types::PyDict;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
-use stickslip::continuation::{continue_orbit, settled_orbit, BranchReport, ContinuationOptions};
+use stickslip::continuation::{
+    continue_orbit_of, settled_orbit, BranchReport, ContinuationOptions,
+};
 use stickslip::options::OptionKey;
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 
@@ -236,9 +238,19 @@ pub fn continuation<'py>(
     .with_max_step(max_step)
     .validate()
     .map_err(error)?;
+    stickslip::continuation::check_parameter(&e, parameter).map_err(error)?;
     let (branch, start_orbit) = run(py, progress.as_ref(), |monitor| {
         let (params, orbit) = settled_orbit(&e)?;
-        let branch = continue_orbit(&params, parameter, &orbit, to, &options, monitor)?;
+        let dynamics = e.dynamics()?;
+        let branch = continue_orbit_of(
+            dynamics.as_ref(),
+            &params,
+            parameter,
+            &orbit,
+            to,
+            &options,
+            monitor,
+        )?;
         Ok((branch, orbit))
     })?;
     let out = PyDict::new(py);
