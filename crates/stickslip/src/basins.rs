@@ -58,21 +58,21 @@
 //! ```
 
 use crate::attractor::{
-    distance, record_strobes, scale_of, strobe_sets_overlap as overlaps, AttractorKind,
+    distance, record_strobes_of, scale_of, strobe_sets_overlap as overlaps, AttractorKind,
     RecordOptions,
 };
 use crate::checkpoint::{UnitReader, UnitWriter};
-use crate::error::{invalid, Error, Result, Unsupported};
-use crate::exact::ExactSolver;
-use crate::experiment::{DiodeModel, Experiment};
+use crate::error::{invalid, Error, Result};
+use crate::experiment::Experiment;
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::scan::{Monitor, ParameterRange};
-use crate::solver::{run_until, Solver};
-use crate::stability::{find_periodic_orbit, Multiplier, NewtonOptions};
+use crate::solver::run_until;
+use crate::stability::{Dynamics, Multiplier, NewtonOptions};
 use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
+use std::sync::Arc;
 
 mod recurrence;
 pub use recurrence::{Recurrence, RecurrenceRow};
@@ -364,6 +364,8 @@ impl BasinMap {
 #[derive(Debug, Clone)]
 pub struct Basins {
     params: Params,
+    /// The model of the experiment's law.
+    dynamics: Arc<dyn Dynamics>,
     y0: Vec<f64>,
     v0: Vec<f64>,
     options: BasinOptions,
@@ -374,14 +376,15 @@ impl Basins {
     /// The map of `experiment` (its parameters, drive phase φ included) over the initial
     /// positions `y0` and velocities `v0`.
     ///
+    /// With Shockley diodes every cell is run on the stiff solver, and strobe states repeat,
+    /// and fixed points match, within the solver's accuracy
+    /// ([`Dynamics::repeat_tolerance`] of [`BasinOptions::tolerance`] and
+    /// [`BasinOptions::match_tolerance`]).
+    ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value;
-    /// [`Error::InvalidParameter`] for more than [`crate::limits::MAX_BASIN_STEPS`] values
-    /// along an axis.
+    /// A missing drive value; [`Error::InvalidParameter`] for more than
+    /// [`crate::limits::MAX_BASIN_STEPS`] values along an axis.
     pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
-        if experiment.diode_model() != DiodeModel::Pwl {
-            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
-        }
         for range in [y0, v0] {
             if range.steps() > crate::limits::MAX_BASIN_STEPS {
                 return Err(Error::InvalidParameter {
@@ -393,6 +396,7 @@ impl Basins {
         }
         Ok(Self {
             params: experiment.params()?,
+            dynamics: Arc::from(experiment.dynamics()?),
             y0: y0.values(),
             v0: v0.values(),
             options: BasinOptions::default(),
@@ -413,15 +417,10 @@ impl Basins {
     /// (the map is the same for any number).
     ///
     /// # Errors
-    /// When `threads` is 0.
+    /// [`crate::Error::InvalidOption`] naming [`crate::options::OptionKey::Threads`] outside
+    /// its row's range (1 to 1024).
     pub fn threads(mut self, threads: usize) -> Result<Self> {
-        if threads == 0 {
-            return Err(Error::InvalidParameter {
-                name: "threads",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
+        crate::options::OptionKey::Threads.check_count(threads)?;
         self.threads = Some(threads);
         Ok(self)
     }
@@ -434,6 +433,17 @@ impl Basins {
     /// The options used.
     pub fn basin_options(&self) -> &BasinOptions {
         &self.options
+    }
+
+    /// The model of the experiment's law.
+    pub(crate) fn dynamics(&self) -> &dyn Dynamics {
+        self.dynamics.as_ref()
+    }
+
+    /// The distance within which two fixed points are one orbit:
+    /// [`BasinOptions::match_tolerance`], at least the accuracy of the model's map.
+    pub(crate) fn match_tolerance(&self) -> f64 {
+        self.dynamics.repeat_tolerance(self.options.match_tolerance)
     }
 
     /// Rows (initial positions) and columns (initial velocities).
@@ -456,12 +466,21 @@ impl Basins {
     /// method's verdict).
     fn cell_from(&self, start: State) -> Result<Cell> {
         let options = self.options;
-        let steady = steady_state_from(
-            &exact_solver,
-            &self.params,
-            start,
-            &options.steady_options()?,
-        )?;
+        let steady = if self.dynamics.is_exact() {
+            steady_state_from(
+                &exact_solver,
+                &self.params,
+                start,
+                &options.steady_options()?,
+            )?
+        } else {
+            let dynamics = self.dynamics.as_ref();
+            let factory = |p: Params, s: State| dynamics.solver(&p, s);
+            let steady_options = options
+                .steady_options()?
+                .with_tolerance(dynamics.repeat_tolerance(options.tolerance))?;
+            steady_state_from(&factory, &self.params, start, &steady_options)?
+        };
         let mut periods = steady.periods_to_settle + steady.recorded_periods;
         if let Some(period) = steady.period {
             let at = steady.strobes[0];
@@ -476,7 +495,8 @@ impl Basins {
             }
             return self.periodic_cell(at, period, periods);
         }
-        let record = record_strobes(
+        let record = record_strobes_of(
+            self.dynamics.as_ref(),
             &self.params,
             steady.final_state(),
             &RecordOptions {
@@ -514,16 +534,20 @@ impl Basins {
     /// its p strobe points (the points as simulated when Newton's method fails).
     fn periodic_cell(&self, at: State, period: usize, periods: usize) -> Result<Cell> {
         let drive_period = self.params.drive_period();
-        let (start, exponent) =
-            match find_periodic_orbit(&self.params, at, period, &NewtonOptions::default()) {
-                Ok(orbit) => (orbit.state, orbit.exponent()),
-                Err(Error::Stability(_)) => (at, f64::NAN),
-                Err(e) => return Err(e),
-            };
-        let mut solver = ExactSolver::new(self.params, start);
+        let (start, exponent) = match self.dynamics.find_periodic_orbit(
+            &self.params,
+            at,
+            period,
+            &NewtonOptions::default(),
+        ) {
+            Ok(orbit) => (orbit.state, orbit.exponent()),
+            Err(Error::Stability(_)) => (at, f64::NAN),
+            Err(e) => return Err(e),
+        };
+        let mut solver = self.dynamics.solver(&self.params, start)?;
         let mut strobes = vec![start];
         for k in 1..period {
-            run_until(&mut solver, k as f64 * drive_period, |_| {})?;
+            run_until(solver.as_mut(), k as f64 * drive_period, |_| {})?;
             strobes.push(solver.state());
         }
         Ok(Cell {
@@ -599,7 +623,7 @@ impl Basins {
         }
         let mut attractors: Vec<Attractor> = Vec::new();
         let mut assigned = Vec::with_capacity(cells.len());
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         for (k, cell) in cells.iter().enumerate() {
             let found = match cell.kind {
                 AttractorKind::Undecided => {
@@ -674,10 +698,11 @@ impl Basins {
             a.fraction = a.cells as f64 / total;
             if a.kind == AttractorKind::Periodic {
                 let period = a.period.expect("periodic");
-                a.multipliers =
-                    find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
-                        .ok()
-                        .map(|o| o.multipliers);
+                a.multipliers = self
+                    .dynamics
+                    .find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
+                    .ok()
+                    .map(|o| o.multipliers);
             }
         }
         self.pair_mirrors(&mut attractors)?;
@@ -702,7 +727,7 @@ impl Basins {
     /// symmetric set) is its own image.
     fn pair_mirrors(&self, attractors: &mut [Attractor]) -> Result<()> {
         let half = 0.5 * self.params.drive_period();
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         let mut mirrors = Vec::with_capacity(attractors.len());
         for a in attractors.iter() {
             if a.kind == AttractorKind::Static {
@@ -711,8 +736,8 @@ impl Basins {
             }
             let mut images = Vec::with_capacity(a.strobes.len());
             for &s in &a.strobes {
-                let mut solver = ExactSolver::new(self.params, s);
-                run_until(&mut solver, half, |_| {})?;
+                let mut solver = self.dynamics.solver(&self.params, s)?;
+                run_until(solver.as_mut(), half, |_| {})?;
                 let x = solver.state();
                 images.push(State { y: -x.y, v: -x.v });
             }

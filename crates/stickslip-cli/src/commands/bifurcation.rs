@@ -32,6 +32,10 @@ use stickslip::{OptionKey, Parameter};
 /// continuation on top (stable solid, unstable dashed, with folds, period doublings and
 /// grazings marked) and the exponent below.
 ///
+/// With --model shockley the points and the exponent are the stiff solver's (its tangent
+/// dynamics: the variational equations on its own steps), and points repeat within its
+/// rtol; μs is no parameter of the diode law.
+///
 /// Example: stickslip bifurcation --zeta 0 --mu-s 3 --beta 9 --over w --from 0.2 --to 0.55 \
 ///          --steps 500 --out bif.csv --plot bif.png
 #[derive(Debug, clap::Args)]
@@ -58,9 +62,9 @@ pub struct Args {
     points: i64,
     #[arg(long, help = help(OptionKey::BifurcationTransient), default_value_t = int(OptionKey::BifurcationTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(long = "first-transient", help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::FirstTransient.flag(), help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
     first_transient: i64,
-    #[arg(long = "max-period", help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BifurcationMaxPeriod.flag(), help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -69,7 +73,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// Do not continue the periodic orbits for the plot (faster).
-    #[arg(long = "no-branches")]
+    #[arg(long)]
     no_branches: bool,
 }
 
