@@ -156,7 +156,7 @@ def test_lyapunov_verdicts_and_errors(cli):
     orbit = stickslip.orbit(Experiment.paper(diode="shockley", w=0.7, beta=1.2))
     assert (shockley.motion_class, shockley.period) == ("periodic", 1)
     assert math.isclose(shockley.lambda1, orbit.lambda1, rel_tol=1e-6)
-    assert math.isfinite(shockley.lambda2_per_tau) and shockley.lambda2_reason is None
+    assert math.isfinite(shockley.lambda2) and shockley.lambda2_reason is None
 
 
 def test_lyapunov_reports_progress_in_drive_periods():
