@@ -135,7 +135,7 @@ def test_basins_phase_steps_xarray_and_errors(cli):
     assert shockley.to_dict() == cli.json(
         "basins", "--preset", "paper", "--model", "shockley", "--w", 0.9, "--beta", 1.6,
         "--y0-min", -1, "--y0-max", 1, "--v0-min", -1, "--v0-max", 1, "--steps", 3)
-    assert [a["kind"] for a in shockley.attractors] == ["periodic"]
+    assert [a["class"] for a in shockley.attractors] == ["periodic"]
 
 
 def test_basins_method_is_the_tools_method(cli, tmp_path):
@@ -215,7 +215,7 @@ def test_shockley_continuation_and_bifurcation_are_the_tools(cli, tmp_path):
     d = stickslip.bifurcation(shockley, "w", [1.0, 1.1], points=20, transient=100)
     rows = d.rows()
     assert_same(rows["y"], numbers(table["y"]), "y")
-    assert_same(rows["lambda"], numbers(table["lambda"]), "lambda")
+    assert_same(rows["lambda1"], numbers(table["lambda1"]), "lambda1")
     assert list(rows["class"]) == table["class"] == ["periodic"] * 80
 
 
