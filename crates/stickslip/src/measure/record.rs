@@ -25,7 +25,8 @@ pub enum ScopeFormat {
     /// ([`Record::merge`]), e.g. a Tektronix file per channel.
     Merged,
     /// A CSV file with a header row whose time column is named `t`, `time`, `time_s`,
-    /// `time (s)`, `second` or `seconds`; every other column is a channel in volts.
+    /// `time (s)`, `second` or `seconds` (or in ms, µs or ns: `time (µs)`, `t_ms`); every other
+    /// column is a channel in volts.
     Plain,
 }
 
