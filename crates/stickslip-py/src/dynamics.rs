@@ -236,11 +236,26 @@ pub fn continuation<'py>(
     .with_max_step(max_step)
     .validate()
     .map_err(error)?;
-    let (branch, start_orbit) = run(py, progress.as_ref(), |monitor| {
+    let computed = run(py, progress.as_ref(), |monitor| {
         let (params, orbit) = settled_orbit(&e)?;
+        if orbit.events.is_empty() {
+            return Ok(None);
+        }
         let branch = continue_orbit(&params, parameter, &orbit, to, &options, monitor)?;
-        Ok((branch, orbit))
+        Ok(Some((branch, orbit)))
     })?;
+    // As the command-line tool says it: rest is no branch, and what to do instead.
+    let Some((branch, start_orbit)) = computed else {
+        let initial = e.initial();
+        return Err(PyValueError::new_err(format!(
+            "from y0 = {}, v0 = {} the motion comes to rest at {} = {start}: nothing to \
+             continue; start from a moving state (experiment.replace(y0=..., v0=...)) or at \
+             another start",
+            initial.y,
+            initial.v,
+            parameter.label()
+        )));
+    };
     let out = PyDict::new(py);
     out.set_item("report", json_value(py, &BranchReport::from(&branch))?)?;
     let points = &branch.points;

@@ -198,7 +198,8 @@ def test_a_tiny_max_step_does_not_stall_on_a_stable_orbit():
 def test_continuation_errors():
     e = Experiment.paper(mu_s=1.5, w=0.9)
     # From rest below β = μs nothing moves: no orbit to continue.
-    with pytest.raises(ValueError, match="start orbit is rest"):
+    with pytest.raises(ValueError, match=r"comes to rest at beta = 1\.2: nothing to continue; "
+                                         r"start from a moving state"):
         stickslip.continuation(e, "beta", start=1.2, to=1.4)
     moving = e.replace(y0=0.25, v0=2.1)
     with pytest.raises(ValueError, match=r"^invalid to = 1.45: must differ from the start value$"):

@@ -93,6 +93,44 @@ drift: List[stickslip.FitResult] = stickslip.fit(exp, data=[rec, "b.csv"], per_r
 from_table: stickslip.FitResult = stickslip.fit(exp, data=[table], model="pwl")
 '''
 
+# A plain script on a map of exponents: with lyapunov=True its arrays are arrays, not
+# Optional (the overloads of phase_diagram); without, they are None.
+EXPONENT_MAP = '''
+import numpy as np
+import numpy.typing as npt
+
+import stickslip
+import stickslip.dask
+
+exp = stickslip.Experiment(zeta=0, mu_s=3)
+m = stickslip.phase_diagram(exp, lyapunov=True, w=np.linspace(0.2, 0.6, 3), beta=[9.0])
+largest: float = float(np.nanmax(m.lyapunov))
+first = m.lyapunov[0, 0] - m.lyapunov_error[0, 0]
+errors: npt.NDArray[np.float64] = m.lambda_error
+chaotic = m.lyapunov[m.motion == 4]
+mean: float = float(m.lyapunov.mean()) + float(np.sum(m.lyapunov_error > 0))
+d = stickslip.dask.phase_diagram(exp, lyapunov=True, w=[0.33], beta=[9.0])
+on_dask: float = float(d.lyapunov.max())
+plain = stickslip.phase_diagram(exp, w=[0.33], beta=[9.0])
+nothing: None = plain.lyapunov
+flag = bool(len(m.dims))
+either = stickslip.phase_diagram(exp, lyapunov=flag, w=[0.33], beta=[9.0])
+if either.lyapunov is not None:
+    maybe: float = float(either.lyapunov.max())
+back = stickslip.PhaseDiagram.from_xarray(m.to_xarray())
+bar = stickslip.phase_diagram(exp, progress=True, w=[0.33], beta=[9.0])
+'''
+
+
+def test_a_map_of_exponents_type_checks_strictly(tmp_path):
+    """mypy --strict finds nothing in a plain script that reads a map's exponents (before the
+    overloads it found 8 errors: the arrays were typed Optional with lyapunov=True too)."""
+    (tmp_path / "exponents.py").write_text(EXPONENT_MAP)
+    done = run("mypy", "--strict", "--cache-dir", str(TARGET / "mypy-cache"),
+               "--no-error-summary", "--show-error-codes", "exponents.py", cwd=tmp_path)
+    assert done.returncode == 0 and not done.stdout.strip(), done.stdout + done.stderr
+
+
 def code_blocks(markdown: pathlib.Path) -> List[str]:
     """The ```python blocks of a Markdown file."""
     return re.findall(r"```python\n(.*?)```", markdown.read_text(), flags=re.S)

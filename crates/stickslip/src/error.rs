@@ -172,6 +172,17 @@ pub enum Error {
         /// What is wrong with the text.
         error: NumberError,
     },
+    /// Text that is none of the names a key takes (the diode law, the preset:
+    /// [`crate::experiment::Key::choices`]).
+    #[error("invalid {key} '{text}': one of {}", allowed.join(", "))]
+    InvalidName {
+        /// The key the text was given for.
+        key: Key,
+        /// The text given (control characters escaped, at most 40 characters).
+        text: String,
+        /// The names the key takes.
+        allowed: Vec<&'static str>,
+    },
     /// What was asked for does not apply to this model.
     #[error("{0}")]
     Unsupported(Unsupported),

@@ -86,7 +86,9 @@ pub use exact::ExactSolver;
 pub use experiment::{DiodeModel, Experiment, ExperimentSpec};
 pub use options::{OptionKey, Spelling};
 pub use params::{Parameter, Params, State};
-pub use physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
+pub use physical::{
+    Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System, SystemKind,
+};
 pub use shockley::{DiodePair, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Hints, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};

@@ -15,6 +15,7 @@ use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::params::Parameter;
+use crate::physical::SystemKind;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
 use crate::steady::MotionClass;
 use crate::theory::curves::{CurveKind, Theory};
@@ -33,14 +34,9 @@ pub struct NameError {
 
 impl NameError {
     fn new(what: &'static str, text: &str, allowed: impl Iterator<Item = &'static str>) -> Self {
-        let shown = crate::units::shown(text);
-        let mut clipped: String = shown.chars().take(40).collect();
-        if shown.chars().count() > 40 {
-            clipped.push('…');
-        }
         Self {
             what,
-            text: clipped,
+            text: crate::units::shown(text),
             allowed: allowed.collect(),
         }
     }
@@ -73,6 +69,7 @@ macro_rules! names {
 
 names!(DiodeModel, "diode law", display);
 names!(Preset, "preset", display);
+names!(SystemKind, "system", display);
 names!(SweepDirection, "sweep direction", display);
 names!(SweepLeg, "sweep leg", display);
 names!(MotionClass, "motion class", display);

@@ -47,16 +47,16 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// Smallest initial position y0.
-    #[arg(long = "y0-min", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     y0_min: f64,
     /// Largest initial position y0.
-    #[arg(long = "y0-max", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     y0_max: f64,
     /// Smallest initial velocity y0'.
-    #[arg(long = "v0-min", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     v0_min: f64,
     /// Largest initial velocity y0'.
-    #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     v0_max: f64,
     #[arg(long, help = help(OptionKey::BasinSteps), default_value_t = int(OptionKey::BasinSteps) as _, allow_hyphen_values = true)]
     steps: i64,
@@ -64,11 +64,11 @@ pub struct Args {
     /// [default: 0].
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     phase: Option<f64>,
-    #[arg(long = "max-periods", help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinMaxPeriods.flag(), help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(long = "max-period", help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinMaxPeriod.flag(), help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(long = "lyapunov-periods", help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinLyapunovPeriods.flag(), help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
     lyapunov_periods: i64,
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its

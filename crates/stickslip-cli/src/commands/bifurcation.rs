@@ -57,9 +57,9 @@ pub struct Args {
     points: i64,
     #[arg(long, help = help(OptionKey::BifurcationTransient), default_value_t = int(OptionKey::BifurcationTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(long = "first-transient", help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::FirstTransient.flag(), help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
     first_transient: i64,
-    #[arg(long = "max-period", help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BifurcationMaxPeriod.flag(), help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -68,7 +68,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// Do not continue the periodic orbits for the plot (faster).
-    #[arg(long = "no-branches")]
+    #[arg(long)]
     no_branches: bool,
 }
 

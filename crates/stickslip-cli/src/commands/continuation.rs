@@ -46,9 +46,9 @@ pub struct Args {
     from: f64,
     #[arg(long, help = help(OptionKey::ContinuationTo), value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    #[arg(long = "max-points", help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxPoints.flag(), help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
     max_points: i64,
-    #[arg(long = "max-step", help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxStep.flag(), help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
     max_step: f64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]

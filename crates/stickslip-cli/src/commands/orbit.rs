@@ -39,13 +39,13 @@ pub struct Args {
     period: Option<i64>,
     #[arg(long, help = help(OptionKey::OrbitTransient), default_value_t = int(OptionKey::OrbitTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(long = "max-periods", help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::OrbitMaxPeriods.flag(), help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(long = "max-period", help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::OrbitMaxPeriod.flag(), help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(long = "newton-tolerance", help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::NewtonTolerance.flag(), help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     newton_tolerance: f64,
-    #[arg(long = "max-iterations", help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxIterations.flag(), help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
     max_iterations: i64,
     /// Print JSON instead of text.
     #[arg(long)]

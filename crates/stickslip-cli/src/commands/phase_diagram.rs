@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{help, int, key_value, range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::flags::{count, help, int, num, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -10,7 +10,7 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
-use stickslip::experiment::{Key, Origin};
+use stickslip::experiment::Origin;
 use stickslip::report::{AxisCells, MapRow};
 use stickslip::scan::{Axis, Grid, GridPoint, MapColor as Color, ParameterRange};
 use stickslip::stability::Estimate;
@@ -50,21 +50,17 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    /// Lowest drive frequency w.
-    #[arg(long = "w-min", default_value_t = 0.1, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWMin.flag(), help = help(OptionKey::MapWMin), default_value_t = num(OptionKey::MapWMin), value_parser = finite, allow_hyphen_values = true)]
     w_min: f64,
-    /// Highest drive frequency w.
-    #[arg(long = "w-max", default_value_t = 2.5, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWMax.flag(), help = help(OptionKey::MapWMax), default_value_t = num(OptionKey::MapWMax), value_parser = finite, allow_hyphen_values = true)]
     w_max: f64,
-    #[arg(long = "w-steps", help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWSteps.flag(), help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
     w_steps: i64,
-    /// Lowest drive amplitude β.
-    #[arg(long = "beta-min", default_value_t = 0.5, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaMin.flag(), help = help(OptionKey::MapBetaMin), default_value_t = num(OptionKey::MapBetaMin), value_parser = finite, allow_hyphen_values = true)]
     beta_min: f64,
-    /// Highest drive amplitude β.
-    #[arg(long = "beta-max", default_value_t = 4.0, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaMax.flag(), help = help(OptionKey::MapBetaMax), default_value_t = num(OptionKey::MapBetaMax), value_parser = finite, allow_hyphen_values = true)]
     beta_max: f64,
-    #[arg(long = "beta-steps", help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaSteps.flag(), help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
     beta_steps: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -83,22 +79,23 @@ pub struct Args {
 
 /// Run `stickslip phase-diagram`.
 pub fn run(args: Args) -> Result<()> {
-    let w = range_from_flags(
-        "w",
-        ("w-min", args.w_min),
-        ("w-max", args.w_max),
-        (OptionKey::MapWSteps, args.w_steps),
+    // The library checks each end and count against its row, and the ends' order.
+    let w = ParameterRange::between(
+        (OptionKey::MapWMin, args.w_min),
+        (OptionKey::MapWMax, args.w_max),
+        (
+            OptionKey::MapWSteps,
+            count(OptionKey::MapWSteps, args.w_steps)?,
+        ),
     )?;
-    let beta = range_from_flags(
-        "beta",
-        ("beta-min", args.beta_min),
-        ("beta-max", args.beta_max),
-        (OptionKey::MapBetaSteps, args.beta_steps),
+    let beta = ParameterRange::between(
+        (OptionKey::MapBetaMin, args.beta_min),
+        (OptionKey::MapBetaMax, args.beta_max),
+        (
+            OptionKey::MapBetaSteps,
+            count(OptionKey::MapBetaSteps, args.beta_steps)?,
+        ),
     )?;
-    key_value(Key::W, "w-min", w.from())?;
-    key_value(Key::W, "w-max", w.to())?;
-    key_value(Key::Beta, "beta-min", beta.from())?;
-    key_value(Key::Beta, "beta-max", beta.to())?;
     // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
     // memory; a streamed one only by its axes (docs/limits.md).
     if args.plot.is_some() || args.checkpoint.checkpoint.is_some() {

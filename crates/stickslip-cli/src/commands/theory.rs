@@ -44,9 +44,9 @@ pub struct Args {
     /// Write a curve over w instead of one point: `boundary` or `gain`.
     #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
-    #[arg(long = "w-min", help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::CurveWMin.flag(), help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_min: Option<f64>,
-    #[arg(long = "w-max", help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::CurveWMax.flag(), help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_max: Option<f64>,
     #[arg(long, help = help(OptionKey::CurveSteps), help_heading = "Theory", allow_hyphen_values = true)]
     steps: Option<i64>,

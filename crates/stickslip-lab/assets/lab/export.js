@@ -104,7 +104,13 @@ export function measurementsTsv() {
   const rows = [];
   const table = $('#measurements table');
   for (const tr of $$('tr', table)) {
-    rows.push(Array.from(tr.children, (c) => c.textContent.replace(/\s+/g, ' ').replace(/ \?$/, '').trim()).join('\t'));
+    const cells = Array.from(tr.children, (c) => c.textContent.replace(/\s+/g, ' ').replace(/ \?$/, '').trim());
+    // The line under the class (the rule of a static motion): a row of its own, when shown.
+    if (tr.classList.contains('note-row')) {
+      if (cells[0]) rows.push(`class rule\t${cells[0]}`);
+      continue;
+    }
+    rows.push(cells.join('\t'));
   }
   if (state.steady) rows.unshift(`experiment\t${captionText()}`);
   return `${rows.join('\n')}\n`;

@@ -3,7 +3,7 @@
 import { $, field, num, si, niceAtLeast } from './util.js';
 import { latest, isAbort } from './api.js';
 import { state, statusEl, clearErrors, showError, value, modelParams } from './state.js';
-import { logicalSize, prepare, label } from './scope.js';
+import { logicalSize, prepare, label, TextBoxes } from './scope.js';
 
 // ---------------------------------------------------------------- sweep and map
 /** `pwl`, `shockley` or `mechanics`: the system an answer was computed for. */
@@ -50,10 +50,10 @@ export function experimentBase(answer) {
   return answer.experiment.split(';')[0];
 }
 
-/** Axes, grid and labels of a plot; `legendRow` leaves a row under the x label. */
-export function plotFrame(canvas, xr, yr, xlabel, ylabel, legendRow = false) {
+/** Axes, grid and labels of a plot; `legendRows` rows (0, 1 or 2) under the x label. */
+export function plotFrame(canvas, xr, yr, xlabel, ylabel, legendRows = 0) {
   const { g, w, h } = prepare(canvas);
-  const box = { l: 56, r: w - 14, t: 14, b: h - (legendRow ? 58 : 40) };
+  const box = { l: 56, r: w - 14, t: 14, b: h - 40 - 16 * legendRows };
   g.fillStyle = '#ffffff';
   g.fillRect(0, 0, w, h);
   const X = (x) => box.l + ((x - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
@@ -213,7 +213,17 @@ export function drawMap() {
     const hb = half(m.beta);
     const xr = [m.w[0] - hw, m.w[m.w.length - 1] + hw];
     const yr = [m.beta[0] - hb, m.beta[m.beta.length - 1] + hb];
-    const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t', true);
+    // The legend under the x label: the classes found on this map (in the library's order),
+    // and the boundaries' key on the right; on two rows where one is too narrow for both.
+    const found = new Set(m.class);
+    const classes = m.classes.filter((_, k) => found.has(k));
+    const key = `${m.boundary.prefix}β_c: exact ━, paper ╍`;
+    const measure = off.getContext('2d');
+    measure.font = '11px system-ui, sans-serif';
+    const classesWidth = classes.reduce((sum, c) => sum + measure.measureText(c).width + 26, 6);
+    const plotWidth = logicalSize(canvas).w - 14 - 56;
+    const rows = classesWidth + 12 + measure.measureText(key).width <= plotWidth ? 1 : 2;
+    const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t', rows);
     const nb = m.beta.length;
     for (let i = 0; i < m.w.length; i++) {
       for (let j = 0; j < nb; j++) {
@@ -231,18 +241,21 @@ export function drawMap() {
     polyline(o, b.w.map((w, i) => [X(w), b.paper[i] === null ? NaN : Y(b.paper[i])]), '#cc79a7', 2, [6, 4]);
     polyline(o, b.w.map((w, i) => [X(w), b.exact[i] === null ? NaN : Y(b.exact[i])]), '#000', 2);
     o.restore();
+    const text = [];
     let lx = box.l + 6;
-    // The classes found on this map, in the library's order.
-    const found = new Set(m.class);
-    for (const c of m.classes.filter((_, k) => found.has(k))) {
+    for (const c of classes) {
       o.fillStyle = CLASS_COLORS[c];
       o.fillRect(lx, box.b + 40, 10, 10);
       o.strokeStyle = '#999';
       o.strokeRect(lx, box.b + 40, 10, 10);
       label(o, c, lx + 13, box.b + 49, '#222');
+      text.push(TextBoxes.box(o, c, lx + 13, box.b + 49, 'left'));
       lx += o.measureText(c).width + 26;
     }
-    label(o, `${b.prefix}β_c: exact ━, paper ╍`, box.r, box.b + 49, '#222', 'right');
+    const ky = box.b + 49 + 16 * (rows - 1);
+    label(o, key, box.r, ky, '#222', 'right');
+    text.push(TextBoxes.box(o, key, box.r, ky, 'right'));
+    window.stickslipLab.mapText = text;
     return { X, Y, box };
   });
   // The current point.

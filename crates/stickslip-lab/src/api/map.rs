@@ -11,7 +11,17 @@ use stickslip::experiment::Experiment;
 use stickslip::scan::{Axis, Grid, ParameterRange};
 use stickslip::steady::{MotionClass, SteadyOptions};
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
-use stickslip::{Error, Parameter};
+use stickslip::{Error, OptionKey, Parameter};
+
+/// The options of a map's sides, in the order of the query keys' documentation.
+const MAP_OPTIONS: [OptionKey; 6] = [
+    OptionKey::MapWMin,
+    OptionKey::MapWMax,
+    OptionKey::MapWSteps,
+    OptionKey::MapBetaMin,
+    OptionKey::MapBetaMax,
+    OptionKey::MapBetaSteps,
+];
 
 /// `GET /api/map`.
 #[derive(Debug)]
@@ -72,48 +82,28 @@ impl MapRequest {
         reject_swept(&q, Parameter::W, "a map")?;
         reject_swept(&q, Parameter::Beta, "a map")?;
         let experiment = q.experiment()?;
-        let w = range(
+        let w = side(
             &mut q,
-            Parameter::W,
-            ["w-min", "w-max", "w-steps"],
-            (0.1, 2.5, 60),
+            [OptionKey::MapWMin, OptionKey::MapWMax],
+            OptionKey::MapWSteps,
+            60,
             &|n| CAPS.check_map(n, 1),
         )?;
-        let beta = range(
+        let beta = side(
             &mut q,
-            Parameter::Beta,
-            ["beta-min", "beta-max", "beta-steps"],
-            (0.5, 4.0, 50),
+            [OptionKey::MapBetaMin, OptionKey::MapBetaMax],
+            OptionKey::MapBetaSteps,
+            50,
             &|n| CAPS.check_map(1, n),
         )?;
         CAPS.check_map(w.steps(), beta.steps())
             .map_err(|e| option_error(&e))?;
         let options = steady_options(&mut q, &experiment)?;
-        q.finish(&[
-            "w-min",
-            "w-max",
-            "w-steps",
-            "beta-min",
-            "beta-max",
-            "beta-steps",
-            "tolerance",
-            "max-periods",
-            "max-period",
-        ])?;
-        let axis = |p, r: &ParameterRange| {
-            Axis::range(p, r).map_err(|err| {
-                let key = if p == Parameter::W {
-                    "w-min"
-                } else {
-                    "beta-min"
-                };
-                ApiError::field(key, err.to_string())
-            })
-        };
+        q.finish(&known(&[&MAP_OPTIONS[..], &STEADY_OPTIONS].concat(), &[]))?;
         Grid::new(
             &experiment,
-            axis(Parameter::W, &w)?,
-            axis(Parameter::Beta, &beta)?,
+            grid_axis(&w, Parameter::W)?,
+            grid_axis(&beta, Parameter::Beta)?,
         )
         .map_err(|e| ApiError::library(&e))?;
         Ok(Self {

@@ -4,7 +4,7 @@ use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
 use crate::limit::Budget;
-use crate::query::{ApiError, Query};
+use crate::query::{option_key, ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
@@ -13,6 +13,7 @@ use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection};
 use stickslip::steady::SteadyOptions;
 use stickslip::theory::curves::SweepTheory;
 use stickslip::DiodeModel;
+use stickslip::OptionKey;
 use stickslip::{Error, Parameter};
 
 /// `GET /api/sweep`.
@@ -70,7 +71,7 @@ impl SweepRequest {
         let range = range(
             &mut q,
             parameter,
-            ["from", "to", "steps"],
+            ["from", "to", option_key(OptionKey::SweepSteps)],
             (0.2, 2.0, 60),
             &|n| CAPS.check_sweep(n),
         )?;
@@ -78,16 +79,16 @@ impl SweepRequest {
         let options = steady_options(&mut q, &experiment)?
             .with_harmonics(3)
             .map_err(|e| ApiError::library(&e))?;
-        q.finish(&[
-            "over",
-            "from",
-            "to",
-            "steps",
-            "direction",
-            "tolerance",
-            "max-periods",
-            "max-period",
-        ])?;
+        q.finish(&known(
+            &STEADY_OPTIONS,
+            &[
+                "over",
+                "from",
+                "to",
+                option_key(OptionKey::SweepSteps),
+                "direction",
+            ],
+        ))?;
         // The experiment must be complete but for the swept parameter.
         Axis::range(parameter, &range)
             .and_then(|axis| Sweep::new(&experiment, axis))

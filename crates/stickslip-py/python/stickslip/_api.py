@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import copy
 import json
-from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Sequence,
-                    Tuple)
+from typing import (TYPE_CHECKING, Any, Dict, Generic, List, Literal, Mapping,
+                    Optional, Sequence, Tuple, TypeVar, overload)
 
 import numpy as np
 
-from . import _checks, _core
+from . import _checks, _core, _progress
 from ._core import Experiment
+from ._progress import Progress
 
 if TYPE_CHECKING:
     import pandas
@@ -32,9 +33,6 @@ PHASE_LABELS: Dict[int, str] = dict(_core.PHASE_LABELS)
 EVENT_KINDS: Tuple[str, ...] = tuple(_core.EVENT_KINDS)
 #: The structured dtype of event arrays.
 EVENT_DTYPE = np.dtype([("tau", np.float64), ("y", np.float64), ("kind", "U5")])
-
-Progress = Optional[Callable[[int, int], Any]]
-
 
 _values = _checks.values
 
@@ -566,7 +564,18 @@ class SweepResult:
         return f"<stickslip.SweepResult over {self.over}: {len(self)} steps>"
 
 
-class PhaseDiagram:
+#: The type of a map's exponent arrays: an array with ``lyapunov=True``, else None (a plain
+#: ``PhaseDiagram`` annotation means either).
+if TYPE_CHECKING:
+    from typing_extensions import TypeVar as _TypeVar
+
+    _Exponents = _TypeVar("_Exponents", bound=Optional[np.ndarray], covariant=True,
+                          default=Optional[np.ndarray])
+else:
+    _Exponents = TypeVar("_Exponents", bound=Optional[np.ndarray], covariant=True)
+
+
+class PhaseDiagram(Generic[_Exponents]):
     """Steady motions on a grid of parameters, each point from the initial state
     (``stickslip.phase_diagram``, ``stickslip.dask.phase_diagram``, ``stickslip.dask.sweep_grid``).
 
@@ -616,15 +625,17 @@ class PhaseDiagram:
         self.gain: np.ndarray = arrays["gain"]
         self.symmetric: np.ndarray = arrays["symmetric"]
         self.periods_to_settle: np.ndarray = arrays["periods_to_settle"]
-        self.lyapunov: Optional[np.ndarray] = arrays.get("lyapunov")
-        self.lyapunov_error: Optional[np.ndarray] = arrays.get("lyapunov_error")
+        # An array with lyapunov=True, None otherwise: the type says which
+        # (``PhaseDiagram[np.ndarray]`` from ``phase_diagram(..., lyapunov=True)``).
+        self.lyapunov: _Exponents = arrays.get("lyapunov")  # type: ignore[assignment]
+        self.lyapunov_error: _Exponents = arrays.get("lyapunov_error")  # type: ignore[assignment]
 
     FIELDS = ("motion", "period", "stops_per_cycle", "gain", "symmetric", "periods_to_settle")
     #: Fields of a map asked for its exponents.
     EXPONENT_FIELDS = ("lyapunov", "lyapunov_error")
 
     @property
-    def lambda_error(self) -> Optional[np.ndarray]:
+    def lambda_error(self) -> _Exponents:
         """The standard error of the exponents (the report's name; ``lyapunov_error``)."""
         return self.lyapunov_error
 
@@ -734,9 +745,55 @@ class PhaseDiagram:
                                                   "exponent per unit tau", "units": "1"})
         attrs = _fixed_attributes(self.experiment, self.dims)
         attrs["steady_options"] = json.dumps(self.options)
-        ds = xr.Dataset(data, coords=coords, attrs=attrs)
-        ds["period"].encoding["_FillValue"] = np.int16(-1)
-        return ds
+        # `period` keeps -1 for "none found" as a value, not a _FillValue: a fill value would
+        # make xarray read it back as float32 with NaN.
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    @classmethod
+    def from_xarray(cls, dataset: "xarray.Dataset") -> "PhaseDiagram[Any]":
+        """The map back from its ``to_xarray()`` dataset, or from a netCDF file that dataset
+        was saved to (``PhaseDiagram.from_xarray(xarray.open_dataset("map.nc"))``): the same
+        experiment, options, coordinates and arrays, with their dtypes (``period`` int16 with
+        -1 where none was found, also from files that stored -1 as a fill value).
+
+        Raises:
+            ValueError: a dataset that is not a map of this package (no ``motion`` with its
+                flag meanings, no ``experiment_json``), or a class this version does not
+                know.
+        """
+        if "motion" not in dataset or "experiment_json" not in dataset.attrs:
+            raise ValueError("not a map of stickslip: PhaseDiagram.from_xarray reads what "
+                             "PhaseDiagram.to_xarray() writes (a 'motion' variable and the "
+                             "attribute 'experiment_json')")
+        motion = dataset["motion"]
+        dims = tuple(str(d) for d in motion.dims)
+        coords = {d: np.require(dataset[d].values, np.float64, ["C", "A"]) for d in dims}
+        labels = str(motion.attrs.get("flag_meanings", "")).split()
+        unknown = [label for label in labels if label not in MOTION_CLASSES]
+        if not labels or unknown:
+            raise ValueError(f"the map's motion classes {labels} are not this version's "
+                             f"{list(MOTION_CLASSES)}")
+        lookup = np.array([MOTION_CLASSES.index(label) for label in labels], dtype=np.int8)
+        period = np.asarray(dataset["period"].values)
+        if period.dtype.kind == "f":
+            period = np.where(np.isnan(period), -1, period)
+        arrays: Dict[str, np.ndarray] = {
+            "motion": lookup[np.asarray(motion.values, dtype=np.int64)],
+            "period": period.astype(np.int16),
+            "stops_per_cycle": np.asarray(dataset["stops_per_cycle"].values, dtype=np.float64),
+            "gain": np.asarray(dataset["gain"].values, dtype=np.float64),
+            "symmetric": np.asarray(dataset["symmetric"].values).astype(bool),
+            "periods_to_settle": np.asarray(dataset["periods_to_settle"].values,
+                                            dtype=np.int64),
+        }
+        for name, older in (("lyapunov", "lambda"), ("lyapunov_error", "lambda_error")):
+            for stored in (name, older):
+                if stored in dataset:
+                    arrays[name] = np.asarray(dataset[stored].values, dtype=np.float64)
+                    break
+        experiment = Experiment.from_json(str(dataset.attrs["experiment_json"]))
+        options = json.loads(str(dataset.attrs.get("steady_options", "{}")))
+        return cls(experiment, dims, coords, options, arrays)
 
     def __repr__(self) -> str:
         axes = " × ".join(f"{d} ({len(self.coords[d])})" for d in self.dims)
@@ -762,8 +819,9 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
             most 5·10⁷ samples in all.
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own
             (Shockley diodes need a circuit).
-        progress: optional callable ``progress(done, total)`` (drive periods), called from
-            the calling thread about every 50 ms.
+        progress: True for a progress bar (tqdm), or a callable ``progress(done, total)``
+            (drive periods), or one of one argument given the periods done since its last
+            call (a tqdm bar's ``update``); called from the calling thread about every 50 ms.
 
     Returns:
         A ``Trajectory`` with numpy arrays tau, y, v, drive, phase (and t_s, uc_V, i_A, u_V for
@@ -783,7 +841,8 @@ def simulate(experiment: Experiment, periods: float, samples_per_period: int = 2
     experiment = _with_model(experiment, model)
     periods = _checks.number("periods", periods)
     samples = _checks.integer("samples_per_period", samples_per_period, "simulate")
-    data = _core.simulate(experiment, periods, samples, progress)
+    with _progress.reporter(progress, "simulate", "periods") as callback:
+        data = _core.simulate(experiment, periods, samples, callback)
     data["periods"] = periods
     data["samples_per_period"] = samples
     return Trajectory(experiment, data)
@@ -876,6 +935,24 @@ def boundary(zeta: Any, w: Any, mu_s: Any = 1.0) -> Tuple[np.ndarray, np.ndarray
     return paper.reshape(shape), exact.reshape(shape)
 
 
+#: The keys of a physical drive a sweep can go over, and the parameter each sets.
+_PHYSICAL_SWEEPS = {"f": "w", "omega": "w", "U": "beta", "F": "beta"}
+
+
+def _physical_sweep(experiment: Experiment, key: str, values: Any) -> Tuple[str, np.ndarray]:
+    """A sweep over a physical drive key (f in Hz, omega, U, F) as one over w or β: each value
+    turned by the experiment, as ``replace`` turns it."""
+    if experiment.scales() is None:
+        raise ValueError(f"a sweep over {key!r} needs a physical experiment (a circuit or a "
+                         "mechanical oscillator): this one is dimensionless; sweep over 'w' "
+                         "or 'beta'")
+    parameter = _PHYSICAL_SWEEPS[key]
+    physical = _values("values", values)
+    turned = [getattr(experiment.replace(**{key: float(v)}), parameter)  # type: ignore[arg-type]
+              for v in physical]
+    return parameter, np.asarray(turned, dtype=np.float64)
+
+
 def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both", *,
           model: Optional[str] = None, progress: Progress = None,
           **options: Any) -> SweepResult:
@@ -884,12 +961,17 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
 
     Args:
         experiment: a ``stickslip.Experiment``; it needs no value of the swept parameter.
-        over: 'w', 'beta', 'zeta' or 'mu_s'.
+        over: 'w', 'beta', 'zeta' or 'mu_s'; for a circuit or a mechanical oscillator also
+            'f' (drive frequency in Hz), 'omega' (rad/s), 'U' (drive amplitude in V) or 'F'
+            (N): each value is turned into w or β as the experiment turns that key
+            (``experiment.replace(f=value).w``), and the result is a sweep over w or β (with
+            ``f_Hz`` beside w).
         values: the swept values, in order (any array-like of floats).
         direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
             where the up leg ended; the default).
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
-        progress: optional callable ``progress(done, total)`` (steps).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (steps) or a tqdm bar's ``update`` (given the steps done since its last call).
         **options: as for ``steady``.
 
     Returns:
@@ -909,7 +991,11 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
     """
     experiment = _with_model(experiment, model)
     options = _checks.steady_options(options, True, "sweep")
-    data = _core.sweep(experiment, over, _values("values", values), direction, options, progress)
+    if over in _PHYSICAL_SWEEPS:
+        over, values = _physical_sweep(experiment, over, values)
+    with _progress.reporter(progress, "sweep", "steps") as callback:
+        data = _core.sweep(experiment, over, _values("values", values), direction, options,
+                           callback)
     return SweepResult(experiment, over, dict(options), data)
 
 
@@ -935,9 +1021,32 @@ def _axes(kwargs: Dict[str, Any], count: Sequence[int], caller: str
     return axes, options
 
 
+@overload
+def phase_diagram(experiment: Experiment, *, model: Optional[str] = ...,
+                  threads: Optional[int] = ..., progress: Progress = ...,
+                  lyapunov: Literal[False] = ..., **axes_and_options: Any) -> PhaseDiagram[None]:
+    ...
+
+
+@overload
+def phase_diagram(experiment: Experiment, *, model: Optional[str] = ...,
+                  threads: Optional[int] = ..., progress: Progress = ...,
+                  lyapunov: Literal[True], **axes_and_options: Any
+                  ) -> PhaseDiagram[np.ndarray]:
+    ...
+
+
+@overload
+def phase_diagram(experiment: Experiment, *, model: Optional[str] = ...,
+                  threads: Optional[int] = ..., progress: Progress = ...,
+                  lyapunov: bool = ..., **axes_and_options: Any
+                  ) -> PhaseDiagram[Optional[np.ndarray]]:
+    ...
+
+
 def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
                   threads: Optional[int] = None, progress: Progress = None,
-                  lyapunov: bool = False, **axes_and_options: Any) -> PhaseDiagram:
+                  lyapunov: bool = False, **axes_and_options: Any) -> PhaseDiagram[Any]:
     """Classify the steady motion on a grid of two parameters, every point started from the
     experiment's initial state (rest, as in the paper's Fig. 7), in parallel.
 
@@ -949,8 +1058,9 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
         model: 'pwl' or 'shockley' to use that diode law instead of the experiment's own.
         threads: compute on a pool of this many threads (an integer from 1 to 1024;
             default: one per core). Results are the same for any number.
-        progress: optional callable ``progress(done, total)`` (points), called from the
-            calling thread about every 50 ms (e.g. a tqdm bar's update).
+        progress: True for a progress bar (tqdm), or a callable ``progress(done, total)``
+            (points), or one of one argument given the points done since its last call (a
+            tqdm bar's ``update``); called from the calling thread about every 50 ms.
         lyapunov: also the largest Lyapunov exponent of every point (exact PWL model; as
             ``stickslip phase-diagram --color lyapunov``): arrays ``lyapunov`` and
             ``lyapunov_error`` per unit τ.
@@ -979,8 +1089,11 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
     experiment = _with_model(experiment, model)
     axes, options = _axes(axes_and_options, (2,), "phase_diagram")
     (first, v1), (second, v2) = axes.items()
-    data = _core.grid(experiment, first, v1, second, v2, options, _checks.threads(threads), None,
-                      None, progress, _checks.flag("lyapunov", lyapunov))
+    threads = _checks.threads(threads)
+    lyapunov = _checks.flag("lyapunov", lyapunov)
+    with _progress.reporter(progress, "phase_diagram", "points") as callback:
+        data = _core.grid(experiment, first, v1, second, v2, options, threads, None, None,
+                          callback, lyapunov)
     return PhaseDiagram(experiment, (first, second), axes, options, _reshape(data, (len(v1), len(v2))))
 
 
@@ -1150,7 +1263,8 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
             at an unstable orbit).
         tolerance: relative tolerance of Newton's method (default 1e-12).
         max_iterations: most Newton steps (1 to 1000; default 30).
-        progress: optional callable ``progress(done, total)`` (drive periods of the transient).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (drive periods of the transient) or a tqdm bar's ``update``.
         **options: of the steady-state search without a period: max_periods (5000),
             max_period (16), tolerance is Newton's (above).
 
@@ -1178,9 +1292,12 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
     options = _checks.steady_options(options, False, "orbit")
     if period is not None:
         period = _checks.integer("period", period, "orbit")
-    report = _core.orbit(experiment, period, _checks.integer("transient", transient, "orbit"),
-                         options, _checks.number("tolerance", tolerance),
-                         _checks.integer("max_iterations", max_iterations, "orbit"), progress)
+    transient = _checks.integer("transient", transient, "orbit")
+    tolerance = _checks.number("tolerance", tolerance)
+    max_iterations = _checks.integer("max_iterations", max_iterations, "orbit")
+    with _progress.reporter(progress, "orbit", "periods") as callback:
+        report = _core.orbit(experiment, period, transient, options, tolerance, max_iterations,
+                             callback)
     return PeriodicOrbit(experiment, report)
 
 
@@ -1204,7 +1321,8 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
             multiple of ``blocks``).
         blocks: even, from 4 to 10000 (default 20).
         significance: k, the standard errors that make λ1 significant (default 4).
-        progress: optional callable ``progress(done, total)`` (drive periods).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (drive periods) or a tqdm bar's ``update``.
         fixed: measure all ``periods`` even when the verdict is decided sooner (default
             False; as ``--fixed``).
 
@@ -1223,8 +1341,10 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
     """
     experiment = _with_model(experiment, None)
     blocks = _checks.integer("blocks", blocks, "lyapunov")
-    report = _core.lyapunov(experiment, _checks.integer("transient", transient, "lyapunov"),
-                            _checks.integer("periods", periods), blocks,
-                            _checks.number("significance", significance), progress,
-                            bool(fixed))
+    transient = _checks.integer("transient", transient, "lyapunov")
+    periods = _checks.integer("periods", periods)
+    significance = _checks.number("significance", significance)
+    with _progress.reporter(progress, "lyapunov", "periods") as callback:
+        report = _core.lyapunov(experiment, transient, periods, blocks, significance, callback,
+                                bool(fixed))
     return LyapunovResult(experiment, report)

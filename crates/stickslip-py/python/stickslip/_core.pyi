@@ -203,10 +203,10 @@ class Experiment:
         zeta: _Value = None,
         w: _Value = None,
         beta: _Value = None,
-        phi: _Value = None,
-        mu_s: _Value = None,
-        y0: _Value = None,
-        v0: _Value = None,
+        phi: _Value = 0,
+        mu_s: _Value = 1,
+        y0: _Value = 0,
+        v0: _Value = 0,
     ) -> Experiment: ...
     @classmethod
     def paper(

@@ -5,14 +5,16 @@ basins`` and ``stickslip continue``."""
 from __future__ import annotations
 
 import copy
+import json
 from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _checks, _core
-from ._api import (Progress, _coordinate, _fixed_attributes, _optional_period,
+from . import _checks, _core, _progress
+from ._api import (_coordinate, _fixed_attributes, _optional_period,
                    _physical_coordinates, _plain, _values, _with_model)
 from ._core import Experiment
+from ._progress import Progress
 
 if TYPE_CHECKING:
     import xarray
@@ -348,6 +350,64 @@ class Branch:
         begin, end, end_text, special; a new dict of plain values)."""
         return copy.deepcopy(self._report)
 
+    def to_xarray(self) -> "xarray.Dataset":
+        """An ``xarray.Dataset`` of the branch along the dimension ``point`` (in order along
+        the branch): the continued parameter (named after it) and ``arclength`` as
+        coordinates (for a physical experiment ``f_Hz`` beside ``w``, ``U_V`` or ``F_N``
+        beside ``beta``), the CSV's columns as variables (``stable`` with CF flags), the
+        special points along the dimension ``special`` (``special_kind``,
+        ``special_value``, ``special_y``, ``special_v``), and as attributes the fixed
+        inputs, the orbit's period, why the branch begins and ends (``begin``, ``end`` as
+        JSON, ``end_text``) and the package version.
+
+        Raises:
+            ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
+        """
+        xr = _checks.optional_module("xarray", "xarray", "Branch.to_xarray()")
+        one = {"units": "1"}
+        coords: Dict[str, Any] = {
+            self.over: ("point", self.value, _coordinate(self.over, self.value)[2]),
+            "arclength": ("point", self.arclength,
+                          {"long_name": "arclength in (y, y', parameter) from the first point",
+                           **one}),
+        }
+        for name, (_, values, attrs) in _physical_coordinates(
+                self.experiment, [self.over], {self.over: self.value}).items():
+            coords[name] = ("point", values, attrs)
+        names = {
+            "y": "strobe position y of the orbit", "v": "strobe velocity y' of the orbit",
+            "amplitude": "(max y - min y)/2 of the orbit",
+            "period": "period of the orbit in drive periods",
+            "stops_per_period": "stops per drive period",
+            "turns": "turning points per orbit period",
+            "mu1_re": "real part of the larger Floquet multiplier",
+            "mu1_im": "imaginary part of the larger Floquet multiplier",
+            "mu2_re": "real part of the smaller Floquet multiplier",
+            "mu2_im": "imaginary part of the smaller Floquet multiplier",
+        }
+        data: Dict[str, Any] = {name: ("point", getattr(self, name),
+                                       {"long_name": text, **one})
+                                for name, text in names.items()}
+        data["stable"] = ("point", np.asarray(self.stable).astype(np.int8),
+                          {"long_name": "whether the orbit is stable (|mu1| < 1)",
+                           "flag_values": np.array([0, 1], dtype=np.int8),
+                           "flag_meanings": "unstable stable"})
+        data["special_kind"] = ("special", np.asarray([str(p["kind"]) for p in self.special],
+                                                      dtype=str),
+                                {"long_name": "kind of the special point"})
+        for field, text in (("value", self.over), ("y", "y"), ("v", "y'")):
+            data[f"special_{field}"] = ("special",
+                                        np.asarray([p[field] for p in self.special],
+                                                   dtype=np.float64),
+                                        {"long_name": f"{text} at the special point", **one})
+        attrs = _fixed_attributes(self.experiment, [self.over])
+        attrs["title"] = "stickslip: a branch of periodic orbits"
+        attrs["orbit_period"] = int(self._report["period"])
+        attrs["begin"] = json.dumps(self.begin)
+        attrs["end"] = json.dumps(self.end)
+        attrs["end_text"] = self.end_text
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
     def __repr__(self) -> str:
         special = ", ".join(f"{s['kind']} at {s['value']:.6g}" for s in self.special) or "none"
         return (f"<stickslip.Branch of period-{self._report['period']} orbits over {self.over}: "
@@ -378,7 +438,8 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
             2000).
         max_period: longest period looked for in the recorded points (drive periods; 1 to
             1000; default 32).
-        progress: optional callable ``progress(done, total)`` (values).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (values) or a tqdm bar's ``update``.
 
     Returns:
         A ``BifurcationDiagram``: ``y``, ``v`` (values × points), ``exponent``, ``kind``,
@@ -403,9 +464,10 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
                                    ("first_transient", first_transient),
                                    ("max_period", max_period))}
     values = _values("values", values)
-    data = _core.bifurcation(experiment, over, values, direction,
-                             options["points"], options["transient"],
-                             options["first_transient"], options["max_period"], progress)
+    with _progress.reporter(progress, "bifurcation", "values") as callback:
+        data = _core.bifurcation(experiment, over, values, direction,
+                                 options["points"], options["transient"],
+                                 options["first_transient"], options["max_period"], callback)
     return BifurcationDiagram(experiment, over, options, data)
 
 
@@ -437,7 +499,8 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
             is measured (8 to 1e7; default 1000).
         threads: a pool of this many threads (1 to 1024; default: one per core; the exhaustive
             method's cells run in parallel, the recurrence method's one after the other).
-        progress: optional callable ``progress(done, total)`` (cells).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (cells) or a tqdm bar's ``update``.
         method: ``'recurrence'`` (default: each initial state is followed on a grid of the
             state space 1024 cells across the map until it lands on cells labelled with an
             attractor or its basin, or declares a new attractor, classified once) or
@@ -466,14 +529,15 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
         rows, cols = steps
     else:
         rows, cols = steps, steps
-    data = _core.basins(experiment, _checks.pair("y0", y0), _checks.pair("v0", v0),
-                        (_checks.integer("steps", rows, "basins"),
-                         _checks.integer("steps", cols, "basins")),
-                        None if phase is None else _checks.number("phase", phase),
-                        _checks.integer("max_periods", max_periods, "basins"),
-                        _checks.integer("max_period", max_period, "basins"),
-                        _checks.integer("lyapunov_periods", lyapunov_periods, "basins"),
-                        _checks.threads(threads), progress, method)
+    with _progress.reporter(progress, "basins", "cells") as callback:
+        data = _core.basins(experiment, _checks.pair("y0", y0), _checks.pair("v0", v0),
+                            (_checks.integer("steps", rows, "basins"),
+                             _checks.integer("steps", cols, "basins")),
+                            None if phase is None else _checks.number("phase", phase),
+                            _checks.integer("max_periods", max_periods, "basins"),
+                            _checks.integer("max_period", max_period, "basins"),
+                            _checks.integer("lyapunov_periods", lyapunov_periods, "basins"),
+                            _checks.threads(threads), callback, method)
     if phase is not None:
         experiment = experiment.replace(phi=float(phase))
     return BasinMap(experiment, data)
@@ -500,7 +564,8 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
         to: the value to continue towards; the branch stays between the two.
         max_points: most points of the branch (2 to 10⁷; default 5000).
         max_step: largest step of arclength in (y, y', parameter) (default 0.1).
-        progress: optional callable ``progress(done, total)`` (points, of max_points).
+        progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
+            (points, of max_points) or a tqdm bar's ``update``.
 
     Returns:
         A ``Branch``: the CSV's columns as numpy arrays, ``special``, ``end`` and
@@ -519,10 +584,12 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
         (True, False)
     """
     experiment = _with_model(experiment, None)
-    data = _core.continuation(experiment, over, _checks.number("start", start),
-                              _checks.number("to", to),
-                              _checks.integer("max_points", max_points, "continuation"),
-                              _checks.number("max_step", max_step), progress)
+    start = _checks.number("start", start)
+    to = _checks.number("to", to)
+    max_points = _checks.integer("max_points", max_points, "continuation")
+    max_step = _checks.number("max_step", max_step)
+    with _progress.reporter(progress, "continuation", "points") as callback:
+        data = _core.continuation(experiment, over, start, to, max_points, max_step, callback)
     return Branch(experiment, over, data)
 
 

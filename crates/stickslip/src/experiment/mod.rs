@@ -29,10 +29,11 @@ mod key;
 pub mod keys;
 mod spec;
 mod stability;
+mod text;
 mod trajectory;
 
 pub use errors::{ConfigError, SpecError};
-pub use key::{KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
+pub use key::{FitRole, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use keys::Key;
 pub use spec::ExperimentSpec;
 pub use trajectory::Trajectory;
@@ -40,7 +41,7 @@ pub use trajectory::Trajectory;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
-use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
+use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use crate::scan::ParameterRange;
 use crate::shockley::{DiodePair, ShockleyOptions, ShockleySolver};
 use crate::solver::Solver;
@@ -377,6 +378,12 @@ impl Experiment {
     /// The physical system, if one was described (`None`: dimensionless).
     pub fn system(&self) -> Option<&System> {
         self.system.as_ref()
+    }
+
+    /// What the experiment describes: the dimensionless model, a circuit or a mechanical
+    /// oscillator (its [`SystemKind::label`] is the name every front end shows).
+    pub fn system_kind(&self) -> SystemKind {
+        SystemKind::of(self.system.as_ref())
     }
 
     /// The circuit, if the system is one.

@@ -12,6 +12,11 @@
 use crate::solver::{Event, EventKind};
 use serde::{Deserialize, Serialize};
 
+/// The largest gain of a [`MotionClass::Static`] motion: a motion is static when its amplitude
+/// (max y − min y)/2 is at most this fraction of β, i.e. its gain G = amplitude/β is at most
+/// 0.01 (1 %), whether or not it stops; [`classify`] applies it before anything else.
+pub const STATIC_GAIN: f64 = 0.01;
+
 /// The four kinds of steady motion of the paper's Fig. 6, and chaos.
 ///
 /// [`classify`] decides the first four from the event log. A motion that does not repeat is
@@ -29,7 +34,8 @@ pub enum MotionClass {
     PeriodicStick,
     /// No period found within the cap on drive periods, with stops.
     NonperiodicStick,
-    /// Amplitude of y at most β/100 (for example never leaves rest).
+    /// Amplitude of y at most β/100 (gain at most [`STATIC_GAIN`]; for example never leaves
+    /// rest, or creeps with stops).
     Static,
     /// No period found, and the largest Lyapunov exponent is positive beyond its error
     /// (nearby motions separate exponentially): chaos.
@@ -131,7 +137,7 @@ pub fn classify(
         .filter(|&&d| d > min_stop && d.is_finite())
         .count();
     let longest_stop = durations.iter().copied().fold(0.0, f64::max);
-    let class = if amplitude <= beta / 100.0 {
+    let class = if amplitude <= beta * STATIC_GAIN {
         MotionClass::Static
     } else if stops > 0 && periodic {
         MotionClass::PeriodicStick

@@ -25,7 +25,7 @@ mod report;
 mod spectrum;
 mod state;
 
-pub use classify::{classify, Classification, MotionClass};
+pub use classify::{classify, Classification, MotionClass, STATIC_GAIN};
 pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
 pub(crate) use exponent::settle_with_exponent;
