@@ -353,8 +353,8 @@ fn european_exports_read_as_the_scope_wrote_them() {
     let e = error(&mixed);
     assert!(
         e.contains(
-            "is not a finite number (a decimal comma is read only in a file that writes \
-                    no number with a decimal point"
+            "is not a finite number: the file writes numbers with a decimal point and others \
+             with a decimal comma"
         ),
         "{e}"
     );

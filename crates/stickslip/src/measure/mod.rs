@@ -19,10 +19,12 @@
 //!
 //! **Files from any desk**: fields separated by commas, semicolons or tabs (the first of `;`,
 //! tab, `,` on the first line, or a spreadsheet's `sep=;` line), quoted or not; a decimal
-//! comma (`-3,5e-03`) is read in a file that writes no number with a decimal point. What
-//! cannot be read unambiguously is refused with its cause: a file with both decimal points
-//! and decimal commas, a row with more fields than its header (decimal commas between
-//! fields separated by commas), an empty file. The front ends decode a file's bytes with
+//! comma (`-3,5e-03`) is read in a file that writes no number with a decimal point, and
+//! thousands separators (`"1,500.25"`) in one that writes no decimal comma. What cannot be
+//! read unambiguously is refused with its cause: a file with both decimal points and decimal
+//! commas, a number that reads either way (`1,500`) with no other number telling which, a
+//! row with more fields than its header (decimal commas between fields separated by commas),
+//! an empty file. The front ends decode a file's bytes with
 //! [`decode`]: UTF-8, UTF-16 with its byte-order mark, or Windows-1252 (a spreadsheet's `µs`
 //! in a header); a binary file is refused as such.
 //!

@@ -107,7 +107,8 @@ fn detect_lines(lines: &[Line<'_>]) -> Option<ScopeFormat> {
 /// Read a scope export: detect its format from the header ([`detect`]) and parse it.
 /// `file` names the text in messages. Fields are separated by commas, semicolons or tabs
 /// (the first of `;`, tab and `,` on the first line, or a spreadsheet's `sep=;` line),
-/// quoted or not; a decimal comma is read in a file that writes no decimal point.
+/// quoted or not; a decimal comma is read in a file that writes no decimal point (and
+/// thousands separators in one that writes no decimal comma).
 ///
 /// # Errors
 /// An empty file, an unknown header, a field that is not a number (naming the line), times

@@ -232,12 +232,44 @@ fn comma_number(field: &str) -> Option<String> {
     text.parse::<f64>().is_ok().then_some(text)
 }
 
+/// A number written with thousands separators (`1,500`, `-12,345.25`, `1,000,000e-3`: 1 to 3
+/// digits, not starting with 0, then groups of a comma and 3 digits, then an optional
+/// fraction and exponent), without them.
+fn grouped_number(field: &str) -> Option<String> {
+    let body = field.strip_prefix(['+', '-']).unwrap_or(field);
+    let end = body.find(['.', 'e', 'E']).unwrap_or(body.len());
+    let mut groups = body[..end].split(',');
+    let first = groups.next()?;
+    let mut count = 0;
+    for g in groups {
+        if g.len() != 3 || !g.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        count += 1;
+    }
+    if count == 0
+        || !(1..=3).contains(&first.len())
+        || first.starts_with('0')
+        || !first.bytes().all(|b| b.is_ascii_digit())
+    {
+        return None;
+    }
+    let text = field.replace(',', "");
+    text.parse::<f64>().is_ok().then_some(text)
+}
+
+/// A field that a decimal comma and a thousands separator would read alike (`1,500`).
+fn ambiguous(field: &str) -> bool {
+    comma_number(field).is_some() && grouped_number(field).is_some()
+}
+
 /// Split a text into lines of fields: a byte-order mark dropped; the separator as
 /// [`separator`] finds it; empty lines (and, with `comments`, lines starting with `#`) left
 /// out. A number with a decimal comma (`1,5`, from a `;`- or tab-separated export, or quoted
 /// in a comma-separated one) is read as a number when the file writes no number with a
-/// decimal point; in a file that writes both, the comma stays and the number is refused,
-/// the message saying why ([`number_hint`]).
+/// decimal point, and one with thousands separators (`"1,500.25"`) when it writes no decimal
+/// comma; otherwise the comma stays and the number is refused, the message saying why
+/// ([`number_hint`]).
 pub(crate) fn split(text: &str, comments: bool) -> Table<'_> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let raw: Vec<(usize, &str)> = text
@@ -256,33 +288,54 @@ pub(crate) fn split(text: &str, comments: bool) -> Table<'_> {
         })
         .filter(|l| !l.fields.is_empty())
         .collect();
-    let has_comma = lines
-        .iter()
-        .flat_map(|l| &l.fields)
-        .any(|f| comma_number(f).is_some());
-    let has_point = has_comma
-        && lines
-            .iter()
-            .flat_map(|l| &l.fields)
-            .any(|f| f.contains('.') && f.parse::<f64>().is_ok());
-    if has_comma && !has_point {
-        for field in lines.iter_mut().flat_map(|l| &mut l.fields) {
-            if let Some(number) = comma_number(field) {
-                *field = Cow::Owned(number);
+    // The file's decimal mark, from the numbers that only one mark reads: a comma (`0,5`,
+    // `1234,5`, `-3,0e-3`) or a point (`0.5`, `1,500.25`). Commas are then decimal commas,
+    // or thousands separators; with both marks, or with only numbers that read either way
+    // (`1,500`), they are left and the number refused ([`number_hint`]).
+    let fields = || lines.iter().flat_map(|l| &l.fields);
+    if fields().any(|f| f.contains(',')) {
+        let decimal_comma = fields().any(|f| comma_number(f).is_some() && !ambiguous(f));
+        let decimal_point = fields()
+            .any(|f| f.contains('.') && (f.parse::<f64>().is_ok() || grouped_number(f).is_some()));
+        let read: Option<fn(&str) -> Option<String>> = match (decimal_comma, decimal_point) {
+            (true, false) => Some(comma_number),
+            (false, true) => Some(grouped_number),
+            _ => None,
+        };
+        if let Some(read) = read {
+            for field in lines.iter_mut().flat_map(|l| &mut l.fields) {
+                if let Some(number) = read(field) {
+                    *field = Cow::Owned(number);
+                }
             }
         }
     }
     Table { lines, separator }
 }
 
-/// Why a field that holds a comma is not a number: a decimal comma is read only in a file
-/// that writes no decimal point.
-pub(crate) fn number_hint(text: &str) -> &'static str {
-    if text.contains(',') {
-        " (a decimal comma is read only in a file that writes no number with a decimal point, \
-         and a number with both a point and a comma is not read)"
+/// Why a field that holds a comma is not a number, as its file was read ([`split`]).
+pub(crate) fn number_hint(text: &str) -> String {
+    if !text.contains(',') {
+        return String::new();
+    }
+    let shown = |t: Option<String>| {
+        t.and_then(|t| t.parse::<f64>().ok())
+            .map_or_else(String::new, |x| x.to_string())
+    };
+    if ambiguous(text) {
+        format!(
+            ": {} with a decimal comma, {} with a thousands separator, and no other number of \
+             the file tells which; write it with a decimal point",
+            shown(comma_number(text)),
+            shown(grouped_number(text))
+        )
+    } else if comma_number(text).is_some() || grouped_number(text).is_some() {
+        ": the file writes numbers with a decimal point and others with a decimal comma, so \
+         which a comma is (decimal or thousands) is not clear"
+            .to_string()
     } else {
-        ""
+        ": a comma is read as a decimal comma or as thousands separators, and this is neither"
+            .to_string()
     }
 }
 
@@ -353,6 +406,21 @@ mod tests {
         // Points and commas in one file: the commas stay.
         let t = split("t;u\n0.5;1,5\n", false);
         assert_eq!(texts(&t), [vec!["t", "u"], vec!["0.5", "1,5"]]);
+        // 1,500 is a decimal comma beside 0,5, thousands beside 0.5, and either alone.
+        let t = split("t;u\n1,500;0,5\n", false);
+        assert_eq!(texts(&t)[1], ["1.500", "0.5"]);
+        let t = split("t,u\n\"1,500\",0.5\n\"-12,345.5\",1\n", false);
+        assert_eq!(texts(&t)[1..], [vec!["1500", "0.5"], vec!["-12345.5", "1"]]);
+        let t = split("t;u\n1,500;2\n", false);
+        assert_eq!(texts(&t)[1], ["1,500", "2"]);
+        assert_eq!(
+            number_hint("1,500"),
+            ": 1.5 with a decimal comma, 1500 with a thousands separator, and no other number \
+             of the file tells which; write it with a decimal point"
+        );
+        assert!(number_hint("1,5").contains("decimal point and others with a decimal comma"));
+        assert!(number_hint("1.234,5").contains("neither"));
+        assert_eq!(number_hint("abc"), "");
         // Comments of an amplitude table.
         let t = split("# R = 71,5; x\nf,U\n", true);
         assert_eq!(t.separator, ',');
