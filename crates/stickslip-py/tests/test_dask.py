@@ -263,13 +263,24 @@ def test_real_cluster(real_cluster, local_map):
 # A map that runs for half a minute or more of CPU even on an idle machine (2.25e6 points of
 # the paper's map), in blocks of a fraction of a second each: Ctrl-C comes mid-way.
 CTRL_C_SCRIPT = """
-import sys
+import signal, sys, threading, time
 import numpy as np
 import dask, distributed  # imported before the map starts
 import stickslip, stickslip.dask
 
-def run(client):
+def shielded():
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+
+# 'started' once the map has begun: on a cluster, once its workers ignore the terminal's
+# Ctrl-C (the map's first act; a Ctrl-C before it reaches workers that nothing shields).
+def say_started(client):
+    if client is not None:
+        while not all(client.run(shielded).values()):
+            time.sleep(0.01)
     print("started", flush=True)
+
+def run(client):
+    threading.Thread(target=say_started, args=(client,), daemon=True).start()
     if sys.argv[2] == "lyapunov":
         # The exponent map of the chaos window (minutes of CPU), in small blocks.
         stickslip.dask.phase_diagram(stickslip.Experiment(zeta=0, mu_s=3), client=client,

@@ -129,9 +129,13 @@ def test_basins_phase_steps_xarray_and_errors(cli):
         stickslip.basins(e, y0=(-1, 1), v0=(-1, 1), steps=3, lyapunov_periods=4)
     with pytest.raises(ValueError, match="^missing drive"):
         stickslip.basins(Experiment(zeta=0.0, w=0.6), y0=(-1, 1), v0=(-1, 1), steps=3)
-    with pytest.raises(ValueError, match="PWL|piecewise"):
-        stickslip.basins(Experiment.paper(w=0.9, beta=1.6, diode="shockley"),
-                         y0=(-1, 1), v0=(-1, 1), steps=3)
+    # Shockley diodes: the stiff solver's cells, as the tool's.
+    shockley = stickslip.basins(Experiment.paper(w=0.9, beta=1.6, diode="shockley"),
+                                y0=(-1, 1), v0=(-1, 1), steps=3)
+    assert shockley.to_dict() == cli.json(
+        "basins", "--preset", "paper", "--model", "shockley", "--w", 0.9, "--beta", 1.6,
+        "--y0-min", -1, "--y0-max", 1, "--v0-min", -1, "--v0-max", 1, "--steps", 3)
+    assert [a["kind"] for a in shockley.attractors] == ["periodic"]
 
 
 def test_basins_method_is_the_tools_method(cli, tmp_path):
@@ -181,6 +185,38 @@ def test_continuation_is_the_tools_csv_and_json(cli, tmp_path):
     assert graze["before"]["stops"] != graze["after"]["stops"]
     assert fold["before"]["stable"] and not fold["after"]["stable"]
     assert np.all(np.abs(b.multipliers[:, 0]) >= np.abs(b.multipliers[:, 1]) - 1e-15)
+
+
+def test_shockley_continuation_and_bifurcation_are_the_tools(cli, tmp_path):
+    # Shockley diodes: the stiff solver's strobe map, its Jacobian and ∂P/∂w from the
+    # variational equations; the same numbers as the command's.
+    shockley = Experiment.paper(diode="shockley", beta=3.61)
+    model = ["--preset", "paper", "--model", "shockley", "--beta", 3.61]
+    out = tmp_path / "branch.csv"
+    summary = cli.json("continue", *model, "--over", "w", "--from", 1.2, "--to", 1.1,
+                       "--out", out)
+    table = read_csv(out)
+    b = stickslip.continuation(shockley, "w", start=1.2, to=1.1)
+    assert b.to_dict() == summary
+    assert len(b) == len(table["w"]) > 10
+    for name in ("y", "v", "mu1_re", "mu1_im", "arclength"):
+        assert_same(getattr(b, name), numbers(table[name]), name)
+    assert b.special == [] and all(b.stable)
+    # μs is no parameter of the diode law.
+    message = cli.error("continue", *model, "--w", 0.9, "--over", "mu-s", "--from", 1,
+                        "--to", 1.5)
+    with pytest.raises(ValueError) as e:
+        stickslip.continuation(shockley.replace(w=0.9), "mu_s", start=1.0, to=1.5)
+    assert str(e.value) == message and "mu_s" in message
+    out = tmp_path / "bif.csv"
+    cli.run("bifurcation", *model, "--over", "w", "--from", 1.0, "--to", 1.1, "--steps", 2,
+            "--points", 20, "--transient", 100, "--out", out)
+    table = read_csv(out)
+    d = stickslip.bifurcation(shockley, "w", [1.0, 1.1], points=20, transient=100)
+    rows = d.rows()
+    assert_same(rows["y"], numbers(table["y"]), "y")
+    assert_same(rows["lambda"], numbers(table["lambda"]), "lambda")
+    assert list(rows["class"]) == table["class"] == ["periodic"] * 80
 
 
 def test_a_tiny_max_step_does_not_stall_on_a_stable_orbit():

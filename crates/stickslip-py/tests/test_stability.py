@@ -43,6 +43,9 @@ ORBITS = [
     (Experiment(zeta=0, mu_s=3, w=0.4, beta=9), dict(max_period=8, max_periods=4000),
      ["--zeta", 0, "--mu-s", 3, "--w", 0.4, "--beta", 9, "--max-period", 8, "--max-periods",
       4000]),
+    # Shockley diodes: the stiff solver's orbit with its variational Jacobian (two stops).
+    (Experiment.paper(diode="shockley", w=0.7, beta=1.2), {},
+     ["--preset", "paper", "--model", "shockley", "--w", 0.7, "--beta", 1.2]),
 ]
 
 
@@ -83,13 +86,6 @@ def test_orbit_facts():
 
 
 def test_orbit_errors(cli):
-    shockley = Experiment.paper(diode="shockley", w=0.7, beta=1.2)
-    message = cli.error("orbit", "--preset", "paper", "--model", "shockley", "--w", 0.7,
-                        "--beta", 1.2)
-    with pytest.raises(ValueError) as e:
-        stickslip.orbit(shockley)
-    assert str(e.value) == message
-    assert "piecewise-linear" in message
     with pytest.raises(ValueError, match="^the steady state found no period in 5000"):
         stickslip.orbit(Experiment(**CHAOTIC))
     with pytest.raises(ValueError, match="^invalid period = 0: must be from 1 to 1000$"):
@@ -112,6 +108,10 @@ LYAPUNOV = [
     (Experiment.paper(w=0.7, beta=1.2), dict(transient=100, periods=1000, significance=3),
      ["--preset", "paper", "--w", 0.7, "--beta", 1.2, "--transient", 100, "--periods", 1000,
       "--significance", 3]),
+    # Shockley diodes: the stiff solver's tangent dynamics; λ2 stays finite.
+    (Experiment.paper(diode="shockley", w=0.7, beta=1.2), dict(transient=100, periods=400),
+     ["--preset", "paper", "--model", "shockley", "--w", 0.7, "--beta", 1.2, "--transient",
+      100, "--periods", 400]),
 ]
 
 
@@ -150,11 +150,13 @@ def test_lyapunov_verdicts_and_errors(cli):
         stickslip.lyapunov(Experiment(**CHAOTIC), transient=-1)
     with pytest.raises(ValueError, match="^a run of 1000001000 drive periods at w = 0.33 is too long"):
         stickslip.lyapunov(Experiment(**CHAOTIC), periods=10**9)
-    message = cli.error("lyapunov", "--preset", "paper", "--model", "shockley", "--w", 0.7,
-                        "--beta", 1.2)
-    with pytest.raises(ValueError) as e:
-        stickslip.lyapunov(Experiment.paper(diode="shockley", w=0.7, beta=1.2))
-    assert str(e.value) == message
+    # Shockley diodes: the exponent of the orbit the motion reached, λ2 finite.
+    shockley = stickslip.lyapunov(Experiment.paper(diode="shockley", w=0.7, beta=1.2),
+                                  transient=100, periods=400)
+    orbit = stickslip.orbit(Experiment.paper(diode="shockley", w=0.7, beta=1.2))
+    assert (shockley.motion_class, shockley.period) == ("periodic", 1)
+    assert math.isclose(shockley.lambda_per_tau, orbit.exponent_per_tau, rel_tol=1e-6)
+    assert math.isfinite(shockley.lambda2_per_tau) and shockley.lambda2_reason is None
 
 
 def test_lyapunov_reports_progress_in_drive_periods():

@@ -37,7 +37,7 @@ use crate::error::{invalid, Result};
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{EventKind, Phase};
-use crate::stability::TangentSolver;
+use crate::stability::{Dynamics, ExactDynamics, TangentRun};
 use serde::{Deserialize, Serialize};
 
 /// What a motion settles on (see the module documentation).
@@ -219,12 +219,27 @@ pub fn record_strobes(
     initial: State,
     options: &RecordOptions,
 ) -> Result<StrobeRecord> {
+    record_strobes_of(&ExactDynamics, params, initial, options)
+}
+
+/// [`record_strobes`] on the model `dynamics` (its tangent dynamics, and the points taken to
+/// repeat within its [`Dynamics::repeat_tolerance`] of [`RecordOptions::tolerance`]).
+///
+/// # Errors
+/// As [`record_strobes`].
+pub fn record_strobes_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    initial: State,
+    options: &RecordOptions,
+) -> Result<StrobeRecord> {
     let options = options.validate()?;
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
     let period = params.drive_period();
-    let mut tangent = TangentSolver::new(params, initial);
-    tangent.run_until(options.transient_periods as f64 * period, |_| {})?;
+    let mut tangent = dynamics.tangent(&params, initial)?;
+    let tangent: &mut dyn TangentRun = tangent.as_mut();
+    tangent.run_until(options.transient_periods as f64 * period, &mut |_| {})?;
     // The transient has turned J into the most unstable direction; measure from here, on a
     // solver whose clock starts afresh (small absolute times; see `TangentSolver`).
     tangent.renormalize();
@@ -237,7 +252,7 @@ pub fn record_strobes(
     let (mut events, mut stops) = (0usize, 0usize);
     let mut in_block = 0usize;
     for k in 1..=n {
-        tangent.run_until(k as f64 * period, |e| {
+        tangent.run_until(k as f64 * period, &mut |e| {
             events += 1;
             stops += usize::from(e.kind == EventKind::Stick);
         })?;
@@ -286,7 +301,11 @@ pub fn record_strobes(
     } else {
         f64::NAN
     };
-    let found = detect_period(&strobes, options.max_period, options.tolerance);
+    let found = detect_period(
+        &strobes,
+        options.max_period,
+        dynamics.repeat_tolerance(options.tolerance),
+    );
     let stuck = tangent.phase() == Phase::Stick;
     let k = options.significance;
     let kind = match found {

@@ -57,18 +57,18 @@
 //! assert!(kinds.contains(&AttractorKind::Static) && kinds.contains(&AttractorKind::Periodic));
 //! ```
 
-use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, RecordOptions};
-use crate::error::{invalid, Error, Result, Unsupported};
-use crate::exact::ExactSolver;
-use crate::experiment::{DiodeModel, Experiment};
+use crate::attractor::{distance, record_strobes_of, scale_of, AttractorKind, RecordOptions};
+use crate::error::{invalid, Error, Result};
+use crate::experiment::Experiment;
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::scan::{Monitor, ParameterRange};
-use crate::solver::{run_until, Solver};
-use crate::stability::{find_periodic_orbit, Multiplier, NewtonOptions};
+use crate::solver::run_until;
+use crate::stability::{Dynamics, Multiplier, NewtonOptions};
 use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
+use std::sync::Arc;
 
 mod recurrence;
 pub use recurrence::{Recurrence, RecurrenceRow};
@@ -313,6 +313,8 @@ impl BasinMap {
 #[derive(Debug, Clone)]
 pub struct Basins {
     params: Params,
+    /// The model of the experiment's law.
+    dynamics: Arc<dyn Dynamics>,
     y0: Vec<f64>,
     v0: Vec<f64>,
     options: BasinOptions,
@@ -323,14 +325,15 @@ impl Basins {
     /// The map of `experiment` (its parameters, drive phase φ included) over the initial
     /// positions `y0` and velocities `v0`.
     ///
+    /// With Shockley diodes every cell is run on the stiff solver, and strobe states repeat,
+    /// and fixed points match, within the solver's accuracy
+    /// ([`Dynamics::repeat_tolerance`] of [`BasinOptions::tolerance`] and
+    /// [`BasinOptions::match_tolerance`]).
+    ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value;
-    /// [`Error::InvalidParameter`] for more than [`crate::limits::MAX_BASIN_STEPS`] values
-    /// along an axis.
+    /// A missing drive value; [`Error::InvalidParameter`] for more than
+    /// [`crate::limits::MAX_BASIN_STEPS`] values along an axis.
     pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
-        if experiment.diode_model() != DiodeModel::Pwl {
-            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
-        }
         for range in [y0, v0] {
             if range.steps() > crate::limits::MAX_BASIN_STEPS {
                 return Err(Error::InvalidParameter {
@@ -342,6 +345,7 @@ impl Basins {
         }
         Ok(Self {
             params: experiment.params()?,
+            dynamics: Arc::from(experiment.dynamics()?),
             y0: y0.values(),
             v0: v0.values(),
             options: BasinOptions::default(),
@@ -380,6 +384,17 @@ impl Basins {
         &self.options
     }
 
+    /// The model of the experiment's law.
+    pub(crate) fn dynamics(&self) -> &dyn Dynamics {
+        self.dynamics.as_ref()
+    }
+
+    /// The distance within which two fixed points are one orbit:
+    /// [`BasinOptions::match_tolerance`], at least the accuracy of the model's map.
+    pub(crate) fn match_tolerance(&self) -> f64 {
+        self.dynamics.repeat_tolerance(self.options.match_tolerance)
+    }
+
     /// Rows (initial positions) and columns (initial velocities).
     pub fn shape(&self) -> (usize, usize) {
         (self.y0.len(), self.v0.len())
@@ -400,12 +415,21 @@ impl Basins {
     /// method's verdict).
     fn cell_from(&self, start: State) -> Result<Cell> {
         let options = self.options;
-        let steady = steady_state_from(
-            &exact_solver,
-            &self.params,
-            start,
-            &options.steady_options()?,
-        )?;
+        let steady = if self.dynamics.is_exact() {
+            steady_state_from(
+                &exact_solver,
+                &self.params,
+                start,
+                &options.steady_options()?,
+            )?
+        } else {
+            let dynamics = self.dynamics.as_ref();
+            let factory = |p: Params, s: State| dynamics.solver(&p, s);
+            let steady_options = options
+                .steady_options()?
+                .with_tolerance(dynamics.repeat_tolerance(options.tolerance))?;
+            steady_state_from(&factory, &self.params, start, &steady_options)?
+        };
         let mut periods = steady.periods_to_settle + steady.recorded_periods;
         if let Some(period) = steady.period {
             let at = steady.strobes[0];
@@ -420,7 +444,8 @@ impl Basins {
             }
             return self.periodic_cell(at, period, periods);
         }
-        let record = record_strobes(
+        let record = record_strobes_of(
+            self.dynamics.as_ref(),
             &self.params,
             steady.final_state(),
             &RecordOptions {
@@ -458,16 +483,20 @@ impl Basins {
     /// its p strobe points (the points as simulated when Newton's method fails).
     fn periodic_cell(&self, at: State, period: usize, periods: usize) -> Result<Cell> {
         let drive_period = self.params.drive_period();
-        let (start, exponent) =
-            match find_periodic_orbit(&self.params, at, period, &NewtonOptions::default()) {
-                Ok(orbit) => (orbit.state, orbit.exponent()),
-                Err(Error::Stability(_)) => (at, f64::NAN),
-                Err(e) => return Err(e),
-            };
-        let mut solver = ExactSolver::new(self.params, start);
+        let (start, exponent) = match self.dynamics.find_periodic_orbit(
+            &self.params,
+            at,
+            period,
+            &NewtonOptions::default(),
+        ) {
+            Ok(orbit) => (orbit.state, orbit.exponent()),
+            Err(Error::Stability(_)) => (at, f64::NAN),
+            Err(e) => return Err(e),
+        };
+        let mut solver = self.dynamics.solver(&self.params, start)?;
         let mut strobes = vec![start];
         for k in 1..period {
-            run_until(&mut solver, k as f64 * drive_period, |_| {})?;
+            run_until(solver.as_mut(), k as f64 * drive_period, |_| {})?;
             strobes.push(solver.state());
         }
         Ok(Cell {
@@ -543,7 +572,7 @@ impl Basins {
         }
         let mut attractors: Vec<Attractor> = Vec::new();
         let mut assigned = Vec::with_capacity(cells.len());
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         for (k, cell) in cells.iter().enumerate() {
             let found = match cell.kind {
                 AttractorKind::Unsettled => {
@@ -618,10 +647,11 @@ impl Basins {
             a.fraction = a.cells as f64 / total;
             if a.kind == AttractorKind::Periodic {
                 let period = a.period.expect("periodic");
-                a.multipliers =
-                    find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
-                        .ok()
-                        .map(|o| o.multipliers);
+                a.multipliers = self
+                    .dynamics
+                    .find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
+                    .ok()
+                    .map(|o| o.multipliers);
             }
         }
         self.pair_mirrors(&mut attractors)?;
@@ -646,7 +676,7 @@ impl Basins {
     /// symmetric set) is its own image.
     fn pair_mirrors(&self, attractors: &mut [Attractor]) -> Result<()> {
         let half = 0.5 * self.params.drive_period();
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         let mut mirrors = Vec::with_capacity(attractors.len());
         for a in attractors.iter() {
             if a.kind == AttractorKind::Static {
@@ -655,8 +685,8 @@ impl Basins {
             }
             let mut images = Vec::with_capacity(a.strobes.len());
             for &s in &a.strobes {
-                let mut solver = ExactSolver::new(self.params, s);
-                run_until(&mut solver, half, |_| {})?;
+                let mut solver = self.dynamics.solver(&self.params, s)?;
+                run_until(solver.as_mut(), half, |_| {})?;
                 let x = solver.state();
                 images.push(State { y: -x.y, v: -x.v });
             }

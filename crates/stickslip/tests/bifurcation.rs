@@ -787,9 +787,22 @@ fn bad_input_is_refused_with_its_name() {
     let shockley = shockley
         .with_shockley(stickslip::DiodePair::default())
         .unwrap();
+    // Shockley diodes: accepted, but not continued in μs, which their law does not use.
+    assert!(Bifurcation::new(&shockley, Axis::new(Parameter::W, vec![0.9]).unwrap()).is_ok());
+    let (params, orbit) = stickslip::continuation::settled_orbit(&shockley).unwrap();
     assert!(matches!(
-        Bifurcation::new(&shockley, Axis::new(Parameter::W, vec![0.9]).unwrap()),
-        Err(stickslip::Error::Unsupported(_))
+        stickslip::continuation::continue_orbit_of(
+            shockley.dynamics().unwrap().as_ref(),
+            &params,
+            Parameter::MuS,
+            &orbit,
+            1.5,
+            &ContinuationOptions::default(),
+            &()
+        ),
+        Err(stickslip::Error::Unsupported(
+            stickslip::Unsupported::MuSNeedsPwl
+        ))
     ));
 }
 

@@ -459,7 +459,7 @@ fn an_experiment_finds_its_orbits_and_exponents() {
         c.exponents,
         lyapunov_exponents(&chaotic.params().unwrap(), State::default(), &options).unwrap()
     );
-    // Shockley diodes: a clear refusal.
+    // Shockley diodes: the same tools on the stiff solver's tangent dynamics.
     let shockley = Experiment::paper()
         .with_shockley(DiodePair::one_n4148())
         .unwrap()
@@ -467,19 +467,19 @@ fn an_experiment_finds_its_orbits_and_exponents() {
         .unwrap()
         .with_beta(2.0)
         .unwrap();
-    for result in [
-        shockley
-            .periodic_orbit(None, 0, &steady, &newton, &())
-            .err(),
-        shockley.lyapunov(&options, &()).err(),
-    ] {
-        let err = result.expect("refused");
-        assert!(matches!(
-            err,
-            Error::Unsupported(Unsupported::StabilityNeedsPwl)
-        ));
-        assert!(err.to_string().contains("piecewise-linear"), "{err}");
-    }
+    let orbit = shockley
+        .periodic_orbit(None, 0, &steady, &newton, &())
+        .unwrap();
+    assert_eq!((orbit.period, orbit.stability), (1, Stability::Stable));
+    let c = shockley.lyapunov(&options, &()).unwrap();
+    assert_eq!(c.verdict, NonperiodicVerdict::Contracting);
+    assert!(
+        (c.exponents.largest.per_tau - orbit.exponent()).abs()
+            <= 4.0 * c.exponents.largest.error_per_tau + 1e-6 * orbit.exponent().abs(),
+        "{:?} vs {}",
+        c.exponents.largest,
+        orbit.exponent()
+    );
 }
 
 #[test]

@@ -21,7 +21,9 @@ use stickslip::{OptionKey, State};
 /// in the order of the cells (rows of y0, then y0'): a periodic orbit by its period and its
 /// fixed point (refined by Newton's method), rest by never moving again, chaos by a positive
 /// largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
-/// its error of zero. Cells that settle on nothing within the caps are unsettled.
+/// its error of zero. Cells that settle on nothing within the caps are unsettled. With
+/// --model shockley every cell runs on the stiff solver, and strobe states repeat (and fixed
+/// points match) within its rtol.
 ///
 /// --method recurrence (the default) follows each initial state on a grid of the strobe
 /// map's state space with --resolution cells across the map, until it lands on cells already

@@ -31,6 +31,10 @@ use stickslip::{OptionKey, Parameter};
 /// continuation on top (stable solid, unstable dashed, with folds, period doublings and
 /// grazings marked) and the exponent below.
 ///
+/// With --model shockley the points and the exponent are the stiff solver's (its tangent
+/// dynamics: the variational equations on its own steps), and points repeat within its
+/// rtol; μs is no parameter of the diode law.
+///
 /// Example: stickslip bifurcation --zeta 0 --mu-s 3 --beta 9 --over w --from 0.2 --to 0.55 \
 ///          --steps 500 --out bif.csv --plot bif.png
 #[derive(Debug, clap::Args)]

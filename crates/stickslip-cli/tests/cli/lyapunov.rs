@@ -126,13 +126,6 @@ fn bad_input_gives_one_line_and_exit_code_2() {
     ];
     assert_usage_errors(&[&["lyapunov"][..], &CHAOTIC].concat(), cases);
     let dir = tempfile::tempdir().unwrap();
-    let out = run_in(
-        dir.path(),
-        &[
-            "lyapunov", "--preset", "paper", "--model", "shockley", "--w", "0.7", "--beta", "1.2",
-        ],
-    );
-    assert_usage_error(dir.path(), &out, "piecewise-linear");
     // A missing drive is named.
     let out = run_in(dir.path(), &["lyapunov", "--zeta", "0.1", "--w", "0.7"]);
     assert_usage_error(dir.path(), &out, "--beta");

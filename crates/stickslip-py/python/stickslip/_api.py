@@ -1248,14 +1248,15 @@ class LyapunovResult:
 def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: int = 0,
           tolerance: float = 1e-12, max_iterations: int = 30, progress: Progress = None,
           **options: Any) -> PeriodicOrbit:
-    """A periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
-    (the state once every p drive periods), with the exact Jacobian: its Floquet
-    multipliers say whether it is stable and how fast perturbations grow or decay (as
-    ``stickslip orbit``).
+    """A periodic orbit by Newton's method on the p-fold strobe map (the state once every p
+    drive periods), with its Jacobian: its Floquet multipliers say whether it is stable and
+    how fast perturbations grow or decay (as ``stickslip orbit``). With the PWL law the
+    Jacobian is exact; with Shockley diodes it is the derivative of the stiff solver's
+    computed map (the variational equations on the solver's own steps).
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive given (PWL diodes or Coulomb
-            friction; Shockley diodes raise ``ValueError``).
+        experiment: a ``stickslip.Experiment`` with its drive given (PWL or Shockley diodes,
+            or Coulomb friction).
         period: p in drive periods (1 to 1000). None (the default): the motion from the
             initial state is run to its steady state, which gives p and the guess.
         transient: with a period, drive periods run from the initial state before Newton's
@@ -1272,7 +1273,7 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
         A ``PeriodicOrbit``; ``to_dict()`` equals ``stickslip orbit --json``.
 
     Raises:
-        ValueError: bad input, Shockley diodes, no period found, Newton's method failing,
+        ValueError: bad input, no period found, Newton's method failing,
             with the library's message. KeyboardInterrupt: Ctrl-C stops a long transient.
 
     Example:
@@ -1304,8 +1305,9 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
 def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20000,
              blocks: int = 20, significance: float = 4.0,
              progress: Progress = None, fixed: bool = False) -> LyapunovResult:
-    """The Lyapunov exponents of the motion from the initial state, by the exact tangent
-    dynamics of the PWL model (as ``stickslip lyapunov``).
+    """The Lyapunov exponents of the motion from the initial state, by the tangent dynamics
+    (as ``stickslip lyapunov``): the PWL law's exact ones, or with Shockley diodes those of
+    the stiff solver's computed solution.
 
     The 2×2 Jacobian of the exact flow is carried along the trajectory; after ``transient``
     drive periods the largest exponent λ1 is averaged over at most ``periods`` more, cut into
@@ -1315,7 +1317,7 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
     |λ1| > kσ (docs/stability.md gives the rule and its significance).
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive given (not Shockley diodes).
+        experiment: a ``stickslip.Experiment`` with its drive given (either diode law).
         transient: drive periods run before measuring (0 to 1e9; default 1000).
         periods: drive periods measured (``blocks`` to 1e9; default 20000; rounded down to a
             multiple of ``blocks``).
@@ -1330,7 +1332,7 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
         A ``LyapunovResult``; ``to_dict()`` equals ``stickslip lyapunov --json``.
 
     Raises:
-        ValueError: bad input or Shockley diodes, with the library's message.
+        ValueError: bad input, with the library's message.
         KeyboardInterrupt: Ctrl-C stops a long measurement.
 
     Example:

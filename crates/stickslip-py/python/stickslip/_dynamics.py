@@ -425,9 +425,9 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
     coexisting branches. A period-p orbit gives p distinct points; chaos a cloud and λ > 0.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with the piecewise-linear law (the exact solver);
-            it needs no value of the stepped parameter. The first value starts from its
-            initial state.
+        experiment: a ``stickslip.Experiment`` (the exact solver for the piecewise-linear
+            law, the stiff solver and its tangent dynamics for Shockley diodes); it needs no
+            value of the stepped parameter. The first value starts from its initial state.
         over: 'w', 'beta', 'zeta' or 'mu_s'.
         values: the parameter's values, in order (any array-like of floats; dimensionless).
         direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
@@ -484,7 +484,7 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
     its error of zero. The result is the same for any number of threads.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive, the piecewise-linear law; its
+        experiment: a ``stickslip.Experiment`` with its drive (either diode law); its
             initial state is not used (the grid sets it).
         y0: (smallest, largest) initial position (dimensionless, units of y).
         v0: (smallest, largest) initial velocity y0'.
@@ -557,9 +557,10 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
     points or stops per period change), each with the orbit on either side.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with the piecewise-linear law; the other
-            parameters and the initial state come from it.
-        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s'.
+        experiment: a ``stickslip.Experiment`` (either diode law); the other parameters and
+            the initial state come from it.
+        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s' (not 'mu_s' with
+            Shockley diodes, whose law has no static threshold).
         start: the start value (dimensionless).
         to: the value to continue towards; the branch stays between the two.
         max_points: most points of the branch (2 to 10⁷; default 5000).

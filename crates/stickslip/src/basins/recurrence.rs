@@ -31,10 +31,9 @@ use super::{BasinOptions, Basins, Cell};
 use crate::attractor::{distance, scale_of, AttractorKind};
 use crate::checkpoint::{UnitReader, UnitWriter};
 use crate::error::{Error, Result};
-use crate::exact::ExactSolver;
 use crate::params::State;
 use crate::scan::Monitor;
-use crate::solver::{Phase, Solver};
+use crate::solver::Phase;
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 
@@ -280,7 +279,7 @@ impl<'a> Recurrence<'a> {
     fn follow(&mut self, start: State, visited: &mut Vec<(i64, i64)>) -> Result<(Outcome, usize)> {
         let options: BasinOptions = self.basins.options;
         let period = self.basins.params.drive_period();
-        let mut solver = ExactSolver::new(self.basins.params, start);
+        let mut solver = self.basins.dynamics().solver(&self.basins.params, start)?;
         let mut own = std::collections::HashSet::new();
         let mut x = start;
         let mut steps = 0usize;
@@ -325,7 +324,7 @@ impl<'a> Recurrence<'a> {
             }
             let mut events = 0usize;
             steps += 1;
-            crate::solver::run_until(&mut solver, steps as f64 * period, |_| events += 1)?;
+            crate::solver::run_until(solver.as_mut(), steps as f64 * period, |_| events += 1)?;
             x = solver.state();
             // Stuck through a whole drive period with the same drive to come: stuck for
             // ever.
@@ -337,7 +336,7 @@ impl<'a> Recurrence<'a> {
 
     /// The attractor found earlier that is the periodic orbit or rest of `cell`.
     fn known(&self, cell: &Cell) -> Option<usize> {
-        let tolerance = self.basins.options.match_tolerance;
+        let tolerance = self.basins.match_tolerance();
         self.found.iter().position(|f| {
             f.kind == cell.kind
                 && match cell.kind {
@@ -373,7 +372,7 @@ impl<'a> Recurrence<'a> {
         // Label the attractor's cells (over basin labels, not over other attractors): run on
         // it until found_revisits steps in a row land on cells already labelled (at most
         // max_steps).
-        let mut solver = ExactSolver::new(self.basins.params, start);
+        let mut solver = self.basins.dynamics().solver(&self.basins.params, start)?;
         let mut x = start;
         let mut in_a_row = 0usize;
         let mut steps = 0usize;
@@ -387,7 +386,7 @@ impl<'a> Recurrence<'a> {
                 }
             }
             steps += 1;
-            crate::solver::run_until(&mut solver, steps as f64 * period, |_| {})?;
+            crate::solver::run_until(solver.as_mut(), steps as f64 * period, |_| {})?;
             x = solver.state();
         }
         Ok(k)

@@ -27,6 +27,7 @@ pub(crate) mod errors;
 mod file;
 mod key;
 pub mod keys;
+mod law;
 mod spec;
 mod stability;
 mod text;
@@ -35,6 +36,7 @@ mod trajectory;
 pub use errors::{ConfigError, SpecError};
 pub use key::{FitRole, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use keys::Key;
+pub use law::Law;
 pub use spec::ExperimentSpec;
 pub use trajectory::Trajectory;
 
@@ -43,11 +45,11 @@ use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use crate::scan::ParameterRange;
-use crate::shockley::{DiodePair, ShockleyOptions, ShockleySolver};
+use crate::shockley::{DiodePair, ShockleyOptions};
 use crate::solver::Solver;
+use crate::stability::Dynamics;
 use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
 use crate::theory::curves::{SweepTheory, TheoryCurve};
-use crate::ExactSolver;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -446,6 +448,29 @@ impl Experiment {
         &self.shockley
     }
 
+    /// The law of the dissipative element, in dimensionless form ([`Law`]): it decides the
+    /// solver ([`Experiment::factory`]) and the stability tools ([`Experiment::dynamics`]).
+    ///
+    /// # Errors
+    /// When a Shockley pair's law cannot be formed (invalid parts; a validated experiment
+    /// has none).
+    pub fn law(&self) -> Result<Law> {
+        law_of(
+            self.circuit_ref()
+                .filter(|_| self.diode_model() == DiodeModel::Shockley),
+        )
+    }
+
+    /// The stability tools of this experiment's model ([`Dynamics`]: the exact PWL model's,
+    /// or the Shockley model's with the experiment's stiff-solver options), checking the
+    /// experiment's cancel token.
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
+        self.law()?.dynamics(self.shockley, self.cancel.0.clone())
+    }
+
     /// The scales to physical units, for a physical system.
     pub fn scales(&self) -> Option<Scales> {
         self.system.map(|s| s.scales())
@@ -755,24 +780,38 @@ pub struct ExperimentFactory {
     cancel: Cancel,
 }
 
+/// The law of `circuit` (Shockley diodes), or the PWL law without one.
+fn law_of(circuit: Option<&Circuit>) -> Result<Law> {
+    match circuit.map(|c| (c, c.diode)) {
+        Some((c, Diode::Shockley(d))) => Ok(Law::Shockley(
+            d.pair.law(d.reference_voltage, c.impedance())?,
+        )),
+        _ => Ok(Law::Pwl),
+    }
+}
+
+impl ExperimentFactory {
+    /// The law its solvers follow ([`Law`]).
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn law(&self) -> Result<Law> {
+        law_of(self.circuit.as_ref())
+    }
+
+    /// The stability tools of the model its solvers solve.
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
+        self.law()?.dynamics(self.options, self.cancel.clone())
+    }
+}
+
 impl SolverFactory for ExperimentFactory {
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
-        let params = params.validate()?;
-        let initial = State::new(initial.y, initial.v)?;
-        match self
-            .circuit
-            .map(|c| c.shockley_model(&params))
-            .transpose()?
-            .flatten()
-        {
-            Some(model) => Ok(Box::new(ShockleySolver::with_cancel(
-                model,
-                initial,
-                self.options,
-                self.cancel.clone(),
-            )?)),
-            None => Ok(ExactSolver::boxed(params, initial, self.cancel.clone())),
-        }
+        self.law()?
+            .solver(params, initial, self.options, self.cancel.clone())
     }
 
     fn cancel(&self) -> Cancel {

@@ -2,14 +2,14 @@
 //! --json` and `stickslip lyapunov --json` print, and what the Python package's
 //! `orbit(...).to_dict()` and `lyapunov(...).to_dict()` return.
 
+use super::dynamics::{Dynamics, ExactDynamics};
 use super::lyapunov::{LyapunovOptions, SecondExponent};
 use super::matrix::Multiplier;
-use super::nonperiodic::{strobe_period, NonperiodicClassification, NonperiodicVerdict};
+use super::nonperiodic::{strobe_period_of, NonperiodicClassification, NonperiodicVerdict};
 use super::periodic_orbit::{PeriodicOrbit, Stability, Stop};
 use crate::error::Result;
-use crate::exact::ExactSolver;
 use crate::params::Params;
-use crate::solver::{run_until, Solver};
+use crate::solver::run_until;
 use serde::Serialize;
 
 /// An exponent in JSON: a number, or the string `"-inf"` (JSON has no infinity).
@@ -100,12 +100,20 @@ pub struct OrbitReport {
 }
 
 impl OrbitReport {
-    /// The report of `orbit`, an orbit of the model with `params`.
+    /// The report of `orbit`, an orbit of the exact model with `params`.
     ///
     /// # Errors
     /// Whatever the solver reports while it looks for the least period.
     pub fn new(orbit: &PeriodicOrbit, params: &Params) -> Result<Self> {
-        let least_period = least_period(orbit, params)?;
+        Self::of(orbit, params, &ExactDynamics)
+    }
+
+    /// The report of `orbit`, an orbit of the model `dynamics` with `params`.
+    ///
+    /// # Errors
+    /// Whatever the solver reports while it looks for the least period.
+    pub fn of(orbit: &PeriodicOrbit, params: &Params, dynamics: &dyn Dynamics) -> Result<Self> {
+        let least_period = least_period(orbit, params, dynamics)?;
         let exponent = orbit.exponent();
         let shortest = 1e-8 * orbit.drive_period;
         let stops = orbit.stops.iter().filter(|s| s.duration > shortest).count();
@@ -146,18 +154,19 @@ impl OrbitReport {
 }
 
 /// The least d dividing the orbit's period p after which the orbit's strobe state comes back
-/// (to 10⁻⁸ relative: far below the distance between distinct strobe states of one orbit,
-/// far above the rounding of a converged orbit, which an unstable orbit amplifies by its
-/// multiplier over d < p periods).
-fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
+/// (to 10⁻⁸ relative, or the model's [`Dynamics::repeat_tolerance`] of it: far below the
+/// distance between distinct strobe states of one orbit, far above the rounding of a
+/// converged orbit, which an unstable orbit amplifies by its multiplier over d < p periods).
+fn least_period(orbit: &PeriodicOrbit, params: &Params, dynamics: &dyn Dynamics) -> Result<usize> {
     let p = orbit.period;
     let x = orbit.state;
     let scale = 1f64.max(x.y.abs()).max(x.v.abs());
+    let tolerance = dynamics.repeat_tolerance(1e-8);
     for d in (1..p).filter(|d| p.is_multiple_of(*d)) {
-        let mut solver = ExactSolver::new(*params, x);
-        run_until(&mut solver, d as f64 * orbit.drive_period, |_| {})?;
+        let mut solver = dynamics.solver(params, x)?;
+        run_until(solver.as_mut(), d as f64 * orbit.drive_period, |_| {})?;
         let y = solver.state();
-        if (y.y - x.y).abs().max((y.v - x.v).abs()) <= 1e-8 * scale {
+        if (y.y - x.y).abs().max((y.v - x.v).abs()) <= tolerance * scale {
             return Ok(d);
         }
     }
@@ -186,7 +195,7 @@ pub struct LyapunovReport {
     /// The verdict of the exponent alone (`chaotic`, `quasi-periodic`, `contracting`,
     /// `undecided`), also when `class` is `periodic`.
     pub verdict: &'static str,
-    /// The period of the motion reached, in drive periods ([`strobe_period`]); `None` when
+    /// The period of the motion reached, in drive periods ([`super::strobe_period`]); `None` when
     /// the strobe does not repeat (or the motion is chaotic).
     pub period: Option<usize>,
     /// Whether the two halves of the measurement agree.
@@ -248,10 +257,23 @@ impl LyapunovReport {
         options: &LyapunovOptions,
         params: &Params,
     ) -> Result<Self> {
+        Self::of(c, options, params, &ExactDynamics)
+    }
+
+    /// [`LyapunovReport::new`] for a measurement on the model `dynamics`.
+    ///
+    /// # Errors
+    /// Whatever the solver reports on the run that looks for the period.
+    pub fn of(
+        c: &NonperiodicClassification,
+        options: &LyapunovOptions,
+        params: &Params,
+        dynamics: &dyn Dynamics,
+    ) -> Result<Self> {
         let e = &c.exponents;
         let period = match c.verdict {
             NonperiodicVerdict::Chaotic => None,
-            _ => strobe_period(params, e.final_state)?,
+            _ => strobe_period_of(dynamics, params, e.final_state)?,
         };
         let (lambda2, error2, reason) = match e.second {
             SecondExponent::Finite(s) => (Some(s.per_tau), Some(s.error_per_tau), None),
