@@ -1356,7 +1356,15 @@ async fn bad_records_and_keys_are_400s_naming_the_field_and_line() {
     .await;
     // Empty and non-text bodies.
     post_refused(fit, "", bad, "no record", Some("record")).await;
-    post_refused(fit, vec![0xff, 0xfe, b'a'], bad, "not text", Some("record")).await;
+    post_refused(
+        fit,
+        vec![0xff, 0xfe, b'a'],
+        bad,
+        "not UTF-16 text",
+        Some("record"),
+    )
+    .await;
+    post_refused(fit, vec![b'X', 0, b'1'], bad, "byte 2 is 0", Some("record")).await;
     // The keys: free parameters, the drive (the record's), a mechanical oscillator, others.
     post_refused(
         "/api/fit?preset=paper&free=zeta",

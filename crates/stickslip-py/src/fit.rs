@@ -22,11 +22,11 @@ fn measure_error(e: MeasureError) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
-/// The text of the file `path`; a missing or binary file is a `ValueError` naming it.
+/// The text of the file `path` (UTF-8, UTF-16 or Windows-1252, see
+/// [`measure::decode`]); a missing, empty or binary file is a `ValueError` naming it.
 fn read_text(path: &str) -> PyResult<String> {
     match std::fs::read(Path::new(path)) {
-        Ok(bytes) => String::from_utf8(bytes)
-            .map_err(|_| PyValueError::new_err(format!("{path}: not a text file (UTF-8)"))),
+        Ok(bytes) => measure::decode(&bytes, path).map_err(measure_error),
         Err(e) => Err(PyValueError::new_err(format!("{path}: {e}"))),
     }
 }

@@ -161,10 +161,9 @@ fn measure(err: MeasureError) -> anyhow::Error {
 
 fn read_text(path: &Path) -> Result<String> {
     match std::fs::read(path) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(text) => Ok(text),
-            Err(_) => usage!("{}: not a text file (UTF-8)", path.display()),
-        },
+        Ok(bytes) => {
+            stickslip::measure::decode(&bytes, &path.display().to_string()).map_err(measure)
+        }
         Err(e) => usage!("{}: {e}", path.display()),
     }
 }
