@@ -166,6 +166,7 @@ fn writes_every_figure_table_and_the_report() {
     let legend: Vec<&str> = fig7.lines().map(str::trim).collect();
     assert!(legend.contains(&"PWL exact β_c") && legend.contains(&"PWL paper, eq. 13"));
     assert!(html.contains("the sliding share of (b) depends on that threshold"));
+    fig3_shows_what_is_small(&report, &html);
     // A full report's caption does not speak of --quick's sizes.
     assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.
@@ -398,4 +399,51 @@ fn bad_output_directory_is_a_usage_error() {
     let out = run_in(dir.path(), &["reproduce", "--out", "file"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("not a directory"));
+}
+
+/// Fig. 3: a trace whose u_C is too small to see beside U (its peak under 30 % of the drive's,
+/// recounted here from fig3_traces.csv) is drawn magnified by a power of ten that the legend
+/// and the caption name; the spectra are on a logarithmic axis (the caption says how far
+/// down); the loops of β = 1.07 have a row of their own.
+fn fig3_shows_what_is_small(report: &Path, html: &str) {
+    let text = std::fs::read_to_string(report.join("fig3_traces.csv")).unwrap();
+    let mut peaks: Vec<((String, String), (f64, f64))> = Vec::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let key = (f[0].to_string(), f[1].to_string());
+        let (uc, u): (f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap());
+        match peaks.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, p)) => *p = (p.0.max(uc.abs()), p.1.max(u.abs())),
+            None => peaks.push((key, (uc.abs(), u.abs()))),
+        }
+    }
+    assert_eq!(peaks.len(), 6, "{peaks:?}");
+    let svg = std::fs::read_to_string(report.join("fig3.svg")).unwrap();
+    let labels = ["(1a)", "(1b)", "(1c)", "(2a)", "(2b)", "(2c)"];
+    let mut small = 0;
+    for (label, (_, (uc, u))) in labels.iter().zip(&peaks) {
+        if *uc < 0.3 * u {
+            small += 1;
+            let gain = 10f64.powi((0.3 * u / uc).log10().ceil() as i32);
+            assert!(
+                html.contains(&format!("{label} ×{gain}")),
+                "{label}: u_C {uc} V beside U {u} V, not said to be magnified ×{gain}"
+            );
+            assert!(
+                svg.contains(&format!("u_C × {gain}")),
+                "{label}: no legend ×{gain}"
+            );
+        } else {
+            assert!(!html.contains(&format!("{label} ×")), "{label} magnified");
+        }
+    }
+    assert!(small > 0, "no trace of Fig. 3 is small: {peaks:?}");
+    assert!(html.contains("on a logarithmic axis down to 80 dB below the fundamental"));
+    assert!(svg.contains("amplitude (V, log)"));
+    for col in ["a", "b", "c"] {
+        assert!(
+            svg.contains(&format!("(3{col}′)")),
+            "no loop (3{col}′) of its own"
+        );
+    }
 }
