@@ -71,13 +71,14 @@ function sameTo4Digits(shown, expected, what) {
   assert.ok(Math.abs(x - expected) <= tolerance, `${what}: page ${shown}, CLI ${expected}`);
 }
 
-/** The four hooked readouts against `stickslip steady --json` (A1, A3 in volts: U_t = 0.7 V
+/** The hooked readouts against `stickslip steady --json` (A1, A3 in volts: U_t = 0.7 V
  * unless the flags give another). */
 async function readoutsMatch(flags) {
   const cli = cliSteady(flags);
   const ut = flags.includes('--ut') ? Number(flags[flags.indexOf('--ut') + 1]) : 0.7;
   assert.equal(await readout('class'), cli.class, `class for ${flags.join(' ')}`);
   sameTo4Digits(await readout('gain'), cli.gain, `gain for ${flags.join(' ')}`);
+  sameTo4Digits(await readout('gain1'), cli.gain1, `gain1 for ${flags.join(' ')}`);
   sameTo4Digits(await readout('A1'), cli.harmonics[0] * ut, `A1 for ${flags.join(' ')}`);
   sameTo4Digits(await readout('A3'), cli.harmonics[2] * ut, `A3 for ${flags.join(' ')}`);
   return cli;

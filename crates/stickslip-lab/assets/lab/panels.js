@@ -84,6 +84,7 @@ export function showMeasurements() {
   setMeasure('stops', num(s.stops_per_period, 4), s.stops_per_period);
   setMeasure('period', s.period === null ? 'none found' : `${s.period} (settled after ${s.periods_to_settle})`, s.period);
   setMeasure('gain', num(s.gain, 6), s.gain);
+  setMeasure('gain1', s.gain1 === null || s.gain1 === undefined ? '—' : num(s.gain1, 6), s.gain1);
   const a1 = s.harmonics[0] * sc.position;
   const a3 = s.harmonics[2] * sc.position;
   const a5 = s.harmonics[4] * sc.position;
@@ -136,10 +137,13 @@ export function showTheory() {
   setTheory('exact-A1', volts(e.A1));
   setTheory('exact-A3', volts(e.A3));
   setTheory('exact-A5', volts(e.A5));
-  setTheory('paper-gain', t ? num(p.gain, 5) : '—');
-  // The simulated gain is the peak over β; on a sliding orbit that is the orbit's peak/β.
+  // G = (max − min)/2β: the paper's series gives only its fundamental (G1); a sliding orbit
+  // is symmetric, so its G is its peak over β. G1 = A1/β.
   const beta = t ? t.params.beta : NaN;
+  setTheory('paper-gain', '—');
   setTheory('exact-gain', t && e.peak !== null && e.peak !== undefined && beta > 0 ? num(e.peak / beta, 5) : '—');
+  setTheory('paper-gain1', t ? num(p.gain, 5) : '—');
+  setTheory('exact-gain1', t && e.A1 !== null && e.A1 !== undefined && beta > 0 ? num(e.A1 / beta, 5) : '—');
   setTheory('paper-phase', t ? num(deg(p.phi0), 5) : '—');
   setTheory('exact-phase', t ? num(deg(e.phase), 5) : '—');
   setTheory('paper-beta_c', t ? num(p.beta_c, 5) : '—');
@@ -157,7 +161,7 @@ export function showTheory() {
   if (t && e.note) notes.push(`exact: ${e.note}`);
   if (table.dataset.paperApplies === 'no') notes.push('The paper’s series assumes sliding; its own β_c says the motion sticks here, so its numbers (greyed) do not apply.');
   if (table.dataset.exactApplies === 'no') notes.push('No sliding orbit exists here: the exact orbit’s column (greyed) does not apply.');
-  notes.push('exact gain: the orbit’s peak/β (the measured G is (max − min)/2β); paper gain: its A1/β.');
+  notes.push('G = (max − min)/2β (for the exact sliding orbit, its peak/β); G1 = A1/β, the paper’s gain.');
   setTheory('notes', notes.join(' '));
 }
 
