@@ -50,8 +50,8 @@ pub struct FitAnswer {
 }
 
 /// The free parameters of a circuit's fit when `free` is not given: the library's default
-/// free set of the diode law ([`FitParameter::defaults`], as `stickslip fit` and Python's
-/// `fit` free them).
+/// free set of the diode law (`stickslip::fit::FitParameter::defaults`, as `stickslip fit`
+/// and Python's `fit` free them).
 pub fn default_free(model: DiodeModel) -> Vec<FitParameter> {
     FitParameter::defaults(SystemKind::Circuit, model)
 }
