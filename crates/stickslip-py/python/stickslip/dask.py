@@ -57,7 +57,9 @@ from typing import (Any, Callable, Dict, List, Literal, Optional, Sequence, Set,
 import numpy as np
 
 from . import _checks, _core, _progress
-from ._api import PhaseDiagram, _axes, _with_model
+from ._api import _axes
+from ._common import _with_model
+from ._tables import PhaseDiagram
 from ._core import Experiment
 from ._progress import Progress
 
