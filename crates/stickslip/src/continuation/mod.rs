@@ -70,6 +70,7 @@
 
 mod branch;
 mod corrector;
+mod curve;
 mod detect;
 mod follow;
 mod grazing;
@@ -80,6 +81,12 @@ mod special;
 mod step;
 
 pub use branch::{Branch, BranchEnd, BranchPoint};
+pub use curve::{
+    curve, find_start, follow_curve, Border, BorderKind, Codim2Kind, Codim2Point, Codim2Report,
+    Curve, CurveEnd, CurvePoint, CurveReport, CurveSide, CurveSideReport, CurveSpec,
+    CurveStartReport,
+    CurveStart, Follow, NoStart, StabilityChange,
+};
 pub use follow::{continue_both_ways, continue_orbit, settled_orbit};
 pub use obstacle::{Obstacle, SlideMinimum};
 pub use options::{check_ends, ContinuationOptions};
