@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset};
 use stickslip::units::NumberError;
+use stickslip::Spelling;
 
 /// The id and flag of the config file (a file of keys, not a key).
 const CONFIG: &str = "config";
@@ -42,15 +43,6 @@ pub fn finite(text: &str) -> Result<f64, NumberError> {
     stickslip::units::parse_plain(text)
 }
 
-/// Read the text of a number flag of `key`: a plain number or one with an SI prefix and the
-/// key's unit, as the key is written ([`Key::number`], [`Key::check_unit`]). Its range is
-/// checked when the flags become a description, where the message names the flag and the
-/// library's range.
-fn number(key: Key, text: &str) -> Result<f64, NumberError> {
-    key.check_unit(text)?;
-    key.number(text)
-}
-
 /// The flag of a number key.
 fn number_arg(key: Key) -> Arg {
     Arg::new(key.flag())
@@ -61,7 +53,9 @@ fn number_arg(key: Key) -> Arg {
         .help_heading(key.heading())
         .allow_hyphen_values(true)
         .action(ArgAction::Set)
-        .value_parser(move |text: &str| number(key, text))
+        // The library reads the text ([`Key::read`]: a plain number or one with an SI prefix
+        // and the key's unit); its range is checked when the flags become a description.
+        .value_parser(move |text: &str| key.read(text))
 }
 
 /// The flag of a key that takes a name (`--preset`, `--model`).
@@ -203,13 +197,8 @@ impl ModelArgs {
         };
         let mut flags = ExperimentSpec::new();
         for (&key, &value) in &self.values {
-            if let Err(stickslip::Error::InvalidParameter { allowed, .. }) = flags.set(key, value) {
-                return Err(UsageError(format!(
-                    "invalid {} {}: {allowed}",
-                    flag(key),
-                    stickslip::Number(value)
-                ))
-                .into());
+            if let Err(e) = flags.set(key, value) {
+                return Err(UsageError(e.render(Spelling::Flag)).into());
             }
         }
         if let Some(preset) = self.preset {
@@ -283,7 +272,7 @@ mod tests {
                 for text in ["1k", "0.25", "2e-3", "-1", "abc", "20nF", "9.97kHz", "inf"] {
                     let clap =
                         Flags::try_parse_from(["stickslip", &format!("--{spelling}={text}")]);
-                    let library = number(key, text).ok();
+                    let library = key.read(text).ok();
                     assert_eq!(
                         clap.as_ref()
                             .ok()

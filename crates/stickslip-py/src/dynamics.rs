@@ -15,7 +15,9 @@ use pyo3::types::PyDict;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
-use stickslip::continuation::{continue_orbit, settled_orbit, BranchReport, ContinuationOptions};
+use stickslip::continuation::{
+    continue_orbit_of, settled_orbit, BranchReport, ContinuationOptions,
+};
 use stickslip::options::OptionKey;
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 
@@ -192,7 +194,7 @@ pub fn basins<'py>(
         "kind",
         map.cells
             .iter()
-            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Unsettled, |a| a.kind)))
+            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Undecided, |a| a.kind)))
             .collect::<Vec<i8>>(),
     )?;
     put(
@@ -236,11 +238,36 @@ pub fn continuation<'py>(
     .with_max_step(max_step)
     .validate()
     .map_err(error)?;
-    let (branch, start_orbit) = run(py, progress.as_ref(), |monitor| {
+    stickslip::continuation::check_parameter(&e, parameter).map_err(error)?;
+    let computed = run(py, progress.as_ref(), |monitor| {
         let (params, orbit) = settled_orbit(&e)?;
-        let branch = continue_orbit(&params, parameter, &orbit, to, &options, monitor)?;
-        Ok((branch, orbit))
+        if orbit.events.is_empty() {
+            return Ok(None);
+        }
+        let dynamics = e.dynamics()?;
+        let branch = continue_orbit_of(
+            dynamics.as_ref(),
+            &params,
+            parameter,
+            &orbit,
+            to,
+            &options,
+            monitor,
+        )?;
+        Ok(Some((branch, orbit)))
     })?;
+    // As the command-line tool says it: rest is no branch, and what to do instead.
+    let Some((branch, start_orbit)) = computed else {
+        let initial = e.initial();
+        return Err(PyValueError::new_err(format!(
+            "from y0 = {}, v0 = {} the motion comes to rest at {} = {start}: nothing to \
+             continue; start from a moving state (experiment.replace(y0=..., v0=...)) or at \
+             another start",
+            initial.y,
+            initial.v,
+            parameter.label()
+        )));
+    };
     let out = PyDict::new(py);
     out.set_item("report", json_value(py, &BranchReport::from(&branch))?)?;
     let points = &branch.points;

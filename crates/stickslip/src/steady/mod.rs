@@ -25,13 +25,13 @@ mod report;
 mod spectrum;
 mod state;
 
-pub use classify::{classify, Classification, MotionClass};
+pub use classify::{classify, Classification, MotionClass, STATIC_GAIN};
 pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
 pub(crate) use exponent::settle_with_exponent;
 pub use exponent::{
-    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
-    SEARCH_BEFORE_MEASURING,
+    periodic_orbit_from_steady, periodic_orbit_from_steady_of, steady_exponent,
+    steady_state_with_exponent, SEARCH_BEFORE_MEASURING,
 };
 pub use options::SteadyOptions;
 pub use report::SteadyReport;
