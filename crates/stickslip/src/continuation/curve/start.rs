@@ -5,6 +5,7 @@
 use super::border::{candidates, nearest, Candidate};
 use super::system::{Plane, System};
 use super::{follow_curve, Border, BorderKind, Curve, Follow};
+use crate::continuation::corrector::counts;
 use crate::continuation::{
     check_ends, continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
 };
@@ -12,7 +13,6 @@ use crate::error::{Error, Result};
 use crate::experiment::Experiment;
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
-use crate::continuation::corrector::counts;
 use crate::stability::{find_periodic_orbit, NewtonOptions, PeriodicOrbit};
 use serde::{Deserialize, Serialize};
 
@@ -178,9 +178,7 @@ fn grazing_borders(
 /// The grazing condition at the end of a branch that stops against a jump of the strobe map
 /// (a stop of finite length appearing at a turning point or mid-swing, or a release becoming
 /// tangential): the condition of that obstacle on the last orbit.
-fn end_border(
-    branch: &Branch,
-) -> Result<Option<(Border, f64, PeriodicOrbit, Candidate)>> {
+fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Candidate)>> {
     let obstacle = match &branch.end {
         BranchEnd::Grazing { slide, .. } => Obstacle::Grazing(*slide),
         BranchEnd::Stalled { obstacle, .. } | BranchEnd::Failed { obstacle, .. } => *obstacle,
@@ -265,8 +263,7 @@ pub fn find_start(
         (Follow::Grazing, Some(s)) => {
             let mut sides = Vec::new();
             for side in [&s.before, &s.after] {
-                if let Some(o) = orbit_at(params, vary, side.value, side.state, period, &options)?
-                {
+                if let Some(o) = orbit_at(params, vary, side.value, side.state, period, &options)? {
                     sides.push((side.value, o));
                 }
             }

@@ -241,7 +241,9 @@ impl System {
         slides
             .iter()
             .max_by(|a, b| a.1.total_cmp(&b.1))
-            .map_or(0.0, |&(start, length)| (start + 0.5 * length).rem_euclid(span))
+            .map_or(0.0, |&(start, length)| {
+                (start + 0.5 * length).rem_euclid(span)
+            })
     }
 
     /// How close the nearest event of a node's orbit comes to its strobe, relative to the
@@ -353,7 +355,10 @@ impl System {
             (Follow::Fold, _) => (m.minus_identity().det(), f64::NAN),
             (Follow::PeriodDoubling, _) => {
                 let a = m.0;
-                ((a[0][0] + 1.0) * (a[1][1] + 1.0) - a[0][1] * a[1][0], f64::NAN)
+                (
+                    (a[0][0] + 1.0) * (a[1][1] + 1.0) - a[0][1] * a[1][0],
+                    f64::NAN,
+                )
             }
             (Follow::NeimarkSacker, _) => (m.det() - 1.0, f64::NAN),
             (Follow::Grazing, Some(border)) => {
@@ -449,16 +454,20 @@ impl System {
             match (plus, minus) {
                 (Some(p), Some(q)) => return Ok(Some((p - q) / (2.0 * h))),
                 (Some(p), None) => {
-                    return Ok(Some(match self.g_at(&at_offset(2.0 * h), at.tau, here)? {
-                        Some(p2) => (-3.0 * at.g + 4.0 * p - p2) / (2.0 * h),
-                        None => (p - at.g) / h,
-                    }))
+                    return Ok(Some(
+                        match self.g_at(&at_offset(2.0 * h), at.tau, here)? {
+                            Some(p2) => (-3.0 * at.g + 4.0 * p - p2) / (2.0 * h),
+                            None => (p - at.g) / h,
+                        },
+                    ))
                 }
                 (None, Some(q)) => {
-                    return Ok(Some(match self.g_at(&at_offset(-2.0 * h), at.tau, here)? {
-                        Some(q2) => (3.0 * at.g - 4.0 * q + q2) / (2.0 * h),
-                        None => (at.g - q) / h,
-                    }))
+                    return Ok(Some(
+                        match self.g_at(&at_offset(-2.0 * h), at.tau, here)? {
+                            Some(q2) => (3.0 * at.g - 4.0 * q + q2) / (2.0 * h),
+                            None => (at.g - q) / h,
+                        },
+                    ))
                 }
                 (None, None) => h /= 8.0,
             }
@@ -511,7 +520,13 @@ impl System {
     ///
     /// With `scales` given (those of the corrector's first point), the residuals are measured
     /// on that one scale, so that two points on either side of a jump of the Jacobian compare.
-    fn merit(&self, u: &U, e: &Evaluation, plane: &Plane, scales: Option<(f64, f64)>) -> Result<f64> {
+    fn merit(
+        &self,
+        u: &U,
+        e: &Evaluation,
+        plane: &Plane,
+        scales: Option<(f64, f64)>,
+    ) -> Result<f64> {
         let r = [e.image.state.y - u[0], e.image.state.v - u[1]];
         let (scale_f, scale_g) = match scales {
             Some(s) => s,
@@ -679,12 +694,7 @@ impl System {
                 .map_or(f64::NAN, |(g, _)| g);
             let (scale_f, scale_g2) = graze.scales(u, e)?;
             let scale_g1 = smooth.g_scale(&e.image, &params);
-            let r = [
-                e.image.state.y - u[0],
-                e.image.state.v - u[1],
-                g1,
-                e.g,
-            ];
+            let r = [e.image.state.y - u[0], e.image.state.v - u[1], g1, e.g];
             let merit = (r[0].abs().max(r[1].abs()) / scale_f)
                 .max(r[2].abs() / scale_g1)
                 .max(r[3].abs() / scale_g2);

@@ -7,8 +7,8 @@ use super::{
     StabilityChange,
 };
 use crate::continuation::obstacle::obstacle;
-use crate::continuation::Obstacle;
 use crate::continuation::ContinuationOptions;
+use crate::continuation::Obstacle;
 use crate::error::{Error, Result};
 use crate::scan::Monitor;
 use crate::stability::{PeriodicOrbit, Stability};
@@ -167,27 +167,27 @@ fn tests(system: &System, current: &Node) -> Vec<(Codim2Kind, Test)> {
         ],
         Follow::Grazing => {
             let mut tests: Vec<(Codim2Kind, Test)> = vec![
-            (
-                Codim2Kind::FoldGrazing,
-                Box::new(|n: &Node| n.orbit.monodromy.minus_identity().det()),
-            ),
-            (
-                Codim2Kind::PeriodDoublingGrazing,
-                Box::new(|n: &Node| {
-                    let a = n.orbit.monodromy.0;
-                    (a[0][0] + 1.0) * (a[1][1] + 1.0) - a[0][1] * a[1][0]
-                }),
-            ),
-            (
-                Codim2Kind::NeimarkSackerGrazing,
-                Box::new(|n: &Node| {
-                    if n.orbit.multipliers[0].im != 0.0 {
-                        n.orbit.monodromy.det() - 1.0
-                    } else {
-                        f64::NAN
-                    }
-                }),
-            ),
+                (
+                    Codim2Kind::FoldGrazing,
+                    Box::new(|n: &Node| n.orbit.monodromy.minus_identity().det()),
+                ),
+                (
+                    Codim2Kind::PeriodDoublingGrazing,
+                    Box::new(|n: &Node| {
+                        let a = n.orbit.monodromy.0;
+                        (a[0][0] + 1.0) * (a[1][1] + 1.0) - a[0][1] * a[1][0]
+                    }),
+                ),
+                (
+                    Codim2Kind::NeimarkSackerGrazing,
+                    Box::new(|n: &Node| {
+                        if n.orbit.multipliers[0].im != 0.0 {
+                            n.orbit.monodromy.det() - 1.0
+                        } else {
+                            f64::NAN
+                        }
+                    }),
+                ),
             ];
             // Across a border the orbits join continuously at: a fold or period doubling of
             // the orbit there meets the grazing too.
@@ -196,7 +196,11 @@ fn tests(system: &System, current: &Node) -> Vec<(Codim2Kind, Test)> {
                     Box::new(move |n: &Node| {
                         let r = system.across(n);
                         if std::env::var("CURVE_DEBUG7").is_ok() {
-                            eprintln!("across {:?}: {:?}", n.u, r.as_ref().map(|m| m.map(|m| (m.eigenvalues(), f(&m)))));
+                            eprintln!(
+                                "across {:?}: {:?}",
+                                n.u,
+                                r.as_ref().map(|m| m.map(|m| (m.eigenvalues(), f(&m))))
+                            );
                         }
                         r.ok().flatten().map_or(f64::NAN, |m| f(&m))
                     }) as Test
