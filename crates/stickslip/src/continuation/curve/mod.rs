@@ -126,6 +126,6 @@ mod types;
 
 pub use kinds::{BorderKind, Codim2Kind, Follow};
 pub use report::{Codim2Report, CurveReport, CurveSideReport, CurveStartReport};
-pub use start::{curve, find_start, CurveSpec, CurveStart, NoStart};
+pub use start::{check_spec, curve, find_start, CurveSpec, CurveStart, NoStart};
 pub use trace::follow_curve;
 pub use types::{Border, Codim2Point, Curve, CurveEnd, CurvePoint, CurveSide, StabilityChange};

@@ -7,10 +7,11 @@ use super::system::{Plane, System};
 use super::{follow_curve, Border, BorderKind, Curve, Follow};
 use crate::continuation::corrector::counts;
 use crate::continuation::{
-    check_ends, continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
+    continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
 };
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
+use crate::options::{Allowed, OptionKey};
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
 use crate::stability::{find_periodic_orbit, NewtonOptions, PeriodicOrbit};
@@ -354,6 +355,37 @@ pub struct CurveSpec {
     pub to: f64,
 }
 
+/// Check `spec` before any work: the ends of Q's range finite and apart, P's target finite,
+/// and P and Q two parameters.
+///
+/// # Errors
+/// [`Error::InvalidOption`] naming [`OptionKey::TwoParameterFrom`],
+/// [`OptionKey::TwoParameterTo`] or [`OptionKey::TwoParameterVaryTo`];
+/// [`Error::InvalidParameter`] when P is Q.
+pub fn check_spec(spec: &CurveSpec) -> Result<()> {
+    OptionKey::TwoParameterFrom.check(spec.from)?;
+    OptionKey::TwoParameterTo.check(spec.to)?;
+    OptionKey::TwoParameterVaryTo.check(spec.vary_to)?;
+    if spec.to == spec.from {
+        return Err(Error::InvalidOption {
+            option: OptionKey::TwoParameterTo,
+            value: spec.to,
+            allowed: Allowed::Differs {
+                other: OptionKey::TwoParameterFrom,
+            },
+        });
+    }
+    if spec.vary == spec.over {
+        return Err(Error::InvalidParameter {
+            name: spec.over.label(),
+            value: spec.from,
+            allowed: "the curve is followed over one parameter (--over) and varies another \
+                      (--vary): they must differ",
+        });
+    }
+    Ok(())
+}
+
 /// The curve of `spec` from the orbit the motion of `experiment` settles on (its value of Q
 /// must lie between `from` and `to`): [`settled_orbit`], [`find_start`], [`follow_curve`].
 /// `monitor` sees the search's points, then each way's.
@@ -368,7 +400,10 @@ pub fn curve(
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
 ) -> Result<std::result::Result<Curve, NoStart>> {
-    check_ends(spec.from, spec.to)?;
+    check_spec(spec)?;
+    if experiment.diode_model() != crate::experiment::DiodeModel::Pwl {
+        return Err(Error::Unsupported(crate::Unsupported::CurveNeedsPwl));
+    }
     let options = options.validate()?;
     let (params, orbit) = settled_orbit(experiment)?;
     if orbit.events.is_empty() {
@@ -380,6 +415,13 @@ pub fn curve(
         });
     }
     spec.vary.set(params, spec.vary_to)?;
+    if spec.vary.get(&params) == spec.vary_to {
+        return Err(Error::InvalidOption {
+            option: OptionKey::TwoParameterVaryTo,
+            value: spec.vary_to,
+            allowed: Allowed::Table,
+        });
+    }
     let a0 = spec.over.get(&params);
     let (lo, hi) = (spec.from.min(spec.to), spec.from.max(spec.to));
     if !(lo <= a0 && a0 <= hi) {
