@@ -1,7 +1,8 @@
 //! Tests of curves of special points in two parameters: the grazing curve of the sliding orbit
 //! at μs = 1 against the exact stick-slip boundary β_c(w) of `theory`, and fold, grazing and
 //! period-doubling curves against the special points that the one-parameter continuation
-//! locates at fixed values of the curve's own parameter.
+//! locates at fixed values of the curve's own parameter; the strobe map's exact parameter
+//! derivatives against difference quotients.
 
 use stickslip::continuation::{
     continue_orbit, curve, settled_orbit, BorderKind, ContinuationOptions, Curve, CurveEnd,
@@ -296,4 +297,38 @@ fn no_special_point_of_the_kind_is_said() {
         curve(&e, &spec, &ContinuationOptions::default(), &()),
         Err(stickslip::Error::InvalidParameter { name: "w", .. })
     ));
+}
+
+#[test]
+fn the_strobe_maps_parameter_derivatives_are_its_difference_quotients() {
+    use stickslip::stability::{strobe_map, strobe_map_parameter_derivatives};
+    // States off any orbit, μs = 1 and 1.5, over one and two drive periods.
+    for (mu_s, w, beta, state, periods) in [
+        (1.0, 0.9, 1.6, State { y: 0.3, v: 1.0 }, 1),
+        (1.5, 0.9, 1.35, State { y: 0.25, v: 2.1 }, 1),
+        (1.5, 0.7, 1.2, State { y: -0.4, v: 0.5 }, 2),
+    ] {
+        let p = stickslip::Params::new(PAPER_ZETA, w, beta)
+            .and_then(|p| p.with_mu_s(mu_s))
+            .unwrap();
+        let d = strobe_map_parameter_derivatives(&p, state, periods).unwrap();
+        // Columns 1 (β) and 2 (w) of (zeta, beta, w, phi, mu_s).
+        for (column, parameter) in [(1, Parameter::Beta), (2, Parameter::W)] {
+            let h = 1e-6;
+            let at = |x: f64| {
+                let q = parameter.set(p, parameter.get(&p) + x).unwrap();
+                strobe_map(&q, state, periods).unwrap().state
+            };
+            let (a, b) = (at(h), at(-h));
+            let fd = [(a.y - b.y) / (2.0 * h), (a.v - b.v) / (2.0 * h)];
+            for r in 0..2 {
+                assert!(
+                    (d[r][column] - fd[r]).abs() <= 1e-5 * (1.0 + fd[r].abs()),
+                    "mu_s {mu_s}, w {w}, beta {beta}, {parameter:?}, row {r}: {} against {}",
+                    d[r][column],
+                    fd[r]
+                );
+            }
+        }
+    }
 }
