@@ -358,6 +358,9 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
+    /// Curves of special points in two parameters are followed with the exact
+    /// piecewise-linear model (its grazings are events of the exact solver).
+    CurveNeedsPwl,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -381,6 +384,11 @@ impl std::fmt::Display for Unsupported {
             Unsupported::MuSNeedsPwl => {
                 "mu_s (static friction) is a parameter of the piecewise-linear law only: a \
                  Shockley diode has no static threshold; continue in w, beta or zeta"
+            }
+            Unsupported::CurveNeedsPwl => {
+                "curves of special points in two parameters are followed with the exact \
+                 piecewise-linear diode (Coulomb friction) model, not Shockley diodes \
+                 (`stickslip continue` follows a branch of either)"
             }
         })
     }

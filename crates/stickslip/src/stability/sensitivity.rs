@@ -406,6 +406,45 @@ pub fn periodic_orbit_sensitivity(
         .collect())
 }
 
+/// The derivatives of the p-fold strobe map P^p by the parameters at `state` (the state at a
+/// strobe, not necessarily a fixed point): ∂P^p/∂(ζ, β, w, φ, μs) as columns of
+/// [`SENSITIVITY_PARAMETERS`]' order, rows (y, y'). The propagation of
+/// [`periodic_orbit_sensitivity`] up to the strobe p drive periods on, with the strobe's time
+/// moving with w (the column of w gains ẋ(pT)·d(pT)/dw, d(pT)/dw = −2πp/w²): what the
+/// continuation of special points in two parameters ([`crate::continuation`]) needs exactly.
+///
+/// # Errors
+/// As [`periodic_orbit_sensitivity`] (no singular I − M: nothing is inverted here).
+pub fn strobe_map_parameter_derivatives(
+    params: &Params,
+    state: State,
+    period: usize,
+) -> Result<[[f64; 5]; 2]> {
+    let params = params.validate()?;
+    let state = State::new(state.y, state.v)?;
+    if period == 0 {
+        return Err(Error::InvalidParameter {
+            name: "periods",
+            value: 0.0,
+            allowed: "must be at least 1",
+        });
+    }
+    let strobe = period as f64 * params.drive_period();
+    let mut run = Propagation::new(params, state)?;
+    while run.solver.time() < strobe {
+        run.advance(strobe)?;
+    }
+    let field = run.velocity_field();
+    let period_by_w = -TAU * period as f64 / (params.w * params.w);
+    let mut out = [[0.0; 5]; 2];
+    for (r, row) in out.iter_mut().enumerate() {
+        for (p, d) in row.iter_mut().enumerate() {
+            *d = run.s[r][2 + p] + if p == 2 { field[r] * period_by_w } else { 0.0 };
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
