@@ -78,7 +78,7 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
             extrapolate the stroboscopic map to its fixed point), harmonics (16; 1 to 256),
             samples_per_period (None: chosen from the event log; else a power of two from 16
             to 2²⁰), lyapunov_periods (5000: drive periods over which a motion that does not
-            repeat is measured by its largest Lyapunov exponent, with the exact PWL model; 0:
+            repeat is measured by its largest Lyapunov exponent (either law); 0:
             not measured; else 20 to 1e8). Counts are integers (``int`` or numpy integers;
             a float such as 100.0 is refused).
 
@@ -275,7 +275,7 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
         progress: True for a progress bar (tqdm), or a callable ``progress(done, total)``
             (points), or one of one argument given the points done since its last call (a
             tqdm bar's ``update``); called from the calling thread about every 50 ms.
-        lyapunov: also the largest Lyapunov exponent of every point (exact PWL model; as
+        lyapunov: also the largest Lyapunov exponent of every point (either law; as
             ``stickslip phase-diagram --color lambda1``): arrays ``lambda1`` and
             ``lambda1_error`` per unit τ.
         **axes_and_options: the two parameter arrays, then options as for ``steady``

@@ -159,7 +159,7 @@ class SteadyState:
     keys, same numbers): class, period (None: none found), stops_per_period, symmetric,
     peak, gain, gain1, phase_lag (radians), harmonics, harmonic_phases, current_harmonics,
     subharmonic, mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s; and for a
-    motion that does not repeat (measured with the exact PWL model) lambda1, lambda1_error,
+    motion that does not repeat (measured by its law's tangent dynamics) lambda1, lambda1_error,
     lambda1_per_period, lambda1_error_per_period, lambda1_periods, lambda1_converged and
     verdict. Each is also an attribute (``motion_class`` for the class: ``class`` is a Python
     keyword), the lists as numpy arrays; the exponent's attributes are None for a motion that

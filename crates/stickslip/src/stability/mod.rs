@@ -104,6 +104,6 @@ pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
 // What joins a steady state to its stability lives in `crate::steady`, which builds on this
 // module (never the other way round); these names stay here for the paths users know.
 pub use crate::steady::{
-    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
+    periodic_orbit_from_steady, steady_exponent, steady_exponent_of, steady_state_with_exponent,
     SEARCH_BEFORE_MEASURING,
 };

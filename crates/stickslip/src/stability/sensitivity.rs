@@ -293,6 +293,33 @@ impl Propagation {
     }
 }
 
+/// Check a request for samples of a periodic orbit (either law's): `period` at least 1, the
+/// times `taus` sorted and ≥ 0.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for p = 0; [`Error::TimeBeforeCurrent`] for the first time
+/// before the one before it (or before 0).
+pub(crate) fn check_orbit_samples(period: usize, taus: &[f64]) -> Result<()> {
+    if period == 0 {
+        return Err(Error::InvalidParameter {
+            name: "periods",
+            value: 0.0,
+            allowed: "must be at least 1",
+        });
+    }
+    let mut previous = 0.0;
+    for &tau in taus {
+        if !(tau >= previous) {
+            return Err(Error::TimeBeforeCurrent {
+                requested: tau,
+                current: previous,
+            });
+        }
+        previous = tau;
+    }
+    Ok(())
+}
+
 /// The periodic orbit through `fixed_point` (the state at a strobe, drive phase φ, that the
 /// `period`-fold strobe map keeps), sampled at the sorted times `taus` ≥ 0 with the
 /// derivatives of y by (ζ, β, w, φ, μs) (see the module documentation).
@@ -326,23 +353,7 @@ pub fn periodic_orbit_sensitivity(
 ) -> Result<Vec<OrbitSample>> {
     let params = params.validate()?;
     let fixed_point = State::new(fixed_point.y, fixed_point.v)?;
-    if period == 0 {
-        return Err(Error::InvalidParameter {
-            name: "periods",
-            value: 0.0,
-            allowed: "must be at least 1",
-        });
-    }
-    let mut previous = 0.0;
-    for &tau in taus {
-        if !(tau >= previous) {
-            return Err(Error::TimeBeforeCurrent {
-                requested: tau,
-                current: previous,
-            });
-        }
-        previous = tau;
-    }
+    check_orbit_samples(period, taus)?;
     let strobe = period as f64 * params.drive_period();
     let mut run = Propagation::new(params, fixed_point)?;
     // Per sample: y, v and the y row of [J | S_p]; then M, S_p(kT) and ẋ(kT).
