@@ -9,8 +9,8 @@ use stickslip::measure::{read_amplitudes, read_scope, Measurement, Record, Scope
 use stickslip::physical::Circuit;
 
 use stickslip_testkit::{
-    amplitude_table, keysight, plain, rigol, siglent, synthesise, tektronix, truth, Rng, TRUE_R,
-    TRUE_UT,
+    amplitude_table, keysight, plain, rigol, siglent, synthesise, tektronix, truth, Rng, Synthetic,
+    TRUE_R, TRUE_UT,
 };
 
 const DRIVES: [(f64, f64, f64); 3] = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)];
@@ -113,10 +113,42 @@ fn every_format_reads_the_same_record() {
     assert_eq!(merged.format, ScopeFormat::Merged);
     assert_eq!(merged.channel_index("CH2").unwrap(), 1);
     assert_eq!(merged.channel_index("2").unwrap(), 1);
-    // Picking channels by name, the other way round.
-    let r = read_scope(&plain(&s), "x.csv").unwrap();
+    // Picking channels by name: a record written with u_C first, its drive second.
+    let reversed = Synthetic::new(s.response.clone(), s.drive.clone(), s.start, s.increment);
+    let r = read_scope(&plain(&reversed), "x.csv").unwrap();
     let m = Measurement::new(&r, Some("uc_V"), Some("u_V")).unwrap();
-    assert_eq!(m.drive_channel, "uc_V");
+    assert_eq!(
+        (m.drive_channel.as_str(), m.response_channel.as_str()),
+        ("uc_V", "u_V")
+    );
+    assert!((m.drive.amplitude / (2.14 * TRUE_UT) - 1.0).abs() < 2e-3);
+    // The same record with the default channels (u_C taken as the drive) is refused in one
+    // line that names the channel of the drive.
+    let e = Measurement::new(&r, None, None).unwrap_err();
+    assert_eq!(e.swap, Some(("uc_V".to_string(), "u_V".to_string())), "{e}");
+    assert!(
+        !e.to_string().contains('\n') && e.to_string().contains("swapped"),
+        "{e}"
+    );
+}
+
+/// A drive whose whole periods end within the frequency's uncertainty of a sample: with the
+/// samples of the window following the frequency inside Gauss–Newton, the sine fit jumped
+/// between the fits with and without that sample (a step of 4.5·10⁻⁶ for ever) and refused
+/// the record; on a fixed window per pass it converges.
+#[test]
+fn a_sine_whose_whole_periods_end_at_a_sample_is_fitted() {
+    let mut rng = Rng(0x9e37_79b9 + 70);
+    let s = synthesise(0.29, 2.6, 0.4, 0.02, 1.0, &mut rng);
+    let r = read_scope(&keysight(&s), "k.csv").unwrap();
+    let m = Measurement::new(&r, None, None).unwrap();
+    let f0 = truth().scales().unwrap().f0();
+    assert!(
+        (m.drive.frequency / (0.29 * f0) - 1.0).abs() < 3e-4,
+        "{:?}",
+        m.drive
+    );
+    assert_eq!(m.drive.periods, 3);
 }
 
 fn error(text: &str) -> String {

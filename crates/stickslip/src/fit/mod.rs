@@ -70,20 +70,28 @@
 //! rest. There is no nuisance parameter and no noise estimate independent of the fit:
 //! χ²/dof is not reported.
 
+mod identify;
+mod jacobian;
 mod json;
 pub(crate) mod linalg;
 mod lm;
 mod parameter;
+mod profile;
+mod starts;
+mod warning;
 
-pub use json::{ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson, UnitsJson};
+pub use json::{
+    ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson, UnitsJson, WarningJson,
+};
 pub use parameter::FitParameter;
+pub use warning::{FitWarning, NotConverged};
 
 use crate::experiment::{DiodeModel, Experiment};
 use crate::measure::{AmplitudeTable, Direction, MeasureError, Measurement};
 use crate::params::{Params, State};
 use crate::physical::System;
 use crate::scan::Monitor;
-use crate::shockley::DiodePair;
+use crate::shockley::{DiodePair, ShockleyOptions};
 use crate::solver::sample_at;
 use crate::stability::{periodic_orbit_sensitivity, OrbitSample};
 use crate::steady::SolverFactory;
@@ -244,10 +252,15 @@ struct Watch<'a> {
     total: usize,
 }
 
+/// The most iterations a fit of records is told of, in units of
+/// [`FitOptions::max_iterations`]: two passes, a restart and the minimisations of the
+/// intervals' profiles (the count stops there; the fit is usually done far sooner).
+pub const RECORD_PASSES: usize = 4;
+
 impl Watch<'_> {
     fn tell(&self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
         let progress = FitProgress {
-            iteration: self.before + iteration,
+            iteration: (self.before + iteration).min(self.total),
             total: self.total,
             sum_squares,
         };
@@ -270,17 +283,52 @@ pub enum Jacobian {
     /// ([`crate::stability::periodic_orbit_sensitivity`]): PWL diodes, every record's model a
     /// periodic orbit.
     Exact,
-    /// By finite differences: Shockley diodes, a model that does not repeat (chaos) or whose
-    /// orbit's derivative does not exist there (a tangential release), or a table.
+    /// By finite differences: a model that does not repeat (chaos) or whose orbit's
+    /// derivative does not exist there (a tangential release), or a table.
     FiniteDifferences,
+    /// From the stiff solver's forward sensitivities along a smooth law's periodic orbit
+    /// ([`crate::stability::ShockleyDynamics::orbit_sensitivity`]): Shockley diodes, every
+    /// record's model a periodic orbit.
+    Sensitivities,
 }
 
 impl Jacobian {
-    /// The label in reports: `exact` or `finite-differences`.
+    /// The label in reports: `exact`, `finite-differences` or `sensitivities`.
     pub fn label(self) -> &'static str {
         match self {
             Jacobian::Exact => "exact",
             Jacobian::FiniteDifferences => "finite-differences",
+            Jacobian::Sensitivities => "sensitivities",
+        }
+    }
+}
+
+/// How a fitted value's 95 % interval was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum Interval {
+    /// value ± t·stderr in the value's coordinate (ln I_s for I_s): the linear approximation,
+    /// checked at both ends.
+    Linear,
+    /// The profile likelihood at one end or both, where the linear approximation fails (or
+    /// the interval meets the value's range).
+    Profile,
+    /// No interval: a parameter the records cannot separate from others, held at its
+    /// starting value ([`FitWarning::NotIdentified`]).
+    Held,
+    /// No interval: the records do not determine the value ([`FitWarning::Unseen`]).
+    None,
+}
+
+impl Interval {
+    /// The label in reports: `linear`, `profile`, `held`, `none`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Interval::Linear => "linear",
+            Interval::Profile => "profile",
+            Interval::Held => "held",
+            Interval::None => "none",
         }
     }
 }
@@ -290,14 +338,17 @@ impl Jacobian {
 pub struct FittedParameter {
     /// Which.
     pub parameter: FitParameter,
-    /// The fitted value (SI units, [`FitParameter::unit`]).
+    /// The fitted value (SI units, [`FitParameter::unit`]); a held parameter's starting value.
     pub value: f64,
-    /// Its standard error (NaN when JᵀJ is singular).
+    /// Its standard error (NaN where there is none: a held or unseen parameter, a singular
+    /// fit; the report's warnings say why).
     pub stderr: f64,
-    /// The 95 % interval [lo, hi].
+    /// The 95 % interval [lo, hi] (NaN where there is none).
     pub ci95: [f64; 2],
     /// The starting value.
     pub initial: f64,
+    /// How the interval was found.
+    pub interval: Interval,
 }
 
 /// The fit of one record.
@@ -385,12 +436,18 @@ pub struct FitReport {
     pub bic: f64,
     /// Levenberg–Marquardt iterations.
     pub iterations: usize,
-    /// Whether the fit met its tolerance within the iterations.
+    /// Whether the fit converged: the step and the gradient criteria hold at the solution
+    /// and no restart from elsewhere found a lower χ² (else a [`FitWarning::NotConverged`]
+    /// says why).
     pub converged: bool,
     /// How the Jacobian at the solution, the one the error bars come from, was computed.
     pub jacobian: Jacobian,
     /// The experiment with the fitted values.
     pub experiment: Experiment,
+    /// What the fit warns of ([`FitWarning`]): not converged, parameters the records cannot
+    /// separate or do not see, strong correlations, values at the edge of their range,
+    /// clipped samples.
+    pub warnings: Vec<FitWarning>,
 }
 
 impl FitReport {
@@ -449,8 +506,21 @@ struct Setup {
     system: System,
     free: Vec<FitParameter>,
     scale: Vec<f64>,
+    /// Whether each free value is fitted in its logarithm (I_s, which spans decades and whose
+    /// valley with n is straight in ln I_s): value = scale·e^(x − 1); else value = scale·x.
+    log: Vec<bool>,
     steady: SteadyOptions,
     step: f64,
+}
+
+/// The strobe tolerance of a smooth law's steady state in a fit: 10⁻⁶, the stiff solver's
+/// default tolerance, above the fit's own solver tolerance ([`jacobian::SMOOTH_RTOL`]), so
+/// that the strobe map's jitter does not hide the cycle.
+const SMOOTH_STEADY_TOLERANCE: f64 = 1e-6;
+
+/// Whether `p` is fitted in its logarithm ([`Setup`]): the saturation current I_s.
+fn fitted_in_log(p: FitParameter) -> bool {
+    p == FitParameter::DiodeIs
 }
 
 impl Setup {
@@ -471,11 +541,30 @@ impl Setup {
             .map(|p| p.get(experiment).map(|v| if v != 0.0 { v } else { 1.0 }))
             .collect::<Result<Vec<_>, _>>()?;
         let model = experiment.diode_model();
+        // A smooth law's solver at the fit's tolerance (the shooting Jacobian's differences
+        // need it), unless the caller's is tighter.
+        let experiment = &if model == DiodeModel::Shockley {
+            let o = *experiment.shockley_options();
+            let tight = o.rtol.min(jacobian::SMOOTH_RTOL);
+            experiment
+                .clone()
+                .with_shockley_options(ShockleyOptions {
+                    rtol: tight,
+                    atol: o.atol.min(jacobian::SMOOTH_RTOL),
+                    ..o
+                })
+                .map_err(|error| FitError::Model {
+                    file: "(the fit's solver)".into(),
+                    error,
+                })?
+        } else {
+            experiment.clone()
+        };
         let steady = SteadyOptions {
             tolerance: if model == DiodeModel::Pwl {
                 1e-12
             } else {
-                experiment.steady_options().tolerance
+                SMOOTH_STEADY_TOLERANCE
             },
             spectrum: false,
             lyapunov: None,
@@ -486,6 +575,7 @@ impl Setup {
             system,
             free: free.to_vec(),
             scale,
+            log: free.iter().map(|&p| fitted_in_log(p)).collect(),
             steady,
             step: if model == DiodeModel::Pwl { 1e-6 } else { 1e-4 },
         })
@@ -496,8 +586,11 @@ impl Setup {
     fn at(&self, x: &[f64]) -> Option<Experiment> {
         let mut system = self.system;
         let mut mu_s = self.experiment.mu_s();
-        for ((p, &x), &s) in self.free.iter().zip(x).zip(&self.scale) {
-            let v = x * s;
+        for (k, (p, &x)) in self.free.iter().zip(x).enumerate() {
+            let v = self.value(k, x);
+            if !v.is_finite() {
+                return None;
+            }
             match (*p, &mut system) {
                 (FitParameter::MuS, _) => mu_s = v,
                 (p, System::Circuit(c)) => p.set(c, v),
@@ -526,8 +619,56 @@ impl Setup {
         }
     }
 
+    /// The value of free parameter `k` at the scaled coordinate `x`.
+    fn value(&self, k: usize, x: f64) -> f64 {
+        if self.log[k] {
+            self.scale[k] * (x - 1.0).exp()
+        } else {
+            self.scale[k] * x
+        }
+    }
+
+    /// d value / dx of free parameter `k` at `x` (the chain rule from the coordinate).
+    fn slope(&self, k: usize, x: f64) -> f64 {
+        if self.log[k] {
+            self.value(k, x)
+        } else {
+            self.scale[k]
+        }
+    }
+
+    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s and
+    /// γ down to 0, μs down to 1 (the others are positive and refused at 0, which the
+    /// minimisation treats as a failed step; I_s is fitted in its logarithm).
+    fn bounds(&self, k: usize) -> (f64, f64) {
+        let lowest = match self.free[k] {
+            FitParameter::Resistance
+            | FitParameter::Rd
+            | FitParameter::DiodeRs
+            | FitParameter::Damping => Some(0.0),
+            FitParameter::MuS => Some(1.0),
+            _ => None,
+        };
+        match lowest {
+            Some(v) if !self.log[k] => (self.coordinate(k, v), f64::INFINITY),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
+        }
+    }
+
+    /// The coordinate of free parameter `k` at `value` (the inverse of [`Setup::value`]).
+    fn coordinate(&self, k: usize, value: f64) -> f64 {
+        if self.log[k] {
+            1.0 + (value / self.scale[k]).ln()
+        } else {
+            value / self.scale[k]
+        }
+    }
+
     fn values(&self, x: &[f64]) -> Vec<f64> {
-        x.iter().zip(&self.scale).map(|(x, s)| x * s).collect()
+        x.iter()
+            .enumerate()
+            .map(|(k, &x)| self.value(k, x))
+            .collect()
     }
 }
 
@@ -554,7 +695,9 @@ fn wrap(phase: f64) -> f64 {
 }
 
 /// The steady u_C of `experiment` driven at `frequency` (Hz), `amplitude` (V) and `phase`
-/// (radians, at s = 0), at the times `time` (s), without an offset.
+/// (radians, at s = 0), at the times `time` (s), without an offset; the steady state sought
+/// from `start` (a strobe state of a model nearby) or, without one, from the experiment's
+/// initial state (rest).
 fn evaluate(
     experiment: &Experiment,
     frequency: f64,
@@ -562,12 +705,16 @@ fn evaluate(
     phase: f64,
     time: &[f64],
     options: &SteadyOptions,
+    start: Option<State>,
 ) -> Result<Evaluated, crate::Error> {
-    let e = experiment
+    let mut e = experiment
         .clone()
         .with_frequency(frequency)?
         .with_amplitude(amplitude)?
         .with_phi(wrap(phase))?;
+    if let Some(start) = start {
+        e = e.with_initial(start)?;
+    }
     let steady = e.steady_with(options)?;
     let scales = e.scales().expect("a circuit has scales");
     let params = e.params()?;
@@ -697,6 +844,9 @@ struct Records<'a> {
     jacobian: Jacobian,
     /// Who is told of each iteration.
     watch: Watch<'a>,
+    /// A coordinate held at a value (a profile likelihood's), which the minimisation's
+    /// bounds then pin.
+    pinned: Option<(usize, f64)>,
 }
 
 /// Where the exact Jacobian of a record starts: the dimensionless parameters of its model,
@@ -752,7 +902,19 @@ impl Records<'_> {
             d.phase + shift,
             &self.time[j],
             &self.setup.steady,
+            self.warm_start(j),
         )
+    }
+
+    /// Where the steady state of record j is sought: with Shockley diodes from the strobe
+    /// state of the record's last model (a few periods instead of a transient from rest, and
+    /// the same attractor as the model before); with PWL diodes from rest, whose exact solver
+    /// settles by Newton's method anyway.
+    fn warm_start(&self, j: usize) -> Option<State> {
+        if self.setup.experiment.diode_model() != DiodeModel::Shockley {
+            return None;
+        }
+        self.orbits.as_ref().map(|(_, orbits)| orbits[j].strobe)
     }
 
     /// Weighted residuals of record j: its drive samples, then its response samples; and the
@@ -880,7 +1042,7 @@ impl Records<'_> {
                         Link::Force => (sample.y - params.beta * db) * position / force,
                         Link::MuS => position * dmu,
                     };
-                    columns[k][row] = wr * du * self.setup.scale[k];
+                    columns[k][row] = wr * du * self.setup.slope(k, x[k]);
                 }
                 columns[slots.drive][row] = wr * position * db * sine.amplitude / force;
                 columns[slots.drive + 1][row] = wr * position * dw * TAU * sine.frequency / omega0;
@@ -933,16 +1095,24 @@ impl lm::Problem for Records<'_> {
 
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
         self.setup.check_stop()?;
-        if let Some(columns) = self.exact_jacobian(x) {
-            self.jacobian = Jacobian::Exact;
-            return Ok(columns);
-        }
-        self.jacobian = Jacobian::FiniteDifferences;
-        self.finite_difference_jacobian(x, r)
+        let (columns, kind) = self.jacobian_source(x, r)?;
+        self.jacobian = kind;
+        Ok(columns)
     }
 
     fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
         self.watch.tell(iteration, sum_squares)
+    }
+
+    fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
+        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
+        for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
+            *bound = self.setup.bounds(k);
+        }
+        if let Some((k, v)) = self.pinned {
+            bounds[k] = (v, v);
+        }
+        bounds
     }
 }
 
@@ -1016,36 +1186,158 @@ impl Records<'_> {
     }
 }
 
-/// Standard errors, intervals and correlation of the free values from the solution; the
-/// weighted residuals' variance s² scales (JᵀJ)⁻¹.
+/// The most iterations of a quick minimisation: the PWL fit that gives a smooth law's knee,
+/// a restart (which only has to show whether it goes lower).
+const QUICK_ITERATIONS: usize = 10;
+
+/// A restart (and an interval's search) counts as lower when its χ² lies below the
+/// minimum's by more than this (in units of the residuals' variance s²).
+const RESTART_LOWER: f64 = 1e-2;
+
+/// (JᵀJ)⁻¹ at a solution, with the free values the records do not see left out (their rows
+/// and columns NaN).
+#[derive(Debug, Clone)]
+struct Covariance {
+    /// (JᵀJ)⁻¹, row-major over every fitted value; NaN throughout when JᵀJ is singular
+    /// beyond the unseen values.
+    inverse: Vec<f64>,
+    /// Which free values the records do not see (a column of the Jacobian that is zero to
+    /// 10⁻¹⁰ of the largest).
+    unseen: Vec<bool>,
+    n: usize,
+    free: usize,
+}
+
+impl Covariance {
+    fn of(solution: &lm::Solution, free: usize) -> Self {
+        let n = solution.x.len();
+        let a = &solution.normal;
+        let largest = (0..n).map(|i| a[i * n + i]).fold(0.0f64, f64::max);
+        let unseen: Vec<bool> = (0..free)
+            .map(|k| !(a[k * n + k] > 1e-20 * largest))
+            .collect();
+        let mut m = a.clone();
+        for k in (0..free).filter(|&k| unseen[k]) {
+            for j in 0..n {
+                m[k * n + j] = 0.0;
+                m[j * n + k] = 0.0;
+            }
+            m[k * n + k] = 1.0;
+        }
+        let mut inverse = match linalg::cholesky(&m, n) {
+            Some(l) => linalg::cholesky_inverse(&l, n),
+            None => vec![f64::NAN; n * n],
+        };
+        for k in (0..free).filter(|&k| unseen[k]) {
+            for j in 0..n {
+                inverse[k * n + j] = f64::NAN;
+                inverse[j * n + k] = f64::NAN;
+            }
+        }
+        Self {
+            inverse,
+            unseen,
+            n,
+            free,
+        }
+    }
+
+    /// The standard error of coordinate k with the residuals' variance `s2`.
+    fn sigma(&self, k: usize, s2: f64) -> f64 {
+        (s2 * self.inverse[k * self.n + k]).abs().sqrt()
+    }
+
+    /// Where a restart begins: three standard errors from `x` along the direction the free
+    /// values are least determined in (the covariance's largest eigenvector of their block,
+    /// each value scaled by its standard error), the others moved as the linear model says
+    /// they follow; `None` without a covariance.
+    fn restart(&self, x: &[f64], bounds: &[(f64, f64)]) -> Option<Vec<f64>> {
+        let (n, free) = (self.n, self.free);
+        let seen: Vec<usize> = (0..free).filter(|&k| !self.unseen[k]).collect();
+        let m = seen.len();
+        if m == 0 {
+            return None;
+        }
+        // The correlation block of the seen free values, and its largest eigenvector.
+        let sd: Vec<f64> = seen
+            .iter()
+            .map(|&k| self.inverse[k * n + k].sqrt())
+            .collect();
+        let mut block = vec![0.0; m * m];
+        for (a, &i) in seen.iter().enumerate() {
+            for (b, &k) in seen.iter().enumerate() {
+                block[a * m + b] = self.inverse[i * n + k] / (sd[a] * sd[b]);
+            }
+        }
+        if block.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let (values, vectors) = linalg::symmetric_eigen(&block, m);
+        let (lambda, u) = (values[m - 1], &vectors[m - 1]);
+        if !(lambda > 0.0) {
+            return None;
+        }
+        // The free block's displacement d = 3·√λ·(σ-scaled u); every value follows by
+        // Σ_{·f} Σ_ff⁻¹ d, which for an eigenvector is Σ_{·f} (σ⁻¹ u)·3/√λ.
+        let weights: Vec<f64> = u
+            .iter()
+            .zip(&sd)
+            .map(|(u, s)| 3.0 * u / (s * lambda.sqrt()))
+            .collect();
+        let point = (0..n)
+            .map(|j| {
+                let shift: f64 = seen
+                    .iter()
+                    .zip(&weights)
+                    .map(|(&k, w)| self.inverse[j * n + k] * w)
+                    .sum();
+                if shift.is_finite() {
+                    (x[j] + shift).clamp(bounds[j].0, bounds[j].1)
+                } else {
+                    x[j]
+                }
+            })
+            .collect();
+        Some(point)
+    }
+}
+
+/// Standard errors, intervals and correlation of the free values from the solution (the
+/// weighted residuals' variance s² scales (JᵀJ)⁻¹), the intervals' ends `found` in the
+/// coordinates with how they were found.
 fn uncertainties(
     setup: &Setup,
     solution: &lm::Solution,
-    n_values: usize,
-) -> (Vec<FittedParameter>, Vec<Vec<f64>>, usize) {
-    let n = solution.residuals.len();
-    let dof = n.saturating_sub(n_values).max(1);
+    covariance: &Covariance,
+    found: &[([f64; 2], Interval)],
+    dof: usize,
+) -> (Vec<FittedParameter>, Vec<Vec<f64>>) {
     let s2 = solution.sum_squares / dof as f64;
-    let t = t_quantile_975(dof);
     let free = setup.free.len();
-    let cov = |i: usize, k: usize| {
-        solution.inverse_normal.as_ref().map_or(f64::NAN, |inv| {
-            s2 * inv[i * n_values + k] * setup.scale[i] * setup.scale[k]
-        })
-    };
+    let n = covariance.n;
     let values = setup.values(&solution.x[..free]);
     let parameters = (0..free)
         .map(|i| {
-            let stderr = cov(i, i).abs().sqrt();
+            let sigma = covariance.sigma(i, s2);
+            // The value's standard error by the chain rule; the interval in the coordinate
+            // (for a logarithm: never below zero).
+            let slope = setup.slope(i, solution.x[i]);
+            let (ends, interval) = found[i];
             FittedParameter {
                 parameter: setup.free[i],
                 value: values[i],
-                stderr,
-                ci95: [values[i] - t * stderr, values[i] + t * stderr],
+                stderr: slope * sigma,
+                ci95: ends.map(|e| setup.value(i, e)),
                 initial: setup.scale[i],
+                interval: if sigma.is_finite() {
+                    interval
+                } else {
+                    Interval::None
+                },
             }
         })
         .collect::<Vec<_>>();
+    let cov = |i: usize, k: usize| covariance.inverse[i * n + k];
     let correlation = (0..free)
         .map(|i| {
             (0..free)
@@ -1053,7 +1345,7 @@ fn uncertainties(
                 .collect()
         })
         .collect();
-    (parameters, correlation, dof)
+    (parameters, correlation)
 }
 
 /// AIC and BIC of Gaussian residuals with a variance of their own per group (channel):
@@ -1141,6 +1433,7 @@ impl<'a> Records<'a> {
                 m.drive.phase,
                 t,
                 &setup.steady,
+                None,
             )
             .map_err(|error| FitError::Model {
                 file: m.file.clone(),
@@ -1169,6 +1462,7 @@ impl<'a> Records<'a> {
             exact: options.exact_jacobian,
             jacobian: Jacobian::FiniteDifferences,
             watch,
+            pinned: None,
         };
         Ok((problem, x))
     }
@@ -1232,7 +1526,8 @@ pub fn fit_records(
 }
 
 /// [`fit_records`], telling `monitor` of every iteration (of both passes: at most
-/// 2·[`FitOptions::max_iterations`]), which can stop the fit.
+/// [`RECORD_PASSES`]·[`FitOptions::max_iterations`]: two passes, a restart and the
+/// intervals' profiles), which can stop the fit.
 ///
 /// # Errors
 /// As [`fit_records`]; [`FitError::Stopped`] when the monitor stops the fit.
@@ -1246,7 +1541,7 @@ pub fn fit_records_monitored(
     let watch = Watch {
         monitor,
         before: 0,
-        total: 2 * options.max_iterations,
+        total: RECORD_PASSES * options.max_iterations,
     };
     records_watched(experiment, data, free, options, watch)
 }
@@ -1258,15 +1553,76 @@ fn records_watched(
     options: &FitOptions,
     watch: Watch<'_>,
 ) -> Result<FitReport, FitError> {
+    records_with(experiment, data, free, options, watch, Depth::Full(None))
+}
+
+/// How far a fit of records goes.
+#[derive(Debug, Clone, Copy)]
+enum Depth {
+    /// Everything: a smooth law's starts in its valley (through this knee, or the knee of a
+    /// PWL fit made first), a restart, the intervals' checks and profiles.
+    Full(Option<starts::Knee>),
+    /// The two passes from the caller's start, nothing more (the PWL fit that gives a
+    /// smooth law's knee).
+    Quick,
+}
+
+/// The PWL law's knee for the Shockley fit of `experiment` (see [`starts`]): the PWL
+/// equivalent of its pair at the records' working current, U_t and R_D fitted (quickly).
+fn pwl_knee(
+    experiment: &Experiment,
+    data: &[Measurement],
+    options: &FitOptions,
+    watch: Watch<'_>,
+) -> Option<starts::Knee> {
+    let c = *experiment.circuit_ref()?;
+    let crate::physical::Diode::Shockley(d) = c.diode else {
+        return None;
+    };
+    let i = starts::working_current(c.capacitance, data)?;
+    let (turn_on, resistance) = starts::pwl_equivalent(&d.pair, i);
+    let pwl = Experiment::circuit(crate::physical::Circuit {
+        diode: crate::physical::Diode::Pwl(crate::physical::PwlDiode {
+            turn_on,
+            resistance,
+        }),
+        ..c
+    })
+    .ok()?
+    .with_cancel(experiment.cancel().clone());
+    let free = [FitParameter::Ut, FitParameter::Rd];
+    let report = records_with(&pwl, data, &free, options, watch, Depth::Quick).ok()?;
+    starts::knee_of_pwl(report.experiment.system()?, c.resistance, i)
+}
+
+/// The sum of squares of residuals `r`.
+fn sum_of_squares(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+fn records_with(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    watch: Watch<'_>,
+    depth: Depth,
+) -> Result<FitReport, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
-    let setup = Setup::new(experiment, free)?;
+    // The free list as named (its faults refused first), then the parameters the records
+    // can determine.
+    Setup::new(experiment, free)?;
+    let plan = identify::plan(experiment, free);
+    let setup = Setup::new(experiment, &plan.fitted)?;
     let (mut problem, x) = Records::new(&setup, data, options, watch)?;
+    let n_free = setup.free.len();
     let n_values = x.len();
     let settings = lm::Settings {
         max_iterations: options.max_iterations,
         tolerance: options.tolerance,
+        gradient: lm::GRADIENT,
     };
     let failed = || FitError::Model {
         file: data[0].file.clone(),
@@ -1276,7 +1632,40 @@ fn records_watched(
             allowed: "a model that can be computed at the starting values",
         },
     };
-    let first = lm::minimise(&mut problem, x, settings)?.ok_or_else(failed)?;
+    // A smooth law's fit starts in the valley of I_s and n (see `starts`).
+    let mut x = x;
+    let valley_free = setup
+        .free
+        .iter()
+        .any(|p| matches!(*p, FitParameter::DiodeIs | FitParameter::DiodeN));
+    if let Depth::Full(knee) = depth {
+        if setup.experiment.diode_model() == DiodeModel::Shockley && valley_free {
+            let knee = knee.or_else(|| pwl_knee(experiment, data, options, problem.watch));
+            if let Some(knee) = knee {
+                let mut best = lm::Problem::residuals(&mut problem, &x)?
+                    .map_or(f64::INFINITY, |r| sum_of_squares(&r));
+                for candidate in starts::valley(&setup, &x, knee) {
+                    if let Some(r) = lm::Problem::residuals(&mut problem, &candidate)? {
+                        let ssr = sum_of_squares(&r);
+                        if ssr < best {
+                            best = ssr;
+                            x = candidate;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let quick = lm::Settings {
+        max_iterations: QUICK_ITERATIONS.min(settings.max_iterations),
+        tolerance: 1e-6,
+        ..settings
+    };
+    let first = match depth {
+        Depth::Full(_) => lm::minimise(&mut problem, x, settings)?,
+        Depth::Quick => lm::minimise(&mut problem, x, quick)?,
+    }
+    .ok_or_else(failed)?;
     // Second pass: each channel weighted by its RMS residual of the first.
     let spans = problem.spans();
     let weights = spans
@@ -1295,11 +1684,158 @@ fn records_watched(
         .collect();
     problem.weights = weights;
     problem.watch.before += first.iterations;
-    let second = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
-    let iterations = first.iterations + second.iterations;
-    let solution = second;
-    let (parameters, correlation, dof) = uncertainties(&setup, &solution, n_values);
-    let fitted = setup.at(&solution.x[..free.len()]).ok_or_else(failed)?;
+    let mut solution = match depth {
+        Depth::Full(_) => lm::minimise(&mut problem, first.x.clone(), settings)?,
+        Depth::Quick => lm::minimise(&mut problem, first.x.clone(), quick)?,
+    }
+    .ok_or_else(failed)?;
+    let mut iterations = first.iterations + solution.iterations;
+    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
+    let t = t_quantile_975(dof);
+    // A restart from elsewhere, and the intervals' checks: a point lower than the minimum
+    // is a minimum elsewhere, from which the fit goes on (three times at most).
+    let mut lower_by = None;
+    let mut intervals = None;
+    if let Depth::Full(_) = depth {
+        for _ in 0..3 {
+            problem.watch.before += solution.iterations;
+            let s2 = solution.sum_squares / dof as f64;
+            let covariance = Covariance::of(&solution, n_free);
+            let mut lower = None;
+            if let Some(point) =
+                covariance.restart(&solution.x, &lm::Problem::bounds(&problem, n_values))
+            {
+                let restart = lm::minimise(&mut problem, point, quick)?;
+                if let Some(restart) = restart {
+                    if restart.sum_squares < solution.sum_squares - RESTART_LOWER * s2 {
+                        lower = Some(restart);
+                    }
+                }
+            }
+            if lower.is_none() {
+                match profile::intervals(
+                    &mut problem,
+                    &solution,
+                    &covariance.inverse,
+                    n_free,
+                    t,
+                    quick,
+                )? {
+                    profile::Outcome::Intervals(found) => {
+                        lower_by = None;
+                        intervals = Some((found, covariance));
+                        break;
+                    }
+                    profile::Outcome::Lower(point) => {
+                        lower = lm::minimise(&mut problem, point, settings)?
+                            .filter(|s| s.sum_squares < solution.sum_squares);
+                    }
+                }
+            }
+            match lower {
+                Some(better) => {
+                    lower_by = Some((solution.sum_squares - better.sum_squares) / s2);
+                    iterations += better.iterations;
+                    solution = better;
+                }
+                None => {
+                    intervals = None;
+                    break;
+                }
+            }
+        }
+    }
+    let covariance = match intervals.as_ref() {
+        Some((_, c)) => c.clone(),
+        None => Covariance::of(&solution, n_free),
+    };
+    let linear: Vec<([f64; 2], Interval)> = (0..n_free)
+        .map(|k| {
+            let sigma = covariance.sigma(k, solution.sum_squares / dof as f64);
+            (
+                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
+                if sigma.is_finite() {
+                    Interval::Linear
+                } else {
+                    Interval::None
+                },
+            )
+        })
+        .collect();
+    let found = intervals.map_or(linear, |(found, _)| found);
+    let (fitted_parameters, correlation) =
+        uncertainties(&setup, &solution, &covariance, &found, dof);
+    // Every parameter named, in the order named: the held ones at their starting values.
+    let parameters: Vec<FittedParameter> = free
+        .iter()
+        .map(
+            |&p| match fitted_parameters.iter().find(|f| f.parameter == p) {
+                Some(f) => *f,
+                None => {
+                    let start = p.get(experiment).unwrap_or(f64::NAN);
+                    FittedParameter {
+                        parameter: p,
+                        value: start,
+                        stderr: f64::NAN,
+                        ci95: [f64::NAN; 2],
+                        initial: start,
+                        interval: Interval::Held,
+                    }
+                }
+            },
+        )
+        .collect();
+    // The correlation over every parameter named (NaN beside a held one).
+    let index = |p: FitParameter| setup.free.iter().position(|&q| q == p);
+    let named_correlation: Vec<Vec<f64>> = free
+        .iter()
+        .map(|&a| {
+            free.iter()
+                .map(|&b| match (index(a), index(b)) {
+                    (Some(i), Some(k)) => correlation[i][k],
+                    _ => f64::NAN,
+                })
+                .collect()
+        })
+        .collect();
+    let mut warnings = plan.warnings.clone();
+    let converged = solution.converged && lower_by.is_none();
+    if !converged {
+        let why = match lower_by {
+            Some(lower_by) => warning::NotConverged::Restart { lower_by },
+            None if solution.iterations >= options.max_iterations => {
+                warning::NotConverged::Iterations {
+                    limit: options.max_iterations,
+                }
+            }
+            None => warning::NotConverged::Stalled {
+                predicted: solution.decrement,
+            },
+        };
+        warnings.insert(0, FitWarning::NotConverged { why });
+    }
+    for (k, &p) in setup.free.iter().enumerate() {
+        if covariance.unseen[k] {
+            warnings.push(FitWarning::Unseen { parameter: p });
+        }
+        if solution.at_bound[k] {
+            warnings.push(FitWarning::AtBound {
+                parameter: p,
+                bound: setup.value(k, solution.x[k]),
+            });
+        }
+    }
+    warnings.extend(identify::correlations(&setup.free, &correlation));
+    for m in data {
+        if m.clipped > 0 {
+            warnings.push(FitWarning::Clipped {
+                file: m.file.clone(),
+                samples: m.clipped,
+                of: m.time.len(),
+            });
+        }
+    }
+    let fitted = setup.at(&solution.x[..n_free]).ok_or_else(failed)?;
     let mut records = Vec::with_capacity(data.len());
     let mut chi2 = 0.0;
     let mut groups = Vec::new();
@@ -1361,7 +1897,7 @@ fn records_watched(
     Ok(FitReport {
         model: experiment.diode_model(),
         parameters,
-        correlation,
+        correlation: named_correlation,
         records,
         rows: vec![],
         rms_residual_v: rms(&all_response),
@@ -1373,9 +1909,10 @@ fn records_watched(
         aic,
         bic,
         iterations,
-        converged: solution.converged,
+        converged,
         jacobian: problem.jacobian,
         experiment: fitted,
+        warnings,
     })
 }
 
@@ -1394,7 +1931,7 @@ pub fn fit_per_record(
 }
 
 /// [`fit_per_record`], telling `monitor` of every iteration (at most
-/// 2·[`FitOptions::max_iterations`] per record), which can stop the fits.
+/// [`RECORD_PASSES`]·[`FitOptions::max_iterations`] per record), which can stop the fits.
 ///
 /// # Errors
 /// As [`fit_per_record`]; [`FitError::Stopped`] when the monitor stops the fits.
@@ -1408,7 +1945,7 @@ pub fn fit_per_record_monitored(
     if data.is_empty() {
         return Err(FitError::NoData);
     }
-    let per = 2 * options.max_iterations;
+    let per = RECORD_PASSES * options.max_iterations;
     data.iter()
         .enumerate()
         .map(|(j, m)| {
@@ -1448,7 +1985,7 @@ pub fn compare_models(
 }
 
 /// [`compare_models`], telling `monitor` of every iteration of both fits (at most
-/// 4·[`FitOptions::max_iterations`]), which can stop them.
+/// 2·[`RECORD_PASSES`]·[`FitOptions::max_iterations`]), which can stop them.
 ///
 /// # Errors
 /// As [`compare_models`]; [`FitError::Stopped`] when the monitor stops the fits.
@@ -1475,19 +2012,25 @@ pub fn compare_models_monitored(
                 file: "(comparison)".into(),
                 error,
             })?;
-    let per = 2 * options.max_iterations;
+    let per = RECORD_PASSES * options.max_iterations;
     let watch = |before| Watch {
         monitor,
         before,
         total: 2 * per,
     };
     let pwl = records_watched(experiment, data, pwl_free, options, watch(0))?;
-    let shockley = records_watched(
+    // The Shockley fit enters its valley where the PWL fit says the diodes work.
+    let knee = experiment.circuit_ref().and_then(|c| {
+        let i = starts::working_current(c.capacitance, data)?;
+        starts::knee_of_pwl(pwl.experiment.system()?, c.resistance, i)
+    });
+    let shockley = records_with(
         &shockley_experiment,
         data,
         shockley_free,
         options,
         watch(per),
+        Depth::Full(knee),
     )?;
     let delta_aic = shockley.aic - pwl.aic;
     Ok(ModelComparison {
@@ -1691,11 +2234,25 @@ pub fn fit_table_monitored(
         lm::Settings {
             max_iterations: options.max_iterations,
             tolerance: options.tolerance,
+            gradient: lm::GRADIENT,
         },
     )?
     .expect("the start was evaluated");
     let n_values = free.len();
-    let (parameters, correlation, dof) = uncertainties(&setup, &solution, n_values);
+    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
+    let covariance = Covariance::of(&solution, n_values);
+    let t = t_quantile_975(dof);
+    let s2 = solution.sum_squares / dof as f64;
+    let linear: Vec<([f64; 2], Interval)> = (0..n_values)
+        .map(|k| {
+            let sigma = covariance.sigma(k, s2);
+            (
+                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
+                Interval::Linear,
+            )
+        })
+        .collect();
+    let (parameters, correlation) = uncertainties(&setup, &solution, &covariance, &linear, dof);
     let fitted = setup.at(&solution.x).expect("the solution was evaluated");
     let amplitudes = problem
         .amplitudes(&solution.x)
@@ -1734,6 +2291,21 @@ pub fn fit_table_monitored(
         converged: solution.converged,
         jacobian: Jacobian::FiniteDifferences,
         experiment: fitted,
+        warnings: if solution.converged {
+            Vec::new()
+        } else {
+            vec![FitWarning::NotConverged {
+                why: if solution.iterations >= options.max_iterations {
+                    warning::NotConverged::Iterations {
+                        limit: options.max_iterations,
+                    }
+                } else {
+                    warning::NotConverged::Stalled {
+                        predicted: solution.decrement,
+                    }
+                },
+            }]
+        },
     })
 }
 
@@ -1752,7 +2324,7 @@ mod tests {
     }
     /// A plain-CSV record of `truth` at (w, β, φ): 600 samples over 2.5 drive periods, with
     /// a deterministic ripple of 0.3 % as noise and an offset of 20 mV on u_C.
-    fn record(truth: &Experiment, w: f64, beta: f64, phi: f64) -> Measurement {
+    pub(super) fn record(truth: &Experiment, w: f64, beta: f64, phi: f64) -> Measurement {
         let e = truth
             .clone()
             .with_w(w)
