@@ -68,6 +68,7 @@ from ._api import (
 from ._core import Experiment, __version__
 from ._fit import (
     AmplitudeTable,
+    FitNotConverged,
     FitRecord,
     FitResult,
     ScopeRecord,
@@ -87,6 +88,7 @@ from ._dynamics import (
 
 __all__ = [
     "AmplitudeTable",
+    "FitNotConverged",
     "FitRecord",
     "FitResult",
     "ScopeRecord",
