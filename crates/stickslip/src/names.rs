@@ -13,6 +13,7 @@
 
 use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
+use crate::continuation::Follow;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::params::Parameter;
 use crate::physical::SystemKind;
@@ -92,6 +93,7 @@ names!(CurveKind, "curve", display, retired);
 names!(MapColor, "map colour", display, retired);
 names!(AttractorKind, "attractor kind", display, retired);
 names!(BasinMethod, "basin method", display);
+names!(Follow, "followed special point");
 
 impl SweepDirection {
     /// Every direction.

@@ -5,6 +5,7 @@ mod common;
 
 mod checkpoint;
 mod convert;
+mod curve;
 mod determinism;
 mod dynamics;
 mod fit;
