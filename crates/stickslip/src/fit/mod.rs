@@ -31,23 +31,30 @@
 //! ([`crate::stability::periodic_orbit_sensitivity`]: the closed-form slides, the saltations,
 //! the releases' moving times and dx*/dp = (I − M)⁻¹ ∂P/∂p), carried through the circuit's
 //! scales (ζ = (R + R_D)/2·√(C/L), ω0 = 1/√(LC), w = 2πf/ω0, β = U/U_t, τ = ω0·s,
-//! u_C = U_t·y), from the steady states the residuals were computed with. Otherwise (Shockley
-//! diodes, a model that does not repeat, a tangential release, a multiplier 1) by forward
-//! differences (step 10⁻⁶ with PWL diodes, whose
-//! exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
-//! solver is accurate to its tolerance; relative to a free parameter's value, but never
-//! smaller than that fraction of its starting value, so that a value fitted near zero, such
-//! as a diode's R_s, keeps a step above the solver's error), a record's own nuisance columns
-//! from that record only. The report says which served at the solution ([`Jacobian`]).
+//! u_C = U_t·y), from the steady states the residuals were computed with. With Shockley
+//! diodes, wherever every record's model is a periodic orbit, from the stiff solver's forward
+//! sensitivities on its own steps along that orbit (`jacobian.rs`: the derivatives of the
+//! computed samples, at a tolerance of their own, carried to R, L, C, ln I_s, n and R_s by
+//! the chain rule). Otherwise (a model that does not repeat, a tangential release, a
+//! multiplier 1) by forward differences (step 10⁻⁶ with PWL diodes, whose exact solver gives
+//! the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff solver is accurate to its
+//! tolerance; relative to a free parameter's value, but never smaller than that fraction of
+//! its starting value, so that a value fitted near zero, such as a diode's R_s, keeps a step
+//! above the solver's error), a record's own nuisance columns from that record only. The
+//! report says which served at the solution ([`Jacobian`]).
 //!
 //! **What is reported** ([`FitReport`]): each free parameter's value, standard error from
 //! s²(JᵀJ)⁻¹ with s² the weighted SSR/(N − P) (N residuals, P fitted values with the nuisance
-//! ones), 95 % interval value ± t(0.975, N − P)·stderr, the correlation of the free
-//! parameters; the RMS residual of u_C per record and overall; χ²/dof = Σ r²/σ² over N − P
+//! ones), 95 % interval value ± t(0.975, N − P)·stderr where that linear interval holds, else
+//! from the profile of χ² (each value says which: [`Interval`]), the correlation of the free
+//! parameters, the warnings ([`FitWarning`]: a combination that the data do not identify, a
+//! correlation beyond ±0.99, a value at its bound, clipped samples, a fit that did not
+//! converge); the RMS residual of u_C per record and overall; χ²/dof = Σ r²/σ² over N − P
 //! with σ each channel's noise estimated from the data alone (near 1 when the model explains
 //! the data to the noise; the estimate from second differences needs the noise to exceed
 //! the waveform's curvature between samples, true of 8-bit records, not of records with
-//! almost no noise); the iterations of both passes and whether the fit converged;
+//! almost no noise); the iterations of both passes and whether the fit converged (the step
+//! and gradient criteria held and no restart from elsewhere found a lower χ²);
 //! AIC = Σ_g N_g ln(SSR_g/N_g) + 2P and BIC (P ln N instead of 2P) over the channels g, for
 //! comparing models.
 //!
