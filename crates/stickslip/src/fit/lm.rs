@@ -32,6 +32,14 @@ pub(crate) trait Problem {
     fn iteration(&mut self, _iteration: usize, _sum_squares: f64) -> Result<(), Self::Error> {
         Ok(())
     }
+    /// The residuals' precision: the mean square that a residual cannot be resolved below
+    /// (the rounding of the data and the model's accuracy, in the residuals' units). Residuals
+    /// at this floor are rounding, which no step of the model's parameters describes; the
+    /// gradient criterion measures the predicted decrease in units of the larger of s² and
+    /// this ([`Settings::gradient`]). Default: 0 (exact data and model).
+    fn floor(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Stopping rules.
@@ -44,7 +52,11 @@ pub(crate) struct Settings {
     /// The gradient criterion: the decrease of the sum of squares that a full Gauss–Newton
     /// step predicts, gᵀ(JᵀJ)⁻¹g with g = Jᵀr, in units of the residuals' variance
     /// s² = |r|²/(N − P), is at most this (the point is within √gradient standard errors of
-    /// the linearised minimum, whatever the scale of the problem).
+    /// the linearised minimum, whatever the scale of the problem). The variance is never
+    /// taken below the residuals' precision ([`Problem::floor`]): residuals at that floor
+    /// are rounding, whose projection on the Jacobian's columns predicts a decrease of about
+    /// P times their variance that no step can realise; a point within √gradient of the
+    /// standard errors that the data's precision allows is a minimum to that precision.
     pub gradient: f64,
 }
 
@@ -66,7 +78,8 @@ pub(crate) struct Solution {
     /// The Jacobian at the solution, column by column.
     pub columns: Vec<Vec<f64>>,
     /// The decrease of the sum of squares a Gauss–Newton step predicts at the solution, in
-    /// units of s² ([`Settings::gradient`]), the coordinates held at a bound left out;
+    /// units of s² or of the residuals' precision if larger ([`Settings::gradient`]), the
+    /// coordinates held at a bound left out;
     /// infinite when JᵀJ is singular.
     pub decrement: f64,
     /// Which coordinates ended at a bound that the minimum presses against.
@@ -74,12 +87,13 @@ pub(crate) struct Solution {
 }
 
 /// The Gauss–Newton decrement gᵀ(JᵀJ)⁻¹g/s² (see [`Settings::gradient`]) of the normal
-/// matrix `a` (n×n) and gradient `g` with `ssr` over `residuals` residuals; JᵀJ that is
-/// singular to rounding is regularised by 10⁻¹² of its diagonal, so that a direction the
-/// data do not see (and the gradient cannot move along) does not count.
-pub(crate) fn decrement(a: &[f64], g: &[f64], ssr: f64, residuals: usize) -> f64 {
+/// matrix `a` (n×n) and gradient `g` with `ssr` over `residuals` residuals, s² never below
+/// the residuals' precision `floor` ([`Problem::floor`]); JᵀJ that is singular to rounding
+/// is regularised by 10⁻¹² of its diagonal, so that a direction the data do not see (and
+/// the gradient cannot move along) does not count.
+pub(crate) fn decrement(a: &[f64], g: &[f64], ssr: f64, residuals: usize, floor: f64) -> f64 {
     let n = g.len();
-    let s2 = ssr / residuals.saturating_sub(n).max(1) as f64;
+    let s2 = (ssr / residuals.saturating_sub(n).max(1) as f64).max(floor);
     if !(s2 > 0.0) {
         return 0.0;
     }
@@ -203,6 +217,7 @@ pub(crate) fn minimise<P: Problem>(
 ) -> Result<Option<Solution>, P::Error> {
     let n = x0.len();
     let bounds = problem.bounds(n);
+    let floor = problem.floor();
     let mut x = x0;
     let Some(mut r) = problem.residuals(&x)? else {
         return Ok(None);
@@ -215,7 +230,7 @@ pub(crate) fn minimise<P: Problem>(
     let gradient_holds = |columns: &[Vec<f64>], r: &[f64], ssr: f64, x: &[f64]| {
         let (a, g) = normal(columns, r);
         let (a, g) = without(&a, &g, &active(x, &g, &bounds));
-        decrement(&a, &g, ssr, r.len()) <= settings.gradient
+        decrement(&a, &g, ssr, r.len(), floor) <= settings.gradient
     };
     while iterations < settings.max_iterations && !converged {
         iterations += 1;
@@ -285,7 +300,7 @@ pub(crate) fn minimise<P: Problem>(
     let (a, g) = normal(&columns, &r);
     let at_bound = active(&x, &g, &bounds);
     let (reduced, g) = without(&a, &g, &at_bound);
-    let decrement = decrement(&reduced, &g, ssr, r.len());
+    let decrement = decrement(&reduced, &g, ssr, r.len(), floor);
     Ok(Some(Solution {
         x,
         residuals: r,
@@ -329,6 +344,126 @@ mod tests {
         }
         fn bounds(&self, _: usize) -> Vec<(f64, f64)> {
             vec![(f64::NEG_INFINITY, 1.0), (0.0, f64::INFINITY)]
+        }
+    }
+
+    /// A line a + b·t through data (0.5 + 2t, exactly), evaluated with a rounding error of
+    /// 10⁻¹⁴ that changes with every bit of the parameters (as a model's does), the data's
+    /// precision 10⁻⁹ ([`Problem::floor`] = `floor`).
+    struct Rounded {
+        floor: f64,
+    }
+
+    impl Rounded {
+        const T: [f64; 40] = {
+            let mut t = [0.0; 40];
+            let mut i = 0;
+            while i < 40 {
+                t[i] = i as f64 / 39.0;
+                i += 1;
+            }
+            t
+        };
+
+        /// A rounding error in [−10⁻¹⁴, 10⁻¹⁴], a hash of the parameters' bits and `i`.
+        fn rounding(x: &[f64], i: usize) -> f64 {
+            let mut z = x[0].to_bits() ^ x[1].to_bits().rotate_left(29) ^ (i as u64) << 48;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^= z >> 31;
+            1e-14 * ((z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0)
+        }
+    }
+
+    impl Problem for Rounded {
+        type Error = ();
+        fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, ()> {
+            Ok(Some(
+                Self::T
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| (x[0] - 0.5) + (x[1] - 2.0) * t + Self::rounding(x, i))
+                    .collect(),
+            ))
+        }
+        fn jacobian(&mut self, _: &[f64], _: &[f64]) -> Result<Vec<Vec<f64>>, ()> {
+            Ok(vec![vec![1.0; 40], Self::T.to_vec()])
+        }
+        fn floor(&self) -> f64 {
+            self.floor * self.floor
+        }
+    }
+
+    const TIGHT: Settings = Settings {
+        max_iterations: 100,
+        tolerance: 1e-14,
+        gradient: GRADIENT,
+    };
+
+    #[test]
+    fn residuals_at_the_floor_are_a_minimum_to_the_datas_precision() {
+        // Exact data: the fit goes down to the rounding, where the gradient of that
+        // rounding predicts a decrease of about P·s² (P = 2) that no step realises.
+        let blind = minimise(&mut Rounded { floor: 0.0 }, vec![3.0, -1.0], TIGHT)
+            .unwrap()
+            .unwrap();
+        assert!(blind.sum_squares < 40.0 * 1e-28, "{}", blind.sum_squares);
+        assert!(
+            !blind.converged && blind.decrement > GRADIENT,
+            "{}",
+            blind.decrement
+        );
+        // Known to 10⁻⁹: that decrease is nothing the data can tell.
+        let s = minimise(&mut Rounded { floor: 1e-9 }, vec![3.0, -1.0], TIGHT)
+            .unwrap()
+            .unwrap();
+        assert!(s.converged, "{}", s.decrement);
+        assert!(
+            (s.x[0] - 0.5).abs() < 1e-12 && (s.x[1] - 2.0).abs() < 1e-12,
+            "{:?}",
+            s.x
+        );
+    }
+
+    /// Data with noise of variance ~1 (a fixed pattern), and a Jacobian whose first column
+    /// has the wrong sign: the fit stalls where its Jacobian cannot lead it on.
+    struct Misled {
+        floor: f64,
+    }
+
+    impl Problem for Misled {
+        type Error = ();
+        fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, ()> {
+            Ok(Some(
+                Rounded::T
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| (x[0] - 0.5) + (x[1] - 2.0) * t + (1.7 * i as f64).sin())
+                    .collect(),
+            ))
+        }
+        fn jacobian(&mut self, _: &[f64], _: &[f64]) -> Result<Vec<Vec<f64>>, ()> {
+            Ok(vec![vec![-1.0; 40], Rounded::T.to_vec()])
+        }
+        fn floor(&self) -> f64 {
+            self.floor * self.floor
+        }
+    }
+
+    #[test]
+    fn a_stall_above_the_floor_is_not_converged() {
+        for floor in [0.0, 1e-9] {
+            let s = minimise(&mut Misled { floor }, vec![3.0, -1.0], TIGHT)
+                .unwrap()
+                .unwrap();
+            // Stopped where no step lowers the sum, not by the iterations' limit.
+            assert!(
+                s.iterations < TIGHT.max_iterations,
+                "{floor}: {}",
+                s.iterations
+            );
+            assert!(!s.converged, "{floor}: {:?}", s.x);
+            assert!(s.decrement > 1.0, "{floor}: {}", s.decrement);
         }
     }
 

@@ -54,7 +54,10 @@
 //! the data to the noise; the estimate from second differences needs the noise to exceed
 //! the waveform's curvature between samples, true of 8-bit records, not of records with
 //! almost no noise); the iterations of both passes and whether the fit converged (the step
-//! and gradient criteria held and no restart from elsewhere found a lower χ²);
+//! and gradient criteria held and no restart from elsewhere found a lower χ²; both measure
+//! χ² in units of the residuals' variance, never taken below the channels' precision, their
+//! noise floor without noise: a record made by the model is fitted down to the rounding of
+//! its digits and of the model, which no step describes, and is a minimum to that precision);
 //! AIC = Σ_g N_g ln(SSR_g/N_g) + 2P and BIC (P ln N instead of 2P) over the channels g, for
 //! comparing models.
 //!
@@ -723,6 +726,23 @@ impl lm::Problem for Records<'_> {
         self.watch.tell(iteration, sum_squares)
     }
 
+    /// Each channel's precision ([`noise_floor`] of no noise: its quantisation, 10⁻⁹ of its
+    /// scale, above the rounding of its printed digits and the PWL model's 10⁻¹²) in units
+    /// of its weight, squared and averaged over the residuals.
+    fn floor(&self) -> f64 {
+        let mut sum = 0.0;
+        let mut count = 0;
+        for (j, m) in self.data.iter().enumerate() {
+            let (wd, wr) = self.weights[j];
+            let fd = wd * noise_floor(0.0, &self.drive[j], None);
+            let fr = wr * noise_floor(0.0, &self.response[j], m.resolution);
+            let samples = self.time[j].len();
+            sum += samples as f64 * (fd * fd + fr * fr);
+            count += 2 * samples;
+        }
+        sum / count.max(1) as f64
+    }
+
     fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
         let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
         for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
@@ -1142,7 +1162,8 @@ fn records_with(
     if let Depth::Full(_) = depth {
         for _ in 0..3 {
             problem.watch.before += solution.iterations;
-            let s2 = solution.sum_squares / dof as f64;
+            // Lower by more than the residuals' precision can account for.
+            let s2 = (solution.sum_squares / dof as f64).max(lm::Problem::floor(&problem));
             let covariance = Covariance::of(&solution, n_free);
             let mut lower = None;
             if let Some(point) =
