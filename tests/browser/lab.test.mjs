@@ -689,6 +689,17 @@ test('issue 20: a scope record dropped on the screen is drawn as REF1 and REF2, 
       assert.ok(Math.abs(shown / fitted - 1) < 1e-6, `${name} field ${shown}`);
     }
     assert.ok(Number(await page.$eval('[data-fit="rms_residual_V"]', (e) => e.textContent)) < 1e-6);
+    // The correlation of the fitted values: 1 on the diagonal, the same number either side,
+    // within [−1, 1]; the intervals are the linear ones; no warning for a record made by the
+    // model.
+    assert.equal(await page.isHidden('[data-fit="correlation"]'), false);
+    const cell = (a, b) => page.$eval(`[data-fit-correlation="${a} ${b}"]`, (e) => Number(e.textContent));
+    assert.equal(await cell('resistance', 'resistance'), 1);
+    const r = await cell('resistance', 'ut');
+    assert.ok(Number.isFinite(r) && Math.abs(r) <= 1, `correlation ${r}`);
+    assert.equal(await cell('ut', 'resistance'), r);
+    assert.deepEqual(await page.$$eval('[data-fit-interval]', (cells) => cells.map((c) => c.dataset.fitInterval)), ['linear', 'linear']);
+    assert.equal(await page.isHidden('[data-fit="warnings"]'), true);
     await ready();
     const query = new URLSearchParams(await shownQuery());
     assert.ok(Math.abs(Number(query.get('resistance')) / truth.resistance - 1) < 0.01, await shownQuery());

@@ -55,7 +55,7 @@ pub struct ModelFlags {
 
 /// Run the tool on the process's arguments: parse, run the command, report errors in one
 /// line, and return the exit status (0; 1 for a failure of the computation; 2 for bad
-/// input).
+/// input; 3 for a fit that did not converge, [`output::NOT_CONVERGED`]).
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -84,6 +84,10 @@ pub fn main() -> ExitCode {
         // a word, as a writer killed by SIGPIPE does. (Unfinished output files were removed
         // on the way here.)
         Err(err) if output::is_broken_pipe(&err) => broken_pipe(),
+        // The command said why on standard error and wrote its output.
+        Err(err) if err.downcast_ref::<output::ExitStatus>().is_some() => {
+            ExitCode::from(err.downcast_ref::<output::ExitStatus>().map_or(1, |s| s.0))
+        }
         Err(err) => {
             let (message, usage) = describe(&err);
             eprintln!("error: {message}");

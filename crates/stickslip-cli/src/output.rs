@@ -18,6 +18,23 @@ impl std::fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
+/// A command that wrote its output but ends with an exit status of its own, having said why
+/// on standard error (`stickslip fit` whose fit did not converge: [`NOT_CONVERGED`]).
+#[derive(Debug)]
+pub struct ExitStatus(pub u8);
+
+impl std::fmt::Display for ExitStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "exit status {}", self.0)
+    }
+}
+
+impl std::error::Error for ExitStatus {}
+
+/// The exit status of `stickslip fit` when a fit did not converge (its report is printed,
+/// and a warning on standard error says why).
+pub const NOT_CONVERGED: u8 = 3;
+
 /// Return a usage error (exit code 2) with this message.
 macro_rules! usage {
     ($($arg:tt)*) => {

@@ -1118,6 +1118,11 @@ fn rigol_record(w: f64, beta: f64, phi: f64) -> String {
 
 /// [`rigol_record`] quantised to `bits` bits.
 fn rigol_record_bits(w: f64, beta: f64, phi: f64, bits: i32) -> String {
+    rigol(&record_bits(w, beta, phi, bits))
+}
+
+/// The record of [`rigol_record_bits`] before its export.
+fn record_bits(w: f64, beta: f64, phi: f64, bits: i32) -> Synthetic {
     let e = driven(truth(), w, beta, phi);
     let n = 1200;
     let increment = 3.4 * std::f64::consts::TAU / (w * e.scales().unwrap().omega0) / n as f64;
@@ -1128,7 +1133,7 @@ fn rigol_record_bits(w: f64, beta: f64, phi: f64, bits: i32) -> String {
     let drive = quantise(&s.drive, levels, 1.0, &mut rng);
     let response = quantise(&response, levels, 1.0, &mut rng);
     let start = -0.5 * n as f64 * increment;
-    rigol(&Synthetic::new(drive, response, start, increment))
+    Synthetic::new(drive, response, start, increment)
 }
 
 /// POST `body` to `uri` of `lab`; status and JSON answer.
@@ -1207,12 +1212,24 @@ async fn a_record_is_read_by_the_librarys_readers() {
     assert!((f / (0.5 * f0) - 1.0).abs() < 1e-3, "{f}");
     let a = answer["drive"]["amplitude_V"].as_f64().unwrap();
     assert!((a / (2.5 * TRUE_UT) - 1.0).abs() < 5e-3, "{a}");
-    // Channels picked by name.
-    let (status, answer) = post("/api/record?drive=CH2&response=1", text).await;
+    // Channels picked by name: the record written with u_C as CH1 and the drive as CH2.
+    let s = record_bits(0.5, 2.5, 0.3, 8);
+    let swapped = rigol(&Synthetic::new(s.response, s.drive, s.start, s.increment));
+    let (status, answer) = post("/api/record?drive=CH2&response=1", swapped.clone()).await;
     assert_eq!(status, StatusCode::OK, "{answer}");
     assert_eq!(answer["drive_channel"], "CH2");
     assert_eq!(answer["response_channel"], "CH1");
     assert_eq!(answer["file"], "record.csv");
+    assert_eq!(answer["drive"]["f_Hz"], m.drive.frequency);
+    // With the default channels it is refused in one line that says how to pick them.
+    post_refused(
+        "/api/record",
+        swapped,
+        StatusCode::BAD_REQUEST,
+        "swapped: give drive=CH2&response=CH1",
+        Some("record"),
+    )
+    .await;
 }
 
 #[tokio::test]

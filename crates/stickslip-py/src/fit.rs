@@ -19,7 +19,12 @@ use stickslip::measure::{self, AmplitudeTable, MeasureError, Measurement, Record
 use stickslip::scan::Monitor;
 
 fn measure_error(e: MeasureError) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    match &e.swap {
+        Some((drive, response)) => PyValueError::new_err(format!(
+            "{e}: give drive=\"{drive}\", response=\"{response}\""
+        )),
+        None => PyValueError::new_err(e.to_string()),
+    }
 }
 
 /// The text of the file `path` (UTF-8, UTF-16 or Windows-1252, see

@@ -67,9 +67,19 @@ def test_read_scope_gives_arrays_units_and_metadata(records):
     assert r.sample_interval_s == pytest.approx(r.t_s[1] - r.t_s[0], rel=1e-6)
     assert r.resolution_V["CH1"] is not None and r.resolution_V["CH1"] > 0
     assert np.array_equal(r.drive, r.channels["CH1"])
-    k = stickslip.read_scope(str(records[1]), drive="2", response="1")
+    # Channels picked by name: the Keysight record written with u_C as channel 1 and the
+    # drive as channel 2.
+    lines = records[1].read_text().splitlines()
+    swapped = records[1].with_name("swapped.csv")
+    rows = [",".join([c[0], c[2], c[1]]) for c in (line.split(",") for line in lines[2:])]
+    swapped.write_text("\n".join(lines[:2] + rows) + "\n")
+    k = stickslip.read_scope(str(swapped), drive="2", response="1")
     assert k.format == "keysight"
     assert (k.drive_channel, k.response_channel) == ("2", "1")
+    assert k.freq_Hz == pytest.approx(0.95 * f0, rel=1e-3)
+    # With the default channels the same file is refused, naming the drive's channel.
+    with pytest.raises(ValueError, match='swapped.*give drive="2", response="1"'):
+        stickslip.read_scope(str(swapped))
 
 
 def test_fit_to_dict_equals_the_cli_json(cli, records):
@@ -84,6 +94,10 @@ def test_fit_to_dict_equals_the_cli_json(cli, records):
     assert lo < result.parameters["resistance"] < hi
     assert result.names == ("resistance", "ut")
     assert result.converged
+    # How each interval was found, and the warnings, as the JSON has them.
+    assert result.intervals == {n: expected["parameters"][n]["interval"] for n in result.names}
+    assert set(result.intervals.values()) <= {"linear", "profile"}
+    assert result.warnings == expected["warnings"]
     # Covariance, correlation and standard errors agree with each other.
     s = np.array([result.stderr[n] for n in result.names])
     assert np.allclose(np.diag(result.covariance), s**2, rtol=1e-12)
@@ -107,15 +121,17 @@ def test_progress_counts_iterations_and_its_exception_stops_the_fit(records):
     result = stickslip.fit(exp, data=[str(p) for p in records],
                            progress=lambda done, total: seen.append((done, total)))
     # As every call with progress: polled while the fit runs and told once at the end, the
-    # iterations done of the most allowed (two passes of 50).
-    assert seen and seen[-1] == (result.iterations, 100)
+    # iterations done of the most allowed (4·50: two passes, a restart and the intervals'
+    # profiles; the restart's iterations count here, not in the result's when it went no
+    # lower).
+    assert seen and seen[-1][1] == 200 and result.iterations <= seen[-1][0] <= 200
     assert all(a[0] <= b[0] for a, b in zip(seen, seen[1:]))
     assert result.jacobian == "exact"
 
     def stop(done, total):
         raise RuntimeError(f"stopped at {done} of {total}")
 
-    with pytest.raises(RuntimeError, match=r"^stopped at \d+ of 100$"):
+    with pytest.raises(RuntimeError, match=r"^stopped at \d+ of 200$"):
         stickslip.fit(exp, data=[str(p) for p in records], progress=stop)
 
 
@@ -239,3 +255,48 @@ def test_a_mechanical_fit_recovers_damping_and_friction_and_matches_the_cli(cli,
         stickslip.fit(start, data=paths, free="resistance")
     with pytest.raises(ValueError, match="slow.csv: a circuit is fitted to voltages"):
         stickslip.fit(stickslip.Experiment.paper(), data=paths)
+
+
+def test_parameters_the_records_cannot_separate_are_held_and_named(records):
+    # L, C and R with PWL diodes enter only through ω0 and ζ: the last named is held at its
+    # start, without an error bar (NaN here, null in the JSON), and a warning says why.
+    exp = stickslip.Experiment.paper()
+    free = ["resistance", "ut", "inductance", "capacitance"]
+    result = stickslip.fit(exp, data=[str(p) for p in records], free=free)
+    assert result.intervals["capacitance"] == "held"
+    assert math.isnan(result.stderr["capacitance"])
+    assert result.parameters["capacitance"] == pytest.approx(20e-9, rel=1e-12)
+    d = result.to_dict()["parameters"]["capacitance"]
+    assert d["stderr"] is None and d["ci95"] == [None, None]
+    kinds = [w["kind"] for w in result.warnings]
+    assert "not-identified" in kinds
+    w = result.warnings[kinds.index("not-identified")]
+    assert w["parameters"] == ["resistance", "inductance", "capacitance"]
+    assert "capacitance" in w["message"] and "\n" not in w["message"]
+    for name in ("resistance", "ut", "inductance"):
+        assert math.isfinite(result.stderr[name]), name
+
+
+def test_strict_raises_when_the_fit_did_not_converge(records, monkeypatch):
+    exp = stickslip.Experiment.paper()
+    data = [str(p) for p in records]
+    assert stickslip.fit(exp, data=data, strict=True).converged
+    # A fit reported as not converged (the library's report, its flag and warning
+    # replaced): strict raises with the warning's words and the result; without strict the
+    # result comes back with converged False.
+    real = stickslip._fit._core.fit
+
+    def unconverged(*args):
+        out = real(*args)
+        for d in out:
+            d["report"]["converged"] = False
+            d["report"]["warnings"].insert(0, {
+                "kind": "not-converged", "parameters": [],
+                "message": "the fit did not converge: 50 iterations were not enough"})
+        return out
+
+    monkeypatch.setattr(stickslip._fit._core, "fit", unconverged)
+    assert not stickslip.fit(exp, data=data).converged
+    with pytest.raises(stickslip.FitNotConverged, match="50 iterations") as e:
+        stickslip.fit(exp, data=data, strict=True)
+    assert isinstance(e.value.result, stickslip.FitResult) and not e.value.result.converged

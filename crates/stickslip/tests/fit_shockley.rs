@@ -128,11 +128,11 @@ fn shockley_fit_of_ngspice_records_gives_the_forward_voltage() {
     )
     .unwrap();
     let (pwl, shockley) = (&comparison.pwl, &comparison.shockley);
-    // The PWL fit's Jacobian comes from the exact tangent dynamics; the Shockley law has
-    // none, and is fitted with finite differences.
+    // The PWL fit's Jacobian comes from the exact tangent dynamics, the Shockley fit's from
+    // the stiff solver's forward sensitivities.
     assert_eq!(
         (pwl.jacobian, shockley.jacobian),
-        (Jacobian::Exact, Jacobian::FiniteDifferences)
+        (Jacobian::Exact, Jacobian::Sensitivities)
     );
     let value = |p: FitParameter| shockley.value(p).unwrap().value;
     let fitted = DiodePair::new(

@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use stickslip::fit::{
     compare_models_monitored, fit_per_record_monitored, fit_records_monitored, fit_table_monitored,
-    FitError, FitMonitor, FitOptions, FitParameter, FitProgress, FitReport, RecordFit,
+    FitError, FitMonitor, FitOptions, FitParameter, FitProgress, FitReport, Interval, RecordFit,
 };
 use stickslip::measure::{
     read_amplitudes, read_scope, AmplitudeTable, MeasureError, Measurement, Record,
@@ -47,11 +47,26 @@ use stickslip::{DiodeModel, SystemKind};
 /// (the displacement), and the JSON says so: units {drive: N, response: m}. Tables and
 /// --compare are for circuits.
 ///
-/// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi]}}, correlation,
-/// records [{file, freq_Hz, amplitude_V, w, beta, class, periods, clipped, rms_residual_V,
-/// offset_V, time_shift_s}], rows (a table) [{line, freq_Hz, U_V, direction, measured_V,
-/// model_V, class}], rms_residual_V, chi2_dof, converged, iterations, jacobian (exact or
-/// finite-differences: how the Jacobian at the solution was computed), aic, bic; with
+/// What to trust. A fit is converged when the step and gradient criteria hold at its solution
+/// and a restart from elsewhere finds no lower χ². The 95 % intervals are value ± t·stderr
+/// (I_s in its logarithm) where the model is linear enough over them, else the profile
+/// likelihood's ("profile" in the report). A Shockley fit starts in the valley of I_s and n
+/// where the PWL law's equivalent says the diodes work. Parameters the records cannot
+/// separate (R and R_s, R and R_D: only their sum; L, C and R with PWL diodes: only ω0 and ζ)
+/// are named in a warning and the last named is held at its start; correlations beyond
+/// ±0.99, values at the edge of their range (R_s = 0) and clipped samples are warned of.
+/// Warnings go to standard error, one line each, and into the JSON report.
+///
+/// Exit status: 0 when every fit converged; 3 when one did not (the report and the files
+/// are written, and a warning says why); 2 for bad input (a file, a flag, a record whose
+/// channels are not what they should be); 1 when the model cannot be computed.
+///
+/// JSON keys: model, parameters {name: {value, stderr, ci95: [lo, hi], interval (linear,
+/// profile, held or none)}}, correlation, records [{file, freq_Hz, amplitude_V, w, beta,
+/// class, periods, clipped, rms_residual_V, offset_V, time_shift_s}], rows (a table) [{line,
+/// freq_Hz, U_V, direction, measured_V, model_V, class}], rms_residual_V, chi2_dof,
+/// converged, iterations, jacobian (exact, sensitivities or finite-differences: how the Jacobian at the
+/// solution was computed), aic, bic, warnings [{kind, parameters, message}]; with
 /// --per-record a list of such objects; with --compare {pwl, shockley, preferred,
 /// delta_aic}.
 ///
@@ -156,7 +171,11 @@ fn refused(err: FitError) -> anyhow::Error {
 }
 
 fn measure(err: MeasureError) -> anyhow::Error {
-    anyhow::Error::new(crate::output::UsageError(err.to_string()))
+    let message = match &err.swap {
+        Some((drive, response)) => format!("{err}: give --drive {drive} --response {response}"),
+        None => err.to_string(),
+    };
+    anyhow::Error::new(crate::output::UsageError(message))
 }
 
 fn read_text(path: &Path) -> Result<String> {
@@ -386,6 +405,27 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
             args.per_record,
         )?;
     }
+    // Each report's warnings, one line each; a fit that did not converge ends the run with
+    // its own exit status (the report and the files are written).
+    for r in &residual_reports {
+        let whose = if args.compare {
+            format!("{} fit: ", r.model.label())
+        } else if args.per_record {
+            r.records
+                .first()
+                .map_or(String::new(), |rec| format!("{}: ", rec.file))
+        } else {
+            String::new()
+        };
+        for w in &r.warnings {
+            line.0.suspend(|| eprintln!("warning: {whose}{w}"));
+        }
+    }
+    if residual_reports.iter().any(|r| !r.converged) {
+        return Err(anyhow::Error::new(crate::output::ExitStatus(
+            crate::output::NOT_CONVERGED,
+        )));
+    }
     Ok(())
 }
 
@@ -462,17 +502,35 @@ fn write_residuals(file: &mut impl Write, reports: &[FitReport]) -> Result<()> {
 fn describe(text: &mut String, r: &FitReport) {
     outln!(text, "model             {}", r.model.label());
     for p in &r.parameters {
-        outln!(
-            text,
-            "{:<17} {:.6e} ± {:.2e} {} (95 %: {:.6e} … {:.6e}; start {:.6e})",
-            p.parameter.label(),
-            p.value,
-            p.stderr,
-            p.parameter.unit(),
-            p.ci95[0],
-            p.ci95[1],
-            p.initial
-        );
+        let name = p.parameter.label();
+        let unit = p.parameter.unit();
+        match p.interval {
+            Interval::Held => outln!(
+                text,
+                "{name:<17} {:.6e} {unit} held at its start (not identified: see the warning)",
+                p.value
+            ),
+            _ if !(p.stderr.is_finite() && p.ci95.iter().all(|v| v.is_finite())) => outln!(
+                text,
+                "{name:<17} {:.6e} {unit} (no error bar: see the warning; start {:.6e})",
+                p.value,
+                p.initial
+            ),
+            interval => outln!(
+                text,
+                "{name:<17} {:.6e} ± {:.2e} {unit} (95 %{}: {:.6e} … {:.6e}; start {:.6e})",
+                p.value,
+                p.stderr,
+                if interval == Interval::Profile {
+                    ", profile"
+                } else {
+                    ""
+                },
+                p.ci95[0],
+                p.ci95[1],
+                p.initial
+            ),
+        }
     }
     let (du, ru) = r.units();
     for rec in &r.records {

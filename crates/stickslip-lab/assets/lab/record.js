@@ -210,14 +210,63 @@ function showFit(a) {
     stderr.dataset.fitStderr = name;
     stderr.textContent = p.stderr === null ? '—' : num(p.stderr, 3);
     const ci = document.createElement('td');
-    ci.textContent = p.ci95[0] === null ? '—' : `${num(p.ci95[0], 5)} … ${num(p.ci95[1], 5)} ${unit}`.trim();
+    ci.dataset.fitInterval = p.interval;
+    // The interval's method where it is not the linear one: the profile likelihood's, or
+    // none (a value held or not seen: the warnings say why).
+    const how = p.interval === 'profile' ? ' (profile)' : '';
+    ci.textContent = p.ci95[0] === null ? `— (${p.interval})` : `${num(p.ci95[0], 5)} … ${num(p.ci95[1], 5)} ${unit}${how}`.trim();
     tr.append(th, value, stderr, ci);
     rows.append(tr);
   }
+  showCorrelation(a);
+  const warnings = $('[data-fit="warnings"]');
+  warnings.replaceChildren(...a.warnings.map((w) => {
+    const li = document.createElement('li');
+    li.dataset.fitWarning = w.kind;
+    li.textContent = `warning: ${w.message}`;
+    return li;
+  }));
+  warnings.hidden = a.warnings.length === 0;
   $('[data-fit="rms_residual_V"]').textContent = num(a.rms_residual_V, 4);
   $('[data-fit="noise_V"]').textContent = num(a.noise_V, 4);
   $('[data-fit="chi2_dof"]').textContent = num(a.chi2_dof, 4);
   $('[data-fit="table"]').hidden = false;
+}
+
+/** The correlation matrix of the fitted values (— beside a value without an error bar). */
+function showCorrelation(a) {
+  const names = Object.keys(a.parameters);
+  const table = $('[data-fit="correlation"]');
+  const head = document.createElement('tr');
+  head.append(document.createElement('th'));
+  for (const name of names) {
+    const th = document.createElement('th');
+    th.scope = 'col';
+    th.append(...symbolNodes(symbolAndUnit(name)[0]));
+    head.append(th);
+  }
+  $('[data-fit="correlation-head"]').replaceChildren(head);
+  // The report's rows follow the order the values were freed in, the parameters' keys
+  // are sorted: each row is found by its name.
+  const order = a.free ?? names;
+  $('[data-fit="correlation-rows"]').replaceChildren(...names.map((name) => {
+    const tr = document.createElement('tr');
+    const th = document.createElement('th');
+    th.scope = 'row';
+    th.append(...symbolNodes(symbolAndUnit(name)[0]));
+    tr.append(th);
+    const i = order.indexOf(name);
+    for (const other of names) {
+      const td = document.createElement('td');
+      const r = a.correlation[i]?.[order.indexOf(other)];
+      td.dataset.fitCorrelation = `${name} ${other}`;
+      td.textContent = r === null || r === undefined ? '—' : num(r, 3);
+      if (r !== null && r !== undefined && name !== other && Math.abs(r) > 0.99) td.dataset.strong = '';
+      tr.append(td);
+    }
+    return tr;
+  }));
+  table.hidden = names.length < 2;
 }
 
 /** The fitted experiment into the fields: the circuit's values and the record's drive. */

@@ -34,6 +34,9 @@ pub struct FitAnswer {
     pub report: FitReportJson,
     /// The fitted experiment's one-line description.
     pub experiment: String,
+    /// The free parameters in the order of the rows and columns of `correlation` (the
+    /// report's `parameters` are keyed by name).
+    pub free: Vec<&'static str>,
     /// The fitted experiment as query keys (numbers in SI units): every fit parameter of
     /// its diode law (`inductance`, `capacitance`, `resistance`, and `ut`, `rd` or
     /// `diode-is`, `diode-n`, `diode-rs`; `mu-s` when it was free), and the record's drive
@@ -201,6 +204,11 @@ impl FitRequest {
         Ok(FitAnswer {
             report: report.to_json(),
             experiment: fitted.to_string(),
+            free: report
+                .parameters
+                .iter()
+                .map(|p| p.parameter.label())
+                .collect(),
             keys,
             noise_v: report.noise_v,
             plot,

@@ -264,7 +264,12 @@ impl RecordKeys {
     }
 }
 
-/// A reader's refusal as a 400 about the record, in the reader's words.
+/// A reader's refusal as a 400 about the record, in the reader's words (channels that look
+/// swapped: with the query that picks them).
 pub fn measure_error(e: &MeasureError) -> ApiError {
-    ApiError::field(RECORD_FIELD, e.to_string())
+    let message = match &e.swap {
+        Some((drive, response)) => format!("{e}: give drive={drive}&response={response}"),
+        None => e.to_string(),
+    };
+    ApiError::field(RECORD_FIELD, message)
 }

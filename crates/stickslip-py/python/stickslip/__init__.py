@@ -51,6 +51,7 @@ from ._trajectory import SteadyState, Trajectory
 from ._core import Experiment, __version__
 from ._fit import (
     AmplitudeTable,
+    FitNotConverged,
     FitRecord,
     FitResult,
     ScopeRecord,
@@ -70,6 +71,7 @@ from ._dynamics import (
 
 __all__ = [
     "AmplitudeTable",
+    "FitNotConverged",
     "FitRecord",
     "FitResult",
     "ScopeRecord",

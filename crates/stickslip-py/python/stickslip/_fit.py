@@ -207,6 +207,18 @@ def _number(value: Optional[float]) -> float:
     return float("nan") if value is None else float(value)
 
 
+class FitNotConverged(RuntimeError):
+    """A fit that did not converge, raised by ``stickslip.fit(..., strict=True)`` (the
+    meaning of ``stickslip fit``'s exit status 3): its steps or its gradient had not settled,
+    or a restart from elsewhere ended lower in χ². The message is the fit's ``not-converged``
+    warning; ``result`` is the ``FitResult`` (or the list of them, ``per_record=True``)
+    with its values, error bars and warnings, which are not those of a minimum."""
+
+    def __init__(self, message: str, result: Any) -> None:
+        super().__init__(message)
+        self.result = result
+
+
 class FitResult:
     """A fit of an experiment to measurements (``stickslip.fit``).
 
@@ -217,17 +229,31 @@ class FitResult:
             'diode-n', 'diode-rs', 'inductance', 'capacitance', 'mu-s'; mechanics: 'damping',
             'friction', 'mass', 'stiffness', 'mu-s').
         parameters: name → fitted value, in SI units (Ω, V, A, H, F; N·s/m, N, kg, N/m; n
-            and μs are pure numbers); stderr: name → its standard error (NaN for a singular fit); ci95:
-            name → the 95 % confidence interval (lo, hi).
+            and μs are pure numbers; a held parameter's starting value); stderr: name → its
+            standard error (NaN where there is none: a parameter held or unseen, a singular
+            fit; a warning says why); ci95: name → the 95 % confidence interval (lo, hi).
+        intervals: name → how its interval was found: 'linear' (value ± t·stderr, in ln I_s
+            for I_s, checked at both ends), 'profile' (the profile likelihood, where the
+            linear approximation fails), 'held' (not identified: held at its start) or
+            'none'.
+        warnings: what the fit warns of, as ``stickslip fit`` prints on standard error: a
+            list of dicts ``{'kind', 'parameters', 'message'}``, kind one of
+            'not-converged', 'not-identified' (parameters the records see only as a
+            combination, such as R + R_s), 'unseen', 'correlated' (|r| > 0.99),
+            'at-bound' and 'clipped'.
         covariance: float64 array (len(names) × len(names)) of the parameters' covariance
             (SI units squared); correlation: float64 array of their correlation.
         records: a ``FitRecord`` per record (empty for a table), with residual arrays.
         rows: a table's rows as dicts (line, freq_Hz, U_V, direction, measured_V, model_V,
             class); empty for records.
         rms_residual_V: RMS of all residuals (V); chi2_dof: χ²/dof with the noise estimated
-            from the data (None when unknown); converged, iterations: of Levenberg–Marquardt;
-            jacobian: how its Jacobian at the solution was computed, 'exact' (from the
-            tangent dynamics of the PWL model's periodic orbits) or 'finite-differences';
+            from the data (None when unknown); converged: the step and gradient criteria hold
+            and no restart from elsewhere found a lower χ² (else a 'not-converged' warning
+            says why; ``fit(..., strict=True)`` raises ``FitNotConverged``); iterations: of
+            Levenberg–Marquardt; jacobian: how its Jacobian at the solution was computed,
+            'exact' (from the tangent dynamics of the PWL model's periodic orbits),
+            'sensitivities' (the stiff solver's forward sensitivities along the Shockley
+            model's periodic orbits) or 'finite-differences';
             aic, bic: information criteria; model: the diode law, 'pwl' or 'shockley' (a
             mechanical oscillator's Coulomb law is 'pwl').
         units: the units of the drive and of the response, ``{'drive': 'V', 'response':
@@ -249,6 +275,8 @@ class FitResult:
         self.ci95: Dict[str, Tuple[float, float]] = {
             k: (_number(v["ci95"][0]), _number(v["ci95"][1]))
             for k, v in r["parameters"].items()}
+        self.intervals: Dict[str, str] = {k: v["interval"] for k, v in r["parameters"].items()}
+        self.warnings: List[Dict[str, Any]] = copy.deepcopy(r["warnings"])
         self.covariance: _FloatArray = np.asarray(data["covariance"], dtype=np.float64).reshape(
             len(self.names), len(self.names))
         self.correlation: _FloatArray = np.array(
@@ -336,25 +364,27 @@ Measurements = Union[ScopeRecord, AmplitudeTable, PathLike]
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
-        per_record: Literal[False] = ..., *, progress: Progress = ...) -> FitResult: ...
+        per_record: Literal[False] = ..., *, progress: Progress = ...,
+        strict: bool = ...) -> FitResult: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
-        *, per_record: Literal[True], progress: Progress = ...) -> List[FitResult]: ...
+        *, per_record: Literal[True], progress: Progress = ...,
+        strict: bool = ...) -> List[FitResult]: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
-        per_record: bool = ..., *, progress: Progress = ...
+        per_record: bool = ..., *, progress: Progress = ..., strict: bool = ...
         ) -> Union[FitResult, List[FitResult]]: ...
 
 
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         free: Union[str, Sequence[str], None] = None, model: Optional[str] = None,
-        per_record: bool = False, *, progress: Progress = None
+        per_record: bool = False, *, progress: Progress = None, strict: bool = False
         ) -> Union[FitResult, List[FitResult]]:
     """Fit the circuit's (or the mechanical oscillator's) parameters to measurements: least
     squares of the model's steady u_C (or displacement) against every scope record at once
@@ -387,9 +417,12 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
             iterations done since its last call), or a callable: ``progress(done, total)``
             is called from the calling thread as the fit
             goes on (at most every 50 ms, and once at the end): Levenberg–Marquardt
-            iterations done, of the most it may take (2·50 per fit of records, both passes;
-            50 for a table; summed over the records with ``per_record``). An exception it
-            raises stops the fit and propagates.
+            iterations done, of the most it may take (4·50 per fit of records: two passes,
+            a restart and the intervals' profiles, usually far fewer; 50 for a table; summed
+            over the records with ``per_record``). An exception it raises stops the fit and
+            propagates.
+        strict: raise ``FitNotConverged`` when a fit did not converge (what ``stickslip
+            fit``'s exit status 3 says) instead of returning it with ``converged`` False.
 
     Returns:
         A ``FitResult`` (values in SI units, standard errors, covariance, residuals, the
@@ -400,6 +433,8 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
             parameter, a parameter of the other diode law or of the other twin (a circuit's
             on a mechanical oscillator or the other way round), a record whose units do not
             fit the twin, no data, or a model that cannot be computed at the starting values.
+        FitNotConverged: with ``strict=True``, a fit that did not converge (its result is
+            the exception's ``result``).
         KeyboardInterrupt: Ctrl-C stops a long fit.
 
     Example:
@@ -432,4 +467,11 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
     with _progress.reporter(progress, "fit", "iterations") as callback:
         results = [FitResult(experiment, d) for d in
                    _core.fit(experiment, records, table, names, per_record, callback)]
-    return results if per_record else results[0]
+    result = results if per_record else results[0]
+    if strict:
+        for r in results:
+            if not r.converged:
+                why = next((w["message"] for w in r.warnings if w["kind"] == "not-converged"),
+                           "the fit did not converge")
+                raise FitNotConverged(why, result)
+    return result

@@ -6,15 +6,31 @@ use crate::measure::Direction;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// A fitted parameter in the JSON report. Non-finite error bars (a singular fit) are null.
+/// A fitted parameter in the JSON report. Where there is no error bar (a parameter held or
+/// not seen, a singular fit) `stderr` and `ci95` are null and a warning says why.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ParameterJson {
     /// The fitted value, in the parameter's unit ([`super::FitParameter::unit`]).
     pub value: f64,
-    /// Its standard error, in the same unit; null when the fit is singular.
+    /// Its standard error, in the same unit; null where there is none.
     pub stderr: Option<f64>,
-    /// The 95 % confidence interval `[lo, hi]`; null ends when the fit is singular.
+    /// The 95 % confidence interval `[lo, hi]`; null where there is none.
     pub ci95: [Option<f64>; 2],
+    /// How the interval was found: `linear` (value ± t·stderr, in ln I_s for I_s, checked at
+    /// both ends), `profile` (the profile likelihood), `held` or `none` (no interval).
+    pub interval: &'static str,
+}
+
+/// A warning in the JSON report: its kind (`not-converged`, `not-identified`, `unseen`,
+/// `correlated`, `at-bound`, `clipped`), the parameters it is about and its one line.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WarningJson {
+    /// The kind ([`super::FitWarning::kind`]).
+    pub kind: &'static str,
+    /// The parameters it names, by their names.
+    pub parameters: Vec<&'static str>,
+    /// The warning in words, one line.
+    pub message: String,
 }
 
 /// A record of a fit in the JSON report.
@@ -84,16 +100,18 @@ pub struct UnitsJson {
 }
 
 /// A fit's report as JSON: `model`, `parameters` keyed by the flag names
-/// (`{"resistance": {"value", "stderr", "ci95"}}`), `correlation`, `records` (records only),
-/// `rows` (a table only), `rms_residual_V`, `chi2_dof`, `converged`, `iterations`, `jacobian`, `aic`,
-/// `bic`, and for a mechanical oscillator `units` ([`UnitsJson`]).
+/// (`{"resistance": {"value", "stderr", "ci95", "interval"}}`), `correlation`, `records`
+/// (records only), `rows` (a table only), `rms_residual_V`, `chi2_dof`, `converged`,
+/// `iterations`, `jacobian`, `aic`, `bic`, `warnings` ([`WarningJson`]), and for a
+/// mechanical oscillator `units` ([`UnitsJson`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitReportJson {
     /// The diode law.
     pub model: &'static str,
     /// The fitted parameters by name.
     pub parameters: BTreeMap<&'static str, ParameterJson>,
-    /// The correlation matrix of the free parameters, in the order of `--free`.
+    /// The correlation matrix of the free parameters, in the order of `--free` (null for a
+    /// parameter without an error bar).
     pub correlation: Vec<Vec<Option<f64>>>,
     /// Per record (omitted for a table).
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -106,7 +124,8 @@ pub struct FitReportJson {
     pub rms_residual_v: f64,
     /// χ²/dof with the noise estimated from the data; null when unknown.
     pub chi2_dof: Option<f64>,
-    /// Whether Levenberg–Marquardt converged.
+    /// Whether the fit converged: the step and gradient criteria hold and no restart found a
+    /// lower χ² (else a `not-converged` warning says why).
     pub converged: bool,
     /// Its iterations.
     pub iterations: usize,
@@ -116,6 +135,8 @@ pub struct FitReportJson {
     pub aic: f64,
     /// The Bayesian information criterion.
     pub bic: f64,
+    /// What the fit warns of, in the order found.
+    pub warnings: Vec<WarningJson>,
     /// A mechanical oscillator's channel units (omitted for a circuit, whose keys in volts
     /// mean volts).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -156,6 +177,7 @@ impl FitReport {
                             value: p.value,
                             stderr: finite(p.stderr),
                             ci95: [finite(p.ci95[0]), finite(p.ci95[1])],
+                            interval: p.interval.label(),
                         },
                     )
                 })
@@ -202,6 +224,15 @@ impl FitReport {
             jacobian: self.jacobian.label(),
             aic: self.aic,
             bic: self.bic,
+            warnings: self
+                .warnings
+                .iter()
+                .map(|w| WarningJson {
+                    kind: w.kind(),
+                    parameters: w.parameters().iter().map(|p| p.label()).collect(),
+                    message: w.to_string(),
+                })
+                .collect(),
             units: self.is_mechanics().then(|| {
                 let (drive, response) = self.units();
                 UnitsJson { drive, response }

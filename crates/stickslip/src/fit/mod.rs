@@ -31,23 +31,33 @@
 //! ([`crate::stability::periodic_orbit_sensitivity`]: the closed-form slides, the saltations,
 //! the releases' moving times and dx*/dp = (I − M)⁻¹ ∂P/∂p), carried through the circuit's
 //! scales (ζ = (R + R_D)/2·√(C/L), ω0 = 1/√(LC), w = 2πf/ω0, β = U/U_t, τ = ω0·s,
-//! u_C = U_t·y), from the steady states the residuals were computed with. Otherwise (Shockley
-//! diodes, a model that does not repeat, a tangential release, a multiplier 1) by forward
-//! differences (step 10⁻⁶ with PWL diodes, whose
-//! exact solver gives the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff
-//! solver is accurate to its tolerance; relative to a free parameter's value, but never
-//! smaller than that fraction of its starting value, so that a value fitted near zero, such
-//! as a diode's R_s, keeps a step above the solver's error), a record's own nuisance columns
-//! from that record only. The report says which served at the solution ([`Jacobian`]).
+//! u_C = U_t·y), from the steady states the residuals were computed with. With Shockley
+//! diodes, wherever every record's model is a periodic orbit, from the stiff solver's forward
+//! sensitivities on its own steps along that orbit (`jacobian.rs`: the derivatives of the
+//! computed samples, at a tolerance of their own, carried to R, L, C, ln I_s, n and R_s by
+//! the chain rule). Otherwise (a model that does not repeat, a tangential release, a
+//! multiplier 1) by forward differences (step 10⁻⁶ with PWL diodes, whose exact solver gives
+//! the steady state to 10⁻¹²; 10⁻⁴ with Shockley diodes, whose stiff solver is accurate to its
+//! tolerance; relative to a free parameter's value, but never smaller than that fraction of
+//! its starting value, so that a value fitted near zero, such as a diode's R_s, keeps a step
+//! above the solver's error), a record's own nuisance columns from that record only. The
+//! report says which served at the solution ([`Jacobian`]).
 //!
 //! **What is reported** ([`FitReport`]): each free parameter's value, standard error from
 //! s²(JᵀJ)⁻¹ with s² the weighted SSR/(N − P) (N residuals, P fitted values with the nuisance
-//! ones), 95 % interval value ± t(0.975, N − P)·stderr, the correlation of the free
-//! parameters; the RMS residual of u_C per record and overall; χ²/dof = Σ r²/σ² over N − P
+//! ones), 95 % interval value ± t(0.975, N − P)·stderr where that linear interval holds, else
+//! from the profile of χ² (each value says which: [`Interval`]), the correlation of the free
+//! parameters, the warnings ([`FitWarning`]: a combination that the data do not identify, a
+//! correlation beyond ±0.99, a value at its bound, clipped samples, a fit that did not
+//! converge); the RMS residual of u_C per record and overall; χ²/dof = Σ r²/σ² over N − P
 //! with σ each channel's noise estimated from the data alone (near 1 when the model explains
 //! the data to the noise; the estimate from second differences needs the noise to exceed
 //! the waveform's curvature between samples, true of 8-bit records, not of records with
-//! almost no noise); the iterations of both passes and whether the fit converged;
+//! almost no noise); the iterations of both passes and whether the fit converged (the step
+//! and gradient criteria held and no restart from elsewhere found a lower χ²; both measure
+//! χ² in units of the residuals' variance, never taken below the channels' precision, their
+//! noise floor without noise: a record made by the model is fitted down to the rounding of
+//! its digits and of the model, which no step describes, and is a minimum to that precision);
 //! AIC = Σ_g N_g ln(SSR_g/N_g) + 2P and BIC (P ln N instead of 2P) over the channels g, for
 //! comparing models.
 //!
@@ -70,377 +80,46 @@
 //! rest. There is no nuisance parameter and no noise estimate independent of the fit:
 //! χ²/dof is not reported.
 
+mod covariance;
+mod identify;
+mod jacobian;
 mod json;
 pub(crate) mod linalg;
 mod lm;
+mod options;
 mod parameter;
+mod profile;
+mod report;
+mod starts;
+mod table;
+mod warning;
 
-pub use json::{ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson, UnitsJson};
+pub use json::{
+    ComparisonJson, FitReportJson, ParameterJson, RecordJson, RowJson, UnitsJson, WarningJson,
+};
+pub use options::{FitError, FitMonitor, FitOptions, FitProgress, RECORD_PASSES};
 pub use parameter::FitParameter;
+pub use report::{
+    t_quantile_975, FitReport, FittedParameter, Interval, Jacobian, ModelComparison, RecordFit,
+    RowFit,
+};
+pub use table::{fit_table, fit_table_monitored};
+pub use warning::{FitWarning, NotConverged};
 
 use crate::experiment::{DiodeModel, Experiment};
-use crate::measure::{AmplitudeTable, Direction, MeasureError, Measurement};
+use crate::measure::Measurement;
 use crate::params::{Params, State};
 use crate::physical::System;
-use crate::scan::Monitor;
-use crate::shockley::DiodePair;
+use crate::shockley::{DiodePair, ShockleyOptions};
 use crate::solver::sample_at;
 use crate::stability::{periodic_orbit_sensitivity, OrbitSample};
 use crate::steady::SolverFactory;
 use crate::steady::{MotionClass, SteadyOptions};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
-use std::ops::ControlFlow;
-use thiserror::Error;
 
-/// What can go wrong in a fit.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum FitError {
-    /// A measurement that cannot be used.
-    #[error(transparent)]
-    Measure(#[from] MeasureError),
-    /// A name that is no fit parameter.
-    #[error(
-        "unknown fit parameter \"{0}\" (the parameters are {circuit} for a circuit; \
-         {mechanics} for a mechanical oscillator)",
-        circuit = FitParameter::names(&FitParameter::CIRCUIT),
-        mechanics = FitParameter::names(&FitParameter::MECHANICS)
-    )]
-    UnknownParameter(String),
-    /// The experiment is neither a circuit nor a mechanical oscillator.
-    #[error(
-        "fitting needs a circuit or a mechanical oscillator (give its parts or a preset), not \
-         dimensionless parameters alone"
-    )]
-    NeedsCircuit,
-    /// A circuit's parameter on a mechanical oscillator, or the other way round.
-    #[error(
-        "{parameter} is not a parameter of {} (its parameters are {})",
-        if *mechanics { "a mechanical oscillator" } else { "a circuit" },
-        FitParameter::names(if *mechanics { &FitParameter::MECHANICS } else { &FitParameter::CIRCUIT })
-    )]
-    WrongSystem {
-        /// The parameter.
-        parameter: FitParameter,
-        /// Whether the experiment is a mechanical oscillator (else a circuit).
-        mechanics: bool,
-    },
-    /// A record whose channels' units do not fit the experiment (a mechanical oscillator
-    /// needs the force in N and the displacement in m).
-    #[error("{file}: {message}")]
-    Units {
-        /// The record.
-        file: String,
-        /// What is wrong and what is allowed.
-        message: String,
-    },
-    /// A table of amplitudes (read in volts) given for a mechanical oscillator.
-    #[error(
-        "a table of amplitudes is read in volts (U_V, response_V): a mechanical oscillator is \
-         fitted to records (a force in N and a displacement in m)"
-    )]
-    TableNeedsCircuit,
-    /// A parameter of the other diode law.
-    #[error("{parameter} is not a parameter of the {} diode law", model.label())]
-    WrongLaw {
-        /// The parameter.
-        parameter: FitParameter,
-        /// The law of the experiment.
-        model: DiodeModel,
-    },
-    /// No free parameter, or one given twice.
-    #[error("{0}")]
-    FreeParameters(&'static str),
-    /// No record or row to fit.
-    #[error("nothing to fit: no record or row was given")]
-    NoData,
-    /// Fewer residuals than fitted values.
-    #[error("{residuals} samples cannot fit {values} values")]
-    TooFewSamples {
-        /// Residuals.
-        residuals: usize,
-        /// Fitted values (free and nuisance).
-        values: usize,
-    },
-    /// The experiment's cancellation token stopped the fit ([`Experiment::with_cancel`]).
-    #[error(transparent)]
-    Stopped(crate::Error),
-    /// The model cannot be computed at the starting values.
-    #[error("{file}: the model cannot be computed at the starting values: {error}")]
-    Model {
-        /// The record or table.
-        file: String,
-        /// What the library reported.
-        error: crate::Error,
-    },
-}
-
-/// How a fit runs. The defaults are listed field by field.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct FitOptions {
-    /// Most Levenberg–Marquardt iterations. Default 50.
-    pub max_iterations: usize,
-    /// Converged when a step lowers the sum of squares by less than this fraction, or moves
-    /// every (scaled) value by less than this. Default 1e-9.
-    pub tolerance: f64,
-    /// Fit a time shift between the channels of each record. Default true.
-    pub time_shift: bool,
-    /// Fit a DC offset of each record's u_C channel. Default true.
-    pub offset: bool,
-    /// Jacobians of records from the exact tangent dynamics wherever they serve ([`Jacobian`]);
-    /// false: finite differences always (to compare). Default true.
-    pub exact_jacobian: bool,
-}
-
-impl Default for FitOptions {
-    fn default() -> Self {
-        Self {
-            max_iterations: 50,
-            tolerance: 1e-9,
-            time_shift: true,
-            offset: true,
-            exact_jacobian: true,
-        }
-    }
-}
-
-/// A fit's progress, told to a [`FitMonitor`] after every Levenberg–Marquardt iteration.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FitProgress {
-    /// Iterations done, over every pass and (per record) every record so far.
-    pub iteration: usize,
-    /// The most iterations the fit may take (the passes' and records' maxima together); the
-    /// fit usually converges well before.
-    pub total: usize,
-    /// The sum of squares of the weighted residuals reached (records: dimensionless, each
-    /// residual in units of its channel's noise; a table: V²).
-    pub sum_squares: f64,
-}
-
-/// Watches a fit: told after every iteration, and able to stop it (the fit then returns
-/// [`FitError::Stopped`] with [`crate::Error::Cancelled`]). Every scan monitor
-/// ([`crate::scan::Monitor`], such as `()` or a closure `Fn(done, total) -> bool`) is one and
-/// sees (iterations done, most iterations).
-pub trait FitMonitor: Sync {
-    /// `progress` was reached; [`ControlFlow::Break`] stops the fit.
-    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()>;
-}
-
-impl<M: Monitor + ?Sized> FitMonitor for M {
-    fn iteration(&self, progress: &FitProgress) -> ControlFlow<()> {
-        self.step(progress.iteration, progress.total)
-    }
-}
-
-/// Where a problem's iterations stand in the whole fit, and who watches.
-#[derive(Clone, Copy)]
-struct Watch<'a> {
-    monitor: &'a dyn FitMonitor,
-    /// Iterations done before this minimisation.
-    before: usize,
-    total: usize,
-}
-
-impl Watch<'_> {
-    fn tell(&self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
-        let progress = FitProgress {
-            iteration: self.before + iteration,
-            total: self.total,
-            sum_squares,
-        };
-        match self.monitor.iteration(&progress) {
-            ControlFlow::Continue(()) => Ok(()),
-            ControlFlow::Break(()) => Err(FitError::Stopped(crate::Error::Cancelled {
-                done: progress.iteration,
-                total: progress.total,
-            })),
-        }
-    }
-}
-
-/// How a fit's Jacobian was computed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[non_exhaustive]
-pub enum Jacobian {
-    /// From the exact tangent dynamics with respect to the parameters
-    /// ([`crate::stability::periodic_orbit_sensitivity`]): PWL diodes, every record's model a
-    /// periodic orbit.
-    Exact,
-    /// By finite differences: Shockley diodes, a model that does not repeat (chaos) or whose
-    /// orbit's derivative does not exist there (a tangential release), or a table.
-    FiniteDifferences,
-}
-
-impl Jacobian {
-    /// The label in reports: `exact` or `finite-differences`.
-    pub fn label(self) -> &'static str {
-        match self {
-            Jacobian::Exact => "exact",
-            Jacobian::FiniteDifferences => "finite-differences",
-        }
-    }
-}
-
-/// A fitted free parameter.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FittedParameter {
-    /// Which.
-    pub parameter: FitParameter,
-    /// The fitted value (SI units, [`FitParameter::unit`]).
-    pub value: f64,
-    /// Its standard error (NaN when JᵀJ is singular).
-    pub stderr: f64,
-    /// The 95 % interval [lo, hi].
-    pub ci95: [f64; 2],
-    /// The starting value.
-    pub initial: f64,
-}
-
-/// The fit of one record.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RecordFit {
-    /// The record's file name.
-    pub file: String,
-    /// Drive frequency from the sine fit (Hz).
-    pub freq_hz: f64,
-    /// Drive amplitude from the sine fit (V, peak).
-    pub amplitude_v: f64,
-    /// Dimensionless drive frequency w = Ω/ω0 at the fitted values.
-    pub w: f64,
-    /// Dimensionless drive amplitude β = U/U_t at the fitted values.
-    pub beta: f64,
-    /// The model's motion class at the fitted values.
-    pub class: MotionClass,
-    /// Whole drive periods in the record.
-    pub periods: usize,
-    /// Samples left out as clipped.
-    pub clipped: usize,
-    /// RMS residual of the record (V).
-    pub rms_residual_v: f64,
-    /// The fitted DC offset of u_C (V).
-    pub offset_v: f64,
-    /// The fitted time shift δ (s).
-    pub time_shift_s: f64,
-    /// The noise of u_C estimated from the data (V).
-    pub noise_v: f64,
-    /// Times of the samples used (s since the record's first sample).
-    pub time: Vec<f64>,
-    /// The model of u_C at those times (V), offset included.
-    pub model: Vec<f64>,
-    /// Model − measurement at those times (V).
-    pub residuals: Vec<f64>,
-}
-
-/// The fit of one row of an amplitude table.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct RowFit {
-    /// The row's line in the file.
-    pub line: usize,
-    /// Drive frequency (Hz).
-    pub freq_hz: f64,
-    /// Drive amplitude (V).
-    pub drive_v: f64,
-    /// The leg of the sweep, if any.
-    pub direction: Option<Direction>,
-    /// Measured response amplitude (V).
-    pub measured_v: f64,
-    /// Model response amplitude at the fitted values (V).
-    pub model_v: f64,
-    /// The model's motion class there.
-    pub class: MotionClass,
-}
-
-/// The result of a fit. See the module documentation for each number.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FitReport {
-    /// The diode law fitted.
-    pub model: DiodeModel,
-    /// The free parameters.
-    pub parameters: Vec<FittedParameter>,
-    /// Correlation matrix of the free parameters (row-major by `parameters`).
-    pub correlation: Vec<Vec<f64>>,
-    /// Per record (a fit of records).
-    pub records: Vec<RecordFit>,
-    /// Per row (a fit of a table).
-    pub rows: Vec<RowFit>,
-    /// RMS residual over every sample or row (V).
-    pub rms_residual_v: f64,
-    /// The noise estimated from the data (V, pooled over the records; `None` for a table).
-    pub noise_v: Option<f64>,
-    /// χ²/dof with that noise (`None` for a table).
-    pub chi2_dof: Option<f64>,
-    /// Degrees of freedom N − P.
-    pub dof: usize,
-    /// Residuals N.
-    pub residuals: usize,
-    /// Fitted values P (free and nuisance).
-    pub fitted_values: usize,
-    /// Akaike's information criterion N ln(SSR/N) + 2P.
-    pub aic: f64,
-    /// The Bayesian information criterion N ln(SSR/N) + P ln N.
-    pub bic: f64,
-    /// Levenberg–Marquardt iterations.
-    pub iterations: usize,
-    /// Whether the fit met its tolerance within the iterations.
-    pub converged: bool,
-    /// How the Jacobian at the solution, the one the error bars come from, was computed.
-    pub jacobian: Jacobian,
-    /// The experiment with the fitted values.
-    pub experiment: Experiment,
-}
-
-impl FitReport {
-    /// The fitted value of `parameter`, if it was free.
-    pub fn value(&self, parameter: FitParameter) -> Option<&FittedParameter> {
-        self.parameters.iter().find(|p| p.parameter == parameter)
-    }
-
-    /// Whether the fitted experiment is a mechanical oscillator: then the fields and keys
-    /// named in volts hold the drive's force in N (`amplitude_v`) and the displacement in m
-    /// (the residuals, the model, the offset and the noise).
-    pub fn is_mechanics(&self) -> bool {
-        matches!(self.experiment.system(), Some(System::Mechanics(_)))
-    }
-
-    /// The units of the drive and of the response: (`V`, `V`) for a circuit, (`N`, `m`) for
-    /// a mechanical oscillator.
-    pub fn units(&self) -> (&'static str, &'static str) {
-        if self.is_mechanics() {
-            ("N", "m")
-        } else {
-            ("V", "V")
-        }
-    }
-}
-
-/// PWL against Shockley on the same data.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ModelComparison {
-    /// The fit with PWL diodes.
-    pub pwl: FitReport,
-    /// The fit with Shockley diodes.
-    pub shockley: FitReport,
-    /// The law with the lower AIC.
-    pub preferred: DiodeModel,
-    /// AIC(Shockley) − AIC(PWL): negative when Shockley is preferred.
-    pub delta_aic: f64,
-}
-
-/// The two-sided 95 % quantile of Student's t with `dof` degrees of freedom (Cornish–Fisher
-/// expansion about the normal quantile 1.959964; better than 10⁻³ relative from 3 degrees of
-/// freedom on).
-pub fn t_quantile_975(dof: usize) -> f64 {
-    let z: f64 = 1.959_963_984_540_054;
-    let n = dof.max(1) as f64;
-    let (z3, z5, z7) = (z.powi(3), z.powi(5), z.powi(7));
-    z + (z3 + z) / (4.0 * n)
-        + (5.0 * z5 + 16.0 * z3 + 3.0 * z) / (96.0 * n * n)
-        + (3.0 * z7 + 19.0 * z5 + 17.0 * z3 - 15.0 * z) / (384.0 * n * n * n)
-}
+use covariance::*;
+use options::Watch;
 
 /// Everything a fit keeps fixed: the experiment's circuit or mechanical oscillator and
 /// options and the free list.
@@ -449,8 +128,21 @@ struct Setup {
     system: System,
     free: Vec<FitParameter>,
     scale: Vec<f64>,
+    /// Whether each free value is fitted in its logarithm (I_s, which spans decades and whose
+    /// valley with n is straight in ln I_s): value = scale·e^(x − 1); else value = scale·x.
+    log: Vec<bool>,
     steady: SteadyOptions,
     step: f64,
+}
+
+/// The strobe tolerance of a smooth law's steady state in a fit: 10⁻⁶, the stiff solver's
+/// default tolerance, above the fit's own solver tolerance ([`jacobian::SMOOTH_RTOL`]), so
+/// that the strobe map's jitter does not hide the cycle.
+const SMOOTH_STEADY_TOLERANCE: f64 = 1e-6;
+
+/// Whether `p` is fitted in its logarithm ([`Setup`]): the saturation current I_s.
+fn fitted_in_log(p: FitParameter) -> bool {
+    p == FitParameter::DiodeIs
 }
 
 impl Setup {
@@ -471,11 +163,30 @@ impl Setup {
             .map(|p| p.get(experiment).map(|v| if v != 0.0 { v } else { 1.0 }))
             .collect::<Result<Vec<_>, _>>()?;
         let model = experiment.diode_model();
+        // A smooth law's solver at the fit's tolerance (the shooting Jacobian's differences
+        // need it), unless the caller's is tighter.
+        let experiment = &if model == DiodeModel::Shockley {
+            let o = *experiment.shockley_options();
+            let tight = o.rtol.min(jacobian::SMOOTH_RTOL);
+            experiment
+                .clone()
+                .with_shockley_options(ShockleyOptions {
+                    rtol: tight,
+                    atol: o.atol.min(jacobian::SMOOTH_RTOL),
+                    ..o
+                })
+                .map_err(|error| FitError::Model {
+                    file: "(the fit's solver)".into(),
+                    error,
+                })?
+        } else {
+            experiment.clone()
+        };
         let steady = SteadyOptions {
             tolerance: if model == DiodeModel::Pwl {
                 1e-12
             } else {
-                experiment.steady_options().tolerance
+                SMOOTH_STEADY_TOLERANCE
             },
             spectrum: false,
             lyapunov: None,
@@ -486,6 +197,7 @@ impl Setup {
             system,
             free: free.to_vec(),
             scale,
+            log: free.iter().map(|&p| fitted_in_log(p)).collect(),
             steady,
             step: if model == DiodeModel::Pwl { 1e-6 } else { 1e-4 },
         })
@@ -496,8 +208,11 @@ impl Setup {
     fn at(&self, x: &[f64]) -> Option<Experiment> {
         let mut system = self.system;
         let mut mu_s = self.experiment.mu_s();
-        for ((p, &x), &s) in self.free.iter().zip(x).zip(&self.scale) {
-            let v = x * s;
+        for (k, (p, &x)) in self.free.iter().zip(x).enumerate() {
+            let v = self.value(k, x);
+            if !v.is_finite() {
+                return None;
+            }
             match (*p, &mut system) {
                 (FitParameter::MuS, _) => mu_s = v,
                 (p, System::Circuit(c)) => p.set(c, v),
@@ -526,8 +241,56 @@ impl Setup {
         }
     }
 
+    /// The value of free parameter `k` at the scaled coordinate `x`.
+    fn value(&self, k: usize, x: f64) -> f64 {
+        if self.log[k] {
+            self.scale[k] * (x - 1.0).exp()
+        } else {
+            self.scale[k] * x
+        }
+    }
+
+    /// d value / dx of free parameter `k` at `x` (the chain rule from the coordinate).
+    fn slope(&self, k: usize, x: f64) -> f64 {
+        if self.log[k] {
+            self.value(k, x)
+        } else {
+            self.scale[k]
+        }
+    }
+
+    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s and
+    /// γ down to 0, μs down to 1 (the others are positive and refused at 0, which the
+    /// minimisation treats as a failed step; I_s is fitted in its logarithm).
+    fn bounds(&self, k: usize) -> (f64, f64) {
+        let lowest = match self.free[k] {
+            FitParameter::Resistance
+            | FitParameter::Rd
+            | FitParameter::DiodeRs
+            | FitParameter::Damping => Some(0.0),
+            FitParameter::MuS => Some(1.0),
+            _ => None,
+        };
+        match lowest {
+            Some(v) if !self.log[k] => (self.coordinate(k, v), f64::INFINITY),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
+        }
+    }
+
+    /// The coordinate of free parameter `k` at `value` (the inverse of [`Setup::value`]).
+    fn coordinate(&self, k: usize, value: f64) -> f64 {
+        if self.log[k] {
+            1.0 + (value / self.scale[k]).ln()
+        } else {
+            value / self.scale[k]
+        }
+    }
+
     fn values(&self, x: &[f64]) -> Vec<f64> {
-        x.iter().zip(&self.scale).map(|(x, s)| x * s).collect()
+        x.iter()
+            .enumerate()
+            .map(|(k, &x)| self.value(k, x))
+            .collect()
     }
 }
 
@@ -554,7 +317,9 @@ fn wrap(phase: f64) -> f64 {
 }
 
 /// The steady u_C of `experiment` driven at `frequency` (Hz), `amplitude` (V) and `phase`
-/// (radians, at s = 0), at the times `time` (s), without an offset.
+/// (radians, at s = 0), at the times `time` (s), without an offset; the steady state sought
+/// from `start` (a strobe state of a model nearby) or, without one, from the experiment's
+/// initial state (rest).
 fn evaluate(
     experiment: &Experiment,
     frequency: f64,
@@ -562,12 +327,16 @@ fn evaluate(
     phase: f64,
     time: &[f64],
     options: &SteadyOptions,
+    start: Option<State>,
 ) -> Result<Evaluated, crate::Error> {
-    let e = experiment
+    let mut e = experiment
         .clone()
         .with_frequency(frequency)?
         .with_amplitude(amplitude)?
         .with_phi(wrap(phase))?;
+    if let Some(start) = start {
+        e = e.with_initial(start)?;
+    }
     let steady = e.steady_with(options)?;
     let scales = e.scales().expect("a circuit has scales");
     let params = e.params()?;
@@ -697,6 +466,9 @@ struct Records<'a> {
     jacobian: Jacobian,
     /// Who is told of each iteration.
     watch: Watch<'a>,
+    /// A coordinate held at a value (a profile likelihood's), which the minimisation's
+    /// bounds then pin.
+    pinned: Option<(usize, f64)>,
 }
 
 /// Where the exact Jacobian of a record starts: the dimensionless parameters of its model,
@@ -752,7 +524,19 @@ impl Records<'_> {
             d.phase + shift,
             &self.time[j],
             &self.setup.steady,
+            self.warm_start(j),
         )
+    }
+
+    /// Where the steady state of record j is sought: with Shockley diodes from the strobe
+    /// state of the record's last model (a few periods instead of a transient from rest, and
+    /// the same attractor as the model before); with PWL diodes from rest, whose exact solver
+    /// settles by Newton's method anyway.
+    fn warm_start(&self, j: usize) -> Option<State> {
+        if self.setup.experiment.diode_model() != DiodeModel::Shockley {
+            return None;
+        }
+        self.orbits.as_ref().map(|(_, orbits)| orbits[j].strobe)
     }
 
     /// Weighted residuals of record j: its drive samples, then its response samples; and the
@@ -880,7 +664,7 @@ impl Records<'_> {
                         Link::Force => (sample.y - params.beta * db) * position / force,
                         Link::MuS => position * dmu,
                     };
-                    columns[k][row] = wr * du * self.setup.scale[k];
+                    columns[k][row] = wr * du * self.setup.slope(k, x[k]);
                 }
                 columns[slots.drive][row] = wr * position * db * sine.amplitude / force;
                 columns[slots.drive + 1][row] = wr * position * dw * TAU * sine.frequency / omega0;
@@ -933,16 +717,41 @@ impl lm::Problem for Records<'_> {
 
     fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
         self.setup.check_stop()?;
-        if let Some(columns) = self.exact_jacobian(x) {
-            self.jacobian = Jacobian::Exact;
-            return Ok(columns);
-        }
-        self.jacobian = Jacobian::FiniteDifferences;
-        self.finite_difference_jacobian(x, r)
+        let (columns, kind) = self.jacobian_source(x, r)?;
+        self.jacobian = kind;
+        Ok(columns)
     }
 
     fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
         self.watch.tell(iteration, sum_squares)
+    }
+
+    /// Each channel's precision ([`noise_floor`] of no noise: its quantisation, 10⁻⁹ of its
+    /// scale, above the rounding of its printed digits and the PWL model's 10⁻¹²) in units
+    /// of its weight, squared and averaged over the residuals.
+    fn floor(&self) -> f64 {
+        let mut sum = 0.0;
+        let mut count = 0;
+        for (j, m) in self.data.iter().enumerate() {
+            let (wd, wr) = self.weights[j];
+            let fd = wd * noise_floor(0.0, &self.drive[j], None);
+            let fr = wr * noise_floor(0.0, &self.response[j], m.resolution);
+            let samples = self.time[j].len();
+            sum += samples as f64 * (fd * fd + fr * fr);
+            count += 2 * samples;
+        }
+        sum / count.max(1) as f64
+    }
+
+    fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
+        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
+        for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
+            *bound = self.setup.bounds(k);
+        }
+        if let Some((k, v)) = self.pinned {
+            bounds[k] = (v, v);
+        }
+        bounds
     }
 }
 
@@ -1016,67 +825,13 @@ impl Records<'_> {
     }
 }
 
-/// Standard errors, intervals and correlation of the free values from the solution; the
-/// weighted residuals' variance s² scales (JᵀJ)⁻¹.
-fn uncertainties(
-    setup: &Setup,
-    solution: &lm::Solution,
-    n_values: usize,
-) -> (Vec<FittedParameter>, Vec<Vec<f64>>, usize) {
-    let n = solution.residuals.len();
-    let dof = n.saturating_sub(n_values).max(1);
-    let s2 = solution.sum_squares / dof as f64;
-    let t = t_quantile_975(dof);
-    let free = setup.free.len();
-    let cov = |i: usize, k: usize| {
-        solution.inverse_normal.as_ref().map_or(f64::NAN, |inv| {
-            s2 * inv[i * n_values + k] * setup.scale[i] * setup.scale[k]
-        })
-    };
-    let values = setup.values(&solution.x[..free]);
-    let parameters = (0..free)
-        .map(|i| {
-            let stderr = cov(i, i).abs().sqrt();
-            FittedParameter {
-                parameter: setup.free[i],
-                value: values[i],
-                stderr,
-                ci95: [values[i] - t * stderr, values[i] + t * stderr],
-                initial: setup.scale[i],
-            }
-        })
-        .collect::<Vec<_>>();
-    let correlation = (0..free)
-        .map(|i| {
-            (0..free)
-                .map(|k| cov(i, k) / (cov(i, i) * cov(k, k)).sqrt())
-                .collect()
-        })
-        .collect();
-    (parameters, correlation, dof)
-}
+/// The most iterations of a quick minimisation: the PWL fit that gives a smooth law's knee,
+/// a restart (which only has to show whether it goes lower).
+const QUICK_ITERATIONS: usize = 10;
 
-/// AIC and BIC of Gaussian residuals with a variance of their own per group (channel):
-/// −2 ln L = Σ N_g ln(SSR_g/N_g) up to a constant.
-fn criteria(groups: &[(f64, usize)], p: usize) -> (f64, f64) {
-    let n: usize = groups.iter().map(|g| g.1).sum();
-    let base: f64 = groups
-        .iter()
-        .map(|&(ssr, count)| {
-            let c = count.max(1) as f64;
-            c * (ssr / c).max(f64::MIN_POSITIVE).ln()
-        })
-        .sum();
-    (
-        base + 2.0 * p as f64,
-        base + p as f64 * (n.max(1) as f64).ln(),
-    )
-}
-
-/// The RMS of `values`.
-fn rms(values: &[f64]) -> f64 {
-    (values.iter().map(|v| v * v).sum::<f64>() / values.len().max(1) as f64).sqrt()
-}
+/// A restart (and an interval's search) counts as lower when its χ² lies below the
+/// minimum's by more than this (in units of the residuals' variance s²).
+const RESTART_LOWER: f64 = 1e-2;
 
 impl<'a> Records<'a> {
     /// The problem of `data` with the free parameters of `setup`, and the starting values
@@ -1141,6 +896,7 @@ impl<'a> Records<'a> {
                 m.drive.phase,
                 t,
                 &setup.steady,
+                None,
             )
             .map_err(|error| FitError::Model {
                 file: m.file.clone(),
@@ -1169,6 +925,7 @@ impl<'a> Records<'a> {
             exact: options.exact_jacobian,
             jacobian: Jacobian::FiniteDifferences,
             watch,
+            pinned: None,
         };
         Ok((problem, x))
     }
@@ -1232,7 +989,8 @@ pub fn fit_records(
 }
 
 /// [`fit_records`], telling `monitor` of every iteration (of both passes: at most
-/// 2·[`FitOptions::max_iterations`]), which can stop the fit.
+/// [`RECORD_PASSES`]·[`FitOptions::max_iterations`]: two passes, a restart and the
+/// intervals' profiles), which can stop the fit.
 ///
 /// # Errors
 /// As [`fit_records`]; [`FitError::Stopped`] when the monitor stops the fit.
@@ -1246,7 +1004,7 @@ pub fn fit_records_monitored(
     let watch = Watch {
         monitor,
         before: 0,
-        total: 2 * options.max_iterations,
+        total: RECORD_PASSES * options.max_iterations,
     };
     records_watched(experiment, data, free, options, watch)
 }
@@ -1258,15 +1016,76 @@ fn records_watched(
     options: &FitOptions,
     watch: Watch<'_>,
 ) -> Result<FitReport, FitError> {
+    records_with(experiment, data, free, options, watch, Depth::Full(None))
+}
+
+/// How far a fit of records goes.
+#[derive(Debug, Clone, Copy)]
+enum Depth {
+    /// Everything: a smooth law's starts in its valley (through this knee, or the knee of a
+    /// PWL fit made first), a restart, the intervals' checks and profiles.
+    Full(Option<starts::Knee>),
+    /// The two passes from the caller's start, nothing more (the PWL fit that gives a
+    /// smooth law's knee).
+    Quick,
+}
+
+/// The PWL law's knee for the Shockley fit of `experiment` (see [`starts`]): the PWL
+/// equivalent of its pair at the records' working current, U_t and R_D fitted (quickly).
+fn pwl_knee(
+    experiment: &Experiment,
+    data: &[Measurement],
+    options: &FitOptions,
+    watch: Watch<'_>,
+) -> Option<starts::Knee> {
+    let c = *experiment.circuit_ref()?;
+    let crate::physical::Diode::Shockley(d) = c.diode else {
+        return None;
+    };
+    let i = starts::working_current(c.capacitance, data)?;
+    let (turn_on, resistance) = starts::pwl_equivalent(&d.pair, i);
+    let pwl = Experiment::circuit(crate::physical::Circuit {
+        diode: crate::physical::Diode::Pwl(crate::physical::PwlDiode {
+            turn_on,
+            resistance,
+        }),
+        ..c
+    })
+    .ok()?
+    .with_cancel(experiment.cancel().clone());
+    let free = [FitParameter::Ut, FitParameter::Rd];
+    let report = records_with(&pwl, data, &free, options, watch, Depth::Quick).ok()?;
+    starts::knee_of_pwl(report.experiment.system()?, c.resistance, i)
+}
+
+/// The sum of squares of residuals `r`.
+fn sum_of_squares(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+fn records_with(
+    experiment: &Experiment,
+    data: &[Measurement],
+    free: &[FitParameter],
+    options: &FitOptions,
+    watch: Watch<'_>,
+    depth: Depth,
+) -> Result<FitReport, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
-    let setup = Setup::new(experiment, free)?;
+    // The free list as named (its faults refused first), then the parameters the records
+    // can determine.
+    Setup::new(experiment, free)?;
+    let plan = identify::plan(experiment, free);
+    let setup = Setup::new(experiment, &plan.fitted)?;
     let (mut problem, x) = Records::new(&setup, data, options, watch)?;
+    let n_free = setup.free.len();
     let n_values = x.len();
     let settings = lm::Settings {
         max_iterations: options.max_iterations,
         tolerance: options.tolerance,
+        gradient: lm::GRADIENT,
     };
     let failed = || FitError::Model {
         file: data[0].file.clone(),
@@ -1276,7 +1095,40 @@ fn records_watched(
             allowed: "a model that can be computed at the starting values",
         },
     };
-    let first = lm::minimise(&mut problem, x, settings)?.ok_or_else(failed)?;
+    // A smooth law's fit starts in the valley of I_s and n (see `starts`).
+    let mut x = x;
+    let valley_free = setup
+        .free
+        .iter()
+        .any(|p| matches!(*p, FitParameter::DiodeIs | FitParameter::DiodeN));
+    if let Depth::Full(knee) = depth {
+        if setup.experiment.diode_model() == DiodeModel::Shockley && valley_free {
+            let knee = knee.or_else(|| pwl_knee(experiment, data, options, problem.watch));
+            if let Some(knee) = knee {
+                let mut best = lm::Problem::residuals(&mut problem, &x)?
+                    .map_or(f64::INFINITY, |r| sum_of_squares(&r));
+                for candidate in starts::valley(&setup, &x, knee) {
+                    if let Some(r) = lm::Problem::residuals(&mut problem, &candidate)? {
+                        let ssr = sum_of_squares(&r);
+                        if ssr < best {
+                            best = ssr;
+                            x = candidate;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let quick = lm::Settings {
+        max_iterations: QUICK_ITERATIONS.min(settings.max_iterations),
+        tolerance: 1e-6,
+        ..settings
+    };
+    let first = match depth {
+        Depth::Full(_) => lm::minimise(&mut problem, x, settings)?,
+        Depth::Quick => lm::minimise(&mut problem, x, quick)?,
+    }
+    .ok_or_else(failed)?;
     // Second pass: each channel weighted by its RMS residual of the first.
     let spans = problem.spans();
     let weights = spans
@@ -1295,11 +1147,159 @@ fn records_watched(
         .collect();
     problem.weights = weights;
     problem.watch.before += first.iterations;
-    let second = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
-    let iterations = first.iterations + second.iterations;
-    let solution = second;
-    let (parameters, correlation, dof) = uncertainties(&setup, &solution, n_values);
-    let fitted = setup.at(&solution.x[..free.len()]).ok_or_else(failed)?;
+    let mut solution = match depth {
+        Depth::Full(_) => lm::minimise(&mut problem, first.x.clone(), settings)?,
+        Depth::Quick => lm::minimise(&mut problem, first.x.clone(), quick)?,
+    }
+    .ok_or_else(failed)?;
+    let mut iterations = first.iterations + solution.iterations;
+    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
+    let t = t_quantile_975(dof);
+    // A restart from elsewhere, and the intervals' checks: a point lower than the minimum
+    // is a minimum elsewhere, from which the fit goes on (three times at most).
+    let mut lower_by = None;
+    let mut intervals = None;
+    if let Depth::Full(_) = depth {
+        for _ in 0..3 {
+            problem.watch.before += solution.iterations;
+            // Lower by more than the residuals' precision can account for.
+            let s2 = (solution.sum_squares / dof as f64).max(lm::Problem::floor(&problem));
+            let covariance = Covariance::of(&solution, n_free);
+            let mut lower = None;
+            if let Some(point) =
+                covariance.restart(&solution.x, &lm::Problem::bounds(&problem, n_values))
+            {
+                let restart = lm::minimise(&mut problem, point, quick)?;
+                if let Some(restart) = restart {
+                    if restart.sum_squares < solution.sum_squares - RESTART_LOWER * s2 {
+                        lower = Some(restart);
+                    }
+                }
+            }
+            if lower.is_none() {
+                match profile::intervals(
+                    &mut problem,
+                    &solution,
+                    &covariance.inverse,
+                    n_free,
+                    t,
+                    quick,
+                )? {
+                    profile::Outcome::Intervals(found) => {
+                        lower_by = None;
+                        intervals = Some((found, covariance));
+                        break;
+                    }
+                    profile::Outcome::Lower(point) => {
+                        lower = lm::minimise(&mut problem, point, settings)?
+                            .filter(|s| s.sum_squares < solution.sum_squares);
+                    }
+                }
+            }
+            match lower {
+                Some(better) => {
+                    lower_by = Some((solution.sum_squares - better.sum_squares) / s2);
+                    iterations += better.iterations;
+                    solution = better;
+                }
+                None => {
+                    intervals = None;
+                    break;
+                }
+            }
+        }
+    }
+    let covariance = match intervals.as_ref() {
+        Some((_, c)) => c.clone(),
+        None => Covariance::of(&solution, n_free),
+    };
+    let linear: Vec<([f64; 2], Interval)> = (0..n_free)
+        .map(|k| {
+            let sigma = covariance.sigma(k, solution.sum_squares / dof as f64);
+            (
+                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
+                if sigma.is_finite() {
+                    Interval::Linear
+                } else {
+                    Interval::None
+                },
+            )
+        })
+        .collect();
+    let found = intervals.map_or(linear, |(found, _)| found);
+    let (fitted_parameters, correlation) =
+        uncertainties(&setup, &solution, &covariance, &found, dof);
+    // Every parameter named, in the order named: the held ones at their starting values.
+    let parameters: Vec<FittedParameter> = free
+        .iter()
+        .map(
+            |&p| match fitted_parameters.iter().find(|f| f.parameter == p) {
+                Some(f) => *f,
+                None => {
+                    let start = p.get(experiment).unwrap_or(f64::NAN);
+                    FittedParameter {
+                        parameter: p,
+                        value: start,
+                        stderr: f64::NAN,
+                        ci95: [f64::NAN; 2],
+                        initial: start,
+                        interval: Interval::Held,
+                    }
+                }
+            },
+        )
+        .collect();
+    // The correlation over every parameter named (NaN beside a held one).
+    let index = |p: FitParameter| setup.free.iter().position(|&q| q == p);
+    let named_correlation: Vec<Vec<f64>> = free
+        .iter()
+        .map(|&a| {
+            free.iter()
+                .map(|&b| match (index(a), index(b)) {
+                    (Some(i), Some(k)) => correlation[i][k],
+                    _ => f64::NAN,
+                })
+                .collect()
+        })
+        .collect();
+    let mut warnings = plan.warnings.clone();
+    let converged = solution.converged && lower_by.is_none();
+    if !converged {
+        let why = match lower_by {
+            Some(lower_by) => warning::NotConverged::Restart { lower_by },
+            None if solution.iterations >= options.max_iterations => {
+                warning::NotConverged::Iterations {
+                    limit: options.max_iterations,
+                }
+            }
+            None => warning::NotConverged::Stalled {
+                predicted: solution.decrement,
+            },
+        };
+        warnings.insert(0, FitWarning::NotConverged { why });
+    }
+    for (k, &p) in setup.free.iter().enumerate() {
+        if covariance.unseen[k] {
+            warnings.push(FitWarning::Unseen { parameter: p });
+        }
+        if solution.at_bound[k] {
+            warnings.push(FitWarning::AtBound {
+                parameter: p,
+                bound: setup.value(k, solution.x[k]),
+            });
+        }
+    }
+    warnings.extend(identify::correlations(&setup.free, &correlation));
+    for m in data {
+        if m.clipped > 0 {
+            warnings.push(FitWarning::Clipped {
+                file: m.file.clone(),
+                samples: m.clipped,
+                of: m.time.len(),
+            });
+        }
+    }
+    let fitted = setup.at(&solution.x[..n_free]).ok_or_else(failed)?;
     let mut records = Vec::with_capacity(data.len());
     let mut chi2 = 0.0;
     let mut groups = Vec::new();
@@ -1361,7 +1361,7 @@ fn records_watched(
     Ok(FitReport {
         model: experiment.diode_model(),
         parameters,
-        correlation,
+        correlation: named_correlation,
         records,
         rows: vec![],
         rms_residual_v: rms(&all_response),
@@ -1373,9 +1373,10 @@ fn records_watched(
         aic,
         bic,
         iterations,
-        converged: solution.converged,
+        converged,
         jacobian: problem.jacobian,
         experiment: fitted,
+        warnings,
     })
 }
 
@@ -1394,7 +1395,7 @@ pub fn fit_per_record(
 }
 
 /// [`fit_per_record`], telling `monitor` of every iteration (at most
-/// 2·[`FitOptions::max_iterations`] per record), which can stop the fits.
+/// [`RECORD_PASSES`]·[`FitOptions::max_iterations`] per record), which can stop the fits.
 ///
 /// # Errors
 /// As [`fit_per_record`]; [`FitError::Stopped`] when the monitor stops the fits.
@@ -1408,7 +1409,7 @@ pub fn fit_per_record_monitored(
     if data.is_empty() {
         return Err(FitError::NoData);
     }
-    let per = 2 * options.max_iterations;
+    let per = RECORD_PASSES * options.max_iterations;
     data.iter()
         .enumerate()
         .map(|(j, m)| {
@@ -1448,7 +1449,7 @@ pub fn compare_models(
 }
 
 /// [`compare_models`], telling `monitor` of every iteration of both fits (at most
-/// 4·[`FitOptions::max_iterations`]), which can stop them.
+/// 2·[`RECORD_PASSES`]·[`FitOptions::max_iterations`]), which can stop them.
 ///
 /// # Errors
 /// As [`compare_models`]; [`FitError::Stopped`] when the monitor stops the fits.
@@ -1475,19 +1476,25 @@ pub fn compare_models_monitored(
                 file: "(comparison)".into(),
                 error,
             })?;
-    let per = 2 * options.max_iterations;
+    let per = RECORD_PASSES * options.max_iterations;
     let watch = |before| Watch {
         monitor,
         before,
         total: 2 * per,
     };
     let pwl = records_watched(experiment, data, pwl_free, options, watch(0))?;
-    let shockley = records_watched(
+    // The Shockley fit enters its valley where the PWL fit says the diodes work.
+    let knee = experiment.circuit_ref().and_then(|c| {
+        let i = starts::working_current(c.capacitance, data)?;
+        starts::knee_of_pwl(pwl.experiment.system()?, c.resistance, i)
+    });
+    let shockley = records_with(
         &shockley_experiment,
         data,
         shockley_free,
         options,
         watch(per),
+        Depth::Full(knee),
     )?;
     let delta_aic = shockley.aic - pwl.aic;
     Ok(ModelComparison {
@@ -1499,241 +1506,6 @@ pub fn compare_models_monitored(
         delta_aic,
         pwl,
         shockley,
-    })
-}
-
-/// The problem of a table.
-struct Table<'a> {
-    setup: &'a Setup,
-    table: &'a AmplitudeTable,
-    /// Rows in computing order: legs (each a list of row indices, each row settling from the
-    /// previous one) and single rows from rest.
-    legs: Vec<Vec<usize>>,
-    /// Who is told of each iteration.
-    watch: Watch<'a>,
-}
-
-impl Table<'_> {
-    /// (amplitude in V, class) of every row, or None outside the model's domain.
-    fn amplitudes(&self, x: &[f64]) -> Option<Vec<(f64, MotionClass)>> {
-        let experiment = self.setup.at(x)?;
-        let legs: Vec<Option<Vec<(usize, f64, MotionClass)>>> = self
-            .legs
-            .par_iter()
-            .map(|leg| {
-                let mut state = State::default();
-                let mut out = Vec::with_capacity(leg.len());
-                for &i in leg {
-                    let row = &self.table.rows[i];
-                    let e = experiment
-                        .clone()
-                        .with_frequency(row.frequency)
-                        .and_then(|e| e.with_amplitude(row.drive))
-                        .and_then(|e| e.with_initial(state))
-                        .ok()?;
-                    let steady = e.steady_with(&self.setup.steady).ok()?;
-                    state = steady.final_state();
-                    let scale = e.scales()?.position;
-                    out.push((i, steady.amplitude() * scale, steady.class));
-                }
-                Some(out)
-            })
-            .collect();
-        let mut rows = vec![(0.0, MotionClass::Static); self.table.rows.len()];
-        for leg in legs {
-            for (i, a, c) in leg? {
-                rows[i] = (a, c);
-            }
-        }
-        Some(rows)
-    }
-}
-
-impl lm::Problem for Table<'_> {
-    type Error = FitError;
-
-    fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, FitError> {
-        self.setup.check_stop()?;
-        Ok(self.amplitudes(x).map(|a| {
-            a.iter()
-                .zip(&self.table.rows)
-                .map(|((m, _), row)| m - row.response)
-                .collect()
-        }))
-    }
-
-    fn jacobian(&mut self, x: &[f64], r: &[f64]) -> Result<Vec<Vec<f64>>, FitError> {
-        self.setup.check_stop()?;
-        let h = self.setup.step;
-        (0..x.len())
-            .map(|k| {
-                let mut xp = x.to_vec();
-                let mut dx = h * x[k].abs().max(1.0);
-                xp[k] += dx;
-                let rp = match self.residuals(&xp)? {
-                    Some(rp) => Some(rp),
-                    None => {
-                        xp[k] = x[k] - dx;
-                        dx = -dx;
-                        self.residuals(&xp)?
-                    }
-                };
-                let rp = rp.ok_or_else(|| FitError::Model {
-                    file: self.table.file.clone(),
-                    error: crate::Error::InvalidParameter {
-                        name: "fit parameter",
-                        value: x[k] * self.setup.scale[k],
-                        allowed: "the model has no value on either side",
-                    },
-                })?;
-                Ok(rp.iter().zip(r).map(|(a, b)| (a - b) / dx).collect())
-            })
-            .collect()
-    }
-
-    fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
-        self.watch.tell(iteration, sum_squares)
-    }
-}
-
-/// Fit the free parameters of `experiment` to a table of measured amplitudes (see the module
-/// documentation).
-///
-/// # Errors
-/// As [`fit_records`].
-pub fn fit_table(
-    experiment: &Experiment,
-    table: &AmplitudeTable,
-    free: &[FitParameter],
-    options: &FitOptions,
-) -> Result<FitReport, FitError> {
-    fit_table_monitored(experiment, table, free, options, &())
-}
-
-/// [`fit_table`], telling `monitor` of every iteration (at most
-/// [`FitOptions::max_iterations`]), which can stop the fit.
-///
-/// # Errors
-/// As [`fit_table`]; [`FitError::Stopped`] when the monitor stops the fit.
-pub fn fit_table_monitored(
-    experiment: &Experiment,
-    table: &AmplitudeTable,
-    free: &[FitParameter],
-    options: &FitOptions,
-    monitor: &dyn FitMonitor,
-) -> Result<FitReport, FitError> {
-    if table.rows.is_empty() {
-        return Err(FitError::NoData);
-    }
-    let setup = Setup::new(experiment, free)?;
-    if matches!(setup.system, System::Mechanics(_)) {
-        return Err(FitError::TableNeedsCircuit);
-    }
-    if table.rows.len() <= free.len() {
-        return Err(FitError::TooFewSamples {
-            residuals: table.rows.len(),
-            values: free.len(),
-        });
-    }
-    // Legs: rows of one direction and one drive amplitude (to 10⁻⁶), sorted along the sweep.
-    let mut legs: Vec<(Direction, f64, Vec<usize>)> = Vec::new();
-    let mut singles = Vec::new();
-    for (i, row) in table.rows.iter().enumerate() {
-        match row.direction {
-            None => singles.push(vec![i]),
-            Some(d) => match legs
-                .iter_mut()
-                .find(|(ld, u, _)| *ld == d && (u - row.drive).abs() <= 1e-6 * u.abs())
-            {
-                Some(leg) => leg.2.push(i),
-                None => legs.push((d, row.drive, vec![i])),
-            },
-        }
-    }
-    let mut order: Vec<Vec<usize>> = legs
-        .into_iter()
-        .map(|(d, _, mut rows)| {
-            rows.sort_by(|&a, &b| {
-                let (fa, fb) = (table.rows[a].frequency, table.rows[b].frequency);
-                match d {
-                    Direction::Up => fa.total_cmp(&fb),
-                    Direction::Down => fb.total_cmp(&fa),
-                }
-            });
-            rows
-        })
-        .collect();
-    order.extend(singles);
-    let mut problem = Table {
-        setup: &setup,
-        table,
-        legs: order,
-        watch: Watch {
-            monitor,
-            before: 0,
-            total: options.max_iterations,
-        },
-    };
-    let x = vec![1.0; free.len()];
-    if problem.amplitudes(&x).is_none() {
-        return Err(FitError::Model {
-            file: table.file.clone(),
-            error: crate::Error::InvalidParameter {
-                name: "fit",
-                value: f64::NAN,
-                allowed: "a model that can be computed at the starting values",
-            },
-        });
-    }
-    let solution = lm::minimise(
-        &mut problem,
-        x,
-        lm::Settings {
-            max_iterations: options.max_iterations,
-            tolerance: options.tolerance,
-        },
-    )?
-    .expect("the start was evaluated");
-    let n_values = free.len();
-    let (parameters, correlation, dof) = uncertainties(&setup, &solution, n_values);
-    let fitted = setup.at(&solution.x).expect("the solution was evaluated");
-    let amplitudes = problem
-        .amplitudes(&solution.x)
-        .expect("the solution was evaluated");
-    let rows = table
-        .rows
-        .iter()
-        .zip(&amplitudes)
-        .map(|(row, &(model, class))| RowFit {
-            line: row.line,
-            freq_hz: row.frequency,
-            drive_v: row.drive,
-            direction: row.direction,
-            measured_v: row.response,
-            model_v: model,
-            class,
-        })
-        .collect();
-    let n = solution.residuals.len();
-    let (aic, bic) = criteria(&[(solution.sum_squares, n)], n_values);
-    Ok(FitReport {
-        model: experiment.diode_model(),
-        parameters,
-        correlation,
-        records: vec![],
-        rows,
-        rms_residual_v: (solution.sum_squares / n as f64).sqrt(),
-        noise_v: None,
-        chi2_dof: None,
-        dof,
-        residuals: n,
-        fitted_values: n_values,
-        aic,
-        bic,
-        iterations: solution.iterations,
-        converged: solution.converged,
-        jacobian: Jacobian::FiniteDifferences,
-        experiment: fitted,
     })
 }
 
@@ -1752,7 +1524,7 @@ mod tests {
     }
     /// A plain-CSV record of `truth` at (w, β, φ): 600 samples over 2.5 drive periods, with
     /// a deterministic ripple of 0.3 % as noise and an offset of 20 mV on u_C.
-    fn record(truth: &Experiment, w: f64, beta: f64, phi: f64) -> Measurement {
+    pub(super) fn record(truth: &Experiment, w: f64, beta: f64, phi: f64) -> Measurement {
         let e = truth
             .clone()
             .with_w(w)

@@ -14,6 +14,10 @@ pub struct MeasureError {
     pub line: Option<usize>,
     /// What is wrong and what is allowed.
     pub message: String,
+    /// When the record's channels look swapped (its drive channel is not a sine and another
+    /// is): (the channel that looks like the drive, the one that looks like u_C), for each
+    /// front end to say how its user picks them (`--drive`, `drive=`).
+    pub swap: Option<(String, String)>,
 }
 
 impl MeasureError {
@@ -23,6 +27,7 @@ impl MeasureError {
             file: file.to_string(),
             line: Some(line),
             message: one_line(message.into()),
+            swap: None,
         }
     }
 
@@ -32,6 +37,21 @@ impl MeasureError {
             file: file.to_string(),
             line: None,
             message: one_line(message.into()),
+            swap: None,
+        }
+    }
+
+    /// A record whose channels look swapped: `drive` looks like the drive, `response` like
+    /// u_C ([`MeasureError::swap`]).
+    pub(crate) fn swapped(
+        file: &str,
+        message: impl Into<String>,
+        drive: &str,
+        response: &str,
+    ) -> Self {
+        Self {
+            swap: Some((drive.to_string(), response.to_string())),
+            ..Self::file(file, message)
         }
     }
 }

@@ -64,6 +64,25 @@ use serde::{Deserialize, Serialize};
 /// Smallest fraction of a channel's samples that must be left after clipping.
 pub const MIN_UNCLIPPED_FRACTION: f64 = 0.1;
 
+/// How far the drive channel may be from a sine: the RMS of its sine fit's residual beyond
+/// its noise, √(rms² − σ²), as a fraction of its amplitude. A generator's sine leaves well
+/// under 1 % (its distortion and the scope's); a triangle wave leaves 8.5 %, a square wave
+/// 34 %, and u_C leaves several per cent wherever the diodes shape it (stick-slip, a knee).
+pub const SINE_TOLERANCE: f64 = 0.03;
+
+/// How far the response may seem to lead the drive, as the sine of the lag: its fundamental
+/// must lag the drive's by ψ with sin ψ ≥ −0.05 (a circuit that dissipates lags by 0 < ψ < π;
+/// the margin allows for a skew between the channels where ψ is near 0 or π, at the ends of
+/// the frequency range).
+pub const LEAD_TOLERANCE: f64 = 0.05;
+
+/// The part of a channel that its sine fit does not explain beyond the noise σ (see
+/// [`SINE_TOLERANCE`]).
+fn non_sine(fit: &SineFit, sigma: f64) -> f64 {
+    (fit.rms_residual.powi(2) - sigma * sigma).max(0.0).sqrt()
+        / fit.amplitude.max(f64::MIN_POSITIVE)
+}
+
 /// A waveform record prepared for fitting: the drive's sine fit and the response's samples.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Measurement {
@@ -114,7 +133,9 @@ impl Measurement {
     ///
     /// # Errors
     /// A missing channel, a channel clipped (or constant) in more than 90 % of its samples, a
-    /// record shorter than one drive period.
+    /// record shorter than one drive period, a drive channel that is not a sine
+    /// ([`SINE_TOLERANCE`]; when the response channel is one, the error's
+    /// [`MeasureError::swap`] says which channel to take as the drive).
     pub fn new(
         record: &Record,
         drive: Option<&str>,
@@ -175,13 +196,86 @@ impl Measurement {
         let r = &record.channels[response_index];
         let t0 = record.time[0];
         let time: Vec<f64> = record.time.iter().map(|&t| t - t0).collect();
-        let sine = fit_sine(
-            &record.file,
-            &d.name,
-            &time,
-            &d.values,
-            &d.clipped.iter().map(|c| !c).collect::<Vec<_>>(),
-        )?;
+        let sine_of = |c: &Channel| {
+            let unclipped: Vec<bool> = c.clipped.iter().map(|c| !c).collect();
+            let fit = fit_sine(&record.file, &c.name, &time, &c.values, &unclipped)?;
+            let excess = non_sine(&fit, noise(&c.values, &unclipped));
+            Ok::<_, MeasureError>((fit, excess))
+        };
+        // The drive must be the generator's sine; a drive channel that is not, beside a
+        // response that is, is the channels the wrong way round.
+        let (sine, excess) = match sine_of(d) {
+            Ok(fit) => fit,
+            Err(e) => match sine_of(r) {
+                Ok((_, other)) if other <= SINE_TOLERANCE => {
+                    return Err(MeasureError::swapped(
+                        &record.file,
+                        format!(
+                            "the drive channel {} is not a sine ({}), and {} is: the channels \
+                             look swapped",
+                            d.name, e.message, r.name
+                        ),
+                        &r.name,
+                        &d.name,
+                    ))
+                }
+                _ => return Err(e),
+            },
+        };
+        if excess > SINE_TOLERANCE {
+            let percent = |x: f64| format!("{:.1} %", 100.0 * x);
+            return Err(match sine_of(r) {
+                Ok((_, other)) if other <= SINE_TOLERANCE => MeasureError::swapped(
+                    &record.file,
+                    format!(
+                        "the drive channel {} is not a sine (its sine fit leaves {} of its \
+                         amplitude beyond the noise), and {} is ({}): the channels look swapped",
+                        d.name,
+                        percent(excess),
+                        r.name,
+                        percent(other)
+                    ),
+                    &r.name,
+                    &d.name,
+                ),
+                _ => MeasureError::file(
+                    &record.file,
+                    format!(
+                        "the drive channel {} is not a sine: its sine fit leaves {} of its \
+                         amplitude beyond the noise (at most {} is a generator's sine); pick \
+                         the channel of the generator's sine as the drive",
+                        d.name,
+                        percent(excess),
+                        percent(SINE_TOLERANCE)
+                    ),
+                ),
+            });
+        }
+        // Power flows from the generator into the circuit (or the oscillator): u_C's
+        // fundamental lags the drive by ψ in (0, π), so that the current's in-phase part,
+        // ∝ sin ψ, is positive. A response that leads the drive would give power back: the
+        // channels the wrong way round.
+        let unclipped: Vec<bool> = r.clipped.iter().map(|c| !c).collect();
+        if let Some(phase) = sine::phase_at(&time, &r.values, &unclipped, &sine) {
+            let power = (sine.phase - phase).sin();
+            if power < -LEAD_TOLERANCE {
+                return Err(MeasureError::swapped(
+                    &record.file,
+                    format!(
+                        "{} leads the drive {} by {:.0}°: power would flow from the circuit \
+                         into the generator, so the channels look swapped (the drive is the \
+                         channel that u_C lags)",
+                        r.name,
+                        d.name,
+                        (phase - sine.phase)
+                            .rem_euclid(std::f64::consts::TAU)
+                            .to_degrees()
+                    ),
+                    &r.name,
+                    &d.name,
+                ));
+            }
+        }
         let used: Vec<bool> = d
             .clipped
             .iter()

@@ -86,6 +86,14 @@ fn linear(s: &[f64], x: &[f64], used: &[bool], omega: f64, end: f64) -> Option<[
     Some([v[0], v[1], v[2]])
 }
 
+/// The phase (radians) of the fundamental of `x` at the frequency of `drive`, over the
+/// drive's whole periods (a linear fit of offset, cos and sin): `None` without samples.
+pub(crate) fn phase_at(s: &[f64], x: &[f64], used: &[bool], drive: &SineFit) -> Option<f64> {
+    let end = drive.periods as f64 / drive.frequency * (1.0 + 1e-9);
+    let [a, b, _] = linear(s, x, used, TAU * drive.frequency, end)?;
+    (a.hypot(b) > 0.0).then(|| (-b).atan2(a))
+}
+
 /// The four-parameter sine fit (IEEE 1057's) of a channel over its whole periods.
 ///
 /// `s`: times since the first sample (s), increasing; `used`: the samples to use (not
@@ -144,49 +152,75 @@ pub fn fit_sine(
     let mut end = periods as f64 / frequency * (1.0 + 1e-9);
     let [mut a, mut b, mut c] =
         linear(s, x, used, TAU * frequency, end).ok_or_else(|| fail("has a singular system"))?;
-    let mut converged = false;
-    for _ in 0..50 {
-        // Gauss–Newton on (a, b, c, Ω).
-        let omega = TAU * frequency;
-        let mut m = [0.0; 16];
-        let mut r = [0.0; 4];
-        for i in 0..x.len() {
-            if !used[i] || s[i] > end {
-                continue;
-            }
-            let (sn, cs) = (omega * s[i]).sin_cos();
-            let model = a * cs + b * sn + c;
-            let basis = [cs, sn, 1.0, s[i] * (-a * sn + b * cs)];
-            let e = x[i] - model;
-            for j in 0..4 {
-                r[j] += basis[j] * e;
-                for k in 0..4 {
-                    m[j * 4 + k] += basis[j] * basis[k];
+    // Gauss–Newton on a fixed window of samples, then the window of the whole periods at the
+    // frequency found, until the window stays the same. (Within one pass the samples must not
+    // change: a sample that the window's end passes as the frequency moves would make the
+    // iteration jump between the fits with and without it.)
+    let within = |end: f64| (0..x.len()).filter(|&i| used[i] && s[i] <= end).count();
+    let mut windows: Vec<usize> = Vec::new();
+    loop {
+        let mut converged = false;
+        for _ in 0..50 {
+            let omega = TAU * frequency;
+            let mut m = [0.0; 16];
+            let mut r = [0.0; 4];
+            for i in 0..x.len() {
+                if !used[i] || s[i] > end {
+                    continue;
+                }
+                let (sn, cs) = (omega * s[i]).sin_cos();
+                let model = a * cs + b * sn + c;
+                let basis = [cs, sn, 1.0, s[i] * (-a * sn + b * cs)];
+                let e = x[i] - model;
+                for j in 0..4 {
+                    r[j] += basis[j] * e;
+                    for k in 0..4 {
+                        m[j * 4 + k] += basis[j] * basis[k];
+                    }
                 }
             }
+            let d = solve_spd(&m, 4, &r).ok_or_else(|| fail("has a singular system"))?;
+            a += d[0];
+            b += d[1];
+            c += d[2];
+            let new_frequency = (omega + d[3]) / TAU;
+            if !(new_frequency > 0.0) {
+                return Err(fail("lost its frequency"));
+            }
+            let step = (new_frequency - frequency).abs() / frequency;
+            frequency = new_frequency;
+            if step < 1e-13 {
+                converged = true;
+                break;
+            }
         }
-        let d = solve_spd(&m, 4, &r).ok_or_else(|| fail("has a singular system"))?;
-        a += d[0];
-        b += d[1];
-        c += d[2];
-        let new_frequency = (omega + d[3]) / TAU;
-        if !(new_frequency > 0.0) {
-            return Err(fail("lost its frequency"));
+        if !converged {
+            return Err(fail("did not converge in 50 iterations"));
         }
-        let step = (new_frequency - frequency).abs() / frequency;
-        frequency = new_frequency;
         let whole = (duration * frequency + 1e-9).floor() as usize;
-        if whole != periods && whole > 0 {
+        if whole > 0 {
             periods = whole;
         }
-        end = periods as f64 / frequency * (1.0 + 1e-9);
-        if step < 1e-13 {
-            converged = true;
+        let next = periods as f64 / frequency * (1.0 + 1e-9);
+        let (now, then) = (within(end), within(next));
+        if now == then {
             break;
         }
-    }
-    if !converged {
-        return Err(fail("did not converge in 50 iterations"));
+        // A window that alternates (its end within the frequency's uncertainty of a sample)
+        // keeps the shorter of the two; a window that keeps moving is refused.
+        if windows.contains(&then) {
+            if then < now {
+                end = next;
+                windows.clear();
+                continue;
+            }
+            break;
+        }
+        if windows.len() >= 4 {
+            return Err(fail("did not settle on its whole periods"));
+        }
+        windows.push(now);
+        end = next;
     }
     let amplitude = a.hypot(b);
     let phase = (-b).atan2(a);
