@@ -345,6 +345,9 @@ pub enum Unsupported {
     /// bifurcation diagrams, basins, continuation) differentiates the exact piecewise-linear
     /// model.
     StabilityNeedsPwl,
+    /// The Stribeck and cubic friction laws need the smooth-law integrator (the exact
+    /// solver follows Coulomb's law).
+    SmoothFrictionLaw,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -364,6 +367,10 @@ impl std::fmt::Display for Unsupported {
                 "the stability analysis (periodic orbits, Floquet multipliers, Lyapunov \
                  exponents, bifurcation diagrams, basins, continuation) is of the exact \
                  piecewise-linear diode (Coulomb friction) model, not Shockley diodes"
+            }
+            Unsupported::SmoothFrictionLaw => {
+                "the Stribeck and cubic friction laws need the smooth-law integrator, which \
+                 this build does not have yet: use --friction-law coulomb (solved exactly)"
             }
         })
     }

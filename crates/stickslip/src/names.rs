@@ -14,6 +14,7 @@
 use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::experiment::{DiodeModel, Key, Preset};
+use crate::friction::FrictionLawKind;
 use crate::params::Parameter;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
 use crate::steady::MotionClass;
@@ -81,6 +82,7 @@ names!(CurveKind, "curve", display);
 names!(MapColor, "map colour", display);
 names!(AttractorKind, "attractor kind", display);
 names!(BasinMethod, "basin method", display);
+names!(FrictionLawKind, "friction law", display);
 
 impl SweepDirection {
     /// Every direction.
@@ -110,6 +112,12 @@ impl Parameter {
             Parameter::W => Key::W,
             Parameter::Beta => Key::Beta,
             Parameter::MuS => Key::MuS,
+            Parameter::Vb => Key::Vb,
+            Parameter::Vs => Key::Vs,
+            Parameter::Delta => Key::Delta,
+            Parameter::Eta => Key::Eta,
+            Parameter::K1 => Key::K1,
+            Parameter::K3 => Key::K3,
         }
     }
 
@@ -121,6 +129,12 @@ impl Parameter {
             Parameter::Beta => &[Key::Beta, Key::Amplitude],
             Parameter::Zeta => &[Key::Zeta],
             Parameter::MuS => &[Key::MuS],
+            Parameter::Vb => &[Key::Vb, Key::BeltSpeed],
+            Parameter::Vs => &[Key::Vs, Key::StribeckSpeed],
+            Parameter::Delta => &[Key::Delta],
+            Parameter::Eta => &[Key::Eta, Key::ViscousFriction],
+            Parameter::K1 => &[Key::K1, Key::CubicK1],
+            Parameter::K3 => &[Key::K3, Key::CubicK3],
         }
     }
 }
@@ -175,6 +189,7 @@ mod tests {
         round_trip(&CurveKind::ALL);
         round_trip(&MapColor::ALL);
         round_trip(&Parameter::ALL);
+        round_trip(&FrictionLawKind::ALL);
     }
 
     #[test]
@@ -183,7 +198,7 @@ mod tests {
         assert_eq!("mu_s".parse::<Parameter>().unwrap(), Parameter::MuS);
         assert_eq!(
             "f".parse::<Parameter>().unwrap_err().to_string(),
-            "invalid parameter 'f': one of zeta, w, beta, mu-s"
+            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb, vs, delta, eta, k1, k3"
         );
         for p in Parameter::ALL {
             assert_eq!(p.keys()[0], p.key());

@@ -39,6 +39,7 @@ pub use trajectory::Trajectory;
 
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
+use crate::friction::{check_vb, FrictionLaw};
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
 use crate::scan::ParameterRange;
@@ -149,10 +150,21 @@ pub struct Experiment {
     initial: State,
     origin: Origin,
     shockley: ShockleyOptions,
+    /// The belt speed vb (mechanical or dimensionless systems; 0: no belt).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    vb: f64,
+    /// The friction law.
+    #[serde(default, skip_serializing_if = "FrictionLaw::is_coulomb")]
+    law: FrictionLaw,
     /// The token every solver of the experiment checks (not part of what the experiment is:
     /// not saved, not compared).
     #[serde(skip)]
     cancel: CancelSlot,
+}
+
+/// Whether a value is zero (serde skips a belt at rest).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// An experiment's [`Cancel`] token: equal to any other (the token says how long to work,
@@ -178,6 +190,8 @@ impl Experiment {
             initial: State::default(),
             origin,
             shockley: ShockleyOptions::default(),
+            vb: 0.0,
+            law: FrictionLaw::Coulomb,
             cancel: CancelSlot::default(),
         }
     }
@@ -280,6 +294,53 @@ impl Experiment {
     pub fn with_mu_s(mut self, mu_s: f64) -> Result<Self> {
         self.mu_s = Key::MuS.check(mu_s)?;
         Ok(self)
+    }
+
+    /// Put the block on a belt moving at the dimensionless speed vb (0: no belt). A circuit
+    /// has no belt.
+    ///
+    /// # Errors
+    /// [`SpecError::NoBelt`] for a circuit; when vb is not finite or |vb| > 1e6.
+    pub fn with_vb(mut self, vb: f64) -> Result<Self> {
+        if matches!(self.system, Some(System::Circuit(_))) {
+            return Err(SpecError::NoBelt { key: Key::Vb }.into());
+        }
+        self.vb = check_vb(vb)?;
+        Ok(self)
+    }
+
+    /// Set the friction law (checked with this experiment's μs). A circuit has none but the
+    /// diodes'.
+    ///
+    /// # Errors
+    /// [`SpecError::NoBelt`] for a circuit and a law other than Coulomb's; an invalid law
+    /// ([`FrictionLaw::validate`]).
+    pub fn with_law(mut self, law: FrictionLaw) -> Result<Self> {
+        if !law.is_coulomb() && matches!(self.system, Some(System::Circuit(_))) {
+            return Err(SpecError::NoBelt {
+                key: Key::FrictionLaw,
+            }
+            .into());
+        }
+        self.law = law.validate(self.mu_s)?;
+        Ok(self)
+    }
+
+    /// The belt speed vb (0: no belt).
+    pub fn vb(&self) -> f64 {
+        self.vb
+    }
+
+    /// The friction law.
+    pub fn law(&self) -> FrictionLaw {
+        self.law
+    }
+
+    /// Whether the experiment is self-excited: a belt moves and no drive is given (or its
+    /// amplitude is 0); its period is then the motion's own, found by the steady-state search
+    /// ([`crate::steady::self_excited`]).
+    pub fn is_self_excited(&self) -> bool {
+        self.vb != 0.0 && self.beta.unwrap_or(0.0) == 0.0
     }
 
     /// Set ζ of a dimensionless experiment.
@@ -506,37 +567,58 @@ impl Experiment {
     /// range.
     pub fn params_with(&self, values: &[(Parameter, f64)]) -> Result<Params> {
         let given = |p: Parameter| values.iter().rev().find(|(q, _)| *q == p).map(|v| v.1);
-        let w = given(Parameter::W)
-            .or(self.w)
-            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::W }))?;
+        let vb = given(Parameter::Vb).unwrap_or(self.vb);
+        // A belt without a drive: β = 0, and w (which then sets no period of the motion, only
+        // the unit of time that runs count in) 1.
+        let undriven = vb != 0.0 && self.beta.is_none() && given(Parameter::Beta).is_none();
         let beta = given(Parameter::Beta)
             .or(self.beta)
+            .or(undriven.then_some(0.0))
             .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::Beta }))?;
+        let w = given(Parameter::W)
+            .or(self.w)
+            .or((vb != 0.0 && beta == 0.0).then_some(1.0))
+            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::W }))?;
         let zeta = given(Parameter::Zeta).unwrap_or(self.zeta);
         let mu_s = given(Parameter::MuS).unwrap_or(self.mu_s);
-        Params::new(zeta, w, beta)?
+        let mut params = Params::new(zeta, w, beta)?
             .with_phi(self.phi)?
-            .with_mu_s(mu_s)
+            .with_mu_s(mu_s)?;
+        if vb == 0.0 && self.law.is_coulomb() && values.iter().all(|(p, _)| !p.is_friction()) {
+            return Ok(params);
+        }
+        params = params.with_vb(vb)?;
+        params.law = self.law;
+        for &(p, value) in values {
+            if p.is_friction() && p != Parameter::Vb {
+                params = p.set(params, value)?;
+            }
+        }
+        params.validate()
     }
 
-    /// The same experiment with some of ζ, w, β, μs changed (ζ too, even for a physical
+    /// The same experiment with one of its parameters changed (ζ too, even for a physical
     /// system: the parameters are dimensionless).
     ///
     /// # Errors
-    /// A value out of range.
+    /// A value out of range; a parameter of a law the experiment does not follow; a belt or
+    /// a law with a circuit.
     pub fn with_parameter(mut self, parameter: Parameter, value: f64) -> Result<Self> {
-        let key = match parameter {
-            Parameter::Zeta => Key::Zeta,
-            Parameter::W => Key::W,
-            Parameter::Beta => Key::Beta,
-            Parameter::MuS => Key::MuS,
-        };
+        let key = parameter.key();
         let value = key.check(value)?;
         match parameter {
             Parameter::Zeta => self.zeta = value,
             Parameter::W => self.w = Some(value),
             Parameter::Beta => self.beta = Some(value),
             Parameter::MuS => self.mu_s = value,
+            Parameter::Vb => return self.with_vb(value),
+            _ => {
+                let base = Params::new(0.0, 1.0, 0.0)?
+                    .with_mu_s(self.mu_s)?
+                    .with_law(self.law)?;
+                let law = parameter.set(base, value)?.law;
+                return self.with_law(law);
+            }
         }
         Ok(self)
     }
@@ -735,7 +817,17 @@ impl std::fmt::Display for Experiment {
             self.mu_s,
             self.initial.y,
             self.initial.v
-        )
+        )?;
+        if self.vb != 0.0 {
+            write!(f, ", vb = {}", self.vb)?;
+        }
+        if !self.law.is_coulomb() {
+            write!(f, "; friction law {}", self.law.kind().label())?;
+            for (name, value) in self.law.parameters() {
+                write!(f, ", {name} = {value}")?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -752,6 +844,9 @@ impl SolverFactory for ExperimentFactory {
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
         let params = params.validate()?;
         let initial = State::new(initial.y, initial.v)?;
+        if !params.law.is_coulomb() {
+            return Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw));
+        }
         match self
             .circuit
             .map(|c| c.shockley_model(&params))

@@ -26,6 +26,9 @@ impl Experiment {
         if self.diode_model() != DiodeModel::Pwl {
             return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
         }
+        if !self.law().is_coulomb() {
+            return Err(Error::Unsupported(Unsupported::SmoothFrictionLaw));
+        }
         self.params()
     }
 

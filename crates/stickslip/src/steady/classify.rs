@@ -34,21 +34,31 @@ pub enum MotionClass {
     /// No period found, and the largest Lyapunov exponent is positive beyond its error
     /// (nearby motions separate exponentially): chaos.
     Chaotic,
+    /// A self-excited cycle on a moving belt (no drive) with stops: the block sticks to the
+    /// belt, is carried, slips and sticks again ([`super::self_excited`]).
+    StickSlipCycle,
+    /// A self-excited cycle on a moving belt that never sticks.
+    PureSlipCycle,
+    /// Steady sliding on a moving belt: the equilibrium y' = 0, y = sgn(vb)·μ(|vb|).
+    SteadySliding,
 }
 
 impl MotionClass {
     /// All classes, in the order used for legends and colours. The index of a class here is
     /// its code in the Python package's `motion` arrays, so a new class is always added last.
-    pub const ALL: [MotionClass; 5] = [
+    pub const ALL: [MotionClass; 8] = [
         MotionClass::Sliding,
         MotionClass::PeriodicStick,
         MotionClass::NonperiodicStick,
         MotionClass::Static,
         MotionClass::Chaotic,
+        MotionClass::StickSlipCycle,
+        MotionClass::PureSlipCycle,
+        MotionClass::SteadySliding,
     ];
 
     /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `nonperiodic-stick`,
-    /// `static`, `chaotic`.
+    /// `static`, `chaotic`, `stick-slip-cycle`, `pure-slip-cycle`, `steady-sliding`.
     pub fn label(self) -> &'static str {
         match self {
             MotionClass::Sliding => "sliding",
@@ -56,8 +66,21 @@ impl MotionClass {
             MotionClass::NonperiodicStick => "nonperiodic-stick",
             MotionClass::Static => "static",
             MotionClass::Chaotic => "chaotic",
+            MotionClass::StickSlipCycle => "stick-slip-cycle",
+            MotionClass::PureSlipCycle => "pure-slip-cycle",
+            MotionClass::SteadySliding => "steady-sliding",
         }
     }
+
+    /// The classes of the paper's driven oscillator (and chaos): those a map of a driven
+    /// motion can show, in [`MotionClass::ALL`]'s order.
+    pub const DRIVEN: [MotionClass; 5] = [
+        MotionClass::Sliding,
+        MotionClass::PeriodicStick,
+        MotionClass::NonperiodicStick,
+        MotionClass::Static,
+        MotionClass::Chaotic,
+    ];
 
     /// The class with this label.
     pub fn from_label(label: &str) -> Option<Self> {
@@ -175,7 +198,10 @@ mod tests {
                 "periodic-stick",
                 "nonperiodic-stick",
                 "static",
-                "chaotic"
+                "chaotic",
+                "stick-slip-cycle",
+                "pure-slip-cycle",
+                "steady-sliding"
             ]
         );
     }

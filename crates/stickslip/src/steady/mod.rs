@@ -20,8 +20,10 @@
 mod classify;
 mod cycle;
 mod exponent;
+mod extremes;
 pub mod options;
 mod report;
+pub mod self_excited;
 mod spectrum;
 mod state;
 
@@ -34,6 +36,7 @@ pub use exponent::{
     SEARCH_BEFORE_MEASURING,
 };
 pub use options::SteadyOptions;
+pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
 pub use report::SteadyReport;
 pub use spectrum::{Harmonic, Spectrum};
 pub use state::SteadyState;
@@ -81,5 +84,10 @@ where
 pub fn exact_solver(params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
+    if !params.law.is_coulomb() {
+        return Err(crate::Error::Unsupported(
+            crate::Unsupported::SmoothFrictionLaw,
+        ));
+    }
     Ok(Box::new(ExactSolver::new(params, initial)))
 }
