@@ -1,13 +1,15 @@
 //! The property of the measurement readers that the fuzz target `scope_csv` and the property
-//! test in `crates/stickslip/tests/fit.rs` both check (included by both): any text is read as
-//! a scope export and as an amplitude table without a panic; a refusal is one line naming the
+//! test in `crates/stickslip/tests/fit.rs` both check (included by both): any bytes are
+//! decoded (UTF-8, UTF-16, Windows-1252) or refused, and any text is read as a scope export
+//! and as an amplitude table (fields separated by commas, semicolons or tabs, decimal
+//! points or commas) without a panic; a refusal is one line naming the
 //! file; a record that is read has strictly increasing finite times, channels as long as the
 //! times, a positive resolution and a clipping mask of every sample; a record prepared for
 //! fitting has a positive finite drive frequency and at least one whole period.
 
 #![allow(dead_code)]
 
-use stickslip::measure::{read_amplitudes, read_scope, Measurement, Record};
+use stickslip::measure::{decode, read_amplitudes, read_scope, Measurement, Record};
 
 fn refusal(message: String) {
     assert!(!message.contains('\n'), "two lines: {message:?}");
@@ -15,6 +17,14 @@ fn refusal(message: String) {
         message.starts_with("fuzz.csv"),
         "the file is not named: {message}"
     );
+}
+
+/// Check the bytes of one file: decoded, then read; or refused in one line naming the file.
+pub fn check_bytes(bytes: &[u8]) {
+    match decode(bytes, "fuzz.csv") {
+        Ok(text) => check(&text),
+        Err(e) => refusal(e.to_string()),
+    }
 }
 
 /// Check one text.

@@ -1,4 +1,4 @@
-//! The measurement readers on any text: `read_scope`, `Measurement::new` and
+//! The measurement readers on any bytes: `decode`, then `read_scope`, `Measurement::new` and
 //! `read_amplitudes`.
 #![no_main]
 
@@ -6,7 +6,5 @@
 mod case;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    if let Ok(text) = std::str::from_utf8(data) {
-        case::check(text);
-    }
+    case::check_bytes(data);
 });

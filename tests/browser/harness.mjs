@@ -8,6 +8,15 @@ import { fileURLToPath } from 'node:url';
 
 export const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..');
 export const BINARY = process.env.STICKSLIP_BIN || join(ROOT, 'target', 'release', 'stickslip');
+// The lab with the browser tests' hook (a request held until the next one to its path
+// arrives): the example crates/stickslip-cli/examples/lab_hold.rs, which `stickslip lab` has
+// no way to become.
+export const HOLDING_BINARY = process.env.STICKSLIP_LAB_HOLD || join(ROOT, 'target', 'release', 'examples', 'lab_hold');
+/** The lab's time limit in the tests: far longer than any computation of theirs on a loaded
+ * machine, so that no answer depends on the load (the limit itself is tested in Rust). */
+export const TIME_LIMIT = '600';
+/** How long a test waits for the page (a bound on a hang, not on the machine's speed). */
+export const PATIENCE = 600000;
 export const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 export const CHROMIUM_FLAGS = [
   '--headless',
@@ -22,6 +31,9 @@ export function requireTools() {
   if (!existsSync(BINARY)) {
     throw new Error(`the stickslip binary is missing at ${BINARY} (build it: cargo build --release -p stickslip-cli)`);
   }
+  if (!existsSync(HOLDING_BINARY)) {
+    throw new Error(`the lab_hold example is missing at ${HOLDING_BINARY} (build it: cargo build --release -p stickslip-cli --example lab_hold)`);
+  }
   if (!existsSync(CHROMIUM)) {
     throw new Error(`Chromium is missing at ${CHROMIUM} (install it: apt-get install -y chromium)`);
   }
@@ -32,16 +44,19 @@ export function stickslip(args) {
   return execFileSync(BINARY, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] });
 }
 
-/** Start `stickslip lab --port 0`; resolves to { url, stop() } once it prints its address. */
-export function startLab(extra = []) {
+/** Start `stickslip lab --port 0 --time-limit 600` (or, with `hold: [path, query]`, the
+ * lab_hold example holding those requests); resolves to { url, stop() } once it prints its
+ * address. */
+export function startLab(extra = [], { hold = null } = {}) {
   return new Promise((resolvePromise, reject) => {
-    const child = spawn(BINARY, ['lab', '--port', '0', ...extra], { stdio: ['ignore', 'pipe', 'pipe'] });
+    const args = hold ? [...hold, '--time-limit', TIME_LIMIT] : ['lab', '--port', '0', '--time-limit', TIME_LIMIT, ...extra];
+    const child = spawn(hold ? HOLDING_BINARY : BINARY, args, { stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
     let err = '';
     const timer = setTimeout(() => {
       child.kill('SIGKILL');
-      reject(new Error(`stickslip lab printed no address within 20 s; stderr: ${err}`));
-    }, 20000);
+      reject(new Error(`stickslip lab printed no address within ${PATIENCE / 1000} s; stderr: ${err}`));
+    }, PATIENCE);
     child.stdout.on('data', (chunk) => {
       out += chunk;
       const match = out.match(/http:\/\/\S+/);

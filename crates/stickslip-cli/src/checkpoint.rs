@@ -29,7 +29,7 @@ pub struct CheckpointFlags {
     /// it belongs to other parameters or is damaged, and removed once the output is written.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
-    #[arg(long = "checkpoint-every", help = help(OptionKey::CheckpointEvery), default_value_t = num(OptionKey::CheckpointEvery), value_name = "SECONDS", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::CheckpointEvery.flag(), help = help(OptionKey::CheckpointEvery), default_value_t = num(OptionKey::CheckpointEvery), value_name = "SECONDS", value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub every: f64,
 }
 

@@ -328,7 +328,7 @@ const MARKER_COLORS: [RGBColor; 8] = [
     RGBColor(110, 70, 30),
     RGBColor(200, 60, 140),
 ];
-const UNSETTLED: RGBColor = RGBColor(190, 190, 190);
+const UNDECIDED: RGBColor = RGBColor(190, 190, 190);
 
 /// A one-line description of an attractor for legends: number, kind, period, share.
 pub fn attractor_label(a: &stickslip::basins::Attractor) -> String {
@@ -340,7 +340,7 @@ pub fn attractor_label(a: &stickslip::basins::Attractor) -> String {
     format!("#{} {what}, {:.1} %", a.id, 100.0 * a.fraction)
 }
 
-/// A basin map: every cell in the colour of its attractor (grey: unsettled), and the
+/// A basin map: every cell in the colour of its attractor (grey: undecided), and the
 /// attractors' strobe points on top (the p points of a periodic orbit as circles, the strobe
 /// set of chaos as dots).
 pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
@@ -362,7 +362,7 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
             Cell {
                 x: (y - hy, y + hy),
                 y: (v - hv, v + hv),
-                color: a.map_or(UNSETTLED, |i| BASIN_COLORS[i % BASIN_COLORS.len()]),
+                color: a.map_or(UNDECIDED, |i| BASIN_COLORS[i % BASIN_COLORS.len()]),
             }
         })
         .collect();
@@ -371,13 +371,13 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
         .iter()
         .map(|a| (attractor_label(a), BASIN_COLORS[a.id % BASIN_COLORS.len()]))
         .collect();
-    if map.unsettled > 0 {
+    if map.undecided > 0 {
         cell_legend.push((
             format!(
-                "unsettled, {:.1} %",
-                100.0 * map.unsettled as f64 / map.cells.len() as f64
+                "undecided, {:.1} %",
+                100.0 * map.undecided as f64 / map.cells.len() as f64
             ),
-            UNSETTLED,
+            UNDECIDED,
         ));
     }
     let (y_range, v_range) = (
@@ -402,11 +402,8 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
             _ => Style::Dots(2),
         };
         if !points.is_empty() {
-            let label = if series.is_empty() {
-                "the attractors at the strobe"
-            } else {
-                ""
-            };
+            // One entry per attractor, in its marker's colour.
+            let label = format!("#{} at the strobe", a.id);
             series.push(Series::new(label, points, color, style));
         }
     }
@@ -420,6 +417,8 @@ pub fn basin_panel(map: &BasinMap, title: &str) -> Panel {
         x_range: Some(y_range),
         y_range: Some(v_range),
         legend: Some(Legend::UpperRight),
+        // A phase plane: y and y' on one scale.
+        equal_aspect: true,
         ..Default::default()
     }
 }

@@ -5,7 +5,6 @@
 use crate::model::{flag, ModelArgs};
 use crate::output::{usage, UsageError};
 use anyhow::Result;
-use stickslip::experiment::Key;
 use stickslip::scan::ParameterRange;
 use stickslip::stability::LyapunovOptions;
 use stickslip::steady::SteadyOptions;
@@ -17,13 +16,13 @@ use stickslip::{Experiment, OptionKey, Parameter};
 pub struct SteadyFlags {
     #[arg(long, help = help(OptionKey::Tolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     pub tolerance: Option<f64>,
-    #[arg(long = "max-periods", help = help(OptionKey::MaxPeriods), default_value_t = int(OptionKey::MaxPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxPeriods.flag(), help = help(OptionKey::MaxPeriods), default_value_t = int(OptionKey::MaxPeriods) as _, allow_hyphen_values = true)]
     pub max_periods: i64,
-    #[arg(long = "max-period", help = help(OptionKey::MaxPeriod), default_value_t = int(OptionKey::MaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxPeriod.flag(), help = help(OptionKey::MaxPeriod), default_value_t = int(OptionKey::MaxPeriod) as _, allow_hyphen_values = true)]
     pub max_period: i64,
-    #[arg(long = "no-extrapolation", help = help(OptionKey::Accelerate))]
+    #[arg(long = OptionKey::Accelerate.flag(), help = help(OptionKey::Accelerate))]
     pub no_extrapolation: bool,
-    #[arg(long = "lyapunov-periods", help = help(OptionKey::LyapunovPeriods), default_value_t = int(OptionKey::LyapunovPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::LyapunovPeriods.flag(), help = help(OptionKey::LyapunovPeriods), default_value_t = int(OptionKey::LyapunovPeriods) as _, allow_hyphen_values = true)]
     pub lyapunov_periods: i64,
 }
 
@@ -100,15 +99,6 @@ pub fn count(option: OptionKey, value: i64) -> Result<usize> {
 /// [`stickslip::Error::InvalidOption`], which the tool renders with the flag's name.
 pub fn number(option: OptionKey, value: f64) -> Result<f64> {
     Ok(option.check(value)?)
-}
-
-/// A value of `key` given to a flag of its own (an end of a range of w, say), checked
-/// against the key's range in the library's table and named by that flag.
-pub fn key_value(key: Key, flag: &str, value: f64) -> Result<f64> {
-    key.check(value).map_err(|_| {
-        let value = stickslip::Number(value);
-        UsageError(format!("invalid --{flag} {value}: {}", key.allowed())).into()
-    })
 }
 
 /// A range of `name` given by flags `--{from_flag}`, `--{to_flag}` and the count `steps` of

@@ -91,6 +91,19 @@ fn no_legend_of_the_report_hides_data() {
             "beyond-branch.png",
         ],
     );
+    // The basin map is a phase plane, y0 and y0' over the same range: a square plotting area.
+    let basins: Vec<_> = placements(dir.path())
+        .into_iter()
+        .filter(|(file, _)| file.starts_with("beyond-basins"))
+        .collect();
+    assert!(!basins.is_empty());
+    for (file, p) in basins {
+        let (w, h) = (p.plot.2 - p.plot.0, p.plot.3 - p.plot.1);
+        assert!(
+            (w - h).abs() <= 2,
+            "{file}: a plotting area of {w} × {h} px"
+        );
+    }
 }
 
 #[test]

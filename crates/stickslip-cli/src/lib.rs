@@ -127,27 +127,16 @@ fn describe(err: &anyhow::Error) -> (String, bool) {
                     | Error::Unsupported(_)
             )
         });
-    // An option names its flag (`invalid --max-period 65: must be from 1 to 64`).
-    if let Some(e @ (Error::InvalidOption { .. } | Error::OptionProduct { .. })) = library {
-        return (e.render(stickslip::Spelling::Flag), true);
-    }
-    if let Some(Error::Spec(spec)) = library {
-        return (spec.render(&model::flag), true);
-    }
-    if let Some(Error::ImageOutOfRange {
-        key,
-        value,
-        image,
-        image_value,
-        allowed,
-    }) = library
+    // An option or a key names its flag (`invalid --max-period 65: must be from 1 to 64`,
+    // `invalid --freq 1e9: it gives w = …`), in the library's words.
+    if let Some(
+        e @ (Error::InvalidOption { .. }
+        | Error::OptionProduct { .. }
+        | Error::Spec(_)
+        | Error::ImageOutOfRange { .. }),
+    ) = library
     {
-        let flag = model::flag(*key);
-        let (value, image_value) = (stickslip::Number(*value), stickslip::Number(*image_value));
-        return (
-            format!("invalid {flag} {value}: it gives {image} = {image_value}, which {allowed}"),
-            true,
-        );
+        return (e.render(stickslip::Spelling::Flag), true);
     }
     // The chain of causes joined.
     let message = err

@@ -12,7 +12,7 @@ use plotters::style::RGBColor;
 use rayon::prelude::*;
 use std::f64::consts::TAU;
 use stickslip::experiment::{DiodeModel, Experiment};
-use stickslip::fit::{FitParameter, FitReport, FittedParameter, RecordFit};
+use stickslip::fit::{FitReport, FittedParameter, RecordFit};
 use stickslip::measure::{AmplitudeTable, Direction, Measurement};
 use stickslip::params::State;
 use stickslip::scan::grid_value;
@@ -38,25 +38,6 @@ fn model_color(k: usize) -> RGBColor {
     }
 }
 
-/// The symbol and unit of a fit parameter, for figures.
-fn symbol(p: FitParameter) -> (&'static str, &'static str) {
-    match p {
-        FitParameter::Resistance => ("R", "Ω"),
-        FitParameter::Ut => ("U_t", "V"),
-        FitParameter::Rd => ("R_D", "Ω"),
-        FitParameter::DiodeIs => ("I_s", "A"),
-        FitParameter::DiodeN => ("n", ""),
-        FitParameter::DiodeRs => ("R_s", "Ω"),
-        FitParameter::Inductance => ("L", "H"),
-        FitParameter::Capacitance => ("C", "F"),
-        FitParameter::MuS => ("μs", ""),
-        FitParameter::Damping => ("γ", "kg/s"),
-        FitParameter::Friction => ("F0", "N"),
-        FitParameter::Mass => ("m", "kg"),
-        FitParameter::Stiffness => ("k", "N/m"),
-    }
-}
-
 /// `value ± error` with the error to two significant digits and the value to the same
 /// decimal place; one power of ten for both outside 10⁻³ … 10⁵ ("(4.18 ± 0.80)e-9").
 pub fn plus_minus(value: f64, error: f64) -> String {
@@ -79,14 +60,13 @@ pub fn plus_minus(value: f64, error: f64) -> String {
     }
 }
 
-/// A fitted parameter as text: `R = 80.1 ± 0.3 Ω`.
+/// A fitted parameter as text, with its key's symbol and unit: `R = 80.1 ± 0.3 Ω`.
 pub fn parameter_text(p: &FittedParameter) -> String {
-    let (name, unit) = symbol(p.parameter);
-    let text = format!("{name} = {}", plus_minus(p.value, p.stderr));
-    if unit.is_empty() {
-        text
-    } else {
-        format!("{text} {unit}")
+    let key = p.parameter.key();
+    let text = format!("{} = {}", key.symbol(), plus_minus(p.value, p.stderr));
+    match key.shown_unit() {
+        Some(unit) => format!("{text} {unit}"),
+        None => text,
     }
 }
 
@@ -578,7 +558,7 @@ pub(crate) mod synthetic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use stickslip::fit::{fit_records, fit_table, FitOptions};
+    use stickslip::fit::{fit_records, fit_table, FitOptions, FitParameter};
     use stickslip::measure::{read_amplitudes, read_scope};
 
     #[test]

@@ -11,7 +11,9 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset};
+use stickslip::friction::FrictionLawKind;
 use stickslip::units::NumberError;
+use stickslip::Spelling;
 
 /// The id and flag of the config file (a file of keys, not a key).
 const CONFIG: &str = "config";
@@ -27,6 +29,8 @@ pub struct ModelArgs {
     pub preset: Option<Preset>,
     /// `--model`: the diode law.
     pub diode: Option<DiodeModel>,
+    /// `--friction-law`: the friction law of a block on a belt.
+    pub law: Option<FrictionLawKind>,
     /// `--config`: a TOML experiment file.
     pub config: Option<PathBuf>,
 }
@@ -42,15 +46,6 @@ pub fn finite(text: &str) -> Result<f64, NumberError> {
     stickslip::units::parse_plain(text)
 }
 
-/// Read the text of a number flag of `key`: a plain number or one with an SI prefix and the
-/// key's unit, as the key is written ([`Key::number`], [`Key::check_unit`]). Its range is
-/// checked when the flags become a description, where the message names the flag and the
-/// library's range.
-fn number(key: Key, text: &str) -> Result<f64, NumberError> {
-    key.check_unit(text)?;
-    key.number(text)
-}
-
 /// The flag of a number key.
 fn number_arg(key: Key) -> Arg {
     Arg::new(key.flag())
@@ -61,7 +56,9 @@ fn number_arg(key: Key) -> Arg {
         .help_heading(key.heading())
         .allow_hyphen_values(true)
         .action(ArgAction::Set)
-        .value_parser(move |text: &str| number(key, text))
+        // The library reads the text ([`Key::read`]: a plain number or one with an SI prefix
+        // and the key's unit); its range is checked when the flags become a description.
+        .value_parser(move |text: &str| key.read(text))
 }
 
 /// The flag of a key that takes a name (`--preset`, `--model`).
@@ -76,6 +73,7 @@ fn choice_arg(key: Key) -> Arg {
     match key {
         Key::Preset => arg.value_parser(choice::<Preset>()),
         Key::Diode => arg.value_parser(choice::<DiodeModel>()),
+        Key::FrictionLaw => arg.value_parser(choice::<FrictionLawKind>()),
         other => unreachable!("{other} is not a key of names"),
     }
 }
@@ -155,6 +153,9 @@ impl clap::FromArgMatches for ModelArgs {
         if let Some(&diode) = matches.get_one::<DiodeModel>(Key::Diode.flag()) {
             self.diode = Some(diode);
         }
+        if let Some(&law) = matches.get_one::<FrictionLawKind>(Key::FrictionLaw.flag()) {
+            self.law = Some(law);
+        }
         if let Some(path) = matches.get_one::<PathBuf>(CONFIG) {
             self.config = Some(path.clone());
         }
@@ -186,6 +187,7 @@ impl ModelArgs {
         match key {
             Key::Preset => self.preset.is_some(),
             Key::Diode => self.diode.is_some(),
+            Key::FrictionLaw => self.law.is_some(),
             _ => self.values.contains_key(&key),
         }
     }
@@ -203,13 +205,8 @@ impl ModelArgs {
         };
         let mut flags = ExperimentSpec::new();
         for (&key, &value) in &self.values {
-            if let Err(stickslip::Error::InvalidParameter { allowed, .. }) = flags.set(key, value) {
-                return Err(UsageError(format!(
-                    "invalid {} {}: {allowed}",
-                    flag(key),
-                    stickslip::Number(value)
-                ))
-                .into());
+            if let Err(e) = flags.set(key, value) {
+                return Err(UsageError(e.render(Spelling::Flag)).into());
             }
         }
         if let Some(preset) = self.preset {
@@ -217,6 +214,9 @@ impl ModelArgs {
         }
         if let Some(diode) = self.diode {
             flags.set_diode(diode);
+        }
+        if let Some(law) = self.law {
+            flags.set_law(law);
         }
         Ok(file.overlay(&flags))
     }
@@ -283,7 +283,7 @@ mod tests {
                 for text in ["1k", "0.25", "2e-3", "-1", "abc", "20nF", "9.97kHz", "inf"] {
                     let clap =
                         Flags::try_parse_from(["stickslip", &format!("--{spelling}={text}")]);
-                    let library = number(key, text).ok();
+                    let library = key.read(text).ok();
                     assert_eq!(
                         clap.as_ref()
                             .ok()

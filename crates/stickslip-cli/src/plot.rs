@@ -6,6 +6,7 @@ use anyhow::{Context, Result};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 use std::sync::Once;
 
@@ -202,6 +203,9 @@ pub struct Panel {
     pub x_log: bool,
     /// A logarithmic y axis (points with y ≤ 0 are left out).
     pub y_log: bool,
+    /// One unit of x as long as one unit of y (a phase plane): the plotting area shrinks
+    /// along its longer side. Linear axes only.
+    pub equal_aspect: bool,
 }
 
 /// The scale of cells coloured by a signed value, drawn as a bar beside the chart: white at
@@ -219,7 +223,9 @@ pub struct ColorBar {
 impl ColorBar {
     /// A bar for `values`: from the 2nd percentile of the negative ones (a long tail of
     /// strongly negative values is clipped to the end colour) to the largest; non-finite
-    /// values are left out. Always includes 0.
+    /// values are left out. Always includes 0, and always has both halves: without a
+    /// positive value its top is as far above 0 as its bottom is below, so that the bar shows
+    /// the colours a positive value would take (a map without red then says "none positive").
     pub fn for_values(label: &str, values: &[f64]) -> Self {
         let mut negative: Vec<f64> = values
             .iter()
@@ -235,6 +241,8 @@ impl ColorBar {
             .fold(0.0f64, f64::max);
         let range = if lo == 0.0 && hi == 0.0 {
             (-1.0, 1.0)
+        } else if hi == 0.0 {
+            (lo, -lo)
         } else {
             (lo, hi)
         };
@@ -304,7 +312,7 @@ pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
     match class {
         MotionClass::Sliding => SLIDING,
         MotionClass::PeriodicStick => PALETTE[0],
-        MotionClass::NonperiodicStick => PALETTE[1],
+        MotionClass::Undecided => PALETTE[1],
         MotionClass::Static => PALETTE[2],
         MotionClass::Chaotic => CHAOTIC,
         MotionClass::StickSlipCycle => PALETTE[0],
@@ -656,8 +664,9 @@ fn split_for_bar<DB: DrawingBackend>(
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Draw the title of `panel` across the top of its whole `area` (colour bar and legend room
-/// included) and return the area below it. A title wider than the panel is set smaller
-/// rather than cut.
+/// included) and return the area below it. A title wider than the panel is set smaller,
+/// down to the size of the axes' text, and then wrapped onto more lines rather than cut or
+/// set in tiny type ([`title_lines`]).
 fn titled<DB: DrawingBackend>(
     panel: &Panel,
     area: &DrawingArea<DB, Shift>,
@@ -667,19 +676,58 @@ fn titled<DB: DrawingBackend>(
         return Ok(area.clone());
     }
     let width = area.dim_in_pixel().0.saturating_sub(16);
-    let mut title_font = font + 2;
-    while title_font > 10
-        && area
-            .estimate_text_size(
-                &panel.title,
-                &TextStyle::from((FAMILY, title_font).into_font()),
-            )
-            .is_ok_and(|s| s.0 > width)
-    {
-        title_font -= 1;
+    let measure = |text: &str, size: u32| {
+        area.estimate_text_size(text, &TextStyle::from((FAMILY, size).into_font()))
+            .map_or(u32::MAX, |s| s.0)
+    };
+    let (title_font, lines) = title_lines(&panel.title, width, font, measure);
+    if let [line] = lines.as_slice() {
+        return area
+            .titled(line, (FAMILY, title_font))
+            .map_err(|e| e.to_string());
     }
-    area.titled(&panel.title, (FAMILY, title_font))
-        .map_err(|e| e.to_string())
+    let style =
+        TextStyle::from((FAMILY, title_font).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    let line_height = title_font * 5 / 4;
+    let center = (area.dim_in_pixel().0 / 2) as i32;
+    for (k, line) in lines.iter().enumerate() {
+        area.draw_text(line, &style, (center, 4 + (k as u32 * line_height) as i32))
+            .map_err(|e| e.to_string())?;
+    }
+    let used = 4 + lines.len() as u32 * line_height + 4;
+    Ok(area.split_vertically(used).1)
+}
+
+/// The size and lines of a title `width` pixels wide at most, with `measure(text, size)` its
+/// width in pixels: one line at `font` + 2 down to `font` when it fits, else the words
+/// wrapped onto lines at `font` (a word wider than the panel alone on its line).
+fn title_lines(
+    title: &str,
+    width: u32,
+    font: u32,
+    measure: impl Fn(&str, u32) -> u32,
+) -> (u32, Vec<String>) {
+    for size in (font..=font + 2).rev() {
+        if measure(title, size) <= width {
+            return (size, vec![title.to_string()]);
+        }
+    }
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in title.split(' ') {
+        let candidate = if line.is_empty() {
+            word.to_string()
+        } else {
+            format!("{line} {word}")
+        };
+        if measure(&candidate, font) <= width || line.is_empty() {
+            line = candidate;
+        } else {
+            lines.push(std::mem::replace(&mut line, word.to_string()));
+        }
+    }
+    lines.push(line);
+    (font, lines)
 }
 
 /// The chart of `panel` on `area` (below its title), with `reserve` pixels kept free on the
@@ -691,15 +739,34 @@ fn build_chart<'a, DB: DrawingBackend>(
     reserve: u32,
 ) -> Result<Chart<'a, DB>, String> {
     let (xr, yr) = ranges(panel);
-    ChartBuilder::on(area)
-        .margin(8)
-        .margin_top(top_margin(font))
-        // Room for the last tick label, centred on the right edge (and for a legend).
-        .margin_right(font * 2 + reserve)
-        .x_label_area_size(font * 3)
-        .y_label_area_size(font * 4)
-        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-        .map_err(|e| e.to_string())
+    let build = |right: u32, bottom: u32| {
+        ChartBuilder::on(area)
+            .margin(8)
+            .margin_top(top_margin(font))
+            // Room for the last tick label, centred on the right edge (and for a legend).
+            .margin_right(font * 2 + reserve + right)
+            .margin_bottom(8 + bottom)
+            .x_label_area_size(font * 3)
+            .y_label_area_size(font * 4)
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+            .map_err(|e| e.to_string())
+    };
+    let chart = build(0, 0)?;
+    if !panel.equal_aspect || panel.x_log || panel.y_log {
+        return Ok(chart);
+    }
+    // As many pixels per unit on both axes: the longer side gives up its excess.
+    let (xs, ys) = chart.plotting_area().get_pixel_range();
+    let (w, h) = (f64::from(xs.end - xs.start), f64::from(ys.end - ys.start));
+    let (dx, dy) = ((xr.1 - xr.0).abs(), (yr.1 - yr.0).abs());
+    if !(w > 0.0 && h > 0.0 && dx > 0.0 && dy > 0.0) {
+        return Ok(chart);
+    }
+    let scale = (w / dx).min(h / dy);
+    build(
+        (w - scale * dx).round() as u32,
+        (h - scale * dy).round() as u32,
+    )
 }
 
 /// The plotting area of `chart`, in pixels of `area`.
@@ -1153,4 +1220,41 @@ where
         .draw()
         .map_err(|e| e.to_string())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bar_of_negative_values_still_shows_where_positive_ones_would_go() {
+        let bar = ColorBar::for_values("λ1", &[-0.5, -0.1, 0.0, f64::NAN]);
+        assert_eq!(bar.range, (-0.5, 0.5));
+        // A positive value takes a red, distinct from white, on this bar.
+        let RGBColor(r, g, b) = bar.color(0.25);
+        assert!(r > g && r > b, "{:?}", (r, g, b));
+        // With positive values, the top is the largest of them.
+        assert_eq!(
+            ColorBar::for_values("λ1", &[-0.5, 0.02]).range,
+            (-0.5, 0.02)
+        );
+    }
+
+    #[test]
+    fn a_long_title_wraps_instead_of_shrinking_below_the_axes_text() {
+        // Half the size per character, in pixels.
+        let measure = |text: &str, size: u32| text.chars().count() as u32 * size / 2;
+        let short = "fit: 9969.65 Hz";
+        assert_eq!(
+            title_lines(short, 400, 14, measure),
+            (16, vec![short.into()])
+        );
+        let long = "record a.csv: 9969.65 Hz, 1.4980 V · PWL: U_t = 0.70 V, R = 71.0 Ω · \
+                    Shockley: I_s = 2.5e-9 A, n = 1.75, R = 65.3 Ω";
+        let (size, lines) = title_lines(long, 400, 14, measure);
+        assert_eq!(size, 14, "never below the axes' text");
+        assert!(lines.len() > 1);
+        assert!(lines.iter().all(|l| measure(l, size) <= 400), "{lines:?}");
+        assert_eq!(lines.join(" "), long, "every word kept, in order");
+    }
 }

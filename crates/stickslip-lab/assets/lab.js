@@ -2,9 +2,9 @@
 // JSON API (docs/lab.md); these modules only ask, draw and export. No framework, no build:
 // the browser loads the ES modules of lab/ as they are. This one computes and wires the page.
 
-import { $, $$, field, num } from './lab/util.js';
+import { $, $$, field, num, FFT_MAX_HARMONICS } from './lab/util.js';
 import { api, slots, latest, isAbort } from './lab/api.js';
-import { state, statusEl, setStatus, clearErrors, showError, value, modelParams } from './lab/state.js';
+import { state, statusEl, setStatus, clearErrors, showError, value, modelParams, holdGenerator } from './lab/state.js';
 import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPreset, fillMapSizes, showSystem } from './lab/panels.js';
 import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap } from './lab/sweepmap.js';
@@ -56,6 +56,8 @@ export async function compute() {
   setStatus('computing', state.system === 'shockley' ? 'computing (stiff solver)…' : 'computing…');
   const steadyParams = new URLSearchParams(params);
   steadyParams.set('samples', '512');
+  // As many harmonics as any FFT span shows (the screen shows those on its span).
+  steadyParams.set('harmonics', String(FFT_MAX_HARMONICS));
   const jobs = [latest('steady', 'steady', steadyParams)];
   if (state.trigger === 'transient') jobs.push(latest('transient', 'simulate', transientParams(params)));
   let steady;
@@ -191,19 +193,22 @@ export function wire() {
   typed('phase', () => {});
   // The circuit's parts (a preset's, or the paper's until one is edited), the Shockley
   // diodes' parameters (the library's defaults until one is edited), the mechanical parts.
+  // A part changed: the generator stays where it is (Hz and V), w and β follow.
   for (const k of fieldsOf('pwl').filter(isPart)) {
     typed(k, () => {
       state.paperParts = false;
+      holdGenerator();
       field('preset-choice').value = 'custom';
     });
   }
   for (const k of fieldsOf('shockley').filter((f) => !isPart(f))) {
     typed(k, () => {
       state.shockleyEdited = true;
+      holdGenerator();
       field('preset-choice').value = 'custom';
     });
   }
-  for (const k of fieldsOf('mechanics')) typed(k, () => {});
+  for (const k of fieldsOf('mechanics')) typed(k, holdGenerator);
 
   // Knobs: every movement computes at once; a newer request drops the one before.
   field('freq-knob').addEventListener('input', (event) => {
@@ -229,6 +234,8 @@ export function wire() {
   field('system').addEventListener('change', (event) => {
     const before = state.system;
     state.system = event.target.value;
+    // Another kind of oscillator takes its preset (the generator with it); another diode law
+    // is another part: the generator stays.
     if (state.system === 'mechanics' && before !== 'mechanics') applyPreset('mechanics');
     else if (before === 'mechanics' && state.system !== 'mechanics') {
       const keepSystem = state.system;
@@ -236,7 +243,8 @@ export function wire() {
       state.system = keepSystem;
       field('system').value = keepSystem;
       showSystem();
-    }
+      if (keepSystem === 'shockley') holdGenerator();
+    } else holdGenerator();
     // A Fig. 3 point is the paper's PWL circuit: with Shockley diodes it is a custom point.
     field('preset-choice').value = state.system === 'mechanics' ? 'mechanics' : state.system === 'shockley' ? 'custom' : field('preset-choice').value;
     fillMapSizes();
@@ -292,13 +300,14 @@ export async function start() {
   try {
     [presets, keys] = await Promise.all([api('presets', ''), api('keys', '')]);
   } catch (e) {
-    setStatus('error', `cannot reach the lab server: ${e.message}`);
+    setStatus('error', e.message);
     return;
   }
   // The model's fields come from the key table: before anything below reads them.
   buildForm(keys);
   state.caps = keys.caps;
   state.stuckVelocity = keys.stuck_velocity;
+  state.staticGain = keys.static_gain;
   state.presets = presets.presets;
   state.shockley = presets.shockley;
   const select = field('preset-choice');

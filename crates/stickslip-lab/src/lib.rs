@@ -7,12 +7,14 @@
 //! - [`api`]: the endpoints' work, one file each (steady state, simulation, sweep, map,
 //!   theory, presets), and what they share (the answers' parts, the keys of several, the caps);
 //! - [`limit`]: the time limit and the stop of abandoned requests, inside the solvers;
-//! - [`fair`]: fair turns at the workers, one queue per client;
+//! - [`fair`]: fair turns at the workers, one queue per client, the clients of an address as one;
 //! - [`router`]: routes, assets, the `Host` check, worker threads;
-//! - [`serve`]: connections and their time limits.
+//! - [`serve`]: connections, their time limits and their number per address;
+//! - [`headers`]: the headers of every answer, and the answers written before routing.
 
 pub mod api;
 pub mod fair;
+pub mod headers;
 pub mod limit;
 pub mod query;
 pub mod router;
@@ -115,6 +117,29 @@ fn url_of(addr: SocketAddr) -> String {
 /// # Errors
 /// An [`InvalidSetting`] for a setting out of range; the port in use; the runtime.
 pub fn run(config: Config, stop: impl Fn() -> bool + Send + 'static) -> Result<()> {
+    serve_lab(config, None, stop)
+}
+
+/// [`run`] with the browser tests' hook: requests as `hold` says wait for the next request to
+/// their path ([`router::Hold`]). Only the browser tests' server (the `lab_hold` example of
+/// the command-line crate) calls this; `stickslip lab` calls [`run`], and has no flag or
+/// variable that holds a request.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_holding(
+    config: Config,
+    hold: router::Hold,
+    stop: impl Fn() -> bool + Send + 'static,
+) -> Result<()> {
+    serve_lab(config, Some(hold), stop)
+}
+
+fn serve_lab(
+    config: Config,
+    hold: Option<router::Hold>,
+    stop: impl Fn() -> bool + Send + 'static,
+) -> Result<()> {
     let args = config;
     let ip = host_address(&args.host)?;
     if let Err(e) = OptionKey::LabTimeLimit.check(args.time_limit) {
@@ -169,6 +194,7 @@ pub fn run(config: Config, stop: impl Fn() -> bool + Send + 'static) -> Result<(
         jobs,
         verbose: args.verbose,
         hosts,
+        hold,
     };
     if !ip.is_loopback() {
         eprintln!(

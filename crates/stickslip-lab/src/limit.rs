@@ -10,7 +10,7 @@
 //!
 //! [`Experiment::with_cancel`]: stickslip::experiment::Experiment::with_cancel
 
-use super::fair::{Fair, Turn, SLICE};
+use super::fair::{Client, Fair, Turn, SLICE};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::ThreadId;
@@ -37,7 +37,7 @@ pub struct Budget {
 /// A computation's turn, given back and taken again from the thread that runs it.
 struct Turns {
     fair: Arc<Fair>,
-    client: String,
+    client: Client,
     turn: Option<Turn>,
     since: Instant,
     thread: ThreadId,
@@ -94,7 +94,7 @@ impl Budget {
     pub fn take_turns(
         &self,
         fair: Arc<Fair>,
-        client: String,
+        client: Client,
         turn: Turn,
         runtime: tokio::runtime::Handle,
     ) {

@@ -8,10 +8,9 @@
 use axum::http::StatusCode;
 use std::collections::BTreeMap;
 use std::str::FromStr;
-use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, Preset, SpecError};
+use stickslip::experiment::{Experiment, ExperimentSpec, Key};
 use stickslip::names::NameError;
 use stickslip::options::{OptionKey, Spelling};
-use stickslip::units::NumberError;
 use stickslip::Error;
 
 /// Longest query string accepted, in bytes.
@@ -95,21 +94,25 @@ impl ApiError {
                     format!("the computation was stopped ({err}): ask for less (fewer points, steps or periods)"),
                 )
             }
-            Error::Spec(spec) => {
-                let field = spec_field(spec).map(api_name);
+            // A key's value or the description as a whole: in the library's words, the
+            // key spelled as the query spells it, its field marked.
+            Error::Spec(_)
+            | Error::ImageOutOfRange { .. }
+            | Error::InvalidText { .. }
+            | Error::InvalidName { .. }
+            | Error::InvalidParameter { .. }
+                if err.key().is_some() =>
+            {
                 Self {
-                    field,
-                    ..Self::bad(spec.render(&api_name))
+                    field: err.key().map(api_name),
+                    ..Self::bad(err.render(Spelling::Query))
                 }
             }
-            Error::ImageOutOfRange { key, .. } => Self {
-                field: Some(api_name(*key)),
-                ..Self::bad(err.to_string())
-            },
-            Error::InvalidParameter { .. }
+            Error::Spec(_)
+            | Error::InvalidParameter { .. }
             | Error::HorizonTooLong { .. }
             | Error::Config(_)
-            | Error::Unsupported(_) => Self::bad(err.to_string()),
+            | Error::Unsupported(_) => Self::bad(err.render(Spelling::Query)),
             _ => Self::status(StatusCode::INTERNAL_SERVER_ERROR, err.to_string()),
         }
     }
@@ -150,22 +153,20 @@ fn one_line(text: String) -> String {
     }
 }
 
-/// The key to blame for a description error, where there is one.
-fn spec_field(err: &SpecError) -> Option<Key> {
-    match *err {
-        SpecError::Missing { key, .. }
-        | SpecError::MissingDrive { key }
-        | SpecError::NeedsPhysical { key } => Some(key),
-        SpecError::Twice { second, .. } => Some(second),
-        SpecError::ZetaWithPhysical => Some(Key::Zeta),
-        SpecError::CircuitAndMechanics { mechanical } => Some(mechanical),
-        _ => None,
-    }
-}
-
 /// The query key of a model value: its flag in the library's key table ([`Key::flag`]).
 pub fn api_name(key: Key) -> String {
     key.flag().to_string()
+}
+
+/// The query keys of a circuit's parts, from the key table (`inductance, capacitance,
+/// resistance, ut, rd`).
+pub fn circuit_keys() -> String {
+    Key::ALL
+        .into_iter()
+        .filter(|k| k.is_circuit_part())
+        .map(api_name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A parsed query string: each key once.
@@ -314,69 +315,21 @@ impl Query {
         if self.values.contains_key("config") {
             return Err(ApiError::field(
                 "config",
-                "config: the lab reads no files; give the values as keys (inductance, \
-                 capacitance, resistance, ut, rd, freq, amplitude, ...)",
+                format!(
+                    "config: the lab reads no files; give the values as keys ({}, {}, {}, ...)",
+                    circuit_keys(),
+                    api_name(Key::Frequency),
+                    api_name(Key::Amplitude)
+                ),
             ));
         }
+        // The library reads each key's text (a number with its unit, a decimal comma, or a
+        // name); its error names the key, which marks the field.
         let mut spec = ExperimentSpec::new();
         for key in Key::ALL {
-            let name = api_name(key);
-            let Some(text) = self.take(&name) else {
-                continue;
-            };
-            let invalid = |allowed: Vec<&str>| {
-                ApiError::field(
-                    &name,
-                    format!(
-                        "invalid {name} '{}': one of {}",
-                        clip(text.trim()),
-                        allowed.join(", ")
-                    ),
-                )
-            };
-            match key {
-                Key::Preset => {
-                    let preset: Preset = text
-                        .trim()
-                        .parse()
-                        .map_err(|e: NameError| invalid(e.allowed))?;
-                    spec.set_preset(preset);
-                }
-                Key::Diode => {
-                    let diode: DiodeModel = text
-                        .trim()
-                        .parse()
-                        .map_err(|e: NameError| invalid(e.allowed))?;
-                    spec.set_diode(diode);
-                }
-                _ => {
-                    let value = key.parse(&text).map_err(|err| {
-                        let message = match err {
-                            Error::InvalidText {
-                                error: error @ NumberError::WrongUnit { .. },
-                                ..
-                            } => format!("invalid {name} {}: {error}", clip(&text)),
-                            Error::InvalidText { error, .. } => {
-                                format!("invalid value for {name}: {error}")
-                            }
-                            Error::InvalidParameter { allowed, .. } => {
-                                format!("invalid {name} {}: {allowed}", clip(&text))
-                            }
-                            other => other.to_string(),
-                        };
-                        ApiError::field(&name, message)
-                    })?;
-                    if let Err(err) = spec.set(key, value) {
-                        let allowed = match err {
-                            Error::InvalidParameter { allowed, .. } => allowed.to_string(),
-                            other => other.to_string(),
-                        };
-                        return Err(ApiError::field(
-                            &name,
-                            format!("invalid {name} {}: {allowed}", clip(&text)),
-                        ));
-                    }
-                }
+            if let Some(text) = self.take(&api_name(key)) {
+                spec.set_text(key, &text)
+                    .map_err(|e| ApiError::library(&e))?;
             }
         }
         spec.build().map_err(|e| ApiError::library(&e))
@@ -435,6 +388,7 @@ fn clip(text: &str) -> String {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    use stickslip::experiment::Preset;
 
     fn query(raw: &str) -> Query {
         Query::parse(Some(raw)).unwrap()

@@ -6,7 +6,8 @@
 //! browser read the lab's answers by renaming an address, "DNS rebinding").
 
 use super::api;
-use super::fair::{Fair, PER_CLIENT};
+use super::fair::{Client, Fair, PER_CLIENT};
+use super::headers::SECURITY_HEADERS;
 use super::limit::{AbandonOnDrop, Budget};
 use super::query::ApiError;
 use super::serve::Peer;
@@ -55,6 +56,50 @@ pub struct Settings {
     /// Host names and addresses a request's `Host` header may name (without port, lower
     /// case); `localhost` and the loopback addresses are always allowed.
     pub hosts: Vec<String>,
+    /// The test hook of the browser tests (see [`Hold`]); `stickslip lab` never sets it.
+    pub hold: Option<Hold>,
+}
+
+/// A test hook, for tests that must drop a request certainly still in flight (a browser test
+/// presses Sweep twice and expects the first request aborted, whatever the machine's load):
+/// a request to `path` whose query contains `query` waits, before it is computed, until the
+/// next request to `path` arrives (or its client goes away). Only the browser tests' server
+/// (the `lab_hold` example) sets it: `stickslip lab` has no flag or variable that does.
+#[derive(Debug, Clone)]
+pub struct Hold {
+    /// The path of the requests held (`/api/sweep`).
+    pub path: String,
+    /// What the query of a held request contains (`to=2&steps=40`).
+    pub query: String,
+    /// Woken by each request to `path`.
+    arrived: Arc<tokio::sync::Notify>,
+}
+
+impl Hold {
+    /// Hold the requests to `path` whose query contains `query`.
+    pub fn new(path: impl Into<String>, query: impl Into<String>) -> Self {
+        Self {
+            path: path.into(),
+            query: query.into(),
+            arrived: Arc::new(tokio::sync::Notify::new()),
+        }
+    }
+}
+
+/// The [`Hold`] hook: a matching request waits for the next request to its path.
+async fn hold(hold: Hold, request: Request, next: Next) -> Response {
+    if request.uri().path() == hold.path {
+        // The requests held before this one go on (no permit is kept for later ones).
+        hold.arrived.notify_waiters();
+        let held = request
+            .uri()
+            .query()
+            .is_some_and(|q| q.contains(&hold.query));
+        if held {
+            hold.arrived.notified().await;
+        }
+    }
+    next.run(request).await
 }
 
 /// The server's shared state.
@@ -65,14 +110,11 @@ pub struct Lab {
     active: Arc<AtomicUsize>,
 }
 
-/// The client a request comes from: the page's own id (the `x-lab-client` header) at the
-/// client's address, or else the connection.
-#[derive(Debug, Clone)]
-pub struct Client(pub String);
-
 /// Header by which the page names itself (random, one per open page).
 pub const CLIENT_HEADER: &str = "x-lab-client";
 
+/// The client a request comes from ([`Client`]): the page's own id (the `x-lab-client`
+/// header) at the request's address, or else its connection (`:port`) at that address.
 impl<S: Send + Sync> FromRequestParts<S> for Client {
     type Rejection = std::convert::Infallible;
 
@@ -86,12 +128,12 @@ impl<S: Send + Sync> FromRequestParts<S> for Client {
                 (1..=64).contains(&v.len())
                     && v.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-')
             });
-        Ok(Client(match (peer, id) {
-            (Some(peer), Some(id)) => format!("{} {id}", peer.ip()),
-            (Some(peer), None) => peer.to_string(),
-            (None, Some(id)) => id.to_string(),
-            (None, None) => "local".to_string(),
-        }))
+        Ok(match (peer, id) {
+            (Some(peer), Some(id)) => Client::new(peer.ip().to_string(), id),
+            (Some(peer), None) => Client::new(peer.ip().to_string(), format!(":{}", peer.port())),
+            (None, Some(id)) => Client::new("local", id),
+            (None, None) => Client::new("local", "local"),
+        })
     }
 }
 
@@ -111,6 +153,12 @@ impl Lab {
         self.active.load(Ordering::SeqCst)
     }
 
+    /// The turns' queues (what the tests look into).
+    #[cfg(test)]
+    pub fn fair(&self) -> &Arc<Fair> {
+        &self.fair
+    }
+
     /// Run `work` of `client` on a worker thread, in its turn, within a new budget, and
     /// answer with its JSON.
     async fn compute<T, F>(&self, client: Client, work: F) -> Response
@@ -118,7 +166,7 @@ impl Lab {
         T: Serialize + Send + 'static,
         F: FnOnce(&Arc<Budget>) -> Result<T, ApiError> + Send + 'static,
     {
-        let Some(slot) = self.fair.slot(&client.0) else {
+        let Some(slot) = self.fair.slot(&client) else {
             return ApiError::status(
                 StatusCode::TOO_MANY_REQUESTS,
                 format!(
@@ -132,7 +180,7 @@ impl Lab {
         // Dropped with this future when the client goes away: the computation then stops.
         let _abandon = AbandonOnDrop(budget.clone());
         let deadline = tokio::time::Instant::from_std(budget.deadline());
-        let turn = match tokio::time::timeout_at(deadline, self.fair.turn(&client.0)).await {
+        let turn = match tokio::time::timeout_at(deadline, self.fair.turn(&client)).await {
             Ok(turn) => turn,
             Err(_) => {
                 return ApiError::status(
@@ -154,7 +202,7 @@ impl Lab {
         let task = tokio::task::spawn_blocking(move || {
             let _slot = slot;
             let _count = Decrement(active);
-            task_budget.take_turns(fair, client.0, turn, runtime);
+            task_budget.take_turns(fair, client, turn, runtime);
             let answer = work(&task_budget);
             task_budget.end_turns();
             answer.and_then(|answer| {
@@ -227,7 +275,14 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/fit", post(fit))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
-        .with_state(lab)
+        .with_state(lab);
+    let router = match hosts.hold.clone() {
+        Some(held) => router.layer(axum::middleware::from_fn(move |request, next| {
+            hold(held.clone(), request, next)
+        })),
+        None => router,
+    };
+    let router = router
         .layer(axum::middleware::from_fn(move |request, next| {
             check_host(hosts.clone(), request, next)
         }))
@@ -238,18 +293,6 @@ pub fn router(lab: Lab) -> Router {
         router
     }
 }
-
-/// Headers on every answer: no sniffing, no referrer, and a page that loads only its own
-/// scripts (ES modules, same origin) and style (no CDN, no inline code).
-pub const SECURITY_HEADERS: [(&str, &str); 3] = [
-    ("x-content-type-options", "nosniff"),
-    ("referrer-policy", "no-referrer"),
-    (
-        "content-security-policy",
-        "default-src 'self'; img-src 'self' data: blob:; connect-src 'self'; \
-         object-src 'none'; base-uri 'none'; frame-ancestors 'none'",
-    ),
-];
 
 async fn security_headers(mut response: Response) -> Response {
     let h = response.headers_mut();
@@ -318,13 +361,15 @@ fn clip(text: &str, n: usize) -> String {
 struct Aborted {
     line: Option<String>,
     started: Instant,
+    peer: Option<std::net::SocketAddr>,
 }
 
 impl Drop for Aborted {
     fn drop(&mut self) {
         if let Some(line) = self.line.take() {
+            let who = self.peer.map_or(String::new(), |p| format!(" ({p})"));
             eprintln!(
-                "lab: {line} aborted after {:.1} ms: the client went away",
+                "lab: {line} aborted after {:.1} ms: the client{who} went away",
                 self.started.elapsed().as_secs_f64() * 1e3
             );
         }
@@ -332,13 +377,15 @@ impl Drop for Aborted {
 }
 
 /// One line per request: method, path (at most 80 characters), status, milliseconds; or
-/// `aborted` for a request whose client went away first.
+/// `aborted` for a request whose client went away first, with the client's address and port
+/// (logged before the line of the connection's end).
 async fn log(request: Request, next: Next) -> Response {
     let started = Instant::now();
     let line = format!("{} {}", request.method(), clip(request.uri().path(), 80));
     let mut aborted = Aborted {
         line: Some(line),
         started,
+        peer: request.extensions().get::<Peer>().map(|p| p.0),
     };
     let response = next.run(request).await;
     let line = aborted.line.take().unwrap_or_default();

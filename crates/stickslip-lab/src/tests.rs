@@ -2,6 +2,7 @@
 //! command-line tool's) for the same point; bad input, caps and unknown paths are refused
 //! with one line of JSON; the time limit stops a computation.
 
+mod connections;
 mod page_keys;
 
 use super::router::{router, Lab, Settings};
@@ -42,7 +43,21 @@ fn lab(time_limit: Duration) -> Lab {
         jobs: 2,
         verbose: false,
         hosts: vec!["192.0.2.7".into(), "lab.school.example".into()],
+        hold: None,
     })
+}
+
+/// Wait until `lab` runs `count` computations (polled). A stop takes one check of the
+/// solvers; the bound (600 s) is on a hang, not on the machine's load.
+async fn until_active(lab: &Lab, count: usize) -> bool {
+    let give_up = tokio::time::Instant::now() + Duration::from_secs(600);
+    while lab.active() != count {
+        if tokio::time::Instant::now() > give_up {
+            return false;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    true
 }
 
 /// GET `uri` from a fresh router; status, content type and body.
@@ -328,24 +343,29 @@ async fn sweep_and_map_equal_the_library() {
     .unwrap()
     .run(&())
     .unwrap();
-    let classes = answer["classes"].as_array().unwrap();
-    let class = answer["class"].as_array().unwrap();
-    assert_eq!(class.len(), 12);
-    // The library's map rows, column for column (`stickslip phase-diagram --json`), with
-    // `class` as indices into `classes`.
-    let rows = serde_json::to_value(MapReport::new(&map.points, false)).unwrap();
-    let rows = rows["points"].as_array().unwrap();
+    // The library's map report itself, key for key and row for row (the shape of
+    // `stickslip phase-diagram`'s CSV), beside the grid's axes.
+    let report = serde_json::to_value(MapReport::new(&map.points, false)).unwrap();
+    assert_eq!(report_part(&answer, &report), report);
+    let rows = answer["points"].as_array().unwrap();
     assert_eq!(rows.len(), 12);
     let nb = answer["beta"].as_array().unwrap().len();
     for (k, row) in rows.iter().enumerate() {
-        let label = &classes[class[k].as_u64().unwrap() as usize];
-        assert_eq!(label, &row["class"], "point {k}");
         assert_eq!(answer["w"][k / nb], row["w"], "point {k}");
         assert_eq!(answer["beta"][k % nb], row["beta"], "point {k}");
-        for name in ["period", "stops_per_cycle", "gain"] {
-            assert_eq!(answer[name][k], row[name], "{name} of point {k}");
-        }
-        assert_eq!(row.as_object().unwrap().len(), 6, "{row}");
+        let keys: Vec<&str> = row
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut columns = stickslip::report::MapRow::columns(false);
+        columns.sort_unstable();
+        assert_eq!(keys, columns, "{row}");
+    }
+    // No columns of its own beside the report's.
+    for old in ["classes", "class", "period", "stops_per_period", "gain"] {
+        assert!(answer.get(old).is_none(), "{old}");
     }
 }
 
@@ -533,6 +553,21 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
     assert_eq!(status, StatusCode::OK);
     assert_eq!(presets["presets"][5]["values"]["w"], 0.95);
     assert_eq!(presets["presets"][5]["values"]["beta"], 2.14);
+    // Issue 38, item 2: a preset's generator setting is the drive of the steady state its
+    // query asks for, in Hz and V (or N), to the bit; the paper's circuit alone has none.
+    assert!(presets["presets"][0]["drive"].is_null());
+    for (k, query) in [
+        (5, "preset=paper&w=0.95&beta=2.14"),
+        (
+            7,
+            "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1&w=0.95&beta=2.14",
+        ),
+    ] {
+        let (status, steady) = get(&format!("/api/steady?{query}")).await;
+        assert_eq!(status, StatusCode::OK, "{steady}");
+        assert_eq!(presets["presets"][k]["drive"], steady["drive"], "{query}");
+    }
+    assert_eq!(presets["presets"][7]["drive"]["unit"], "N");
     // The Shockley diodes' starting values are the 1N4148's, by query key.
     let d = stickslip::DiodePair::one_n4148();
     assert_eq!(
@@ -615,7 +650,31 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
         .collect();
     assert_eq!(fit.len(), stickslip::fit::FitParameter::CIRCUIT.len());
     assert!(fit.contains(&"rd") && fit.contains(&"diode-is") && !fit.contains(&"mass"));
-    assert_eq!(keys["fit"]["free"], serde_json::json!(["resistance", "ut"]));
+    // What a fit frees when nothing is ticked, by diode law: the library's default free
+    // sets, as `stickslip fit` and Python's `fit` free them (with Shockley diodes R, I_s and
+    // n, not U_t, which is no parameter of that law).
+    assert_eq!(
+        keys["fit"]["free"],
+        serde_json::json!({
+            "pwl": ["resistance", "ut"],
+            "shockley": ["resistance", "diode-is", "diode-n"],
+        })
+    );
+    for law in DiodeModel::ALL {
+        let expected: Vec<&str> =
+            stickslip::fit::FitParameter::defaults(stickslip::SystemKind::Circuit, law)
+                .iter()
+                .map(|p| p.label())
+                .collect();
+        assert_eq!(
+            keys["fit"]["free"][law.label()],
+            serde_json::json!(expected)
+        );
+        for name in expected {
+            let by_law = keys["fit"]["by_law"][law.label()].as_array().unwrap();
+            assert!(by_law.contains(&serde_json::json!(name)), "{law} {name}");
+        }
+    }
     // By diode law: the library's circuit parameters of that law, in the order of reports.
     for law in DiodeModel::ALL {
         let expected: Vec<&str> = stickslip::fit::FitParameter::CIRCUIT
@@ -653,6 +712,8 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
     assert_eq!(keys["keys"][Key::TurnOn as usize]["symbol"], "U_t");
     assert_eq!(keys["stuck_velocity"]["pwl"], 1e-9);
     assert_eq!(keys["stuck_velocity"]["shockley"], 1e-3);
+    // The library's rule for a static motion, which the page states beside the class.
+    assert_eq!(keys["static_gain"], stickslip::steady::STATIC_GAIN);
     refused("/api/keys?w=1", StatusCode::BAD_REQUEST, "takes no keys").await;
 }
 
@@ -668,15 +729,8 @@ async fn the_time_limit_stops_a_computation() {
     assert!(message.contains("time limit of 0.3 s"), "{message}");
     assert!(message.contains("of 1600 done"), "{message}");
     // The workers stopped too (the answer does not wait for them).
-    for _ in 0..500 {
-        if lab.active() == 0 {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
-    assert_eq!(
-        lab.active(),
-        0,
+    assert!(
+        until_active(&lab, 0).await,
         "the computation kept running after its time limit"
     );
 }
@@ -688,24 +742,12 @@ async fn a_dropped_request_stops_its_computation() {
     let uri = "/api/map?preset=paper&model=shockley&w-steps=40&beta-steps=40&w-min=0.1&w-max=0.6";
     let app = router(lab.clone());
     let request = tokio::spawn(app.oneshot(Request::get(uri).body(Body::empty()).unwrap()));
-    let wait_for = |count: usize| {
-        let lab = lab.clone();
-        async move {
-            for _ in 0..500 {
-                if lab.active() == count {
-                    return true;
-                }
-                tokio::time::sleep(Duration::from_millis(20)).await;
-            }
-            false
-        }
-    };
-    assert!(wait_for(1).await, "the computation did not start");
+    assert!(until_active(&lab, 1).await, "the computation did not start");
     // The client goes away: the server drops the request's future.
     request.abort();
     assert!(request.await.unwrap_err().is_cancelled());
     assert!(
-        wait_for(0).await,
+        until_active(&lab, 0).await,
         "the computation kept running after its client went away"
     );
 }
@@ -718,12 +760,11 @@ async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_it
     )
     .await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let classes = answer["classes"].as_array().unwrap();
-    let labels: Vec<&str> = answer["class"]
+    let labels: Vec<&str> = answer["points"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|k| classes[k.as_u64().unwrap() as usize].as_str().unwrap())
+        .map(|p| p["class"].as_str().unwrap())
         .collect();
     let e = Experiment::dimensionless(0.0, 0.325, 9.0)
         .unwrap()
@@ -740,22 +781,27 @@ async fn chaos_is_a_class_of_the_map_and_of_the_steady_state_with_a_colour_of_it
     assert_eq!(status, StatusCode::OK, "{answer}");
     let report = serde_json::to_value(SteadyReport::from(&e.steady().unwrap())).unwrap();
     assert_eq!(answer["class"], "chaotic");
-    for key in ["lambda_per_tau", "error_per_tau", "verdict"] {
+    for key in ["lambda1", "lambda1_error", "verdict"] {
         assert_eq!(answer[key], report[key], "{key}");
     }
-    // The page has a colour for every class the library can answer.
+    // The page has a colour for every class the library can answer, in the library's order
+    // (the map's legend lists the classes in the order of its colours).
     let (_, _, script) = get_with(&lab(Duration::from_secs(10)), "/lab/sweepmap.js").await;
     let script = String::from_utf8(script).unwrap();
     let colours = script
         .lines()
         .find(|l| l.contains("const CLASS_COLORS"))
         .expect("the class colours");
+    let mut at = 0;
     for class in stickslip::steady::MotionClass::ALL {
         let label = class.label();
-        assert!(
-            colours.contains(&format!("'{label}':")) || colours.contains(&format!(" {label}:")),
-            "no colour for {label} in {colours}"
-        );
+        let found = colours[at..]
+            .find(&format!("'{label}':"))
+            .or_else(|| colours[at..].find(&format!(" {label}:")));
+        let Some(k) = found else {
+            panic!("no colour for {label}, or not in the library's order, in {colours}")
+        };
+        at += k + label.len();
     }
 }
 
@@ -794,7 +840,12 @@ async fn every_bad_value_of_the_review_is_a_400_naming_its_key() {
         assert_eq!(body["field"], key, "{body}");
     }
     // A capacitance that makes ζ too large is the capacitance's fault when it was given.
-    let body = refused(&format!("/api/steady?{point}&capacitance=1e6"), bad, "C =").await;
+    let body = refused(
+        &format!("/api/steady?{point}&capacitance=1e6"),
+        bad,
+        "invalid capacitance 1000000: it gives zeta = ",
+    )
+    .await;
     assert_eq!(body["field"], "capacitance", "{body}");
     // The end of a range that is out of range is named, not the other end.
     let body = refused(
@@ -844,6 +895,97 @@ async fn every_bad_value_of_the_review_is_a_400_naming_its_key() {
         assert_eq!(status, StatusCode::OK, "{query}: {body}");
     }
 }
+
+/// Issue 38: absurd values blamed the wrong field or none (C = 1e308 on R, C = 1e-308 on the
+/// frequency; L, k or γ = 1e308 on no field), a map's β-max = 0 marked β-min, a sweep of
+/// 0 steps was told the library's range, not the lab's cap; and a decimal comma was refused.
+/// The library names the value at fault, and the lab marks its field.
+#[tokio::test]
+async fn absurd_values_mark_their_own_field_and_decimal_commas_are_read() {
+    let bad = StatusCode::BAD_REQUEST;
+    let point = "preset=paper&w=0.95&beta=2.14";
+    let physical = "preset=paper&freq=9.97k&amplitude=1.498";
+    let mechanics = "mass=0.5&stiffness=200&damping=0.94&friction=1&omega=19&amplitude=2.14";
+    for (base, key, value) in [
+        (point, "capacitance", "1e308"),
+        (physical, "capacitance", "1e308"),
+        (physical, "capacitance", "1e-308"),
+        (point, "inductance", "1e308"),
+        (physical, "inductance", "1e308"),
+        (physical, "inductance", "1e-308"),
+        (mechanics, "stiffness", "1e308"),
+        (mechanics, "damping", "1e308"),
+        (mechanics, "mass", "1e308"),
+        (mechanics, "stiffness", "1e-308"),
+    ] {
+        // The base with the key's value replaced (or added).
+        let query: Vec<String> = base
+            .split('&')
+            .filter(|kv| !kv.starts_with(&format!("{key}=")))
+            .map(String::from)
+            .chain([format!("{key}={value}")])
+            .collect();
+        let query = query.join("&");
+        for endpoint in ["steady", "simulate", "theory"] {
+            let uri = format!("/api/{endpoint}?{query}");
+            let body = refused(&uri, bad, &format!("invalid {key} {value}")).await;
+            assert_eq!(body["field"], key, "{uri}: {body}");
+        }
+    }
+    let body = refused(
+        "/api/map?preset=paper&beta-max=0",
+        bad,
+        "invalid beta-max 0: must not be below beta-min 0.5",
+    )
+    .await;
+    assert_eq!(body["field"], "beta-max");
+    let body = refused(
+        "/api/map?preset=paper&w-min=3",
+        bad,
+        "invalid w-max 2.5: must not be below w-min 3",
+    )
+    .await;
+    assert_eq!(body["field"], "w-max");
+    for (uri, key) in [
+        ("/api/sweep?preset=paper&beta=2.14&steps=0", "steps"),
+        ("/api/sweep?preset=paper&beta=2.14&steps=401", "steps"),
+    ] {
+        let body = refused(uri, bad, &format!("must be from 1 to {}", CAPS_SWEEP)).await;
+        assert_eq!(body["field"], key, "{uri}");
+    }
+    let body = refused(
+        "/api/map?preset=paper&w-steps=0",
+        bad,
+        "invalid w-steps 0: must be from 1 to 1000",
+    )
+    .await;
+    assert_eq!(body["field"], "w-steps");
+    // "9,97k": one comma and no point is a decimal comma, as the point would be.
+    let (status, comma) = get("/api/steady?preset=paper&freq=9,97k&amplitude=1,4980").await;
+    assert_eq!(status, StatusCode::OK, "{comma}");
+    let (_, point) = get(&format!("/api/steady?{physical}")).await;
+    assert_eq!(comma, point);
+    let (status, body) = get("/api/steady?preset=paper&w=0,95&beta=2,14").await;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    // A comma that may separate thousands is refused naming both readings.
+    let body = refused(
+        "/api/steady?preset=paper&freq=9,970&amplitude=1.498",
+        bad,
+        "'9,970' is ambiguous: 9.97 with a decimal comma, 9970 with a thousands separator",
+    )
+    .await;
+    assert_eq!(body["field"], "freq");
+    let body = refused(
+        "/api/steady?preset=paper&freq=9.97k&amplitude=1,498",
+        bad,
+        "write 1.498 or 1498",
+    )
+    .await;
+    assert_eq!(body["field"], "amplitude");
+}
+
+/// The lab's cap of a sweep's steps.
+const CAPS_SWEEP: usize = stickslip::limits::Caps::shared_server().sweep_steps;
 
 /// GET `uri` with a `Host` header; status and body.
 async fn get_host(host: &str, uri: &str) -> (StatusCode, Value) {
@@ -1214,7 +1356,15 @@ async fn bad_records_and_keys_are_400s_naming_the_field_and_line() {
     .await;
     // Empty and non-text bodies.
     post_refused(fit, "", bad, "no record", Some("record")).await;
-    post_refused(fit, vec![0xff, 0xfe, b'a'], bad, "not text", Some("record")).await;
+    post_refused(
+        fit,
+        vec![0xff, 0xfe, b'a'],
+        bad,
+        "not UTF-16 text",
+        Some("record"),
+    )
+    .await;
+    post_refused(fit, vec![b'X', 0, b'1'], bad, "byte 2 is 0", Some("record")).await;
     // The keys: free parameters, the drive (the record's), a mechanical oscillator, others.
     post_refused(
         "/api/fit?preset=paper&free=zeta",
@@ -1514,11 +1664,8 @@ async fn the_time_limit_stops_a_fit() {
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE, "{answer}");
     let message = answer["error"].as_str().unwrap();
     assert!(message.contains("time limit of 0.02 s"), "{message}");
-    for _ in 0..500 {
-        if lab.active() == 0 {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(20)).await;
-    }
-    assert_eq!(lab.active(), 0, "the fit kept running after its time limit");
+    assert!(
+        until_active(&lab, 0).await,
+        "the fit kept running after its time limit"
+    );
 }

@@ -456,9 +456,10 @@ pub fn orbit<'py>(
     .validate()
     .map_err(error)?;
     let report = run(py, progress.as_ref(), |monitor| {
-        let params = e.exact_params()?;
+        let params = e.params()?;
+        let dynamics = e.dynamics()?;
         let orbit = e.periodic_orbit(period, transient, &steady, &newton, monitor)?;
-        OrbitReport::new(&orbit, &params)
+        OrbitReport::of(&orbit, &params, dynamics.as_ref())
     })?;
     json_value(py, &report)
 }
@@ -493,9 +494,10 @@ pub fn lyapunov<'py>(
     .validate()
     .map_err(error)?;
     let report = run(py, progress.as_ref(), |monitor| {
-        let params = e.exact_params()?;
+        let params = e.params()?;
+        let dynamics = e.dynamics()?;
         let c = e.lyapunov(&options, monitor)?;
-        LyapunovReport::new(&c, &options, &params)
+        LyapunovReport::of(&c, &options, &params, dynamics.as_ref())
     })?;
     json_value(py, &report)
 }

@@ -15,7 +15,9 @@ use pyo3::types::PyDict;
 use stickslip::attractor::{AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMethod, BasinOptions, BasinReport, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
-use stickslip::continuation::{continue_orbit, settled_orbit, BranchReport, ContinuationOptions};
+use stickslip::continuation::{
+    continue_orbit_of, settled_orbit, BranchReport, ContinuationOptions,
+};
 use stickslip::options::OptionKey;
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 
@@ -192,7 +194,7 @@ pub fn basins<'py>(
         "kind",
         map.cells
             .iter()
-            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Unsettled, |a| a.kind)))
+            .map(|&k| kind_code(attractor(k).map_or(AttractorKind::Undecided, |a| a.kind)))
             .collect::<Vec<i8>>(),
     )?;
     put(
@@ -236,12 +238,22 @@ pub fn continuation<'py>(
     .with_max_step(max_step)
     .validate()
     .map_err(error)?;
+    stickslip::continuation::check_parameter(&e, parameter).map_err(error)?;
     let computed = run(py, progress.as_ref(), |monitor| {
         let (params, orbit) = settled_orbit(&e)?;
         if orbit.events.is_empty() {
             return Ok(None);
         }
-        let branch = continue_orbit(&params, parameter, &orbit, to, &options, monitor)?;
+        let dynamics = e.dynamics()?;
+        let branch = continue_orbit_of(
+            dynamics.as_ref(),
+            &params,
+            parameter,
+            &orbit,
+            to,
+            &options,
+            monitor,
+        )?;
         Ok(Some((branch, orbit)))
     })?;
     // As the command-line tool says it: rest is no branch, and what to do instead.

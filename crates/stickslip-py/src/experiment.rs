@@ -12,8 +12,6 @@ use std::path::PathBuf;
 use stickslip::experiment::{
     DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset, SpecError,
 };
-use stickslip::names::NameError;
-use stickslip::System;
 
 /// One experiment: a dimensionless model, a circuit with PWL or Shockley diodes, or a
 /// mechanical oscillator; a drive; the friction ratio μs; an initial state.
@@ -90,18 +88,14 @@ pub(crate) fn key_table(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     json_value(py, &Key::table())
 }
 
-/// The value `text` of the key `key` whose values are names (the diode law, the preset),
-/// read by the library's enum; a name it does not know is a `ValueError` naming the keyword
-/// `name` and what the key takes, in the words of the key's help: `invalid diode 'spice':
-/// must be 'pwl' (exact solver) or 'shockley' (stiff solver)`.
-fn choice<T: std::str::FromStr<Err = NameError>>(key: Key, name: &str, text: &str) -> PyResult<T> {
-    text.parse().map_err(|e: NameError| {
-        let words = key.help().split_once(": ").map_or_else(
-            || either(key.choices()),
-            |(_, words)| words.replace('`', "'"),
-        );
-        PyValueError::new_err(format!("invalid {name} '{}': must be {words}", e.text))
-    })
+/// The library's error as a `ValueError`; a name a key does not take (the diode law, the
+/// preset) named as the argument `name` that took it, in the words of the key's help:
+/// `invalid diode 'spice': must be 'pwl' (exact solver) or 'shockley' (stiff solver)`.
+fn text_error(e: stickslip::Error, name: &str) -> PyErr {
+    match e.render_name_for_python(name) {
+        Some(message) => PyValueError::new_err(message),
+        None => error(e),
+    }
 }
 
 /// Every keyword of a key (its name and the other names it takes), for messages.
@@ -137,20 +131,14 @@ fn put(
                 either(key.choices())
             ))
         })?;
-        match key {
-            Key::Diode => {
-                spec.set_diode(choice(key, name, &text)?);
-            }
-            Key::Preset => {
-                spec.set_preset(choice(key, name, &text)?);
-            }
-            _ => unreachable!("the keys whose values are names"),
-        }
+        spec.set_text(key, &text).map_err(|e| text_error(e, name))?;
         return Ok(());
     }
     let number =
         if let Ok(text) = value.cast::<PyString>() {
-            key.parse(&text.to_cow()?).map_err(error)?
+            spec.set_text(key, &text.to_cow()?)
+                .map_err(|e| text_error(e, name))?;
+            return Ok(());
         } else if value.is_instance_of::<pyo3::types::PyBool>() {
             return Err(PyTypeError::new_err(format!(
                 "{name} must be a number, not a bool"
@@ -207,7 +195,8 @@ fn from_layer(
 #[pyfunction]
 pub fn with_diode(experiment: PyRef<'_, PyExperiment>, model: &str) -> PyResult<PyExperiment> {
     let mut top = ExperimentSpec::new();
-    top.set_diode(choice(Key::Diode, "model", model)?);
+    top.set_text(Key::Diode, model)
+        .map_err(|e| text_error(e, "model"))?;
     PyExperiment::build(experiment.spec.overlay(&top))
 }
 
@@ -629,11 +618,7 @@ impl PyExperiment {
     /// 'dimensionless', 'circuit' or 'mechanics'.
     #[getter]
     fn system(&self) -> &'static str {
-        match self.experiment.system() {
-            None => "dimensionless",
-            Some(System::Circuit(_)) => "circuit",
-            Some(System::Mechanics(_)) => "mechanics",
-        }
+        self.experiment.system_kind().label()
     }
 
     /// One line: the description, its natural frequency and drive in physical units, and the

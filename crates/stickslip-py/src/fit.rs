@@ -11,7 +11,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::Path;
-use stickslip::experiment::Key;
 use stickslip::fit::{
     fit_per_record_monitored, fit_records_monitored, fit_table_monitored, FitMonitor, FitOptions,
     FitParameter, FitProgress, FitReport,
@@ -23,11 +22,11 @@ fn measure_error(e: MeasureError) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
-/// The text of the file `path`; a missing or binary file is a `ValueError` naming it.
+/// The text of the file `path` (UTF-8, UTF-16 or Windows-1252, see
+/// [`measure::decode`]); a missing, empty or binary file is a `ValueError` naming it.
 fn read_text(path: &str) -> PyResult<String> {
     match std::fs::read(Path::new(path)) {
-        Ok(bytes) => String::from_utf8(bytes)
-            .map_err(|_| PyValueError::new_err(format!("{path}: not a text file (UTF-8)"))),
+        Ok(bytes) => measure::decode(&bytes, path).map_err(measure_error),
         Err(e) => Err(PyValueError::new_err(format!("{path}: {e}"))),
     }
 }
@@ -175,10 +174,7 @@ fn report_dict<'py>(py: Python<'py>, report: &FitReport) -> PyResult<Bound<'py, 
     // The fitted values by the experiment's key names (`R`, `U_t`, ...), for `replace`.
     let keys = PyDict::new(py);
     for p in &report.parameters {
-        let key = Key::from_flag(p.parameter.label()).ok_or_else(|| {
-            PyValueError::new_err(format!("no experiment key for {}", p.parameter.label()))
-        })?;
-        keys.set_item(key.name(), p.value)?;
+        keys.set_item(p.parameter.key().name(), p.value)?;
     }
     out.set_item("keys", keys)?;
     let names: Vec<&str> = report
@@ -212,26 +208,15 @@ pub fn fit<'py>(
     per_record: bool,
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
-    // The default: a circuit's resistance and U_t, a mechanical oscillator's γ and F0.
-    let mechanics = matches!(
-        experiment.experiment().system(),
-        Some(stickslip::physical::System::Mechanics(_))
-    );
-    let free = free.unwrap_or_else(|| {
-        let names: &[&str] = if mechanics {
-            &["damping", "friction"]
-        } else {
-            &["resistance", "ut"]
-        };
-        names.iter().map(|n| n.to_string()).collect()
-    });
-    let mut parameters = Vec::new();
-    for name in &free {
-        let p: FitParameter = name
-            .parse()
-            .map_err(|e: stickslip::fit::FitError| PyValueError::new_err(e.to_string()))?;
-        parameters.push(p);
-    }
+    let fit_error = |e: stickslip::fit::FitError| PyValueError::new_err(e.to_string());
+    // The default: the library's free set of the system and diode law.
+    let parameters = match free {
+        Some(names) => names
+            .iter()
+            .map(|name| name.parse::<FitParameter>().map_err(fit_error))
+            .collect::<PyResult<Vec<_>>>()?,
+        None => FitParameter::defaults_of(experiment.experiment()).map_err(fit_error)?,
+    };
     let table = table.as_deref().map(read_table).transpose()?;
     let data = records
         .iter()

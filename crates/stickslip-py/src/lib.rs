@@ -21,6 +21,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stickslip::names::NameError;
 use stickslip::options::Spelling;
+use stickslip::report::{BasinsTable, BifurcationRow, BranchTable, MapRow, SweepRow};
 use stickslip::scan::SweepLeg;
 use stickslip::steady::MotionClass;
 use stickslip::Parameter;
@@ -101,6 +102,16 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }
     m.add("PHASE_LABELS", phases)?;
     m.add("SWEEP_LEGS", SweepLeg::ALL.map(|l| l.to_string()).to_vec())?;
+    // The library's report tables: their CSV columns and JSON fields, for the result types to
+    // build their columns and dicts from (`Table::columns()`).
+    m.add("MAP_COLUMNS", MapRow::COLUMNS.to_vec())?;
+    m.add("MAP_EXPONENT_COLUMNS", MapRow::EXPONENT_COLUMNS.to_vec())?;
+    m.add("SWEEP_COLUMNS", SweepRow::COLUMNS.to_vec())?;
+    m.add("SWEEP_FIELDS", SweepRow::FIELDS.to_vec())?;
+    m.add("BIFURCATION_COLUMNS", BifurcationRow::COLUMNS.to_vec())?;
+    m.add("BIFURCATION_FIELDS", BifurcationRow::FIELDS.to_vec())?;
+    m.add("BASIN_COLUMNS", BasinsTable::COLUMNS.to_vec())?;
+    m.add("BRANCH_COLUMNS", BranchTable::COLUMNS.to_vec())?;
     m.add("KEYS", experiment::key_table(py)?)?;
     m.add("OPTIONS", options::table(py)?)?;
     m.add_function(wrap_pyfunction!(options::check_option, m)?)?;

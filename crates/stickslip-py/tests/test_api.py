@@ -260,16 +260,16 @@ def test_maps_and_sweeps_of_a_circuit_carry_physical_units():
     assert ds["U_V"].values[0] == pytest.approx(0.7 * beta[0], rel=1e-12)
     assert ds.attrs["f0_Hz"] == scales["f0"]
     # ds.sel by physical value works through the coordinate.
-    assert ds.swap_dims({"w": "f_Hz"}).sel(f_Hz=ds["f_Hz"].values[1])["motion"].shape == (3,)
+    assert ds.swap_dims({"w": "f_Hz"}).sel(f_Hz=ds["f_Hz"].values[1])["motion_class"].shape == (3,)
 
     s = stickslip.sweep(e.replace(beta=2.0), "w", w)
     sd = s.to_xarray()
     np.testing.assert_allclose(sd["f_Hz"].values, w * scales["f0"], rtol=1e-15)
-    up = s.leg == "up"
-    np.testing.assert_allclose(sd["peak_V"].sel(leg="up").values,
+    up = s.direction == "up"
+    np.testing.assert_allclose(sd["peak_V"].sel(direction="up").values,
                                s.peak[up] * scales["position"], rtol=1e-15)
     assert sd["peak_V"].attrs["units"] == "V"
-    np.testing.assert_allclose(sd["U_V"].sel(leg="up").values, 2.0 * scales["force"] * np.ones(4),
+    np.testing.assert_allclose(sd["U_V"].sel(direction="up").values, 2.0 * scales["force"] * np.ones(4),
                                rtol=1e-15)
     # A bifurcation diagram of the circuit over w: Hz beside w.
     bd = stickslip.bifurcation(e.replace(beta=3.0), "w", [0.6, 0.7], direction="up", points=4,
@@ -290,9 +290,9 @@ def test_the_exponent_map_variable_is_an_attribute_name():
     m = stickslip.phase_diagram(Experiment(zeta=0.0, mu_s=3.0), w=[0.33], beta=[9.0],
                                 lyapunov=True, lyapunov_periods=200)
     ds = m.to_xarray()
-    assert np.array_equal(ds.lyapunov.values, m.lyapunov, equal_nan=True)
-    assert np.array_equal(ds.lyapunov_error.values, m.lyapunov_error, equal_nan=True)
-    assert "lambda" not in ds
+    assert np.array_equal(ds.lambda1.values, m.lambda1, equal_nan=True)
+    assert np.array_equal(ds.lambda1_error.values, m.lambda1_error, equal_nan=True)
+    assert "lambda" not in ds and "lyapunov" not in ds
 
 
 # --- The static rule -------------------------------------------------------------------------
@@ -301,18 +301,18 @@ def test_the_exponent_map_variable_is_an_attribute_name():
 def test_static_is_the_papers_amplitude_rule_and_the_stops_stand_beside_it():
     e = Experiment.paper(w=2.0, beta=1.1)
     s = stickslip.steady(e)
-    assert s.motion == "static" and s.stops_per_cycle == 2.0
+    assert s.motion_class == "static" and s.stops_per_period == 2.0
     assert (s.y_max - s.y_min) / 2 < s.beta / 100
     m = stickslip.phase_diagram(Experiment.paper(), w=[2.0], beta=[1.1])
-    assert m.motion_labels()[0, 0] == "static" and m.stops_per_cycle[0, 0] == 2.0
+    assert m.motion_class[0, 0] == "static" and m.stops_per_period[0, 0] == 2.0
     w = stickslip.sweep(Experiment.paper(beta=1.1), "w", [2.0], direction="up")
-    assert w.motion_labels()[0] == "static" and w.stops_per_cycle[0] == 2.0
+    assert w.motion_class[0] == "static" and w.stops_per_period[0] == 2.0
     # Every docstring of a function or result that returns a class says what static means.
     for documented in (stickslip.steady, stickslip.sweep, stickslip.phase_diagram,
                        stickslip.SteadyState, stickslip.SweepResult, stickslip.PhaseDiagram,
                        stickslip.PhaseDiagram.to_xarray, stickslip.SweepResult.to_xarray):
         text = " ".join((documented.__doc__ or "").split())
-        assert "the paper's" in text and "β/100" in text and "stops_per_cycle" in text, documented
+        assert "the paper's" in text and "β/100" in text and "stops_per_period" in text, documented
     for documented in (stickslip.dask.phase_diagram, stickslip.dask.sweep_grid):
         text = " ".join((documented.__doc__ or "").split())
-        assert "β/100" in text and "stops_per_cycle" in text, documented
+        assert "β/100" in text and "stops_per_period" in text, documented

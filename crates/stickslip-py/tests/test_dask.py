@@ -72,7 +72,7 @@ def assert_same_exponents(a: stickslip.PhaseDiagram, b: stickslip.PhaseDiagram) 
 def test_an_exponent_map_on_dask_threads_is_the_threaded_one(local_exponent_map):
     m = local_exponent_map
     # The window holds chaos and periodic orbits (exact exponents, error 0).
-    assert m.counts()["chaotic"] > 0 and np.any(m.lyapunov_error == 0), m.counts()
+    assert m.counts()["chaotic"] > 0 and np.any(m.lambda1_error == 0), m.counts()
     for chunks in [(5, 3), (12, 10), (1, 1)]:
         d = stickslip.dask.phase_diagram(Experiment(zeta=0, mu_s=3), lyapunov=True,
                                          chunks=chunks, w=EXPONENT_W, beta=EXPONENT_BETA)
@@ -80,7 +80,7 @@ def test_an_exponent_map_on_dask_threads_is_the_threaded_one(local_exponent_map)
     # Without lyapunov=True there are no exponents, as locally.
     plain = stickslip.dask.phase_diagram(Experiment(zeta=0, mu_s=3), chunks=(6, 5),
                                          w=EXPONENT_W, beta=EXPONENT_BETA)
-    assert plain.lyapunov is None and plain.lyapunov_error is None
+    assert plain.lambda1 is None and plain.lambda1_error is None
 
 
 def test_progress_counts_the_points_of_finished_blocks(local_cluster):
@@ -108,8 +108,8 @@ def test_an_exponent_map_on_worker_processes_is_the_threaded_one(local_cluster,
     assert_same_exponents(d, local_exponent_map)
     stack = stickslip.dask.sweep_grid(Experiment(zeta=0), lyapunov=True, client=local_cluster,
                                       mu_s=[3.0], w=EXPONENT_W, beta=EXPONENT_BETA)
-    assert stack.lyapunov is not None
-    assert stack.lyapunov[0].tobytes() == local_exponent_map.lyapunov.tobytes()
+    assert stack.lambda1 is not None
+    assert stack.lambda1[0].tobytes() == local_exponent_map.lambda1.tobytes()
     # The workers' own Ctrl-C handling is back once the map is done.
     handlers = local_cluster.run(lambda: str(signal.getsignal(signal.SIGINT)))
     assert all("SIG_IGN" not in h for h in handlers.values()), handlers
@@ -153,9 +153,9 @@ def test_sweep_grid_is_a_map_per_outer_value(local_cluster):
         for name in stickslip.PhaseDiagram.FIELDS:
             assert np.array_equal(getattr(stack, name)[k], getattr(local, name)), name
     # Static friction above kinetic changes the map.
-    assert not np.array_equal(stack.motion[0], stack.motion[2])
+    assert not np.array_equal(stack.class_code[0], stack.class_code[2])
     ds = stack.to_xarray()
-    assert ds["motion"].dims == ("mu_s", "w", "beta")
+    assert ds["motion_class"].dims == ("mu_s", "w", "beta")
     assert ds["mu_s"].attrs["long_name"] == stickslip.PARAMETERS["mu_s"]
     assert "mu_s" not in ds.attrs
 
@@ -168,7 +168,7 @@ def test_sweep_grid_over_two_outer_parameters(local_cluster):
     for i, z in enumerate(zeta):
         for j, m in enumerate(mu_s):
             local = stickslip.phase_diagram(Experiment(zeta=z, mu_s=m), w=W[::3], beta=BETA[::2])
-            assert np.array_equal(stack.motion[i, j], local.motion)
+            assert np.array_equal(stack.class_code[i, j], local.class_code)
             assert np.array_equal(stack.gain[i, j], local.gain)
 
 
@@ -263,13 +263,24 @@ def test_real_cluster(real_cluster, local_map):
 # A map that runs for half a minute or more of CPU even on an idle machine (2.25e6 points of
 # the paper's map), in blocks of a fraction of a second each: Ctrl-C comes mid-way.
 CTRL_C_SCRIPT = """
-import sys
+import signal, sys, threading, time
 import numpy as np
 import dask, distributed  # imported before the map starts
 import stickslip, stickslip.dask
 
-def run(client):
+def shielded():
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+
+# 'started' once the map has begun: on a cluster, once its workers ignore the terminal's
+# Ctrl-C (the map's first act; a Ctrl-C before it reaches workers that nothing shields).
+def say_started(client):
+    if client is not None:
+        while not all(client.run(shielded).values()):
+            time.sleep(0.01)
     print("started", flush=True)
+
+def run(client):
+    threading.Thread(target=say_started, args=(client,), daemon=True).start()
     if sys.argv[2] == "lyapunov":
         # The exponent map of the chaos window (minutes of CPU), in small blocks.
         stickslip.dask.phase_diagram(stickslip.Experiment(zeta=0, mu_s=3), client=client,
@@ -289,10 +300,13 @@ if __name__ == "__main__":
 """
 
 
-@pytest.mark.parametrize("scheduler,kind", [("cluster", "classes"), ("threads", "classes"),
-                                            ("cluster", "lyapunov")])
+@pytest.mark.parametrize("scheduler,kind,after", [("cluster", "classes", 3.0),
+                                                  ("threads", "classes", 3.0),
+                                                  ("cluster", "lyapunov", 3.0),
+                                                  ("cluster", "lyapunov", 0.5),
+                                                  ("cluster", "lyapunov", 1.5)])
 def test_ctrl_c_raises_one_keyboard_interrupt_and_prints_nothing_else(tmp_path, scheduler,
-                                                                      kind):
+                                                                      kind, after):
     """Ctrl-C as a terminal sends it, SIGINT to every process of the foreground job (the
     script and the worker processes of its LocalCluster, which share its process group),
     during stickslip.dask.phase_diagram on a LocalCluster (a map of classes, and one of
@@ -300,7 +314,9 @@ def test_ctrl_c_raises_one_keyboard_interrupt_and_prints_nothing_else(tmp_path, 
     stderr and nothing else (before, asyncio printed a traceback per task, 'Task exception
     was never retrieved ... AllExit', and each worker process its own traceback and the
     nanny a warning), within a bounded time; the workers are idle when the cluster closes,
-    so no worker reports a task cut short."""
+    so no worker reports a task cut short. Whenever the Ctrl-C comes (``after`` seconds: while
+    the graph of 5700 blocks is built, while the scheduler takes it in, or while the blocks
+    compute), the same holds."""
     script = tmp_path / "ctrl_c.py"
     script.write_text(CTRL_C_SCRIPT)
     # A process group of its own, as a terminal gives a job.
@@ -310,7 +326,7 @@ def test_ctrl_c_raises_one_keyboard_interrupt_and_prints_nothing_else(tmp_path, 
     try:
         assert child.stdout is not None
         assert child.stdout.readline() == "started\n"
-        time.sleep(3.0)  # the blocks are computing
+        time.sleep(after)
         assert child.poll() is None, "the map ended before Ctrl-C"
         if scheduler == "cluster":
             # The workers are in the job too (else the test would not be the terminal's).

@@ -32,7 +32,7 @@ What may stand in an HTML comment right before the fence (blank lines between ar
 Numbers quoted in the text are checked by a comment placed after them:
 
     <!-- check `stickslip lyapunov --zeta 0 --mu-s 3 --w 0.33 --beta 9 --json`:
-    lambda_per_tau == 0.014504
+    lambda1 == 0.014504
     periods == 620 -->
 
 Each line ``EXPRESSION == QUOTED`` (or ``assert CONDITION``, for a fact that is not a

@@ -44,20 +44,20 @@ def test_bifurcation_is_the_tools_csv(cli, tmp_path):
     assert_same(rows["w"], w, "w")
     assert_same(rows["y"], numbers(table["y"]), "y")
     assert_same(rows["v"], numbers(table["v"]), "v")
-    assert_same(rows["lambda"], numbers(table["lambda"]), "lambda")
+    assert_same(rows["lambda1"], numbers(table["lambda1"]), "lambda1")
     assert list(rows["direction"]) == table["direction"]
     assert list(rows["class"]) == table["class"]
     assert list(rows["period"]) == list(period_cells(table["period"]))
     # The window holds periodic and chaotic values, so the comparison covers both.
-    kinds = set(d.kind_labels())
+    kinds = set(d.motion_class)
     assert {"periodic", "chaotic"} <= kinds, kinds
     # A period-p value has p distinct strobe points; a chaotic one many, and λ > 0.
     for k in range(len(d)):
         distinct = len(np.unique(np.round(d.y[k], 7)))
-        if d.kind_labels()[k] == "periodic":
+        if d.motion_class[k] == "periodic":
             assert distinct == d.period[k]
-        if d.kind_labels()[k] == "chaotic":
-            assert distinct > 30 and d.exponent[k] > 0
+        if d.motion_class[k] == "chaotic":
+            assert distinct > 30 and d.lambda1[k] > 0
 
 
 def test_bifurcation_directions_xarray_and_errors():
@@ -67,11 +67,11 @@ def test_bifurcation_directions_xarray_and_errors():
     up = stickslip.bifurcation(e, "w", values, "up", points=20, transient=50)
     down = stickslip.bifurcation(e, "w", values, "down", points=20, transient=50)
     assert_same(both.y[:4], up.y, "the up leg of both is the up run")
-    assert list(down.value) == list(values[::-1]) and set(down.leg) == {"down"}
+    assert list(down.value) == list(values[::-1]) and set(down.direction) == {"down"}
     ds = both.to_xarray()
-    assert ds["y"].dims == ("leg", "w", "point") and ds["y"].shape == (2, 4, 20)
-    assert_same(ds["y"].sel(leg="down").values, both.y[4:][::-1], "down leg reordered")
-    assert ds["kind"].attrs["flag_meanings"].split() == list(stickslip.ATTRACTOR_KINDS)
+    assert ds["y"].dims == ("direction", "w", "point") and ds["y"].shape == (2, 4, 20)
+    assert_same(ds["y"].sel(direction="down").values, both.y[4:][::-1], "down leg reordered")
+    assert ds["motion_class"].attrs["flag_meanings"].split() == list(stickslip.ATTRACTOR_KINDS)
     assert ds.attrs["beta"] == 9.0 and ds.attrs["points"] == 20
     with pytest.raises(ValueError, match=r"^invalid points = 0: must be from 1 to 1000000$"):
         stickslip.bifurcation(e, "w", values, points=0)
@@ -99,11 +99,11 @@ def test_basins_are_the_tools_csv_and_json(cli, tmp_path):
     assert_same(np.repeat(m.y0, 15), numbers(table["y0"]), "y0")
     assert_same(np.tile(m.v0, 15), numbers(table["v0"]), "v0")
     assert list(m.attractor.ravel()) == list(period_cells(table["attractor"]))
-    assert list(m.kind_labels().ravel()) == table["kind"]
+    assert list(m.motion_class.ravel()) == table["class"]
     assert list(m.period.ravel()) == list(period_cells(table["period"]))
     assert m.to_dict() == summary
-    assert [(a["kind"], a["period"]) for a in m.attractors] == [("periodic", 1), ("periodic", 1)]
-    assert sum(a["fraction"] for a in m.attractors) + m.unsettled / 225 == pytest.approx(1.0)
+    assert [(a["class"], a["period"]) for a in m.attractors] == [("periodic", 1), ("periodic", 1)]
+    assert sum(a["fraction"] for a in m.attractors) + m.undecided / 225 == pytest.approx(1.0)
     # Deterministic: any number of threads gives the same map.
     one = stickslip.basins(e, y0=(-8, 8), v0=(-8, 8), steps=15, threads=1)
     assert np.array_equal(one.attractor, m.attractor) and one.to_dict() == m.to_dict()
@@ -129,9 +129,13 @@ def test_basins_phase_steps_xarray_and_errors(cli):
         stickslip.basins(e, y0=(-1, 1), v0=(-1, 1), steps=3, lyapunov_periods=4)
     with pytest.raises(ValueError, match="^missing drive"):
         stickslip.basins(Experiment(zeta=0.0, w=0.6), y0=(-1, 1), v0=(-1, 1), steps=3)
-    with pytest.raises(ValueError, match="PWL|piecewise"):
-        stickslip.basins(Experiment.paper(w=0.9, beta=1.6, diode="shockley"),
-                         y0=(-1, 1), v0=(-1, 1), steps=3)
+    # Shockley diodes: the stiff solver's cells, as the tool's.
+    shockley = stickslip.basins(Experiment.paper(w=0.9, beta=1.6, diode="shockley"),
+                                y0=(-1, 1), v0=(-1, 1), steps=3)
+    assert shockley.to_dict() == cli.json(
+        "basins", "--preset", "paper", "--model", "shockley", "--w", 0.9, "--beta", 1.6,
+        "--y0-min", -1, "--y0-max", 1, "--v0-min", -1, "--v0-max", 1, "--steps", 3)
+    assert [a["class"] for a in shockley.attractors] == ["periodic"]
 
 
 def test_basins_method_is_the_tools_method(cli, tmp_path):
@@ -150,8 +154,8 @@ def test_basins_method_is_the_tools_method(cli, tmp_path):
         by[method] = m
     assert np.array_equal(by["recurrence"].attractor, by["exhaustive"].attractor)
     for a, b in zip(by["recurrence"].attractors, by["exhaustive"].attractors):
-        assert (a["kind"], a["period"], a["cells"], a["mirror"]) == \
-            (b["kind"], b["period"], b["cells"], b["mirror"])
+        assert (a["class"], a["period"], a["cells"], a["mirror"]) == \
+            (b["class"], b["period"], b["cells"], b["mirror"])
         assert a["state"]["y"] == pytest.approx(b["state"]["y"], abs=1e-9)
     with pytest.raises(ValueError, match=r"^invalid method 'fast': must be 'recurrence' or "
                                          r"'exhaustive'$"):
@@ -181,6 +185,38 @@ def test_continuation_is_the_tools_csv_and_json(cli, tmp_path):
     assert graze["before"]["stops"] != graze["after"]["stops"]
     assert fold["before"]["stable"] and not fold["after"]["stable"]
     assert np.all(np.abs(b.multipliers[:, 0]) >= np.abs(b.multipliers[:, 1]) - 1e-15)
+
+
+def test_shockley_continuation_and_bifurcation_are_the_tools(cli, tmp_path):
+    # Shockley diodes: the stiff solver's strobe map, its Jacobian and ∂P/∂w from the
+    # variational equations; the same numbers as the command's.
+    shockley = Experiment.paper(diode="shockley", beta=3.61)
+    model = ["--preset", "paper", "--model", "shockley", "--beta", 3.61]
+    out = tmp_path / "branch.csv"
+    summary = cli.json("continue", *model, "--over", "w", "--from", 1.2, "--to", 1.1,
+                       "--out", out)
+    table = read_csv(out)
+    b = stickslip.continuation(shockley, "w", start=1.2, to=1.1)
+    assert b.to_dict() == summary
+    assert len(b) == len(table["w"]) > 10
+    for name in ("y", "v", "mu1_re", "mu1_im", "arclength"):
+        assert_same(getattr(b, name), numbers(table[name]), name)
+    assert b.special == [] and all(b.stable)
+    # μs is no parameter of the diode law.
+    message = cli.error("continue", *model, "--w", 0.9, "--over", "mu-s", "--from", 1,
+                        "--to", 1.5)
+    with pytest.raises(ValueError) as e:
+        stickslip.continuation(shockley.replace(w=0.9), "mu_s", start=1.0, to=1.5)
+    assert str(e.value) == message and "mu_s" in message
+    out = tmp_path / "bif.csv"
+    cli.run("bifurcation", *model, "--over", "w", "--from", 1.0, "--to", 1.1, "--steps", 2,
+            "--points", 20, "--transient", 100, "--out", out)
+    table = read_csv(out)
+    d = stickslip.bifurcation(shockley, "w", [1.0, 1.1], points=20, transient=100)
+    rows = d.rows()
+    assert_same(rows["y"], numbers(table["y"]), "y")
+    assert_same(rows["lambda1"], numbers(table["lambda1"]), "lambda1")
+    assert list(rows["class"]) == table["class"] == ["periodic"] * 80
 
 
 def test_a_tiny_max_step_does_not_stall_on_a_stable_orbit():

@@ -98,7 +98,7 @@ def test_fit_to_dict_equals_the_cli_json(cli, records):
     # The fitted experiment carries the fitted values.
     assert result.exp.to_dict()["R"] == result.parameters["resistance"]
     assert result.exp.to_dict()["U_t"] == result.parameters["ut"]
-    assert stickslip.steady(result.exp.replace(w=0.95, beta=2.14)).motion == "sliding"
+    assert stickslip.steady(result.exp.replace(w=0.95, beta=2.14)).motion_class == "sliding"
 
 
 def test_progress_counts_iterations_and_its_exception_stops_the_fit(records):

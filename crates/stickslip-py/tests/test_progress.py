@@ -26,7 +26,7 @@ def test_a_tqdm_bars_update_fits_progress():
         m = stickslip.phase_diagram(Experiment.paper(), progress=bar.update, w=W, beta=BETA)
         # Given the points done since its last call: the bar ends at the map's size.
         assert bar.n == 600
-    assert m.motion.tobytes() == plain.motion.tobytes()
+    assert m.class_code.tobytes() == plain.class_code.tobytes()
     # A bar made without a total gets the call's.
     with tqdm.tqdm(file=io.StringIO()) as bar:
         stickslip.sweep(Experiment.paper(beta=3.61), "w", np.linspace(0.5, 1.5, 11),

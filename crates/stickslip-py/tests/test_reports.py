@@ -1,7 +1,8 @@
 """Every result's ``to_dict()`` is the library's report for its computation, with the report's
 keys, and equals what the command-line tool writes for the same computation: its JSON
 (``steady --json``) or its CSV, cell for cell (each CSV column is the key of the same name).
-The report's names also reach the arrays (``result[name]``) beside the older, deprecated ones."""
+The report's names also reach the arrays (``result[name]``); the names retired warn
+(tests/test_names.py)."""
 
 from __future__ import annotations
 
@@ -16,10 +17,10 @@ from stickslip import Experiment
 
 from conftest import read_csv
 
-SWEEP_KEYS = ["value", "w", "beta", "zeta", "mu_s", "direction", "gain", "peak", "A1", "A3",
-              "class", "stops_per_cycle", "period", "phase_lag", "f_Hz"]
-MAP_KEYS = ["w", "beta", "class", "period", "stops_per_cycle", "gain"]
-BIFURCATION_KEYS = ["value", "y", "v", "direction", "lambda", "class", "period"]
+SWEEP_KEYS = ["value", "w", "beta", "zeta", "mu_s", "direction", "gain", "gain1", "peak", "A1",
+              "A3", "class", "stops_per_period", "period", "phase_lag", "f_Hz"]
+MAP_KEYS = ["w", "beta", "class", "period", "stops_per_period", "gain"]
+BIFURCATION_KEYS = ["value", "y", "v", "direction", "lambda1", "class", "period"]
 
 
 def cell(value: Any) -> str:
@@ -90,9 +91,10 @@ def test_sweep_to_dict_is_the_tools_csv(cli, tmp_path):
     for name, cells in table.items():
         column = [p["value" if name == "mu_s" else name] for p in report["points"]]
         same_cells(column, cells, name)
-    # The arrays under the report's names, beside the deprecated ones.
-    assert list(result["direction"]) == list(result.leg) == table["direction"]
-    assert list(result["class"]) == list(result.motion_labels()) == table["class"]
+    # The arrays under the report's names.
+    assert list(result["direction"]) == list(result.direction) == table["direction"]
+    assert list(result["class"]) == list(result.motion_class) == table["class"]
+    np.testing.assert_array_equal(result["gain1"], result.gain1)
     np.testing.assert_array_equal(result.A1, result.harmonics[:, 0])
     np.testing.assert_array_equal(result["A3"], result.harmonics[:, 2])
     assert np.all(np.isnan(result.f_Hz))
@@ -120,17 +122,17 @@ def test_map_to_dict_with_exponents_is_the_tools_csv(cli, tmp_path):
     out = tmp_path / "map.csv"
     flags = ["--zeta", 0, "--mu-s", 3, "--w-min", 0.25, "--w-max", 0.35, "--w-steps", 2,
              "--beta-min", 9, "--beta-max", 9, "--beta-steps", 1, "--lyapunov-periods", 200]
-    cli.run("phase-diagram", *flags, "--color", "lyapunov", "--out", out)
+    cli.run("phase-diagram", *flags, "--color", "lambda1", "--out", out)
     table = read_csv(out)
     diagram = stickslip.phase_diagram(Experiment(zeta=0.0, mu_s=3.0), w=[0.25, 0.35], beta=[9.0],
                                       lyapunov=True, lyapunov_periods=200)
     report = diagram.to_dict()
     assert report["lyapunov"] is True
-    assert all(list(p) == MAP_KEYS + ["lambda", "lambda_error"] for p in report["points"])
+    assert all(list(p) == MAP_KEYS + ["lambda1", "lambda1_error"] for p in report["points"])
     for name, cells in table.items():
         same_cells([p[name] for p in report["points"]], cells, name)
-    assert diagram["lambda"] is diagram.lyapunov
-    assert diagram["lambda_error"] is diagram.lambda_error is diagram.lyapunov_error
+    assert diagram["lambda1"] is diagram.lambda1
+    assert diagram["lambda1_error"] is diagram.lambda1_error
 
 
 def test_bifurcation_to_dict_is_the_tools_csv(cli, tmp_path):
@@ -148,8 +150,8 @@ def test_bifurcation_to_dict_is_the_tools_csv(cli, tmp_path):
     assert all(list(p) == BIFURCATION_KEYS for p in report["points"])
     for name, cells in table.items():
         same_cells([p["value" if name == "w" else name] for p in report["points"]], cells, name)
-    # The per-value arrays under the report's names, beside the deprecated ones.
-    assert list(d["direction"]) == list(d.direction) == list(d.leg)
-    np.testing.assert_array_equal(d["lambda"], d.exponent)
-    assert list(d["class"]) == list(d.kind_labels())
+    # The per-value arrays under the report's names.
+    assert list(d["direction"]) == list(d.direction)
+    np.testing.assert_array_equal(d["lambda1"], d.lambda1)
+    assert list(d["class"]) == list(d.motion_class)
     assert all(math.isfinite(p["value"]) for p in report["points"])

@@ -39,7 +39,7 @@ def test_to_dict_is_the_tools_json(cli, tmp_path, case):
     assert s.to_dict() == expected
     assert list(s.to_dict()) == list(expected)  # the same keys in the same order
     # Attributes, the lists as numpy arrays.
-    assert s.motion == expected["class"] and s.period == expected["period"]
+    assert s.motion_class == expected["class"] and s.period == expected["period"]
     assert_same(s.harmonics, expected["harmonics"], "harmonics")
     assert_same(s.current_harmonics, expected["current_harmonics"], "current harmonics")
     # The X-Y data and the recorded cycle, as the tool's --xy CSV (tau, drive, y, v).

@@ -55,11 +55,11 @@ trajectory: xarray.Dataset = run.to_xarray()
 frame = run.to_pandas()
 events: npt.NDArray[Any] = run.events
 s = stickslip.steady(exp)
-motion: str = s.motion
-stops: float = s.stops_per_cycle
+motion: str = s.motion_class
+stops: float = s.stops_per_period
 period: Optional[int] = s.period
 m = stickslip.phase_diagram(exp, w=[0.7], beta=[1.2])
-stops_map: npt.NDArray[Any] = m.stops_per_cycle
+stops_map: npt.NDArray[Any] = m.stops_per_period
 dataset: xarray.Dataset = m.to_xarray()
 sweep_set: xarray.Dataset = stickslip.sweep(exp, "w", [0.7]).to_xarray()
 scales: Optional[Dict[str, Any]] = exp.scales()
@@ -104,19 +104,19 @@ import stickslip.dask
 
 exp = stickslip.Experiment(zeta=0, mu_s=3)
 m = stickslip.phase_diagram(exp, lyapunov=True, w=np.linspace(0.2, 0.6, 3), beta=[9.0])
-largest: float = float(np.nanmax(m.lyapunov))
-first = m.lyapunov[0, 0] - m.lyapunov_error[0, 0]
+largest: float = float(np.nanmax(m.lambda1))
+first = m.lambda1[0, 0] - m.lambda1_error[0, 0]
 errors: npt.NDArray[np.float64] = m.lambda_error
-chaotic = m.lyapunov[m.motion == 4]
-mean: float = float(m.lyapunov.mean()) + float(np.sum(m.lyapunov_error > 0))
+chaotic = m.lambda1[m.class_code == 4]
+mean: float = float(m.lambda1.mean()) + float(np.sum(m.lambda1_error > 0))
 d = stickslip.dask.phase_diagram(exp, lyapunov=True, w=[0.33], beta=[9.0])
-on_dask: float = float(d.lyapunov.max())
+on_dask: float = float(d.lambda1.max())
 plain = stickslip.phase_diagram(exp, w=[0.33], beta=[9.0])
-nothing: None = plain.lyapunov
+nothing: None = plain.lambda1
 flag = bool(len(m.dims))
 either = stickslip.phase_diagram(exp, lyapunov=flag, w=[0.33], beta=[9.0])
-if either.lyapunov is not None:
-    maybe: float = float(either.lyapunov.max())
+if either.lambda1 is not None:
+    maybe: float = float(either.lambda1.max())
 back = stickslip.PhaseDiagram.from_xarray(m.to_xarray())
 bar = stickslip.phase_diagram(exp, progress=True, w=[0.33], beta=[9.0])
 '''

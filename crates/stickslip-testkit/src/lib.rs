@@ -12,6 +12,8 @@ use stickslip::solver::sample_at;
 use stickslip::steady::SolverFactory;
 use stickslip::DiodePair;
 
+pub mod ngspice;
+
 /// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
 pub struct Rng(pub u64);
 

@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|p| (p.value, p.steady.harmonic(1).unwrap_or(0.0) / 3.61))
             .fold((0.0, 0.0), |m, p| if p.1 > m.1 { p } else { m });
         println!(
-            "sweep {}: largest gain A1/β = {gain:.4} at w = {w_peak:.3}",
+            "sweep {}: largest gain of the fundamental G1 = A1/β = {gain:.4} at w = {w_peak:.3}",
             leg.label()
         );
     }

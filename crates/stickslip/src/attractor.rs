@@ -24,20 +24,20 @@
 //! - *static* (rest): periodic without a single event while recording: the oscillator stays
 //!   stuck (a motion that slides has turning points or stops);
 //! - otherwise, with σ the standard error and k = [`RecordOptions::significance`]: *chaotic*
-//!   when λ₁ > kσ, *quasi-periodic* when |λ₁| ≤ kσ, and *unsettled* when λ₁ < −kσ (the motion
-//!   still contracts onto an attractor it has not reached, for example a periodic orbit whose
-//!   multiplier is close to 1, or one of a longer period than was looked for), or when too few
-//!   points were recorded (N < 8) to judge.
+//!   when λ₁ > kσ, *quasi-periodic* when |λ₁| ≤ kσ, and *undecided* (no verdict within the
+//!   budget) when λ₁ < −kσ (the motion still contracts onto an attractor it has not reached,
+//!   for example a periodic orbit whose multiplier is close to 1, or one of a longer period
+//!   than was looked for), or when too few points were recorded (N < 8) to judge.
 //!
 //! The verdict rests on N periods only: a short record calls a weakly chaotic motion
-//! quasi-periodic or unsettled rather than chaotic.
+//! quasi-periodic or undecided rather than chaotic.
 //! [`crate::stability::classify_nonperiodic`] decides at length.
 
 use crate::error::{invalid, Result};
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{EventKind, Phase};
-use crate::stability::TangentSolver;
+use crate::stability::{Dynamics, ExactDynamics, TangentRun};
 use serde::{Deserialize, Serialize};
 
 /// What a motion settles on (see the module documentation).
@@ -54,9 +54,12 @@ pub enum AttractorKind {
     /// of zero (motion on a torus).
     #[serde(rename = "quasiperiodic")]
     QuasiPeriodic,
-    /// No verdict: the motion still contracts onto something it has not reached, or the
-    /// record is too short to judge.
-    Unsettled,
+    /// Not decided within the budget (label `undecided`, as the steady states'
+    /// [`crate::steady::MotionClass::Undecided`]; before: `unsettled`, which still reads): the
+    /// motion still contracts onto something it has not reached, or the record is too short
+    /// to judge. No kind of motion.
+    #[serde(alias = "unsettled")]
+    Undecided,
 }
 
 impl AttractorKind {
@@ -66,18 +69,27 @@ impl AttractorKind {
         AttractorKind::Static,
         AttractorKind::Chaotic,
         AttractorKind::QuasiPeriodic,
-        AttractorKind::Unsettled,
+        AttractorKind::Undecided,
     ];
 
+    /// Labels retired, with the kind each now reads as: `unsettled` (now `undecided`).
+    pub const RETIRED: [(&'static str, AttractorKind); 1] =
+        [("unsettled", AttractorKind::Undecided)];
+
+    /// The former name of [`AttractorKind::Undecided`].
+    #[deprecated(note = "the kind is `AttractorKind::Undecided` (label `undecided`)")]
+    #[allow(non_upper_case_globals)]
+    pub const Unsettled: AttractorKind = AttractorKind::Undecided;
+
     /// The label used in CSV and JSON: `periodic`, `static`, `chaotic`, `quasiperiodic`,
-    /// `unsettled`.
+    /// `undecided`.
     pub fn label(self) -> &'static str {
         match self {
             AttractorKind::Periodic => "periodic",
             AttractorKind::Static => "static",
             AttractorKind::Chaotic => "chaotic",
             AttractorKind::QuasiPeriodic => "quasiperiodic",
-            AttractorKind::Unsettled => "unsettled",
+            AttractorKind::Undecided => "undecided",
         }
     }
 
@@ -175,6 +187,58 @@ impl StrobeRecord {
     }
 }
 
+/// Whether the strobe points `sample` lie on the strobe set `reference`: at least 90 % of
+/// them within 10 % of the set's extent of one of its points (how a basin map tells the cells
+/// of one chaotic or quasi-periodic attractor from another's).
+pub fn strobe_sets_overlap(reference: &[State], sample: &[State]) -> bool {
+    if reference.is_empty() || sample.is_empty() {
+        return false;
+    }
+    let (mut ylo, mut yhi, mut vlo, mut vhi) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for s in reference {
+        (ylo, yhi, vlo, vhi) = (ylo.min(s.y), yhi.max(s.y), vlo.min(s.v), vhi.max(s.v));
+    }
+    let radius = 0.1 * (yhi - ylo).max(vhi - vlo).max(1e-9 * scale_of(reference));
+    let near = sample
+        .iter()
+        .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
+        .count();
+    near * 10 >= sample.len() * 9
+}
+
+/// Whether two records settled on the same attractor, compared as sets of strobe points the
+/// way a basin map identifies its attractors ([`crate::basins`]): rest is one attractor;
+/// periodic orbits are the same when their periods agree and a strobe point of one lies within
+/// `tolerance`·scale of one of the other's (the same orbit recorded at another phase);
+/// chaotic and quasi-periodic motions of one kind are the same when each strobe set lies on
+/// the other ([`strobe_sets_overlap`]: the same attractor sampled at other times). A record
+/// not decided ([`AttractorKind::Undecided`]) matches nothing.
+pub fn same_attractor(a: &StrobeRecord, b: &StrobeRecord, tolerance: f64) -> bool {
+    if a.kind != b.kind {
+        return false;
+    }
+    match a.kind {
+        AttractorKind::Undecided => false,
+        AttractorKind::Static => true,
+        AttractorKind::Periodic => {
+            let Some(&x) = a.strobes.first() else {
+                return false;
+            };
+            let limit = tolerance * scale_of(&[x]);
+            a.period == b.period && b.strobes.iter().any(|s| distance(*s, x) <= limit)
+        }
+        AttractorKind::Chaotic | AttractorKind::QuasiPeriodic => {
+            strobe_sets_overlap(&a.strobes, &b.strobes)
+                && strobe_sets_overlap(&b.strobes, &a.strobes)
+        }
+    }
+}
+
 /// Largest |component| difference of two states.
 pub(crate) fn distance(a: State, b: State) -> f64 {
     (a.y - b.y).abs().max((a.v - b.v).abs())
@@ -219,12 +283,27 @@ pub fn record_strobes(
     initial: State,
     options: &RecordOptions,
 ) -> Result<StrobeRecord> {
+    record_strobes_of(&ExactDynamics, params, initial, options)
+}
+
+/// [`record_strobes`] on the model `dynamics` (its tangent dynamics, and the points taken to
+/// repeat within its [`Dynamics::repeat_tolerance`] of [`RecordOptions::tolerance`]).
+///
+/// # Errors
+/// As [`record_strobes`].
+pub fn record_strobes_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    initial: State,
+    options: &RecordOptions,
+) -> Result<StrobeRecord> {
     let options = options.validate()?;
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
     let period = params.drive_period();
-    let mut tangent = TangentSolver::new(params, initial);
-    tangent.run_until(options.transient_periods as f64 * period, |_| {})?;
+    let mut tangent = dynamics.tangent(&params, initial)?;
+    let tangent: &mut dyn TangentRun = tangent.as_mut();
+    tangent.run_until(options.transient_periods as f64 * period, &mut |_| {})?;
     // The transient has turned J into the most unstable direction; measure from here, on a
     // solver whose clock starts afresh (small absolute times; see `TangentSolver`).
     tangent.renormalize();
@@ -237,7 +316,7 @@ pub fn record_strobes(
     let (mut events, mut stops) = (0usize, 0usize);
     let mut in_block = 0usize;
     for k in 1..=n {
-        tangent.run_until(k as f64 * period, |e| {
+        tangent.run_until(k as f64 * period, &mut |e| {
             events += 1;
             stops += usize::from(e.kind == EventKind::Stick);
         })?;
@@ -286,16 +365,20 @@ pub fn record_strobes(
     } else {
         f64::NAN
     };
-    let found = detect_period(&strobes, options.max_period, options.tolerance);
+    let found = detect_period(
+        &strobes,
+        options.max_period,
+        dynamics.repeat_tolerance(options.tolerance),
+    );
     let stuck = tangent.phase() == Phase::Stick;
     let k = options.significance;
     let kind = match found {
         Some(_) if events == 0 && stuck => AttractorKind::Static,
         Some(_) => AttractorKind::Periodic,
-        None if !(exponent_error.is_finite()) => AttractorKind::Unsettled,
+        None if !(exponent_error.is_finite()) => AttractorKind::Undecided,
         None if exponent > k * exponent_error => AttractorKind::Chaotic,
         None if exponent >= -k * exponent_error => AttractorKind::QuasiPeriodic,
-        None => AttractorKind::Unsettled,
+        None => AttractorKind::Undecided,
     };
     Ok(StrobeRecord {
         strobes,
@@ -329,6 +412,55 @@ mod tests {
         // A period needs two repetitions in the record.
         let three: Vec<State> = (0..5).map(|k| s((k % 3) as f64, 0.0)).collect();
         assert_eq!(detect_period(&three, 8, 1e-12), None);
+    }
+
+    fn record(kind: AttractorKind, period: Option<usize>, strobes: Vec<State>) -> StrobeRecord {
+        StrobeRecord {
+            strobes,
+            exponent: 0.0,
+            exponent_error: 0.0,
+            period,
+            kind,
+            events: 0,
+            stops: 0,
+            drive_period: 1.0,
+        }
+    }
+
+    #[test]
+    fn attractors_are_compared_as_sets_of_strobe_points() {
+        let orbit: Vec<State> = (0..12).map(|k| s([1.0, 2.0, 3.0][k % 3], 0.0)).collect();
+        // The same period-3 orbit recorded at another phase: the same attractor, though its
+        // first strobe points differ.
+        let shifted: Vec<State> = orbit.iter().skip(1).copied().collect();
+        let a = record(AttractorKind::Periodic, Some(3), orbit.clone());
+        let b = record(AttractorKind::Periodic, Some(3), shifted);
+        assert!(a.strobes[0] != b.strobes[0] && same_attractor(&a, &b, 1e-6));
+        let other = record(AttractorKind::Periodic, Some(3), vec![s(1.5, 0.0); 12]);
+        assert!(!same_attractor(&a, &other, 1e-6));
+        let once = record(AttractorKind::Periodic, Some(1), vec![s(1.0, 0.0); 12]);
+        assert!(!same_attractor(&a, &once, 1e-6));
+        // A chaotic set sampled at other times: the same attractor; a set elsewhere is not.
+        let cloud = |phase: f64, shift: f64| -> Vec<State> {
+            (0..200)
+                .map(|k| {
+                    let t = phase + 2.399 * k as f64;
+                    s(t.cos() + shift, (1.3 * t).sin())
+                })
+                .collect()
+        };
+        let c1 = record(AttractorKind::Chaotic, None, cloud(0.0, 0.0));
+        let c2 = record(AttractorKind::Chaotic, None, cloud(0.7, 0.0));
+        let c3 = record(AttractorKind::Chaotic, None, cloud(0.0, 5.0));
+        assert!(same_attractor(&c1, &c2, 1e-6) && !same_attractor(&c1, &c3, 1e-6));
+        // Kinds differ: different attractors; undecided matches nothing, not even itself.
+        let q = record(AttractorKind::QuasiPeriodic, None, cloud(0.0, 0.0));
+        assert!(!same_attractor(&c1, &q, 1e-6));
+        let u = record(AttractorKind::Undecided, None, cloud(0.0, 0.0));
+        assert!(!same_attractor(&u, &u, 1e-6));
+        let rest = record(AttractorKind::Static, Some(1), vec![s(0.3, 0.0); 4]);
+        let rest2 = record(AttractorKind::Static, Some(1), vec![s(-0.2, 0.0); 4]);
+        assert!(same_attractor(&rest, &rest2, 1e-6));
     }
 
     #[test]

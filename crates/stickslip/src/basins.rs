@@ -29,7 +29,7 @@
 //! - a motion without a period gets its largest Lyapunov exponent measured over
 //!   [`BasinOptions::lyapunov_periods`] more periods ([`crate::attractor::record_strobes`]):
 //!   **chaotic** when it is positive beyond [`BasinOptions::significance`] standard errors,
-//!   **quasi-periodic** when it is within them of 0, and unsettled (no attractor) when it is
+//!   **quasi-periodic** when it is within them of 0, and undecided (no attractor) when it is
 //!   negative (a periodic orbit not reached within the cap) or a late period shows. Chaotic
 //!   and quasi-periodic cells of one attractor are told apart from those of another by their
 //!   strobe sets: a cell belongs to an attractor found before when at least 90 % of its
@@ -57,18 +57,22 @@
 //! assert!(kinds.contains(&AttractorKind::Static) && kinds.contains(&AttractorKind::Periodic));
 //! ```
 
-use crate::attractor::{distance, record_strobes, scale_of, AttractorKind, RecordOptions};
-use crate::error::{invalid, Error, Result, Unsupported};
-use crate::exact::ExactSolver;
-use crate::experiment::{DiodeModel, Experiment};
+use crate::attractor::{
+    distance, record_strobes_of, scale_of, strobe_sets_overlap as overlaps, AttractorKind,
+    RecordOptions,
+};
+use crate::checkpoint::{UnitReader, UnitWriter};
+use crate::error::{invalid, Error, Result};
+use crate::experiment::Experiment;
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::scan::{Monitor, ParameterRange};
-use crate::solver::{run_until, Solver};
-use crate::stability::{find_periodic_orbit, Multiplier, NewtonOptions};
+use crate::solver::run_until;
+use crate::stability::{Dynamics, Multiplier, NewtonOptions};
 use crate::steady::{exact_solver, steady_state_from, SteadyOptions};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
+use std::sync::Arc;
 
 mod recurrence;
 pub use recurrence::{Recurrence, RecurrenceRow};
@@ -140,7 +144,7 @@ pub struct BasinOptions {
     /// assign a cell to it. Default 10.
     pub basin_hits: usize,
     /// Recurrence: drive periods run at most from one initial state before it is
-    /// unsettled. Default 100000.
+    /// undecided. Default 100000.
     pub max_steps: usize,
 }
 
@@ -243,6 +247,53 @@ pub struct Cell {
     pub periods: usize,
 }
 
+impl Cell {
+    /// Append the cell to a checkpoint unit (the one encoding of a cell, which the method of
+    /// recurrences keeps in its memory and `stickslip basins --checkpoint` in its rows): the
+    /// index of its kind in [`AttractorKind::ALL`], its period (0: none), its exponent, the
+    /// periods simulated and its strobe points (their count, then y and y' of each).
+    pub fn encode(&self, unit: &mut UnitWriter) {
+        let kind = AttractorKind::ALL
+            .iter()
+            .position(|&k| k == self.kind)
+            .expect("a kind of ALL");
+        unit.u8(kind as u8)
+            .u64(self.period.map_or(0, |p| p as u64))
+            .f64(self.exponent)
+            .u64(self.periods as u64)
+            .u64(self.strobes.len() as u64);
+        for x in &self.strobes {
+            unit.f64(x.y).f64(x.v);
+        }
+    }
+
+    /// The cell that [`Cell::encode`] wrote at the reader's position; `None` when the bytes
+    /// are not one (a damaged checkpoint).
+    pub fn decode(r: &mut UnitReader<'_>) -> Option<Cell> {
+        let kind = *AttractorKind::ALL.get(r.u8()? as usize)?;
+        let period = r.u64()?;
+        let exponent = r.f64()?;
+        let periods = usize::try_from(r.u64()?).ok()?;
+        let n = r.u64()?;
+        if n > 1 << 20 {
+            return None;
+        }
+        let mut strobes = Vec::with_capacity(n as usize);
+        for _ in 0..n {
+            let y = r.f64()?;
+            let v = r.f64()?;
+            strobes.push(State { y, v });
+        }
+        Some(Cell {
+            kind,
+            period: (period > 0).then_some(period as usize),
+            strobes,
+            exponent,
+            periods,
+        })
+    }
+}
+
 /// An attractor of a basin map.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Attractor {
@@ -285,13 +336,13 @@ pub struct BasinMap {
     pub y0: Vec<f64>,
     /// Initial velocities y0' (columns).
     pub v0: Vec<f64>,
-    /// The attractor of each cell (an index into `attractors`), `None` when unsettled;
+    /// The attractor of each cell (an index into `attractors`), `None` when undecided;
     /// row-major: `cells[i·n + j]` is (y0_i, v0_j), n = `v0.len()`.
     pub cells: Vec<Option<usize>>,
     /// The attractors, numbered in the order of their first cell.
     pub attractors: Vec<Attractor>,
     /// Cells without an attractor.
-    pub unsettled: usize,
+    pub undecided: usize,
 }
 
 impl BasinMap {
@@ -313,6 +364,8 @@ impl BasinMap {
 #[derive(Debug, Clone)]
 pub struct Basins {
     params: Params,
+    /// The model of the experiment's law.
+    dynamics: Arc<dyn Dynamics>,
     y0: Vec<f64>,
     v0: Vec<f64>,
     options: BasinOptions,
@@ -323,14 +376,15 @@ impl Basins {
     /// The map of `experiment` (its parameters, drive phase φ included) over the initial
     /// positions `y0` and velocities `v0`.
     ///
+    /// With Shockley diodes every cell is run on the stiff solver, and strobe states repeat,
+    /// and fixed points match, within the solver's accuracy
+    /// ([`Dynamics::repeat_tolerance`] of [`BasinOptions::tolerance`] and
+    /// [`BasinOptions::match_tolerance`]).
+    ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes; a missing drive value;
-    /// [`Error::InvalidParameter`] for more than [`crate::limits::MAX_BASIN_STEPS`] values
-    /// along an axis.
+    /// A missing drive value; [`Error::InvalidParameter`] for more than
+    /// [`crate::limits::MAX_BASIN_STEPS`] values along an axis.
     pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
-        if experiment.diode_model() != DiodeModel::Pwl {
-            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
-        }
         for range in [y0, v0] {
             if range.steps() > crate::limits::MAX_BASIN_STEPS {
                 return Err(Error::InvalidParameter {
@@ -342,6 +396,7 @@ impl Basins {
         }
         Ok(Self {
             params: experiment.params()?,
+            dynamics: Arc::from(experiment.dynamics()?),
             y0: y0.values(),
             v0: v0.values(),
             options: BasinOptions::default(),
@@ -362,15 +417,10 @@ impl Basins {
     /// (the map is the same for any number).
     ///
     /// # Errors
-    /// When `threads` is 0.
+    /// [`crate::Error::InvalidOption`] naming [`crate::options::OptionKey::Threads`] outside
+    /// its row's range (1 to 1024).
     pub fn threads(mut self, threads: usize) -> Result<Self> {
-        if threads == 0 {
-            return Err(Error::InvalidParameter {
-                name: "threads",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
+        crate::options::OptionKey::Threads.check_count(threads)?;
         self.threads = Some(threads);
         Ok(self)
     }
@@ -383,6 +433,17 @@ impl Basins {
     /// The options used.
     pub fn basin_options(&self) -> &BasinOptions {
         &self.options
+    }
+
+    /// The model of the experiment's law.
+    pub(crate) fn dynamics(&self) -> &dyn Dynamics {
+        self.dynamics.as_ref()
+    }
+
+    /// The distance within which two fixed points are one orbit:
+    /// [`BasinOptions::match_tolerance`], at least the accuracy of the model's map.
+    pub(crate) fn match_tolerance(&self) -> f64 {
+        self.dynamics.repeat_tolerance(self.options.match_tolerance)
     }
 
     /// Rows (initial positions) and columns (initial velocities).
@@ -405,12 +466,21 @@ impl Basins {
     /// method's verdict).
     fn cell_from(&self, start: State) -> Result<Cell> {
         let options = self.options;
-        let steady = steady_state_from(
-            &exact_solver,
-            &self.params,
-            start,
-            &options.steady_options()?,
-        )?;
+        let steady = if self.dynamics.is_exact() {
+            steady_state_from(
+                &exact_solver,
+                &self.params,
+                start,
+                &options.steady_options()?,
+            )?
+        } else {
+            let dynamics = self.dynamics.as_ref();
+            let factory = |p: Params, s: State| dynamics.solver(&p, s);
+            let steady_options = options
+                .steady_options()?
+                .with_tolerance(dynamics.repeat_tolerance(options.tolerance))?;
+            steady_state_from(&factory, &self.params, start, &steady_options)?
+        };
         let mut periods = steady.periods_to_settle + steady.recorded_periods;
         if let Some(period) = steady.period {
             let at = steady.strobes[0];
@@ -425,7 +495,8 @@ impl Basins {
             }
             return self.periodic_cell(at, period, periods);
         }
-        let record = record_strobes(
+        let record = record_strobes_of(
+            self.dynamics.as_ref(),
             &self.params,
             steady.final_state(),
             &RecordOptions {
@@ -463,16 +534,20 @@ impl Basins {
     /// its p strobe points (the points as simulated when Newton's method fails).
     fn periodic_cell(&self, at: State, period: usize, periods: usize) -> Result<Cell> {
         let drive_period = self.params.drive_period();
-        let (start, exponent) =
-            match find_periodic_orbit(&self.params, at, period, &NewtonOptions::default()) {
-                Ok(orbit) => (orbit.state, orbit.exponent()),
-                Err(Error::Stability(_)) => (at, f64::NAN),
-                Err(e) => return Err(e),
-            };
-        let mut solver = ExactSolver::new(self.params, start);
+        let (start, exponent) = match self.dynamics.find_periodic_orbit(
+            &self.params,
+            at,
+            period,
+            &NewtonOptions::default(),
+        ) {
+            Ok(orbit) => (orbit.state, orbit.exponent()),
+            Err(Error::Stability(_)) => (at, f64::NAN),
+            Err(e) => return Err(e),
+        };
+        let mut solver = self.dynamics.solver(&self.params, start)?;
         let mut strobes = vec![start];
         for k in 1..period {
-            run_until(&mut solver, k as f64 * drive_period, |_| {})?;
+            run_until(solver.as_mut(), k as f64 * drive_period, |_| {})?;
             strobes.push(solver.state());
         }
         Ok(Cell {
@@ -548,10 +623,10 @@ impl Basins {
         }
         let mut attractors: Vec<Attractor> = Vec::new();
         let mut assigned = Vec::with_capacity(cells.len());
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         for (k, cell) in cells.iter().enumerate() {
             let found = match cell.kind {
-                AttractorKind::Unsettled => {
+                AttractorKind::Undecided => {
                     assigned.push(None);
                     continue;
                 }
@@ -623,21 +698,22 @@ impl Basins {
             a.fraction = a.cells as f64 / total;
             if a.kind == AttractorKind::Periodic {
                 let period = a.period.expect("periodic");
-                a.multipliers =
-                    find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
-                        .ok()
-                        .map(|o| o.multipliers);
+                a.multipliers = self
+                    .dynamics
+                    .find_periodic_orbit(&self.params, a.state, period, &NewtonOptions::default())
+                    .ok()
+                    .map(|o| o.multipliers);
             }
         }
         self.pair_mirrors(&mut attractors)?;
-        let unsettled = assigned.iter().filter(|a| a.is_none()).count();
+        let undecided = assigned.iter().filter(|a| a.is_none()).count();
         Ok(BasinMap {
             params: self.params,
             y0: self.y0.clone(),
             v0: self.v0.clone(),
             cells: assigned,
             attractors,
-            unsettled,
+            undecided,
         })
     }
 }
@@ -651,7 +727,7 @@ impl Basins {
     /// symmetric set) is its own image.
     fn pair_mirrors(&self, attractors: &mut [Attractor]) -> Result<()> {
         let half = 0.5 * self.params.drive_period();
-        let tolerance = self.options.match_tolerance;
+        let tolerance = self.match_tolerance();
         let mut mirrors = Vec::with_capacity(attractors.len());
         for a in attractors.iter() {
             if a.kind == AttractorKind::Static {
@@ -660,8 +736,8 @@ impl Basins {
             }
             let mut images = Vec::with_capacity(a.strobes.len());
             for &s in &a.strobes {
-                let mut solver = ExactSolver::new(self.params, s);
-                run_until(&mut solver, half, |_| {})?;
+                let mut solver = self.dynamics.solver(&self.params, s)?;
+                run_until(solver.as_mut(), half, |_| {})?;
                 let x = solver.state();
                 images.push(State { y: -x.y, v: -x.v });
             }
@@ -686,29 +762,6 @@ impl Basins {
     }
 }
 
-/// Whether the strobe points `sample` lie on the strobe set `reference`: at least 90 % of
-/// them within 10 % of the set's extent of one of its points.
-fn overlaps(reference: &[State], sample: &[State]) -> bool {
-    if reference.is_empty() || sample.is_empty() {
-        return false;
-    }
-    let (mut ylo, mut yhi, mut vlo, mut vhi) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for s in reference {
-        (ylo, yhi, vlo, vhi) = (ylo.min(s.y), yhi.max(s.y), vlo.min(s.v), vhi.max(s.v));
-    }
-    let radius = 0.1 * (yhi - ylo).max(vhi - vlo).max(1e-9 * scale_of(reference));
-    let near = sample
-        .iter()
-        .filter(|x| reference.iter().any(|r| distance(*r, **x) <= radius))
-        .count();
-    near * 10 >= sample.len() * 9
-}
-
 /// What a basin map reports: exactly what `stickslip basins --json` prints and what the
 /// Python package's `basins` returns as its summary. Build it with `BasinReport::from(&map)`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -720,9 +773,9 @@ pub struct BasinReport {
     /// The attractors, numbered in the order of their first cell.
     pub attractors: Vec<AttractorReport>,
     /// Cells without an attractor.
-    pub unsettled: usize,
+    pub undecided: usize,
     /// Their fraction of the grid.
-    pub unsettled_fraction: f64,
+    pub undecided_fraction: f64,
 }
 
 /// The model's parameters in a [`BasinReport`] (dimensionless; φ in radians).
@@ -762,8 +815,9 @@ pub struct BasinGrid {
 pub struct AttractorReport {
     /// Its number, from 0.
     pub id: usize,
-    /// `periodic`, `static`, `chaotic` or `quasiperiodic`.
-    pub kind: AttractorKind,
+    /// What it is: `periodic`, `static`, `chaotic` or `quasiperiodic` (JSON `class`, as the
+    /// CSV's column).
+    pub class: AttractorKind,
     /// Period in drive periods (periodic and static), else `None`.
     pub period: Option<usize>,
     /// Its fraction of the grid.
@@ -774,9 +828,9 @@ pub struct AttractorReport {
     pub state: State,
     /// Its strobe points, at most [`AttractorReport::MAX_STROBES`].
     pub strobes: Vec<State>,
-    /// Largest Lyapunov exponent per unit τ; `None` where it is not finite (−∞ when both
+    /// Largest Lyapunov exponent λ1 per unit τ; `None` where it is not finite (−∞ when both
     /// multipliers of an orbit vanish).
-    pub exponent: Option<f64>,
+    pub lambda1: Option<f64>,
     /// Floquet multipliers of a periodic orbit as [re, im] pairs, the larger first.
     pub multipliers: Option<[[f64; 2]; 2]>,
     /// [min, max] of the rest positions (static only).
@@ -797,13 +851,13 @@ impl From<&Attractor> for AttractorReport {
     fn from(a: &Attractor) -> Self {
         Self {
             id: a.id,
-            kind: a.kind,
+            class: a.kind,
             period: a.period,
             fraction: a.fraction,
             cells: a.cells,
             state: a.state,
             strobes: a.strobes.iter().take(Self::MAX_STROBES).copied().collect(),
-            exponent: Some(a.exponent).filter(|x| x.is_finite()),
+            lambda1: Some(a.exponent).filter(|x| x.is_finite()),
             multipliers: a
                 .multipliers
                 .map(|m| [[m[0].re, m[0].im], [m[1].re, m[1].im]]),
@@ -838,8 +892,8 @@ impl From<&BasinMap> for BasinReport {
                 v0_steps: map.v0.len(),
             },
             attractors: map.attractors.iter().map(AttractorReport::from).collect(),
-            unsettled: map.unsettled,
-            unsettled_fraction: map.unsettled as f64 / map.cells.len().max(1) as f64,
+            undecided: map.undecided,
+            undecided_fraction: map.undecided as f64 / map.cells.len().max(1) as f64,
         }
     }
 }
@@ -847,6 +901,47 @@ impl From<&BasinMap> for BasinReport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_cell_reads_back_as_it_was_written() {
+        let cells = [
+            Cell {
+                kind: AttractorKind::Periodic,
+                period: Some(3),
+                strobes: vec![State { y: 1.5, v: -0.25 }, State { y: -2.0, v: 1e-300 }],
+                exponent: f64::NEG_INFINITY,
+                periods: 417,
+            },
+            Cell {
+                kind: AttractorKind::Undecided,
+                period: None,
+                strobes: vec![],
+                exponent: -3.5e-4,
+                periods: 100_000,
+            },
+        ];
+        let mut unit = UnitWriter::new();
+        for c in &cells {
+            c.encode(&mut unit);
+        }
+        let bytes = unit.finish();
+        // The layout of the checkpoints written before the encoding moved here, field by
+        // field (kind as its index in ALL: periodic 0, undecided 4), so that they still read.
+        let mut old = UnitWriter::new();
+        old.u8(0).u64(3).f64(f64::NEG_INFINITY).u64(417).u64(2);
+        old.f64(1.5).f64(-0.25).f64(-2.0).f64(1e-300);
+        old.u8(4).u64(0).f64(-3.5e-4).u64(100_000).u64(0);
+        assert_eq!(old.finish(), bytes);
+        let mut r = UnitReader::new(&bytes);
+        for c in &cells {
+            assert_eq!(Cell::decode(&mut r).as_ref(), Some(c));
+        }
+        assert!(r.is_empty());
+        // A damaged unit is refused, not misread.
+        let mut short = UnitReader::new(&bytes[..bytes.len() - 3]);
+        assert!(Cell::decode(&mut short).is_some());
+        assert!(Cell::decode(&mut short).is_none());
+    }
 
     #[test]
     fn strobe_sets_overlap_when_they_share_their_region() {

@@ -42,29 +42,35 @@
 //! ```
 
 use crate::attractor::{
-    distance, record_strobes, scale_of, AttractorKind, RecordOptions, StrobeRecord,
+    distance, record_strobes_of, scale_of, AttractorKind, RecordOptions, StrobeRecord,
 };
-use crate::continuation::{continue_both_ways, Branch, ContinuationOptions};
-use crate::error::{Error, Result, Unsupported};
-use crate::experiment::{DiodeModel, Experiment};
+use crate::continuation::{continue_both_ways_of, Branch, ContinuationOptions};
+use crate::error::{Error, Result};
+use crate::experiment::Experiment;
 use crate::params::{Params, State};
 use crate::scan::{Axis, Monitor, SweepDirection, SweepLeg};
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents, LyapunovOptions, NewtonOptions,
-    NonperiodicClassification, NonperiodicVerdict, StabilityError,
+    Dynamics, LyapunovOptions, NewtonOptions, NonperiodicClassification, NonperiodicVerdict,
+    StabilityError,
 };
 use crate::steady::SteadyOptions;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
 
 /// Measure the largest exponent of a motion whose strobe points do not repeat as `steady` and
 /// the maps do (see the module documentation): from the record's last point, sequentially
 /// ([`SteadyOptions::DEFAULT_LYAPUNOV`], at `significance` standard errors), and take its
 /// exponent, error and verdict in place of the record's own (N periods only). The state the
 /// next step starts from is the record's last point either way.
-fn measure(params: &Params, record: &mut StrobeRecord, significance: f64) -> Result<()> {
+fn measure(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    record: &mut StrobeRecord,
+    significance: f64,
+) -> Result<()> {
     if record.period.is_some() || record.kind == AttractorKind::Static {
         return Ok(());
     }
@@ -72,7 +78,7 @@ fn measure(params: &Params, record: &mut StrobeRecord, significance: f64) -> Res
         significance,
         ..SteadyOptions::DEFAULT_LYAPUNOV
     };
-    let exponents = match lyapunov_exponents(params, record.final_state(), &options) {
+    let exponents = match dynamics.lyapunov_exponents(params, record.final_state(), &options, &()) {
         Ok(exponents) => exponents,
         // A tangential release: the record's own exponent stays.
         Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => return Ok(()),
@@ -84,7 +90,7 @@ fn measure(params: &Params, record: &mut StrobeRecord, significance: f64) -> Res
     record.kind = match c.verdict {
         NonperiodicVerdict::Chaotic => AttractorKind::Chaotic,
         NonperiodicVerdict::QuasiPeriodic => AttractorKind::QuasiPeriodic,
-        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Unsettled,
+        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Undecided,
     };
     Ok(())
 }
@@ -141,6 +147,8 @@ pub struct BifurcationStep {
 #[derive(Debug, Clone)]
 pub struct Bifurcation {
     experiment: Experiment,
+    /// The model of the experiment's law.
+    dynamics: Arc<dyn Dynamics>,
     axis: Axis,
     direction: SweepDirection,
     options: BifurcationOptions,
@@ -150,18 +158,18 @@ impl Bifurcation {
     /// A diagram over `axis` of `experiment`, starting from its initial state. The experiment
     /// needs no value of the stepped parameter.
     ///
+    /// With Shockley diodes the strobe points and the exponents are those of the stiff
+    /// solver (its tangent dynamics, [`crate::stability::ShockleyDynamics`]), and points
+    /// repeat within its [`Dynamics::repeat_tolerance`].
+    ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] for Shockley diodes (the exponent needs the exact
-    /// solver's tangent dynamics); a value out of range; a drive value missing that is not
-    /// stepped.
+    /// A value out of range; a drive value missing that is not stepped.
     pub fn new(experiment: &Experiment, axis: Axis) -> Result<Self> {
-        if experiment.diode_model() != DiodeModel::Pwl {
-            return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
-        }
         for &v in axis.values() {
             experiment.params_with(&[(axis.parameter(), v)])?;
         }
         Ok(Self {
+            dynamics: Arc::from(experiment.dynamics()?),
             experiment: experiment.clone(),
             axis,
             direction: SweepDirection::Both,
@@ -253,8 +261,14 @@ impl Bifurcation {
         if index == 0 {
             record.transient_periods = self.options.first_transient_periods;
         }
-        let mut record = record_strobes(&params, state, &record)?;
-        measure(&params, &mut record, self.options.record.significance)?;
+        let dynamics = self.dynamics.as_ref();
+        let mut record = record_strobes_of(dynamics, &params, state, &record)?;
+        measure(
+            dynamics,
+            &params,
+            &mut record,
+            self.options.record.significance,
+        )?;
         Ok(BifurcationStep {
             params,
             value,
@@ -316,7 +330,8 @@ impl Bifurcation {
 impl Bifurcation {
     /// The branches of the periodic orbits that `steps` (this diagram's, from
     /// [`Bifurcation::run`]) settled on, continued both ways over the diagram's range
-    /// ([`continue_both_ways`]): stable and unstable, through folds and changes of the event
+    /// ([`crate::continuation::continue_both_ways`]): stable and unstable, through folds and
+    /// changes of the event
     /// sequence, for drawing on top of the strobe points.
     ///
     /// Every run of consecutive steps on one leg with a periodic orbit of one period (and the
@@ -409,14 +424,16 @@ impl Bifurcation {
                 }
                 let step = &steps[i];
                 let period = step.record.period.expect("a periodic step has a period");
-                let outcome = match find_periodic_orbit(
+                let dynamics = self.dynamics.as_ref();
+                let outcome = match dynamics.find_periodic_orbit(
                     &step.params,
                     step.record.strobes[0],
                     period,
                     &NewtonOptions::default(),
                 ) {
                     Ok(orbit) if !orbit.events.is_empty() => {
-                        match continue_both_ways(
+                        match continue_both_ways_of(
+                            dynamics,
                             &step.params,
                             parameter,
                             &orbit,

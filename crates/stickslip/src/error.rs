@@ -172,6 +172,17 @@ pub enum Error {
         /// What is wrong with the text.
         error: NumberError,
     },
+    /// Text that is none of the names a key takes (the diode law, the preset:
+    /// [`crate::experiment::Key::choices`]).
+    #[error("invalid {key} '{text}': one of {}", allowed.join(", "))]
+    InvalidName {
+        /// The key the text was given for.
+        key: Key,
+        /// The text given (control characters escaped, at most 40 characters).
+        text: String,
+        /// The names the key takes.
+        allowed: Vec<&'static str>,
+    },
     /// What was asked for does not apply to this model.
     #[error("{0}")]
     Unsupported(Unsupported),
@@ -341,10 +352,12 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
     /// model.
     TheoryNeedsPwl,
-    /// The stability analysis (periodic orbits, Floquet multipliers, Lyapunov exponents,
-    /// bifurcation diagrams, basins, continuation) differentiates the exact piecewise-linear
-    /// model.
+    /// A map of Lyapunov exponents is measured with the exact piecewise-linear model (the
+    /// other stability tools take Shockley diodes too).
     StabilityNeedsPwl,
+    /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
+    /// continuation in it with Shockley diodes).
+    MuSNeedsPwl,
     /// The Stribeck and cubic friction laws need the smooth-law integrator (the exact
     /// solver follows Coulomb's law).
     SmoothFrictionLaw,
@@ -364,9 +377,13 @@ impl std::fmt::Display for Unsupported {
                  Shockley diodes"
             }
             Unsupported::StabilityNeedsPwl => {
-                "the stability analysis (periodic orbits, Floquet multipliers, Lyapunov \
-                 exponents, bifurcation diagrams, basins, continuation) is of the exact \
-                 piecewise-linear diode (Coulomb friction) model, not Shockley diodes"
+                "a map of Lyapunov exponents is measured with the exact piecewise-linear diode \
+                 (Coulomb friction) model, not Shockley diodes (`stickslip lyapunov` and \
+                 `stickslip orbit` measure a point of either)"
+            }
+            Unsupported::MuSNeedsPwl => {
+                "mu_s (static friction) is a parameter of the piecewise-linear law only: a \
+                 Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
                 "the Stribeck and cubic friction laws need the smooth-law integrator, which \

@@ -84,7 +84,9 @@ impl FrictionLawKind {
     /// The law in one line.
     pub fn description(self) -> &'static str {
         match self {
-            FrictionLawKind::Coulomb => "Coulomb: μ(s) = 1 while slipping, μs at rest (solved exactly)",
+            FrictionLawKind::Coulomb => {
+                "Coulomb: μ(s) = 1 while slipping, μs at rest (solved exactly)"
+            }
             FrictionLawKind::Stribeck => "Stribeck: μ(s) = 1 + (μs − 1)·exp(−(s/vs)^δ) + η·s",
             FrictionLawKind::Cubic => "cubic: μ(s) = μs − k1·s + k3·s³ (Thomsen & Fidlin)",
         }
@@ -144,7 +146,12 @@ impl FrictionLaw {
             FrictionLaw::Coulomb => {}
             FrictionLaw::Stribeck { vs, delta, eta } => {
                 check("vs", vs, vs > 0.0 && vs <= LAW_MAX, VS_ALLOWED)?;
-                check("delta", delta, delta > 0.0 && delta <= DELTA_MAX, DELTA_ALLOWED)?;
+                check(
+                    "delta",
+                    delta,
+                    delta > 0.0 && delta <= DELTA_MAX,
+                    DELTA_ALLOWED,
+                )?;
                 check("eta", eta, (0.0..=LAW_MAX).contains(&eta), ETA_ALLOWED)?;
             }
             FrictionLaw::Cubic { k1, k3 } => {
@@ -258,7 +265,10 @@ mod tests {
                 let h = 1e-6;
                 let numeric = (law.value(1.6, s + h) - law.value(1.6, s - h)) / (2.0 * h);
                 let (_, slope) = law.value_and_slope(1.6, s);
-                assert!((numeric - slope).abs() < 1e-8, "{law:?} at {s}: {numeric} {slope}");
+                assert!(
+                    (numeric - slope).abs() < 1e-8,
+                    "{law:?} at {s}: {numeric} {slope}"
+                );
             }
             assert!((law.value(1.6, 0.0) - 1.6).abs() < 1e-15, "{law:?}");
         }
@@ -273,15 +283,25 @@ mod tests {
         };
         // μs − k1 s + k3 s³ has its minimum μs − (2/3)k1·√(k1/3k3): zero at 4k1³ = 27μs²k3.
         let edge = (27.0f64 * 4.0 * 0.5 / 4.0).cbrt();
-        assert!(FrictionLaw::Cubic { k1: edge, k3: 0.5 }.validate(2.0).is_ok());
+        assert!(FrictionLaw::Cubic { k1: edge, k3: 0.5 }
+            .validate(2.0)
+            .is_ok());
         let bad = FrictionLaw::Cubic {
             k1: 1.01 * edge,
             k3: 0.5,
         };
         assert_eq!(name(bad.validate(2.0)), "k1");
-        assert_eq!(name(FrictionLaw::Cubic { k1: 0.1, k3: 0.0 }.validate(1.0)), "k1");
-        assert!(FrictionLaw::Cubic { k1: -0.1, k3: 0.0 }.validate(1.0).is_ok());
-        assert_eq!(name(FrictionLaw::Cubic { k1: 0.1, k3: -1.0 }.validate(1.0)), "k3");
+        assert_eq!(
+            name(FrictionLaw::Cubic { k1: 0.1, k3: 0.0 }.validate(1.0)),
+            "k1"
+        );
+        assert!(FrictionLaw::Cubic { k1: -0.1, k3: 0.0 }
+            .validate(1.0)
+            .is_ok());
+        assert_eq!(
+            name(FrictionLaw::Cubic { k1: 0.1, k3: -1.0 }.validate(1.0)),
+            "k3"
+        );
         let stribeck = |vs, delta, eta| FrictionLaw::Stribeck { vs, delta, eta }.validate(1.5);
         assert_eq!(name(stribeck(0.0, 2.0, 0.0)), "vs");
         assert_eq!(name(stribeck(-1.0, 2.0, 0.0)), "vs");

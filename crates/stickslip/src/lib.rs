@@ -23,6 +23,9 @@
 //!   times found numerically, with a step rule that cannot miss a velocity zero.
 //! - [`Solver`]: the trait every solver implements; [`solver::run_until`] and
 //!   [`solver::sample_at`] drive any of them.
+//! - [`stiff`]: the stiff integrator of smooth laws (Radau IIA), generic over the law
+//!   ([`stiff::SmoothLaw`]: the Shockley diode pair is the first), which runs the Shockley
+//!   solver ([`ShockleySolver`]).
 //! - [`steady`]: the steady state of any solver ([`steady_state`]), its spectrum and
 //!   [`MotionClass`].
 //! - [`scan`]: sweeps of ζ, w, β or μs with hysteresis ([`scan::Sweep`]) and grids of any two
@@ -75,6 +78,7 @@ pub mod shockley;
 pub mod solver;
 pub mod stability;
 pub mod steady;
+pub mod stiff;
 #[cfg(test)]
 mod test_rng;
 pub mod theory;
@@ -87,7 +91,9 @@ pub use exact::ExactSolver;
 pub use experiment::{DiodeModel, Experiment, ExperimentSpec};
 pub use options::{OptionKey, Spelling};
 pub use params::{Parameter, Params, State};
-pub use physical::{Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System};
+pub use physical::{
+    Circuit, Diode, Mechanics, PwlDiode, Scales, ShockleyDiode, System, SystemKind,
+};
 pub use shockley::{DiodePair, ShockleyOptions, ShockleySolver};
 pub use solver::{Event, EventKind, Hints, Phase, Sample, Solver, Stats};
 pub use steady::{steady_state, MotionClass, SteadyOptions, SteadyState};

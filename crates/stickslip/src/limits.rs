@@ -171,9 +171,11 @@ impl Caps {
         }
     }
 
-    /// `value` of `option` at most `max` (the error says from `min` to `max`).
+    /// `value` of `option` from `min` to `max` (the error says so): the cap's own range, so
+    /// that a value below the table's range (0 steps, say) is told the cap too, not the
+    /// library's larger range.
     pub(crate) fn over(option: OptionKey, value: f64, min: f64, max: f64) -> Result<()> {
-        if value <= max {
+        if (min..=max).contains(&value) {
             Ok(())
         } else {
             Err(Error::InvalidOption {

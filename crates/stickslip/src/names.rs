@@ -16,6 +16,7 @@ use crate::basins::BasinMethod;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::friction::FrictionLawKind;
 use crate::params::Parameter;
+use crate::physical::SystemKind;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
 use crate::steady::MotionClass;
 use crate::theory::curves::{CurveKind, Theory};
@@ -34,36 +35,45 @@ pub struct NameError {
 
 impl NameError {
     fn new(what: &'static str, text: &str, allowed: impl Iterator<Item = &'static str>) -> Self {
-        let shown = crate::units::shown(text);
-        let mut clipped: String = shown.chars().take(40).collect();
-        if shown.chars().count() > 40 {
-            clipped.push('…');
-        }
         Self {
             what,
-            text: clipped,
+            text: crate::units::shown(text),
             allowed: allowed.collect(),
         }
     }
 }
 
 /// `FromStr` from `label()` and `ALL`, and `Display` by `label()` where `display` is given.
+/// With `retired`, the type's `RETIRED` names (a label of before and the value it reads as)
+/// read too; the error lists the current names only.
 macro_rules! names {
     ($type:ty, $what:literal) => {
+        names!(@parse $type, $what, &[]);
+    };
+    (@parse $type:ty, $what:literal, $retired:expr) => {
         impl std::str::FromStr for $type {
             type Err = NameError;
             fn from_str(text: &str) -> Result<Self, NameError> {
+                let retired: &[(&str, $type)] = $retired;
                 <$type>::ALL
                     .into_iter()
                     .find(|v| v.label() == text)
+                    .or_else(|| retired.iter().find(|(old, _)| *old == text).map(|&(_, v)| v))
                     .ok_or_else(|| {
                         NameError::new($what, text, <$type>::ALL.iter().map(|v| v.label()))
                     })
             }
         }
     };
+    ($type:ty, $what:literal, display, retired) => {
+        names!(@parse $type, $what, &<$type>::RETIRED);
+        names!(@display $type);
+    };
     ($type:ty, $what:literal, display) => {
         names!($type, $what);
+        names!(@display $type);
+    };
+    (@display $type:ty) => {
         impl std::fmt::Display for $type {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.write_str(self.label())
@@ -74,13 +84,14 @@ macro_rules! names {
 
 names!(DiodeModel, "diode law", display);
 names!(Preset, "preset", display);
+names!(SystemKind, "system", display);
 names!(SweepDirection, "sweep direction", display);
 names!(SweepLeg, "sweep leg", display);
-names!(MotionClass, "motion class", display);
+names!(MotionClass, "motion class", display, retired);
 names!(Theory, "theory", display);
-names!(CurveKind, "curve", display);
-names!(MapColor, "map colour", display);
-names!(AttractorKind, "attractor kind", display);
+names!(CurveKind, "curve", display, retired);
+names!(MapColor, "map colour", display, retired);
+names!(AttractorKind, "attractor kind", display, retired);
 names!(BasinMethod, "basin method", display);
 names!(FrictionLawKind, "friction law", display);
 
@@ -190,6 +201,35 @@ mod tests {
         round_trip(&MapColor::ALL);
         round_trip(&Parameter::ALL);
         round_trip(&FrictionLawKind::ALL);
+    }
+
+    #[test]
+    fn retired_names_read_as_the_current_ones() {
+        let pairs: [(&str, String); 4] = [
+            ("nonperiodic-stick", MotionClass::Undecided.to_string()),
+            ("unsettled", AttractorKind::Undecided.to_string()),
+            ("lyapunov", MapColor::Lambda1.to_string()),
+            ("gain", CurveKind::Gain1.to_string()),
+        ];
+        assert_eq!(
+            "nonperiodic-stick".parse::<MotionClass>().unwrap(),
+            MotionClass::Undecided
+        );
+        assert_eq!(
+            "unsettled".parse::<AttractorKind>().unwrap(),
+            AttractorKind::Undecided
+        );
+        assert_eq!("lyapunov".parse::<MapColor>().unwrap(), MapColor::Lambda1);
+        assert_eq!("gain".parse::<CurveKind>().unwrap(), CurveKind::Gain1);
+        for (old, new) in pairs {
+            assert_ne!(old, new);
+        }
+        // A wrong name lists the current names only.
+        let err = "x".parse::<MotionClass>().unwrap_err().to_string();
+        assert!(
+            err.contains("undecided") && !err.contains("nonperiodic"),
+            "{err}"
+        );
     }
 
     #[test]

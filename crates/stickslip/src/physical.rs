@@ -11,7 +11,7 @@
 //! | y             | u_C/U_t                                | k·r/F0                                 |
 //! | y'            | i·√(L/C)/U_t                           | ṙ·k/(F0 ω0)                            |
 
-use crate::error::{check, Result};
+use crate::error::{check, invalid, Result};
 use crate::params::Params;
 use crate::shockley::{DiodePair, ShockleyModel};
 use serde::{Deserialize, Serialize};
@@ -174,15 +174,35 @@ impl Circuit {
         .with_finite_scales()
     }
 
-    /// This circuit, if its scales are finite and positive numbers.
+    /// This circuit, if its scales are finite and positive numbers; else the part furthest
+    /// from the paper's circuit is to blame (C = 1e308 with the paper's L: C).
     fn with_finite_scales(self) -> Result<Self> {
-        check(
-            "L",
-            self.inductance,
-            self.scales().finite(),
-            "with this C gives no finite ω0 = 1/√(LC) or impedance √(L/C) (henry)",
-        )?;
-        Ok(self)
+        if self.scales().finite() {
+            return Ok(self);
+        }
+        let paper = Circuit::paper();
+        let parts = [
+            (
+                "L",
+                self.inductance,
+                paper.inductance,
+                "with this C gives no finite ω0 = 1/√(LC) or impedance √(L/C) (henry)",
+            ),
+            (
+                "C",
+                self.capacitance,
+                paper.capacitance,
+                "with this L gives no finite ω0 = 1/√(LC) or impedance √(L/C) (farad)",
+            ),
+            (
+                "U_t",
+                self.diode.reference_voltage(),
+                paper.diode.reference_voltage(),
+                "with this L and C gives no finite current scale U_t/√(L/C) (volts)",
+            ),
+        ];
+        let &(name, value, _, allowed) = furthest(&parts);
+        invalid(name, value, allowed)
     }
 
     /// Re-check all fields (for values built by struct literal or deserialised).
@@ -320,15 +340,54 @@ impl Mechanics {
         .with_finite_scales()
     }
 
-    /// This oscillator, if its scales are finite and positive numbers.
+    /// This oscillator, if its scales are finite and positive numbers; else the part
+    /// furthest from the example oscillator ([`Mechanics::example`]) is to blame.
     fn with_finite_scales(self) -> Result<Self> {
-        check(
-            "m",
-            self.mass,
-            self.scales().finite(),
-            "with this k, gamma and F0 gives no finite ω0 = √(k/m), α = γ/m or F0/k (kg)",
-        )?;
-        Ok(self)
+        if self.scales().finite() {
+            return Ok(self);
+        }
+        let example = Mechanics::example();
+        let parts = [
+            (
+                "m",
+                self.mass,
+                example.mass,
+                "with this k, gamma and F0 gives no finite ω0 = √(k/m), α = γ/m or F0/k (kg)",
+            ),
+            (
+                "k",
+                self.stiffness,
+                example.stiffness,
+                "with this m and F0 gives no finite ω0 = √(k/m) or F0/k (N/m)",
+            ),
+            (
+                "gamma",
+                self.damping,
+                example.damping,
+                "with this m gives no finite α = γ/m (N s/m)",
+            ),
+            (
+                "F0",
+                self.friction,
+                example.friction,
+                "with this k and m gives no finite position or velocity scale F0/k, F0/√(km) (N)",
+            ),
+        ];
+        let &(name, value, _, allowed) = furthest(&parts);
+        invalid(name, value, allowed)
+    }
+
+    /// A mass on a spring with dry friction whose damping ratio is the paper's circuit's
+    /// (ζ = 0.94/(2·√(200·0.5)) = 0.047): m = 0.5 kg, k = 200 N/m, γ = 0.94 N·s/m,
+    /// F0 = 1 N. The lab's mechanical preset, and the reference an absurd value is measured
+    /// from ([`crate::experiment::ExperimentSpec::build`]'s messages).
+    pub fn example() -> Self {
+        Self {
+            mass: 0.5,
+            stiffness: 200.0,
+            damping: 0.94,
+            friction: 1.0,
+        }
     }
 
     /// Re-check all fields (for values built by struct literal or deserialised).
@@ -352,6 +411,24 @@ impl Mechanics {
     }
 }
 
+/// Of `parts` (name, value, reference value, words), the one whose value is furthest from
+/// its reference, |ln(value/reference)| (a zero value is never the furthest).
+fn furthest<'a>(
+    parts: &'a [(&'static str, f64, f64, &'static str)],
+) -> &'a (&'static str, f64, f64, &'static str) {
+    let distance = |&(_, value, reference, _): &(&str, f64, f64, &str)| {
+        if value > 0.0 && reference > 0.0 {
+            (value / reference).ln().abs()
+        } else {
+            0.0
+        }
+    };
+    parts
+        .iter()
+        .max_by(|a, b| distance(a).total_cmp(&distance(b)))
+        .expect("parts to choose from")
+}
+
 /// Either physical twin.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -363,12 +440,57 @@ pub enum System {
 }
 
 impl System {
+    /// Which twin it is.
+    pub fn kind(&self) -> SystemKind {
+        match self {
+            System::Circuit(_) => SystemKind::Circuit,
+            System::Mechanics(_) => SystemKind::Mechanics,
+        }
+    }
+
     /// The scales of the underlying twin.
     pub fn scales(&self) -> Scales {
         match self {
             System::Circuit(c) => c.scales(),
             System::Mechanics(m) => m.scales(),
         }
+    }
+}
+
+/// What an experiment describes: the dimensionless model alone, a circuit or a mechanical
+/// oscillator. Its label is the one every front end shows (the lab's answers and presets,
+/// Python's `Experiment.system`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SystemKind {
+    /// ζ, w, β and μs alone, no physical units.
+    Dimensionless,
+    /// The diode-damped RLC circuit.
+    Circuit,
+    /// The mass-spring oscillator with dry friction.
+    Mechanics,
+}
+
+impl SystemKind {
+    /// Every kind.
+    pub const ALL: [SystemKind; 3] = [
+        SystemKind::Dimensionless,
+        SystemKind::Circuit,
+        SystemKind::Mechanics,
+    ];
+
+    /// `dimensionless`, `circuit` or `mechanics`.
+    pub fn label(self) -> &'static str {
+        match self {
+            SystemKind::Dimensionless => "dimensionless",
+            SystemKind::Circuit => "circuit",
+            SystemKind::Mechanics => "mechanics",
+        }
+    }
+
+    /// The kind of a system, or [`SystemKind::Dimensionless`] for none.
+    pub fn of(system: Option<&System>) -> Self {
+        system.map_or(SystemKind::Dimensionless, System::kind)
     }
 }
 

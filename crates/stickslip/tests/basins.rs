@@ -105,11 +105,11 @@ fn summary(map: &BasinMap) -> String {
         })
         .collect::<Vec<_>>()
         .join("; ")
-        + &format!("; unsettled {}", map.unsettled)
+        + &format!("; undecided {}", map.undecided)
 }
 
 /// Both methods on the same grid: every attractor of one is an attractor of the other, with
-/// fractions within 0.01 (unsettled cells too). Returns the recurrence map.
+/// fractions within 0.01 (undecided cells too). Returns the recurrence map.
 fn agree(basins: &Basins) -> BasinMap {
     let options = *basins.basin_options();
     let t = std::time::Instant::now();
@@ -183,7 +183,7 @@ fn agree(basins: &Basins) -> BasinMap {
             );
         }
     }
-    assert!(((exhaustive.unsettled as f64 - recurrence.unsettled as f64) / cells).abs() <= 0.01);
+    assert!(((exhaustive.undecided as f64 - recurrence.undecided as f64) / cells).abs() <= 0.01);
     recurrence
 }
 

@@ -160,8 +160,8 @@ impl Oracle {
                 let f1 = self.force(t1, at(t1));
                 if f1.abs() > self.p.mu_s {
                     let t0 = self.tau;
-                    let theta =
-                        self.bisect(|th| self.force(t0 + th * h, at(t0 + th * h)).abs() > self.p.mu_s);
+                    let theta = self
+                        .bisect(|th| self.force(t0 + th * h, at(t0 + th * h)).abs() > self.p.mu_s);
                     self.tau = t0 + theta * h;
                     self.y = at(self.tau);
                     self.v = vb;
@@ -207,8 +207,18 @@ fn the_undamped_coulomb_belt_is_its_closed_form() {
             "({mu_s}, {vb}): period {period} against {}",
             c.period
         );
-        assert!((s.y_max - c.y_max).abs() <= 1e-12, "{} {}", s.y_max, c.y_max);
-        assert!((s.y_min - c.y_min).abs() <= 1e-12, "{} {}", s.y_min, c.y_min);
+        assert!(
+            (s.y_max - c.y_max).abs() <= 1e-12,
+            "{} {}",
+            s.y_max,
+            c.y_max
+        );
+        assert!(
+            (s.y_min - c.y_min).abs() <= 1e-12,
+            "{} {}",
+            s.y_min,
+            c.y_min
+        );
         assert!((cycle.stick_fraction - c.stick_fraction).abs() <= 1e-12);
         assert_eq!(cycle.sliding_stability, SlidingStability::Neutral);
         // The record's events: the stop that opens it, the release at μs.
@@ -257,7 +267,10 @@ fn compare_trajectories(p: Params, initial: State, end: f64) {
     assert_eq!(events.len(), oracle.events.len(), "{p:?}");
     for (e, o) in events.iter().zip(&oracle.events) {
         assert_eq!(e.kind, o.2, "{p:?}");
-        assert!((e.tau - o.0).abs() <= 1e-8 && (e.y - o.1).abs() <= 1e-8, "{e:?} {o:?}");
+        assert!(
+            (e.tau - o.0).abs() <= 1e-8 && (e.y - o.1).abs() <= 1e-8,
+            "{e:?} {o:?}"
+        );
     }
     assert!(!events.is_empty());
 }
@@ -270,7 +283,11 @@ fn damped_and_driven_belts_follow_an_independent_integrator() {
     // Driven belts: stops, slips and reversals under a drive.
     compare_trajectories(forced(0.1, 1.3, 0.4, 0.8, 1.0), State::default(), 60.0);
     compare_trajectories(forced(0.05, 1.0, 0.6, 1.7, 2.5), State::default(), 60.0);
-    compare_trajectories(forced(0.02, 2.0, -0.2, 0.3, 3.0), State { y: 1.0, v: 0.0 }, 60.0);
+    compare_trajectories(
+        forced(0.02, 2.0, -0.2, 0.3, 3.0),
+        State { y: 1.0, v: 0.0 },
+        60.0,
+    );
 }
 
 /// A self-excited cycle's period and extremes from the oracle: the interval between its
@@ -292,7 +309,12 @@ fn oracle_cycle(p: Params, initial: State, sticks: usize) -> (f64, f64, f64) {
         .iter()
         .filter(|e| e.0 >= a && e.0 <= b)
         .map(|e| e.1)
-        .chain(o.extremes.iter().filter(|e| e.0 > a && e.0 < b).map(|e| e.1));
+        .chain(
+            o.extremes
+                .iter()
+                .filter(|e| e.0 > a && e.0 < b)
+                .map(|e| e.1),
+        );
     let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
         (lo.min(y), hi.max(y))
     });
@@ -311,9 +333,20 @@ fn damped_self_excited_cycles_follow_an_independent_integrator() {
         assert_eq!(s.class, MotionClass::StickSlipCycle, "{p:?}");
         let (period, y_max, y_min) = oracle_cycle(p, State::default(), 4);
         let cycle = s.self_excited.unwrap();
-        assert!((cycle.period.unwrap() - period).abs() <= 1e-8, "{p:?}: {cycle:?} {period}");
-        assert!((s.y_max - y_max).abs() <= 1e-8, "{p:?}: {} {y_max}", s.y_max);
-        assert!((s.y_min - y_min).abs() <= 1e-8, "{p:?}: {} {y_min}", s.y_min);
+        assert!(
+            (cycle.period.unwrap() - period).abs() <= 1e-8,
+            "{p:?}: {cycle:?} {period}"
+        );
+        assert!(
+            (s.y_max - y_max).abs() <= 1e-8,
+            "{p:?}: {} {y_max}",
+            s.y_max
+        );
+        assert!(
+            (s.y_min - y_min).abs() <= 1e-8,
+            "{p:?}: {} {y_min}",
+            s.y_min
+        );
         // Coulomb's law never falls: steady sliding is stable with damping.
         assert_eq!(cycle.sliding_stability, SlidingStability::Stable);
         assert_eq!(cycle.equilibrium, vb.signum());
@@ -343,7 +376,10 @@ fn a_fast_damped_belt_slides_steadily() {
 /// inside slides where y' = 0, against the oracle run over the same recorded periods.
 #[test]
 fn a_forced_belt_steady_state_follows_an_independent_integrator() {
-    for p in [forced(0.1, 1.3, 0.4, 0.8, 1.0), forced(0.05, 1.0, 0.6, 1.7, 2.5)] {
+    for p in [
+        forced(0.1, 1.3, 0.4, 0.8, 1.0),
+        forced(0.05, 1.0, 0.6, 1.7, 2.5),
+    ] {
         let s = steady::steady_state(
             &mut ExactSolver::new(p, State::default()),
             &SteadyOptions::default(),

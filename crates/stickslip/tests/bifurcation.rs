@@ -279,7 +279,7 @@ fn mirror_pair() -> Basins {
 fn basin_attractors_are_the_orbits_newton_finds() {
     let basins = mirror_pair();
     let map = basins.run(&()).unwrap();
-    assert_eq!(map.unsettled, 0);
+    assert_eq!(map.undecided, 0);
     assert_eq!(map.attractors.len(), 2);
     let pr = *basins.params();
     let [a, b] = [&map.attractors[0], &map.attractors[1]];
@@ -787,9 +787,22 @@ fn bad_input_is_refused_with_its_name() {
     let shockley = shockley
         .with_shockley(stickslip::DiodePair::default())
         .unwrap();
+    // Shockley diodes: accepted, but not continued in μs, which their law does not use.
+    assert!(Bifurcation::new(&shockley, Axis::new(Parameter::W, vec![0.9]).unwrap()).is_ok());
+    let (params, orbit) = stickslip::continuation::settled_orbit(&shockley).unwrap();
     assert!(matches!(
-        Bifurcation::new(&shockley, Axis::new(Parameter::W, vec![0.9]).unwrap()),
-        Err(stickslip::Error::Unsupported(_))
+        stickslip::continuation::continue_orbit_of(
+            shockley.dynamics().unwrap().as_ref(),
+            &params,
+            Parameter::MuS,
+            &orbit,
+            1.5,
+            &ContinuationOptions::default(),
+            &()
+        ),
+        Err(stickslip::Error::Unsupported(
+            stickslip::Unsupported::MuSNeedsPwl
+        ))
     ));
 }
 
@@ -800,22 +813,22 @@ fn reports_hold_what_front_ends_print() {
     let report = BasinReport::from(&map);
     assert_eq!(report.attractors.len(), map.attractors.len());
     let shares: f64 = report.attractors.iter().map(|a| a.fraction).sum();
-    assert!((shares + report.unsettled_fraction - 1.0).abs() < 1e-12);
+    assert!((shares + report.undecided_fraction - 1.0).abs() < 1e-12);
     assert_eq!(
         (report.grid.y0_min, report.grid.y0_max, report.grid.steps),
         (-8.0, 8.0, 24)
     );
     for (a, r) in map.attractors.iter().zip(&report.attractors) {
         assert_eq!(
-            (r.id, r.kind, r.period, r.state),
+            (r.id, r.class, r.period, r.state),
             (a.id, a.kind, a.period, a.state)
         );
         let m = a.multipliers.unwrap();
         assert_eq!(r.multipliers.unwrap()[0], [m[0].re, m[0].im]);
-        assert!(r.strobes.len() <= 64 && r.exponent.unwrap() < 0.0);
+        assert!(r.strobes.len() <= 64 && r.lambda1.unwrap() < 0.0);
     }
     let json = serde_json::to_value(&report).unwrap();
-    assert_eq!(json["attractors"][0]["kind"], "periodic");
+    assert_eq!(json["attractors"][0]["class"], "periodic");
     assert_eq!(json["model"]["mu_s"], 3.0);
     // A branch: its special points with the stability on either side, its end in words.
     let (pr, orbit) = fold_start();

@@ -61,11 +61,11 @@ fn a_motion_that_does_not_repeat_is_chaotic_when_its_exponent_is_positive() {
         let json = serde_json::to_value(SteadyReport::from(&s)).unwrap();
         assert_eq!(json["class"], "chaotic");
         assert_eq!(json["verdict"], "chaotic");
-        assert_eq!(json["lambda_per_tau"].as_f64(), Some(l.per_tau));
-        assert_eq!(json["error_per_tau"].as_f64(), Some(l.error_per_tau));
-        assert_eq!(json["lambda_per_period"].as_f64(), Some(l.per_period));
-        assert_eq!(json["lambda_periods"], c.exponents.periods);
-        assert_eq!(json["lambda_converged"], true);
+        assert_eq!(json["lambda1"].as_f64(), Some(l.per_tau));
+        assert_eq!(json["lambda1_error"].as_f64(), Some(l.error_per_tau));
+        assert_eq!(json["lambda1_per_period"].as_f64(), Some(l.per_period));
+        assert_eq!(json["lambda1_periods"], c.exponents.periods);
+        assert_eq!(json["lambda1_converged"], true);
     }
 }
 
@@ -103,7 +103,7 @@ fn the_issues_slow_point_settles_on_its_period_1_orbit() {
     // Without Newton, within the default cap: no period, and not chaotic either.
     let s = settle(params, &no_spectrum().with_newton(false));
     assert_eq!(s.period, None);
-    assert_eq!(s.class, MotionClass::NonperiodicStick);
+    assert_eq!(s.class, MotionClass::Undecided);
     let c = s.lyapunov.as_ref().expect("measured");
     assert_ne!(c.verdict, NonperiodicVerdict::Chaotic);
     assert!(
@@ -112,9 +112,9 @@ fn the_issues_slow_point_settles_on_its_period_1_orbit() {
         c.exponents.largest
     );
     let json = serde_json::to_value(SteadyReport::from(&s)).unwrap();
-    assert_eq!(json["class"], "nonperiodic-stick");
+    assert_eq!(json["class"], "undecided");
     assert_eq!(json["verdict"], c.verdict.label());
-    assert!(json["lambda_per_tau"].as_f64().unwrap() < 0.0);
+    assert!(json["lambda1"].as_f64().unwrap() < 0.0);
 }
 
 #[test]
@@ -140,12 +140,7 @@ fn motions_that_repeat_are_not_measured_and_unchanged() {
         assert!(measured.lyapunov.is_none());
         assert_eq!(measured, plain, "the option changes nothing for {params:?}");
         let json = serde_json::to_value(SteadyReport::from(&measured)).unwrap();
-        for key in [
-            "lambda_per_tau",
-            "error_per_tau",
-            "verdict",
-            "lambda_periods",
-        ] {
+        for key in ["lambda1", "lambda1_error", "verdict", "lambda1_periods"] {
             assert!(json.get(key).is_none(), "{key} in {json}");
         }
     }
@@ -157,7 +152,7 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
     let off = settle(params, &no_spectrum().with_lyapunov(None).unwrap());
     assert_eq!(
         (off.class, off.lyapunov.is_none()),
-        (MotionClass::NonperiodicStick, true)
+        (MotionClass::Undecided, true)
     );
     // A solver that does not say it follows the exact model is not measured.
     struct Hidden(ExactSolver);
@@ -198,7 +193,7 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
     let s = steady_state(&mut hidden, &options).unwrap();
     assert_eq!(
         (s.class, s.lyapunov.is_none()),
-        (MotionClass::NonperiodicStick, true)
+        (MotionClass::Undecided, true)
     );
     // The exact solver itself, through the same function, is measured.
     let mut exact = ExactSolver::new(params, State::default());
@@ -459,7 +454,7 @@ fn an_experiment_finds_its_orbits_and_exponents() {
         c.exponents,
         lyapunov_exponents(&chaotic.params().unwrap(), State::default(), &options).unwrap()
     );
-    // Shockley diodes: a clear refusal.
+    // Shockley diodes: the same tools on the stiff solver's tangent dynamics.
     let shockley = Experiment::paper()
         .with_shockley(DiodePair::one_n4148())
         .unwrap()
@@ -467,19 +462,19 @@ fn an_experiment_finds_its_orbits_and_exponents() {
         .unwrap()
         .with_beta(2.0)
         .unwrap();
-    for result in [
-        shockley
-            .periodic_orbit(None, 0, &steady, &newton, &())
-            .err(),
-        shockley.lyapunov(&options, &()).err(),
-    ] {
-        let err = result.expect("refused");
-        assert!(matches!(
-            err,
-            Error::Unsupported(Unsupported::StabilityNeedsPwl)
-        ));
-        assert!(err.to_string().contains("piecewise-linear"), "{err}");
-    }
+    let orbit = shockley
+        .periodic_orbit(None, 0, &steady, &newton, &())
+        .unwrap();
+    assert_eq!((orbit.period, orbit.stability), (1, Stability::Stable));
+    let c = shockley.lyapunov(&options, &()).unwrap();
+    assert_eq!(c.verdict, NonperiodicVerdict::Contracting);
+    assert!(
+        (c.exponents.largest.per_tau - orbit.exponent()).abs()
+            <= 4.0 * c.exponents.largest.error_per_tau + 1e-6 * orbit.exponent().abs(),
+        "{:?} vs {}",
+        c.exponents.largest,
+        orbit.exponent()
+    );
 }
 
 #[test]
@@ -497,7 +492,7 @@ fn reports_write_minus_infinity_as_null_with_its_reason_and_count_real_stops() {
         r.stable && r.moduli[1] < 1e-12 && r.moduli[0] < 1.0,
         "{r:?}"
     );
-    assert_eq!(r.exponent_per_tau, ExponentValue::Finite(orbit.exponent()));
+    assert_eq!(r.lambda1, ExponentValue::Finite(orbit.exponent()));
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["stability"], "stable");
     assert_eq!(json["multipliers"][0]["im"], 0.0);
@@ -525,8 +520,8 @@ fn reports_write_minus_infinity_as_null_with_its_reason_and_count_real_stops() {
         SecondExponent::MinusInfinity { .. }
     ));
     let json = serde_json::to_value(LyapunovReport::new(&c, &options, &params).unwrap()).unwrap();
-    assert_eq!(json["lambda2_per_tau"], serde_json::Value::Null);
-    assert_eq!(json["lambda2_error_per_tau"], serde_json::Value::Null);
+    assert_eq!(json["lambda2"], serde_json::Value::Null);
+    assert_eq!(json["lambda2_error"], serde_json::Value::Null);
     assert!(json["lambda2_reason"].as_str().unwrap().contains("stopped"));
     // It has reached its period-1 orbit: periodic, and what the exponent says beside it.
     assert_eq!(json["class"], "periodic");
@@ -538,7 +533,7 @@ fn reports_write_minus_infinity_as_null_with_its_reason_and_count_real_stops() {
     let c =
         stickslip::stability::classify_nonperiodic(&sliding, State::default(), &options).unwrap();
     let json = serde_json::to_value(LyapunovReport::new(&c, &options, &sliding).unwrap()).unwrap();
-    assert!(json["lambda2_per_tau"].as_f64().unwrap() < json["lambda_per_tau"].as_f64().unwrap());
+    assert!(json["lambda2"].as_f64().unwrap() < json["lambda1"].as_f64().unwrap());
     assert_eq!(json["lambda2_reason"], serde_json::Value::Null);
     assert_eq!(json["stops_per_period"], 0.0);
 }

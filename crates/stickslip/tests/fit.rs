@@ -200,6 +200,178 @@ fn bad_input_names_the_file_and_line() {
     assert!(read_scope(&text.replace(",0.0000,", ",-0.00e+00,"), "ok.csv").is_ok());
 }
 
+/// A comma-separated export as a European spreadsheet saves it: `sep` between the fields,
+/// and with `comma` every decimal point a comma; `quote` puts each field in quotes.
+fn european(text: &str, sep: &str, comma: bool, quote: bool) -> String {
+    text.lines()
+        .map(|line| {
+            line.split(',')
+                .map(|f| {
+                    let f = if comma {
+                        f.replace('.', ",")
+                    } else {
+                        f.to_string()
+                    };
+                    if quote && !f.is_empty() {
+                        format!("\"{f}\"")
+                    } else {
+                        f
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(sep)
+        })
+        .collect::<Vec<_>>()
+        .join("\r\n")
+}
+
+/// Issue 38 item 12: exports with semicolons, tabs and decimal commas (quoted or not), a
+/// Rigol file re-saved by a spreadsheet, a Windows-1252 header with µ: each read exactly as
+/// the scope's own comma-separated export; what cannot be read unambiguously (decimal commas
+/// between commas, points and commas in one file, an empty file) is refused with its cause.
+#[test]
+fn european_exports_read_as_the_scope_wrote_them() {
+    use stickslip::measure::decode;
+    let mut rng = Rng(38);
+    let s = synthesise(0.95, 2.14, 0.3, 0.0, 1.0, &mut rng);
+    let same = |a: &Record, b: &Record, what: &str| {
+        assert_eq!(a.format, b.format, "{what}");
+        assert_eq!(a.time, b.time, "{what}");
+        assert_eq!(a.channels, b.channels, "{what}");
+        assert_eq!(a.len(), 1200, "{what}");
+    };
+    let originals = [
+        rigol(&s),
+        keysight(&s),
+        siglent(&s),
+        plain(&s),
+        tektronix(&s, 2),
+    ];
+    for original in &originals {
+        let want = read_scope(original, "scope.csv").unwrap();
+        let variants = [
+            (
+                "semicolons, decimal commas",
+                european(original, ";", true, false),
+            ),
+            (
+                "tabs, decimal commas",
+                european(original, "\t", true, false),
+            ),
+            (
+                "tabs, decimal points",
+                european(original, "\t", false, false),
+            ),
+            ("quoted decimal commas", european(original, ",", true, true)),
+            ("quoted, semicolons", european(original, ";", true, true)),
+            (
+                "sep=; line",
+                format!("sep=;\r\n{}", european(original, ";", true, false)),
+            ),
+        ];
+        for (what, text) in variants {
+            let got = read_scope(&text, "scope.csv")
+                .unwrap_or_else(|e| panic!("{what}: {e}\n{}", &text[..300]));
+            same(&got, &want, what);
+        }
+    }
+    // A Rigol export re-saved by a spreadsheet: semicolons, decimal commas, numbers in its
+    // own style (2 decimals dropped to what it shows, capital E), every row padded with empty
+    // fields to the widest row, and in Windows-1252 with a µ in a note after the rows.
+    let mut resaved = String::new();
+    for (i, line) in rigol(&s).lines().enumerate() {
+        let fields: Vec<String> = line
+            .split(',')
+            .map(|f| match f.parse::<f64>() {
+                Ok(v) if f.contains('.') => format!("{v:E}").replace('.', ","),
+                _ => f.to_string(),
+            })
+            .collect();
+        let mut fields = fields;
+        fields.resize(5.max(fields.len()), String::new());
+        resaved += &fields.join(";");
+        resaved += if i == 0 { ";\r\n" } else { "\r\n" };
+    }
+    let mut bytes = resaved.into_bytes();
+    let want = read_scope(&rigol(&s), "r.csv").unwrap();
+    let got = read_scope(&decode(&bytes, "r.csv").unwrap(), "r.csv").unwrap();
+    same(&got, &want, "a Rigol file re-saved");
+    bytes.splice(0..0, b"sep=;\r\n".iter().copied());
+    let got = read_scope(&decode(&bytes, "r.csv").unwrap(), "r.csv").unwrap();
+    same(&got, &want, "a Rigol file re-saved, with sep=;");
+    // Windows-1252: a Siglent header with "500µs" (the byte 0xB5), a plain export whose time
+    // column is in µs.
+    let sig = siglent(&s);
+    let (first, rest) = sig.split_once('\n').unwrap();
+    let mut cp1252 = format!("{first}\nHorizontal Scale,500").into_bytes();
+    cp1252.push(0xB5);
+    cp1252.extend_from_slice(format!("s\n{rest}").as_bytes());
+    assert!(String::from_utf8(cp1252.clone()).is_err());
+    let got = read_scope(&decode(&cp1252, "s.csv").unwrap(), "s.csv").unwrap();
+    same(
+        &got,
+        &read_scope(&sig, "s.csv").unwrap(),
+        "a Windows-1252 header",
+    );
+    assert!(got
+        .metadata
+        .contains(&("Horizontal Scale".into(), "500µs".into())));
+    let micro: String = (0..200)
+        .map(|k| format!("{};{:.4};{:.4}\r\n", k * 2, 0.1 * k as f64, 1.0).replace('.', ","))
+        .collect();
+    let mut bytes = b"t (\xB5s);CH1 (V);CH2 (V)\r\n".to_vec();
+    bytes.extend_from_slice(micro.as_bytes());
+    let got = read_scope(&decode(&bytes, "u.csv").unwrap(), "u.csv").unwrap();
+    assert_eq!(got.format, ScopeFormat::Plain);
+    assert_eq!(got.time[3], 6e-6);
+    assert_eq!(got.channels[0].values[3], 0.3);
+    assert_eq!(
+        (got.channels[1].name.as_str(), got.channels[1].unit.as_str()),
+        ("CH2", "V")
+    );
+    // An amplitude table from the same spreadsheet.
+    let table = amplitude_table(&mut rng, false);
+    let a = read_amplitudes(&table, "g.csv").unwrap();
+    let b = read_amplitudes(&european(&table, ";", true, false), "g.csv").unwrap();
+    assert_eq!(a.rows, b.rows);
+
+    // What cannot be read unambiguously names its cause.
+    let plain_text = plain(&s);
+    let e = error(&plain_text.replace('.', ","));
+    assert!(
+        e.starts_with("bad.csv: line 2: ")
+            && e.contains("fields separated by commas, where the header gives 3")
+            && e.contains("decimal commas"),
+        "{e}"
+    );
+    let e = error(&rigol(&s).replace('.', ","));
+    assert!(
+        e.starts_with("bad.csv: line 2: ") && e.contains("decimal commas"),
+        "{e}"
+    );
+    let mixed = european(&plain_text, ";", true, false).replacen("0,", "0.", 40);
+    let e = error(&mixed);
+    assert!(
+        e.contains(
+            "is not a finite number: the file writes numbers with a decimal point and others \
+             with a decimal comma"
+        ),
+        "{e}"
+    );
+    for (text, cause) in [
+        ("", "the file is empty (0 bytes)"),
+        ("\u{feff}", "the file is empty (0 bytes)"),
+        ("\r\n\r\n", "the file holds no text, only 2 blank line(s)"),
+    ] {
+        let e = read_scope(text, "e.csv").unwrap_err().to_string();
+        assert!(e.starts_with(&format!("e.csv: {cause}")), "{e}");
+    }
+    let e = decode(b"", "e.csv").unwrap_err().to_string();
+    assert!(e.starts_with("e.csv: the file is empty (0 bytes)"), "{e}");
+    let e = read_amplitudes("", "e.csv").unwrap_err().to_string();
+    assert!(e.starts_with("e.csv: the file is empty (0 bytes)"), "{e}");
+}
+
 #[test]
 fn a_joint_fit_recovers_r_and_ut() {
     let mut rng = Rng(2026);
@@ -392,12 +564,18 @@ mod readers_on_any_text {
     fn text() -> impl Strategy<Value = String> {
         (0..HEADERS.len(), 0usize..80).prop_flat_map(|(format, rows)| {
             let rows: Vec<_> = (0..rows).map(|k| row(k, format)).collect();
-            (Just(format), rows, any::<bool>()).prop_map(|(format, rows, crlf)| {
+            (Just(format), rows, any::<bool>(), 0u8..6).prop_map(|(format, rows, crlf, style)| {
                 let mut text = HEADERS[format].to_string() + &rows.join("\n");
                 if crlf {
                     text = text.replace('\n', "\r\n");
                 }
-                text
+                // A European spreadsheet's export: semicolons or tabs, decimal commas, quotes.
+                match style {
+                    0 => super::european(&text, ";", true, false),
+                    1 => super::european(&text, "\t", true, false),
+                    2 => super::european(&text, ",", true, true),
+                    _ => text,
+                }
             })
         })
     }
@@ -412,7 +590,7 @@ mod readers_on_any_text {
 
         #[test]
         fn readers_never_panic_on_bytes(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
-            super::scope_case::check(&String::from_utf8_lossy(&bytes));
+            super::scope_case::check_bytes(&bytes);
         }
     }
 
@@ -432,7 +610,10 @@ mod readers_on_any_text {
                     format!("{t},{x:.4},{:.4}", 0.5 * x)
                 })
                 .collect();
-            super::scope_case::check(&(header.to_string() + &rows.join("\n")));
+            let text = header.to_string() + &rows.join("\n");
+            super::scope_case::check(&text);
+            super::scope_case::check(&super::european(&text, ";", true, false));
+            super::scope_case::check(&super::european(&text, "\t", true, true));
         }
     }
 }

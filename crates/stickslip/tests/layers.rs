@@ -30,6 +30,7 @@ const LAYERS: &[&[&str]] = &[
     &["params"],
     &["solver"],
     &["cancel"],
+    &["stiff"],
     &["exact", "shockley"],
     &["physical", "stability", "theory"],
     &["attractor", "shockley::netlist", "steady"],

@@ -8,20 +8,21 @@ use crate::output::{check_plot_path, usage, Sink};
 use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
-use stickslip::attractor::AttractorKind;
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, BasinReport, Basins, Cell};
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
 use stickslip::experiment::{Experiment, Key, Origin};
 use stickslip::report::BasinsTable;
 use stickslip::scan::ParameterRange;
-use stickslip::{OptionKey, State};
+use stickslip::OptionKey;
 
 /// Basins of attraction: which motion the oscillator settles on from each initial state
 /// (y0, y0') of a grid, given at drive phase --phase. The attractors are found and numbered
 /// in the order of the cells (rows of y0, then y0'): a periodic orbit by its period and its
 /// fixed point (refined by Newton's method), rest by never moving again, chaos by a positive
 /// largest Lyapunov exponent and its strobe set, quasi-periodic motion by an exponent within
-/// its error of zero. Cells that settle on nothing within the caps are unsettled.
+/// its error of zero. Cells that settle on nothing within the caps are undecided. With
+/// --model shockley every cell runs on the stiff solver, and strobe states repeat (and fixed
+/// points match) within its rtol.
 ///
 /// --method recurrence (the default) follows each initial state on a grid of the strobe
 /// map's state space with --resolution cells across the map, until it lands on cells already
@@ -30,14 +31,14 @@ use stickslip::{OptionKey, State};
 /// --method exhaustive runs every cell to its steady state and classifies it on its own, in
 /// parallel (the reference; costly where the motion is chaotic).
 ///
-/// Output CSV columns: y0,v0,attractor,kind,period
-/// (attractor = its number, empty when unsettled; kind = periodic|static|chaotic|
-/// quasiperiodic|unsettled; period in drive periods, empty without one).
-/// --json prints a summary: the model, the grid, and "attractors", each with id, kind,
+/// Output CSV columns: y0,v0,attractor,class,period
+/// (attractor = its number, empty when undecided; class = periodic|static|chaotic|
+/// quasiperiodic|undecided; period in drive periods, empty without one).
+/// --json prints a summary: the model, the grid, and "attractors", each with id, class,
 /// period (null without one), fraction (of the grid), cells, state (a representative state
 /// at the strobe: the fixed point of a periodic orbit), strobes (its strobe points, at most
-/// 64), exponent (largest Lyapunov exponent per unit τ), multipliers ([re, im] pairs, periodic
-/// only), rest_range ([min, max] of the rest positions, rest only); and "unsettled".
+/// 64), lambda1 (largest Lyapunov exponent per unit τ), multipliers ([re, im] pairs, periodic
+/// only), rest_range ([min, max] of the rest positions, rest only); and "undecided".
 ///
 /// Example: stickslip basins --zeta 0 --mu-s 3 --w 0.6 --beta 3.269 --y0-min -8 --y0-max 8 \
 ///          --v0-min -8 --v0-max 8 --steps 200 --plot basins.png --json
@@ -47,16 +48,16 @@ pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
     /// Smallest initial position y0.
-    #[arg(long = "y0-min", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     y0_min: f64,
     /// Largest initial position y0.
-    #[arg(long = "y0-max", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     y0_max: f64,
     /// Smallest initial velocity y0'.
-    #[arg(long = "v0-min", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     v0_min: f64,
     /// Largest initial velocity y0'.
-    #[arg(long = "v0-max", value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     v0_max: f64,
     #[arg(long, help = help(OptionKey::BasinSteps), default_value_t = int(OptionKey::BasinSteps) as _, allow_hyphen_values = true)]
     steps: i64,
@@ -64,11 +65,11 @@ pub struct Args {
     /// [default: 0].
     #[arg(long, value_parser = finite, allow_hyphen_values = true)]
     phase: Option<f64>,
-    #[arg(long = "max-periods", help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinMaxPeriods.flag(), help = help(OptionKey::BasinMaxPeriods), default_value_t = int(OptionKey::BasinMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(long = "max-period", help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinMaxPeriod.flag(), help = help(OptionKey::BasinMaxPeriod), default_value_t = int(OptionKey::BasinMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(long = "lyapunov-periods", help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BasinLyapunovPeriods.flag(), help = help(OptionKey::BasinLyapunovPeriods), default_value_t = int(OptionKey::BasinLyapunovPeriods) as _, allow_hyphen_values = true)]
     lyapunov_periods: i64,
     /// How each cell's attractor is found: recurrence (cells stop on a labelled cell of the
     /// state-space grid; attractors classified once) or exhaustive (every cell run to its
@@ -212,7 +213,7 @@ pub fn run(args: Args) -> Result<()> {
             short(map.params.mu_s),
             short(map.params.phi)
         );
-        crate::plot::Figure::single(crate::diagrams::basin_panel(&map, &title), (900, 760))
+        crate::plot::Figure::single(crate::diagrams::basin_panel(&map, &title), (900, 650))
             .render(path)?;
     }
     if args.json {
@@ -248,23 +249,12 @@ fn identity(
         .with("options", serde_json::to_string(options)?))
 }
 
-/// A row of cells as a checkpoint unit: per cell its kind, period (0: none), exponent,
-/// periods simulated, and its strobe points (count, then y and y' of each).
+/// A row of cells as a checkpoint unit: each cell as the library encodes it
+/// ([`Cell::encode`]).
 fn encode_row(cells: &[Cell]) -> Vec<u8> {
     let mut unit = UnitWriter::new();
     for c in cells {
-        let kind = AttractorKind::ALL
-            .iter()
-            .position(|&k| k == c.kind)
-            .expect("a kind of ALL");
-        unit.u8(kind as u8)
-            .u64(c.period.map_or(0, |p| p as u64))
-            .f64(c.exponent)
-            .u64(c.periods as u64)
-            .u64(c.strobes.len() as u64);
-        for x in &c.strobes {
-            unit.f64(x.y).f64(x.v);
-        }
+        c.encode(&mut unit);
     }
     unit.finish()
 }
@@ -332,36 +322,11 @@ fn fill_recurrence(
     Ok((cells, computed))
 }
 
-/// The cells of one saved row.
+/// The cells of one saved row ([`Cell::decode`]).
 fn decode_row(r: &mut UnitReader, columns: usize) -> Result<Vec<Cell>> {
-    let damaged = || anyhow::anyhow!("checkpoint holds a malformed row");
-    let mut cells = Vec::with_capacity(columns);
-    for _ in 0..columns {
-        let kind = *AttractorKind::ALL
-            .get(r.u8().ok_or_else(damaged)? as usize)
-            .ok_or_else(damaged)?;
-        let period = r.u64().ok_or_else(damaged)?;
-        let exponent = r.f64().ok_or_else(damaged)?;
-        let periods = r.u64().ok_or_else(damaged)? as usize;
-        let n = r.u64().ok_or_else(damaged)?;
-        if n > 1 << 20 {
-            return Err(damaged());
-        }
-        let mut strobes = Vec::with_capacity(n as usize);
-        for _ in 0..n {
-            let y = r.f64().ok_or_else(damaged)?;
-            let v = r.f64().ok_or_else(damaged)?;
-            strobes.push(State { y, v });
-        }
-        cells.push(Cell {
-            kind,
-            period: (period > 0).then_some(period as usize),
-            strobes,
-            exponent,
-            periods,
-        });
-    }
-    Ok(cells)
+    (0..columns)
+        .map(|_| Cell::decode(r).ok_or_else(|| anyhow::anyhow!("checkpoint holds a malformed row")))
+        .collect()
 }
 
 /// Every cell of the grid, row-major, from the rows of a complete checkpoint.
@@ -388,7 +353,7 @@ pub fn write_csv(out: &mut dyn Write, map: &BasinMap) -> Result<()> {
     crate::output::write_table(out, &BasinsTable { map })
 }
 
-/// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 unsettled".
+/// "2 attractors: #0 period 1 (58.3 %), #1 period 1 (41.7 %); 0 undecided".
 pub fn describe(map: &BasinMap) -> String {
     let list: Vec<String> = map
         .attractors
@@ -396,10 +361,10 @@ pub fn describe(map: &BasinMap) -> String {
         .map(crate::diagrams::attractor_label)
         .collect();
     format!(
-        "{} attractor{}: {}; {} unsettled",
+        "{} attractor{}: {}; {} undecided",
         map.attractors.len(),
         if map.attractors.len() == 1 { "" } else { "s" },
         list.join(", "),
-        map.unsettled
+        map.undecided
     )
 }

@@ -19,17 +19,22 @@ use stickslip::{OptionKey, Parameter};
 /// the strobe points (y, y') once per drive period at drive phase φ, with the largest
 /// Lyapunov exponent over them and what the motion settled on. Each value starts from the
 /// state the one before ended in, as when turning a knob, so the two directions show
-/// coexisting branches. A period-p orbit gives p points; chaos a cloud and λ > 0.
+/// coexisting branches. A period-p orbit gives p points; chaos a cloud and λ1 > 0.
 ///
-/// Output CSV columns: <param>,y,v,direction,lambda,class,period
-/// (one row per strobe point; <param> = w|beta|zeta|mu_s; direction = up|down; lambda = the
+/// Output CSV columns: <param>,y,v,direction,lambda1,class,period
+/// (one row per strobe point; <param> = w|beta|zeta|mu_s; direction = up|down; lambda1 = the
 /// largest exponent per unit τ over the recorded periods; class = periodic|static|chaotic|
-/// quasiperiodic|unsettled (from the recorded periods only: the repetition of the points and
-/// the sign of λ beyond 4 standard errors); period in drive periods, empty without one).
+/// quasiperiodic|undecided (from the recorded periods only: the repetition of the points and
+/// the sign of λ1 beyond 4 standard errors; undecided: no verdict within them); period in
+/// drive periods, empty without one).
 ///
 /// The plot (--plot) draws the points as dots, the branches of the periodic orbits found by
 /// continuation on top (stable solid, unstable dashed, with folds, period doublings and
 /// grazings marked) and the exponent below.
+///
+/// With --model shockley the points and the exponent are the stiff solver's (its tangent
+/// dynamics: the variational equations on its own steps), and points repeat within its
+/// rtol; μs is no parameter of the diode law.
 ///
 /// Example: stickslip bifurcation --zeta 0 --mu-s 3 --beta 9 --over w --from 0.2 --to 0.55 \
 ///          --steps 500 --out bif.csv --plot bif.png
@@ -57,9 +62,9 @@ pub struct Args {
     points: i64,
     #[arg(long, help = help(OptionKey::BifurcationTransient), default_value_t = int(OptionKey::BifurcationTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(long = "first-transient", help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::FirstTransient.flag(), help = help(OptionKey::FirstTransient), default_value_t = int(OptionKey::FirstTransient) as _, allow_hyphen_values = true)]
     first_transient: i64,
-    #[arg(long = "max-period", help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::BifurcationMaxPeriod.flag(), help = help(OptionKey::BifurcationMaxPeriod), default_value_t = int(OptionKey::BifurcationMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -68,7 +73,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// Do not continue the periodic orbits for the plot (faster).
-    #[arg(long = "no-branches")]
+    #[arg(long)]
     no_branches: bool,
 }
 

@@ -8,7 +8,7 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::continuation::{
-    continue_orbit, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
+    continue_orbit_of, settled_orbit, Branch, BranchEnd, BranchReport, ContinuationOptions, Side,
 };
 use stickslip::report::BranchTable;
 use stickslip::{OptionKey, Parameter};
@@ -23,6 +23,13 @@ use stickslip::{OptionKey, Parameter};
 /// turning), period doubling (through −1), grazing (the turning points or stops per period
 /// change), each with the stability on either side.
 ///
+/// With --model shockley (w, β or ζ; μs is no parameter of the diode law) the strobe map is
+/// the stiff solver's, with its Jacobian and ∂P/∂λ from the variational equations on its own
+/// steps, and its points are fixed points to the accuracy its map repeats (the solver's
+/// rtol). A smooth law has no grazing: its stops are a threshold of the current,
+/// not a switch of the equation, so no grazing is reported and a change of the stops does not
+/// split the branch; folds, period doublings and Neimark–Sacker points are found as above.
+///
 /// Output CSV columns: <param>,y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,
 /// mu2_re,mu2_im,stable,arclength
 /// (y, v = the strobe point (fixed point of the p-fold map); amplitude = (max y − min y)/2;
@@ -32,8 +39,10 @@ use stickslip::{OptionKey, Parameter};
 /// parameter, period, points, begin and end (why the branch ends there), special (kind,
 /// value, y, v, width, before and after: value, stops, turns, multipliers, stable).
 ///
-/// Example: stickslip continue --preset paper --mu-s 1.5 --w 0.9 --over beta --from 1.45 \
-///          --to 1.2 --out branch.csv --plot branch.png
+/// Examples: stickslip continue --preset paper --mu-s 1.5 --w 0.9 --over beta --from 1.45 \
+///           --to 1.2 --out branch.csv --plot branch.png
+///           stickslip continue --preset paper --model shockley --beta 3.61 --over w \
+///           --from 1.2 --to 0.6 --out branch.csv
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -46,9 +55,9 @@ pub struct Args {
     from: f64,
     #[arg(long, help = help(OptionKey::ContinuationTo), value_parser = finite, allow_hyphen_values = true)]
     to: f64,
-    #[arg(long = "max-points", help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxPoints.flag(), help = help(OptionKey::MaxPoints), default_value_t = int(OptionKey::MaxPoints) as _, allow_hyphen_values = true)]
     max_points: i64,
-    #[arg(long = "max-step", help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxStep.flag(), help = help(OptionKey::MaxStep), default_value_t = num(OptionKey::MaxStep), value_parser = finite, allow_hyphen_values = true)]
     max_step: f64,
     /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]
@@ -78,6 +87,7 @@ pub fn run(args: Args) -> Result<()> {
         .experiment()?
         .with_parameter(parameter, args.from)?;
     parameter.set(experiment.params()?, args.to)?;
+    stickslip::continuation::check_parameter(&experiment, parameter)?;
     eprintln!(
         "continue: {experiment}; from the orbit settled on at {} = {}, towards {}",
         parameter.label(),
@@ -110,7 +120,9 @@ pub fn run(args: Args) -> Result<()> {
     .with_max_step(max_step);
     let started = std::time::Instant::now();
     let bar = crate::output::progress(options.max_points as u64, "continue");
-    let result = continue_orbit(
+    let dynamics = experiment.dynamics()?;
+    let result = continue_orbit_of(
+        dynamics.as_ref(),
         &params,
         parameter,
         &orbit,

@@ -15,6 +15,7 @@ use stickslip::measure::{
     read_amplitudes, read_scope, AmplitudeTable, MeasureError, Measurement, Record,
 };
 use stickslip::shockley::DiodePair;
+use stickslip::{DiodeModel, SystemKind};
 
 /// Fit the circuit's parameters to measurements: scope records of the drive and u_C, or a
 /// table of measured amplitudes.
@@ -67,7 +68,7 @@ pub struct Args {
     data: Vec<String>,
     /// A table of measured amplitudes (CSV).
     #[arg(
-        long = "gain-table",
+        long,
         value_name = "FILE",
         help_heading = "Measurements",
         conflicts_with = "data"
@@ -79,25 +80,17 @@ pub struct Args {
     /// The u_C channel of each record [default: the second].
     #[arg(long, value_name = "COL", help_heading = "Measurements")]
     response: Option<String>,
-    /// Free parameters, comma-separated [default: resistance,ut; a mechanical oscillator:
-    /// damping,friction].
-    #[arg(long, value_name = "KEYS", help_heading = "Fit")]
+    #[arg(long, value_name = "KEYS", help_heading = "Fit", help = free_help())]
     free: Option<String>,
     /// Fit each record alone (how a parameter drifts with the drive).
-    #[arg(long = "per-record", help_heading = "Fit", conflicts_with = "compare")]
+    #[arg(long, help_heading = "Fit", conflicts_with = "compare")]
     per_record: bool,
     /// Fit PWL diodes (free --free) and 1N4148-like Shockley diodes (free --free-shockley)
     /// and compare them by AIC.
     #[arg(long, help_heading = "Fit")]
     compare: bool,
-    /// Free parameters of the Shockley fit of --compare.
-    #[arg(
-        long = "free-shockley",
-        value_name = "KEYS",
-        default_value = "resistance,diode-is,diode-n",
-        help_heading = "Fit"
-    )]
-    free_shockley: String,
+    #[arg(long, value_name = "KEYS", help_heading = "Fit", help = free_shockley_help())]
+    free_shockley: Option<String>,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -112,6 +105,31 @@ pub struct Args {
     /// with the exact sliding orbit and the paper's eq. (11) at the fitted values.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+}
+
+/// The default free set of a system and law, as `--free` takes it: the library's
+/// ([`FitParameter::defaults`]).
+fn default_free(system: SystemKind, law: DiodeModel) -> String {
+    FitParameter::list(&FitParameter::defaults(system, law))
+}
+
+/// The help of `--free`, its defaults the library's.
+fn free_help() -> String {
+    format!(
+        "Free parameters, comma-separated [default: {} with PWL diodes, {} with Shockley \
+         diodes; a mechanical oscillator: {}]",
+        default_free(SystemKind::Circuit, DiodeModel::Pwl),
+        default_free(SystemKind::Circuit, DiodeModel::Shockley),
+        default_free(SystemKind::Mechanics, DiodeModel::Pwl)
+    )
+}
+
+/// The help of `--free-shockley`, its default the library's.
+fn free_shockley_help() -> String {
+    format!(
+        "Free parameters of the Shockley fit of --compare [default: {}]",
+        default_free(SystemKind::Circuit, DiodeModel::Shockley)
+    )
 }
 
 fn parse_free(text: &str, flag: &str) -> Result<Vec<FitParameter>> {
@@ -143,10 +161,9 @@ fn measure(err: MeasureError) -> anyhow::Error {
 
 fn read_text(path: &Path) -> Result<String> {
     match std::fs::read(path) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(text) => Ok(text),
-            Err(_) => usage!("{}: not a text file (UTF-8)", path.display()),
-        },
+        Ok(bytes) => {
+            stickslip::measure::decode(&bytes, &path.display().to_string()).map_err(measure)
+        }
         Err(e) => usage!("{}: {e}", path.display()),
     }
 }
@@ -262,12 +279,11 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
         experiment.system(),
         Some(stickslip::physical::System::Mechanics(_))
     );
-    let default_free = if mechanics {
-        "damping,friction"
-    } else {
-        "resistance,ut"
+    // The library's default free set of the system and diode law.
+    let free = match &args.free {
+        Some(text) => parse_free(text, "--free")?,
+        None => FitParameter::defaults_of(&experiment).map_err(refused)?,
     };
-    let free = parse_free(args.free.as_deref().unwrap_or(default_free), "--free")?;
     // A parameter of the other twin or diode law is refused before any file is read.
     for p in &free {
         p.get(&experiment).map_err(refused)?;
@@ -305,7 +321,10 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
         }
         eprintln!("fit: {} records; {experiment}", data.len());
         if args.compare {
-            let shockley_free = parse_free(&args.free_shockley, "--free-shockley")?;
+            let shockley_free = match &args.free_shockley {
+                Some(text) => parse_free(text, "--free-shockley")?,
+                None => FitParameter::defaults(SystemKind::Circuit, DiodeModel::Shockley),
+            };
             let c = compare_models_monitored(
                 &experiment,
                 DiodePair::one_n4148(),

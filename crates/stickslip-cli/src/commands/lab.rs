@@ -39,7 +39,7 @@ pub struct Args {
     /// Open the page in the default browser.
     #[arg(long)]
     open: bool,
-    #[arg(long = "time-limit", help = crate::flags::help(OptionKey::LabTimeLimit), default_value_t = crate::flags::num(OptionKey::LabTimeLimit), value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::LabTimeLimit.flag(), help = crate::flags::help(OptionKey::LabTimeLimit), default_value_t = crate::flags::num(OptionKey::LabTimeLimit), value_parser = crate::model::finite, allow_hyphen_values = true)]
     time_limit: f64,
     #[arg(long, help = crate::flags::help(OptionKey::LabJobs), allow_hyphen_values = true)]
     jobs: Option<i64>,
@@ -50,7 +50,7 @@ pub struct Args {
     /// Also answer requests that name the lab by this host name (e.g. a name the school's
     /// DNS gives this computer); the addresses it listens on and localhost are always
     /// answered. Repeat for more names.
-    #[arg(long = "allow-host", value_name = "NAME")]
+    #[arg(long, value_name = "NAME")]
     allow_host: Vec<String>,
 }
 

@@ -10,9 +10,11 @@ use stickslip::stability::{
 use stickslip::OptionKey;
 
 /// The largest Lyapunov exponent λ1 of the motion from the initial state, with a standard
-/// error, and the second exponent λ2, by the exact tangent dynamics of the PWL model: the
-/// 2×2 Jacobian of the exact flow (segment matrices and the saltation matrices of turns,
-/// stops and releases) carried along the trajectory and renormalised every block.
+/// error, and the second exponent λ2, by the tangent dynamics: with the PWL law the 2×2
+/// Jacobian of the exact flow (segment matrices and the saltation matrices of turns, stops
+/// and releases), with --model shockley the derivative of the stiff solver's computed
+/// solution (the variational equations on its own steps), carried along the trajectory and
+/// renormalised every drive period.
 ///
 /// λ1 is the mean rate at which two nearby motions separate: their distance grows like
 /// e^(λ1 τ), τ = ω0·t. After --transient drive periods (the tangent is carried and aligned,
@@ -28,16 +30,19 @@ use stickslip::OptionKey;
 /// drive periods); else chaotic (λ1 > kσ, k = --significance), contracting (λ1 < −kσ:
 /// settling onto a periodic attractor not reached yet), quasi-periodic (|λ1| ≤ kσ), or
 /// undecided (the two halves of the measurement disagree: a transient). λ2 is −∞ once the
-/// motion stops: a stop erases the velocity perturbation.
+/// motion stops: a stop erases the velocity perturbation (PWL law; with Shockley diodes λ2
+/// stays finite, and very negative where the current stops).
 ///
-/// JSON keys: lambda_per_tau, error_per_tau, lambda_per_period, error_per_period, class,
-/// verdict (what λ1 alone says), period (null unless periodic), converged, lambda2_per_tau
-/// (a number, or null when λ2 = −∞), lambda2_error_per_tau, lambda2_per_period,
+/// JSON keys: lambda1, lambda1_error (λ1 and σ per unit τ = ω0·t), lambda1_per_period,
+/// lambda1_error_per_period, class, verdict (what λ1 alone says), period (null unless
+/// periodic), converged, lambda2 (a number, or null when λ2 = −∞), lambda2_error,
+/// lambda2_per_period,
 /// lambda2_reason (why λ2 = −∞, or null), stops_per_period, transient_periods, periods
 /// (measured), cap_periods, sequential, blocks, significance, block_means, drive_period,
 /// final_y, final_v, w, beta, zeta, mu_s, phi.
 ///
-/// Example: stickslip lyapunov --zeta 0 --mu-s 3 --w 0.33 --beta 9 --json
+/// Examples: stickslip lyapunov --zeta 0 --mu-s 3 --w 0.33 --beta 9 --json
+///           stickslip lyapunov --preset paper --model shockley --freq 3k --amplitude 1.5
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -71,7 +76,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     .validate()?;
     let experiment = args.model.experiment()?;
-    let params = experiment.exact_params()?;
+    let params = experiment.params()?;
+    let dynamics = experiment.dynamics()?;
     options.check_horizon(&params)?;
     eprintln!(
         "lyapunov: {experiment}; {} periods of transient, {}{} measured in {} blocks",
@@ -89,12 +95,12 @@ pub fn run(args: Args) -> Result<()> {
     bar.finish_and_clear();
     check_interrupt()?;
     let c = result?;
-    let report = LyapunovReport::new(&c, &options, &params)?;
+    let report = LyapunovReport::of(&c, &options, &params, dynamics.as_ref())?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         let per_second = experiment.scales().map(|s| s.omega0);
-        print_text(&c, &options, report.period, per_second);
+        print_text(&c, &options, report.period, per_second, dynamics.is_exact());
     }
     Ok(())
 }
@@ -104,6 +110,7 @@ fn print_text(
     options: &LyapunovOptions,
     period: Option<usize>,
     omega0: Option<f64>,
+    exact: bool,
 ) {
     let e = &c.exponents;
     let l = e.largest;
@@ -152,9 +159,15 @@ fn print_text(
     };
     println!("class             {class}");
     match e.second {
-        SecondExponent::Finite(s) => println!(
+        SecondExponent::Finite(s) if exact => println!(
             "second exponent   λ2 = {:+.6e} ± {:.1e} per unit τ (λ1 + λ2 is the rate of \
              phase-area change: −2ζ while sliding, and each turn contracts)",
+            s.per_tau, s.error_per_tau
+        ),
+        SecondExponent::Finite(s) => println!(
+            "second exponent   λ2 = {:+.6e} ± {:.1e} per unit τ (λ1 + λ2 is the rate of \
+             phase-area change, the mean of −2ζ − D'(y'): the diodes' slope D' is largest \
+             where the current is near zero)",
             s.per_tau, s.error_per_tau
         ),
         SecondExponent::MinusInfinity { stops } => println!(

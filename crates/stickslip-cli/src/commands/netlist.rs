@@ -26,9 +26,9 @@ pub struct Args {
     model: ModelArgs,
     #[arg(long, help = help(OptionKey::NetlistPeriods), default_value_t = num(OptionKey::NetlistPeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    #[arg(long = "points-per-period", help = help(OptionKey::NetlistPoints), default_value_t = int(OptionKey::NetlistPoints) as _)]
+    #[arg(long = OptionKey::NetlistPoints.flag(), help = help(OptionKey::NetlistPoints), default_value_t = int(OptionKey::NetlistPoints) as _)]
     points_per_period: u32,
-    #[arg(long = "max-step", help = help(OptionKey::NetlistMaxStep), default_value_t = num(OptionKey::NetlistMaxStep), value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::NetlistMaxStep.flag(), help = help(OptionKey::NetlistMaxStep), default_value_t = num(OptionKey::NetlistMaxStep), value_parser = crate::model::finite, allow_hyphen_values = true)]
     max_step: f64,
     #[arg(long, help = help(OptionKey::NetlistReltol), value_parser = crate::model::finite, allow_hyphen_values = true)]
     reltol: Option<f64>,

@@ -10,9 +10,11 @@ use stickslip::stability::{
 };
 use stickslip::{Error, EventKind, OptionKey};
 
-/// Find a periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
-/// (the state once every p drive periods), with the exact Jacobian, and report its Floquet
-/// multipliers: whether it is stable, and how fast perturbations grow or decay.
+/// Find a periodic orbit by Newton's method on the p-fold strobe map (the state once every p
+/// drive periods), with its Jacobian, and report its Floquet multipliers: whether it is
+/// stable, and how fast perturbations grow or decay. With the PWL law the Jacobian is exact
+/// (closed-form segments and saltation matrices); with --model shockley it is the derivative
+/// of the stiff solver's computed map (the variational equations on the solver's own steps).
 ///
 /// Without --period the motion from the initial state is run to its steady state (as
 /// `stickslip steady`), which gives the period p and the guess. With --period P, Newton's
@@ -23,13 +25,14 @@ use stickslip::{Error, EventKind, OptionKey};
 /// JSON keys: period (drive periods), drive_period (T = 2π/w, dimensionless time),
 /// y, v (the state at the orbit's strobe, τ = 0 mod pT), stuck_at_strobe, multipliers
 /// [{"re", "im"}, ...] (larger modulus first), moduli, stable, stability (stable, unstable,
-/// neutral), exponent_per_tau and exponent_per_period (ln|μ1|/(pT) and ln|μ1|/p, or "-inf"),
+/// neutral), lambda1 and lambda1_per_period (λ1 = ln|μ1|/(pT) and ln|μ1|/p, or "-inf"),
 /// monodromy [[a, b], [c, d]], iterations, residuals, stops_per_period, events
 /// [{"tau", "y", "kind"}] and stops [{"start", "duration"}] over one orbit period (times
 /// from the strobe), w, beta, zeta, mu_s, phi.
 ///
 /// Examples: stickslip orbit --preset paper --w 0.7 --beta 1.2
 ///           stickslip orbit --zeta 0 --mu-s 3 --w 0.33 --beta 9 --period 1 --transient 2000 --json
+///           stickslip orbit --preset paper --model shockley --freq 3k --amplitude 1.5
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -39,13 +42,13 @@ pub struct Args {
     period: Option<i64>,
     #[arg(long, help = help(OptionKey::OrbitTransient), default_value_t = int(OptionKey::OrbitTransient) as _, allow_hyphen_values = true)]
     transient: i64,
-    #[arg(long = "max-periods", help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::OrbitMaxPeriods.flag(), help = help(OptionKey::OrbitMaxPeriods), default_value_t = int(OptionKey::OrbitMaxPeriods) as _, allow_hyphen_values = true)]
     max_periods: i64,
-    #[arg(long = "max-period", help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::OrbitMaxPeriod.flag(), help = help(OptionKey::OrbitMaxPeriod), default_value_t = int(OptionKey::OrbitMaxPeriod) as _, allow_hyphen_values = true)]
     max_period: i64,
-    #[arg(long = "newton-tolerance", help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::NewtonTolerance.flag(), help = help(OptionKey::NewtonTolerance), default_value_t = num(OptionKey::NewtonTolerance), value_parser = crate::model::finite, allow_hyphen_values = true)]
     newton_tolerance: f64,
-    #[arg(long = "max-iterations", help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MaxIterations.flag(), help = help(OptionKey::MaxIterations), default_value_t = int(OptionKey::MaxIterations) as _, allow_hyphen_values = true)]
     max_iterations: i64,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -72,7 +75,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     .validate()?;
     let experiment = args.model.experiment()?;
-    let params = experiment.exact_params()?;
+    let params = experiment.params()?;
+    let dynamics = experiment.dynamics()?;
     let steady = experiment
         .steady_options()
         .with_max_periods(orbit.max_periods)?
@@ -102,11 +106,11 @@ pub fn run(args: Args) -> Result<()> {
         ),
         other => other?,
     };
-    let report = OrbitReport::new(&orbit, &params)?;
+    let report = OrbitReport::of(&orbit, &params, dynamics.as_ref())?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_text(&orbit, &report);
+        print_text(&orbit, &report, dynamics.is_exact());
     }
     Ok(())
 }
@@ -132,7 +136,7 @@ fn multiplier(m: &Multiplier) -> String {
     }
 }
 
-fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport) {
+fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport, exact: bool) {
     let p = orbit.period;
     let plural =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
@@ -251,10 +255,19 @@ fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport) {
         println!("μ1 < 0: a perturbation changes sign from one orbit to the next.");
     }
     if mu2.modulus() < 1e-12 * modulus.max(1.0) && !orbit.stops.is_empty() {
-        println!(
-            "μ2 = 0 because the orbit stops: a stop erases the velocity perturbation, so the \
-             strobe map is one-dimensional there (M has rank one)."
-        );
+        if exact {
+            println!(
+                "μ2 = 0 because the orbit stops: a stop erases the velocity perturbation, so \
+                 the strobe map is one-dimensional there (M has rank one)."
+            );
+        } else {
+            println!(
+                "μ2 ≈ 0 because the orbit stops: while the current stays near zero the diodes' \
+                 slope (about n V_T/(2 I_s), megohms) damps a current perturbation by \
+                 e^(−∫D'dτ), so the strobe map is one-dimensional there; below 1e-12·|μ1| the \
+                 value of μ2 is the solver's (it depends on its steps), not the circuit's."
+            );
+        }
     }
 }
 

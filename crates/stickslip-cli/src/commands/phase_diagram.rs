@@ -2,7 +2,7 @@
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{help, int, key_value, range_from_flags, reject_swept_flags, SteadyFlags};
+use crate::flags::{count, help, int, num, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -10,7 +10,7 @@ use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use stickslip::checkpoint::{Checkpoint, Identity, UnitReader, UnitWriter};
-use stickslip::experiment::{Key, Origin};
+use stickslip::experiment::Origin;
 use stickslip::report::{AxisCells, MapRow};
 use stickslip::scan::{Axis, Grid, GridPoint, MapColor as Color, ParameterRange};
 use stickslip::stability::Estimate;
@@ -19,19 +19,20 @@ use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity}
 use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
-/// started from the initial state (rest by default), in parallel: sliding, periodic-stick,
-/// nonperiodic-stick or static (the paper's Figs. 6 and 7), and chaotic: a motion that does
-/// not repeat and whose largest Lyapunov exponent is positive beyond 4 standard errors
-/// (exact PWL model; see `stickslip steady --help`).
+/// started from the initial state (rest by default), in parallel: sliding, periodic-stick
+/// or static (the paper's Figs. 6 and 7), chaotic (a motion that does not repeat and whose
+/// largest Lyapunov exponent is positive beyond 4 standard errors, exact PWL model), or
+/// undecided (no period found within the budget, and not chaotic: the paper's non-periodic
+/// class lands here; see `stickslip steady --help`).
 ///
-/// With --color lyapunov every point also gets its largest Lyapunov exponent λ1 per unit
+/// With --color lambda1 every point also gets its largest Lyapunov exponent λ1 per unit
 /// τ = ω0·t: exactly, ln|μ1|/(pT) from the Floquet multiplier μ1 of its periodic orbit
 /// (refined by Newton's method) where the motion repeats, and measured over
 /// --lyapunov-periods where it does not; the plot maps λ1 (red: chaos, blue: contraction,
 /// white: 0, e.g. rest).
 ///
-/// Output CSV columns: w,beta,class,period,stops_per_cycle,gain, and with --color lyapunov
-/// also lambda,lambda_error (λ1 and its standard error per unit τ; 0 error for an exact
+/// Output CSV columns: w,beta,class,period,stops_per_period,gain, and with --color lambda1
+/// also lambda1,lambda1_error (λ1 and its standard error per unit τ; 0 error for an exact
 /// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
 /// --max-period was found.
 ///
@@ -42,7 +43,7 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 /// Example: stickslip phase-diagram --preset paper --w-steps 200 --beta-steps 200 \
 ///          --out map.csv --plot map.png
 ///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
-///          --beta-min 6 --beta-max 12 --color lyapunov --plot lyapunov.png
+///          --beta-min 6 --beta-max 12 --color lambda1 --plot lambda1.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -50,21 +51,17 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     steady: SteadyFlags,
-    /// Lowest drive frequency w.
-    #[arg(long = "w-min", default_value_t = 0.1, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWMin.flag(), help = help(OptionKey::MapWMin), default_value_t = num(OptionKey::MapWMin), value_parser = finite, allow_hyphen_values = true)]
     w_min: f64,
-    /// Highest drive frequency w.
-    #[arg(long = "w-max", default_value_t = 2.5, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWMax.flag(), help = help(OptionKey::MapWMax), default_value_t = num(OptionKey::MapWMax), value_parser = finite, allow_hyphen_values = true)]
     w_max: f64,
-    #[arg(long = "w-steps", help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapWSteps.flag(), help = help(OptionKey::MapWSteps), default_value_t = int(OptionKey::MapWSteps) as _, allow_hyphen_values = true)]
     w_steps: i64,
-    /// Lowest drive amplitude β.
-    #[arg(long = "beta-min", default_value_t = 0.5, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaMin.flag(), help = help(OptionKey::MapBetaMin), default_value_t = num(OptionKey::MapBetaMin), value_parser = finite, allow_hyphen_values = true)]
     beta_min: f64,
-    /// Highest drive amplitude β.
-    #[arg(long = "beta-max", default_value_t = 4.0, value_parser = finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaMax.flag(), help = help(OptionKey::MapBetaMax), default_value_t = num(OptionKey::MapBetaMax), value_parser = finite, allow_hyphen_values = true)]
     beta_max: f64,
-    #[arg(long = "beta-steps", help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::MapBetaSteps.flag(), help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
     beta_steps: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
@@ -74,7 +71,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// What the cells show: the motion class, or the largest Lyapunov exponent (computed at
-    /// every point, and written to the CSV as lambda,lambda_error).
+    /// every point, and written to the CSV as lambda1,lambda1_error; `lyapunov`, its name
+    /// before, still works).
     #[arg(long, value_parser = choice::<Color>(), default_value_t = Color::Class)]
     color: Color,
     #[command(flatten)]
@@ -83,22 +81,23 @@ pub struct Args {
 
 /// Run `stickslip phase-diagram`.
 pub fn run(args: Args) -> Result<()> {
-    let w = range_from_flags(
-        "w",
-        ("w-min", args.w_min),
-        ("w-max", args.w_max),
-        (OptionKey::MapWSteps, args.w_steps),
+    // The library checks each end and count against its row, and the ends' order.
+    let w = ParameterRange::between(
+        (OptionKey::MapWMin, args.w_min),
+        (OptionKey::MapWMax, args.w_max),
+        (
+            OptionKey::MapWSteps,
+            count(OptionKey::MapWSteps, args.w_steps)?,
+        ),
     )?;
-    let beta = range_from_flags(
-        "beta",
-        ("beta-min", args.beta_min),
-        ("beta-max", args.beta_max),
-        (OptionKey::MapBetaSteps, args.beta_steps),
+    let beta = ParameterRange::between(
+        (OptionKey::MapBetaMin, args.beta_min),
+        (OptionKey::MapBetaMax, args.beta_max),
+        (
+            OptionKey::MapBetaSteps,
+            count(OptionKey::MapBetaSteps, args.beta_steps)?,
+        ),
     )?;
-    key_value(Key::W, "w-min", w.from())?;
-    key_value(Key::W, "w-max", w.to())?;
-    key_value(Key::Beta, "beta-min", beta.from())?;
-    key_value(Key::Beta, "beta-max", beta.to())?;
     // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
     // memory; a streamed one only by its axes (docs/limits.md).
     if args.plot.is_some() || args.checkpoint.checkpoint.is_some() {
@@ -114,7 +113,7 @@ pub fn run(args: Args) -> Result<()> {
         check_plot_path(p)?;
     }
     Sink::check(args.out.as_deref())?;
-    let lyapunov = args.color == Color::Lyapunov;
+    let lyapunov = args.color == Color::Lambda1;
     args.checkpoint.check()?;
     let mut checkpoint_file = None;
     let experiment = args.model.experiment()?;
@@ -310,7 +309,7 @@ fn write_points(
 }
 
 /// Everything that determines the map: the experiment (whatever file or flags described
-/// it), both axes, the steady-state options, and with --color lyapunov the options of the
+/// it), both axes, the steady-state options, and with --color lambda1 the options of the
 /// exponents (a map of classes and one of exponents never share a checkpoint).
 fn identity(grid: &Grid) -> Result<Identity> {
     let experiment = grid.experiment().clone().with_origin(Origin::Parts);

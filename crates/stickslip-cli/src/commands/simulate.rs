@@ -25,7 +25,7 @@ pub struct Args {
     model: ModelArgs,
     #[arg(long, help = help(OptionKey::SimulatePeriods), default_value_t = num(OptionKey::SimulatePeriods), value_parser = crate::model::finite, allow_hyphen_values = true)]
     periods: f64,
-    #[arg(long = "samples-per-period", help = help(OptionKey::SimulateSamples), default_value_t = int(OptionKey::SimulateSamples) as _, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::SimulateSamples.flag(), help = help(OptionKey::SimulateSamples), default_value_t = int(OptionKey::SimulateSamples) as _, allow_hyphen_values = true)]
     samples_per_period: u64,
     /// Trajectory CSV file [default: standard output].
     #[arg(long, short)]

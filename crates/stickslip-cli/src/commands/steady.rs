@@ -24,17 +24,18 @@ use stickslip::Scales;
 /// A motion that does not repeat within --max-periods is then measured (exact PWL model):
 /// its largest Lyapunov exponent λ1 over --lyapunov-periods more periods, with a standard
 /// error σ from 20 blocks. λ1 > 4σ: nearby motions separate exponentially, the class is
-/// `chaotic`. Otherwise the class stays (nonperiodic-stick, or sliding without stops) and
-/// the exponent says why: λ1 < −4σ contracting onto a periodic motion not yet reached (or of
+/// `chaotic`. Otherwise the class is `undecided` (not decided within the budget; sliding
+/// without stops) and the exponent says why: λ1 < −4σ contracting onto a periodic motion not yet reached (or of
 /// a period above --max-period), |λ1| ≤ 4σ quasi-periodic, halves disagreeing: undecided.
 ///
-/// JSON keys: class, period (null if none), stops_per_cycle (stops per drive period),
-/// symmetric, peak (max |y|), gain, phase_lag, harmonics [A1, A2, ...], harmonic_phases,
-/// current_harmonics (of y' = current or velocity, dimensionless), subharmonic, mean,
-/// periods_to_settle, samples_per_period; for a motion that does not repeat also
-/// lambda_per_tau, error_per_tau, lambda_per_period, error_per_period (λ1 and σ per unit
-/// τ = ω0·t and per drive period), lambda_periods, lambda_converged and verdict (chaotic,
-/// quasi-periodic, contracting or undecided).
+/// JSON keys: class, period (null if none), stops_per_period (stops per drive period),
+/// symmetric, peak (max |y|), gain (G = (y_max − y_min)/(2β)), gain1 (G1 = A1/β),
+/// phase_lag, harmonics [A1, A2, ...], harmonic_phases, current_harmonics (of y' = current
+/// or velocity, dimensionless), subharmonic, mean, periods_to_settle, samples_per_period;
+/// for a motion that does not repeat also lambda1, lambda1_error, lambda1_per_period,
+/// lambda1_error_per_period (λ1 and σ per unit τ = ω0·t and per drive period),
+/// lambda1_periods, lambda1_converged and verdict (chaotic, quasi-periodic, contracting or
+/// undecided).
 ///
 /// Example: stickslip steady --preset paper --w 0.6 --beta 1.2 --json --plot steady.png
 #[derive(Debug, clap::Args)]

@@ -23,7 +23,7 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 /// state of the step before, as when turning a knob, so hysteresis and coexisting motions
 /// show up.
 ///
-/// Output CSV columns: w,beta,direction,gain,A1,A3,class,stops_per_cycle
+/// Output CSV columns: w,beta,direction,gain,gain1,A1,A3,class,stops_per_period
 /// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y); a sweep of
 /// zeta or mu_s puts the swept value first: zeta,w,beta,... or mu_s,w,beta,...
 ///
@@ -54,8 +54,9 @@ pub struct Args {
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
-    /// Plot of the gain against the swept parameter, up and down, with the theory's gain
-    /// (the paper's A1/β and the exact sliding orbit's peak/β) where it exists (.png or .svg).
+    /// Plot of the gain of the fundamental G1 = A1/β against the swept parameter, up and
+    /// down, with the paper's G1 (eq. 11) and the exact sliding orbit's G1 where it exists
+    /// (.png or .svg). The CSV has both gains: `gain` is G = (y_max − y_min)/(2β), `gain1` G1.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     #[command(flatten)]
@@ -218,11 +219,15 @@ impl Row {
             mu_s: self.params.mu_s,
             direction: self.leg,
             gain: self.gain,
+            // As `SteadyState::gain1`: A1/β, absent at β = 0 or without a spectrum.
+            gain1: (self.params.beta > 0.0)
+                .then(|| self.a1 / self.params.beta)
+                .and_then(measured),
             peak: None,
             a1: measured(self.a1),
             a3: measured(self.a3),
             class: self.class,
-            stops_per_cycle: self.stops_per_period,
+            stops_per_period: self.stops_per_period,
             period: None,
             phase_lag: None,
             f_hz: experiment
@@ -365,7 +370,7 @@ impl Theory {
         let base = experiment.params_with(&[(parameter, range.from())])?;
         Ok(theory_curve(
             TheoryKind::Exact,
-            TheoryQuantity::Gain,
+            TheoryQuantity::Gain1,
             &base,
             parameter,
             &xs,
@@ -383,7 +388,7 @@ impl Theory {
         // peak/β (not its A1/β). The paper's gain is its A1/β, eq. (11).
         let curve = |theory, quantity| theory_curve(theory, quantity, &base, parameter, &xs);
         Ok(Self {
-            paper: curve(TheoryKind::Paper, TheoryQuantity::Gain),
+            paper: curve(TheoryKind::Paper, TheoryQuantity::Gain1),
             prefix: match experiment.diode_model() {
                 DiodeModel::Pwl => "",
                 DiodeModel::Shockley => "PWL theory: ",
@@ -392,9 +397,9 @@ impl Theory {
     }
 }
 
-/// The plot of a sweep: the gain G = A1/β (the fundamental of y over β, the paper's
-/// definition) of the simulated steady states, of the paper's eq. (11) and of the exact
-/// sliding orbit: one definition for all three. (The CSV also has the peak gain.)
+/// The plot of a sweep: the gain of the fundamental G1 = A1/β (the paper's definition) of the
+/// simulated steady states, of the paper's eq. (11) and of the exact sliding orbit: one
+/// definition for all three. (The CSV also has the gain G = (y_max − y_min)/(2β).)
 fn plot(
     points: &[Row],
     parameter: Parameter,
@@ -421,7 +426,9 @@ fn plot(
         Some(p) => {
             let fixed: Vec<String> = Parameter::ALL
                 .into_iter()
-                .filter(|&q| q != parameter && (q != Parameter::MuS || p.mu_s != 1.0))
+                .filter(|&q| {
+                    q != parameter && q.is_set_in(&p) && (q != Parameter::MuS || p.mu_s != 1.0)
+                })
                 .map(|q| format!("{} = {:.3}", crate::diagrams::symbol(q), q.get(&p)))
                 .collect();
             format!(
@@ -459,20 +466,20 @@ fn plot(
     let prefix = theory.prefix;
     if theory.paper.present() > 0 {
         series.push(Quantity::PaperTheory.series(
-            format!("{prefix}paper, eq. (11): A1/β"),
+            format!("{prefix}paper, eq. (11): G1"),
             theory.paper.points(),
         ));
     }
     if exact_a1.present() > 0 {
         series.push(Quantity::ExactTheory.series(
-            format!("{prefix}exact sliding orbit: A1/β"),
+            format!("{prefix}exact sliding orbit: G1"),
             exact_a1.points(),
         ));
     }
     let panel = Panel {
         title,
         x_label: parameter.label().into(),
-        y_label: "gain G = A1/β (fundamental of y over β)".into(),
+        y_label: "G1 = A1/β (gain of the fundamental)".into(),
         series,
         legend: Some(Legend::Best),
         ..Default::default()

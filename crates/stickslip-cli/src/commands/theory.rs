@@ -20,14 +20,15 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Unsupported};
 /// solution (Den Hartog 1930 for ζ = 0, its damped generalisation otherwise).
 ///
 /// At one (ζ, w, β): A1, A3, A5, the phase lag of the fundamental behind the drive, the gain
-/// A1/β and the stick-slip boundary β_c of both, with the relative error of the paper's
-/// approximation; --json prints
-///   {"paper": {"A1", "A3", "A5", "phi0", "gain", "beta_c"},
-///    "exact": {"exists", "peak", "A1", "A3", "A5", "phase", "gain", "beta_c", ...}}
+/// of the fundamental G1 = A1/β and the stick-slip boundary β_c of both, with the relative
+/// error of the paper's approximation; --json prints
+///   {"paper": {"A1", "A3", "A5", "phi0", "gain1", "beta_c"},
+///    "exact": {"exists", "peak", "A1", "A3", "A5", "phase", "gain1", "beta_c", ...}}
 /// where a value that does not exist is null and "note" says why. Phases are in radians.
 ///
 /// With --curve, a CSV over w (ζ and μs from the model flags):
-///   boundary: w,beta_c_paper,beta_c_exact       gain (needs --beta): w,gain_paper,gain_exact
+///   boundary: w,beta_c_paper,beta_c_exact       gain1 (needs --beta): w,gain1_paper,gain1_exact
+/// (G1 = A1/β, the gain of the fundamental; `--curve gain`, its name before, still works).
 /// An empty cell is a value that does not exist there.
 ///
 /// Examples:
@@ -41,12 +42,12 @@ pub struct Args {
     /// Print JSON instead of a table (single point only).
     #[arg(long, conflicts_with = "curve", help_heading = "Theory")]
     json: bool,
-    /// Write a curve over w instead of one point: `boundary` or `gain`.
+    /// Write a curve over w instead of one point: `boundary` or `gain1`.
     #[arg(long, value_parser = choice::<Curve>(), help_heading = "Theory")]
     curve: Option<Curve>,
-    #[arg(long = "w-min", help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::CurveWMin.flag(), help = help(OptionKey::CurveWMin), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_min: Option<f64>,
-    #[arg(long = "w-max", help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
+    #[arg(long = OptionKey::CurveWMax.flag(), help = help(OptionKey::CurveWMax), help_heading = "Theory", value_parser = crate::model::finite, allow_hyphen_values = true)]
     w_max: Option<f64>,
     #[arg(long, help = help(OptionKey::CurveSteps), help_heading = "Theory", allow_hyphen_values = true)]
     steps: Option<i64>,
@@ -87,7 +88,7 @@ pub fn run(args: Args) -> Result<()> {
                 (args.plot.is_some(), "--plot"),
             ];
             if let Some((_, flag)) = curve_flags.iter().find(|(given, _)| *given) {
-                usage!("{flag} belongs to a curve: add --curve boundary or --curve gain");
+                usage!("{flag} belongs to a curve: add --curve boundary or --curve gain1");
             }
             point(&args)
         }
@@ -123,7 +124,7 @@ fn point(args: &Args) -> Result<()> {
         ("A3", paper.a3, exact.a3),
         ("A5", paper.a5, exact.a5),
         ("phase lag (rad)", paper.phi0, exact.phase),
-        ("gain A1/β", paper.gain, exact.gain),
+        ("gain G1 = A1/β", paper.gain1, exact.gain1),
         ("β_c", paper.beta_c, exact.beta_c),
         ("peak |y|", None, exact.peak),
     ];
@@ -188,8 +189,8 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         Curve::Boundary if has_beta => {
             usage!("--curve boundary finds β_c itself: drop --beta/--amplitude")
         }
-        Curve::Gain if !has_beta => {
-            usage!("--curve gain needs the drive amplitude: give --beta (or --amplitude with a physical description)")
+        Curve::Gain1 if !has_beta => {
+            usage!("--curve gain1 needs the drive amplitude: give --beta (or --amplitude with a physical description)")
         }
         _ => {}
     }
@@ -210,7 +211,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
         "theory: {described}ζ = {:.6}, μs = {}{}; w from {lo} to {hi} ({} points{})",
         params.zeta,
         params.mu_s,
-        if curve == Curve::Gain {
+        if curve == Curve::Gain1 {
             format!(", β = {:.6}", params.beta)
         } else {
             String::new()
@@ -222,7 +223,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     let ws = range.values();
     let quantity = match curve {
         Curve::Boundary => TheoryQuantity::Boundary,
-        Curve::Gain => TheoryQuantity::Gain,
+        Curve::Gain1 => TheoryQuantity::Gain1,
     };
     let bar = crate::output::progress(ws.len() as u64, "theory");
     let mut rows: Vec<Row> = Vec::with_capacity(ws.len());
@@ -239,10 +240,7 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
     bar.finish_and_clear();
 
     let table = TheoryTable {
-        quantity: match curve {
-            Curve::Boundary => "beta_c",
-            Curve::Gain => "gain",
-        },
+        quantity: curve.quantity_name(),
         rows: rows
             .iter()
             .map(|&(w, paper, exact)| TheoryRow { w, paper, exact })
@@ -270,11 +268,11 @@ fn curve_over_w(args: &Args, curve: Curve) -> Result<()> {
                     params.zeta, params.mu_s
                 ),
             ),
-            Curve::Gain => (
+            Curve::Gain1 => (
                 "paper, eq. (11)",
                 "exact",
-                "gain A1/β",
-                format!("gain, ζ = {:.4}, β = {:.4}", params.zeta, params.beta),
+                "G1 = A1/β (gain of the fundamental)",
+                format!("G1, ζ = {:.4}, β = {:.4}", params.zeta, params.beta),
             ),
         };
         let panel = Panel {

@@ -199,7 +199,7 @@ const EXPONENT_MAP: &[&str] = &[
     "--lyapunov-periods",
     "2000",
     "--color",
-    "lyapunov",
+    "lambda1",
     "--out",
     "map.csv",
     "--plot",
@@ -234,7 +234,7 @@ fn a_killed_map_of_exponents_resumes_to_the_same_bytes() {
     let classes: Vec<&str> = args
         .iter()
         .copied()
-        .filter(|a| *a != "--color" && *a != "lyapunov")
+        .filter(|a| *a != "--color" && *a != "lambda1")
         .collect();
     kill_part_way(dir.path(), &classes, 0, 45 * 34 + 16);
     let out = run_in(dir.path(), &args);

@@ -56,17 +56,22 @@ pub fn assert_usage_errors(command: &[&str], cases: &[(&[&str], &str)]) {
     }
 }
 
-/// Start `stickslip` with `args` in `dir`, send it SIGINT (Ctrl-C) 700 ms later and wait for
-/// it to end; returns its output and the time it took to stop after the signal.
+/// Start `stickslip` with `args` in `dir`, send it SIGINT (Ctrl-C) once it catches the signal
+/// (its handler is installed before it computes) and a moment later, and wait for it to end;
+/// returns its output and the time it took to stop after the signal. On a loaded machine a
+/// fixed delay could send the signal before the handler is there (the default action then
+/// kills the binary without a word): the handler is waited for, however long it takes.
 pub fn interrupt_in(dir: &Path, args: &[&str]) -> (Output, Duration) {
-    let child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+    let mut child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
         .args(args)
         .current_dir(dir)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("the stickslip binary starts");
-    std::thread::sleep(Duration::from_millis(700));
+    wait_until_ctrl_c_is_caught(&mut child);
+    // A moment into the computation (the checks hold however far it got).
+    std::thread::sleep(Duration::from_millis(300));
     let status = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
@@ -75,6 +80,31 @@ pub fn interrupt_in(dir: &Path, args: &[&str]) -> (Output, Duration) {
     let signalled = Instant::now();
     let out = child.wait_with_output().expect("the stickslip binary ends");
     (out, signalled.elapsed())
+}
+
+/// Wait until `child` catches SIGINT (Linux: the `SigCgt` mask of `/proc/<pid>/status`), or
+/// has ended; elsewhere, 700 ms.
+pub fn wait_until_ctrl_c_is_caught(child: &mut std::process::Child) {
+    if cfg!(target_os = "linux") {
+        loop {
+            if let Ok(Some(_)) = child.try_wait() {
+                return;
+            }
+            let status =
+                std::fs::read_to_string(format!("/proc/{}/status", child.id())).unwrap_or_default();
+            let caught = status
+                .lines()
+                .find_map(|l| l.strip_prefix("SigCgt:"))
+                .and_then(|mask| u64::from_str_radix(mask.trim(), 16).ok());
+            // SIGINT is signal 2: bit 1 of the mask.
+            if caught.is_some_and(|mask| mask & 0b10 != 0) {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    } else {
+        std::thread::sleep(Duration::from_millis(700));
+    }
 }
 
 /// Assert that `stickslip` with `args`, interrupted by Ctrl-C while it computes, fails,

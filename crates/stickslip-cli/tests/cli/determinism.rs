@@ -255,7 +255,7 @@ fn every_command_gives_the_same_bytes_with_1_2_and_8_threads() {
             "--lyapunov-periods",
             "1000",
             "--color",
-            "lyapunov",
+            "lambda1",
             "--out",
             "l.csv",
             "--plot",

@@ -42,7 +42,7 @@ fn bifurcation_csv_is_the_library_s_diagram() {
     let csv = std::fs::read_to_string(dir.path().join("bif.csv")).unwrap();
     assert_eq!(
         csv.lines().next().unwrap(),
-        "w,y,v,direction,lambda,class,period"
+        "w,y,v,direction,lambda1,class,period"
     );
     let rows = csv_rows(&csv);
     assert_eq!(rows.len(), 4 * 2 * 30);
@@ -167,16 +167,16 @@ fn basins_find_the_mirror_pair() {
     assert_eq!(attractors.len(), 2);
     let mut total = 0.0;
     for a in attractors {
-        assert_eq!(a["kind"], "periodic");
+        assert_eq!(a["class"], "periodic");
         assert_eq!(a["period"], 1);
         total += a["fraction"].as_f64().unwrap();
         assert!(a["state"]["y"].is_f64() && a["state"]["v"].is_f64());
         assert_eq!(a["multipliers"].as_array().unwrap().len(), 2);
     }
     assert!((total - 1.0).abs() < 1e-12);
-    assert_eq!(summary["unsettled"], 0);
+    assert_eq!(summary["undecided"], 0);
     let csv = std::fs::read_to_string(dir.path().join("basins.csv")).unwrap();
-    assert_eq!(csv.lines().next().unwrap(), "y0,v0,attractor,kind,period");
+    assert_eq!(csv.lines().next().unwrap(), "y0,v0,attractor,class,period");
     let rows = csv_rows(&csv);
     assert_eq!(rows.len(), 144);
     let zeros = rows.iter().filter(|r| r[2] == "0").count() as f64;
@@ -315,12 +315,12 @@ fn bad_input_gives_one_line_and_exit_code_2() {
             "a.bmp",
         ),
         (
-            "bifurcation",
+            "continue",
             vec![
-                "--preset", "paper", "--model", "shockley", "--beta", "2", "--over", "w", "--from",
-                "0.3", "--to", "0.4", "--steps", "5",
+                "--preset", "paper", "--model", "shockley", "--w", "0.9", "--beta", "2", "--over",
+                "mu-s", "--from", "1", "--to", "1.5",
             ],
-            "Shockley",
+            "mu_s",
         ),
         (
             "basins",
@@ -475,4 +475,107 @@ fn ctrl_c_leaves_no_output_file() {
     ] {
         assert_ctrl_c_leaves_nothing(&args);
     }
+}
+
+/// `continue`, `bifurcation` and `basins` with --model shockley agree with `orbit` at the same
+/// drive: the branch ends on its fixed point with its multipliers, the diagram's points lie on
+/// it with its exponent, the basin map finds it as the one attractor.
+#[test]
+fn shockley_continue_bifurcation_and_basins_agree_with_the_orbit() {
+    let model = ["--preset", "paper", "--model", "shockley", "--beta", "3.61"];
+    let json = |out: &std::process::Output| -> serde_json::Value {
+        assert!(out.status.success(), "{}", stderr(out));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let (_dir, out) = run(&[&["orbit", "--json", "--w", "1.1"][..], &model].concat());
+    let orbit = json(&out);
+    let (y, v) = (orbit["y"].as_f64().unwrap(), orbit["v"].as_f64().unwrap());
+    let modulus = orbit["moduli"][0].as_f64().unwrap();
+    let exponent = orbit["lambda1"].as_f64().unwrap();
+    assert_eq!((orbit["period"].as_u64(), modulus < 1.0), (Some(1), true));
+    // The fixed point's accuracy is the map's (rtol 1e-10), its multipliers the Jacobian's
+    // (about 1e-7, ShockleyDynamics::MAP_TOLERANCE); states scaled by max(1, |y|, |y'|).
+    let scale = 1f64.max(y.abs()).max(v.abs());
+    let near =
+        |ya: f64, va: f64, tolerance: f64| (ya - y).abs().max((va - v).abs()) <= tolerance * scale;
+    let (dir, out) = run(&[
+        &[
+            "continue", "--over", "w", "--from", "1.2", "--to", "1.1", "--json",
+        ][..],
+        &["--out", "branch.csv"],
+        &model,
+    ]
+    .concat());
+    let branch = json(&out);
+    assert_eq!(branch["end"]["reason"], "boundary");
+    assert_eq!(branch["special"].as_array().unwrap().len(), 0);
+    let csv = std::fs::read_to_string(dir.path().join("branch.csv")).unwrap();
+    let rows = csv_rows(&csv);
+    assert_eq!(rows.len() as u64, branch["points"].as_u64().unwrap());
+    let last = rows.last().unwrap();
+    let f = |k: usize| last[k].parse::<f64>().unwrap();
+    assert_eq!(f(0), 1.1);
+    assert!(near(f(1), f(2), 1e-8), "{last:?} vs ({y}, {v})");
+    assert!(
+        (f(7).hypot(f(8)) - modulus).abs() < 1e-6,
+        "{last:?} vs {modulus}"
+    );
+    assert!(rows.iter().all(|r| r[11] == "true" && r[4] == "1"));
+    let (dir, out) = run(&[
+        &[
+            "bifurcation",
+            "--over",
+            "w",
+            "--from",
+            "1.0",
+            "--to",
+            "1.1",
+            "--steps",
+            "2",
+        ][..],
+        &["--points", "100", "--transient", "100", "--out", "bif.csv"],
+        &model,
+    ]
+    .concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("bif.csv")).unwrap();
+    let at = csv_rows(&csv)
+        .into_iter()
+        .filter(|r| r[0] == "1.1")
+        .collect::<Vec<_>>();
+    assert_eq!(at.len(), 200);
+    for r in &at {
+        let g = |k: usize| r[k].parse::<f64>().unwrap();
+        assert_eq!((r[5].as_str(), r[6].as_str()), ("periodic", "1"));
+        assert!(near(g(1), g(2), 1e-8), "{r:?} vs ({y}, {v})");
+        // The exponent of 100 recorded periods: the tangent of a focus (a complex pair of
+        // multipliers) beats about its mean over a finite run, here by 7e-4 of it.
+        assert!(
+            (g(4) - exponent).abs() <= 1e-2 * exponent.abs(),
+            "{r:?} vs {exponent}"
+        );
+    }
+    let (_dir, out) = run(&[
+        &["basins", "--w", "1.1", "--y0-min", "-2", "--y0-max", "2"][..],
+        &["--v0-min", "-2", "--v0-max", "2", "--steps", "3", "--json"],
+        &model,
+    ]
+    .concat());
+    let map = json(&out);
+    let attractors = map["attractors"].as_array().unwrap();
+    assert_eq!(attractors.len(), 1);
+    let a = &attractors[0];
+    assert_eq!(
+        (
+            a["class"].as_str(),
+            a["period"].as_u64(),
+            a["cells"].as_u64()
+        ),
+        (Some("periodic"), Some(1), Some(9))
+    );
+    let s = |k: &str| a["state"][k].as_f64().unwrap();
+    assert!(near(s("y"), s("v"), 1e-8), "{a} vs ({y}, {v})");
+    let mu = &a["multipliers"][0];
+    let m = mu[0].as_f64().unwrap().hypot(mu[1].as_f64().unwrap());
+    assert!((m - modulus).abs() < 1e-6, "{m} vs {modulus}");
 }

@@ -98,6 +98,31 @@ fn fit_refuses_bad_input_in_one_line() {
         ],
         "unknown fit parameter \"zeta\"",
     );
+    // An empty file, a binary one; a European export in Windows-1252 (µ as the byte 0xB5)
+    // is decoded and read up to its faulty row.
+    std::fs::write(dir.path().join("empty.csv"), "").unwrap();
+    std::fs::write(
+        dir.path().join("scope.bin"),
+        b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("eu.csv"),
+        b"t (\xB5s);u;uc\r\n0;0,5;0,25\r\n1;abc;0,5\r\n",
+    )
+    .unwrap();
+    run_bad(
+        &["fit", "--preset", "paper", "--data", "empty.csv"],
+        "empty.csv: the file is empty (0 bytes)",
+    );
+    run_bad(
+        &["fit", "--preset", "paper", "--data", "scope.bin"],
+        "scope.bin: not a text file: byte 9 is 0",
+    );
+    run_bad(
+        &["fit", "--preset", "paper", "--data", "eu.csv"],
+        "eu.csv: line 3: \"abc\" in column 2 is not a finite number",
+    );
     let (d, out) = run(&["fit", "--preset", "paper"]);
     assert_usage_error(d.path(), &out, "--data");
     let (d, out) = run(&["fit", "--preset", "paper", "--data", "missing.csv"]);

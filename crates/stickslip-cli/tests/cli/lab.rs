@@ -5,6 +5,7 @@ use crate::common::*;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{channel, Receiver};
 use std::time::Duration;
 
 /// A running `stickslip lab`, stopped when dropped.
@@ -12,12 +13,23 @@ struct Lab {
     child: Child,
     /// `127.0.0.1:port`.
     address: String,
+    /// The lines of its standard error as they come, and those already looked at.
+    err: Receiver<String>,
+    seen: Vec<String>,
 }
 
 impl Lab {
+    /// `stickslip lab --port 0` with `args`; with a time limit of 600 s per request unless
+    /// `args` set one, so that no answer of these tests depends on the machine's load.
     fn start(args: &[&str]) -> (Self, String) {
+        let limit: &[&str] = if args.contains(&"--time-limit") {
+            &[]
+        } else {
+            &["--time-limit", "600"]
+        };
         let mut child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
             .args(["lab", "--port", "0"])
+            .args(limit)
             .args(args)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -36,7 +48,40 @@ impl Lab {
             .trim_start_matches("http://")
             .trim_end_matches('/')
             .to_string();
-        (Self { child, address }, url)
+        let (lines, err) = channel();
+        let stderr = BufReader::new(child.stderr.take().unwrap());
+        std::thread::spawn(move || {
+            for line in stderr.lines().map_while(Result::ok) {
+                if lines.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        (
+            Self {
+                child,
+                address,
+                err,
+                seen: Vec::new(),
+            },
+            url,
+        )
+    }
+
+    /// Wait for a line of standard error that contains `needle` (the verbose log says what
+    /// the server did: no clock needed); at most 600 s, so that a test that fails ends.
+    fn wait_for_log(&mut self, needle: &str) -> String {
+        loop {
+            match self.err.recv_timeout(Duration::from_secs(600)) {
+                Ok(line) => {
+                    self.seen.push(line.clone());
+                    if line.contains(needle) {
+                        return line;
+                    }
+                }
+                Err(e) => panic!("no line with '{needle}' ({e}): {:?}", self.seen),
+            }
+        }
     }
 
     /// GET `path`: status and body.
@@ -47,10 +92,24 @@ impl Lab {
 
     /// GET `path` with these header lines (each ending in CRLF): status, head and body.
     fn get_with(&self, path: &str, headers: &str) -> (u16, String, String) {
-        let mut stream = TcpStream::connect(&self.address).unwrap();
-        stream
-            .set_read_timeout(Some(Duration::from_secs(60)))
-            .unwrap();
+        self.get_from(1, path, headers)
+    }
+
+    /// A connection from the loopback address 127.0.0.`host` (the lab shares its turns and
+    /// caps its connections by address).
+    fn connect_from(&self, host: u8) -> TcpStream {
+        let to: std::net::SocketAddr = self.address.parse().unwrap();
+        let socket = socket2::Socket::new(socket2::Domain::IPV4, socket2::Type::STREAM, None)
+            .expect("a socket");
+        let from = std::net::SocketAddr::from(([127, 0, 0, host], 0));
+        socket.bind(&from.into()).expect("bind a loopback address");
+        socket.connect(&to.into()).expect("connect to the lab");
+        socket.into()
+    }
+
+    /// [`Lab::get_with`] from the loopback address 127.0.0.`host`.
+    fn get_from(&self, host: u8, path: &str, headers: &str) -> (u16, String, String) {
+        let mut stream = self.connect_from(host);
         write!(
             stream,
             "GET {path} HTTP/1.1\r\n{headers}Connection: close\r\n\r\n"
@@ -65,20 +124,17 @@ impl Lab {
         (status, head.to_string(), body.to_string())
     }
 
-    /// Standard error after Ctrl-C.
+    /// Standard error after Ctrl-C (all of it, the lines looked at before included).
     fn stop(mut self) -> String {
         // SIGINT as Ctrl-C would send it; the server stops gracefully.
         let _ = Command::new("kill")
             .args(["-INT", &self.child.id().to_string()])
             .status();
         let status = self.child.wait().unwrap();
-        let mut err = String::new();
-        self.child
-            .stderr
-            .take()
-            .unwrap()
-            .read_to_string(&mut err)
-            .unwrap();
+        // The reader ends at the end of the stream.
+        let mut lines = std::mem::take(&mut self.seen);
+        lines.extend(self.err.iter());
+        let err = lines.join("\n");
         assert!(status.success(), "exit status {status}: {err}");
         err
     }
@@ -260,113 +316,140 @@ fn the_host_header_must_name_the_lab() {
     lab.stop();
 }
 
-/// The 95th percentile of `values` (nearest rank).
-fn p95(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[((values.len() as f64 * 0.95).ceil() as usize).max(1) - 1]
+/// Whether `stream` is open with nothing to read (the server has not answered or closed it).
+fn open_and_silent(stream: &TcpStream) -> bool {
+    stream.set_nonblocking(true).unwrap();
+    let mut byte = [0u8; 1];
+    let silent =
+        matches!(stream.peek(&mut byte), Err(e) if e.kind() == std::io::ErrorKind::WouldBlock);
+    stream.set_nonblocking(false).unwrap();
+    silent
 }
 
-/// Issue 21, item 10: while six clients hold the largest maps the lab takes, another
-/// client's `/api/theory` requests answer quickly. Loopback only; six maps and twenty
-/// small requests; bounded by the time limit (8 s).
+/// Read one answer (head and its `content-length` body) from `stream`: the status.
+fn read_one_answer(stream: &mut BufReader<&TcpStream>) -> u16 {
+    let mut line = String::new();
+    stream.read_line(&mut line).unwrap();
+    let status = line.split(' ').nth(1).unwrap().parse().unwrap();
+    let mut length = 0;
+    loop {
+        line.clear();
+        stream.read_line(&mut line).unwrap();
+        if line.trim().is_empty() {
+            break;
+        }
+        if let Some((name, value)) = line.split_once(':') {
+            if name.eq_ignore_ascii_case("content-length") {
+                length = value.trim().parse().unwrap();
+            }
+        }
+    }
+    let mut body = vec![0; length];
+    stream.read_exact(&mut body).unwrap();
+    status
+}
+
+/// Send `request` on a new connection from 127.0.0.`host`, after a request for the presets
+/// on the same connection, and read the presets' answer: the lab has then read `request` too
+/// (it came in the same write), and goes on to it (it may yet see the connection close
+/// first, if it is closed now: see `aborted_requests_are_logged`). Its answer is not read.
+fn send_from(lab: &Lab, host: u8, request: &str) -> TcpStream {
+    let s = lab.connect_from(host);
+    let presets = format!("GET /api/presets HTTP/1.1\r\nHost: {}\r\n\r\n", lab.address);
+    (&s).write_all(format!("{presets}{request}").as_bytes())
+        .unwrap();
+    assert_eq!(read_one_answer(&mut BufReader::new(&s)), 200);
+    s
+}
+
+/// Issue 21, item 10: while maps that take minutes run, another client's `/api/theory`
+/// requests are answered between their turns. Four maps of one client and two of another
+/// (200 × 200 with Shockley diodes, minutes each; `--jobs 2`, 600 s per request), from their
+/// own addresses, all in the lab first; twenty small requests of a third client all answer
+/// while every map is still running. With turns that a map kept to its end, the first small request would wait
+/// minutes, for a map to end. (How long the small requests take is measured by
+/// `bench/lab-load --hogs`, not asserted here: that depends on the machine's load.)
 #[test]
-fn maps_of_six_clients_do_not_hold_up_another_client() {
-    use std::sync::{Arc, Mutex};
-    use std::time::Instant;
-    let (lab, _) = Lab::start(&["--jobs", "2", "--time-limit", "8"]);
-    let lab = Arc::new(lab);
-    // 200 × 200 = 40000 points with Shockley diodes: the most a map may ask for, and far
-    // more than 8 s of work, so every map runs until its time limit.
-    let map = "/api/map?preset=paper&model=shockley&w-steps=200&beta-steps=200";
-    let maps_done = Arc::new(Mutex::new(Vec::new()));
-    let started = Instant::now();
-    let holders: Vec<_> = (0..6)
-        .map(|k| {
-            let lab = lab.clone();
-            let done = maps_done.clone();
-            std::thread::spawn(move || {
-                let (status, _, body) = lab.get_with(
-                    map,
-                    &format!("Host: {}\r\nX-Lab-Client: map-holder-{k}\r\n", lab.address),
-                );
-                done.lock().unwrap().push(started.elapsed());
-                (status, body)
-            })
-        })
-        .collect();
-    // Let the maps start and fill both workers and the queue.
-    std::thread::sleep(Duration::from_millis(800));
-    let mut latencies = Vec::new();
+fn maps_of_other_clients_do_not_hold_up_a_client() {
+    let (lab, _) = Lab::start(&["--jobs", "2"]);
+    let map = |id: &str| {
+        format!(
+            "GET /api/map?preset=paper&model=shockley&w-steps=200&beta-steps=200 HTTP/1.1\r\n\
+             Host: {}\r\nX-Lab-Client: {id}\r\n\r\n",
+            lab.address
+        )
+    };
+    // Each map is in the lab (queued or running) once `send_from` returns.
+    let mut holders: Vec<TcpStream> = (0..4).map(|_| send_from(&lab, 2, &map("maps-a"))).collect();
+    holders.extend((0..2).map(|_| send_from(&lab, 3, &map("maps-b"))));
     for _ in 0..20 {
-        let t = Instant::now();
         let (status, _, body) = lab.get_with(
             "/api/theory?preset=paper&w=0.95&beta=2.14",
             &format!("Host: {}\r\nX-Lab-Client: student-7\r\n", lab.address),
         );
-        latencies.push(t.elapsed().as_secs_f64() * 1e3);
         assert_eq!(status, 200, "{body}");
     }
-    let theory_done = started.elapsed();
-    // Every map was still running when the last small request was answered: they were
-    // measured under load.
-    assert!(
-        maps_done.lock().unwrap().is_empty(),
-        "a map ended before the small requests did"
-    );
-    for holder in holders {
-        let (status, body) = holder.join().unwrap();
-        // Each map ran to its time limit, or was answered whole; never refused for a place.
-        assert!(status == 503 || status == 200, "{status}: {body}");
+    // Every map is still running or waiting: not answered, not closed.
+    for (k, h) in holders.iter().enumerate() {
+        assert!(
+            open_and_silent(h),
+            "map {k} was answered before the small requests were"
+        );
     }
-    let p95 = p95(&mut latencies);
-    assert!(
-        p95 <= 500.0,
-        "theory requests took {latencies:?} ms (p95 {p95:.0} ms) while six maps ran \
-         (the last answered at {theory_done:?})"
-    );
-    Arc::try_unwrap(lab).ok().expect("one owner").stop();
+    // The maps' clients go away: their computations stop, and the lab stops cleanly.
+    drop(holders);
+    lab.stop();
 }
 
-/// Issue 21, item 11: 200 half-sent requests neither block a normal request nor stay open
-/// past the header time limit (10 s); the verbose log says why they were closed.
+/// Issue 21, item 11 and issue 38, item 5: half-sent requests neither block a normal request
+/// nor stay open past the header time limit (10 s); the verbose log says why they were
+/// closed. From one address, 200 of them: the lab keeps 32 (its cap per address) and answers
+/// the others at once with its JSON 429 (or closes them, past the refusals it writes at
+/// once); a request from another address is answered while the 32 are open.
 #[test]
 fn half_sent_requests_are_closed_and_do_not_block_others() {
     use std::time::Instant;
     let (lab, _) = Lab::start(&["--verbose"]);
     let started = Instant::now();
-    let mut half: Vec<TcpStream> = (0..200)
+    let half: Vec<TcpStream> = (0..200)
         .map(|_| {
-            let mut s = TcpStream::connect(&lab.address).unwrap();
-            write!(
+            let mut s = lab.connect_from(2);
+            // A refused connection may be closed already.
+            let _ = write!(
                 s,
                 "GET /api/presets HTTP/1.1\r\nHost: {}\r\nX-Wait:",
                 lab.address
-            )
-            .unwrap();
+            );
             s
         })
         .collect();
-    // A normal request answers at once (the first one pays for nothing but itself).
-    let mut latencies = Vec::new();
-    for _ in 0..3 {
-        let t = Instant::now();
-        let (status, _) = lab.get("/api/presets");
-        latencies.push(t.elapsed().as_secs_f64() * 1e3);
-        assert_eq!(status, 200);
+    let (status, _) = lab.get("/api/presets");
+    assert_eq!(status, 200);
+    // The lab accepts in order: the first 32 are kept, still open and unanswered now (the
+    // header limit is 10 s).
+    for (k, s) in half.iter().take(32).enumerate() {
+        assert!(
+            open_and_silent(s),
+            "half-sent request {k} was closed before the limit"
+        );
     }
-    let best = latencies.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(
-        latencies[0] <= 100.0,
-        "a normal request took {latencies:?} ms beside 200 half-sent ones (best {best:.1})"
-    );
-    // Every half-sent connection is closed by the server within the limit (and a margin for
-    // a loaded machine).
-    let limit = Duration::from_secs(10);
-    let margin = Duration::from_secs(3);
-    for s in &mut half {
-        let left = (limit + margin).saturating_sub(started.elapsed());
-        s.set_read_timeout(Some(left.max(Duration::from_millis(1))))
-            .unwrap();
+    // The others: a JSON 429 with the security headers, or closed without a word.
+    let mut refusals = 0;
+    for mut s in half.iter().skip(32) {
+        let mut answer = Vec::new();
+        let _ = s.read_to_end(&mut answer);
+        let answer = String::from_utf8_lossy(&answer);
+        if let Some((head, body)) = answer.split_once("\r\n\r\n") {
+            assert!(head.starts_with("HTTP/1.1 429 "), "{head}");
+            assert_security_headers(head);
+            assert!(body.contains("at most 32 open from one address"), "{body}");
+            refusals += 1;
+        }
+    }
+    assert!(refusals > 0, "no refusal was answered");
+    // The 32 are closed by the server at the header limit: not before it (the end of the
+    // stream, or a reset, comes after 10 s). A read waits for it, however long it takes.
+    for mut s in half.iter().take(32) {
         let mut buf = [0u8; 64];
         match s.read(&mut buf) {
             Ok(_) => {}
@@ -375,48 +458,61 @@ fn half_sent_requests_are_closed_and_do_not_block_others() {
                     e.kind(),
                     std::io::ErrorKind::ConnectionReset | std::io::ErrorKind::BrokenPipe
                 ) => {}
-            Err(e) => panic!(
-                "a half-sent connection was still open after {:?}: {e}",
-                started.elapsed()
-            ),
+            Err(e) => panic!("reading a half-sent connection: {e}"),
         }
     }
     let closed_after = started.elapsed();
     assert!(
-        closed_after >= limit - Duration::from_millis(500),
+        closed_after >= Duration::from_millis(9500),
         "closed after {closed_after:?}, before the limit"
     );
     drop(half);
     let err = lab.stop();
     assert!(err.contains("no complete request within 10 s"), "{err}");
+    assert!(
+        err.contains("refused: 32 open from its address already"),
+        "{err}"
+    );
 }
 
 /// Issue 21, item 11: a request whose client went away is in the verbose log, with its
-/// path cut to a sane length.
+/// path cut to a sane length and the client's address. No clock: the log is read as it comes
+/// (a request in flight is logged before the end of its connection). A connection closed at
+/// once after the presets' answer may reach the lab before it went on to the map; then it is
+/// tried again.
 #[test]
 fn aborted_requests_are_logged() {
-    let (lab, _) = Lab::start(&["--verbose", "--jobs", "1"]);
+    let (mut lab, _) = Lab::start(&["--verbose", "--jobs", "1"]);
     let long_path = "/api/map?preset=paper&model=shockley&w-steps=100&beta-steps=100";
-    {
-        let mut s = TcpStream::connect(&lab.address).unwrap();
-        write!(
-            s,
-            "GET {long_path} HTTP/1.1\r\nHost: {}\r\n\r\n",
-            lab.address
-        )
-        .unwrap();
-        std::thread::sleep(Duration::from_millis(500));
-    }
+    let map = format!("GET {long_path} HTTP/1.1\r\nHost: {}\r\n\r\n", lab.address);
+    // A map of minutes, whose client goes away.
+    let mut attempts = 0;
+    let line = loop {
+        attempts += 1;
+        assert!(
+            attempts <= 100,
+            "no map was in the lab when its client went away"
+        );
+        let s = send_from(&lab, 2, &map);
+        let who = s.local_addr().unwrap().to_string();
+        drop(s);
+        let closed = lab.wait_for_log(&format!("connection from {who} closed"));
+        let aborted = lab.seen[..lab.seen.len() - 1]
+            .iter()
+            .find(|l| l.contains(&format!("({who})")))
+            .cloned();
+        if let Some(line) = aborted {
+            break line;
+        }
+        assert!(closed.contains("closed after"), "{closed}");
+    };
+    assert!(
+        line.starts_with("lab: GET /api/map aborted after") && line.ends_with("went away"),
+        "{line}"
+    );
     let junk = format!("/{}", "p".repeat(300));
     assert_eq!(lab.get(&junk).0, 404);
-    // The server notices the closed connection when the map stops at its next check.
-    std::thread::sleep(Duration::from_millis(500));
     let err = lab.stop();
-    assert!(
-        err.lines()
-            .any(|l| l.starts_with("lab: GET /api/map aborted after")),
-        "{err}"
-    );
     let line = err
         .lines()
         .find(|l| l.contains("/ppp"))

@@ -8,6 +8,7 @@ mod convert;
 mod determinism;
 mod dynamics;
 mod fit;
+mod front_end_keys;
 mod fuzz_props;
 mod keys;
 mod lab;

@@ -25,7 +25,7 @@ fn json_is_the_librarys_report_with_the_keys_of_the_issue() {
         "events",
         "stops",
         "monodromy",
-        "exponent_per_tau",
+        "lambda1",
     ] {
         assert!(v.get(key).is_some(), "missing {key}: {v}");
     }
@@ -80,7 +80,7 @@ fn an_unstable_orbit_in_a_chaotic_window_is_found_with_a_period_and_a_guess() {
     assert_eq!(v["stable"], false);
     assert_eq!(v["stability"], "unstable");
     assert!(v["moduli"][0].as_f64().unwrap() > 1.0);
-    assert!(v["exponent_per_tau"].as_f64().unwrap() > 0.0);
+    assert!(v["lambda1"].as_f64().unwrap() > 0.0);
     // Asked for period 2, the same orbit twice: the report says it repeats after 1.
     let mut args = chaotic.to_vec();
     args.extend(["--period", "2", "--transient", "2000"]);
@@ -138,15 +138,67 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         (&["--mu-s", "0.5"], "mu"),
     ];
     assert_usage_errors(&[&["orbit"][..], &point].concat(), cases);
-    // Shockley diodes: the stability analysis is that of the exact PWL model.
+}
+
+/// Shockley diodes: the orbit of the stiff solver's map, with its multipliers, and the
+/// Lyapunov measurement of the same motion: λ1 is ln|μ1|/T of the orbit it reached.
+#[test]
+fn shockley_orbits_and_exponents_are_the_stiff_solvers() {
     let dir = tempfile::tempdir().unwrap();
+    let model = [
+        "--preset",
+        "paper",
+        "--model",
+        "shockley",
+        "--freq",
+        "3k",
+        "--amplitude",
+        "1.5",
+    ];
+    let out = run_in(dir.path(), &[&["orbit", "--json"][..], &model].concat());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let orbit: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(orbit["period"], 1);
+    assert_eq!(orbit["stability"], "stable");
+    assert_eq!(orbit["stops_per_period"], 2.0);
+    let moduli = orbit["moduli"].as_array().unwrap();
+    // The second multiplier of an orbit that stops is below the resolution of the map.
+    assert!(moduli[1].as_f64().unwrap() < 1e-12 * moduli[0].as_f64().unwrap());
     let out = run_in(
         dir.path(),
         &[
-            "orbit", "--preset", "paper", "--model", "shockley", "--w", "0.7", "--beta", "1.2",
-        ],
+            &[
+                "lyapunov",
+                "--json",
+                "--transient",
+                "100",
+                "--periods",
+                "400",
+            ][..],
+            &model,
+        ]
+        .concat(),
     );
-    assert_usage_error(dir.path(), &out, "piecewise-linear");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lyapunov: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(lyapunov["class"], "periodic");
+    let (measured, exact) = (
+        lyapunov["lambda1"].as_f64().unwrap(),
+        orbit["lambda1"].as_f64().unwrap(),
+    );
+    assert!(
+        (measured - exact).abs() <= 1e-6 * exact.abs(),
+        "{measured} vs {exact}"
+    );
+    assert!(lyapunov["lambda2"].as_f64().unwrap() < measured);
 }
 
 #[test]

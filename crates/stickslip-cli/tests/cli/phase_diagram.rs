@@ -28,7 +28,7 @@ fn csv_and_plot_on_a_small_grid() {
     assert!(out.status.success(), "{}", stderr(&out));
     let csv = std::fs::read_to_string(dir.path().join("map.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
-    assert_eq!(lines[0], "w,beta,class,period,stops_per_cycle,gain");
+    assert_eq!(lines[0], "w,beta,class,period,stops_per_period,gain");
     assert_eq!(lines.len(), 7);
     let class = |w: &str, beta: &str| -> String {
         lines
@@ -199,7 +199,7 @@ fn a_map_of_the_largest_exponent_with_the_chaotic_class() {
         "--beta-steps",
         "2",
         "--color",
-        "lyapunov",
+        "lambda1",
         "--out",
         "map.csv",
         "--plot",
@@ -210,7 +210,7 @@ fn a_map_of_the_largest_exponent_with_the_chaotic_class() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "w,beta,class,period,stops_per_cycle,gain,lambda,lambda_error"
+        "w,beta,class,period,stops_per_period,gain,lambda1,lambda1_error"
     );
     assert_eq!(lines.len(), 9);
     for line in &lines[1..] {
@@ -272,7 +272,7 @@ fn a_map_of_the_largest_exponent_with_the_chaotic_class() {
 #[test]
 fn the_exponent_map_needs_the_exact_model_and_a_measurement() {
     let dir = tempfile::tempdir().unwrap();
-    let small = ["--w-steps", "2", "--beta-steps", "2", "--color", "lyapunov"];
+    let small = ["--w-steps", "2", "--beta-steps", "2", "--color", "lambda1"];
     let mut args = vec!["phase-diagram", "--preset", "paper", "--model", "shockley"];
     args.extend_from_slice(&small);
     let out = run_in(dir.path(), &args);
@@ -283,4 +283,67 @@ fn the_exponent_map_needs_the_exact_model_and_a_measurement() {
     assert_usage_error(dir.path(), &out, "--lyapunov-periods");
     let out = run_in(dir.path(), &["phase-diagram", "--color", "rainbow"]);
     assert_usage_error(dir.path(), &out, "rainbow");
+}
+
+/// The names retired (`--color lyapunov`, `theory --curve gain`) still work, the same, with a
+/// note on standard error giving the name now.
+#[test]
+fn retired_names_still_work_with_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = |color: &str| {
+        run_in(
+            dir.path(),
+            &[
+                "phase-diagram",
+                "--zeta",
+                "0",
+                "--mu-s",
+                "3",
+                "--w-steps",
+                "2",
+                "--beta-min",
+                "8",
+                "--beta-max",
+                "9",
+                "--beta-steps",
+                "2",
+                "--lyapunov-periods",
+                "200",
+                "--color",
+                color,
+            ],
+        )
+    };
+    let (old, new) = (map("lyapunov"), map("lambda1"));
+    assert!(
+        old.status.success() && new.status.success(),
+        "{}",
+        stderr(&old)
+    );
+    assert_eq!(old.stdout, new.stdout);
+    assert!(stdout(&new).starts_with("w,beta,class,period,stops_per_period,gain,lambda1,"));
+    assert!(
+        stderr(&old).contains("note: --color lyapunov is now called --color lambda1"),
+        "{}",
+        stderr(&old)
+    );
+    assert!(!stderr(&new).contains("note:"), "{}", stderr(&new));
+    let curve = |name: &str| {
+        run_in(
+            dir.path(),
+            &[
+                "theory", "--zeta", "0.0468", "--curve", name, "--beta", "1.5",
+            ],
+        )
+    };
+    let (old, new) = (curve("gain"), curve("gain1"));
+    assert!(old.status.success(), "{}", stderr(&old));
+    assert_eq!(old.stdout, new.stdout);
+    assert!(stderr(&old).contains("--curve gain is now called --curve gain1"));
+    // The help lists the current names only.
+    let help = stdout(&run_in(dir.path(), &["phase-diagram", "--help"]));
+    assert!(
+        help.contains("lambda1") && !help.contains("lyapunov:"),
+        "{help}"
+    );
 }

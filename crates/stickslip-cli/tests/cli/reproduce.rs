@@ -72,6 +72,103 @@ fn writes_every_figure_table_and_the_report() {
         html.contains("<span class=\"nw\">--v0-min</span>"),
         "flags in captions"
     );
+    // Every "<" of the page opens a tag (a comparison in a caption is "&lt;").
+    for (k, _) in html.match_indices('<') {
+        let next = html[k + 1..].chars().next().unwrap_or(' ');
+        assert!(
+            next.is_ascii_alphabetic() || next == '/' || next == '!',
+            "an unescaped '<' in index.html: {}",
+            &html[k..(k + 40).min(html.len())]
+        );
+    }
+    // Every figure is shown at its full size: the page gives each image its PNG's size and
+    // lets it be wider than the text.
+    for f in figures {
+        let (w, h) = decode_png(&report.join(format!("{f}.png")));
+        let img = format!("<img src=\"{f}.png\" width=\"{w}\" height=\"{h}\"");
+        assert!(
+            html.contains(&img),
+            "index.html does not show {f} at {w} × {h}"
+        );
+    }
+    assert!(
+        html.contains(".fig img{max-width:none"),
+        "figures scaled to the text"
+    );
+    // The paper's Fig. 2, a drawing, is said to be skipped; its LSODA is our reading.
+    assert!(html.contains("The paper's Fig. 2 is not reproduced"));
+    assert!(html.contains("The paper says only that it integrated with LSODA; our reading"));
+    assert!(!html.contains("The paper integrated"));
+    // One symbol per gain: G1 = A1/β in Fig. 4 (its axis and its CSV's gain1), G the peak gain
+    // of Table 1 and of the CSV's gain; no CSV of the report uses a retired name.
+    let fig4 = std::fs::read_to_string(report.join("fig4.svg")).unwrap();
+    assert!(
+        fig4.contains("G1 = A1/β") && !fig4.contains("gain G "),
+        "fig4's axis"
+    );
+    assert!(html.contains("(y_max − y_min)/(2β)"), "Table 1's G");
+    for (csv, header) in [
+        ("fig4.csv", "w,beta,direction,gain1,gain,class"),
+        ("fig7a.csv", "w,beta,class,period,stops_per_period,gain"),
+        (
+            "chaos-map.csv",
+            "w,beta,class,period,stops_per_period,lambda1,lambda1_error",
+        ),
+        ("beyond-basins.csv", "y0,v0,attractor,class,period"),
+        (
+            "beyond-bifurcation.csv",
+            "w,y,v,direction,lambda1,class,period",
+        ),
+    ] {
+        let text = std::fs::read_to_string(report.join(csv)).unwrap();
+        assert_eq!(text.lines().next(), Some(header), "{csv}");
+    }
+    // Fig. 5's legend lists only the theories drawn, and its caption counts the values of β
+    // of (b) that stick, recounted here from fig5.csv (the up sweep against β).
+    let fig5 = std::fs::read_to_string(report.join("fig5.svg")).unwrap();
+    // (The SVG writes a legend's text on a line of its own.)
+    let exact_entries = fig5.lines().filter(|l| l.trim() == "exact").count();
+    if html.contains("(in (b) nowhere") {
+        assert_eq!(
+            exact_entries, 1,
+            "fig5: an 'exact' entry in (b), which draws none"
+        );
+    } else {
+        assert_eq!(exact_entries, 2, "fig5");
+    }
+    let text = std::fs::read_to_string(report.join("fig5.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .filter(|f: &Vec<&str>| f[0] == "beta" && f[3] == "up")
+        .collect();
+    let sticking = rows.iter().filter(|f| f[6] != "sliding").count();
+    let said = if sticking == rows.len() {
+        format!(
+            "sticks at every one of the {} values of β shown",
+            rows.len()
+        )
+    } else {
+        format!(
+            "sticks at {sticking} of the {} values of β shown",
+            rows.len()
+        )
+    };
+    assert!(
+        sticking > 0 && html.contains(&said),
+        "fig5 does not say: {said}"
+    );
+    assert!(!html.contains("sticks for most β"));
+    // Fig. 7 (b): its curves are named the PWL model's, and its sliding share is said to
+    // depend on the stop threshold.
+    let fig7 = std::fs::read_to_string(report.join("fig7.svg")).unwrap();
+    let legend: Vec<&str> = fig7.lines().map(str::trim).collect();
+    assert!(legend.contains(&"PWL exact β_c") && legend.contains(&"PWL paper, eq. 13"));
+    assert!(html.contains("the sliding share of (b) depends on that threshold"));
+    fig3_shows_what_is_small(&report, &html);
+    // A full report's caption does not speak of --quick's sizes.
+    assert!(!html.contains("--quick uses"));
     // "static" is the paper's rule, said where the word appears.
     assert!(html.contains("\"static\" is the paper's rule, an amplitude below β/100"));
     // Every data file the page lists exists and has a header and rows.
@@ -101,7 +198,7 @@ fn writes_every_figure_table_and_the_report() {
     let allowed = [
         "sliding",
         "periodic-stick",
-        "nonperiodic-stick",
+        "undecided",
         "static",
         "chaotic",
     ];
@@ -119,11 +216,14 @@ fn writes_every_figure_table_and_the_report() {
     );
     let map = &summary["beyond_chaos_map"];
     assert!(map["chaotic"].as_u64().unwrap() > 0, "{map}");
+    above_the_boundary_the_sliding_orbit_exists(&report, map, &html);
     assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
     let paper = &summary["beyond_paper_exponents"];
     assert_eq!(paper["positive"], 0, "{paper}");
+    // Its colour bar still has a red half, and the caption says that no point takes it.
+    assert!(html.contains("in reds that no point takes: no exponent is positive"));
     assert_eq!(paper["nonperiodic"], 0, "{paper}");
-    assert!(paper["largest_moving"]["lambda_per_tau"].as_f64().unwrap() < 0.0);
+    assert!(paper["largest_moving"]["lambda1"].as_f64().unwrap() < 0.0);
     // The diagram in w at μs = 3 has periodic and chaotic values and branches found by
     // continuation; the basin map two coexisting orbits that are mirror images; the branch
     // a grazing above its fold.
@@ -131,6 +231,7 @@ fn writes_every_figure_table_and_the_report() {
     assert!(bif["up_chaotic"].as_u64().unwrap() > 0, "{bif}");
     assert!(bif["up_periodic"].as_u64().unwrap() > 0, "{bif}");
     assert!(bif["branches"].as_u64().unwrap() > 0, "{bif}");
+    legs_compared_as_attractors(&report, bif, &html);
     let basins = &summary["beyond_basins"];
     let attractors = basins["attractors"].as_array().unwrap();
     assert_eq!(attractors.len(), 2, "{basins}");
@@ -161,6 +262,117 @@ fn writes_every_figure_table_and_the_report() {
     assert_eq!(left, vec!["report".to_string()]);
 }
 
+/// The chaos map's exact boundary: its legend says that the sliding orbit exists above it
+/// (not that the motion slides there), and the caption counts the points above it that do
+/// not slide from rest, recounted here from chaos-map.csv and the exact boundary.
+fn above_the_boundary_the_sliding_orbit_exists(report: &Path, map: &serde_json::Value, html: &str) {
+    use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
+    for ext in ["svg", "png"] {
+        assert!(report.join(format!("chaos-map.{ext}")).is_file());
+    }
+    let svg = std::fs::read_to_string(report.join("chaos-map.svg")).unwrap();
+    assert!(
+        svg.contains("exact β_c: the sliding orbit exists above") && !svg.contains("sliding above"),
+        "the chaos map's legend"
+    );
+    let text = std::fs::read_to_string(report.join("chaos-map.csv")).unwrap();
+    let (mut above, mut not_sliding) = (0, 0);
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let mut params =
+            stickslip::Params::new(0.0, f[0].parse().unwrap(), f[1].parse().unwrap()).unwrap();
+        params.mu_s = 3.0;
+        let beta_c = theory_value(Theory::Exact, TheoryQuantity::Boundary, &params);
+        if beta_c.is_some_and(|b| params.beta >= b) {
+            above += 1;
+            not_sliding += usize::from(f[2] != "sliding");
+        }
+    }
+    assert_eq!(map["above_exact_boundary"], above, "{map}");
+    assert_eq!(
+        map["above_exact_boundary_not_sliding"], not_sliding,
+        "{map}"
+    );
+    // Rest does not always lead to the sliding orbit where it exists.
+    assert!(not_sliding > 0 && not_sliding < above, "{map}");
+    let said = format!("{not_sliding} of the {above} points above it do not slide from rest");
+    assert!(html.contains(&said), "the caption does not say: {said}");
+}
+
+/// The bifurcation caption's comparison of the two directions, recomputed from
+/// beyond-bifurcation.csv: the records rebuilt from their strobe points, compared as
+/// attractors by the library's `same_attractor` at the basin map's tolerance.
+fn legs_compared_as_attractors(report: &Path, bif: &serde_json::Value, html: &str) {
+    use stickslip::attractor::{same_attractor, AttractorKind, StrobeRecord};
+    use stickslip::State;
+    let text = std::fs::read_to_string(report.join("beyond-bifurcation.csv")).unwrap();
+    let mut records: std::collections::BTreeMap<(String, String), StrobeRecord> =
+        Default::default();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let r = records
+            .entry((f[3].to_string(), f[0].to_string()))
+            .or_insert_with(|| StrobeRecord {
+                strobes: vec![],
+                exponent: f[4].parse().unwrap(),
+                exponent_error: 0.0,
+                period: (!f[6].is_empty()).then(|| f[6].parse().unwrap()),
+                kind: AttractorKind::from_label(f[5]).unwrap_or_else(|| panic!("{line}")),
+                events: 0,
+                stops: 0,
+                drive_period: 1.0,
+            });
+        r.strobes.push(State {
+            y: f[1].parse().unwrap(),
+            v: f[2].parse().unwrap(),
+        });
+    }
+    let tolerance = stickslip::basins::BasinOptions::default().match_tolerance;
+    let (mut differ, mut different, mut decided) = (0, 0, 0);
+    for ((leg, w), up) in &records {
+        if leg != "up" {
+            continue;
+        }
+        let down = &records[&("down".to_string(), w.clone())];
+        let (x, y) = (up.strobes[0].y, down.strobes[0].y);
+        if up.kind == down.kind
+            && up.period == down.period
+            && (x - y).abs() <= 1e-6 * (1.0 + x.abs())
+        {
+            continue;
+        }
+        differ += 1;
+        if !same_attractor(up, down, tolerance) {
+            different += 1;
+            decided += usize::from(
+                up.kind != AttractorKind::Undecided && down.kind != AttractorKind::Undecided,
+            );
+        }
+    }
+    assert_eq!(bif["values_where_up_and_down_differ"], differ, "{bif}");
+    assert_eq!(
+        bif["values_with_different_attractors_up_and_down"], different,
+        "{bif}"
+    );
+    assert_eq!(
+        bif["values_with_different_decided_attractors_up_and_down"], decided,
+        "{bif}"
+    );
+    // Sampled attractors: some records differ that are one attractor both ways.
+    assert!(different < differ, "{bif}");
+    let steps = bif["steps"].as_u64().unwrap();
+    for said in [
+        format!("records differ at {differ} of the {steps} values"),
+        format!(
+            "{} of those are the same attractor both ways and {different} values hold different \
+             attractors up and down",
+            differ - different
+        ),
+    ] {
+        assert!(html.contains(&said), "the caption does not say: {said}");
+    }
+}
+
 /// Ctrl-C stops the report at once, says so (not the progress of a grid computed alongside)
 /// and leaves nothing behind: no report, no staging directory.
 #[test]
@@ -187,4 +399,51 @@ fn bad_output_directory_is_a_usage_error() {
     let out = run_in(dir.path(), &["reproduce", "--out", "file"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("not a directory"));
+}
+
+/// Fig. 3: a trace whose u_C is too small to see beside U (its peak under 30 % of the drive's,
+/// recounted here from fig3_traces.csv) is drawn magnified by a power of ten that the legend
+/// and the caption name; the spectra are on a logarithmic axis (the caption says how far
+/// down); the loops of β = 1.07 have a row of their own.
+fn fig3_shows_what_is_small(report: &Path, html: &str) {
+    let text = std::fs::read_to_string(report.join("fig3_traces.csv")).unwrap();
+    let mut peaks: Vec<((String, String), (f64, f64))> = Vec::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let key = (f[0].to_string(), f[1].to_string());
+        let (uc, u): (f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap());
+        match peaks.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, p)) => *p = (p.0.max(uc.abs()), p.1.max(u.abs())),
+            None => peaks.push((key, (uc.abs(), u.abs()))),
+        }
+    }
+    assert_eq!(peaks.len(), 6, "{peaks:?}");
+    let svg = std::fs::read_to_string(report.join("fig3.svg")).unwrap();
+    let labels = ["(1a)", "(1b)", "(1c)", "(2a)", "(2b)", "(2c)"];
+    let mut small = 0;
+    for (label, (_, (uc, u))) in labels.iter().zip(&peaks) {
+        if *uc < 0.3 * u {
+            small += 1;
+            let gain = 10f64.powi((0.3 * u / uc).log10().ceil() as i32);
+            assert!(
+                html.contains(&format!("{label} ×{gain}")),
+                "{label}: u_C {uc} V beside U {u} V, not said to be magnified ×{gain}"
+            );
+            assert!(
+                svg.contains(&format!("u_C × {gain}")),
+                "{label}: no legend ×{gain}"
+            );
+        } else {
+            assert!(!html.contains(&format!("{label} ×")), "{label} magnified");
+        }
+    }
+    assert!(small > 0, "no trace of Fig. 3 is small: {peaks:?}");
+    assert!(html.contains("on a logarithmic axis down to 80 dB below the fundamental"));
+    assert!(svg.contains("amplitude (V, log)"));
+    for col in ["a", "b", "c"] {
+        assert!(
+            svg.contains(&format!("(3{col}′)")),
+            "no loop (3{col}′) of its own"
+        );
+    }
 }

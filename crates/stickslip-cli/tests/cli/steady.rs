@@ -16,7 +16,7 @@ fn json_report_has_every_key_of_the_issue() {
     for key in [
         "class",
         "period",
-        "stops_per_cycle",
+        "stops_per_period",
         "symmetric",
         "peak",
         "gain",
@@ -28,7 +28,7 @@ fn json_report_has_every_key_of_the_issue() {
     }
     assert_eq!(v["class"], "sliding");
     assert_eq!(v["period"], 1);
-    assert_eq!(v["stops_per_cycle"], 0.0);
+    assert_eq!(v["stops_per_period"], 0.0);
     assert_eq!(v["symmetric"], true);
     let harmonics = v["harmonics"].as_array().unwrap();
     assert!(harmonics.len() >= 9);
@@ -54,7 +54,7 @@ fn classes_at_the_papers_points() {
     ] {
         let v = json(&["--w", w, "--beta", beta]);
         assert_eq!(v["class"], class, "w {w} beta {beta}");
-        assert_eq!(v["stops_per_cycle"], stops, "w {w} beta {beta}");
+        assert_eq!(v["stops_per_period"], stops, "w {w} beta {beta}");
     }
     let v = json(&["--w", "0.7", "--beta", "1.0"]);
     assert_eq!(v["phase_lag"], serde_json::Value::Null);
@@ -64,7 +64,7 @@ fn classes_at_the_papers_points() {
 #[test]
 fn a_cap_too_short_reports_no_period() {
     let v = json(&["--w", "0.7", "--beta", "1.2", "--max-periods", "5"]);
-    assert_eq!(v["class"], "nonperiodic-stick");
+    assert_eq!(v["class"], "undecided");
     assert_eq!(v["period"], serde_json::Value::Null);
     assert_eq!(v["periods_to_settle"], 5);
 }
@@ -134,34 +134,34 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
     assert_eq!(v["verdict"], "chaotic");
     assert_eq!(v["period"], serde_json::Value::Null);
     let (lambda, error) = (
-        v["lambda_per_tau"].as_f64().unwrap(),
-        v["error_per_tau"].as_f64().unwrap(),
+        v["lambda1"].as_f64().unwrap(),
+        v["lambda1_error"].as_f64().unwrap(),
     );
     assert!(lambda > 4.0 * error, "{lambda} ± {error}");
     // Measured until the verdict is decided (docs/stability.md): chaos is decided before the
     // cap of 5000 periods, after at least the first look of 300.
-    let measured = v["lambda_periods"].as_u64().unwrap();
+    let measured = v["lambda1_periods"].as_u64().unwrap();
     assert!(
         (300..5000).contains(&measured),
         "{measured} periods measured"
     );
-    assert!(v["lambda_per_period"].as_f64().unwrap() > 0.0);
+    assert!(v["lambda1_per_period"].as_f64().unwrap() > 0.0);
     // Fewer periods measured: the same verdict.
     let short = json(&[&CHAOTIC[..], &["--lyapunov-periods", "1000"]].concat());
     assert_eq!(short["class"], "chaotic");
-    let measured = short["lambda_periods"].as_u64().unwrap();
+    let measured = short["lambda1_periods"].as_u64().unwrap();
     assert!(
         (1..=1000).contains(&measured),
         "{measured} periods measured"
     );
     // Not measured: the class from the event log alone, and no exponent keys.
     let off = json(&[&CHAOTIC[..], &["--lyapunov-periods", "0"]].concat());
-    assert_eq!(off["class"], "nonperiodic-stick");
-    assert!(off.get("lambda_per_tau").is_none() && off.get("verdict").is_none());
+    assert_eq!(off["class"], "undecided");
+    assert!(off.get("lambda1").is_none() && off.get("verdict").is_none());
     // A periodic motion has no exponent keys at all.
     let periodic = json(&["--zeta", "0", "--mu-s", "3", "--w", "0.25", "--beta", "9"]);
     assert_eq!(periodic["class"], "periodic-stick");
-    assert!(periodic.get("lambda_per_tau").is_none());
+    assert!(periodic.get("lambda1").is_none());
     // The issue's point: Newton's method finds its slow period-1 orbit (multiplier 0.99911)
     // within the cap; without it, no period within the cap, and not chaotic either.
     let slow = [
@@ -170,11 +170,11 @@ fn a_motion_that_does_not_repeat_is_measured_chaotic_or_not() {
     let v = json(&slow);
     assert_eq!(v["class"], "periodic-stick");
     assert_eq!(v["period"], 1);
-    assert!(v.get("lambda_per_tau").is_none());
+    assert!(v.get("lambda1").is_none());
     let v = json(&[&slow[..], &["--no-extrapolation"]].concat());
-    assert_eq!(v["class"], "nonperiodic-stick");
+    assert_eq!(v["class"], "undecided");
     assert_ne!(v["verdict"], "chaotic");
-    assert!(v["lambda_per_tau"].as_f64().unwrap() < 0.0);
+    assert!(v["lambda1"].as_f64().unwrap() < 0.0);
 }
 
 #[test]

@@ -13,7 +13,7 @@ fn csv_columns_and_both_legs() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+        "w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
     );
     assert_eq!(lines.len(), 7);
     assert!(lines[1].starts_with("0.8,1.6,up,"));
@@ -56,8 +56,8 @@ fn hysteresis_shows_two_branches() {
             .collect()
     };
     let (up, down) = (row("up"), row("down"));
-    assert_eq!(up[6], "static");
-    assert_ne!(down[6], "static");
+    assert_eq!(up[7], "static");
+    assert_ne!(down[7], "static");
     let gain: f64 = down[3].parse().unwrap();
     assert!(gain > 1.0, "{gain}");
     assert!(stderr(&out).contains("differ"), "{}", stderr(&out));
@@ -162,10 +162,11 @@ fn plot_over_w_carries_the_theorys_gain_curves() {
     assert!(exact > n / 2 && exact < n, "{exact}");
     let svg = std::fs::read_to_string(dir.path().join("s.svg")).unwrap();
     // One gain on the axis: the simulated points, the paper's formula and the exact orbit
-    // all as A1/β (not the peak gain beside A1/β), said in the legend and the axis label.
-    assert!(svg.contains("paper, eq. (11): A1/β"));
-    assert!(svg.contains("exact sliding orbit: A1/β"));
-    assert!(svg.contains("gain G = A1/β"));
+    // all as G1 = A1/β (not the gain G beside G1), said in the legend and the axis label.
+    assert!(svg.contains("paper, eq. (11): G1"));
+    assert!(svg.contains("exact sliding orbit: G1"));
+    assert!(svg.contains("G1 = A1/β"));
+    assert!(!svg.contains("gain G "));
     assert!(!svg.contains("peak"));
     assert!(!svg.contains("PWL theory"));
     // Symbols as in every other plot.
@@ -235,6 +236,6 @@ fn plot_over_beta_carries_the_theory_and_shockley_labels_it_pwl() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let svg = std::fs::read_to_string(dir.path().join("s.svg")).unwrap();
-    assert!(svg.contains("PWL theory: paper, eq. (11): A1/β"));
-    assert!(svg.contains("PWL theory: exact sliding orbit: A1/β"));
+    assert!(svg.contains("PWL theory: paper, eq. (11): G1"));
+    assert!(svg.contains("PWL theory: exact sliding orbit: G1"));
 }

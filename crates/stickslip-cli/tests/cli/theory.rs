@@ -27,16 +27,16 @@ fn json_point_has_both_solutions() {
     let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
     let paper = &v["paper"];
     let exact = &v["exact"];
-    for key in ["A1", "A3", "A5", "phi0", "gain", "beta_c"] {
+    for key in ["A1", "A3", "A5", "phi0", "gain1", "beta_c"] {
         assert!(paper[key].is_f64(), "paper.{key}: {paper}");
     }
     assert_eq!(exact["exists"], true);
-    for key in ["peak", "A1", "A3", "A5", "phase", "gain", "beta_c"] {
+    for key in ["peak", "A1", "A3", "A5", "phase", "gain1", "beta_c"] {
         assert!(exact[key].is_f64(), "exact.{key}: {exact}");
     }
     let a1 = paper["A1"].as_f64().unwrap();
     assert!((a1 - eq11_a1(0.0468, 0.9, 2.0)).abs() < 1e-12 * a1);
-    assert!((paper["gain"].as_f64().unwrap() - a1 / 2.0).abs() < 1e-15);
+    assert!((paper["gain1"].as_f64().unwrap() - a1 / 2.0).abs() < 1e-15);
     // The superharmonic amplitudes of eq. (11) are exact; A1 is not.
     let (pa3, ea3) = (paper["A3"].as_f64().unwrap(), exact["A3"].as_f64().unwrap());
     assert!((pa3 - ea3).abs() < 1e-12 * pa3);
@@ -133,13 +133,13 @@ fn boundary_curve_writes_csv_and_plot() {
 #[test]
 fn gain_curve_leaves_cells_empty_where_there_is_no_solution() {
     let (_dir, out) = run(&[
-        "theory", "--zeta", "0.0468", "--curve", "gain", "--beta", "1.5", "--w-min", "0.3",
+        "theory", "--zeta", "0.0468", "--curve", "gain1", "--beta", "1.5", "--w-min", "0.3",
         "--w-max", "2", "--steps", "17", "--plot", "g.svg",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("w,gain_paper,gain_exact"));
+    assert_eq!(lines.next(), Some("w,gain1_paper,gain1_exact"));
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 17);
     assert!(rows.iter().all(|r| r.len() == 3));
@@ -182,7 +182,7 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         (&["--curve", "boundary", "--steps", "1"], "--steps"),
         (&["--curve", "boundary", "--beta", "2"], "--beta"),
         (&["--curve", "boundary", "--w", "1"], "--w"),
-        (&["--curve", "gain"], "--beta"),
+        (&["--curve", "gain1"], "--beta"),
         (&["--curve", "boundary", "--plot", "b.txt"], "b.txt"),
         (
             &["--curve", "boundary", "--out", "missing/dir/b.csv"],

@@ -23,7 +23,14 @@ export async function api(name, params, signal, upload = null) {
     init.headers['Content-Type'] = upload.type;
     init.body = upload.body;
   }
-  const response = await fetch(`/api/${name}?${params}`, init);
+  let response;
+  try {
+    response = await fetch(`/api/${name}?${params}`, init);
+  } catch (e) {
+    if (isAbort(e)) throw e;
+    // The browser's own words for a server that is gone ("Failed to fetch") say nothing.
+    throw new ApiFailure(0, NOT_ANSWERING);
+  }
   let body = null;
   try {
     body = await response.json();
@@ -33,6 +40,9 @@ export async function api(name, params, signal, upload = null) {
   if (!response.ok) throw new ApiFailure(response.status, body.error || `error ${response.status}`, body.field);
   return body;
 }
+
+/** What the page says when the lab's server does not answer at all. */
+export const NOT_ANSWERING = "the lab's server is not answering: is stickslip lab still running on the computer that serves this page? Start it again, then reload the page";
 
 /** One request per slot at a time: a new one aborts the one before (a stale answer is dropped). */
 export const slots = {};

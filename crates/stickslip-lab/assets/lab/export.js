@@ -55,7 +55,7 @@ export function captionText() {
   const parts = [s.experiment];
   if (s.drive) parts.push(`drive f = ${si(s.drive.f_Hz, 'Hz', 6)}, amplitude ${si(s.drive.amplitude, u.drive, 5)}`);
   parts.push(`w = Ω/ω0 = ${num(s.w, 6)}, β = ${num(s.beta, 6)}`);
-  parts.push(`class ${s.class}, gain G = ${num(s.gain, 6)}, ${s.stops_per_cycle} stops per period`);
+  parts.push(`class ${s.class}, gain G = ${num(s.gain, 6)}, ${s.stops_per_period} stops per period`);
   parts.push(`view ${state.mode === 'fft' ? `FFT (${field('fft-scale').value})` : state.mode}, ${state.trigger}; stickslip lab`);
   return parts.join('; ');
 }
@@ -104,7 +104,13 @@ export function measurementsTsv() {
   const rows = [];
   const table = $('#measurements table');
   for (const tr of $$('tr', table)) {
-    rows.push(Array.from(tr.children, (c) => c.textContent.replace(/\s+/g, ' ').replace(/ \?$/, '').trim()).join('\t'));
+    const cells = Array.from(tr.children, (c) => c.textContent.replace(/\s+/g, ' ').replace(/ \?$/, '').trim());
+    // The line under the class (the rule of a static motion): a row of its own, when shown.
+    if (tr.classList.contains('note-row')) {
+      if (cells[0]) rows.push(`class rule\t${cells[0]}`);
+      continue;
+    }
+    rows.push(cells.join('\t'));
   }
   if (state.steady) rows.unshift(`experiment\t${captionText()}`);
   return `${rows.join('\n')}\n`;

@@ -1,7 +1,8 @@
 // The form of the model's values, built from the server's key table (/api/keys): one field
 // per key of `form`, in the table's order, in the fieldset for the systems it is shown for,
 // labelled with the key's symbol, titled with its help; a "fit" box on the values a fit of
-// a circuit may free (`fit.parameters`), ticked on those it frees by default (`fit.free`).
+// a circuit may free (`fit.parameters`), shown for the diode laws whose parameter it is
+// (`fit.by_law`), ticked on those a fit of such a law frees by default (`fit.free`, by law).
 // The rest of the page asks this module which keys each system has (the query it sends, the
 // fields a preset fills), which a fit may free by diode law, and each key's symbol and unit:
 // no list of the model's keys is written anywhere else.
@@ -10,7 +11,7 @@ import { $, num, siText } from './util.js';
 
 /** The served key table (/api/keys), kept by `buildForm`: the form's fields in the table's
  * order, each key's row by its flag, and what a fit may free. */
-const served = { form: [], keys: new Map(), fit: { parameters: [], by_law: {}, free: [] } };
+const served = { form: [], keys: new Map(), fit: { parameters: [], by_law: {}, free: {} } };
 
 /** The flags of the fields shown for `system` (`pwl`, `shockley`, `mechanics`: the fieldsets'
  * `data-for-system`), in the table's order. */
@@ -65,9 +66,10 @@ export function buildForm(answer) {
     if (f.unit) children.push(el('span', { class: 'unit' }, [f.unit]));
     const fits = answer.fit.parameters.includes(f.flag) && f.fieldset.split(' ').some((s) => fitSystems.includes(s));
     if (fits) {
+      const laws = Object.keys(answer.fit.by_law).filter((law) => answer.fit.by_law[law].includes(f.flag));
       const box = el('input', { type: 'checkbox', name: `free-${f.flag}`, 'data-free': f.flag });
-      if (answer.fit.free.includes(f.flag)) box.setAttribute('checked', '');
-      children.push(el('label', { class: 'free', title: 'free in the fit: fitted to the record' }, [box, ' fit']));
+      if (laws.some((law) => (answer.fit.free[law] || []).includes(f.flag))) box.setAttribute('checked', '');
+      children.push(el('label', { class: 'free', 'data-fit-laws': laws.join(' '), title: 'free in the fit: fitted to the record' }, [box, ' fit']));
     }
     children.push(el('span', { class: 'error', 'data-error-for': f.flag, role: 'alert' }));
     fieldset.append(el('div', { class: 'field' }, children));

@@ -2,7 +2,7 @@
 // theory, the mechanical view, the presets and the model's fieldsets.
 
 import { $, $$, field, num, si, siText } from './util.js';
-import { state, value } from './state.js';
+import { state, setGenerator, holdGenerator } from './state.js';
 import { fieldsOf, isPart } from './form.js';
 import { channelColumns, prepare, COLORS, label, displayed } from './scope.js';
 
@@ -24,13 +24,9 @@ export function showDerived() {
     $('[data-derived="natural"]').textContent =
       `f0 = ${si(c.f0, 'Hz', 6)}, ω0 = ${num(c.omega0, 6)} rad/s, ζ = ${num(c.zeta, 5)}, Q = ${num(c.Q, 5)}`;
   }
-  if (s.drive) {
-    if (state.drive.w !== null || document.activeElement !== field('freq')) {
-      if (state.drive.w !== null) field('freq').value = num(s.drive.f_Hz, 6);
-    }
-    if (state.drive.beta !== null) field('amplitude').value = num(s.drive.amplitude, 6);
-    placeKnobs();
-  }
+  // The generator's fields are the generator's: an answer never writes them (a preset, a
+  // knob, a typed value or a scope record does); its knobs follow the answer's drive.
+  if (s.drive) placeKnobs();
   const u = units();
   for (const el of $$('[data-unit]')) el.textContent = u[el.dataset.unit] || el.textContent;
   const mech = s.system === 'mechanics';
@@ -40,6 +36,17 @@ export function showDerived() {
   $('[data-derived="twin"]').textContent = mech
     ? 'The block is the model itself: spring k, damping γ, dry friction F0 (static μs·F0), driven by F cos Ωt.'
     : 'The same model as a mass on a spring: u_C ↔ position, i ↔ velocity, U ↔ drive force, the diode pair ↔ dry friction (U_t ↔ F0). Red: the motion stops.';
+}
+
+/** The library's rule for `static`, stated where it applies, with the measured gain beside
+ * it: `G = 0.0051 ≤ 0.01` (`short`: with a leading separator for the screen's class line, and
+ * the stops that a static motion may still make). Empty for the other classes. */
+export function staticNote(s, short) {
+  if (s.class !== 'static') return '';
+  const rule = `G = ${num(s.gain, 2)} ≤ ${num(state.staticGain, 3)}`;
+  if (!short) return `${rule}: the swing (max − min)/2 is at most ${num(100 * state.staticGain, 3)} % of β`;
+  const stops = s.stops_per_period > 0 ? `, ${num(s.stops_per_period, 3)} stops/period` : '';
+  return ` (${rule}${stops})`;
 }
 
 // The knobs: frequency logarithmic from f0/10 to 3 f0, amplitude linear to 20 U_t.
@@ -73,9 +80,11 @@ export function showMeasurements() {
   const sc = scales();
   const deg = (rad) => (rad === null || rad === undefined ? null : (rad * 180) / Math.PI);
   setMeasure('class', s.class);
-  setMeasure('stops', num(s.stops_per_cycle, 4), s.stops_per_cycle);
+  $('[data-note="class"]').textContent = staticNote(s, false);
+  setMeasure('stops', num(s.stops_per_period, 4), s.stops_per_period);
   setMeasure('period', s.period === null ? 'none found' : `${s.period} (settled after ${s.periods_to_settle})`, s.period);
   setMeasure('gain', num(s.gain, 6), s.gain);
+  setMeasure('gain1', s.gain1 === null || s.gain1 === undefined ? '—' : num(s.gain1, 6), s.gain1);
   const a1 = s.harmonics[0] * sc.position;
   const a3 = s.harmonics[2] * sc.position;
   const a5 = s.harmonics[4] * sc.position;
@@ -120,17 +129,21 @@ export function showTheory() {
   const t = state.theory;
   const p = t ? t.paper : {};
   const e = t ? t.exact : {};
-  const volts = (x) => (x === null || x === undefined ? '—' : num(x * sc.position, 6));
+  // The theories to five digits (the measured values have six): the columns stay narrow.
+  const volts = (x) => (x === null || x === undefined ? '—' : num(x * sc.position, 5));
   setTheory('paper-A1', volts(p.A1));
   setTheory('paper-A3', volts(p.A3));
   setTheory('paper-A5', volts(p.A5));
   setTheory('exact-A1', volts(e.A1));
   setTheory('exact-A3', volts(e.A3));
   setTheory('exact-A5', volts(e.A5));
-  setTheory('paper-gain', t ? num(p.gain, 6) : '—');
-  // The simulated gain is the peak over β; on a sliding orbit that is the orbit's peak/β.
+  // G = (max − min)/2β: the paper's series gives only its fundamental (G1); a sliding orbit
+  // is symmetric, so its G is its peak over β. G1 = A1/β.
   const beta = t ? t.params.beta : NaN;
-  setTheory('exact-gain', t && e.peak !== null && e.peak !== undefined && beta > 0 ? num(e.peak / beta, 6) : '—');
+  setTheory('paper-gain', '—');
+  setTheory('exact-gain', t && e.peak !== null && e.peak !== undefined && beta > 0 ? num(e.peak / beta, 5) : '—');
+  setTheory('paper-gain1', t ? num(p.gain, 5) : '—');
+  setTheory('exact-gain1', t && e.A1 !== null && e.A1 !== undefined && beta > 0 ? num(e.A1 / beta, 5) : '—');
   setTheory('paper-phase', t ? num(deg(p.phi0), 5) : '—');
   setTheory('exact-phase', t ? num(deg(e.phase), 5) : '—');
   setTheory('paper-beta_c', t ? num(p.beta_c, 5) : '—');
@@ -148,7 +161,7 @@ export function showTheory() {
   if (t && e.note) notes.push(`exact: ${e.note}`);
   if (table.dataset.paperApplies === 'no') notes.push('The paper’s series assumes sliding; its own β_c says the motion sticks here, so its numbers (greyed) do not apply.');
   if (table.dataset.exactApplies === 'no') notes.push('No sliding orbit exists here: the exact orbit’s column (greyed) does not apply.');
-  notes.push('exact gain: the orbit’s peak/β (the measured G is (max − min)/2β); paper gain: its A1/β.');
+  notes.push('G = (max − min)/2β (for the exact sliding orbit, its peak/β); G1 = A1/β, the paper’s gain.');
   setTheory('notes', notes.join(' '));
 }
 
@@ -252,8 +265,18 @@ export function applyPreset(id) {
     state.paperParts = chosen.paper;
   }
   field('system').value = state.system;
-  if ('w' in v) state.drive.w = v.w;
-  if ('beta' in v) state.drive.beta = v.beta;
+  // The generator, once: the preset's point in Hz and V (or N), sent as w and β while the
+  // preset's parts stay; a preset without a point (the paper's circuit) leaves it as it is.
+  if (chosen.drive) {
+    const unit = chosen.drive.unit;
+    setGenerator('freq', chosen.drive.f_Hz, num(chosen.drive.f_Hz, 6));
+    setGenerator('amplitude', chosen.drive.amplitude, num(chosen.drive.amplitude, 6));
+    state.drive.w = v.w;
+    state.drive.beta = v.beta;
+    for (const el of $$('[data-unit="drive"]')) el.textContent = unit;
+  } else {
+    holdGenerator();
+  }
   showSystem();
   state.autoscalePending = true;
 }
@@ -272,6 +295,13 @@ export function fillMapSizes() {
   select.value = sizes.some(([v]) => v === keep) ? keep : sizes[1][0];
 }
 
+/** The panels of the system shown: its fieldsets, and the panels' titles (a function
+ * generator and a circuit, or a drive force and a mass on a spring). */
 export function showSystem() {
   for (const fs of $$('fieldset[data-for-system]')) fs.hidden = !fs.dataset.forSystem.split(' ').includes(state.system);
+  const mech = state.system === 'mechanics';
+  $('#generator-title').textContent = mech ? 'Drive force' : 'Function generator';
+  $('#circuit-title').textContent = mech ? 'Mass, spring and friction' : 'Circuit';
+  // A value's "fit" box only with the diode laws whose fit may free it (U_t's not with Shockley diodes).
+  for (const box of $$('label[data-fit-laws]')) box.hidden = !box.dataset.fitLaws.split(' ').includes(state.system);
 }

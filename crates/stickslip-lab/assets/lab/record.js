@@ -8,7 +8,7 @@
 import { $, field, num, si } from './util.js';
 import { latest, slots, isAbort } from './api.js';
 import { state, clearErrors, showError, modelParams } from './state.js';
-import { drawTrace, ysOf, chOn, label, SCREEN } from './scope.js';
+import { drawTrace, ysOf, chOn } from './scope.js';
 import { fieldsOf, isPart, fitParametersOf, fieldText, symbolAndUnit, symbolNodes } from './form.js';
 
 export const REF_COLORS = { ref1: '#fff6c2', ref2: '#c4f4ff', xy: '#f0f0f0' };
@@ -53,11 +53,11 @@ export function drawRefsXY(g, box, xOf) {
   return 1;
 }
 
-/** The record's name under the screen, right-aligned. */
-export function drawRefLabel(g, box, y) {
-  if (!showing()) return;
+/** The record's name under the screen (after the channels' scales), or null. */
+export function refLabel() {
+  if (!showing()) return null;
   const r = state.record;
-  label(g, `REF1: ${r.drive_channel}, REF2: ${r.response_channel} of ${r.file} (dashed)`, box.x0 + SCREEN.divX * box.dx, y, REF_COLORS.ref2, 'right');
+  return { text: `REF1: ${r.drive_channel}, REF2: ${r.response_channel} of ${r.file} (dashed)`, color: REF_COLORS.ref2 };
 }
 
 // ---------------------------------------------------------------- reading a record

@@ -1,16 +1,36 @@
 // The scope: its settings, the graticule, Y-T, X-Y and FFT, and the cursors.
 
-import { $, field, si, STEPS, niceAtLeast, nice125, FFT_MIN_HARMONICS } from './util.js';
+import { $, field, num, si, STEPS, niceAtLeast, nice125, FFT_SPAN_HARMONICS } from './util.js';
 import { state } from './state.js';
-import { scales, units } from './panels.js';
-import { drawRefsYT, drawRefsXY, drawRefLabel } from './record.js';
+import { scales, units, staticNote } from './panels.js';
+import { drawRefsYT, drawRefsXY, refLabel } from './record.js';
 
 // ---------------------------------------------------------------- scope settings
+/** A position field's value within its range (the field's min and max): a scope's knob
+ * turns no further. Anything else typed (1e17, text) counts as the nearest end or 0, and the
+ * field says so (aria-invalid, and its title). */
+export function position(name) {
+  const el = field(name);
+  const x = Number(el.value);
+  const lo = Number(el.min);
+  const hi = Number(el.max);
+  const ok = el.value.trim() !== '' && Number.isFinite(x) && x >= lo && x <= hi;
+  if (ok) {
+    if (el.getAttribute('aria-invalid')) {
+      el.removeAttribute('aria-invalid');
+      el.title = '';
+    }
+    return x;
+  }
+  el.setAttribute('aria-invalid', 'true');
+  el.title = `from ${lo} to ${hi} divisions`;
+  return Number.isFinite(x) ? Math.max(lo, Math.min(hi, x)) : 0;
+}
 export const tdiv = () => Number(field('tdiv').value);
-export const hpos = () => Number(field('hpos').value) || 0;
+export const hpos = () => position('hpos');
 export const chOn = (k) => field(`ch${k}-on`).checked;
 export const vdiv = (k) => Number(field(`ch${k}-vdiv`).value);
-export const vpos = (k) => Number(field(`ch${k}-pos`).value) || 0;
+export const vpos = (k) => position(`ch${k}-pos`);
 
 export function fillScaleSelect(select, unit) {
   const current = Number(select.value);
@@ -134,18 +154,76 @@ export function graticule(g, box) {
   g.stroke();
 }
 
-export function screenBox(w, h) {
+/** The graticule's place: `head` lines of text above it, `foot` lines under it (16 px
+ * each). The divisions' width depends on the width alone (the cursors are dragged on it). */
+export function screenBox(w, h, head = 1, foot = 1) {
   const x0 = 12;
-  const y0 = SCREEN.top;
+  const y0 = 10 + 16 * head;
   const dx = (w - 24) / SCREEN.divX;
-  const dy = (h - SCREEN.top - 30) / SCREEN.divY;
-  return { x0, y0, dx, dy, W: w, H: h };
+  const dy = (h - y0 - 14 - 16 * foot) / SCREEN.divY;
+  return { x0, y0, dx, dy, W: w, H: h, head, foot };
 }
 
 export function label(g, text, x, y, color = COLORS.text, align = 'left') {
   g.fillStyle = color;
   g.textAlign = align;
   g.fillText(text, x, y);
+}
+
+// ---------------------------------------------------------------- text that never overlaps
+/** The boxes of the text on a canvas as drawn (CSS pixels): each label is placed only where
+ * no other is, so that none covers another; the tests read them (window.stickslipLab). */
+export class TextBoxes {
+  constructor() {
+    this.boxes = [];
+  }
+
+  /** The box of `text` drawn at (x, y) with this alignment in the context's font. */
+  static box(g, text, x, y, align) {
+    const m = g.measureText(text);
+    const width = m.width;
+    const left = align === 'right' ? x - width : align === 'center' ? x - width / 2 : x;
+    const ascent = m.actualBoundingBoxAscent || 10;
+    const descent = m.actualBoundingBoxDescent || 3;
+    return { text, left, right: left + width, top: y - ascent, bottom: y + descent };
+  }
+
+  fits(b) {
+    return !this.boxes.some((o) => b.left < o.right && o.left < b.right && b.top < o.bottom && o.top < b.bottom);
+  }
+
+  /** Draw `text` if it covers no text drawn before; whether it was drawn. `backing`: a
+   * ground under it (labels over traces). */
+  place(g, text, x, y, color = COLORS.text, align = 'left', backing = null) {
+    const b = TextBoxes.box(g, text, x, y, align);
+    if (!this.fits(b)) return false;
+    if (backing) {
+      g.fillStyle = backing;
+      g.fillRect(b.left - 2, b.top - 1, b.right - b.left + 4, b.bottom - b.top + 2);
+    }
+    label(g, text, x, y, color, align);
+    this.boxes.push(b);
+    return true;
+  }
+}
+
+/** Items of text (`{ text, color }`) in lines no wider than `width`, `gap` pixels apart. */
+export function flow(g, items, width, gap = 18) {
+  const lines = [];
+  let line = [];
+  let used = 0;
+  for (const item of items) {
+    const w = g.measureText(item.text).width;
+    if (line.length && used + gap + w > width) {
+      lines.push(line);
+      line = [];
+      used = 0;
+    }
+    used += (line.length ? gap : 0) + w;
+    line.push(item);
+  }
+  if (line.length) lines.push(line);
+  return lines;
 }
 
 // ---------------------------------------------------------------- the scope
@@ -170,23 +248,22 @@ export function displayed() {
     }
     return out;
   }
-  // The steady cycle repeats: lay copies of it side by side over the window.
+  // The steady cycle repeats: its samples, continued over the window (sample j at j·dt, the
+  // cycle's sample j mod n), at most about 60000 of them (every stride-th on a long window).
   const n = cols.t.length;
   const P = s.trace.periods / s.drive.f_Hz;
   const dt = P / n;
-  const first = Math.floor(left / P) - 1;
-  const last = Math.ceil(right / P);
-  const reps = last - first + 1;
-  const stride = Math.max(1, Math.ceil((reps * n) / 60000));
-  for (let r = first; r <= last; r++) {
-    for (let i = 0; i < n; i += stride) {
-      const t = r * P + i * dt;
-      if (t < left - dt || t > right + dt) continue;
-      out.t.push(t);
-      out.ch1.push(cols.ch1[i]);
-      out.ch2.push(cols.ch2[i]);
-      out.ch3.push(cols.ch3[i]);
-    }
+  const stride = Math.max(1, Math.ceil((right - left) / dt / 60000));
+  const first = Math.floor(left / dt / stride) * stride - stride;
+  const last = Math.ceil(right / dt) + stride;
+  for (let j = first; j <= last; j += stride) {
+    const t = j * dt;
+    if (t < left - stride * dt || t > right + stride * dt) continue;
+    const i = ((j % n) + n) % n;
+    out.t.push(t);
+    out.ch1.push(cols.ch1[i]);
+    out.ch2.push(cols.ch2[i]);
+    out.ch3.push(cols.ch3[i]);
   }
   return out;
 }
@@ -238,23 +315,28 @@ export function drawTrace(g, box, xs, ys, color, monotonic = false) {
 
 export function redraw() {
   if (!state.steady) return;
+  // Every position field says whether its value is in range, shown or not.
+  for (const name of ['hpos', 'ch1-pos', 'ch2-pos', 'ch3-pos']) position(name);
   const canvas = $('#screen');
   const { g, w, h } = prepare(canvas);
-  const box = screenBox(w, h);
-  graticule(g, box);
   g.font = '12px system-ui, sans-serif';
+  const text = screenText(g, w);
+  const box = screenBox(w, h, text.head.length, text.foot.length);
+  graticule(g, box);
+  const labels = new TextBoxes();
+  drawText(g, box, text, labels);
   g.save();
   g.beginPath();
   g.rect(box.x0, box.y0 - 6, SCREEN.divX * box.dx, SCREEN.divY * box.dy + 12);
   g.clip();
   // The record's reference traces beside the computed ones (Y-T and X-Y): how many.
   let refs = 0;
-  if (state.mode === 'yt') refs = drawYT(g, box);
-  else if (state.mode === 'xy') refs = drawXY(g, box);
-  else drawFFT(g, box);
+  if (state.mode === 'yt') refs = drawYT(g, box, labels);
+  else if (state.mode === 'xy') refs = drawXY(g, box, labels);
+  else drawFFT(g, box, labels);
   canvas.dataset.refCount = String(refs);
   g.restore();
-  drawFooter(g, box);
+  window.stickslipLab.screenText = labels.boxes;
   showCursorReadout();
 }
 
@@ -268,7 +350,7 @@ export function ysOf(box, k, values) {
   return values.map((v) => base - (v / scale) * box.dy);
 }
 
-export function drawYT(g, box) {
+export function drawYT(g, box, labels) {
   const d = displayed();
   const perDiv = tdiv();
   const xOf = (t) => box.x0 + ((t - d.left) / perDiv) * box.dx;
@@ -276,13 +358,17 @@ export function drawYT(g, box) {
   for (const k of [1, 2, 3]) {
     if (!chOn(k)) continue;
     drawTrace(g, box, xs, ysOf(box, k, d[`ch${k}`]), COLORS[`ch${k}`], true);
-    // Channel ground marker.
-    label(g, `${k}▸`, box.x0 + 2, yOf(box, k, 0) + 4, COLORS[`ch${k}`]);
+  }
+  // Channel ground markers on the left edge, side by side where they meet.
+  for (const k of [1, 2, 3]) {
+    if (!chOn(k)) continue;
+    const y = Math.max(box.y0 + 10, Math.min(box.y0 + SCREEN.divY * box.dy, yOf(box, k, 0) + 4));
+    for (let x = box.x0 + 2; x < box.x0 + 60; x += 14) if (labels.place(g, `${k}▸`, x, y, COLORS[`ch${k}`])) break;
   }
   const refs = drawRefsYT(g, box, xOf);
   // Trigger marker: t = 0 is the start of the drive period (phase φ).
   const xt = xOf(0);
-  if (xt >= box.x0 && xt <= box.x0 + SCREEN.divX * box.dx) label(g, '▼T', xt, box.y0 + 4, '#ffffff', 'center');
+  if (xt >= box.x0 && xt <= box.x0 + SCREEN.divX * box.dx) labels.place(g, '▼T', xt, box.y0 + 4, '#ffffff', 'center');
   if (field('cursors').checked) {
     g.strokeStyle = '#ffffff';
     g.setLineDash([4, 4]);
@@ -298,7 +384,7 @@ export function drawYT(g, box) {
   return refs;
 }
 
-export function drawXY(g, box) {
+export function drawXY(g, box, labels) {
   const s = state.steady;
   const src = state.trigger === 'transient' && state.transient ? channelColumns(state.transient) : channelColumns(s);
   const xScale = vdiv(1);
@@ -321,7 +407,7 @@ export function drawXY(g, box) {
       g.beginPath();
       g.arc(xOf(v.ch1), yOf(box, 2, v.ch2), 4, 0, 2 * Math.PI);
       g.fill();
-      label(g, `t${c}`, xOf(v.ch1) + 6, yOf(box, 2, v.ch2) - 6, '#ffffff');
+      labels.place(g, `t${c}`, xOf(v.ch1) + 6, yOf(box, 2, v.ch2) - 6, '#ffffff');
     }
   }
   return refs;
@@ -340,21 +426,30 @@ export function spectrum() {
   return amps.map((a, k) => ({ k: k + 1, f: (k + 1) * f, a }));
 }
 
+/** The unit of the FFT's source channel (V, A; m, m/s, N for the mechanical twin). */
+export function fftUnit() {
+  const u = units();
+  return { ch1: u.drive, ch2: u.position, ch3: u.velocity }[field('fft-source').value];
+}
+
+/** The FFT's axes: the span follows the drive (FFT_SPAN_HARMONICS and a half at least, on a
+ * 1-2-5 step per division), and the bars are the harmonics on it (the page asks the lab for
+ * as many as any span shows); dB re 1 unit RMS by default. */
 export function fftAxes() {
-  const bars = spectrum();
   const f = state.steady.drive.f_Hz;
-  const shown = Math.max(bars.length, FFT_MIN_HARMONICS) + 0.5;
-  const hzdiv = nice125((shown * f) / SCREEN.divX);
+  const hzdiv = nice125(((FFT_SPAN_HARMONICS + 0.5) * f) / SCREEN.divX);
+  const bars = spectrum().filter((b) => b.f <= SCREEN.divX * hzdiv);
   const scale = field('fft-scale').value;
   const db = scale !== 'linear';
   // dBV RMS (as bench scopes show it) by default: 20·log10(A/√2 / 1 V); dBV peak on request.
   const rms = scale !== 'db-peak';
   const max = Math.max(...bars.map((b) => b.a), 1e-30);
+  const unit = fftUnit();
   if (db) {
     const top = Math.ceil((20 * Math.log10(rms ? max / Math.SQRT2 : max)) / 20) * 20 + 20;
-    return { bars, hzdiv, db, rms, top, perDiv: 20 };
+    return { bars, hzdiv, db, rms, top, perDiv: 20, unit };
   }
-  return { bars, hzdiv, db, rms, top: 0, perDiv: niceAtLeast(max / 7) };
+  return { bars, hzdiv, db, rms, top: 0, perDiv: niceAtLeast(max / 7), unit };
 }
 
 /** A harmonic of amplitude `a` in dB re 1 unit, RMS (a/√2) or peak. */
@@ -362,54 +457,84 @@ export function dbLevel(a, rms) {
   return 20 * Math.log10(Math.max(rms ? a / Math.SQRT2 : a, 1e-300));
 }
 
-export function drawFFT(g, box) {
+export function drawFFT(g, box, labels) {
   const ax = fftAxes();
   const bottom = box.y0 + SCREEN.divY * box.dy;
   const xOf = (f) => box.x0 + (f / ax.hzdiv) * box.dx;
   const level = (a) => (ax.db ? dbLevel(a, ax.rms) : a);
   const yOfLevel = (v) => (ax.db ? box.y0 + ((ax.top - v) / ax.perDiv) * box.dy : bottom - (v / ax.perDiv) * box.dy);
   const color = COLORS[field('fft-source').value];
-  const unit = { ch1: units().drive, ch2: units().position, ch3: units().velocity }[field('fft-source').value];
-  for (let j = 0; j < SCREEN.divY; j++) {
-    const v = ax.db ? ax.top - j * ax.perDiv : (SCREEN.divY - j) * ax.perDiv;
-    label(g, ax.db ? `${v} dB${unit} ${ax.rms ? 'RMS' : 'peak'}` : si(v, unit, 3), box.x0 + SCREEN.divX * box.dx - 4, box.y0 + j * box.dy + 13, COLORS.axis, 'right');
-  }
-  for (let i = 1; i < SCREEN.divX; i += 2) {
-    label(g, si(i * ax.hzdiv, 'Hz', 3), box.x0 + i * box.dx, box.y0 + 13, COLORS.axis, 'center');
-  }
   for (const b of ax.bars) {
     const x = xOf(b.f);
     const y = Math.max(box.y0, Math.min(bottom, yOfLevel(level(b.a))));
     g.fillStyle = color;
     g.fillRect(x - 3, y, 6, bottom - y);
-    if (bottom - y > 4) label(g, `${b.k}Ω`, x, y - 4, '#ffffff', 'center');
+  }
+  // The levels of the divisions on the right edge (over the bars, on the screen's ground),
+  // then each bar's order above it where it covers no other text.
+  for (let j = 0; j < SCREEN.divY; j++) {
+    const v = ax.db ? ax.top - j * ax.perDiv : (SCREEN.divY - j) * ax.perDiv;
+    labels.place(g, ax.db ? `${v} dB${ax.unit}` : si(v, ax.unit, 3), box.x0 + SCREEN.divX * box.dx - 4, box.y0 + j * box.dy + 13, COLORS.axis, 'right', 'rgba(12, 26, 21, 0.7)');
+  }
+  for (const b of ax.bars) {
+    const y = Math.max(box.y0, Math.min(bottom, yOfLevel(level(b.a))));
+    if (bottom - y > 4) labels.place(g, `${b.k}Ω`, xOf(b.f), y - 4, '#ffffff', 'center');
   }
 }
 
-export function drawFooter(g, box) {
+/** The screen's text around the graticule: the lines above it (what the screen shows, and
+ * the motion's class on the right) and under it (the channels' scales, the record, or the
+ * FFT's frequency axis and levels), each line fitted to the width. */
+export function screenText(g, w) {
   const s = state.steady;
   const u = units();
-  const y = box.y0 + SCREEN.divY * box.dy + 18;
-  g.font = '12px system-ui, sans-serif';
+  const width = w - 24;
+  const motion = { text: `${s.class}${s.period ? `, period ${s.period}` : ''}${staticNote(s, true)}`, color: COLORS.text, right: true };
+  let head;
+  const foot = [];
   if (state.mode === 'fft') {
     const ax = fftAxes();
-    label(g, `FFT of ${field('fft-source').value.toUpperCase()} (steady cycle)  ${si(ax.hzdiv, 'Hz')}/div`, box.x0, 16);
-    label(g, ax.db ? `${ax.perDiv} dB/div, top ${ax.top} dB${u.position} ${ax.rms ? 'RMS' : 'peak'} (re 1 ${u.position}${ax.rms ? ' RMS' : ' peak'}), ${si(ax.hzdiv, 'Hz', 3)}/div` : `${si(ax.perDiv, u.position)}/div, ${si(ax.hzdiv, 'Hz', 3)}/div`, box.x0, y);
+    head = { text: `FFT of ${field('fft-source').value.toUpperCase()} (steady cycle), ${si(ax.hzdiv, 'Hz', 3)}/div`, color: COLORS.text };
+    // The frequency axis: the odd divisions' frequencies under the graticule.
+    foot.push({ axis: true, ticks: [1, 3, 5, 7, 9].map((i) => ({ i, text: si(i * ax.hzdiv, 'Hz', 3) })) });
+    const level = ax.db ? `${ax.perDiv} dB/div, top ${ax.top} dB${ax.unit} ${ax.rms ? 'RMS' : 'peak'} (re 1 ${ax.unit}${ax.rms ? ' RMS' : ' peak'})` : `${si(ax.perDiv, ax.unit)}/div`;
+    foot.push(...flow(g, [{ text: level, color: COLORS.text }, { text: `${si(ax.hzdiv, 'Hz', 3)}/div`, color: COLORS.text }], width));
   } else {
-    const parts = [];
-    const names = { 1: u.drive, 2: u.position, 3: u.velocity };
-    for (const k of [1, 2, 3]) if (chOn(k) || (state.mode === 'xy' && k < 3)) parts.push([k, `CH${k} ${si(vdiv(k), names[k])}/div`]);
-    let x = box.x0;
-    for (const [k, text] of parts) {
-      label(g, text, x, y, COLORS[`ch${k}`]);
-      x += g.measureText(text).width + 18;
-    }
-    drawRefLabel(g, box, y);
     const trig = state.trigger === 'transient' ? 'from rest (t = 0: start)' : 'steady cycle, trigger on the drive';
-    const head = state.mode === 'xy' ? `X-Y: X = CH1, Y = CH2; ${trig}` : `${si(tdiv(), 's')}/div; ${trig}`;
-    label(g, head, box.x0, 16);
+    head = { text: state.mode === 'xy' ? `X-Y: X = CH1, Y = CH2; ${trig}` : `${si(tdiv(), 's')}/div; ${trig}`, color: COLORS.text };
+    const names = { 1: u.drive, 2: u.position, 3: u.velocity };
+    const items = [];
+    for (const k of [1, 2, 3]) if (chOn(k) || (state.mode === 'xy' && k < 3)) items.push({ text: `CH${k} ${si(vdiv(k), names[k])}/div`, color: COLORS[`ch${k}`] });
+    const ref = refLabel();
+    if (ref) items.push(ref);
+    foot.push(...flow(g, items, width));
   }
-  label(g, `${s.class}${s.period ? `, period ${s.period}` : ''}`, box.x0 + SCREEN.divX * box.dx, 16, COLORS.text, 'right');
+  // The class on the head's line when both fit, else on a line of its own.
+  const both = g.measureText(head.text).width + 16 + g.measureText(motion.text).width <= width;
+  const headLines = both ? [[head, motion]] : [[head], [motion]];
+  return { head: headLines, foot: foot.length ? foot : [[]] };
+}
+
+/** Draw the screen's text (`screenText`) around the graticule `box`. */
+export function drawText(g, box, text, labels) {
+  const right = box.x0 + SCREEN.divX * box.dx;
+  text.head.forEach((line, n) => {
+    const y = 16 + 16 * n;
+    for (const item of line) labels.place(g, item.text, item.right ? right : box.x0, y, item.color, item.right ? 'right' : 'left');
+  });
+  const bottom = box.y0 + SCREEN.divY * box.dy;
+  text.foot.forEach((line, n) => {
+    const y = bottom + 18 + 16 * n;
+    if (line.axis) {
+      for (const t of line.ticks) labels.place(g, t.text, box.x0 + t.i * box.dx, y, COLORS.axis, 'center');
+      return;
+    }
+    let x = box.x0;
+    for (const item of line) {
+      labels.place(g, item.text, x, y, item.color);
+      x += g.measureText(item.text).width + 18;
+    }
+  });
 }
 
 // ---------------------------------------------------------------- cursors
@@ -459,6 +584,9 @@ export function showCursorReadout() {
   }
   out.textContent = text;
 }
+
+// For tests: the FFT's axes as drawn (span per division, dB convention).
+window.stickslipLab.fftAxes = () => fftAxes();
 
 // Drag a cursor on the screen.
 (() => {

@@ -2,7 +2,6 @@
 // beside fields, and the model keys of the query.
 
 import { $, $$, field } from './util.js';
-import { fftAxes } from './scope.js';
 import { fieldsOf, isPart } from './form.js';
 
 // ---------------------------------------------------------------- state
@@ -14,7 +13,16 @@ export const state = {
   system: 'pwl',
   paperParts: true, // the circuit's parts are the paper's: send preset=paper
   shockleyEdited: false,
-  drive: { w: 0.95, beta: 2.14 }, // dimensionless drive from a preset, until the user turns a knob
+  // The generator is an instrument: a preset sets it once (its Hz and V, or N), and nothing
+  // but the generator's own controls (and a scope record's drive) moves it afterwards. While
+  // the preset's parts are unchanged its point is sent as w and β (the same setting, exactly
+  // the paper's numbers); once a part changes, the generator's Hz and V are sent, and w and β
+  // follow from the parts.
+  drive: { w: 0.95, beta: 2.14 },
+  // The numbers the page itself put into the generator's fields, with their text: while a
+  // field shows that text, the number is sent in full (a preset's 9969.65 Hz is
+  // 9969.651571… Hz).
+  generator: { freq: null, amplitude: null },
   steady: null,
   steadyQuery: '',
   transient: null,
@@ -36,8 +44,6 @@ export const state = {
 };
 // Latency of input → redraw, in ms, for every input (see docs/lab.md).
 window.stickslipLab = { latencies: [], redraws: 0, state };
-// For tests: the FFT's axes as drawn (span per division, dB convention).
-window.stickslipLab.fftAxes = () => fftAxes();
 
 export const statusEl = $('#status');
 export function setStatus(kind, text) {
@@ -65,6 +71,28 @@ export function showError(failure, fallbackScope) {
 // ---------------------------------------------------------------- the model query
 export const value = (name) => (field(name).value || '').trim();
 
+/** Put `x` into the generator's field `name` (`freq`, `amplitude`), shown to `digits`
+ * significant digits and sent in full while the field shows it. */
+export function setGenerator(name, x, text) {
+  field(name).value = text;
+  state.generator[name] = { text, value: x };
+}
+
+/** What the generator's field `name` sends: the number the page put there while it shows
+ * that number's text, else what was typed. */
+export function generatorValue(name) {
+  const g = state.generator[name];
+  const text = value(name);
+  return g && g.text === text ? String(g.value) : text;
+}
+
+/** A part of the experiment changed (or the diode law, or a fitted value): the generator
+ * stays where it is, in Hz and V; w and β follow from the parts. */
+export function holdGenerator() {
+  state.drive.w = null;
+  state.drive.beta = null;
+}
+
 /** The model keys for the API: the description, and the drive unless `withoutDrive`. The
  * keys are the fields of the system's fieldsets (form.js, from /api/keys). Two keys have
  * behaviour of their own: `preset` (the paper's parts, while none is edited, are sent by the
@@ -85,11 +113,11 @@ export function modelParams({ frequency = true, amplitude = true } = {}) {
   }
   if (frequency) {
     if (state.drive.w !== null) p.set('w', String(state.drive.w));
-    else p.set('freq', value('freq'));
+    else p.set('freq', generatorValue('freq'));
   }
   if (amplitude) {
     if (state.drive.beta !== null) p.set('beta', String(state.drive.beta));
-    else p.set('amplitude', value('amplitude'));
+    else p.set('amplitude', generatorValue('amplitude'));
   }
   const degrees = Number(value('phase'));
   if (value('phase') !== '' && value('phase') !== '0') {

@@ -3,7 +3,7 @@
 import { $, field, num, si, niceAtLeast } from './util.js';
 import { latest, isAbort } from './api.js';
 import { state, statusEl, clearErrors, showError, value, modelParams } from './state.js';
-import { logicalSize, prepare, label } from './scope.js';
+import { logicalSize, prepare, label, TextBoxes } from './scope.js';
 
 // ---------------------------------------------------------------- sweep and map
 /** `pwl`, `shockley` or `mechanics`: the system an answer was computed for. */
@@ -50,10 +50,10 @@ export function experimentBase(answer) {
   return answer.experiment.split(';')[0];
 }
 
-/** Axes, grid and labels of a plot; `legendRow` leaves a row under the x label. */
-export function plotFrame(canvas, xr, yr, xlabel, ylabel, legendRow = false) {
+/** Axes, grid and labels of a plot; `legendRows` rows (0, 1 or 2) under the x label. */
+export function plotFrame(canvas, xr, yr, xlabel, ylabel, legendRows = 0) {
   const { g, w, h } = prepare(canvas);
-  const box = { l: 56, r: w - 14, t: 14, b: h - (legendRow ? 58 : 40) };
+  const box = { l: 56, r: w - 14, t: 14, b: h - 40 - 16 * legendRows };
   g.fillStyle = '#ffffff';
   g.fillRect(0, 0, w, h);
   const X = (x) => box.l + ((x - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
@@ -153,23 +153,23 @@ export function drawSweep() {
     const xs = sw.points.map((p) => p.value);
     const xr = [Math.min(...xs), Math.max(...xs)];
     if (xr[0] === xr[1]) xr[1] = xr[0] + 1;
-    const gains = sw.points.map((p) => p.gain).concat(sw.theory.exact_peak_gain.filter(Number.isFinite));
+    const gains = sw.points.map((p) => p.gain).concat(sw.theory.exact_gain.filter(Number.isFinite));
     const ymax = Math.max(...gains.filter(Number.isFinite), 0.1) * 1.08;
     const f0 = sw.conversion ? sw.conversion.f0 : null;
-    const frame = plotFrame(off, xr, [0, ymax], f0 ? `w = Ω/ω0 (f0 = ${si(f0, 'Hz')})` : 'w', 'gain G');
+    const frame = plotFrame(off, xr, [0, ymax], f0 ? `w = Ω/ω0 (f0 = ${si(f0, 'Hz')})` : 'w', 'gain G = (y_max − y_min)/2β');
     const { g: o, X, Y, box } = frame;
     const th = sw.theory;
-    polyline(o, th.x.map((x, i) => [X(x), th.paper_gain[i] === null || th.paper_gain[i] > ymax ? NaN : Y(th.paper_gain[i])]), '#cc79a7', 2, [6, 4]);
-    polyline(o, th.x.map((x, i) => [X(x), th.exact_peak_gain[i] === null ? NaN : Y(th.exact_peak_gain[i])]), '#000000', 2);
+    polyline(o, th.x.map((x, i) => [X(x), th.paper_gain1[i] === null || th.paper_gain1[i] > ymax ? NaN : Y(th.paper_gain1[i])]), '#cc79a7', 2, [6, 4]);
+    polyline(o, th.x.map((x, i) => [X(x), th.exact_gain[i] === null ? NaN : Y(th.exact_gain[i])]), '#000000', 2);
     for (const [leg, color, dash] of [['up', '#0072b2', []], ['down', '#d55e00', [5, 3]]]) {
       const pts = sw.points.filter((p) => p.direction === leg);
       polyline(o, pts.map((p) => [X(p.value), Y(p.gain)]), color, 2, dash);
       o.fillStyle = color;
       for (const p of pts) {
-        if (p.stops_per_cycle > 0) o.fillRect(X(p.value) - 2.5, Y(p.gain) - 2.5, 5, 5);
+        if (p.stops_per_period > 0) o.fillRect(X(p.value) - 2.5, Y(p.gain) - 2.5, 5, 5);
       }
     }
-    const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#cc79a7', `${th.prefix}paper, eq. (11): A1/β`], ['#000', `${th.prefix}exact orbit: peak/β`], ['#c00', 'now']];
+    const legend = [['#0072b2', 'swept up'], ['#d55e00', 'swept down'], ['#cc79a7', `${th.prefix}paper, eq. (11): G1 = A1/β`], ['#000', `${th.prefix}exact orbit: G`], ['#c00', 'now']];
     // The legend's box fits its longest line (the PWL-theory prefix of Shockley diodes
     // included), on a white ground over the curves.
     const note = 'squares: motion with stops';
@@ -198,7 +198,7 @@ export function drawSweep() {
   }
 }
 
-export const CLASS_COLORS = { sliding: '#dadada', 'periodic-stick': '#0072b2', 'nonperiodic-stick': '#d55e00', static: '#009e73', chaotic: '#7570b3' };
+export const CLASS_COLORS = { sliding: '#dadada', 'periodic-stick': '#0072b2', undecided: '#d55e00', static: '#009e73', chaotic: '#7570b3' };
 export function drawMap() {
   const canvas = $('#map-plot');
   const m = state.map;
@@ -213,11 +213,21 @@ export function drawMap() {
     const hb = half(m.beta);
     const xr = [m.w[0] - hw, m.w[m.w.length - 1] + hw];
     const yr = [m.beta[0] - hb, m.beta[m.beta.length - 1] + hb];
-    const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t', true);
+    // The legend under the x label: the classes found on this map (in the library's order),
+    // and the boundaries' key on the right; on two rows where one is too narrow for both.
+    const found = new Set(m.points.map((p) => p.class));
+    const classes = Object.keys(CLASS_COLORS).filter((k) => found.has(k));
+    const key = `${m.boundary.prefix}β_c: exact ━, paper ╍`;
+    const measure = off.getContext('2d');
+    measure.font = '11px system-ui, sans-serif';
+    const classesWidth = classes.reduce((sum, c) => sum + measure.measureText(c).width + 26, 6);
+    const plotWidth = logicalSize(canvas).w - 14 - 56;
+    const rows = classesWidth + 12 + measure.measureText(key).width <= plotWidth ? 1 : 2;
+    const { g: o, X, Y, box } = plotFrame(off, xr, yr, 'w = Ω/ω0', 'β = U/U_t', rows);
     const nb = m.beta.length;
     for (let i = 0; i < m.w.length; i++) {
       for (let j = 0; j < nb; j++) {
-        o.fillStyle = CLASS_COLORS[m.classes[m.class[i * nb + j]]] || '#888';
+        o.fillStyle = CLASS_COLORS[m.points[i * nb + j].class] || '#888';
         const x = X(m.w[i] - hw);
         const y = Y(m.beta[j] + hb);
         o.fillRect(x, y, X(m.w[i] + hw) - x + 0.5, Y(m.beta[j] - hb) - y + 0.5);
@@ -231,18 +241,21 @@ export function drawMap() {
     polyline(o, b.w.map((w, i) => [X(w), b.paper[i] === null ? NaN : Y(b.paper[i])]), '#cc79a7', 2, [6, 4]);
     polyline(o, b.w.map((w, i) => [X(w), b.exact[i] === null ? NaN : Y(b.exact[i])]), '#000', 2);
     o.restore();
+    const text = [];
     let lx = box.l + 6;
-    // The classes found on this map, in the library's order.
-    const found = new Set(m.class);
-    for (const c of m.classes.filter((_, k) => found.has(k))) {
+    for (const c of classes) {
       o.fillStyle = CLASS_COLORS[c];
       o.fillRect(lx, box.b + 40, 10, 10);
       o.strokeStyle = '#999';
       o.strokeRect(lx, box.b + 40, 10, 10);
       label(o, c, lx + 13, box.b + 49, '#222');
+      text.push(TextBoxes.box(o, c, lx + 13, box.b + 49, 'left'));
       lx += o.measureText(c).width + 26;
     }
-    label(o, `${b.prefix}β_c: exact ━, paper ╍`, box.r, box.b + 49, '#222', 'right');
+    const ky = box.b + 49 + 16 * (rows - 1);
+    label(o, key, box.r, ky, '#222', 'right');
+    text.push(TextBoxes.box(o, key, box.r, ky, 'right'));
+    window.stickslipLab.mapText = text;
     return { X, Y, box };
   });
   // The current point.
@@ -328,7 +341,7 @@ export async function runMap() {
     setStale($('#map-plot'), out, '');
     state.map = answer;
     const counts = {};
-    for (const c of answer.class) counts[answer.classes[c]] = (counts[answer.classes[c]] || 0) + 1;
+    for (const p of answer.points) counts[p.class] = (counts[p.class] || 0) + 1;
     out.textContent = Object.entries(counts).map(([k, v]) => `${k} ${v}`).join(', ');
     out.dataset.state = 'ready';
     drawMap();

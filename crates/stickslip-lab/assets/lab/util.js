@@ -57,5 +57,9 @@ export function nice125(x) {
   for (const m of [1, 2, 5, 10]) if (m * e >= x * 0.999) return Number((m * e).toPrecision(3));
   return 10 * e;
 }
-/** Harmonics the FFT span shows at least, as a scope's span follows its signal. */
-export const FFT_MIN_HARMONICS = 7;
+/** Harmonics the FFT span shows at least, as a scope's span follows its signal: the span per
+ * division is the 1-2-5 step at or above (FFT_SPAN_HARMONICS + 0.5)·f/10. */
+export const FFT_SPAN_HARMONICS = 16;
+/** Harmonics a span shows at most (a 1-2-5 step is at most 2.5 times the one below it): the
+ * page asks the lab for these, so that the bars fill every span (within the lab's cap of 256). */
+export const FFT_MAX_HARMONICS = Math.floor(2.5 * (FFT_SPAN_HARMONICS + 0.5));

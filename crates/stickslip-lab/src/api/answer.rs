@@ -79,11 +79,7 @@ impl About {
         Self {
             experiment: e.to_string(),
             model: e.diode_model().label(),
-            system: match e.system() {
-                Some(System::Circuit(_)) => "circuit",
-                Some(System::Mechanics(_)) => "mechanics",
-                None => "dimensionless",
-            },
+            system: e.system_kind().label(),
             conversion: e.conversion(),
             drive: scales.zip(e.w().zip(e.beta())).map(|(s, (w, beta))| Drive {
                 f_hz: s.drive_omega(w) / TAU,

@@ -6,14 +6,15 @@
 use super::answer::Columns;
 use super::upload::{RecordKeys, Upload, RECORD_FIELD, RECORD_KEYS};
 use crate::limit::Budget;
-use crate::query::{api_name, ApiError, Query};
+use crate::query::{api_name, circuit_keys, ApiError, Query};
 use axum::http::StatusCode;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
-use stickslip::experiment::{DiodeModel, Experiment, Key};
+use stickslip::experiment::{DiodeModel, Experiment, Key, Preset};
 use stickslip::fit::{fit_records, FitError, FitOptions, FitParameter, FitReportJson};
+use stickslip::SystemKind;
 
 /// `POST /api/fit`.
 #[derive(Debug)]
@@ -48,13 +49,11 @@ pub struct FitAnswer {
     pub plot: Columns,
 }
 
-/// The default free parameters of a diode law (those of `stickslip fit`, and of its
-/// `--free-shockley` with Shockley diodes).
-pub fn default_free(model: DiodeModel) -> &'static str {
-    match model {
-        DiodeModel::Pwl => "resistance,ut",
-        DiodeModel::Shockley => "resistance,diode-is,diode-n",
-    }
+/// The free parameters of a circuit's fit when `free` is not given: the library's default
+/// free set of the diode law (`stickslip::fit::FitParameter::defaults`, as `stickslip fit`
+/// and Python's `fit` free them).
+pub fn default_free(model: DiodeModel) -> Vec<FitParameter> {
+    FitParameter::defaults(SystemKind::Circuit, model)
 }
 
 /// The drive's keys, refused: each record's drive is as measured.
@@ -91,7 +90,7 @@ impl FitRequest {
         let experiment = q.experiment()?;
         let free_text = q
             .take("free")
-            .unwrap_or_else(|| default_free(experiment.diode_model()).to_string());
+            .unwrap_or_else(|| FitParameter::list(&default_free(experiment.diode_model())));
         let mut free = Vec::new();
         for name in free_text
             .split(',')
@@ -122,19 +121,25 @@ impl FitRequest {
             free.push(p);
         }
         if free.is_empty() {
+            let names: Vec<&str> = FitParameter::CIRCUIT.iter().map(|p| p.label()).collect();
             return Err(ApiError::field(
                 "free",
-                "invalid free: name at least one parameter (resistance, ut, rd, diode-is, \
-                 diode-n, diode-rs, inductance, capacitance, mu-s)",
+                format!(
+                    "invalid free: name at least one parameter ({})",
+                    names.join(", ")
+                ),
             ));
         }
         let keys = RecordKeys::take(&mut q)?;
         q.finish(&["free", RECORD_KEYS[0], RECORD_KEYS[1], RECORD_KEYS[2]])?;
         if experiment.circuit_ref().is_none() {
-            return Err(ApiError::bad(
-                "fitting needs a circuit (preset=paper, or inductance, capacitance, \
-                 resistance, ut, rd): a record is of u_C and the drive in volts",
-            ));
+            return Err(ApiError::bad(format!(
+                "fitting needs a circuit ({}={}, or {}): a record is of u_C and the drive in \
+                 volts",
+                api_name(Key::Preset),
+                Preset::Paper,
+                circuit_keys()
+            )));
         }
         Ok(Self {
             experiment,

@@ -6,6 +6,8 @@ use super::caps::CAPS;
 use super::fit::default_free;
 use stickslip::experiment::{DiodeModel, Key, KeyForm, KeyGroup};
 use stickslip::fit::FitParameter;
+use stickslip::steady::STATIC_GAIN;
+use stickslip::SystemKind;
 
 /// |v| (dimensionless velocity y') at or below which the page draws the block stuck: the
 /// exact PWL solver holds v = 0 exactly while stuck; the stiff Shockley solver's current
@@ -37,12 +39,10 @@ pub fn fieldset(key: Key) -> Option<&'static str> {
     }
 }
 
-/// A unit as the page writes it (`Ω` for `ohm`, `N·s/m`); for μs, which has none, its
-/// bound (`≥ 1`).
+/// A unit as the page writes it ([`Key::shown_unit`]: `Ω` for `ohm`, `N·s/m`); for μs,
+/// which has none, its bound (`≥ 1`).
 fn shown_unit(key: Key) -> String {
-    match key.unit() {
-        Some("ohm") => "Ω".to_string(),
-        Some("N s/m") => "N·s/m".to_string(),
+    match key.shown_unit() {
         Some(unit) => unit.to_string(),
         None if key == Key::MuS => format!("≥ {}", key.range().min),
         None => String::new(),
@@ -72,31 +72,30 @@ fn form() -> Vec<serde_json::Value> {
 }
 
 /// What a fit of a circuit may free (`parameters`, [`FitParameter::CIRCUIT`]), those of each
-/// diode law (`by_law`: `pwl` and `shockley`, [`FitParameter::applies_to`]), and what it frees
-/// when nothing is ticked (`free`: those of `stickslip fit`, [`default_free`]).
+/// diode law (`by_law`: `pwl` and `shockley`, [`FitParameter::of`]), and those of each law it
+/// frees when nothing is ticked, the boxes ticked at first (`free`: `pwl` and `shockley`, the
+/// library's default free sets, [`default_free`], as `stickslip fit` frees them).
 fn fit() -> serde_json::Value {
-    let labels = |law: Option<DiodeModel>| {
-        FitParameter::CIRCUIT
+    let labels = |list: &[FitParameter]| list.iter().map(|p| p.label()).collect::<Vec<_>>();
+    let by_law = |of: fn(DiodeModel) -> Vec<FitParameter>| {
+        DiodeModel::ALL
             .iter()
-            .filter(|p| law.is_none_or(|law| p.applies_to(law)))
-            .map(|p| p.label())
-            .collect::<Vec<_>>()
+            .map(|&law| (law.label().to_string(), serde_json::json!(labels(&of(law)))))
+            .collect::<serde_json::Map<_, _>>()
     };
     serde_json::json!({
-        "parameters": labels(None),
-        "by_law": DiodeModel::ALL
-            .iter()
-            .map(|&law| (law.label().to_string(), serde_json::json!(labels(Some(law)))))
-            .collect::<serde_json::Map<_, _>>(),
-        "free": default_free(DiodeModel::Pwl).split(',').collect::<Vec<_>>(),
+        "parameters": labels(&FitParameter::CIRCUIT),
+        "by_law": by_law(|law| FitParameter::of(SystemKind::Circuit, law)),
+        "free": by_law(default_free),
     })
 }
 
 /// The answer of `/api/keys`: `keys` (the library's key table, [`Key::table`]: each model
 /// key's query name `flag`, its `name`, `symbol`, group, unit, range, help and default),
 /// `form` (the fields of the page's form, [`fieldset`]), `fit` (the parameters a fit of a
-/// circuit may free, those of each diode law, and those it frees by default), `caps` (as `/api/presets` has them)
-/// and `stuck_velocity` (by diode law).
+/// circuit may free, those of each diode law, and those it frees by default), `caps` (as `/api/presets` has them),
+/// `stuck_velocity` (by diode law) and `static_gain` (the library's rule for `static`,
+/// [`STATIC_GAIN`]: a gain at most this).
 pub fn keys() -> serde_json::Value {
     serde_json::json!({
         "keys": Key::table(),
@@ -107,5 +106,6 @@ pub fn keys() -> serde_json::Value {
             .iter()
             .map(|&(model, v)| (model.to_string(), serde_json::json!(v)))
             .collect::<serde_json::Map<_, _>>(),
+        "static_gain": STATIC_GAIN,
     })
 }

@@ -8,10 +8,21 @@ use crate::query::{ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
+use stickslip::report::MapReport;
 use stickslip::scan::{Axis, Grid, ParameterRange};
-use stickslip::steady::{MotionClass, SteadyOptions};
+use stickslip::steady::SteadyOptions;
 use stickslip::theory::curves::{abscissae, theory_curve, Theory, TheoryQuantity};
-use stickslip::{Error, Parameter};
+use stickslip::{Error, OptionKey, Parameter};
+
+/// The options of a map's sides, in the order of the query keys' documentation.
+const MAP_OPTIONS: [OptionKey; 6] = [
+    OptionKey::MapWMin,
+    OptionKey::MapWMax,
+    OptionKey::MapWSteps,
+    OptionKey::MapBetaMin,
+    OptionKey::MapBetaMax,
+    OptionKey::MapBetaSteps,
+];
 
 /// `GET /api/map`.
 #[derive(Debug)]
@@ -23,26 +34,21 @@ pub struct MapRequest {
 }
 
 /// The answer of `/api/map`: motion classes on a (w, β) grid, each point from the initial
-/// state, as `stickslip phase-diagram` computes them.
+/// state, as `stickslip phase-diagram` computes them: the library's map report.
 #[derive(Debug, Serialize)]
 pub struct MapAnswer {
     /// The experiment.
     #[serde(flatten)]
     pub about: About,
-    /// The frequencies w (rows).
+    /// The frequencies w (rows of the grid).
     pub w: Vec<f64>,
-    /// The amplitudes β (columns).
+    /// The amplitudes β (columns of the grid).
     pub beta: Vec<f64>,
-    /// Class labels; `class` holds indices into this list.
-    pub classes: Vec<&'static str>,
-    /// Class of point (w_i, β_j) at i·(number of β) + j.
-    pub class: Vec<u8>,
-    /// Period in drive periods (null: none found), in the same order.
-    pub period: Vec<Option<usize>>,
-    /// Stops per drive period, in the same order.
-    pub stops_per_cycle: Vec<f64>,
-    /// Gain, in the same order.
-    pub gain: Vec<f64>,
+    /// The library's map report (`lyapunov`, `points`), the shape of every front end's map:
+    /// point (w_i, β_j) at i·(number of β) + j, with the columns of `stickslip
+    /// phase-diagram`'s CSV as its fields.
+    #[serde(flatten)]
+    pub report: MapReport,
     /// The stick-slip boundaries over w inside the β range (null elsewhere).
     pub boundary: Boundary,
 }
@@ -72,48 +78,28 @@ impl MapRequest {
         reject_swept(&q, Parameter::W, "a map")?;
         reject_swept(&q, Parameter::Beta, "a map")?;
         let experiment = q.experiment()?;
-        let w = range(
+        let w = side(
             &mut q,
-            Parameter::W,
-            ["w-min", "w-max", "w-steps"],
-            (0.1, 2.5, 60),
+            [OptionKey::MapWMin, OptionKey::MapWMax],
+            OptionKey::MapWSteps,
+            60,
             &|n| CAPS.check_map(n, 1),
         )?;
-        let beta = range(
+        let beta = side(
             &mut q,
-            Parameter::Beta,
-            ["beta-min", "beta-max", "beta-steps"],
-            (0.5, 4.0, 50),
+            [OptionKey::MapBetaMin, OptionKey::MapBetaMax],
+            OptionKey::MapBetaSteps,
+            50,
             &|n| CAPS.check_map(1, n),
         )?;
         CAPS.check_map(w.steps(), beta.steps())
             .map_err(|e| option_error(&e))?;
         let options = steady_options(&mut q, &experiment)?;
-        q.finish(&[
-            "w-min",
-            "w-max",
-            "w-steps",
-            "beta-min",
-            "beta-max",
-            "beta-steps",
-            "tolerance",
-            "max-periods",
-            "max-period",
-        ])?;
-        let axis = |p, r: &ParameterRange| {
-            Axis::range(p, r).map_err(|err| {
-                let key = if p == Parameter::W {
-                    "w-min"
-                } else {
-                    "beta-min"
-                };
-                ApiError::field(key, err.to_string())
-            })
-        };
+        q.finish(&known(&[&MAP_OPTIONS[..], &STEADY_OPTIONS].concat(), &[]))?;
         Grid::new(
             &experiment,
-            axis(Parameter::W, &w)?,
-            axis(Parameter::Beta, &beta)?,
+            grid_axis(&w, Parameter::W)?,
+            grid_axis(&beta, Parameter::Beta)?,
         )
         .map_err(|e| ApiError::library(&e))?;
         Ok(Self {
@@ -174,12 +160,6 @@ impl MapRequest {
             second: grid_axis(&self.beta, Parameter::Beta)?,
             points,
         };
-        let index = |c: MotionClass| {
-            MotionClass::ALL
-                .iter()
-                .position(|&k| k == c)
-                .unwrap_or_default() as u8
-        };
         // The boundaries of the PWL theory, where they lie inside the β range.
         let ws = abscissae(self.w.from(), self.w.to(), self.w.steps());
         let base = e
@@ -197,11 +177,7 @@ impl MapRequest {
             about: About::new(e),
             w: map.first.values().to_vec(),
             beta: map.second.values().to_vec(),
-            classes: MotionClass::ALL.iter().map(|c| c.label()).collect(),
-            class: map.points.iter().map(|p| index(p.class)).collect(),
-            period: map.points.iter().map(|p| p.period).collect(),
-            stops_per_cycle: map.points.iter().map(|p| p.stops_per_period).collect(),
-            gain: map.points.iter().map(|p| p.gain).collect(),
+            report: MapReport::new(&map.points, false),
             boundary: Boundary {
                 paper: boundary(Theory::Paper),
                 exact: boundary(Theory::Exact),

@@ -1,8 +1,10 @@
 //! `GET /api/presets`: the page's presets.
 
-use crate::query::api_name;
+use super::answer::{About, Drive};
+use crate::query::{api_name, Query};
 use serde::Serialize;
-use stickslip::physical::Circuit;
+use stickslip::physical::{Circuit, Mechanics};
+use stickslip::SystemKind;
 
 /// The points of the paper's Fig. 3: (label, w = Ω/ω0, β), panels (1a)–(2c).
 pub const FIG3_POINTS: [(&str, f64, f64); 6] = [
@@ -29,9 +31,20 @@ pub struct PresetRow {
     pub paper: bool,
 }
 
+/// The generator's setting of a preset: the drive in Hz and V (or N) of the experiment its
+/// query describes (`preset=paper&w=0.95&beta=2.14`), as `/api/steady` answers it for that
+/// query; `None` for a preset without a drive.
+fn drive_of(query: &str) -> Option<Drive> {
+    let mut q = Query::parse(Some(query)).ok()?;
+    let e = q.experiment().ok()?;
+    About::new(&e).drive
+}
+
 /// `GET /api/presets`: the paper's circuit, its Fig. 3 points, the 1N4148 Shockley
 /// parameters (the defaults of the key table's diode group) and a mechanical oscillator with
-/// the paper's damping ratio.
+/// the paper's damping ratio. A preset with a drive point (w, β) also carries the generator's
+/// setting it stands for (`drive`: `f_Hz` and `amplitude` in V or N): the page sets its
+/// generator to it once, and changing a part afterwards leaves the generator where it is.
 pub fn presets() -> serde_json::Value {
     use stickslip::experiment::{Key, KeyDefault, KeyGroup};
     use stickslip::physical::Diode;
@@ -51,7 +64,7 @@ pub fn presets() -> serde_json::Value {
         id: "paper".into(),
         label: "the paper's circuit (L = 11.5 mH, C = 20 nF, R = 68 Ω, U_t = 0.7 V, R_D = 3 Ω)"
             .into(),
-        system: "circuit",
+        system: SystemKind::Circuit.label(),
         values: parts.clone(),
         paper: true,
     }];
@@ -62,23 +75,25 @@ pub fn presets() -> serde_json::Value {
         rows.push(PresetRow {
             id: format!("fig3-{panel}"),
             label: format!("paper, Fig. 3 ({panel}): Ω/ω0 = {w}, β = {beta}"),
-            system: "circuit",
+            system: SystemKind::Circuit.label(),
             values,
             paper: true,
         });
     }
     // A mass on a spring with dry friction, ζ = 0.94/(2·√(200·0.5)) = 0.047 as the paper's.
+    let example = Mechanics::example();
     rows.push(PresetRow {
-        id: "mechanics".into(),
-        label: "a mass on a spring with dry friction (m = 0.5 kg, k = 200 N/m, γ = 0.94 N·s/m, \
-                F0 = 1 N)"
-            .into(),
-        system: "mechanics",
+        id: SystemKind::Mechanics.label().into(),
+        label: format!(
+            "a mass on a spring with dry friction (m = {} kg, k = {} N/m, γ = {} N·s/m, F0 = {} N)",
+            example.mass, example.stiffness, example.damping, example.friction
+        ),
+        system: SystemKind::Mechanics.label(),
         values: vec![
-            (api_name(Key::Mass), 0.5),
-            (api_name(Key::Stiffness), 200.0),
-            (api_name(Key::Damping), 0.94),
-            (api_name(Key::Friction), 1.0),
+            (api_name(Key::Mass), example.mass),
+            (api_name(Key::Stiffness), example.stiffness),
+            (api_name(Key::Damping), example.damping),
+            (api_name(Key::Friction), example.friction),
             (api_name(Key::MuS), 1.0),
             (api_name(Key::W), 0.95),
             (api_name(Key::Beta), 2.14),
@@ -95,6 +110,15 @@ pub fn presets() -> serde_json::Value {
             KeyDefault::Name(_) => None,
         })
         .collect();
+    let query = |r: &PresetRow| -> String {
+        let values = r
+            .values
+            .iter()
+            .filter(|(k, _)| !r.paper || k == "w" || k == "beta");
+        let keys = values.map(|(k, v)| format!("{k}={v}"));
+        let preset = r.paper.then(|| "preset=paper".to_string());
+        preset.into_iter().chain(keys).collect::<Vec<_>>().join("&")
+    };
     serde_json::json!({
         "presets": rows.iter().map(|r| serde_json::json!({
             "id": r.id,
@@ -103,6 +127,7 @@ pub fn presets() -> serde_json::Value {
             "paper": r.paper,
             "values": r.values.iter().map(|(k, v)| (k.clone(), serde_json::json!(v)))
                 .collect::<serde_json::Map<_, _>>(),
+            "drive": drive_of(&query(r)),
         })).collect::<Vec<_>>(),
         "shockley": shockley,
         "caps": super::keys::caps_json(),

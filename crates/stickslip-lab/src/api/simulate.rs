@@ -4,11 +4,11 @@ use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
 use crate::limit::Budget;
-use crate::query::{ApiError, Query};
+use crate::query::{option_key, ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
-use stickslip::options::SimulateOptions;
+use stickslip::options::{OptionKey, SimulateOptions};
 use stickslip::report::TrajectoryReport;
 
 /// `GET /api/simulate`.
@@ -42,16 +42,26 @@ impl SimulateRequest {
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
         let experiment = q.experiment()?;
+        let periods = table_default(OptionKey::SimulatePeriods);
         let options = SimulateOptions {
-            periods: q.number("periods", Some(20.0))?.unwrap_or(20.0),
-            samples_per_period: q.whole("samples", 200)?,
+            periods: q
+                .number(option_key(OptionKey::SimulatePeriods), Some(periods))?
+                .unwrap_or(periods),
+            samples_per_period: whole(
+                &mut q,
+                OptionKey::SimulateSamples,
+                table_default(OptionKey::SimulateSamples) as usize,
+            )?,
         };
         // The lab's caps first: their words are the ones a student can act on.
         CAPS.check_simulate(&options)
             .and_then(|_| options.validate())
             .map_err(|e| option_error(&e))?;
         let (periods, samples) = (options.periods, options.samples_per_period);
-        q.finish(&["periods", "samples"])?;
+        q.finish(&known(
+            &[OptionKey::SimulatePeriods, OptionKey::SimulateSamples],
+            &[],
+        ))?;
         needs_drive(&experiment)?;
         Ok(Self {
             experiment,

@@ -45,24 +45,33 @@ impl SteadyRequest {
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
         let experiment = q.experiment()?;
-        let harmonics = q.whole("harmonics", 16)?;
+        let harmonics = whole(
+            &mut q,
+            OptionKey::ReportHarmonics,
+            table_default(OptionKey::ReportHarmonics) as usize,
+        )?;
         OptionKey::ReportHarmonics
             .check_count(harmonics)
             .map_err(|e| ApiError::library(&e))?;
-        let samples = q.whole("samples", 512)?;
+        let samples = whole(
+            &mut q,
+            OptionKey::TraceSamples,
+            table_default(OptionKey::TraceSamples) as usize,
+        )?;
         let samples = CAPS
             .check_trace_samples(samples)
             .map_err(|e| ApiError::library(&e))?;
         let options = steady_options(&mut q, &experiment)?
             .with_harmonics(harmonics)
             .map_err(|e| ApiError::library(&e))?;
-        q.finish(&[
-            "harmonics",
-            "samples",
-            "tolerance",
-            "max-periods",
-            "max-period",
-        ])?;
+        q.finish(&known(
+            &[
+                &[OptionKey::ReportHarmonics, OptionKey::TraceSamples][..],
+                &STEADY_OPTIONS,
+            ]
+            .concat(),
+            &[],
+        ))?;
         needs_drive(&experiment)?;
         Ok(Self {
             experiment,

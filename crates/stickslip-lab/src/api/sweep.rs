@@ -4,7 +4,7 @@ use super::answer::*;
 use super::caps::CAPS;
 use super::request::*;
 use crate::limit::Budget;
-use crate::query::{ApiError, Query};
+use crate::query::{option_key, ApiError, Query};
 use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
@@ -13,6 +13,7 @@ use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection};
 use stickslip::steady::SteadyOptions;
 use stickslip::theory::curves::SweepTheory;
 use stickslip::DiodeModel;
+use stickslip::OptionKey;
 use stickslip::{Error, Parameter};
 
 /// `GET /api/sweep`.
@@ -46,10 +47,11 @@ pub struct SweepAnswer {
 pub struct SweepTheoryCurves {
     /// Values of the swept parameter.
     pub x: Vec<f64>,
-    /// The paper's gain A1/β, eq. (11).
-    pub paper_gain: Vec<f64>,
-    /// The exact sliding orbit's peak/β.
-    pub exact_peak_gain: Vec<f64>,
+    /// The paper's eq. (11): the gain of the fundamental G1 = A1/β.
+    pub paper_gain1: Vec<f64>,
+    /// The exact sliding orbit's gain G = (y_max − y_min)/(2β) (its peak/β), as the
+    /// simulated `gain`.
+    pub exact_gain: Vec<f64>,
     /// `PWL theory: ` with Shockley diodes (the theory is that of the PWL model), else empty.
     pub prefix: &'static str,
 }
@@ -70,7 +72,7 @@ impl SweepRequest {
         let range = range(
             &mut q,
             parameter,
-            ["from", "to", "steps"],
+            ["from", "to", option_key(OptionKey::SweepSteps)],
             (0.2, 2.0, 60),
             &|n| CAPS.check_sweep(n),
         )?;
@@ -78,16 +80,16 @@ impl SweepRequest {
         let options = steady_options(&mut q, &experiment)?
             .with_harmonics(3)
             .map_err(|e| ApiError::library(&e))?;
-        q.finish(&[
-            "over",
-            "from",
-            "to",
-            "steps",
-            "direction",
-            "tolerance",
-            "max-periods",
-            "max-period",
-        ])?;
+        q.finish(&known(
+            &STEADY_OPTIONS,
+            &[
+                "over",
+                "from",
+                "to",
+                option_key(OptionKey::SweepSteps),
+                "direction",
+            ],
+        ))?;
         // The experiment must be complete but for the swept parameter.
         Axis::range(parameter, &range)
             .and_then(|axis| Sweep::new(&experiment, axis))
@@ -135,8 +137,8 @@ impl SweepRequest {
             report: SweepReport::new(e, self.parameter, self.direction, &points),
             theory: SweepTheoryCurves {
                 x: theory.paper.x,
-                paper_gain: theory.paper.y,
-                exact_peak_gain: theory.exact.y,
+                paper_gain1: theory.paper.y,
+                exact_gain: theory.exact.y,
                 prefix: theory.prefix,
             },
         })

@@ -174,15 +174,9 @@ pub async fn read_body(headers: &HeaderMap, body: Body) -> Result<String, ApiErr
             "no record: the request's body must be the scope record's CSV text",
         ));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        ApiError::field(
-            RECORD_FIELD,
-            format!(
-                "the record is not text (UTF-8): byte {} is not; send the scope's CSV export",
-                e.utf8_error().valid_up_to() + 1
-            ),
-        )
-    })
+    // UTF-8, UTF-16 or Windows-1252 (a spreadsheet's µ), or the cause of what is not text.
+    stickslip::measure::decode(&bytes, "the record")
+        .map_err(|e| ApiError::field(RECORD_FIELD, e.message))
 }
 
 /// The keys that name a record and its channels: `file` (its name, for messages; default

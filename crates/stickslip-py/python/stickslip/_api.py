@@ -11,19 +11,22 @@ import numpy as np
 
 from . import _checks, _core, _progress
 from ._core import Experiment
+from ._names import Renamed, renamed_key, warn_renamed
 from ._progress import Progress
 
 if TYPE_CHECKING:
     import pandas
     import xarray
 
-#: The kinds of steady motion, in the order of their codes in ``motion`` arrays: 'sliding',
-#: 'periodic-stick', 'nonperiodic-stick', 'static' (the paper's four) and 'chaotic' (a
-#: motion that does not repeat, with a largest Lyapunov exponent positive beyond its error).
-#: 'static' is the paper's rule: a motion whose amplitude (y_max − y_min)/2 is below β/100,
-#: whether or not it stops; it can hold a motion that stops twice a drive period (at
-#: (w, β) = (2.0, 1.1) of the paper's circuit), so ``stops_per_cycle`` is returned beside
-#: every class.
+#: The classes of steady motion (``motion_class``, the reports' ``class``), in the order of
+#: their codes in ``class_code`` arrays: 'sliding', 'periodic-stick', 'undecided', 'static'
+#: and 'chaotic' (a motion that does not repeat, with a largest Lyapunov exponent positive
+#: beyond its error). 'undecided' is no kind of motion: no period was found within the budget
+#: and λ1 is not positive beyond its error (the paper's "non-periodic motion with sticking"
+#: lands there; its label was 'nonperiodic-stick'). 'static' is the paper's rule: a motion
+#: whose amplitude (y_max − y_min)/2 is below β/100, whether or not it stops; it can hold a
+#: motion that stops twice a drive period (at (w, β) = (2.0, 1.1) of the paper's circuit), so
+#: ``stops_per_period`` is returned beside every class.
 MOTION_CLASSES: Tuple[str, ...] = tuple(_core.MOTION_CLASSES)
 #: The parameters that sweeps and maps vary, with their long names (units: dimensionless).
 PARAMETERS: Dict[str, str] = dict(_core.PARAMETER_LONG_NAMES)
@@ -52,9 +55,9 @@ def _with_model(experiment: Experiment, model: Optional[str]) -> Experiment:
     return _core.with_diode(experiment, model)
 
 
-#: The columns of a sweep's report, by their names (``SweepResult[name]``).
-SWEEP_COLUMNS = ("value", "w", "beta", "zeta", "mu_s", "direction", "gain", "peak", "A1", "A3",
-                 "class", "stops_per_cycle", "period", "phase_lag", "f_Hz")
+#: The fields of a sweep's report, by their names (``SweepResult[name]``): the library's
+#: (``SweepRow::FIELDS``), a CSV column's name where the CSV has it.
+SWEEP_COLUMNS: Tuple[str, ...] = tuple(_core.SWEEP_FIELDS)
 
 
 def _plain(values: Any) -> List[Any]:
@@ -306,24 +309,30 @@ class SteadyState:
     """The steady motion reached from the initial state (``stickslip.steady``).
 
     ``to_dict()`` is exactly the JSON of ``stickslip steady --json`` for the same input (same
-    keys, same numbers): class, period (None: none found), stops_per_cycle, symmetric, peak,
-    gain, phase_lag (radians), harmonics, harmonic_phases, current_harmonics, subharmonic,
-    mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s; and for a motion that
-    does not repeat (measured with the exact PWL model) lambda_per_tau, error_per_tau,
-    lambda_per_period, error_per_period, lambda_periods, lambda_converged and verdict. Each
-    is also an attribute (``motion`` for the class), the lists as numpy arrays; the exponent's
-    attributes are None for a motion that repeats.
+    keys, same numbers): class, period (None: none found), stops_per_period, symmetric,
+    peak, gain, gain1, phase_lag (radians), harmonics, harmonic_phases, current_harmonics,
+    subharmonic, mean, periods_to_settle, samples_per_period, w, beta, zeta, mu_s; and for a
+    motion that does not repeat (measured with the exact PWL model) lambda1, lambda1_error,
+    lambda1_per_period, lambda1_error_per_period, lambda1_periods, lambda1_converged and
+    verdict. Each is also an attribute (``motion_class`` for the class: ``class`` is a Python
+    keyword), the lists as numpy arrays; the exponent's attributes are None for a motion that
+    repeats. The names before (``motion``, ``stops_per_cycle``, ``lambda_per_tau``,
+    ``error_per_tau``, ``lambda_per_period``, ``error_per_period``) still work, with a
+    ``DeprecationWarning``.
 
     Attributes:
-        motion: 'sliding', 'periodic-stick', 'nonperiodic-stick', 'static' or 'chaotic' (no
-            period, and the largest Lyapunov exponent positive beyond 4 standard errors).
-            'static' is the paper's rule, an amplitude (y_max − y_min)/2 below β/100, whether
-            or not the motion stops (at (w, β) = (2.0, 1.1) of the paper's circuit it holds a
-            motion that stops twice a period): read ``stops_per_cycle`` beside it.
-        stops_per_cycle: stops of non-zero duration per drive period.
-        lambda_per_tau, error_per_tau: the largest Lyapunov exponent λ1 of a motion that does
-            not repeat and its standard error, per unit τ = ω0·t (None otherwise);
-            lambda_per_period, error_per_period: the same per drive period; verdict:
+        motion_class: 'sliding', 'periodic-stick', 'undecided' (no period within the budget,
+            not chaotic), 'static' or 'chaotic' (no period, and the largest Lyapunov exponent
+            positive beyond 4 standard errors). 'static' is the paper's rule, an amplitude
+            (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
+            (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a period):
+            read ``stops_per_period`` beside it.
+        stops_per_period: stops of non-zero duration per drive period.
+        gain: G = (y_max − y_min)/(2β); gain1: G1 = A1/β, the gain of the fundamental (the
+            paper's formula, its eq. 11, gives G1; None without a spectrum).
+        lambda1, lambda1_error: the largest Lyapunov exponent λ1 of a motion that does not
+            repeat and its standard error, per unit τ = ω0·t (None otherwise);
+            lambda1_per_period, lambda1_error_per_period: the same per drive period; verdict:
             'chaotic', 'quasi-periodic', 'contracting' or 'undecided'.
         harmonics, harmonic_phases, current_harmonics: float64 arrays: A_k of y, their phases
             θ_k (radians), and k·w·A_k (the harmonics of y'), for k = 1, 2, ...
@@ -335,16 +344,24 @@ class SteadyState:
         recorded_periods, stops, y_min, y_max, longest_stop: as the library's SteadyState.
     """
 
+    motion = Renamed("motion_class")
+    stops_per_cycle = Renamed("stops_per_period")
+    lambda_per_tau = Renamed("lambda1")
+    error_per_tau = Renamed("lambda1_error")
+    lambda_per_period = Renamed("lambda1_per_period")
+    error_per_period = Renamed("lambda1_error_per_period")
+
     def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
         self.experiment = experiment
         self._report: Dict[str, Any] = data["report"]
         r = self._report
-        self.motion: str = r["class"]
+        self.motion_class: str = r["class"]
         self.period: Optional[int] = r["period"]
-        self.stops_per_cycle: float = r["stops_per_cycle"]
+        self.stops_per_period: float = r["stops_per_period"]
         self.symmetric: bool = r["symmetric"]
         self.peak: float = r["peak"]
         self.gain: Optional[float] = r["gain"]
+        self.gain1: Optional[float] = r["gain1"]
         self.phase_lag: Optional[float] = r["phase_lag"]
         self.harmonics = np.asarray(r["harmonics"], dtype=np.float64)
         self.harmonic_phases = np.asarray(r["harmonic_phases"], dtype=np.float64)
@@ -357,10 +374,10 @@ class SteadyState:
         self.beta: float = r["beta"]
         self.zeta: float = r["zeta"]
         self.mu_s: float = r["mu_s"]
-        self.lambda_per_tau: Optional[float] = r.get("lambda_per_tau")
-        self.error_per_tau: Optional[float] = r.get("error_per_tau")
-        self.lambda_per_period: Optional[float] = r.get("lambda_per_period")
-        self.error_per_period: Optional[float] = r.get("error_per_period")
+        self.lambda1: Optional[float] = r.get("lambda1")
+        self.lambda1_error: Optional[float] = r.get("lambda1_error")
+        self.lambda1_per_period: Optional[float] = r.get("lambda1_per_period")
+        self.lambda1_error_per_period: Optional[float] = r.get("lambda1_error_per_period")
         self.verdict: Optional[str] = r.get("verdict")
         tau = data["trace_tau"]
         drive = data["xy_drive"]
@@ -381,8 +398,9 @@ class SteadyState:
     def __repr__(self) -> str:
         period = "none found" if self.period is None else self.period
         return (
-            f"<stickslip.SteadyState {self.motion}: period {period}, {self.stops_per_cycle:g} "
-            f"stops per cycle, gain {self.gain}, at w = {self.w:g}, β = {self.beta:g}>"
+            f"<stickslip.SteadyState {self.motion_class}: period {period}, "
+            f"{self.stops_per_period:g} stops per period, gain {self.gain}, at w = {self.w:g}, "
+            f"β = {self.beta:g}>"
         )
 
 
@@ -406,15 +424,15 @@ class SweepResult:
     Attributes:
         over: the swept parameter ('w', 'beta', 'zeta' or 'mu_s').
         value: float64 array, the swept parameter's value at each step.
-        leg: array of 'up' or 'down' (the direction of the leg each step belongs to; also
-            ``direction``, the report's and the CSV's name).
+        direction: array of 'up' or 'down' (the direction of the leg each step belongs to).
         w, beta, zeta, mu_s: float64 arrays, the parameters of each step.
-        motion: int8 codes into ``labels`` (``MOTION_CLASSES``); 'static' is the paper's
-            rule, an amplitude below β/100 whether or not the motion stops: read
-            ``stops_per_cycle`` beside it.
+        motion_class: array of the class labels (``MOTION_CLASSES``); class_code: their int8
+            codes into ``labels``. 'static' is the paper's rule, an amplitude below β/100
+            whether or not the motion stops: read ``stops_per_period`` beside it.
         period: int16, period in drive periods, -1 where none was found.
-        stops_per_cycle: float64, stops of non-zero duration per drive period.
-        gain, peak: float64 arrays (peak: the largest |y|).
+        stops_per_period: float64, stops of non-zero duration per drive period.
+        gain, gain1, peak: float64 arrays: G = (y_max − y_min)/(2β), G1 = A1/β (the gain of
+            the fundamental, NaN where not measured) and the largest |y|.
         phase_lag: float64, lag of the fundamental behind the drive (radians; NaN without one).
         harmonics: float64 array (steps × harmonics): A_1, A_2, ... of y (NaN where absent).
         A1, A3, f_Hz: float64 arrays, the report's names: the first and third harmonics (NaN
@@ -424,14 +442,19 @@ class SweepResult:
         experiment, options: what was run.
 
     ``result[name]`` gives a column by the report's name (the CSV's and the JSON's):
-    ``result["class"]`` the labels (the codes are ``motion``), ``result["direction"]`` the
-    legs; the older names ``leg`` and ``motion`` stay (deprecated aliases).
+    ``result["class"]`` the labels. The names before (``leg``, ``motion`` for the codes,
+    ``stops_per_cycle``, ``motion_labels()``) still work, with a ``DeprecationWarning``.
 
     ``to_dict()`` is the library's sweep report, the JSON shape every front end gives: the
     swept parameter ``over``, the ``direction`` asked for and one dict per step in ``points``
-    (value, w, beta, zeta, mu_s, direction, gain, peak, A1, A3, class, stops_per_cycle,
-    period, phase_lag, f_Hz), as ``stickslip sweep`` writes its CSV columns.
+    (``SWEEP_COLUMNS``: value, w, beta, zeta, mu_s, direction, gain, gain1, peak, A1, A3,
+    class, stops_per_period, period, phase_lag, f_Hz), as ``stickslip sweep`` writes its CSV
+    columns.
     """
+
+    leg = Renamed("direction")
+    motion = Renamed("class_code")
+    stops_per_cycle = Renamed("stops_per_period")
 
     def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
                  data: Dict[str, Any]) -> None:
@@ -446,14 +469,15 @@ class SweepResult:
         self.mu_s: np.ndarray = data["mu_s"]
         self.gain: np.ndarray = data["gain"]
         self.peak: np.ndarray = data["peak"]
-        self.stops_per_cycle: np.ndarray = data["stops_per_cycle"]
+        self.stops_per_period: np.ndarray = data["stops_per_cycle"]
         self.phase_lag: np.ndarray = data["phase_lag"]
-        self.motion: np.ndarray = data["motion"]
+        self.class_code: np.ndarray = data["motion"]
+        self.motion_class: np.ndarray = np.asarray(self.labels)[self.class_code]
         self.period: np.ndarray = data["period"]
         self.symmetric: np.ndarray = data["symmetric"]
         self.periods_to_settle: np.ndarray = data["periods_to_settle"]
-        self.leg = np.asarray([p["direction"] for p in data["report"]["points"]], dtype=str)
-        self.direction = self.leg
+        self.direction = np.asarray([p["direction"] for p in data["report"]["points"]],
+                                    dtype=str)
         self.harmonics = data["harmonics"].reshape(len(self.value), data["harmonic_count"])
         self._report: Dict[str, Any] = data["report"]
         points = self._report["points"]
@@ -462,15 +486,18 @@ class SweepResult:
             return np.asarray([np.nan if p[name] is None else p[name] for p in points],
                               dtype=np.float64)
 
+        self.gain1: np.ndarray = column("gain1")
         self.A1: np.ndarray = column("A1")
         self.A3: np.ndarray = column("A3")
         self.f_Hz: np.ndarray = column("f_Hz")
 
     def __getitem__(self, name: str) -> np.ndarray:
         """A column by the report's name (``class`` gives the labels), or by an attribute's."""
+        name = renamed_key("SweepResult", name, {"leg": "direction", "motion": "class_code",
+                                                 "stops_per_cycle": "stops_per_period"})
         if name == "class":
-            return self.motion_labels()
-        if name in SWEEP_COLUMNS or name in ("leg", "motion", "harmonics", "symmetric",
+            return self.motion_class
+        if name in SWEEP_COLUMNS or name in ("class_code", "harmonics", "symmetric",
                                              "periods_to_settle"):
             return np.asarray(getattr(self, name))
         raise KeyError(f"no column {name!r}: the columns are {', '.join(SWEEP_COLUMNS)}")
@@ -484,17 +511,18 @@ class SweepResult:
         return len(self.value)
 
     def motion_labels(self) -> np.ndarray:
-        """The class of every step as a label."""
-        return np.asarray(self.labels)[self.motion]
+        """The class of every step as a label (deprecated: ``motion_class``)."""
+        warn_renamed("SweepResult", "motion_labels()", "motion_class")
+        return self.motion_class
 
     def to_xarray(self) -> "xarray.Dataset":
-        """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run) and the swept
-        parameter (its values in the given order; the down leg is reordered to match), and a
-        ``harmonic`` dimension for the harmonics. Coordinates carry ``units`` and
-        ``long_name``, ``motion`` the CF ``flag_values``/``flag_meanings`` (with
-        ``stops_per_cycle`` beside it: 'static' is the paper's rule, an amplitude below
-        β/100), the dataset the
-        fixed inputs and the package version.
+        """An ``xarray.Dataset`` with dimensions ``direction`` ('up', 'down': those run) and the
+        swept parameter (its values in the given order; the down leg is reordered to match),
+        and a ``harmonic`` dimension for the harmonics. Coordinates carry ``units`` and
+        ``long_name``, ``motion_class`` (codes) the CF ``flag_values``/``flag_meanings`` (with
+        ``stops_per_period`` beside it: 'static' is the paper's rule, an amplitude below
+        β/100), the dataset the fixed inputs and the package version. ``gain`` is G =
+        (y_max − y_min)/(2β), ``gain1`` G1 = A1/β.
 
         For a physical experiment (a circuit or a mechanical oscillator) the physical values
         stand beside the dimensionless ones: ``f_Hz`` (drive frequency in Hz) beside ``w``,
@@ -507,31 +535,34 @@ class SweepResult:
         """
         xr = _checks.optional_module("xarray", "xarray", "SweepResult.to_xarray()")
 
-        legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
+        legs = [leg for leg in ("up", "down") if np.any(self.direction == leg)]
 
         def table(column: np.ndarray) -> np.ndarray:
             rows = []
             for leg in legs:
-                part = column[self.leg == leg]
+                part = column[self.direction == leg]
                 rows.append(part[::-1] if leg == "down" else part)
             return np.stack(rows)
 
         values = table(self.value)[0]
-        dims = ("leg", self.over)
+        dims = ("direction", self.over)
         coords: Dict[str, Any] = {
-            "leg": ("leg", np.asarray(legs), {"long_name": "direction of the sweep leg"}),
+            "direction": ("direction", np.asarray(legs),
+                          {"long_name": "direction of the sweep leg"}),
             self.over: _coordinate(self.over, values),
             "harmonic": ("harmonic", np.arange(1, self.harmonics.shape[1] + 1),
                          {"long_name": "order k of the drive harmonic", "units": "1"}),
         }
         data: Dict[str, Any] = {
-            "motion": (dims, table(self.motion), _motion_attributes()),
+            "motion_class": (dims, table(self.class_code), _motion_attributes()),
             "period": (dims, table(self.period), dict(_PERIOD_ATTRIBUTES)),
-            "stops_per_cycle": (dims, table(self.stops_per_cycle),
-                                {"long_name": "stops of non-zero duration per drive period",
-                                 "units": "1"}),
+            "stops_per_period": (dims, table(self.stops_per_period),
+                                 {"long_name": "stops of non-zero duration per drive period",
+                                  "units": "1"}),
             "gain": (dims, table(self.gain),
-                     {"long_name": "gain (y_max - y_min)/(2 beta)", "units": "1"}),
+                     {"long_name": "gain G = (y_max - y_min)/(2 beta)", "units": "1"}),
+            "gain1": (dims, table(self.gain1),
+                      {"long_name": "gain of the fundamental G1 = A1/beta", "units": "1"}),
             "peak": (dims, table(self.peak), {"long_name": "largest |y|", "units": "1"}),
             "phase_lag": (dims, table(self.phase_lag),
                           {"long_name": "lag of the fundamental behind the drive",
@@ -583,33 +614,41 @@ class PhaseDiagram(Generic[_Exponents]):
         dims: the parameters along the axes, in the order given (a map has two; a stack of
             maps from ``sweep_grid`` has the outer ones first).
         coords: dict from each parameter to its float64 values.
-        motion: int8 array of shape ``tuple(len(coords[d]) for d in dims)``: codes into
-            ``labels`` = ``MOTION_CLASSES`` = ('sliding', 'periodic-stick',
-            'nonperiodic-stick', 'static', 'chaotic'). 'static' is the paper's rule, an
-            amplitude (y_max − y_min)/2 below β/100, whether or not the motion stops (at
-            (w, β) = (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a
-            period): read ``stops_per_cycle`` beside it.
+        motion_class: array of shape ``tuple(len(coords[d]) for d in dims)`` of the class
+            labels, ``MOTION_CLASSES`` = ('sliding', 'periodic-stick', 'undecided', 'static',
+            'chaotic'); class_code: their int8 codes into ``labels``. 'undecided': no period
+            within the budget and not chaotic. 'static' is the paper's rule, an amplitude
+            (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
+            (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a period):
+            read ``stops_per_period`` beside it.
         period: int16 array, the period in drive periods, **-1 where none was found** (up to
             the ``max_period`` option, 16 by default).
-        stops_per_cycle: float64 array, stops of non-zero duration per drive period.
-        gain: float64 array, (y_max − y_min)/(2β) (inf at β = 0 with motion).
+        stops_per_period: float64 array, stops of non-zero duration per drive period.
+        gain: float64 array, G = (y_max − y_min)/(2β) (inf at β = 0 with motion).
         symmetric: bool array; periods_to_settle: int64 array.
-        lyapunov, lyapunov_error: float64 arrays of the largest Lyapunov exponent λ1 per unit
-            τ and its standard error, with ``phase_diagram(..., lyapunov=True)`` (None
+        lambda1, lambda1_error: float64 arrays of the largest Lyapunov exponent λ1 per unit τ
+            and its standard error, with ``phase_diagram(..., lyapunov=True)`` (None
             otherwise): exactly ln|μ1|/(pT) from the Floquet multiplier of the orbit where the
             motion repeats (error 0), measured where it does not; -inf where both multipliers
             vanish, NaN where the flow has no derivative.
         experiment, options: what was run.
 
     ``to_dict()`` is the library's map report, the shape of ``stickslip phase-diagram``'s
-    CSV: ``lyapunov`` (whether the exponents were measured) and ``points``, one dict per
-    point in the order of the grid's rows (``w``, ``beta``, ``class``, ``period``,
-    ``stops_per_cycle``, ``gain``, and with exponents ``lambda``, ``lambda_error``).
-    ``diagram[name]`` gives a field by the report's name: ``diagram["class"]`` the labels
-    (the codes are ``motion``), ``diagram["lambda"]`` and ``diagram["lambda_error"]`` the
-    exponents (also ``lambda_error``; ``lyapunov`` and ``lyapunov_error`` stay, deprecated
-    aliases).
+    CSV and of the lab's ``/api/map``: ``lyapunov`` (whether the exponents were measured) and
+    ``points``, one dict per point in the order of the grid's rows, keyed by the library's
+    columns (``_core.MAP_COLUMNS``: w, beta, class, period, stops_per_period, gain; with
+    exponents ``_core.MAP_EXPONENT_COLUMNS``: lambda1, lambda1_error). ``diagram[name]``
+    gives a field by the report's name (``diagram["class"]``: the labels). The names before
+    (``motion`` for the codes, ``stops_per_cycle``, ``lyapunov``, ``lyapunov_error``,
+    ``lambda_error``, ``diagram["lambda"]``, ``motion_labels()``) still work, with a
+    ``DeprecationWarning``.
     """
+
+    motion = Renamed("class_code")
+    stops_per_cycle = Renamed("stops_per_period")
+    lyapunov = Renamed("lambda1")
+    lyapunov_error = Renamed("lambda1_error")
+    lambda_error = Renamed("lambda1_error")
 
     def __init__(self, experiment: Experiment, dims: Sequence[str],
                  coords: Mapping[str, np.ndarray], options: Dict[str, Any],
@@ -619,38 +658,61 @@ class PhaseDiagram(Generic[_Exponents]):
         self.coords: Dict[str, np.ndarray] = {d: coords[d] for d in self.dims}
         self.options = options
         self.labels: Tuple[str, ...] = MOTION_CLASSES
-        self.motion: np.ndarray = arrays["motion"]
-        self.period: np.ndarray = arrays["period"]
-        self.stops_per_cycle: np.ndarray = arrays["stops_per_cycle"]
-        self.gain: np.ndarray = arrays["gain"]
-        self.symmetric: np.ndarray = arrays["symmetric"]
-        self.periods_to_settle: np.ndarray = arrays["periods_to_settle"]
+        # `arrays` holds the arrays by their names (FIELDS, EXPONENT_FIELDS) or by the
+        # compiled core's keys (_CORE_KEYS, _CORE_EXPONENT_KEYS).
+        def array(name: str, core: str) -> Optional[np.ndarray]:
+            return arrays[name] if name in arrays else arrays.get(core)
+
+        found = {name: array(name, core) for name, core in
+                 zip(self.FIELDS + self.EXPONENT_FIELDS,
+                     self._CORE_KEYS + self._CORE_EXPONENT_KEYS)}
+        missing = [name for name in self.FIELDS if found[name] is None]
+        if missing:
+            raise KeyError(f"PhaseDiagram needs the arrays {', '.join(self.FIELDS)}: "
+                           f"{', '.join(missing)} missing")
+        self.class_code: np.ndarray = found["class_code"]  # type: ignore[assignment]
+        self.period: np.ndarray = found["period"]  # type: ignore[assignment]
+        self.stops_per_period: np.ndarray = found["stops_per_period"]  # type: ignore[assignment]
+        self.gain: np.ndarray = found["gain"]  # type: ignore[assignment]
+        self.symmetric: np.ndarray = found["symmetric"]  # type: ignore[assignment]
+        self.periods_to_settle: np.ndarray = found["periods_to_settle"]  # type: ignore[assignment]
         # An array with lyapunov=True, None otherwise: the type says which
         # (``PhaseDiagram[np.ndarray]`` from ``phase_diagram(..., lyapunov=True)``).
-        self.lyapunov: _Exponents = arrays.get("lyapunov")  # type: ignore[assignment]
-        self.lyapunov_error: _Exponents = arrays.get("lyapunov_error")  # type: ignore[assignment]
+        self.lambda1: _Exponents = found["lambda1"]  # type: ignore[assignment]
+        self.lambda1_error: _Exponents = found["lambda1_error"]  # type: ignore[assignment]
 
-    FIELDS = ("motion", "period", "stops_per_cycle", "gain", "symmetric", "periods_to_settle")
-    #: Fields of a map asked for its exponents.
-    EXPONENT_FIELDS = ("lyapunov", "lyapunov_error")
+    #: The arrays of every map, by their attributes' names.
+    FIELDS = ("class_code", "period", "stops_per_period", "gain", "symmetric",
+              "periods_to_settle")
+    #: The arrays of a map asked for its exponents.
+    EXPONENT_FIELDS = ("lambda1", "lambda1_error")
+    #: The compiled core's keys of the same arrays (``_core.grid``), as ``arrays`` holds them.
+    _CORE_KEYS = ("motion", "period", "stops_per_cycle", "gain", "symmetric",
+                  "periods_to_settle")
+    _CORE_EXPONENT_KEYS = ("lyapunov", "lyapunov_error")
+    #: Fields by name (``diagram[name]``): the library's columns and the other attributes.
+    _NAMES = FIELDS + EXPONENT_FIELDS
+    #: Names retired, by the name now.
+    _RETIRED = {"lambda": "lambda1", "lambda_error": "lambda1_error", "lyapunov": "lambda1",
+                "lyapunov_error": "lambda1_error", "motion": "class_code",
+                "stops_per_cycle": "stops_per_period"}
 
     @property
-    def lambda_error(self) -> _Exponents:
-        """The standard error of the exponents (the report's name; ``lyapunov_error``)."""
-        return self.lyapunov_error
+    def motion_class(self) -> np.ndarray:
+        """The class of every point as a label (the reports' ``class``)."""
+        return np.asarray(self.labels)[self.class_code]
 
     def __getitem__(self, name: str) -> np.ndarray:
-        """A field by the report's name (``class``: the labels; ``lambda``,
-        ``lambda_error``: the exponents), or by an attribute's."""
-        aliases = {"lambda": "lyapunov", "lambda_error": "lyapunov_error"}
+        """A field by the report's name (``class``: the labels; ``lambda1``,
+        ``lambda1_error``: the exponents), or by an attribute's."""
+        name = renamed_key("PhaseDiagram", name, self._RETIRED)
         if name == "class":
-            return self.motion_labels()
-        field = aliases.get(name, name)
-        value = getattr(self, field, None) if field in self.FIELDS + self.EXPONENT_FIELDS else None
+            return self.motion_class
+        value = getattr(self, name, None) if name in self._NAMES else None
         if value is None:
-            raise KeyError(f"no field {name!r}: the fields are class, period, stops_per_cycle, "
-                           "gain, symmetric, periods_to_settle (lambda, lambda_error with "
-                           "lyapunov=True)")
+            raise KeyError(f"no field {name!r}: the fields are class, period, "
+                           "stops_per_period, gain, symmetric, periods_to_settle (lambda1, "
+                           "lambda1_error with lyapunov=True)")
         return value
 
     def _parameter(self, name: str) -> np.ndarray:
@@ -663,49 +725,51 @@ class PhaseDiagram(Generic[_Exponents]):
         value = getattr(self.experiment, name)
         return np.full(self.shape, np.nan if value is None else value)
 
+    def _column(self, name: str) -> List[Any]:
+        """The library's column ``name`` as plain values, the grid's rows one after the other."""
+        if name in ("w", "beta"):
+            return _plain(self._parameter(name).ravel())
+        if name == "class":
+            return self.motion_class.ravel().tolist()
+        if name == "period":
+            return _optional_period(self.period.ravel())
+        return _plain(self[name].ravel())
+
     def to_dict(self) -> Dict[str, Any]:
         """The library's map report (a new dict of plain values): ``lyapunov`` and ``points``,
-        one dict per point, the grid's rows one after the other (as ``stickslip
-        phase-diagram`` writes its CSV)."""
-        columns: Dict[str, List[Any]] = {
-            "w": _plain(self._parameter("w").ravel()),
-            "beta": _plain(self._parameter("beta").ravel()),
-            "class": self.motion_labels().ravel().tolist(),
-            "period": _optional_period(self.period.ravel()),
-            "stops_per_cycle": _plain(self.stops_per_cycle.ravel()),
-            "gain": _plain(self.gain.ravel()),
-        }
-        lyapunov = self.lyapunov is not None and self.lyapunov_error is not None
-        if self.lyapunov is not None and self.lyapunov_error is not None:
-            columns["lambda"] = _plain(self.lyapunov.ravel())
-            columns["lambda_error"] = _plain(self.lyapunov_error.ravel())
-        names = list(columns)
-        points = [dict(zip(names, row)) for row in zip(*columns.values())]
+        one dict per point keyed by the library's columns, the grid's rows one after the
+        other (as ``stickslip phase-diagram`` writes its CSV)."""
+        lyapunov = self.lambda1 is not None and self.lambda1_error is not None
+        names = list(_core.MAP_COLUMNS)
+        if lyapunov:
+            names += list(_core.MAP_EXPONENT_COLUMNS)
+        columns = [self._column(name) for name in names]
+        points = [dict(zip(names, row)) for row in zip(*columns)]
         return {"lyapunov": lyapunov, "points": points}
 
     @property
     def shape(self) -> Tuple[int, ...]:
-        return self.motion.shape
+        return self.class_code.shape
 
     def motion_labels(self) -> np.ndarray:
-        """The class of every point as a label."""
-        return np.asarray(self.labels)[self.motion]
+        """The class of every point as a label (deprecated: ``motion_class``)."""
+        warn_renamed("PhaseDiagram", "motion_labels()", "motion_class")
+        return self.motion_class
 
     def counts(self) -> Dict[str, int]:
         """How many points of each class."""
-        return {label: int(np.sum(self.motion == k)) for k, label in enumerate(self.labels)}
+        return {label: int(np.sum(self.class_code == k)) for k, label in enumerate(self.labels)}
 
     def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with one dimension per parameter (named after it; coordinates
-        with ``units`` and ``long_name``), ``motion`` with the CF ``flag_values`` and
-        ``flag_meanings`` ('static' is the paper's rule, an amplitude below β/100:
-        ``stops_per_cycle`` says whether such a motion stops), ``period`` (-1: none found; written to netCDF with -1 as
-        its ``_FillValue``), ``stops_per_cycle``, ``gain``, ``symmetric``,
-        ``periods_to_settle``, with ``lyapunov=True`` also ``lyapunov`` and
-        ``lyapunov_error`` (per unit τ: ``ds.lyapunov`` works; the names before were
-        ``lambda`` and ``lambda_error``, which ``ds.<name>`` cannot reach: ``lambda`` is a
-        Python keyword), and the fixed inputs, the options and the package version as
-        attributes.
+        with ``units`` and ``long_name``), ``motion_class`` (codes) with the CF
+        ``flag_values`` and ``flag_meanings`` ('static' is the paper's rule, an amplitude
+        below β/100: ``stops_per_period`` says whether such a motion stops), ``period`` (-1:
+        none found; written to netCDF with -1 as its ``_FillValue``), ``stops_per_period``,
+        ``gain``, ``symmetric``, ``periods_to_settle``, with ``lyapunov=True`` also
+        ``lambda1`` and ``lambda1_error`` (per unit τ), and the fixed inputs, the options and
+        the package version as attributes. The variables carry the attributes' names
+        (``motion_class``: ``class`` is a Python keyword, which ``ds.<name>`` cannot reach).
 
         For a physical experiment (a circuit or a mechanical oscillator) the physical values
         stand beside the dimensionless axes as coordinates: ``f_Hz`` (drive frequency in Hz)
@@ -721,13 +785,13 @@ class PhaseDiagram(Generic[_Exponents]):
         coords: Dict[str, Any] = {d: _coordinate(d, self.coords[d]) for d in self.dims}
         coords.update(_physical_coordinates(self.experiment, self.dims, self.coords))
         data: Dict[str, Any] = {
-            "motion": (self.dims, self.motion, _motion_attributes()),
+            "motion_class": (self.dims, self.class_code, _motion_attributes()),
             "period": (self.dims, self.period, dict(_PERIOD_ATTRIBUTES)),
-            "stops_per_cycle": (self.dims, self.stops_per_cycle,
-                                {"long_name": "stops of non-zero duration per drive period",
-                                 "units": "1"}),
+            "stops_per_period": (self.dims, self.stops_per_period,
+                                 {"long_name": "stops of non-zero duration per drive period",
+                                  "units": "1"}),
             "gain": (self.dims, self.gain,
-                     {"long_name": "gain (y_max - y_min)/(2 beta)", "units": "1"}),
+                     {"long_name": "gain G = (y_max - y_min)/(2 beta)", "units": "1"}),
             "symmetric": (self.dims, self.symmetric.astype(np.int8),
                           {"long_name": "whether the cycle is symmetric",
                            "flag_values": np.array([0, 1], dtype=np.int8),
@@ -736,13 +800,13 @@ class PhaseDiagram(Generic[_Exponents]):
                                   {"long_name": "drive periods run before the cycle was found",
                                    "units": "1"}),
         }
-        if self.lyapunov is not None and self.lyapunov_error is not None:
-            data["lyapunov"] = (self.dims, self.lyapunov,
-                                {"long_name": "largest Lyapunov exponent per unit tau",
-                                 "units": "1"})
-            data["lyapunov_error"] = (self.dims, self.lyapunov_error,
-                                    {"long_name": "standard error of the largest Lyapunov "
-                                                  "exponent per unit tau", "units": "1"})
+        if self.lambda1 is not None and self.lambda1_error is not None:
+            data["lambda1"] = (self.dims, self.lambda1,
+                               {"long_name": "largest Lyapunov exponent lambda1 per unit tau",
+                                "units": "1"})
+            data["lambda1_error"] = (self.dims, self.lambda1_error,
+                                     {"long_name": "standard error of the largest Lyapunov "
+                                                   "exponent per unit tau", "units": "1"})
         attrs = _fixed_attributes(self.experiment, self.dims)
         attrs["steady_options"] = json.dumps(self.options)
         # `period` keeps -1 for "none found" as a value, not a _FillValue: a fill value would
@@ -757,18 +821,25 @@ class PhaseDiagram(Generic[_Exponents]):
         -1 where none was found, also from files that stored -1 as a fill value).
 
         Raises:
-            ValueError: a dataset that is not a map of this package (no ``motion`` with its
-                flag meanings, no ``experiment_json``), or a class this version does not
-                know.
+            ValueError: a dataset that is not a map of this package (no ``motion_class``,
+                ``motion`` in files written before, with its flag meanings, no
+                ``experiment_json``), or a class this version does not know.
         """
-        if "motion" not in dataset or "experiment_json" not in dataset.attrs:
+        def first(*names: str) -> Optional[str]:
+            return next((n for n in names if n in dataset), None)
+
+        classes = first("motion_class", "motion")
+        if classes is None or "experiment_json" not in dataset.attrs:
             raise ValueError("not a map of stickslip: PhaseDiagram.from_xarray reads what "
-                             "PhaseDiagram.to_xarray() writes (a 'motion' variable and the "
-                             "attribute 'experiment_json')")
-        motion = dataset["motion"]
+                             "PhaseDiagram.to_xarray() writes (a 'motion_class' variable and "
+                             "the attribute 'experiment_json')")
+        motion = dataset[classes]
         dims = tuple(str(d) for d in motion.dims)
         coords = {d: np.require(dataset[d].values, np.float64, ["C", "A"]) for d in dims}
-        labels = str(motion.attrs.get("flag_meanings", "")).split()
+        # Labels retired read as the labels now ('nonperiodic-stick' is 'undecided').
+        retired = {"nonperiodic-stick": "undecided"}
+        labels = [retired.get(label, label)
+                  for label in str(motion.attrs.get("flag_meanings", "")).split()]
         unknown = [label for label in labels if label not in MOTION_CLASSES]
         if not labels or unknown:
             raise ValueError(f"the map's motion classes {labels} are not this version's "
@@ -777,20 +848,21 @@ class PhaseDiagram(Generic[_Exponents]):
         period = np.asarray(dataset["period"].values)
         if period.dtype.kind == "f":
             period = np.where(np.isnan(period), -1, period)
+        stops = first("stops_per_period", "stops_per_cycle") or "stops_per_period"
         arrays: Dict[str, np.ndarray] = {
-            "motion": lookup[np.asarray(motion.values, dtype=np.int64)],
+            "class_code": lookup[np.asarray(motion.values, dtype=np.int64)],
             "period": period.astype(np.int16),
-            "stops_per_cycle": np.asarray(dataset["stops_per_cycle"].values, dtype=np.float64),
+            "stops_per_period": np.asarray(dataset[stops].values, dtype=np.float64),
             "gain": np.asarray(dataset["gain"].values, dtype=np.float64),
             "symmetric": np.asarray(dataset["symmetric"].values).astype(bool),
             "periods_to_settle": np.asarray(dataset["periods_to_settle"].values,
                                             dtype=np.int64),
         }
-        for name, older in (("lyapunov", "lambda"), ("lyapunov_error", "lambda_error")):
-            for stored in (name, older):
-                if stored in dataset:
-                    arrays[name] = np.asarray(dataset[stored].values, dtype=np.float64)
-                    break
+        for name, older in (("lambda1", ("lyapunov", "lambda")),
+                            ("lambda1_error", ("lyapunov_error", "lambda_error"))):
+            stored = first(name, *older)
+            if stored is not None:
+                arrays[name] = np.asarray(dataset[stored].values, dtype=np.float64)
         experiment = Experiment.from_json(str(dataset.attrs["experiment_json"]))
         options = json.loads(str(dataset.attrs.get("steady_options", "{}")))
         return cls(experiment, dims, coords, options, arrays)
@@ -870,10 +942,10 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
 
     Returns:
         A ``SteadyState``; ``to_dict()`` equals ``stickslip steady --json``. Its class
-        (``motion``) is one of ``MOTION_CLASSES``: 'static' is the paper's rule, an amplitude
-        (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
+        (``motion_class``) is one of ``MOTION_CLASSES``: 'static' is the paper's rule, an
+        amplitude (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
         (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a period), so
-        read ``stops_per_cycle`` beside it.
+        read ``stops_per_period`` beside it.
 
     Raises:
         ValueError: bad input, with the library's message. TypeError: an unknown option or
@@ -881,7 +953,7 @@ def steady(experiment: Experiment, model: Optional[str] = None, **options: Any) 
 
     Example:
         >>> s = stickslip.steady(stickslip.Experiment.paper(w=0.7, beta=1.2))
-        >>> s.motion, s.period, s.stops_per_cycle
+        >>> s.motion_class, s.period, s.stops_per_period
         ('periodic-stick', 1, 2.0)
     """
     experiment = _with_model(experiment, model)
@@ -975,9 +1047,9 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
         **options: as for ``steady``.
 
     Returns:
-        A ``SweepResult`` (numpy arrays per step; ``to_xarray()``): ``motion`` (codes into
-        ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100 whether or
-        not the motion stops) with ``stops_per_cycle`` beside it.
+        A ``SweepResult`` (numpy arrays per step; ``to_xarray()``): ``motion_class`` (labels
+        of ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100 whether
+        or not the motion stops) with ``stops_per_period`` beside it.
 
     Raises:
         ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
@@ -986,7 +1058,7 @@ def sweep(experiment: Experiment, over: str, values: Any, direction: str = "both
         >>> import numpy as np
         >>> exp = stickslip.Experiment.paper(beta=3.61)
         >>> s = stickslip.sweep(exp, over="w", values=np.linspace(0.5, 1.5, 11))
-        >>> print(len(s), s.leg[0], s.leg[-1])
+        >>> print(len(s), s.direction[0], s.direction[-1])
         22 up down
     """
     experiment = _with_model(experiment, model)
@@ -1062,17 +1134,17 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
             (points), or one of one argument given the points done since its last call (a
             tqdm bar's ``update``); called from the calling thread about every 50 ms.
         lyapunov: also the largest Lyapunov exponent of every point (exact PWL model; as
-            ``stickslip phase-diagram --color lyapunov``): arrays ``lyapunov`` and
-            ``lyapunov_error`` per unit τ.
+            ``stickslip phase-diagram --color lambda1``): arrays ``lambda1`` and
+            ``lambda1_error`` per unit τ.
         **axes_and_options: the two parameter arrays, then options as for ``steady``
             (tolerance, max_periods, max_period, min_stop_fraction, accelerate,
             lyapunov_periods).
 
     Returns:
-        A ``PhaseDiagram``: ``motion`` (int8 codes into ``labels``; 'static' is the paper's
-        rule, an amplitude below β/100 whether or not the motion stops), ``stops_per_cycle``
-        beside it, ``period`` (-1: none found), ``gain``, ... each of shape (len(first),
-        len(second)), and ``to_xarray()``.
+        A ``PhaseDiagram``: ``motion_class`` (the labels; ``class_code`` their int8 codes into
+        ``labels``; 'static' is the paper's rule, an amplitude below β/100 whether or not the
+        motion stops), ``stops_per_period`` beside it, ``period`` (-1: none found), ``gain``,
+        ... each of shape (len(first), len(second)), and ``to_xarray()``.
 
     Raises:
         ValueError: bad input, with the library's message; a grid of more than 10⁸ points
@@ -1083,7 +1155,7 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
         >>> import numpy as np
         >>> m = stickslip.phase_diagram(stickslip.Experiment.paper(),
         ...                             w=np.linspace(0.1, 2.5, 60), beta=np.linspace(0.5, 4, 40))
-        >>> m.motion.shape, m.labels[m.motion[59, 39]]
+        >>> m.motion_class.shape, str(m.motion_class[59, 39])
         ((60, 40), 'sliding')
     """
     experiment = _with_model(experiment, model)
@@ -1098,7 +1170,8 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
 
 
 def _reshape(data: Mapping[str, np.ndarray], shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
-    names = PhaseDiagram.FIELDS + tuple(n for n in PhaseDiagram.EXPONENT_FIELDS if n in data)
+    names = PhaseDiagram._CORE_KEYS + tuple(n for n in PhaseDiagram._CORE_EXPONENT_KEYS
+                                            if n in data)
     return {name: data[name].reshape(shape) for name in names}
 
 
@@ -1129,8 +1202,10 @@ class PeriodicOrbit:
             moduli: their |μ|.
         stable: whether every perturbation decays (|μ1| < 1); stability: 'stable',
             'unstable' or 'neutral'.
-        exponent_per_tau, exponent_per_period: ln|μ1|/(pT) and ln|μ1|/p (-inf when both
-            multipliers vanish).
+        lambda1, lambda1_per_period: the largest Lyapunov exponent of the orbit, λ1 =
+            ln|μ1|/(pT) per unit τ and ln|μ1|/p per drive period (-inf when both multipliers
+            vanish; the names before, ``exponent_per_tau`` and ``exponent_per_period``, still
+            work with a ``DeprecationWarning``).
         monodromy: 2×2 float64 array M = ∂P^p/∂(y, y').
         iterations: Newton steps; residuals: float64 array, max(|Δy|, |Δy'|) of P^p(x) − x
             at the guess and after every step.
@@ -1139,6 +1214,9 @@ class PeriodicOrbit:
             1e-8 drive periods per drive period.
         experiment: the experiment.
     """
+
+    exponent_per_tau = Renamed("lambda1")
+    exponent_per_period = Renamed("lambda1_per_period")
 
     def __init__(self, experiment: Experiment, report: Dict[str, Any]) -> None:
         self.experiment = experiment
@@ -1153,8 +1231,8 @@ class PeriodicOrbit:
         self.moduli = np.asarray(r["moduli"], dtype=np.float64)
         self.stable: bool = r["stable"]
         self.stability: str = r["stability"]
-        self.exponent_per_tau: float = _exponent(r["exponent_per_tau"])
-        self.exponent_per_period: float = _exponent(r["exponent_per_period"])
+        self.lambda1: float = _exponent(r["lambda1"])
+        self.lambda1_per_period: float = _exponent(r["lambda1_per_period"])
         self.monodromy = np.asarray(r["monodromy"], dtype=np.float64)
         self.iterations: int = r["iterations"]
         self.residuals = np.asarray(r["residuals"], dtype=np.float64)
@@ -1184,8 +1262,8 @@ class LyapunovResult:
     Rates are per unit τ = ω0·t (``*_per_period``: per drive period).
 
     Attributes:
-        lambda_per_tau, error_per_tau: the largest exponent λ1 and its standard error (from
-            the block means); lambda_per_period, error_per_period: the same per drive period.
+        lambda1, lambda1_error: the largest exponent λ1 and its standard error (from the block
+            means); lambda1_per_period, lambda1_error_per_period: the same per drive period.
         motion_class: 'periodic' when the motion has reached a periodic orbit or rest (its
             strobe repeats within 16 periods; ``period`` gives the period), else
             'chaotic' (λ1 > kσ), 'quasi-periodic' (|λ1| ≤ kσ), 'contracting'
@@ -1194,9 +1272,9 @@ class LyapunovResult:
         verdict: what λ1 alone says ('chaotic', 'quasi-periodic', 'contracting',
             'undecided'); period: the period reached, or None.
         converged: whether the two halves agree.
-        lambda2_per_tau, lambda2_per_period: the second exponent (-inf once the motion stops:
-            a stop erases the velocity perturbation; ``lambda2_reason`` says so; the JSON of
-            ``to_dict()`` has null there).
+        lambda2, lambda2_per_period: the second exponent (-inf once the motion stops: a stop
+            erases the velocity perturbation; ``lambda2_reason`` says so; the JSON of
+            ``to_dict()`` has null there); lambda2_error: its standard error.
         stops_per_period: stops longer than 1e-8 drive periods per drive period.
         block_means: float64 array of λ1 per block, in time order.
         transient_periods, periods, blocks, significance: how it was measured (``periods``:
@@ -1204,24 +1282,34 @@ class LyapunovResult:
             decided early; ``sequential``: whether it could stop early).
         final_state: (y, y') at the end of the measurement (a strobe).
         experiment: the experiment.
+
+    The names before (``lambda_per_tau``, ``error_per_tau``, ``lambda_per_period``,
+    ``error_per_period``, ``lambda2_per_tau``, ``lambda2_error_per_tau``) still work, with a
+    ``DeprecationWarning``.
     """
+
+    lambda_per_tau = Renamed("lambda1")
+    error_per_tau = Renamed("lambda1_error")
+    lambda_per_period = Renamed("lambda1_per_period")
+    error_per_period = Renamed("lambda1_error_per_period")
+    lambda2_per_tau = Renamed("lambda2")
+    lambda2_error_per_tau = Renamed("lambda2_error")
 
     def __init__(self, experiment: Experiment, report: Dict[str, Any]) -> None:
         self.experiment = experiment
         self._report = report
         r = report
-        self.lambda_per_tau: float = r["lambda_per_tau"]
-        self.error_per_tau: float = r["error_per_tau"]
-        self.lambda_per_period: float = r["lambda_per_period"]
-        self.error_per_period: float = r["error_per_period"]
+        self.lambda1: float = r["lambda1"]
+        self.lambda1_error: float = r["lambda1_error"]
+        self.lambda1_per_period: float = r["lambda1_per_period"]
+        self.lambda1_error_per_period: float = r["lambda1_error_per_period"]
         self.motion_class: str = r["class"]
         self.verdict: str = r["verdict"]
         self.period: Optional[int] = r["period"]
         self.converged: bool = r["converged"]
-        minus_infinity = r["lambda2_per_tau"] is None
-        self.lambda2_per_tau: float = (float("-inf") if minus_infinity
-                                       else float(r["lambda2_per_tau"]))
-        self.lambda2_error_per_tau: Optional[float] = r["lambda2_error_per_tau"]
+        minus_infinity = r["lambda2"] is None
+        self.lambda2: float = float("-inf") if minus_infinity else float(r["lambda2"])
+        self.lambda2_error: Optional[float] = r["lambda2_error"]
         self.lambda2_per_period: float = (float("-inf") if minus_infinity
                                           else float(r["lambda2_per_period"]))
         self.lambda2_reason: Optional[str] = r["lambda2_reason"]
@@ -1241,21 +1329,22 @@ class LyapunovResult:
         return copy.deepcopy(self._report)
 
     def __repr__(self) -> str:
-        return (f"<stickslip.LyapunovResult {self.motion_class}: λ1 = {self.lambda_per_tau:+.4e} "
-                f"± {self.error_per_tau:.1e} per unit τ over {self.periods} periods>")
+        return (f"<stickslip.LyapunovResult {self.motion_class}: λ1 = {self.lambda1:+.4e} "
+                f"± {self.lambda1_error:.1e} per unit τ over {self.periods} periods>")
 
 
 def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: int = 0,
           tolerance: float = 1e-12, max_iterations: int = 30, progress: Progress = None,
           **options: Any) -> PeriodicOrbit:
-    """A periodic orbit of the exact PWL model by Newton's method on the p-fold strobe map
-    (the state once every p drive periods), with the exact Jacobian: its Floquet
-    multipliers say whether it is stable and how fast perturbations grow or decay (as
-    ``stickslip orbit``).
+    """A periodic orbit by Newton's method on the p-fold strobe map (the state once every p
+    drive periods), with its Jacobian: its Floquet multipliers say whether it is stable and
+    how fast perturbations grow or decay (as ``stickslip orbit``). With the PWL law the
+    Jacobian is exact; with Shockley diodes it is the derivative of the stiff solver's
+    computed map (the variational equations on the solver's own steps).
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive given (PWL diodes or Coulomb
-            friction; Shockley diodes raise ``ValueError``).
+        experiment: a ``stickslip.Experiment`` with its drive given (PWL or Shockley diodes,
+            or Coulomb friction).
         period: p in drive periods (1 to 1000). None (the default): the motion from the
             initial state is run to its steady state, which gives p and the guess.
         transient: with a period, drive periods run from the initial state before Newton's
@@ -1272,7 +1361,7 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
         A ``PeriodicOrbit``; ``to_dict()`` equals ``stickslip orbit --json``.
 
     Raises:
-        ValueError: bad input, Shockley diodes, no period found, Newton's method failing,
+        ValueError: bad input, no period found, Newton's method failing,
             with the library's message. KeyboardInterrupt: Ctrl-C stops a long transient.
 
     Example:
@@ -1281,7 +1370,7 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
         (1, True, 0.626452, 2.0)
         >>> u = stickslip.orbit(stickslip.Experiment(zeta=0, mu_s=3, w=0.33, beta=9),
         ...                     period=1, transient=2000)
-        >>> u.stability, round(u.exponent_per_tau, 5)
+        >>> u.stability, round(u.lambda1, 5)
         ('unstable', 0.01747)
     """
     experiment = _with_model(experiment, None)
@@ -1304,8 +1393,9 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
 def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20000,
              blocks: int = 20, significance: float = 4.0,
              progress: Progress = None, fixed: bool = False) -> LyapunovResult:
-    """The Lyapunov exponents of the motion from the initial state, by the exact tangent
-    dynamics of the PWL model (as ``stickslip lyapunov``).
+    """The Lyapunov exponents of the motion from the initial state, by the tangent dynamics
+    (as ``stickslip lyapunov``): the PWL law's exact ones, or with Shockley diodes those of
+    the stiff solver's computed solution.
 
     The 2×2 Jacobian of the exact flow is carried along the trajectory; after ``transient``
     drive periods the largest exponent λ1 is averaged over at most ``periods`` more, cut into
@@ -1315,7 +1405,7 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
     |λ1| > kσ (docs/stability.md gives the rule and its significance).
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive given (not Shockley diodes).
+        experiment: a ``stickslip.Experiment`` with its drive given (either diode law).
         transient: drive periods run before measuring (0 to 1e9; default 1000).
         periods: drive periods measured (``blocks`` to 1e9; default 20000; rounded down to a
             multiple of ``blocks``).
@@ -1330,13 +1420,13 @@ def lyapunov(experiment: Experiment, *, transient: int = 1000, periods: int = 20
         A ``LyapunovResult``; ``to_dict()`` equals ``stickslip lyapunov --json``.
 
     Raises:
-        ValueError: bad input or Shockley diodes, with the library's message.
+        ValueError: bad input, with the library's message.
         KeyboardInterrupt: Ctrl-C stops a long measurement.
 
     Example:
         >>> c = stickslip.lyapunov(stickslip.Experiment(zeta=0, mu_s=3, w=0.33, beta=9),
         ...                        transient=500, periods=2000)
-        >>> c.motion_class, c.lambda_per_tau > 4 * c.error_per_tau, c.lambda2_per_tau
+        >>> c.motion_class, c.lambda1 > 4 * c.lambda1_error, c.lambda2
         ('chaotic', True, -inf)
     """
     experiment = _with_model(experiment, None)

@@ -12,13 +12,21 @@ from typing_extensions import TypedDict, Unpack
 
 __all__ = [
     "ATTRACTOR_KINDS",
+    "BASIN_COLUMNS",
+    "BIFURCATION_COLUMNS",
+    "BIFURCATION_FIELDS",
+    "BRANCH_COLUMNS",
     "EVENT_KINDS",
     "Experiment",
     "KEYS",
+    "MAP_COLUMNS",
+    "MAP_EXPONENT_COLUMNS",
     "OPTIONS",
     "MOTION_CLASSES",
     "PARAMETER_LONG_NAMES",
     "PHASE_LABELS",
+    "SWEEP_COLUMNS",
+    "SWEEP_FIELDS",
     "SWEEP_LEGS",
     "__version__",
     "basins",
@@ -46,6 +54,15 @@ PARAMETER_LONG_NAMES: Dict[str, str]
 EVENT_KINDS: List[str]
 PHASE_LABELS: Dict[int, str]
 SWEEP_LEGS: List[str]
+#: The library's report tables (``Table::columns()``): CSV columns and JSON fields.
+MAP_COLUMNS: List[str]
+MAP_EXPONENT_COLUMNS: List[str]
+SWEEP_COLUMNS: List[str]
+SWEEP_FIELDS: List[str]
+BIFURCATION_COLUMNS: List[str]
+BIFURCATION_FIELDS: List[str]
+BASIN_COLUMNS: List[str]
+BRANCH_COLUMNS: List[str]
 #: The library's key table: one dict per key (name, name_aliases, unit, range, help, ...).
 KEYS: List[Dict[str, Any]]
 #: The library's option table: one dict per option (name, group, kind, range, help, ...).

@@ -14,15 +14,17 @@ from . import _checks, _core, _progress
 from ._api import (_coordinate, _fixed_attributes, _optional_period,
                    _physical_coordinates, _plain, _values, _with_model)
 from ._core import Experiment
+from ._names import Renamed, renamed_key, warn_renamed
 from ._progress import Progress
 
 if TYPE_CHECKING:
     import xarray
 
-#: What a motion settles on, in the order of the codes in ``kind`` arrays: 'periodic',
+#: What a motion settles on (``motion_class`` of a bifurcation diagram or a basin map, the
+#: reports' ``class``), in the order of the codes in ``class_code`` arrays: 'periodic',
 #: 'static' (rest: the motion stops for good; not the steady-state class 'static' of
 #: ``MOTION_CLASSES``, which is the paper's amplitude rule), 'chaotic', 'quasiperiodic',
-#: 'unsettled' (no verdict).
+#: 'undecided' (no verdict within the budget; its label was 'unsettled').
 ATTRACTOR_KINDS: Tuple[str, ...] = tuple(_core.ATTRACTOR_KINDS)
 
 
@@ -41,26 +43,37 @@ class BifurcationDiagram:
     Attributes:
         over: the stepped parameter ('w', 'beta', 'zeta' or 'mu_s').
         value: float64 array (values,): the parameter at each value run.
-        leg: array of 'up' or 'down', the leg of each value.
+        direction: array of 'up' or 'down', the leg of each value.
         y, v: float64 arrays (values, points): the strobe points (y, y') once per drive period
             at drive phase φ, after the transient.
-        exponent: float64 array: the largest Lyapunov exponent per unit τ (the CSV's
-            ``lambda``): over the recorded periods where the points repeat, else measured
-            sequentially from the last point as ``steady`` does; exponent_error: its standard
-            error (NaN with fewer than 8 points).
-        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS`` (the CSV's ``class``;
-            'static' is rest: the motion stopped for good); stops: the stops beside it.
+        lambda1: float64 array: the largest Lyapunov exponent λ1 per unit τ: over the recorded
+            periods where the points repeat, else measured sequentially from the last point
+            as ``steady`` does; lambda1_error: its standard error (NaN with fewer than 8
+            points).
+        motion_class: what each value settled on, labels of ``labels`` = ``ATTRACTOR_KINDS``
+            ('static' is rest: the motion stopped for good; 'undecided': no verdict within
+            the record); class_code: their int8 codes.
         period: int16, the period in drive periods, -1 without one.
         events, stops: int64, events and stops while recording.
         experiment, options: what was run.
 
     ``to_dict()`` is the library's bifurcation report, the rows of ``stickslip
-    bifurcation``'s CSV: ``parameter`` and ``points``, one dict per strobe point (``value``,
-    ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period``). ``direction`` is the
-    report's name of ``leg``; ``diagram[name]`` gives a per-value column by the report's name
-    (``direction``, ``lambda``: the exponent, ``class``: the kind's labels); ``leg``,
-    ``exponent`` and ``kind`` stay (deprecated aliases of the report's names).
+    bifurcation``'s CSV: ``parameter`` and ``points``, one dict per strobe point keyed by the
+    library's fields (``_core.BIFURCATION_FIELDS``: value, y, v, direction, lambda1, class,
+    period). ``diagram[name]`` gives a per-value column by the report's name (``class``: the
+    labels). The names before (``leg``, ``exponent``, ``exponent_error``, ``kind`` for the
+    codes, ``kind_labels()``, ``diagram["lambda"]``) still work, with a
+    ``DeprecationWarning``.
     """
+
+    leg = Renamed("direction")
+    exponent = Renamed("lambda1")
+    exponent_error = Renamed("lambda1_error")
+    kind = Renamed("class_code")
+
+    #: Names retired, by the name now.
+    _RETIRED = {"lambda": "lambda1", "leg": "direction", "exponent": "lambda1",
+                "exponent_error": "lambda1_error", "kind": "class_code"}
 
     def __init__(self, experiment: Experiment, over: str, options: Dict[str, Any],
                  data: Dict[str, Any]) -> None:
@@ -69,52 +82,52 @@ class BifurcationDiagram:
         self.options = options
         self.labels: Tuple[str, ...] = ATTRACTOR_KINDS
         self.value: np.ndarray = data["value"]
-        self.leg = np.asarray(_core.SWEEP_LEGS)[data["leg"]]
+        self.direction: np.ndarray = np.asarray(_core.SWEEP_LEGS)[data["leg"]]
         points = int(data["points"])
         self.y: np.ndarray = data["y"].reshape(len(self.value), points)
         self.v: np.ndarray = data["v"].reshape(len(self.value), points)
-        self.exponent: np.ndarray = data["exponent"]
-        self.exponent_error: np.ndarray = data["exponent_error"]
-        self.kind: np.ndarray = data["kind"]
+        self.lambda1: np.ndarray = data["exponent"]
+        self.lambda1_error: np.ndarray = data["exponent_error"]
+        self.class_code: np.ndarray = data["kind"]
+        self.motion_class: np.ndarray = np.asarray(self.labels)[self.class_code]
         self.period: np.ndarray = data["period"]
         self.events: np.ndarray = data["events"]
         self.stops: np.ndarray = data["stops"]
-        self.direction: np.ndarray = self.leg
 
     def __len__(self) -> int:
         return len(self.value)
 
     def __getitem__(self, name: str) -> np.ndarray:
-        """A per-value column by the report's name (``direction``, ``lambda``, ``class`` as
+        """A per-value column by the report's name (``direction``, ``lambda1``, ``class`` as
         labels, ``period``, ``value``), or by an attribute's."""
-        report = {"lambda": "exponent", "direction": "leg"}
+        name = renamed_key("BifurcationDiagram", name, self._RETIRED)
         if name == "class":
-            return self.kind_labels()
-        field = report.get(name, name)
-        if field in ("value", "leg", "exponent", "exponent_error", "kind", "period", "events",
-                     "stops", "y", "v"):
-            return np.asarray(getattr(self, field))
-        raise KeyError(f"no column {name!r}: the columns are value, y, v, direction, lambda, "
-                       "class, period")
+            return self.motion_class
+        if name in ("value", "direction", "lambda1", "lambda1_error", "class_code",
+                    "motion_class", "period", "events", "stops", "y", "v"):
+            return np.asarray(getattr(self, name))
+        raise KeyError(f"no column {name!r}: the columns are "
+                       f"{', '.join(_core.BIFURCATION_FIELDS)}")
 
     def to_dict(self) -> Dict[str, Any]:
         """The library's bifurcation report (a new dict of plain values): ``parameter`` (the
-        stepped one) and ``points``, one dict per strobe point in the order run (``value``,
-        ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period``; None where the CSV's
+        stepped one) and ``points``, one dict per strobe point in the order run, keyed by the
+        library's fields (value, y, v, direction, lambda1, class, period; None where the CSV's
         cell is empty)."""
         rows = self.rows()
-        columns: Dict[str, List[Any]] = {
-            "value": _plain(rows[self.over]),
-            "y": _plain(rows["y"]),
-            "v": _plain(rows["v"]),
-            "direction": rows["direction"].tolist(),
-            "lambda": _plain(rows["lambda"]),
-            "class": rows["class"].tolist(),
-            "period": _optional_period(rows["period"]),
-        }
-        names = list(columns)
+        names = list(_core.BIFURCATION_FIELDS)
+
+        def column(name: str) -> List[Any]:
+            values = rows[self.over if name == "value" else name]
+            if name == "period":
+                return _optional_period(values)
+            if name in ("direction", "class"):
+                return values.tolist()
+            return _plain(values)
+
+        columns = [column(name) for name in names]
         return {"parameter": self.over,
-                "points": [dict(zip(names, row)) for row in zip(*columns.values())]}
+                "points": [dict(zip(names, row)) for row in zip(*columns)]}
 
     @property
     def points(self) -> int:
@@ -122,50 +135,47 @@ class BifurcationDiagram:
         return self.y.shape[1]
 
     def kind_labels(self) -> np.ndarray:
-        """What each value settled on, as a label."""
-        return np.asarray(self.labels)[self.kind]
+        """What each value settled on, as a label (deprecated: ``motion_class``)."""
+        warn_renamed("BifurcationDiagram", "kind_labels()", "motion_class")
+        return self.motion_class
 
     def rows(self) -> Dict[str, np.ndarray]:
-        """The rows of ``stickslip bifurcation``'s CSV as columns, one per strobe point:
-        ``<over>``, ``y``, ``v``, ``direction``, ``lambda``, ``class``, ``period`` (-1 where
-        the CSV's cell is empty)."""
+        """The rows of ``stickslip bifurcation``'s CSV as columns, one per strobe point, keyed
+        by the CSV's columns (``<over>`` and ``_core.BIFURCATION_COLUMNS``: y, v, direction,
+        lambda1, class, period; the period -1 where the CSV's cell is empty)."""
         n = self.points
-        return {
-            self.over: np.repeat(self.value, n),
-            "y": self.y.ravel(),
-            "v": self.v.ravel(),
-            "direction": np.repeat(self.leg, n),
-            "lambda": np.repeat(self.exponent, n),
-            "class": np.repeat(self.kind_labels(), n),
-            "period": np.repeat(self.period, n),
-        }
+        per_point = {"y": self.y.ravel(), "v": self.v.ravel()}
+        out = {self.over: np.repeat(self.value, n)}
+        for name in _core.BIFURCATION_COLUMNS:
+            out[name] = per_point[name] if name in per_point else np.repeat(self[name], n)
+        return out
 
     def to_xarray(self) -> "xarray.Dataset":
-        """An ``xarray.Dataset`` with dimensions ``leg`` ('up', 'down': those run), the
+        """An ``xarray.Dataset`` with dimensions ``direction`` ('up', 'down': those run), the
         stepped parameter (the down leg reordered to match the up leg) and ``point`` (the
-        strobe points): ``y``, ``v`` (leg, parameter, point), ``exponent``,
-        ``exponent_error``, ``kind`` (CF flags), ``period`` (-1: none), ``events``,
-        ``stops``. For a physical experiment, ``f_Hz`` (Hz) or ``U_V`` (V; ``F_N`` in N)
-        stands beside a stepped ``w`` or ``beta`` as a coordinate.
+        strobe points): ``y``, ``v`` (direction, parameter, point), ``lambda1``,
+        ``lambda1_error``, ``motion_class`` (codes, CF flags), ``period`` (-1: none),
+        ``events``, ``stops``. For a physical experiment, ``f_Hz`` (Hz) or ``U_V`` (V; ``F_N``
+        in N) stands beside a stepped ``w`` or ``beta`` as a coordinate.
 
         Raises:
             ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
         """
         xr = _checks.optional_module("xarray", "xarray", "BifurcationDiagram.to_xarray()")
 
-        legs = [leg for leg in ("up", "down") if np.any(self.leg == leg)]
+        legs = [leg for leg in ("up", "down") if np.any(self.direction == leg)]
 
         def table(column: np.ndarray) -> np.ndarray:
             rows = []
             for leg in legs:
-                part = column[self.leg == leg]
+                part = column[self.direction == leg]
                 rows.append(part[::-1] if leg == "down" else part)
             return np.stack(rows)
 
         values = table(self.value)[0]
-        dims = ("leg", self.over)
+        dims = ("direction", self.over)
         coords: Dict[str, Any] = {
-            "leg": ("leg", np.asarray(legs), {"long_name": "direction of the leg"}),
+            "direction": ("direction", np.asarray(legs), {"long_name": "direction of the leg"}),
             self.over: _coordinate(self.over, values),
             "point": ("point", np.arange(self.points),
                       {"long_name": "index of the strobe point after the transient"}),
@@ -176,12 +186,12 @@ class BifurcationDiagram:
                   {"long_name": "position y at the strobe (drive phase phi)", "units": "1"}),
             "v": (dims + ("point",), table(self.v),
                   {"long_name": "velocity y' at the strobe (drive phase phi)", "units": "1"}),
-            "exponent": (dims, table(self.exponent),
-                         {"long_name": "largest Lyapunov exponent per unit tau",
-                          "units": "1"}),
-            "exponent_error": (dims, table(self.exponent_error),
-                               {"long_name": "standard error of the exponent", "units": "1"}),
-            "kind": (dims, table(self.kind), _kind_attributes()),
+            "lambda1": (dims, table(self.lambda1),
+                        {"long_name": "largest Lyapunov exponent lambda1 per unit tau",
+                         "units": "1"}),
+            "lambda1_error": (dims, table(self.lambda1_error),
+                              {"long_name": "standard error of lambda1", "units": "1"}),
+            "motion_class": (dims, table(self.class_code), _kind_attributes()),
             "period": (dims, table(self.period),
                        {"long_name": "period in drive periods (-1: none found)", "units": "1"}),
             "events": (dims, table(self.events),
@@ -196,8 +206,9 @@ class BifurcationDiagram:
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def __repr__(self) -> str:
-        counts = ", ".join(f"{label} {int(np.sum(self.kind == k))}"
-                           for k, label in enumerate(self.labels) if np.any(self.kind == k))
+        counts = ", ".join(f"{label} {int(np.sum(self.class_code == k))}"
+                           for k, label in enumerate(self.labels)
+                           if np.any(self.class_code == k))
         return (f"<stickslip.BifurcationDiagram over {self.over}: {len(self)} values × "
                 f"{self.points} strobe points; {counts}>")
 
@@ -209,17 +220,24 @@ class BasinMap:
     Attributes:
         y0, v0: float64 arrays, the initial positions (rows) and velocities (columns).
         attractor: int32 array (len(y0), len(v0)): the number of the attractor reached, -1
-            where the motion settled on nothing within the caps (unsettled).
-        kind: int8 codes into ``labels`` = ``ATTRACTOR_KINDS``, per cell ('static' is rest:
-            the motion stopped for good).
+            where the motion settled on nothing within the caps (undecided).
+        motion_class: labels of ``labels`` = ``ATTRACTOR_KINDS`` per cell ('static' is rest:
+            the motion stopped for good; 'undecided': no attractor within the caps), the CSV's
+            ``class``; class_code: their int8 codes.
         period: int16, period of the cell's attractor in drive periods, -1 without one.
         attractors: list of dicts, one per attractor as ``stickslip basins --json`` lists
-            them: id, kind, period, fraction, cells, state {y, v}, strobes (at most 64),
-            exponent (per unit τ; None where not finite), multipliers ([re, im] pairs,
+            them: id, class, period, fraction, cells, state {y, v}, strobes (at most 64),
+            lambda1 (per unit τ; None where not finite), multipliers ([re, im] pairs,
             periodic only), rest_range (static only), first_cell.
-        unsettled: cells without an attractor.
+        undecided: cells without an attractor.
         experiment: what was run (φ = the drive phase of the initial states).
+
+    The names before (``kind`` for the codes, ``kind_labels()``, ``unsettled``) still work,
+    with a ``DeprecationWarning``.
     """
+
+    kind = Renamed("class_code")
+    unsettled = Renamed("undecided")
 
     def __init__(self, experiment: Experiment, data: Dict[str, Any]) -> None:
         self.experiment = experiment
@@ -229,10 +247,11 @@ class BasinMap:
         self.y0: np.ndarray = data["y0"]
         self.v0: np.ndarray = data["v0"]
         self.attractor: np.ndarray = data["attractor"].reshape(shape)
-        self.kind: np.ndarray = data["kind"].reshape(shape)
+        self.class_code: np.ndarray = data["kind"].reshape(shape)
+        self.motion_class: np.ndarray = np.asarray(self.labels)[self.class_code]
         self.period: np.ndarray = data["period"].reshape(shape)
         self.attractors: List[Dict[str, Any]] = copy.deepcopy(self._report["attractors"])
-        self.unsettled: int = self._report["unsettled"]
+        self.undecided: int = self._report["undecided"]
 
     @property
     def shape(self) -> Tuple[int, int]:
@@ -240,17 +259,18 @@ class BasinMap:
 
     def to_dict(self) -> Dict[str, Any]:
         """The summary as ``stickslip basins --json`` prints it (model, grid, attractors,
-        unsettled, unsettled_fraction; a new dict of plain values)."""
+        undecided, undecided_fraction; a new dict of plain values)."""
         return copy.deepcopy(self._report)
 
     def kind_labels(self) -> np.ndarray:
-        """What each cell settled on, as a label."""
-        return np.asarray(self.labels)[self.kind]
+        """What each cell settled on, as a label (deprecated: ``motion_class``)."""
+        warn_renamed("BasinMap", "kind_labels()", "motion_class")
+        return self.motion_class
 
     def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with dimensions ``y0`` and ``v0``: ``attractor`` (-1:
-        unsettled), ``kind`` (CF flags), ``period`` (-1: none), the model's parameters and the
-        summary (JSON) as attributes.
+        undecided), ``motion_class`` (codes, CF flags), ``period`` (-1: none), the model's
+        parameters and the summary (JSON) as attributes.
 
         Raises:
             ModuleNotFoundError: without xarray (``pip install 'stickslip[xarray]'``).
@@ -266,8 +286,8 @@ class BasinMap:
         }
         data = {
             "attractor": (dims, self.attractor,
-                          {"long_name": "number of the attractor reached (-1: unsettled)"}),
-            "kind": (dims, self.kind, _kind_attributes()),
+                          {"long_name": "number of the attractor reached (-1: undecided)"}),
+            "motion_class": (dims, self.class_code, _kind_attributes()),
             "period": (dims, self.period,
                        {"long_name": "period in drive periods (-1: none)", "units": "1"}),
         }
@@ -282,10 +302,10 @@ class BasinMap:
         parts = []
         for a in self.attractors:
             period = f" period {a['period']}" if a["period"] is not None else ""
-            parts.append(f"#{a['id']} {a['kind']}{period} ({100 * a['fraction']:.1f} %)")
+            parts.append(f"#{a['id']} {a['class']}{period} ({100 * a['fraction']:.1f} %)")
         return (f"<stickslip.BasinMap {self.shape[0]} × {self.shape[1]}: "
                 f"{len(self.attractors)} attractors: {', '.join(parts)}; "
-                f"{self.unsettled} unsettled>")
+                f"{self.undecided} undecided>")
 
 
 class Branch:
@@ -425,9 +445,9 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
     coexisting branches. A period-p orbit gives p distinct points; chaos a cloud and λ > 0.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with the piecewise-linear law (the exact solver);
-            it needs no value of the stepped parameter. The first value starts from its
-            initial state.
+        experiment: a ``stickslip.Experiment`` (the exact solver for the piecewise-linear
+            law, the stiff solver and its tangent dynamics for Shockley diodes); it needs no
+            value of the stepped parameter. The first value starts from its initial state.
         over: 'w', 'beta', 'zeta' or 'mu_s'.
         values: the parameter's values, in order (any array-like of floats; dimensionless).
         direction: 'up' (values in order), 'down' (reversed) or 'both' (up, then down from
@@ -442,8 +462,8 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
             (values) or a tqdm bar's ``update``.
 
     Returns:
-        A ``BifurcationDiagram``: ``y``, ``v`` (values × points), ``exponent``, ``kind``,
-        ``period`` per value; ``rows()`` = the CSV of ``stickslip bifurcation``;
+        A ``BifurcationDiagram``: ``y``, ``v`` (values × points), ``lambda1``,
+        ``motion_class``, ``period`` per value; ``rows()`` = the CSV of ``stickslip bifurcation``;
         ``to_xarray()``.
 
     Raises:
@@ -453,9 +473,9 @@ def bifurcation(experiment: Experiment, over: str, values: Any, direction: str =
         >>> import numpy as np
         >>> exp = stickslip.Experiment(zeta=0.0, beta=9.0, mu_s=3.0)
         >>> d = stickslip.bifurcation(exp, "w", [0.25, 0.33], direction="up", points=60)
-        >>> d.kind_labels().tolist(), int(d.period[0]), len(np.unique(d.y[0].round(6)))
+        >>> d.motion_class.tolist(), int(d.period[0]), len(np.unique(d.y[0].round(6)))
         (['periodic', 'chaotic'], 1, 1)
-        >>> bool(d.exponent[1] > 0), len(np.unique(d.y[1].round(6))) > 30
+        >>> bool(d.lambda1[1] > 0), len(np.unique(d.y[1].round(6))) > 30
         (True, True)
     """
     experiment = _with_model(experiment, None)
@@ -484,7 +504,7 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
     its error of zero. The result is the same for any number of threads.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with its drive, the piecewise-linear law; its
+        experiment: a ``stickslip.Experiment`` with its drive (either diode law); its
             initial state is not used (the grid sets it).
         y0: (smallest, largest) initial position (dimensionless, units of y).
         v0: (smallest, largest) initial velocity y0'.
@@ -508,8 +528,8 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
             in parallel; the reference, costly where the motion is chaotic).
 
     Returns:
-        A ``BasinMap``: ``attractor``, ``kind``, ``period`` per cell (the CSV of ``stickslip
-        basins``), ``attractors`` and ``to_dict()`` (its ``--json``), ``to_xarray()``.
+        A ``BasinMap``: ``attractor``, ``motion_class``, ``period`` per cell (the CSV of
+        ``stickslip basins``), ``attractors`` and ``to_dict()`` (its ``--json``), ``to_xarray()``.
 
     Raises:
         ValueError: bad input, with the library's message. KeyboardInterrupt: Ctrl-C.
@@ -517,7 +537,7 @@ def basins(experiment: Experiment, y0: Tuple[float, float], v0: Tuple[float, flo
     Example:
         >>> exp = stickslip.Experiment(zeta=0.0, w=0.6, beta=3.269, mu_s=3.0)
         >>> m = stickslip.basins(exp, y0=(-8, 8), v0=(-8, 8), steps=12)
-        >>> [(a["kind"], a["period"]) for a in m.attractors]
+        >>> [(a["class"], a["period"]) for a in m.attractors]
         [('periodic', 1), ('periodic', 1)]
         >>> m.attractor.shape, int((m.attractor == -1).sum())
         ((12, 12), 0)
@@ -557,9 +577,10 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
     points or stops per period change), each with the orbit on either side.
 
     Args:
-        experiment: a ``stickslip.Experiment`` with the piecewise-linear law; the other
-            parameters and the initial state come from it.
-        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s'.
+        experiment: a ``stickslip.Experiment`` (either diode law); the other parameters and
+            the initial state come from it.
+        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s' (not 'mu_s' with
+            Shockley diodes, whose law has no static threshold).
         start: the start value (dimensionless).
         to: the value to continue towards; the branch stays between the two.
         max_points: most points of the branch (2 to 10⁷; default 5000).

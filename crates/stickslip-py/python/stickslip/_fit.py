@@ -15,6 +15,7 @@ from . import _checks, _core, _progress
 from ._api import _with_model
 from ._progress import Progress
 from ._core import Experiment
+from ._names import Renamed
 
 if TYPE_CHECKING:
     import xarray
@@ -172,10 +173,13 @@ class FitRecord:
         measured_V, model_V, residual_V: float64 arrays of u_C measured, modelled, and
             model − measured (V).
         freq_Hz, amplitude_V: the drive (Hz, V peak); w, beta: dimensionless drive;
-        motion: the motion class of the fitted steady state; periods: whole drive periods;
+        motion_class: the motion class of the fitted steady state (``motion``, its name
+            before, still works with a ``DeprecationWarning``); periods: whole drive periods;
         clipped: clipped samples; rms_residual_V: RMS of the residuals (V); offset_V: the
         fitted DC offset of u_C (V); time_shift_s: the fitted time shift (s).
     """
+
+    motion = Renamed("motion_class")
 
     def __init__(self, arrays: Dict[str, Any], summary: Dict[str, Any]) -> None:
         self.file: str = arrays["file"]
@@ -187,7 +191,7 @@ class FitRecord:
         self.amplitude_V: float = summary["amplitude_V"]
         self.w: float = summary["w"]
         self.beta: float = summary["beta"]
-        self.motion: str = summary["class"]
+        self.motion_class: str = summary["class"]
         self.periods: int = summary["periods"]
         self.clipped: int = summary["clipped"]
         self.rms_residual_V: float = summary["rms_residual_V"]
@@ -373,8 +377,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         free: the free parameters: 'resistance', 'ut', 'rd' (PWL), 'diode-is', 'diode-n',
             'diode-rs' (Shockley), 'inductance', 'capacitance', 'mu-s' (underscores are
             accepted); for mechanics 'damping', 'friction', 'mass', 'stiffness', 'mu-s'; a
-            comma-separated string or a sequence [default: ('resistance', 'ut'); mechanics:
-            ('damping', 'friction')].
+            comma-separated string or a sequence [default: the library's free set of the system
+            and diode law: ('resistance', 'ut') with PWL diodes, ('resistance', 'diode-is',
+            'diode-n') with Shockley diodes; mechanics: ('damping', 'friction')].
         model: the diode law, 'pwl' or 'shockley' [default: the experiment's].
         per_record: fit each record alone (how a parameter drifts with the drive): returns a
             list of results, one per record, as ``stickslip fit --per-record --json``.

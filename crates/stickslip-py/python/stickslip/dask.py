@@ -44,6 +44,7 @@ Example::
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
 import signal
@@ -161,12 +162,52 @@ def _worker_threads(client: Any) -> int:
     return sum(client.nthreads().values()) or 1
 
 
+class _CtrlC:
+    """Ctrl-C while a map is sent to a cluster, taken where the map can act on it.
+
+    Python raises ``KeyboardInterrupt`` wherever the main thread is when the signal comes; in
+    the client that can be inside Dask's own code, such as the garbage collector's callback
+    that ``distributed`` installs, where the exception is printed as "ignored" and lost (the
+    map then runs on). While this context is entered (from the main thread, with Python's
+    default handler in place), a Ctrl-C only marks itself, and :meth:`check` raises it at the
+    map's own points: between blocks of the graph's construction and in the wait for the
+    results. A second Ctrl-C raises at once (it ends the wait for the cancelled tasks)."""
+
+    def __init__(self) -> None:
+        self.pending = False
+        self.previous: Any = None
+
+    def __enter__(self) -> "_CtrlC":
+        if (threading.current_thread() is threading.main_thread()
+                and signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            self.previous = signal.signal(signal.SIGINT, self._handle)
+        return self
+
+    def _handle(self, signum: int, frame: Any) -> None:
+        if self.pending:
+            raise KeyboardInterrupt
+        self.pending = True
+
+    def check(self) -> None:
+        """Raise the Ctrl-C that came since the context was entered, if one did."""
+        if self.pending:
+            raise KeyboardInterrupt
+
+    def __exit__(self, kind: Any, value: Any, traceback: Any) -> None:
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+            self.previous = None
+        if kind is None:
+            self.check()
+
+
 #: How often the calling thread looks whether the tasks are done (and lets Ctrl-C in).
 _POLL_SECONDS = 0.05
 
 
 def _gather(client: Any, futures: List[Any], points: List[int],
-            callback: Optional[Callable[[int, int], Any]]) -> List[Any]:
+            callback: Optional[Callable[[int, int], Any]],
+            ctrl_c: Optional[_CtrlC] = None) -> List[Any]:
     """The futures' results. The calling thread waits in ``time.sleep``, which Ctrl-C
     interrupts cleanly: the tasks are then cancelled and the one ``KeyboardInterrupt``
     propagates. (Waiting inside ``client.gather`` instead, the interrupted gather leaves one
@@ -183,14 +224,40 @@ def _gather(client: Any, futures: List[Any], points: List[int],
             if callback is not None and done > reported:
                 reported = done
                 callback(done, total)
+            if ctrl_c is not None:
+                ctrl_c.check()
             if pending:
                 time.sleep(_POLL_SECONDS)
         results: List[Any] = client.gather(futures)
         return results
     except BaseException:
+        keys = {f.key for f in futures}
+        # A Ctrl-C soon after the submission can come while the scheduler is still taking
+        # the graph in: a cancel sent then finds no task to cancel (they would run after
+        # all), and a cluster closed then logs the interrupted submission as an error.
+        _wait_for_graph(client, keys)
         client.cancel(futures)
-        _wait_for_running(client, {f.key for f in futures})
+        _wait_for_running(client, keys)
         raise
+
+
+def _known_keys(keys: Set[Any], dask_scheduler: Any = None) -> bool:
+    """Whether the scheduler holds a task for each of ``keys`` (``client.run_on_scheduler``
+    calls it)."""
+    return all(key in dask_scheduler.tasks for key in keys)
+
+
+def _wait_for_graph(client: Any, keys: Set[Any], timeout: float = 60.0) -> None:
+    """Wait until the scheduler has taken in the tasks of ``keys``. A second Ctrl-C, or a
+    scheduler that does not answer, ends the wait early."""
+    deadline = time.monotonic() + timeout
+    try:
+        while time.monotonic() < deadline:
+            if client.run_on_scheduler(_known_keys, keys):
+                return
+            time.sleep(_POLL_SECONDS)
+    except BaseException:  # noqa: BLE001 - the first interrupt is the one that propagates
+        return
 
 
 def _executing_keys(dask_worker: Any) -> List[Any]:
@@ -299,40 +366,45 @@ def _stack(experiment: Experiment, outer: Dict[str, np.ndarray], grid: Dict[str,
     if client is None:
         client = _default_client()
     # From here on, a Ctrl-C of the terminal is the client's alone (the graph of a large map
-    # takes seconds to build: it may come then too).
-    _shield(client, True)
-    try:
-        middle = combinations[len(combinations) // 2]
-        rows, cols = _block_shape(chunks, experiment, first, v1, second, v2, options,
-                                  fixed_at(middle), len(combinations), _worker_threads(client),
-                                  lyapunov)
-        for index in combinations:
-            if index != middle:
-                # Checks each outer value (the grid is built, nothing is computed).
-                _core.grid(experiment, first, v1, second, v2, options, 1, (0, 0, 0, 0),
-                           fixed_at(index), None, lyapunov)
+    # takes seconds to build: it may come then too), and taken at the map's own points.
+    ctrl_c = _CtrlC() if client is not None else None
+    with ctrl_c if ctrl_c is not None else contextlib.nullcontext():
+        _shield(client, True)
+        try:
+            middle = combinations[len(combinations) // 2]
+            rows, cols = _block_shape(chunks, experiment, first, v1, second, v2, options,
+                                      fixed_at(middle), len(combinations), _worker_threads(client),
+                                      lyapunov)
+            for index in combinations:
+                if index != middle:
+                    # Checks each outer value (the grid is built, nothing is computed).
+                    _core.grid(experiment, first, v1, second, v2, options, 1, (0, 0, 0, 0),
+                               fixed_at(index), None, lyapunov)
 
-        text = dask.delayed(experiment.to_json(), pure=True)
-        first_values = dask.delayed(v1, pure=True)
-        second_values = dask.delayed(v2, pure=True)
-        task = dask.delayed(_block_task, pure=True)
-        blocks = []
-        tasks = []
-        for index in combinations:
-            for r0 in range(0, n1, rows):
-                for c0 in range(0, n2, cols):
-                    block = (r0, min(r0 + rows, n1), c0, min(c0 + cols, n2))
-                    blocks.append((index, block))
-                    tasks.append(task(text, first, first_values, second, second_values, block,
-                                      options, fixed_at(index), lyapunov))
-        points = [(r1 - r0) * (c1 - c0) for _, (r0, r1, c0, c1) in blocks]
-        with _progress.reporter(progress, what, "points") as callback:
-            if client is None:
-                results = _local_compute(tasks, points, callback)
-            else:
-                results = _gather(client, client.compute(tasks), points, callback)
-    finally:
-        _shield(client, False)
+            text = dask.delayed(experiment.to_json(), pure=True)
+            first_values = dask.delayed(v1, pure=True)
+            second_values = dask.delayed(v2, pure=True)
+            task = dask.delayed(_block_task, pure=True)
+            blocks = []
+            tasks = []
+            for index in combinations:
+                for r0 in range(0, n1, rows):
+                    for c0 in range(0, n2, cols):
+                        if ctrl_c is not None:
+                            ctrl_c.check()
+                        block = (r0, min(r0 + rows, n1), c0, min(c0 + cols, n2))
+                        blocks.append((index, block))
+                        tasks.append(task(text, first, first_values, second, second_values, block,
+                                          options, fixed_at(index), lyapunov))
+            points = [(r1 - r0) * (c1 - c0) for _, (r0, r1, c0, c1) in blocks]
+            with _progress.reporter(progress, what, "points") as callback:
+                if client is None:
+                    results = _local_compute(tasks, points, callback)
+                else:
+                    results = _gather(client, client.compute(tasks), points, callback,
+                                      ctrl_c)
+        finally:
+            _shield(client, False)
 
     shape = outer_shape + (n1, n2)
     arrays: Dict[str, np.ndarray] = {
@@ -390,9 +462,9 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
             max_periods, max_period, min_stop_fraction, accelerate, lyapunov_periods).
 
     Returns:
-        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)): ``motion`` (codes
-        into ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100
-        whether or not the motion stops) with ``stops_per_cycle`` beside it.
+        A ``stickslip.PhaseDiagram`` of shape (len(first), len(second)): ``motion_class``
+        (labels of ``MOTION_CLASSES``; 'static' is the paper's rule, an amplitude below β/100
+        whether or not the motion stops) with ``stops_per_period`` beside it.
 
     Raises:
         ValueError: bad input (checked on the client before any task), a map of more than
@@ -404,7 +476,7 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
         >>> import numpy as np, stickslip, stickslip.dask
         >>> m = stickslip.dask.phase_diagram(stickslip.Experiment.paper(), chunks=(10, 40),
         ...                                  w=np.linspace(0.1, 2.5, 60), beta=np.linspace(0.5, 4, 40))
-        >>> m.motion.shape
+        >>> m.motion_class.shape
         (60, 40)
     """
     experiment = _with_model(experiment, model)
@@ -450,14 +522,14 @@ def sweep_grid(experiment: Experiment, *, chunks: Chunks = "auto", client: Any =
 
     Returns:
         A ``stickslip.PhaseDiagram`` whose arrays have one dimension per parameter, e.g.
-        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them. ``motion``: codes into
-        ``MOTION_CLASSES`` ('static' is the paper's rule, an amplitude below β/100 whether or
-        not the motion stops), with ``stops_per_cycle`` beside it.
+        (len(mu_s), len(w), len(beta)); ``to_xarray()`` names them. ``motion_class``: labels
+        of ``MOTION_CLASSES`` ('static' is the paper's rule, an amplitude below β/100 whether
+        or not the motion stops), with ``stops_per_period`` beside it.
 
     Example:
         >>> s = stickslip.dask.sweep_grid(stickslip.Experiment.paper(), mu_s=[1.0, 1.5],
         ...                               w=np.linspace(0.1, 2.5, 30), beta=np.linspace(0.5, 4, 20))
-        >>> s.dims, s.motion.shape
+        >>> s.dims, s.motion_class.shape
         (('mu_s', 'w', 'beta'), (2, 30, 20))
     """
     experiment = _with_model(experiment, model)

@@ -20,7 +20,7 @@
 //!   [`BasinOptions::found_revisits`] steps in a row land on cells already labelled;
 //! - a motion at rest (stuck through a whole drive period) is rest, at its own position,
 //!   without further work;
-//! - after [`BasinOptions::max_steps`] drive periods without a verdict it is unsettled.
+//! - after [`BasinOptions::max_steps`] drive periods without a verdict it is undecided.
 //!
 //! Every initial condition sees the labels that the ones before it left, in the same order
 //! for any number of threads, so the map is the same for any number of threads. What one row
@@ -31,10 +31,9 @@ use super::{BasinOptions, Basins, Cell};
 use crate::attractor::{distance, scale_of, AttractorKind};
 use crate::checkpoint::{UnitReader, UnitWriter};
 use crate::error::{Error, Result};
-use crate::exact::ExactSolver;
 use crate::params::State;
 use crate::scan::Monitor;
-use crate::solver::{Phase, Solver};
+use crate::solver::Phase;
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 
@@ -175,7 +174,7 @@ impl<'a> Recurrence<'a> {
         let mut unit = UnitWriter::new();
         unit.u64((self.found.len() - found_before) as u64);
         for cell in &self.found[found_before..] {
-            encode_cell(&mut unit, cell);
+            cell.encode(&mut unit);
         }
         unit.u64(self.log.len() as u64);
         for &((i, j), label) in &self.log {
@@ -206,7 +205,7 @@ impl<'a> Recurrence<'a> {
             return Err(bad());
         }
         for _ in 0..n {
-            let cell = decode_cell(&mut r).ok_or_else(bad)?;
+            let cell = Cell::decode(&mut r).ok_or_else(bad)?;
             self.found.push(cell);
         }
         let n = r.u64().ok_or_else(bad)?;
@@ -250,7 +249,7 @@ impl<'a> Recurrence<'a> {
                 periods,
             },
             Outcome::Unsettled => Cell {
-                kind: AttractorKind::Unsettled,
+                kind: AttractorKind::Undecided,
                 period: None,
                 strobes: Vec::new(),
                 exponent: f64::NAN,
@@ -280,7 +279,7 @@ impl<'a> Recurrence<'a> {
     fn follow(&mut self, start: State, visited: &mut Vec<(i64, i64)>) -> Result<(Outcome, usize)> {
         let options: BasinOptions = self.basins.options;
         let period = self.basins.params.drive_period();
-        let mut solver = ExactSolver::new(self.basins.params, start);
+        let mut solver = self.basins.dynamics().solver(&self.basins.params, start)?;
         let mut own = std::collections::HashSet::new();
         let mut x = start;
         let mut steps = 0usize;
@@ -325,7 +324,7 @@ impl<'a> Recurrence<'a> {
             }
             let mut events = 0usize;
             steps += 1;
-            crate::solver::run_until(&mut solver, steps as f64 * period, |_| events += 1)?;
+            crate::solver::run_until(solver.as_mut(), steps as f64 * period, |_| events += 1)?;
             x = solver.state();
             // Stuck through a whole drive period with the same drive to come: stuck for
             // ever.
@@ -337,7 +336,7 @@ impl<'a> Recurrence<'a> {
 
     /// The attractor found earlier that is the periodic orbit or rest of `cell`.
     fn known(&self, cell: &Cell) -> Option<usize> {
-        let tolerance = self.basins.options.match_tolerance;
+        let tolerance = self.basins.match_tolerance();
         self.found.iter().position(|f| {
             f.kind == cell.kind
                 && match cell.kind {
@@ -373,7 +372,7 @@ impl<'a> Recurrence<'a> {
         // Label the attractor's cells (over basin labels, not over other attractors): run on
         // it until found_revisits steps in a row land on cells already labelled (at most
         // max_steps).
-        let mut solver = ExactSolver::new(self.basins.params, start);
+        let mut solver = self.basins.dynamics().solver(&self.basins.params, start)?;
         let mut x = start;
         let mut in_a_row = 0usize;
         let mut steps = 0usize;
@@ -387,48 +386,9 @@ impl<'a> Recurrence<'a> {
                 }
             }
             steps += 1;
-            crate::solver::run_until(&mut solver, steps as f64 * period, |_| {})?;
+            crate::solver::run_until(solver.as_mut(), steps as f64 * period, |_| {})?;
             x = solver.state();
         }
         Ok(k)
     }
-}
-
-fn encode_cell(unit: &mut UnitWriter, c: &Cell) {
-    let kind = AttractorKind::ALL
-        .iter()
-        .position(|&k| k == c.kind)
-        .expect("a kind of ALL");
-    unit.u8(kind as u8)
-        .u64(c.period.map_or(0, |p| p as u64))
-        .f64(c.exponent)
-        .u64(c.periods as u64)
-        .u64(c.strobes.len() as u64);
-    for x in &c.strobes {
-        unit.f64(x.y).f64(x.v);
-    }
-}
-
-fn decode_cell(r: &mut UnitReader) -> Option<Cell> {
-    let kind = *AttractorKind::ALL.get(r.u8()? as usize)?;
-    let period = r.u64()?;
-    let exponent = r.f64()?;
-    let periods = usize::try_from(r.u64()?).ok()?;
-    let n = r.u64()?;
-    if n > 1 << 20 {
-        return None;
-    }
-    let mut strobes = Vec::with_capacity(n as usize);
-    for _ in 0..n {
-        let y = r.f64()?;
-        let v = r.f64()?;
-        strobes.push(State { y, v });
-    }
-    Some(Cell {
-        kind,
-        period: (period > 0).then_some(period as usize),
-        strobes,
-        exponent,
-        periods,
-    })
 }

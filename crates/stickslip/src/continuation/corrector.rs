@@ -5,9 +5,7 @@ use super::ContinuationOptions;
 use crate::error::Result;
 use crate::params::{Parameter, Params, State};
 use crate::solver::EventKind;
-use crate::stability::{
-    find_periodic_orbit, strobe_map, NewtonOptions, PeriodicOrbit, StrobeImage,
-};
+use crate::stability::{Dynamics, NewtonOptions, PeriodicOrbit, StrobeImage};
 
 /// A point u = (y, y', λ) of the continuation space.
 pub(crate) type Point = [f64; 3];
@@ -86,11 +84,13 @@ pub(crate) fn counts(orbit: &PeriodicOrbit) -> (usize, usize) {
 }
 
 /// The continuation problem: the fixed points of the p-fold strobe map as `parameter` varies.
-pub(crate) struct Problem {
+pub(crate) struct Problem<'a> {
     pub base: Params,
     pub parameter: Parameter,
     pub period: usize,
     pub options: ContinuationOptions,
+    /// The model whose strobe map it is.
+    pub dynamics: &'a dyn Dynamics,
 }
 
 /// A converged point of the branch.
@@ -104,23 +104,53 @@ pub(crate) struct Solution {
     pub tangent: Point,
 }
 
-impl Problem {
+impl Problem<'_> {
     pub fn params(&self, lambda: f64) -> Result<Params> {
         self.parameter.set(self.base, lambda)
     }
 
-    fn image(&self, u: &Point) -> Result<StrobeImage> {
-        strobe_map(&self.params(u[2])?, State { y: u[0], v: u[1] }, self.period)
+    /// The residual tolerance: the options' for the exact model, at least the accuracy of a
+    /// stiff solver's map for a smooth law ([`Dynamics::map_tolerance`]).
+    pub fn tolerance(&self) -> f64 {
+        self.dynamics.map_tolerance(self.options.tolerance)
+    }
+
+    /// The event counts that split a branch into smooth pieces (turning points, stops) for the
+    /// exact model; none for a smooth law, whose map has no seams (its stops are a threshold
+    /// of the current, not a switch of the equation).
+    pub fn pieces(&self, orbit: &PeriodicOrbit) -> (usize, usize) {
+        if self.dynamics.is_exact() {
+            counts(orbit)
+        } else {
+            (0, 0)
+        }
+    }
+
+    pub fn image(&self, u: &Point) -> Result<StrobeImage> {
+        self.dynamics
+            .strobe_map(&self.params(u[2])?, State { y: u[0], v: u[1] }, self.period)
     }
 
     /// ∂P^p/∂λ by differences: central where λ ± h are both valid values of the parameter,
     /// else one-sided of second order.
     pub fn dparam(&self, u: &Point) -> Result<[f64; 2]> {
         let lambda = u[2];
-        let h = self.options.derivative_step * lambda.abs().max(0.1);
         let x = State { y: u[0], v: u[1] };
-        let at =
-            |l: f64| -> Result<State> { Ok(strobe_map(&self.params(l)?, x, self.period)?.state) };
+        if let Some(d) = self.dynamics.parameter_derivative(
+            &self.params(lambda)?,
+            x,
+            self.period,
+            self.parameter,
+        ) {
+            return d;
+        }
+        let h = self.options.derivative_step * lambda.abs().max(0.1);
+        let at = |l: f64| -> Result<State> {
+            Ok(self
+                .dynamics
+                .strobe_map(&self.params(l)?, x, self.period)?
+                .state)
+        };
         if self.params(lambda - h).is_ok() {
             let (plus, minus) = (at(lambda + h)?, at(lambda - h)?);
             Ok([
@@ -158,11 +188,11 @@ impl Problem {
     /// Newton step is then taken).
     fn orbit_at(&self, u: &Point) -> Result<PeriodicOrbit> {
         let options = NewtonOptions {
-            tolerance: self.options.tolerance,
+            tolerance: self.tolerance(),
             max_iterations: 4,
             ..NewtonOptions::default()
         };
-        find_periodic_orbit(
+        self.dynamics.find_periodic_orbit(
             &self.params(u[2])?,
             State { y: u[0], v: u[1] },
             self.period,
@@ -170,14 +200,14 @@ impl Problem {
         )
     }
 
-    /// The orbit at a converged point `u`, confirmed by [`find_periodic_orbit`] without a
-    /// step; `None` when it is no orbit (for example on the jump of the map).
+    /// The orbit at a converged point `u`, confirmed by Newton's method without a step;
+    /// `None` when it is no orbit (for example on the jump of the map).
     fn confirm(&self, mut u: Point) -> Result<Option<(Point, PeriodicOrbit)>> {
         // Where a stop begins or ends at the strobe, Newton's method can land a rounding error
         // off y' = 0, on an orbit that sticks right after the strobe and again right before
         // the next: the orbit stuck at the strobe, with a spurious extra stop. Prefer the
         // stuck one when it is a fixed point to the tolerance.
-        if u[1] != 0.0 && u[1].abs() <= 1e-6 * 1f64.max(u[0].abs()) {
+        if self.dynamics.is_exact() && u[1] != 0.0 && u[1].abs() <= 1e-6 * 1f64.max(u[0].abs()) {
             let snapped = [u[0], 0.0, u[2]];
             if let Ok(orbit) = self.orbit_at(&snapped) {
                 if orbit.iterations == 0 && orbit.stuck_at_strobe {
@@ -200,12 +230,15 @@ impl Problem {
             return Ok(None);
         };
         let options = NewtonOptions {
-            tolerance: self.options.tolerance,
+            tolerance: self.tolerance(),
             max_iterations: self.options.corrector_iterations.min(8),
             max_halvings: 4,
             ..NewtonOptions::default()
         };
-        let orbit = match find_periodic_orbit(&params, guess, self.period, &options) {
+        let orbit = match self
+            .dynamics
+            .find_periodic_orbit(&params, guess, self.period, &options)
+        {
             Ok(orbit) => orbit,
             Err(crate::Error::Stability(_)) => return Ok(None),
             Err(e) => return Err(e),
@@ -269,7 +302,7 @@ impl Problem {
             let r = [image.state.y - u[0], image.state.v - u[1]];
             let m = image.jacobian.0;
             let scale = 1f64.max(u[0].abs()).max(u[1].abs());
-            let limit = self.options.tolerance * scale * image.jacobian.max_abs().max(1.0);
+            let limit = self.tolerance() * scale * image.jacobian.max_abs().max(1.0);
             let on_plane = dot(&t, &[u[0] - pred[0], u[1] - pred[1], u[2] - pred[2]]);
             let norm_r = r[0].abs().max(r[1].abs());
             if norm_r <= limit && on_plane.abs() <= 1e-12 * (1.0 + sigma.abs()) {

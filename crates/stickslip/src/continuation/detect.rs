@@ -100,10 +100,10 @@ fn scan(
     out: &mut Vec<SpecialPoint>,
     depth: usize,
 ) -> Result<()> {
-    let start = counts(&lo.solution.orbit);
-    if depth < 8 && start != counts(&hi.solution.orbit) {
+    let start = problem.pieces(&lo.solution.orbit);
+    if depth < 8 && start != problem.pieces(&hi.solution.orbit) {
         let (l, r, located) = bisect(problem, sample, lo.clone(), hi.clone(), &|s| {
-            counts(&s.orbit) == start
+            problem.pieces(&s.orbit) == start
         })?;
         smooth(problem, sample, &lo, &l, index, out)?;
         out.push(special(SpecialKind::Grazing, &l, &r, located, index));

@@ -7,21 +7,23 @@ use super::grazing::end_at;
 use super::step::{aim_at, angle, natural_step};
 use super::{detect, Branch, BranchEnd, BranchPoint, ContinuationOptions};
 use crate::error::{Error, Result};
-use crate::exact::ExactSolver;
-use crate::experiment::{DiodeModel, Experiment};
+use crate::experiment::Experiment;
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
-use crate::solver::Solver;
-use crate::stability::{NewtonOptions, PeriodicOrbit};
-use crate::steady::periodic_orbit_from_steady;
+use crate::stability::{Dynamics, ExactDynamics, NewtonOptions, PeriodicOrbit};
+use crate::steady::periodic_orbit_from_steady_of;
 use std::ops::ControlFlow;
 
 /// The p strobe points of an orbit and its extremes in y.
-fn strobes_and_extremes(params: &Params, orbit: &PeriodicOrbit) -> Result<(Vec<State>, f64, f64)> {
-    let mut solver = ExactSolver::new(*params, orbit.state);
+fn strobes_and_extremes(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    orbit: &PeriodicOrbit,
+) -> Result<(Vec<State>, f64, f64)> {
+    let mut solver = dynamics.solver(params, orbit.state)?;
     let mut strobes = vec![orbit.state];
     for k in 1..orbit.period {
-        crate::solver::run_until(&mut solver, k as f64 * orbit.drive_period, |_| {})?;
+        crate::solver::run_until(solver.as_mut(), k as f64 * orbit.drive_period, |_| {})?;
         strobes.push(solver.state());
     }
     let ys = orbit
@@ -37,7 +39,7 @@ fn strobes_and_extremes(params: &Params, orbit: &PeriodicOrbit) -> Result<(Vec<S
 
 fn branch_point(problem: &Problem, s: &Solution, arclength: f64) -> Result<BranchPoint> {
     let params = problem.params(s.u[2])?;
-    let (strobes, y_min, y_max) = strobes_and_extremes(&params, &s.orbit)?;
+    let (strobes, y_min, y_max) = strobes_and_extremes(problem.dynamics, &params, &s.orbit)?;
     let (turns, stops) = counts(&s.orbit);
     Ok(BranchPoint {
         value: s.u[2],
@@ -71,6 +73,39 @@ pub fn continue_orbit(
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
 ) -> Result<Branch> {
+    continue_orbit_of(
+        &ExactDynamics,
+        params,
+        parameter,
+        start,
+        to,
+        options,
+        monitor,
+    )
+}
+
+/// [`continue_orbit`] on the model `dynamics` (`start` an orbit of it). With a smooth law
+/// (the Shockley model) the branch has no seams: the changes of its threshold stops are
+/// no grazing points and are not reported, and it ends where the steps fail or stall
+/// without an [`super::Obstacle`] (those are switches of the PWL law); its residuals are
+/// taken to the accuracy to which the stiff solver's map repeats
+/// ([`Dynamics::repeat_tolerance`]), and ∂P/∂λ comes from its sensitivities.
+///
+/// # Errors
+/// As [`continue_orbit`]; [`crate::Unsupported::MuSNeedsPwl`] for μs with a smooth law,
+/// which does not use it.
+pub fn continue_orbit_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    parameter: Parameter,
+    start: &PeriodicOrbit,
+    to: f64,
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<Branch> {
+    if !dynamics.is_exact() && parameter == Parameter::MuS {
+        return Err(Error::Unsupported(crate::Unsupported::MuSNeedsPwl));
+    }
     let options = options.validate()?;
     let params = params.validate()?;
     let from = parameter.get(&params);
@@ -97,6 +132,7 @@ pub fn continue_orbit(
         parameter,
         period: start.period,
         options,
+        dynamics,
     };
     let direction = (to - from).signum();
     let Some(mut current) = problem.start(start.clone(), from, direction)? else {
@@ -135,7 +171,7 @@ pub fn continue_orbit(
         ds = ds.min(cap).max(options.min_step);
         let trial = problem.correct(&current, ds)?;
         let accepted = trial.filter(|s| {
-            let smooth = counts(&s.orbit) == counts(&current.orbit);
+            let smooth = problem.pieces(&s.orbit) == problem.pieces(&current.orbit);
             !smooth
                 || angle(&s.tangent, &current.tangent) <= options.max_angle
                 || ds <= options.crawl_step()
@@ -172,7 +208,7 @@ pub fn continue_orbit(
                     let direction = candidate.u[2] - current.u[2];
                     next = problem
                         .natural(bound, candidate.orbit.state, direction)?
-                        .filter(|n| counts(&n.orbit) == counts(&candidate.orbit))
+                        .filter(|n| problem.pieces(&n.orbit) == problem.pieces(&candidate.orbit))
                         .unwrap_or(candidate);
                     if corrector::dot(&next.tangent, &current.tangent) < 0.0 && !natural {
                         next.tangent.iter_mut().for_each(|c| *c = -*c);
@@ -267,6 +303,30 @@ pub fn continue_both_ways(
     params: &Params,
     parameter: Parameter,
     start: &PeriodicOrbit,
+    range: (f64, f64),
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<Branch> {
+    continue_both_ways_of(
+        &ExactDynamics,
+        params,
+        parameter,
+        start,
+        range,
+        options,
+        monitor,
+    )
+}
+
+/// [`continue_both_ways`] on the model `dynamics` (see [`continue_orbit_of`]).
+///
+/// # Errors
+/// As [`continue_both_ways`] and [`continue_orbit_of`].
+pub fn continue_both_ways_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    parameter: Parameter,
+    start: &PeriodicOrbit,
     (lo, hi): (f64, f64),
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
@@ -280,15 +340,15 @@ pub fn continue_both_ways(
         });
     }
     let down = if from > lo {
-        Some(continue_orbit(
-            params, parameter, start, lo, options, monitor,
+        Some(continue_orbit_of(
+            dynamics, params, parameter, start, lo, options, monitor,
         )?)
     } else {
         None
     };
     let up = if from < hi {
-        Some(continue_orbit(
-            params, parameter, start, hi, options, monitor,
+        Some(continue_orbit_of(
+            dynamics, params, parameter, start, hi, options, monitor,
         )?)
     } else {
         None
@@ -353,16 +413,18 @@ fn join(
 /// steady state, refined by Newton's method): where `stickslip continue` starts.
 ///
 /// # Errors
-/// [`crate::Unsupported::StabilityNeedsPwl`] for Shockley diodes;
 /// [`crate::stability::StabilityError::NoPeriod`] when the motion finds no period;
 /// whatever the solver and Newton's method report.
 pub fn settled_orbit(experiment: &Experiment) -> Result<(Params, PeriodicOrbit)> {
-    if experiment.diode_model() != DiodeModel::Pwl {
-        return Err(Error::Unsupported(crate::Unsupported::StabilityNeedsPwl));
-    }
+    let dynamics = experiment.dynamics()?;
     let options = experiment.steady_options().with_spectrum(false);
     let steady = experiment.steady_with(&options)?;
     let params = steady.params;
-    let orbit = periodic_orbit_from_steady(&params, &steady, &NewtonOptions::default())?;
+    let orbit = periodic_orbit_from_steady_of(
+        dynamics.as_ref(),
+        &params,
+        &steady,
+        &NewtonOptions::default(),
+    )?;
     Ok((params, orbit))
 }

@@ -29,7 +29,12 @@ pub(super) fn end_at(
     let lambda = last.u[2];
     let params = problem.params(lambda)?;
     let multiplier = last.orbit.multipliers[0].modulus();
-    let obstacle = obstacle(&params, &last.orbit)?;
+    // The obstacles are switches of the PWL law; a smooth law has none.
+    let obstacle = if problem.dynamics.is_exact() {
+        obstacle(&params, &last.orbit)?
+    } else {
+        Obstacle::None
+    };
     let Obstacle::Grazing(slide) = obstacle else {
         return Ok(if stalled {
             BranchEnd::Stalled {

@@ -80,8 +80,10 @@ mod special;
 mod step;
 
 pub use branch::{Branch, BranchEnd, BranchPoint};
-pub use follow::{continue_both_ways, continue_orbit, settled_orbit};
+pub use follow::{
+    continue_both_ways, continue_both_ways_of, continue_orbit, continue_orbit_of, settled_orbit,
+};
 pub use obstacle::{Obstacle, SlideMinimum};
-pub use options::{check_ends, ContinuationOptions};
+pub use options::{check_ends, check_parameter, ContinuationOptions};
 pub use report::{BranchReport, SideReport, SpecialReport};
 pub use special::{Side, SpecialKind, SpecialPoint};

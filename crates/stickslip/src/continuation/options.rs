@@ -147,3 +147,17 @@ pub fn check_ends(from: f64, to: f64) -> Result<()> {
     }
     Ok(())
 }
+
+/// Check before any work that `experiment`'s law has the continued `parameter`: μs is a
+/// parameter of the piecewise-linear law only.
+///
+/// # Errors
+/// [`crate::Unsupported::MuSNeedsPwl`] for μs with Shockley diodes.
+pub fn check_parameter(experiment: &crate::Experiment, parameter: crate::Parameter) -> Result<()> {
+    if parameter == crate::Parameter::MuS
+        && experiment.diode_model() != crate::experiment::DiodeModel::Pwl
+    {
+        return Err(Error::Unsupported(crate::Unsupported::MuSNeedsPwl));
+    }
+    Ok(())
+}

@@ -1,7 +1,7 @@
 //! The steps a continuation takes where the pseudo-arclength step fails: a step in the
 //! parameter alone across a kink, and the last step aimed at an end of the range.
 
-use super::corrector::{self, counts, norm, Problem, Solution};
+use super::corrector::{self, norm, Problem, Solution};
 use super::ContinuationOptions;
 use crate::error::Result;
 use crate::params::State;
@@ -35,7 +35,7 @@ pub(super) fn natural_step(
         next.u[1] - current.u[1],
         next.u[2] - current.u[2],
     ];
-    let kink = counts(&next.orbit) != counts(&current.orbit);
+    let kink = problem.pieces(&next.orbit) != problem.pieces(&current.orbit);
     let mut next = next;
     if !kink && corrector::dot(&next.tangent, &t) < 0.0 {
         next.tangent.iter_mut().for_each(|c| *c = -*c);

@@ -188,7 +188,10 @@ mod tests {
             let (t, sign) = stop_end(beta, w, theta, mu_s, c, vb, true);
             let (tb, sb) = brute(beta, w, theta, mu_s, c, vb);
             assert_eq!(sign, sb, "case {case}: {t} {tb}");
-            assert!((t - tb).abs() <= 1e-4 + 1e-12, "case {case}: {t} against {tb}");
+            assert!(
+                (t - tb).abs() <= 1e-4 + 1e-12,
+                "case {case}: {t} against {tb}"
+            );
             let h = beta * (theta + w * t).cos() - c - vb * t;
             assert!(
                 (h - sign * mu_s).abs() <= 1e-12 * (1.0 + beta + c.abs() + (vb * t).abs()),

@@ -194,7 +194,12 @@ impl ZeroSearch {
         }
         let vb = self.vb;
         let jet = |e: &Derivatives| Jet {
-            g: [sign * (e.d[1] - vb), sign * e.d[2], sign * e.d[3], sign * e.d[4]],
+            g: [
+                sign * (e.d[1] - vb),
+                sign * e.d[2],
+                sign * e.d[3],
+                sign * e.d[4],
+            ],
             noise: e.velocity_noise,
         };
         let mut start = jet(linear.start());

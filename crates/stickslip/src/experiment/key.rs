@@ -19,7 +19,7 @@ use crate::friction::{
     VB_ALLOWED, VB_MAX, VS_ALLOWED,
 };
 use crate::limits;
-use crate::physical::{Circuit, Scales};
+use crate::physical::{Circuit, Scales, SystemKind};
 use crate::shockley::diode::ZERO_CELSIUS;
 use crate::shockley::DiodePair;
 use crate::units::{parse_plain, parse_si, NumberError, UNITS};
@@ -279,6 +279,34 @@ struct Row {
     /// For a dimensionless key given also by physical values: the quantity's name.
     quantity: Option<&'static str>,
     image: Option<Image>,
+    /// For a value a fit may free: where and how.
+    fit: Option<FitRole>,
+}
+
+/// What makes a key a fit parameter (`stickslip::fit::FitParameter`): a value of the system
+/// that a fit may free, the systems and the diode law it belongs to, whether a fit frees it
+/// when told nothing, and its place in the fit's lists. A new fit parameter is this, in its
+/// key's row (and its physics: how the fit reads and sets it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FitRole {
+    /// The systems whose value it is (μs: a circuit's and a mechanical oscillator's).
+    pub systems: &'static [SystemKind],
+    /// The diode law it belongs to (`None`: either). A mechanical oscillator's Coulomb law
+    /// is the PWL law.
+    pub law: Option<DiodeModel>,
+    /// Whether a fit of its systems and law frees it when told nothing (the default free
+    /// set, `FitParameter::defaults`).
+    pub default: bool,
+    /// Its place in the fit's lists (messages, the lab's boxes): from 0, each once, the
+    /// values most often freed first.
+    pub order: u8,
+}
+
+impl FitRole {
+    /// Whether the value belongs to `system` with the diode law `law`.
+    pub fn applies(&self, system: SystemKind, law: DiodeModel) -> bool {
+        self.systems.contains(&system) && self.law.is_none_or(|l| l == law)
+    }
 }
 
 const OHMS: &[&str] = &["ohm", "Ohm", "Ω"];
@@ -306,6 +334,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(Circuit::paper().scales().zeta())),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::W,
@@ -328,6 +357,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: Some("drive frequency"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Beta,
@@ -350,6 +380,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: Some("drive amplitude"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Phi,
@@ -372,6 +403,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(0.0)),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::MuS,
@@ -394,6 +426,12 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(1.0)),
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit, SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 12,
+        }),
     },
     Row {
         key: Key::Y0,
@@ -416,6 +454,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(0.0)),
         quantity: Some("initial position"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::V0,
@@ -438,6 +477,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(0.0)),
         quantity: Some("initial velocity"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Inductance,
@@ -460,6 +500,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: None,
+            default: false,
+            order: 6,
+        }),
     },
     Row {
         key: Key::Capacitance,
@@ -482,6 +528,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: None,
+            default: false,
+            order: 7,
+        }),
     },
     Row {
         key: Key::Resistance,
@@ -504,6 +556,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: None,
+            default: true,
+            order: 0,
+        }),
     },
     Row {
         key: Key::TurnOn,
@@ -526,6 +584,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: Some(DiodeModel::Pwl),
+            default: true,
+            order: 1,
+        }),
     },
     Row {
         key: Key::DiodeResistance,
@@ -548,6 +612,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 2,
+        }),
     },
     Row {
         key: Key::Mass,
@@ -570,6 +640,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 10,
+        }),
     },
     Row {
         key: Key::Stiffness,
@@ -592,6 +668,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 11,
+        }),
     },
     Row {
         key: Key::Damping,
@@ -614,6 +696,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: true,
+            order: 8,
+        }),
     },
     Row {
         key: Key::Friction,
@@ -636,6 +724,12 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: true,
+            order: 9,
+        }),
     },
     Row {
         key: Key::Amplitude,
@@ -661,6 +755,7 @@ const ROWS: &[Row] = &[
             of: Key::Beta,
             scale: |s| s.force,
         }),
+        fit: None,
     },
     Row {
         key: Key::Frequency,
@@ -686,6 +781,7 @@ const ROWS: &[Row] = &[
             of: Key::W,
             scale: Scales::f0,
         }),
+        fit: None,
     },
     Row {
         key: Key::Omega,
@@ -711,6 +807,7 @@ const ROWS: &[Row] = &[
             of: Key::W,
             scale: |s| s.omega0,
         }),
+        fit: None,
     },
     Row {
         key: Key::Uc0,
@@ -736,6 +833,7 @@ const ROWS: &[Row] = &[
             of: Key::Y0,
             scale: |s| s.position,
         }),
+        fit: None,
     },
     Row {
         key: Key::I0,
@@ -761,6 +859,7 @@ const ROWS: &[Row] = &[
             of: Key::V0,
             scale: |s| s.velocity,
         }),
+        fit: None,
     },
     Row {
         key: Key::SaturationCurrent,
@@ -783,6 +882,12 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(DiodePair::one_n4148().saturation_current)),
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: Some(DiodeModel::Shockley),
+            default: true,
+            order: 3,
+        }),
     },
     Row {
         key: Key::Emission,
@@ -805,6 +910,12 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(DiodePair::one_n4148().emission)),
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: Some(DiodeModel::Shockley),
+            default: true,
+            order: 4,
+        }),
     },
     Row {
         key: Key::SeriesResistance,
@@ -827,6 +938,12 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(DiodePair::one_n4148().series_resistance)),
         quantity: None,
         image: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Circuit],
+            law: Some(DiodeModel::Shockley),
+            default: false,
+            order: 5,
+        }),
     },
     Row {
         key: Key::Temperature,
@@ -854,6 +971,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(DiodePair::one_n4148().temperature)),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Diode,
@@ -876,6 +994,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Name(DiodeModel::Pwl.label())),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Preset,
@@ -899,6 +1018,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Vb,
@@ -922,6 +1042,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(0.0)),
         quantity: Some("belt speed"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::FrictionLaw,
@@ -945,6 +1066,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Name(FrictionLawKind::Coulomb.label())),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Vs,
@@ -972,6 +1094,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: Some("Stribeck speed"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Delta,
@@ -999,6 +1122,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(2.0)),
         quantity: None,
         image: None,
+        fit: None,
     },
     Row {
         key: Key::Eta,
@@ -1022,6 +1146,7 @@ const ROWS: &[Row] = &[
         default: Some(|| KeyDefault::Number(0.0)),
         quantity: Some("viscous friction"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::K1,
@@ -1045,6 +1170,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: Some("linear coefficient of the cubic law"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::K3,
@@ -1067,6 +1193,7 @@ const ROWS: &[Row] = &[
         default: None,
         quantity: Some("cubic coefficient of the cubic law"),
         image: None,
+        fit: None,
     },
     Row {
         key: Key::BeltSpeed,
@@ -1092,6 +1219,7 @@ const ROWS: &[Row] = &[
             of: Key::Vb,
             scale: |s| s.velocity,
         }),
+        fit: None,
     },
     Row {
         key: Key::StribeckSpeed,
@@ -1118,6 +1246,7 @@ const ROWS: &[Row] = &[
             of: Key::Vs,
             scale: |s| s.velocity,
         }),
+        fit: None,
     },
     Row {
         key: Key::ViscousFriction,
@@ -1144,6 +1273,7 @@ const ROWS: &[Row] = &[
             of: Key::Eta,
             scale: |s| s.force / s.velocity,
         }),
+        fit: None,
     },
     Row {
         key: Key::CubicK1,
@@ -1170,6 +1300,7 @@ const ROWS: &[Row] = &[
             of: Key::K1,
             scale: |s| s.force / s.velocity,
         }),
+        fit: None,
     },
     Row {
         key: Key::CubicK3,
@@ -1196,6 +1327,7 @@ const ROWS: &[Row] = &[
             of: Key::K3,
             scale: |s| s.force / (s.velocity * s.velocity * s.velocity),
         }),
+        fit: None,
     },
 ];
 
@@ -1249,6 +1381,19 @@ pub struct KeyInfo {
     pub default: Option<KeyDefault>,
 }
 
+/// The number of keys a fit may free.
+const fn fit_count() -> usize {
+    let mut n = 0;
+    let mut i = 0;
+    while i < ROWS.len() {
+        if ROWS[i].fit.is_some() {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+}
+
 impl Key {
     /// Every key, in the table's order.
     pub const ALL: [Key; ROWS.len()] = {
@@ -1260,6 +1405,34 @@ impl Key {
         }
         all
     };
+
+    /// The keys a fit may free ([`Key::fit_role`]), in the fit's order ([`FitRole::order`]).
+    pub const FIT: [Key; fit_count()] = {
+        let mut keys = [Key::Zeta; fit_count()];
+        let mut place = 0;
+        while place < keys.len() {
+            let mut i = 0;
+            while i < ROWS.len() {
+                if let Some(role) = &ROWS[i].fit {
+                    if role.order as usize == place {
+                        keys[place] = ROWS[i].key;
+                    }
+                }
+                i += 1;
+            }
+            place += 1;
+        }
+        keys
+    };
+
+    /// The systems a fit parameter belongs to ([`FitRole::systems`]; none for a key a fit
+    /// does not free), for constant contexts.
+    pub(crate) const fn fit_systems(self) -> &'static [SystemKind] {
+        match &ROWS[self as usize].fit {
+            Some(role) => role.systems,
+            None => &[],
+        }
+    }
 
     /// The key's row.
     fn row(self) -> &'static Row {
@@ -1350,6 +1523,16 @@ impl Key {
         self.row().unit
     }
 
+    /// The key's unit as figures and pages write it: `Ω` for `ohm`, `N·s/m` for `N s/m`,
+    /// the others as [`Key::unit`]; `None` for a dimensionless key.
+    pub fn shown_unit(self) -> Option<&'static str> {
+        self.unit().map(|unit| match unit {
+            "ohm" => "Ω",
+            "N s/m" => "N·s/m",
+            unit => unit,
+        })
+    }
+
     /// The units a value of the key may be written with (`20nF`, `68ohm`); any other unit
     /// after a number is refused ([`Key::check_unit`]).
     pub fn units(self) -> &'static [&'static str] {
@@ -1392,6 +1575,12 @@ impl Key {
             Key::FrictionLaw => FrictionLawKind::ALL.iter().map(|l| l.label()).collect(),
             _ => Vec::new(),
         }
+    }
+
+    /// What makes the key a fit parameter, if a fit may free it: the systems and the diode
+    /// law it belongs to, whether it is freed by default and its place in the fit's lists.
+    pub fn fit_role(self) -> Option<FitRole> {
+        self.row().fit
     }
 
     /// For a physical value that converts to a dimensionless one with the system's scales
@@ -1478,6 +1667,16 @@ impl Key {
         }
     }
 
+    /// Read the number of `text` as the key is written, its unit checked but not its range
+    /// ([`Key::check_unit`], [`Key::number`]): what a command-line flag's parser takes.
+    ///
+    /// # Errors
+    /// [`NumberError`].
+    pub fn read(self, text: &str) -> Result<f64, NumberError> {
+        self.check_unit(text)?;
+        self.number(text)
+    }
+
     /// Read a value of the key from text: a plain number or one with an SI prefix and the
     /// key's unit ([`Key::number`]), a unit that fits the key ([`Key::check_unit`]), in the
     /// key's range ([`Key::check`]).
@@ -1496,9 +1695,9 @@ impl Key {
     /// [`Error::InvalidText`] when the text is not a number of the key;
     /// [`Error::InvalidParameter`] when the number is out of range.
     pub fn parse(self, text: &str) -> Result<f64> {
-        let invalid = |error| Error::InvalidText { key: self, error };
-        self.check_unit(text).map_err(invalid)?;
-        let value = self.number(text).map_err(invalid)?;
+        let value = self
+            .read(text)
+            .map_err(|error| Error::InvalidText { key: self, error })?;
         self.check(value)
     }
 
@@ -1588,7 +1787,9 @@ impl Error {
             Error::InvalidParameter { name, .. } => {
                 Key::ALL.into_iter().find(|k| k.name() == *name)
             }
-            Error::InvalidText { key, .. } | Error::ImageOutOfRange { key, .. } => Some(*key),
+            Error::InvalidText { key, .. }
+            | Error::InvalidName { key, .. }
+            | Error::ImageOutOfRange { key, .. } => Some(*key),
             Error::Spec(spec) => spec.key(),
             _ => None,
         }

@@ -27,13 +27,16 @@ pub(crate) mod errors;
 mod file;
 mod key;
 pub mod keys;
+mod law;
 mod spec;
 mod stability;
+mod text;
 mod trajectory;
 
 pub use errors::{ConfigError, SpecError};
-pub use key::{KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
+pub use key::{FitRole, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use keys::Key;
+pub use law::Law;
 pub use spec::ExperimentSpec;
 pub use trajectory::Trajectory;
 
@@ -41,13 +44,13 @@ use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::friction::{check_vb, FrictionLaw};
 use crate::params::{Parameter, Params, State};
-use crate::physical::{Circuit, Diode, Mechanics, Scales, System};
+use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use crate::scan::ParameterRange;
-use crate::shockley::{DiodePair, ShockleyOptions, ShockleySolver};
+use crate::shockley::{DiodePair, ShockleyOptions};
 use crate::solver::Solver;
+use crate::stability::Dynamics;
 use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
 use crate::theory::curves::{SweepTheory, TheoryCurve};
-use crate::ExactSolver;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -332,7 +335,7 @@ impl Experiment {
     }
 
     /// The friction law.
-    pub fn law(&self) -> FrictionLaw {
+    pub fn friction_law(&self) -> FrictionLaw {
         self.law
     }
 
@@ -440,6 +443,12 @@ impl Experiment {
         self.system.as_ref()
     }
 
+    /// What the experiment describes: the dimensionless model, a circuit or a mechanical
+    /// oscillator (its [`SystemKind::label`] is the name every front end shows).
+    pub fn system_kind(&self) -> SystemKind {
+        SystemKind::of(self.system.as_ref())
+    }
+
     /// The circuit, if the system is one.
     pub fn circuit_ref(&self) -> Option<&Circuit> {
         match &self.system {
@@ -498,6 +507,29 @@ impl Experiment {
     /// The accuracy settings of the stiff solver (used with Shockley diodes).
     pub fn shockley_options(&self) -> &ShockleyOptions {
         &self.shockley
+    }
+
+    /// The law of the dissipative element, in dimensionless form ([`Law`]): it decides the
+    /// solver ([`Experiment::factory`]) and the stability tools ([`Experiment::dynamics`]).
+    ///
+    /// # Errors
+    /// When a Shockley pair's law cannot be formed (invalid parts; a validated experiment
+    /// has none).
+    pub fn law(&self) -> Result<Law> {
+        law_of(
+            self.circuit_ref()
+                .filter(|_| self.diode_model() == DiodeModel::Shockley),
+        )
+    }
+
+    /// The stability tools of this experiment's model ([`Dynamics`]: the exact PWL model's,
+    /// or the Shockley model's with the experiment's stiff-solver options), checking the
+    /// experiment's cancel token.
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
+        self.law()?.dynamics(self.shockley, self.cancel.0.clone())
     }
 
     /// The scales to physical units, for a physical system.
@@ -840,27 +872,42 @@ pub struct ExperimentFactory {
     cancel: Cancel,
 }
 
+/// The law of `circuit` (Shockley diodes), or the PWL law without one.
+fn law_of(circuit: Option<&Circuit>) -> Result<Law> {
+    match circuit.map(|c| (c, c.diode)) {
+        Some((c, Diode::Shockley(d))) => Ok(Law::Shockley(
+            d.pair.law(d.reference_voltage, c.impedance())?,
+        )),
+        _ => Ok(Law::Pwl),
+    }
+}
+
+impl ExperimentFactory {
+    /// The law its solvers follow ([`Law`]).
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn law(&self) -> Result<Law> {
+        law_of(self.circuit.as_ref())
+    }
+
+    /// The stability tools of the model its solvers solve.
+    ///
+    /// # Errors
+    /// As [`Experiment::law`].
+    pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
+        self.law()?.dynamics(self.options, self.cancel.clone())
+    }
+}
+
 impl SolverFactory for ExperimentFactory {
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
         let params = params.validate()?;
-        let initial = State::new(initial.y, initial.v)?;
         if !params.law.is_coulomb() {
             return Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw));
         }
-        match self
-            .circuit
-            .map(|c| c.shockley_model(&params))
-            .transpose()?
-            .flatten()
-        {
-            Some(model) => Ok(Box::new(ShockleySolver::with_cancel(
-                model,
-                initial,
-                self.options,
-                self.cancel.clone(),
-            )?)),
-            None => Ok(ExactSolver::boxed(params, initial, self.cancel.clone())),
-        }
+        self.law()?
+            .solver(params, initial, self.options, self.cancel.clone())
     }
 
     fn cancel(&self) -> Cancel {
@@ -1018,7 +1065,7 @@ mod tests {
         let curve = |t, q| theory_curve(t, q, &base, Parameter::W, &xs);
         assert_eq!(
             bits(&theory.paper),
-            bits(&curve(Theory::Paper, TheoryQuantity::Gain))
+            bits(&curve(Theory::Paper, TheoryQuantity::Gain1))
         );
         assert_eq!(
             bits(&theory.exact),
@@ -1026,7 +1073,7 @@ mod tests {
         );
         assert_eq!(
             bits(&e.sweep_theory_a1(Parameter::W, &range).unwrap()),
-            bits(&curve(Theory::Exact, TheoryQuantity::Gain))
+            bits(&curve(Theory::Exact, TheoryQuantity::Gain1))
         );
         assert!(theory.exact.present() > 0 && theory.paper.present() > 0);
         assert_eq!(theory.prefix, "");

@@ -123,6 +123,104 @@ pub(super) fn image((key, value, image): (Key, f64, f64), target: Key) -> Result
     }
 }
 
+/// The values that give the dimensionless `target` in `system`, each with the power it
+/// enters with: ζ = (R + R_D)/2·√(C/L) or γ/(2√(km)); w = 2πf·√(LC) or Ω·√(m/k);
+/// β = U/U_t or F/F0; y0 = u_C(0)/U_t or r(0)·k/F0; v0 = i(0)·√(L/C)/U_t or
+/// ṙ(0)·√(km)/F0. The drive and initial values themselves enter with power 1.
+fn factors(target: Key, system: &System) -> &'static [(Key, f64)] {
+    use Key::*;
+    match (target, system) {
+        (Zeta, System::Circuit(_)) => &[
+            (Resistance, 1.0),
+            (DiodeResistance, 1.0),
+            (Capacitance, 0.5),
+            (Inductance, -0.5),
+        ],
+        (Zeta, System::Mechanics(_)) => &[(Damping, 1.0), (Stiffness, -0.5), (Mass, -0.5)],
+        (W, System::Circuit(_)) => &[
+            (Frequency, 1.0),
+            (Omega, 1.0),
+            (Inductance, 0.5),
+            (Capacitance, 0.5),
+        ],
+        (W, System::Mechanics(_)) => &[
+            (Frequency, 1.0),
+            (Omega, 1.0),
+            (Mass, 0.5),
+            (Stiffness, -0.5),
+        ],
+        (Beta, System::Circuit(_)) => &[(Amplitude, 1.0), (TurnOn, -1.0)],
+        (Beta, System::Mechanics(_)) => &[(Amplitude, 1.0), (Friction, -1.0)],
+        (Y0, System::Circuit(_)) => &[(Uc0, 1.0), (TurnOn, -1.0)],
+        (Y0, System::Mechanics(_)) => &[(Uc0, 1.0), (Stiffness, 1.0), (Friction, -1.0)],
+        (V0, System::Circuit(_)) => &[
+            (I0, 1.0),
+            (TurnOn, -1.0),
+            (Inductance, 0.5),
+            (Capacitance, -0.5),
+        ],
+        (V0, System::Mechanics(_)) => &[(I0, 1.0), (Friction, -1.0), (Stiffness, 0.5), (Mass, 0.5)],
+        _ => &[],
+    }
+}
+
+/// The value of `key` in the reference description of a system of `system`'s kind (the
+/// paper's circuit, or the example mechanical oscillator, [`Mechanics::example`]): its part,
+/// or for a drive or initial value the one whose dimensionless image is 1.
+fn reference(key: Key, system: &System) -> Option<f64> {
+    let reference = match system {
+        System::Circuit(_) => System::Circuit(Circuit::paper()),
+        System::Mechanics(_) => System::Mechanics(Mechanics::example()),
+    };
+    if let Some(unit) = key.image(1.0, &reference.scales()) {
+        return Some(1.0 / unit);
+    }
+    match (key, reference) {
+        (Key::Inductance, System::Circuit(c)) => Some(c.inductance),
+        (Key::Capacitance, System::Circuit(c)) => Some(c.capacitance),
+        (Key::Resistance, System::Circuit(c)) => Some(c.resistance),
+        (Key::TurnOn, System::Circuit(c)) => Some(c.diode.reference_voltage()),
+        (Key::DiodeResistance, System::Circuit(c)) => Some(c.diode.linear_resistance()),
+        (Key::Mass, System::Mechanics(m)) => Some(m.mass),
+        (Key::Stiffness, System::Mechanics(m)) => Some(m.stiffness),
+        (Key::Damping, System::Mechanics(m)) => Some(m.damping),
+        (Key::Friction, System::Mechanics(m)) => Some(m.friction),
+        _ => None,
+    }
+}
+
+/// The value to blame for the dimensionless `target`, whose value `image` is out of its
+/// range: of the values the user gave (`given`) that enter it ([`factors`]), the one that
+/// moves it furthest the wrong way (too large or too small) from the reference description
+/// ([`reference`]), measured as |power·ln(value/reference)|; `fallback` (the key the image
+/// was computed from) when none moves it that way. So C = 1e308 is blamed for ζ, not R,
+/// and C = 1e-308 for w, not the drive frequency; a drive frequency far from f0 is blamed
+/// for w.
+fn culprit(
+    target: Key,
+    image: f64,
+    system: &System,
+    fallback: (Key, f64),
+    given: &dyn Fn(Key) -> Option<(Key, f64)>,
+) -> (Key, f64) {
+    let too_large = image.is_nan() || image.abs() > target.range().max.abs().min(f64::MAX);
+    let mut best: Option<(f64, (Key, f64))> = None;
+    for &(key, power) in factors(target, system) {
+        let (Some((key, value)), Some(reference)) = (given(key), reference(key, system)) else {
+            continue;
+        };
+        if value == 0.0 || reference == 0.0 {
+            continue;
+        }
+        let pull = power * (value.abs() / reference.abs()).ln();
+        let pull = if too_large { pull } else { -pull };
+        if pull > 0.0 && best.is_none_or(|(b, _)| pull > b) {
+            best = Some((pull, (key, value)));
+        }
+    }
+    best.map_or(fallback, |(_, blamed)| blamed)
+}
+
 /// An experiment description in which every value is optional.
 ///
 /// Values are checked one by one as they are set ([`Key::check`]); the description as a
@@ -355,34 +453,6 @@ impl ExperimentSpec {
             }
         }
         let scales = system.map(|s| s.scales());
-        // Each dimensionless value, with the key it came from (to name a physical value whose
-        // image is out of range).
-        let zeta_from = match system {
-            // ζ = (R + R_D)/2·√(C/L): a part the user gave is to blame, the larger resistance
-            // first.
-            Some(System::Circuit(c)) => {
-                let rd = c.diode.linear_resistance();
-                let resistances = if rd > c.resistance {
-                    [Key::DiodeResistance, Key::Resistance]
-                } else {
-                    [Key::Resistance, Key::DiodeResistance]
-                };
-                let value = |key: Key| match key {
-                    Key::DiodeResistance => rd,
-                    Key::Capacitance => c.capacitance,
-                    Key::Inductance => c.inductance,
-                    _ => c.resistance,
-                };
-                let key = resistances
-                    .into_iter()
-                    .chain([Key::Capacitance, Key::Inductance])
-                    .find(|&k| has(k))
-                    .unwrap_or(resistances[0]);
-                (key, value(key))
-            }
-            Some(System::Mechanics(m)) => (Key::Damping, m.damping),
-            None => (Key::Zeta, 0.0),
-        };
         let zeta = match (scales, self.get(Key::Zeta)) {
             (Some(_), Some(_)) => return Err(SpecError::ZetaWithPhysical.into()),
             (Some(s), None) => s.zeta(),
@@ -411,11 +481,34 @@ impl ExperimentSpec {
             (Some(_), None, Some(file)) => Origin::File(file.clone()),
             (Some(_), None, None) => Origin::Parts,
         };
-        let y0 = y0.map_or(Ok(0.0), |v| image(v, Key::Y0))?;
-        let v0 = v0.map_or(Ok(0.0), |v| image(v, Key::V0))?;
+        // A dimensionless value out of range is blamed on the value the user gave that
+        // put it there ([`culprit`]).
+        let checked = |(key, value, image_value): (Key, f64, f64), target: Key| {
+            image((key, value, image_value), target).map_err(|err| match (err, system) {
+                (Error::ImageOutOfRange { allowed, .. }, Some(system)) => {
+                    let given = |k: Key| self.get(k).map(|v| (k, v));
+                    let (key, value) = culprit(target, image_value, &system, (key, value), &given);
+                    Error::ImageOutOfRange {
+                        key,
+                        value,
+                        image: target.name(),
+                        image_value,
+                        allowed,
+                    }
+                }
+                (err, _) => err,
+            })
+        };
+        let y0 = y0.map_or(Ok(0.0), |v| checked(v, Key::Y0))?;
+        let v0 = v0.map_or(Ok(0.0), |v| checked(v, Key::V0))?;
+        let zeta_from = match system {
+            Some(System::Circuit(c)) => (Key::Resistance, c.resistance),
+            Some(System::Mechanics(m)) => (Key::Damping, m.damping),
+            None => (Key::Zeta, zeta),
+        };
         let mut experiment = Experiment {
             system,
-            zeta: image((zeta_from.0, zeta_from.1, zeta), Key::Zeta)?,
+            zeta: checked((zeta_from.0, zeta_from.1, zeta), Key::Zeta)?,
             w: None,
             beta: None,
             phi: self.get(Key::Phi).unwrap_or(0.0),
@@ -428,10 +521,10 @@ impl ExperimentSpec {
             cancel: Default::default(),
         };
         if let Some(w) = w {
-            experiment.w = Some(image(w, Key::W)?);
+            experiment.w = Some(checked(w, Key::W)?);
         }
         if let Some(beta) = beta {
-            experiment.beta = Some(image(beta, Key::Beta)?);
+            experiment.beta = Some(checked(beta, Key::Beta)?);
         }
         if let Some(vb) = value(Key::Vb) {
             experiment.vb = crate::friction::check_vb(image(vb, Key::Vb)?)?;
@@ -654,6 +747,85 @@ mod tests {
         assert_eq!(
             err(shockley),
             Error::Unsupported(Unsupported::ShockleyNeedsCircuit)
+        );
+    }
+
+    /// Absurd values are blamed on themselves, not on another value of the description
+    /// (issue 38: C = 1e308 was blamed on R, C = 1e-308 on the drive frequency; L, k or
+    /// γ = 1e308 named no key the lab could mark).
+    #[test]
+    fn absurd_values_are_blamed_on_themselves() {
+        let paper = |pairs: &[(Key, f64)]| {
+            let mut s = spec(&[(Key::Frequency, 9.97e3), (Key::Amplitude, 1.498)]);
+            s.set_preset(Preset::Paper);
+            s.overlay(&spec(pairs)).build().unwrap_err()
+        };
+        let parts = |pairs: &[(Key, f64)]| {
+            let mut all = vec![
+                (Key::Inductance, 11.5e-3),
+                (Key::Capacitance, 20e-9),
+                (Key::Resistance, 68.0),
+                (Key::TurnOn, 0.7),
+                (Key::DiodeResistance, 3.0),
+                (Key::Frequency, 9.97e3),
+                (Key::Amplitude, 1.498),
+            ];
+            all.retain(|(k, _)| !pairs.iter().any(|(p, _)| p == k));
+            all.extend_from_slice(pairs);
+            spec(&all).build().unwrap_err()
+        };
+        let mechanics = |pairs: &[(Key, f64)]| {
+            let mut all = vec![
+                (Key::Mass, 0.5),
+                (Key::Stiffness, 200.0),
+                (Key::Damping, 0.94),
+                (Key::Friction, 1.0),
+                (Key::Omega, 19.0),
+                (Key::Amplitude, 2.14),
+            ];
+            all.retain(|(k, _)| !pairs.iter().any(|(p, _)| p == k));
+            all.extend_from_slice(pairs);
+            spec(&all).build().unwrap_err()
+        };
+        for (key, value) in [
+            (Key::Capacitance, 1e308),
+            (Key::Capacitance, 1e-308),
+            (Key::Inductance, 1e308),
+            (Key::Inductance, 1e-308),
+            (Key::TurnOn, 1e-300),
+            (Key::Frequency, 1e-3),
+            (Key::Frequency, 1e300),
+            (Key::Resistance, 1e9),
+            (Key::Amplitude, 1e300),
+        ] {
+            assert_eq!(paper(&[(key, value)]).key(), Some(key), "{key} = {value}");
+            assert_eq!(parts(&[(key, value)]).key(), Some(key), "{key} = {value}");
+        }
+        for (key, value) in [
+            (Key::Stiffness, 1e308),
+            (Key::Stiffness, 1e-308),
+            (Key::Damping, 1e308),
+            (Key::Mass, 1e308),
+            (Key::Mass, 1e-308),
+            (Key::Friction, 1e-308),
+            (Key::Omega, 1e-6),
+        ] {
+            assert_eq!(
+                mechanics(&[(key, value)]).key(),
+                Some(key),
+                "{key} = {value}"
+            );
+        }
+        // The message names the value and what it gives.
+        let err = paper(&[(Key::Capacitance, 1e308)]).to_string();
+        assert!(
+            err.starts_with("invalid C = 1e308: it gives zeta = "),
+            "{err}"
+        );
+        let err = paper(&[(Key::Capacitance, 1e-308)]).to_string();
+        assert!(
+            err.starts_with("invalid C = 1e-308: it gives w = "),
+            "{err}"
         );
     }
 

@@ -1,24 +1,25 @@
 //! The stability analysis of an experiment: its periodic orbits by Newton's method and its
-//! Lyapunov exponents, with the exact piecewise-linear model ([`crate::stability`]).
+//! Lyapunov exponents, with the model of its law ([`crate::stability::Dynamics`]: the exact
+//! piecewise-linear model, or the Shockley model's stiff solver with its sensitivities).
 
 use super::{DiodeModel, Experiment};
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::scan::Monitor;
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents_monitored, LyapunovOptions, NewtonOptions,
-    NonperiodicClassification, PeriodicOrbit,
+    Dynamics, LyapunovOptions, NewtonOptions, NonperiodicClassification, PeriodicOrbit,
 };
-use crate::steady::{periodic_orbit_from_steady, SteadyOptions};
-use crate::{ExactSolver, Solver, Unsupported};
+use crate::steady::{periodic_orbit_from_steady_of, SteadyOptions};
+use crate::Unsupported;
 use std::ops::ControlFlow;
 
 /// Drive periods between two reports to the monitor of a transient run.
 const CHUNK: usize = 1000;
 
 impl Experiment {
-    /// The dimensionless parameters of the exact model, which the stability analysis
-    /// differentiates.
+    /// The dimensionless parameters of the exact model (for tools of the PWL model alone;
+    /// the stability analysis takes either law's [`Experiment::params`] with its
+    /// [`Experiment::dynamics`]).
     ///
     /// # Errors
     /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive.
@@ -26,18 +27,22 @@ impl Experiment {
         if self.diode_model() != DiodeModel::Pwl {
             return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
         }
-        if !self.law().is_coulomb() {
+        if !self.friction_law().is_coulomb() {
             return Err(Error::Unsupported(Unsupported::SmoothFrictionLaw));
         }
         self.params()
     }
 
     /// A periodic orbit of the experiment by Newton's method on the p-fold strobe map
-    /// ([`crate::stability::find_periodic_orbit`]), with its Floquet multipliers.
+    /// ([`crate::stability::find_periodic_orbit`], or the Shockley model's
+    /// [`crate::stability::ShockleyDynamics::find_periodic_orbit`]), with its Floquet
+    /// multipliers.
     ///
     /// - `period: None`: the steady state reached from the initial state (with `steady`, no
     ///   spectrum, no Lyapunov measurement) gives the period p and the guess, its first
-    ///   strobe ([`periodic_orbit_from_steady`]); `transient` is not used.
+    ///   strobe ([`crate::steady::periodic_orbit_from_steady`]); `transient` is not used.
+    ///   With Shockley diodes its tolerance is at least the stiff solver's rtol, to which
+    ///   their strobe states repeat.
     /// - `period: Some(p)`: Newton's method starts from the state `transient` drive periods
     ///   after the initial state (0: the initial state itself, which can aim at an unstable
     ///   orbit). `monitor` is told the transient's progress in drive periods.
@@ -54,10 +59,10 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive;
+    /// A missing drive;
     /// [`crate::stability::StabilityError::NoPeriod`] when the steady state does not repeat;
     /// [`Error::InvalidParameter`] for p = 0; [`Error::Cancelled`]; the failures of
-    /// [`find_periodic_orbit`].
+    /// [`crate::stability::find_periodic_orbit`].
     pub fn periodic_orbit(
         &self,
         period: Option<usize>,
@@ -66,16 +71,21 @@ impl Experiment {
         newton: &NewtonOptions,
         monitor: &dyn Monitor,
     ) -> Result<PeriodicOrbit> {
-        let params = self.exact_params()?;
+        let params = self.params()?;
+        let dynamics = self.dynamics()?;
         let newton = newton.validate()?;
         match period {
             None => {
                 // A motion that does not repeat is measured, so that the error says what its
                 // exponent says.
                 let measure = steady.lyapunov.or(Some(SteadyOptions::DEFAULT_LYAPUNOV));
-                let options = steady.with_spectrum(false).with_lyapunov(measure)?;
+                // A stiff solver's strobe states repeat only to about its rtol.
+                let options = steady
+                    .with_spectrum(false)
+                    .with_lyapunov(measure)?
+                    .with_tolerance(dynamics.repeat_tolerance(steady.tolerance))?;
                 let settled = self.steady_with(&options)?;
-                periodic_orbit_from_steady(&params, &settled, &newton)
+                periodic_orbit_from_steady_of(dynamics.as_ref(), &params, &settled, &newton)
             }
             Some(p) => {
                 if p == 0 {
@@ -85,15 +95,16 @@ impl Experiment {
                         allowed: "must be at least 1",
                     });
                 }
-                let guess = self.after_transient(&params, transient, monitor)?;
-                find_periodic_orbit(&params, guess, p, &newton)
+                let guess = self.after_transient(dynamics.as_ref(), &params, transient, monitor)?;
+                dynamics.find_periodic_orbit(&params, guess, p, &newton)
             }
         }
     }
 
-    /// The state `periods` drive periods after the initial state, by the exact solver.
+    /// The state `periods` drive periods after the initial state, by the model's solver.
     fn after_transient(
         &self,
+        dynamics: &dyn Dynamics,
         params: &Params,
         periods: usize,
         monitor: &dyn Monitor,
@@ -103,8 +114,12 @@ impl Experiment {
         while done < periods {
             let chunk = CHUNK.min(periods - done);
             // A solver per chunk, started at τ = 0 at a strobe: absolute times stay small.
-            let mut solver = ExactSolver::new(*params, state);
-            crate::solver::run_until(&mut solver, chunk as f64 * params.drive_period(), |_| {})?;
+            let mut solver = dynamics.solver(params, state)?;
+            crate::solver::run_until(
+                solver.as_mut(),
+                chunk as f64 * params.drive_period(),
+                |_| {},
+            )?;
             state = solver.state();
             done += chunk;
             if monitor.step(done, periods) == ControlFlow::Break(()) {
@@ -130,16 +145,21 @@ impl Experiment {
     /// assert_eq!(c.verdict, NonperiodicVerdict::Chaotic);
     /// ```
     ///
+    /// With Shockley diodes the tangent dynamics are those of the stiff solver's computed
+    /// solution ([`crate::stability::ShockleyDynamics::lyapunov_exponents`]).
+    ///
     /// # Errors
-    /// [`Unsupported::StabilityNeedsPwl`] with Shockley diodes; a missing drive; invalid
-    /// options; [`Error::Cancelled`]; the failures of the measurement.
+    /// A missing drive; invalid options; [`Error::Cancelled`]; the failures of the
+    /// measurement.
     pub fn lyapunov(
         &self,
         options: &LyapunovOptions,
         monitor: &dyn Monitor,
     ) -> Result<NonperiodicClassification> {
-        let params = self.exact_params()?;
-        let exponents = lyapunov_exponents_monitored(&params, self.initial(), options, monitor)?;
+        let params = self.params()?;
+        let exponents =
+            self.dynamics()?
+                .lyapunov_exponents(&params, self.initial(), options, monitor)?;
         Ok(NonperiodicClassification::new(
             exponents,
             options.significance,

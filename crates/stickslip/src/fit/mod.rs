@@ -103,9 +103,10 @@ pub enum FitError {
     Measure(#[from] MeasureError),
     /// A name that is no fit parameter.
     #[error(
-        "unknown fit parameter \"{0}\" (the parameters are resistance, ut, rd, diode-is, \
-         diode-n, diode-rs, inductance, capacitance, mu-s for a circuit; damping, friction, \
-         mass, stiffness, mu-s for a mechanical oscillator)"
+        "unknown fit parameter \"{0}\" (the parameters are {circuit} for a circuit; \
+         {mechanics} for a mechanical oscillator)",
+        circuit = FitParameter::names(&FitParameter::CIRCUIT),
+        mechanics = FitParameter::names(&FitParameter::MECHANICS)
     )]
     UnknownParameter(String),
     /// The experiment is neither a circuit nor a mechanical oscillator.

@@ -1,124 +1,144 @@
-//! The parameters a fit may free.
+//! The parameters a fit may free: keys of the experiment's table whose row says so
+//! ([`crate::experiment::FitRole`]). Their names, symbols and units, the systems and diode
+//! laws they belong to, the default free set and the order of the fit's lists all come from
+//! the key table; what is written here is their physics: how a fit reads and sets each.
 
 use super::FitError;
-use crate::experiment::{DiodeModel, Experiment};
-use crate::physical::{Circuit, Diode, Mechanics, System};
-use serde::{Deserialize, Serialize};
+use crate::experiment::{DiodeModel, Experiment, FitRole, Key};
+use crate::physical::{Circuit, Diode, Mechanics, System, SystemKind};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// A parameter of the circuit or of the mechanical oscillator that a fit may free, named as
-/// the command-line flag that sets it: a circuit's `resistance`, `ut`, `rd`, `diode-is`,
-/// `diode-n`, `diode-rs`, `inductance`, `capacitance`; a mechanical oscillator's `damping`
-/// (γ), `friction` (F0), `mass` (m), `stiffness` (k); either's `mu-s`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum FitParameter {
-    /// Series resistance R (Ω).
-    Resistance,
-    /// PWL turn-on voltage U_t (V).
-    Ut,
-    /// PWL forward resistance R_D (Ω).
-    Rd,
-    /// Shockley saturation current I_s of one diode (A).
-    DiodeIs,
-    /// Shockley emission coefficient n.
-    DiodeN,
-    /// Shockley series resistance R_s of one diode (Ω).
-    DiodeRs,
-    /// Inductance L (H).
-    Inductance,
-    /// Capacitance C (F).
-    Capacitance,
-    /// Static-to-kinetic friction ratio μs (PWL circuits and mechanics).
-    MuS,
-    /// Viscous damping γ of a mechanical oscillator (N·s/m).
-    Damping,
-    /// Kinetic friction force F0 of a mechanical oscillator (N).
-    Friction,
-    /// Mass m of a mechanical oscillator (kg).
-    Mass,
-    /// Spring constant k of a mechanical oscillator (N/m).
-    Stiffness,
+/// A value of the circuit or of the mechanical oscillator that a fit may free: a key of the
+/// experiment's table with a [`FitRole`] ([`Key::fit_role`]), named as its command-line flag
+/// (a circuit's `resistance`, `ut`, `rd`, `diode-is`, `diode-n`, `diode-rs`, `inductance`,
+/// `capacitance`; a mechanical oscillator's `damping` (γ), `friction` (F0), `mass` (m),
+/// `stiffness` (k); either's `mu-s`). Its unit and symbol are its key's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FitParameter(Key);
+
+/// `N` fit parameters of `keys` (those of the key table a fit may free, in the fit's order)
+/// that belong to `system` (all with `None`).
+const fn select<const N: usize>(system: Option<SystemKind>) -> [FitParameter; N] {
+    let mut out = [FitParameter(Key::Zeta); N];
+    let mut n = 0;
+    let mut i = 0;
+    while i < Key::FIT.len() {
+        if belongs(Key::FIT[i], system) {
+            out[n] = FitParameter(Key::FIT[i]);
+            n += 1;
+        }
+        i += 1;
+    }
+    out
+}
+
+/// How many fit parameters belong to `system` (all with `None`).
+const fn count(system: Option<SystemKind>) -> usize {
+    let mut n = 0;
+    let mut i = 0;
+    while i < Key::FIT.len() {
+        if belongs(Key::FIT[i], system) {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+}
+
+/// Whether the fit parameter `key` belongs to `system` (any with `None`).
+const fn belongs(key: Key, system: Option<SystemKind>) -> bool {
+    let Some(system) = system else {
+        return true;
+    };
+    let systems = key.fit_systems();
+    let mut i = 0;
+    while i < systems.len() {
+        if systems[i] as u8 == system as u8 {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
+/// The fit parameters by the names they had before they were keys of the experiment's table
+/// (`FitParameter::Ut` is [`Key::TurnOn`]'s): shorthands, no table of their own.
+#[allow(non_upper_case_globals)]
+impl FitParameter {
+    /// Series resistance R (Ω), [`Key::Resistance`].
+    pub const Resistance: FitParameter = FitParameter(Key::Resistance);
+    /// PWL turn-on voltage U_t (V), [`Key::TurnOn`].
+    pub const Ut: FitParameter = FitParameter(Key::TurnOn);
+    /// PWL forward resistance R_D (Ω), [`Key::DiodeResistance`].
+    pub const Rd: FitParameter = FitParameter(Key::DiodeResistance);
+    /// Shockley saturation current I_s of one diode (A), [`Key::SaturationCurrent`].
+    pub const DiodeIs: FitParameter = FitParameter(Key::SaturationCurrent);
+    /// Shockley emission coefficient n, [`Key::Emission`].
+    pub const DiodeN: FitParameter = FitParameter(Key::Emission);
+    /// Shockley series resistance R_s of one diode (Ω), [`Key::SeriesResistance`].
+    pub const DiodeRs: FitParameter = FitParameter(Key::SeriesResistance);
+    /// Inductance L (H), [`Key::Inductance`].
+    pub const Inductance: FitParameter = FitParameter(Key::Inductance);
+    /// Capacitance C (F), [`Key::Capacitance`].
+    pub const Capacitance: FitParameter = FitParameter(Key::Capacitance);
+    /// Static-to-kinetic friction ratio μs (PWL circuits and mechanics), [`Key::MuS`].
+    pub const MuS: FitParameter = FitParameter(Key::MuS);
+    /// Viscous damping γ of a mechanical oscillator (N·s/m), [`Key::Damping`].
+    pub const Damping: FitParameter = FitParameter(Key::Damping);
+    /// Kinetic friction force F0 of a mechanical oscillator (N), [`Key::Friction`].
+    pub const Friction: FitParameter = FitParameter(Key::Friction);
+    /// Mass m of a mechanical oscillator (kg), [`Key::Mass`].
+    pub const Mass: FitParameter = FitParameter(Key::Mass);
+    /// Spring constant k of a mechanical oscillator (N/m), [`Key::Stiffness`].
+    pub const Stiffness: FitParameter = FitParameter(Key::Stiffness);
 }
 
 impl FitParameter {
-    /// Every parameter, in the order of reports.
-    pub const ALL: [FitParameter; 13] = [
-        FitParameter::Resistance,
-        FitParameter::Ut,
-        FitParameter::Rd,
-        FitParameter::DiodeIs,
-        FitParameter::DiodeN,
-        FitParameter::DiodeRs,
-        FitParameter::Inductance,
-        FitParameter::Capacitance,
-        FitParameter::MuS,
-        FitParameter::Damping,
-        FitParameter::Friction,
-        FitParameter::Mass,
-        FitParameter::Stiffness,
-    ];
+    /// Every parameter, in the fit's order ([`FitRole::order`]).
+    pub const ALL: [FitParameter; count(None)] = select(None);
 
-    /// The parameters of a circuit, in the order of reports.
-    pub const CIRCUIT: [FitParameter; 9] = [
-        FitParameter::Resistance,
-        FitParameter::Ut,
-        FitParameter::Rd,
-        FitParameter::DiodeIs,
-        FitParameter::DiodeN,
-        FitParameter::DiodeRs,
-        FitParameter::Inductance,
-        FitParameter::Capacitance,
-        FitParameter::MuS,
-    ];
+    /// The parameters of a circuit, in the fit's order.
+    pub const CIRCUIT: [FitParameter; count(Some(SystemKind::Circuit))] =
+        select(Some(SystemKind::Circuit));
 
-    /// The parameters of a mechanical oscillator, in the order of reports.
-    pub const MECHANICS: [FitParameter; 5] = [
-        FitParameter::Damping,
-        FitParameter::Friction,
-        FitParameter::Mass,
-        FitParameter::Stiffness,
-        FitParameter::MuS,
-    ];
+    /// The parameters of a mechanical oscillator, in the fit's order.
+    pub const MECHANICS: [FitParameter; count(Some(SystemKind::Mechanics))] =
+        select(Some(SystemKind::Mechanics));
 
-    /// The name: the flag's, without its dashes in front (`diode-is`).
-    pub fn label(self) -> &'static str {
-        match self {
-            FitParameter::Resistance => "resistance",
-            FitParameter::Ut => "ut",
-            FitParameter::Rd => "rd",
-            FitParameter::DiodeIs => "diode-is",
-            FitParameter::DiodeN => "diode-n",
-            FitParameter::DiodeRs => "diode-rs",
-            FitParameter::Inductance => "inductance",
-            FitParameter::Capacitance => "capacitance",
-            FitParameter::MuS => "mu-s",
-            FitParameter::Damping => "damping",
-            FitParameter::Friction => "friction",
-            FitParameter::Mass => "mass",
-            FitParameter::Stiffness => "stiffness",
-        }
+    /// The fit parameter of `key`, if a fit may free it ([`Key::fit_role`]).
+    pub fn new(key: Key) -> Option<FitParameter> {
+        key.fit_role().map(|_| FitParameter(key))
     }
 
-    /// The symbol's name in the experiment's key table (`gamma`, `F0`, `m`, `k`) for a
-    /// mechanical parameter, also accepted by [`std::str::FromStr`].
-    fn key_name(self) -> Option<&'static str> {
-        match self {
-            FitParameter::Damping => Some("gamma"),
-            FitParameter::Friction => Some("f0"),
-            FitParameter::Mass => Some("m"),
-            FitParameter::Stiffness => Some("k"),
-            _ => None,
-        }
+    /// Its key in the experiment's table.
+    pub fn key(self) -> Key {
+        self.0
+    }
+
+    fn role(self) -> FitRole {
+        self.0
+            .fit_role()
+            .expect("a fit parameter is a key with a fit role")
+    }
+
+    /// The name: its key's flag, without the dashes (`diode-is`).
+    pub fn label(self) -> &'static str {
+        self.0.flag()
+    }
+
+    /// Its symbol in formulas, its key's (`U_t`, `μ_s`, `γ`).
+    pub fn symbol(self) -> &'static str {
+        self.0.symbol()
     }
 
     /// Whether the parameter belongs to a mechanical oscillator (`mu-s` belongs to both).
     pub fn is_mechanical(self) -> bool {
-        FitParameter::MECHANICS.contains(&self)
+        self.role().systems.contains(&SystemKind::Mechanics)
     }
 
     /// Whether the parameter belongs to a circuit (`mu-s` belongs to both).
     pub fn is_circuit(self) -> bool {
-        FitParameter::CIRCUIT.contains(&self)
+        self.role().systems.contains(&SystemKind::Circuit)
     }
 
     /// The names of `list`, comma-separated.
@@ -129,38 +149,52 @@ impl FitParameter {
             .join(", ")
     }
 
-    /// The SI unit of the value (empty for a pure number).
+    /// The names of `list` as `--free` takes them: `resistance,ut`.
+    pub fn list(list: &[FitParameter]) -> String {
+        list.iter().map(|p| p.label()).collect::<Vec<_>>().join(",")
+    }
+
+    /// The SI unit of the value, its key's (`ohm`, `N s/m`; empty for a pure number).
     pub fn unit(self) -> &'static str {
-        match self {
-            FitParameter::Resistance | FitParameter::Rd | FitParameter::DiodeRs => "ohm",
-            FitParameter::Ut => "V",
-            FitParameter::DiodeIs => "A",
-            FitParameter::Inductance => "H",
-            FitParameter::Capacitance => "F",
-            FitParameter::Damping => "N s/m",
-            FitParameter::Friction => "N",
-            FitParameter::Mass => "kg",
-            FitParameter::Stiffness => "N/m",
-            FitParameter::DiodeN | FitParameter::MuS => "",
-        }
+        self.0.unit().unwrap_or("")
     }
 
     /// Whether the parameter belongs to the diode law `model` (`ut`, `rd`, `mu-s` and the
     /// mechanical ones, whose Coulomb law is the PWL law: PWL; `diode-*`: Shockley; the
     /// others: both).
     pub fn applies_to(self, model: DiodeModel) -> bool {
-        match self {
-            FitParameter::Ut
-            | FitParameter::Rd
-            | FitParameter::MuS
-            | FitParameter::Damping
-            | FitParameter::Friction
-            | FitParameter::Mass
-            | FitParameter::Stiffness => model == DiodeModel::Pwl,
-            FitParameter::DiodeIs | FitParameter::DiodeN | FitParameter::DiodeRs => {
-                model == DiodeModel::Shockley
-            }
-            _ => true,
+        self.role().law.is_none_or(|law| law == model)
+    }
+
+    /// The parameters a fit of `system` with the diode law `law` may free, in the fit's
+    /// order (none for the dimensionless model).
+    pub fn of(system: SystemKind, law: DiodeModel) -> Vec<FitParameter> {
+        FitParameter::ALL
+            .into_iter()
+            .filter(|p| p.role().applies(system, law))
+            .collect()
+    }
+
+    /// The parameters a fit of `system` with the diode law `law` frees when told nothing,
+    /// in the fit's order: a PWL circuit's R and U_t, a Shockley circuit's R, I_s and n (U_t
+    /// is then only the unit of y and β), a mechanical oscillator's γ and F0 (the key
+    /// table's [`FitRole::default`]).
+    pub fn defaults(system: SystemKind, law: DiodeModel) -> Vec<FitParameter> {
+        FitParameter::of(system, law)
+            .into_iter()
+            .filter(|p| p.role().default)
+            .collect()
+    }
+
+    /// The default free set of `experiment`'s system and diode law
+    /// ([`FitParameter::defaults`]).
+    ///
+    /// # Errors
+    /// [`FitError::NeedsCircuit`] for the dimensionless model.
+    pub fn defaults_of(experiment: &Experiment) -> Result<Vec<FitParameter>, FitError> {
+        match experiment.system_kind() {
+            SystemKind::Dimensionless => Err(FitError::NeedsCircuit),
+            system => Ok(FitParameter::defaults(system, experiment.diode_model())),
         }
     }
 
@@ -256,18 +290,46 @@ impl std::fmt::Display for FitParameter {
     }
 }
 
+/// In the fit's order ([`FitRole::order`]).
+impl Ord for FitParameter {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.role().order.cmp(&other.role().order)
+    }
+}
+
+impl PartialOrd for FitParameter {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
 impl std::str::FromStr for FitParameter {
     type Err = FitError;
 
-    /// A parameter by its name ([`FitParameter::label`]); `mu_s`, `diode_is` … with
-    /// underscores are accepted too, and the mechanical parameters by their symbols in the
-    /// key table (`gamma`, `F0`, `m`, `k`).
+    /// A parameter by its key's flag ([`FitParameter::label`]: `resistance`, `diode-is`)
+    /// or its key's name (`R`, `U_t`, `gamma`, `F0`), in any case, `_` and `-` alike
+    /// (`mu_s`, `diode_is`, `f0`).
     fn from_str(s: &str) -> Result<Self, FitError> {
-        let wanted = s.trim().replace('_', "-").to_ascii_lowercase();
+        let fold = |t: &str| t.trim().replace('_', "-").to_ascii_lowercase();
+        let wanted = fold(s);
         FitParameter::ALL
             .into_iter()
-            .find(|p| p.label() == wanted || p.key_name() == Some(wanted.as_str()))
+            .find(|p| fold(p.label()) == wanted || fold(p.0.name()) == wanted)
             .ok_or_else(|| FitError::UnknownParameter(s.trim().chars().take(40).collect()))
+    }
+}
+
+/// As its name ([`FitParameter::label`]).
+impl Serialize for FitParameter {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.label())
+    }
+}
+
+impl<'de> Deserialize<'de> for FitParameter {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 
@@ -279,20 +341,33 @@ mod tests {
     fn names_round_trip() {
         for p in FitParameter::ALL {
             assert_eq!(p.label().parse::<FitParameter>().unwrap(), p);
+            assert_eq!(p.key().name().parse::<FitParameter>().unwrap(), p);
             assert_eq!(p.to_string(), p.label());
+            assert_eq!(FitParameter::new(p.key()), Some(p));
+            let json = serde_json::to_string(&p).unwrap();
+            assert_eq!(json, format!("\"{}\"", p.label()));
+            assert_eq!(serde_json::from_str::<FitParameter>(&json).unwrap(), p);
         }
         assert_eq!("mu_s".parse::<FitParameter>().unwrap(), FitParameter::MuS);
+        assert_eq!(
+            "Diode_IS".parse::<FitParameter>().unwrap(),
+            FitParameter::DiodeIs
+        );
+        assert_eq!(FitParameter::new(Key::W), None);
         let err = "zeta".parse::<FitParameter>().unwrap_err().to_string();
-        assert!(err.contains("zeta") && err.contains("resistance"), "{err}");
-        assert!(
-            err.contains("damping") && err.contains("stiffness"),
-            "{err}"
+        // The list the message gave when it was written by hand, from the key table now.
+        assert_eq!(
+            err,
+            "unknown fit parameter \"zeta\" (the parameters are resistance, ut, rd, diode-is, \
+             diode-n, diode-rs, inductance, capacitance, mu-s for a circuit; damping, friction, \
+             mass, stiffness, mu-s for a mechanical oscillator)"
         );
         for (symbol, p) in [
             ("gamma", FitParameter::Damping),
             ("F0", FitParameter::Friction),
             ("m", FitParameter::Mass),
             ("k", FitParameter::Stiffness),
+            ("U_t", FitParameter::Ut),
         ] {
             assert_eq!(symbol.parse::<FitParameter>().unwrap(), p);
         }
@@ -301,5 +376,73 @@ mod tests {
             assert!(p.is_circuit() || p.is_mechanical(), "{p}");
             assert_eq!(p.is_circuit() && p.is_mechanical(), p == FitParameter::MuS);
         }
+    }
+
+    /// The fit's order is a place per parameter, from 0, each once; the units and symbols
+    /// are the keys'.
+    #[test]
+    fn the_order_units_and_symbols_are_the_key_tables() {
+        let keys: Vec<Key> = Key::ALL
+            .into_iter()
+            .filter(|k| k.fit_role().is_some())
+            .collect();
+        assert_eq!(keys.len(), FitParameter::ALL.len());
+        for (place, p) in FitParameter::ALL.into_iter().enumerate() {
+            assert_eq!(p.key().fit_role().unwrap().order as usize, place, "{p}");
+            assert_eq!(Some(p.unit()).filter(|u| !u.is_empty()), p.key().unit());
+            assert_eq!(p.symbol(), p.key().symbol());
+        }
+        assert!(FitParameter::ALL.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(
+            FitParameter::names(&FitParameter::MECHANICS),
+            "damping, friction, mass, stiffness, mu-s"
+        );
+        assert_eq!(FitParameter::Damping.unit(), "N s/m");
+        assert_eq!(FitParameter::MuS.symbol(), "μ_s");
+    }
+
+    /// One default free set per system and law: what the command line, Python and the lab
+    /// free when told nothing.
+    #[test]
+    fn the_default_free_sets() {
+        let list = |system, law| FitParameter::list(&FitParameter::defaults(system, law));
+        assert_eq!(list(SystemKind::Circuit, DiodeModel::Pwl), "resistance,ut");
+        assert_eq!(
+            list(SystemKind::Circuit, DiodeModel::Shockley),
+            "resistance,diode-is,diode-n"
+        );
+        assert_eq!(
+            list(SystemKind::Mechanics, DiodeModel::Pwl),
+            "damping,friction"
+        );
+        assert_eq!(list(SystemKind::Dimensionless, DiodeModel::Pwl), "");
+        for system in SystemKind::ALL {
+            for law in DiodeModel::ALL {
+                let of = FitParameter::of(system, law);
+                for p in FitParameter::defaults(system, law) {
+                    assert!(of.contains(&p) && p.applies_to(law), "{system} {law} {p}");
+                }
+            }
+        }
+        assert_eq!(
+            FitParameter::names(&FitParameter::of(SystemKind::Circuit, DiodeModel::Shockley)),
+            "resistance, diode-is, diode-n, diode-rs, inductance, capacitance"
+        );
+        let shockley = Experiment::paper()
+            .with_shockley(crate::shockley::DiodePair::one_n4148())
+            .unwrap();
+        assert_eq!(
+            FitParameter::defaults_of(&shockley).unwrap(),
+            [
+                FitParameter::Resistance,
+                FitParameter::DiodeIs,
+                FitParameter::DiodeN
+            ]
+        );
+        let dimensionless = Experiment::dimensionless(0.1, 1.0, 2.0).unwrap();
+        assert_eq!(
+            FitParameter::defaults_of(&dimensionless),
+            Err(FitError::NeedsCircuit)
+        );
     }
 }

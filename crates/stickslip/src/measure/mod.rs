@@ -9,12 +9,24 @@
 //! | Tektronix | `Record Length,<n>,,<t>,<v>` and further `key,value,,t,v` rows (`Sample Interval`, `Trigger Point`, `Source`, `Vertical Units` …): one file per channel, merged by [`Record::merge`] | TDS1000/TDS2000-series CSV (five columns) |
 //! | Keysight InfiniiVision | `x-axis,1,2` then `second,Volt,Volt` | the InfiniiVision 2000/3000 X-series user's guides (CSV file structure) |
 //! | Siglent | `Record Length,Analog:<n>`, `Sample Rate`, `Vertical Scale,CH1: …` …, then `Second,Volt` (or `Second,Value`) | an SDS1104X-E export as shown by a published converter of such files |
-//! | plain | a row of column names, one of them `t`, `time`, `time_s`, `time (s)`, `second` or `seconds`; the others are channels (a unit in brackets, `CH1(V)`, is read) | — |
+//! | plain | a row of column names, one of them `t`, `time`, `time_s`, `time (s)`, `second` or `seconds` (or `time (ms)`, `t (µs)`, `t_ns`); the others are channels (a unit in brackets, `CH1(V)`, is read) | — |
 //!
 //! No published description of a UNI-T CSV export (the paper's scope) was found: a UNI-T
-//! file is read when its header names a time column as the plain format asks. Values such as
-//! `-0.00e+00` and trailing commas are normal; every value must be a finite number and the
-//! time must increase, or the error names the line.
+//! file is read when its header names a time column as the plain format asks (a time column
+//! may carry its unit: `time (ms)`, `t (µs)`, `t_ns`). Values such as `-0.00e+00` and
+//! trailing commas are normal; every value must be a finite number and the time must
+//! increase, or the error names the line.
+//!
+//! **Files from any desk**: fields separated by commas, semicolons or tabs (the first of `;`,
+//! tab, `,` on the first line, or a spreadsheet's `sep=;` line), quoted or not; a decimal
+//! comma (`-3,5e-03`) is read in a file that writes no number with a decimal point, and
+//! thousands separators (`"1,500.25"`) in one that writes no decimal comma. What cannot be
+//! read unambiguously is refused with its cause: a file with both decimal points and decimal
+//! commas, a number that reads either way (`1,500`) with no other number telling which, a
+//! row with more fields than its header (decimal commas between fields separated by commas),
+//! an empty file. The front ends decode a file's bytes with
+//! [`decode`]: UTF-8, UTF-16 with its byte-order mark, or Windows-1252 (a spreadsheet's `µs`
+//! in a header); a binary file is refused as such.
 //!
 //! **What a record says of itself** ([`Record`], [`Channel`]): the mean sample interval; per
 //! channel the vertical resolution (the smallest step between two distinct values) and the
@@ -38,12 +50,14 @@ mod record;
 mod scope;
 mod sine;
 mod table;
+mod text;
 
 pub use error::MeasureError;
 pub use record::{Channel, Record, ScopeFormat, MIN_SAMPLES};
 pub use scope::{detect, read_scope};
 pub use sine::{fit_sine, SineFit};
 pub use table::{read_amplitudes, AmplitudeRow, AmplitudeTable, Direction, AMPLITUDE_COLUMNS};
+pub use text::decode;
 
 use serde::{Deserialize, Serialize};
 

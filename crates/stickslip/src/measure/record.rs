@@ -25,7 +25,8 @@ pub enum ScopeFormat {
     /// ([`Record::merge`]), e.g. a Tektronix file per channel.
     Merged,
     /// A CSV file with a header row whose time column is named `t`, `time`, `time_s`,
-    /// `time (s)`, `second` or `seconds`; every other column is a channel in volts.
+    /// `time (s)`, `second` or `seconds` (or in ms, µs or ns: `time (µs)`, `t_ms`); every other
+    /// column is a channel in volts.
     Plain,
 }
 
@@ -296,20 +297,26 @@ fn resolution(values: &[f64]) -> Option<f64> {
         .min_by(f64::total_cmp)
 }
 
-/// Clipped samples: runs of equal values at the channel's largest or smallest value that are
-/// longer than a smooth peak stays within one resolution step.
+/// Clipped samples: runs of samples within one resolution step of the channel's largest or
+/// smallest value (the rail) that hold the rail itself longer than a smooth peak stays within
+/// one step, entered or left steeply.
 ///
-/// A sine of amplitude A (half the range) sampled N times per period stays within one step q
-/// of its peak for about N·√(2q/A)/π samples; N is taken from the number of times the
-/// channel crosses its mean. A run at the extreme longer than three times that (and at least
-/// four samples; q at most a 32nd of the range) is called clipped when the signal enters or leaves it steeply: the slope
-/// over the three samples outside either end above a tenth of the largest slope 2πA/N of a
-/// sine of that amplitude and period. A stop of the oscillator (u_C constant while the
-/// current is zero, which a noise-free record shows as a flat run) starts and ends with zero
-/// slope and is kept when the samples are dense enough to show it; in a record without noise
-/// and with a few samples per stop's approach it can look clipped, and its samples are then
-/// left out (which costs information but does not bias a fit). Records with noise of a step
-/// or more, as a scope's are, show no flat stops.
+/// A scope reads a signal beyond its screen as the rail's code; with noise of a step or more
+/// the samples of a clipped stretch fall one step below it now and then, so a run is every
+/// sample within one step q of the rail, gaps of up to two samples (a noise dip of two steps)
+/// joined, and the whole run is left out. A sine of amplitude A (half the range) sampled N
+/// times per period stays within one step of its peak for about N·√(2q/A)/π samples; N is
+/// taken from the number of times the channel crosses its mid-range. A run counts as clipped
+/// when more than three times that many of its samples (and at least four, and at least a
+/// third of the run) are at the rail itself (a smooth peak with noise touches its largest
+/// value only now and then), and when the signal enters or leaves it steeply: the slope over
+/// the three samples outside either end above a tenth of the largest slope 2πA/N of a sine of
+/// that amplitude and period (q at most a 32nd of the range). A stop of the oscillator (u_C
+/// constant while the current is zero, which a noise-free record shows as a flat run) starts
+/// and ends with zero slope and is kept when the samples are dense enough to show it; in a
+/// record without noise and with a few samples per stop's approach it can look clipped, and
+/// its samples are then left out (which costs information but does not bias a fit). Records
+/// with noise of a step or more, as a scope's are, show no flat stops.
 fn clipped(values: &[f64], resolution: Option<f64>) -> Vec<bool> {
     let n = values.len();
     let mut mask = vec![false; n];
@@ -339,22 +346,44 @@ fn clipped(values: &[f64], resolution: Option<f64>) -> Vec<bool> {
     // continuous). The slope over the three samples outside each end, against a tenth of the
     // largest slope of a sine of this amplitude and period.
     let steep = 0.1 * amplitude * std::f64::consts::TAU / per_period;
-    let mut i = 0;
-    while i < n {
-        let v = values[i];
-        let mut j = i + 1;
-        while j < n && values[j] == v {
-            j += 1;
-        }
-        if (v == hi || v == lo) && (j - i) as f64 > longest {
-            let entry = (i >= 4).then(|| (values[i - 1] - values[i - 4]).abs() / 3.0);
-            let exit = (j + 3 < n).then(|| (values[j + 3] - values[j]).abs() / 3.0);
-            let slope = entry.into_iter().chain(exit).fold(0.0f64, f64::max);
-            if slope > steep || (entry.is_none() && exit.is_none()) {
-                mask[i..j].iter_mut().for_each(|m| *m = true);
+    let tolerance = 1e-9 * (hi - lo);
+    for (rail, near) in [
+        (
+            hi,
+            Box::new(|v: f64| v >= hi - q - tolerance) as Box<dyn Fn(f64) -> bool>,
+        ),
+        (lo, Box::new(|v: f64| v <= lo + q + tolerance)),
+    ] {
+        let mut i = 0;
+        while i < n {
+            if !near(values[i]) {
+                i += 1;
+                continue;
             }
+            // The run from i: samples near the rail, gaps of up to two samples joined.
+            let mut j = i + 1;
+            let mut end = i + 1;
+            while j < n {
+                if near(values[j]) {
+                    j += 1;
+                    end = j;
+                } else if j + 2 < n && (near(values[j + 1]) || near(values[j + 2])) && j - end < 2 {
+                    j += 1;
+                } else {
+                    break;
+                }
+            }
+            let at_rail = values[i..end].iter().filter(|&&v| v == rail).count();
+            if at_rail as f64 > longest && 3 * at_rail >= end - i {
+                let entry = (i >= 4).then(|| (values[i - 1] - values[i - 4]).abs() / 3.0);
+                let exit = (end + 3 < n).then(|| (values[end + 3] - values[end]).abs() / 3.0);
+                let slope = entry.into_iter().chain(exit).fold(0.0f64, f64::max);
+                if slope > steep || (entry.is_none() && exit.is_none()) {
+                    mask[i..end].iter_mut().for_each(|m| *m = true);
+                }
+            }
+            i = end.max(i + 1);
         }
-        i = j;
     }
     mask
 }
@@ -384,5 +413,53 @@ mod tests {
         // Three tops, each the part of a period where sin > 0.8: 2·acos(0.8)/2π of 400.
         let expected = 3.0 * 400.0 * 2.0 * 0.8f64.acos() / std::f64::consts::TAU;
         assert!((c.clipped_count() as f64 - expected).abs() < 12.0);
+    }
+
+    /// A sine 1.3 times the screen's height, with one step of Gaussian noise before the
+    /// converter clips it at its rails (codes −128 … 127): every sample whose signal lies
+    /// beyond a rail is found (and the few within a step of it), and the same sine with noise
+    /// inside the screen has none.
+    #[test]
+    fn clipping_with_noise_at_the_rail_is_found() {
+        let mut rng = crate::test_rng::TestRng::new(11);
+        let mut gauss = || {
+            let (u, v) = (rng.next().max(1e-300), rng.next());
+            (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+        };
+        let n = 2400;
+        let signal: Vec<f64> = (0..n)
+            .map(|k| 1.3 * 127.0 * (std::f64::consts::TAU * 4.0 * k as f64 / n as f64).sin())
+            .collect();
+        let codes: Vec<f64> = signal
+            .iter()
+            .map(|&x| (x + gauss()).round().clamp(-128.0, 127.0))
+            .collect();
+        let c = Channel::new("CH2".into(), "V".into(), codes);
+        let beyond: Vec<usize> = (0..n)
+            .filter(|&k| signal[k] >= 127.0 || signal[k] <= -128.0)
+            .collect();
+        let found = beyond.iter().filter(|&&k| c.clipped[k]).count();
+        assert_eq!(
+            found,
+            beyond.len(),
+            "{found} of {} clipped samples found",
+            beyond.len()
+        );
+        let within = (0..n)
+            .filter(|&k| c.clipped[k] && signal[k].abs() < 127.0 - 3.0)
+            .count();
+        assert_eq!(
+            within, 0,
+            "samples more than three steps inside the screen called clipped"
+        );
+        // Inside the screen, with the same noise: nothing clipped.
+        let inside: Vec<f64> = signal
+            .iter()
+            .map(|&x| (0.7 * x + gauss()).round())
+            .collect();
+        assert_eq!(
+            Channel::new("CH2".into(), "V".into(), inside).clipped_count(),
+            0
+        );
     }
 }

@@ -2,34 +2,7 @@
 
 use super::error::{quote, MeasureError};
 use super::record::{Record, ScopeFormat};
-
-/// A line of the text, split into trimmed fields (quotes removed, trailing empty fields
-/// dropped: scopes end rows with a comma).
-struct Line<'a> {
-    number: usize,
-    fields: Vec<&'a str>,
-}
-
-fn split(text: &str) -> Vec<Line<'_>> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    text.lines()
-        .enumerate()
-        .map(|(i, line)| {
-            let mut fields: Vec<&str> = line
-                .split(',')
-                .map(|f| f.trim().trim_matches('"').trim())
-                .collect();
-            while fields.last().is_some_and(|f| f.is_empty()) {
-                fields.pop();
-            }
-            Line {
-                number: i + 1,
-                fields,
-            }
-        })
-        .filter(|l| !l.fields.is_empty())
-        .collect()
-}
+use super::text::{extra_fields, number_hint, split, Line, Table};
 
 /// A finite number in field `column` (0-based) of `line`.
 fn number(file: &str, line: &Line<'_>, column: usize) -> Result<f64, MeasureError> {
@@ -50,29 +23,64 @@ fn number(file: &str, line: &Line<'_>, column: usize) -> Result<f64, MeasureErro
             file,
             line.number,
             format!(
-                "{} in column {} is not a finite number",
+                "{} in column {} is not a finite number{}",
                 quote(text),
-                column + 1
+                column + 1,
+                number_hint(text)
             ),
         )),
     }
 }
 
-fn is_time_name(name: &str) -> bool {
+/// The scale to seconds of a time column's name: `t`, `time`, `second`, `seconds`, with or
+/// without a unit `s`, `ms`, `µs` (`us`) or `ns` after `_` or in brackets (`time (µs)`,
+/// `t[ms]`, `time_s`); `None` for another name.
+fn time_scale(name: &str) -> Option<f64> {
     let n: String = name
         .chars()
         .filter(|c| !c.is_whitespace())
         .collect::<String>()
-        .to_ascii_lowercase();
-    matches!(
-        n.as_str(),
-        "t" | "time" | "time_s" | "t_s" | "time(s)" | "time[s]" | "t(s)" | "second" | "seconds"
-    )
+        .to_lowercase();
+    if matches!(n.as_str(), "second" | "seconds") {
+        return Some(1.0);
+    }
+    let (base, unit) = match n.find(['(', '[', '_']) {
+        Some(i) => {
+            let unit = n[i + 1..].trim_end_matches([')', ']']);
+            let closed = match &n[i..i + 1] {
+                "(" => n.ends_with(')'),
+                "[" => n.ends_with(']'),
+                _ => !n.ends_with([')', ']']),
+            };
+            if !closed {
+                return None;
+            }
+            (&n[..i], unit)
+        }
+        None => (n.as_str(), "s"),
+    };
+    if !matches!(base, "t" | "time") {
+        return None;
+    }
+    match unit {
+        "s" => Some(1.0),
+        "ms" => Some(1e-3),
+        "µs" | "μs" | "us" => Some(1e-6),
+        "ns" => Some(1e-9),
+        _ => None,
+    }
+}
+
+fn is_time_name(name: &str) -> bool {
+    time_scale(name).is_some()
 }
 
 /// Detect the format of a scope export from its first lines.
 pub fn detect(text: &str) -> Option<ScopeFormat> {
-    let lines = split(text);
+    detect_lines(&split(text, false).lines)
+}
+
+fn detect_lines(lines: &[Line<'_>]) -> Option<ScopeFormat> {
     let first = lines.first()?;
     let head = first.fields[0].to_ascii_lowercase();
     let has = |name: &str| first.fields.iter().any(|f| f.eq_ignore_ascii_case(name));
@@ -97,28 +105,44 @@ pub fn detect(text: &str) -> Option<ScopeFormat> {
 }
 
 /// Read a scope export: detect its format from the header ([`detect`]) and parse it.
-/// `file` names the text in messages.
+/// `file` names the text in messages. Fields are separated by commas, semicolons or tabs
+/// (the first of `;`, tab and `,` on the first line, or a spreadsheet's `sep=;` line),
+/// quoted or not; a decimal comma is read in a file that writes no decimal point (and
+/// thousands separators in one that writes no decimal comma).
 ///
 /// # Errors
-/// An unknown header, a field that is not a number (naming the line), times that do not
-/// increase (naming the line), fewer than [`super::MIN_SAMPLES`] samples, rows with too few
-/// fields.
+/// An empty file, an unknown header, a field that is not a number (naming the line), times
+/// that do not increase (naming the line), fewer than [`super::MIN_SAMPLES`] samples, rows
+/// with too few fields or more than the header gives (decimal commas between commas).
 pub fn read_scope(text: &str, file: &str) -> Result<Record, MeasureError> {
-    let format = detect(text).ok_or_else(|| {
+    let body = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if body.is_empty() {
+        return Err(super::text::empty(file));
+    }
+    if body.trim().is_empty() {
+        return Err(MeasureError::file(
+            file,
+            format!(
+                "the file holds no text, only {} blank line(s): was the export cut short?",
+                body.lines().count().max(1)
+            ),
+        ));
+    }
+    let table = split(text, false);
+    let format = detect_lines(&table.lines).ok_or_else(|| {
         MeasureError::file(
             file,
             "not a scope export this reader knows: the header must be Rigol's (X,CH1,…,Start,\
              Increment), Tektronix's or Siglent's (Record Length,…), Keysight's (x-axis,1,2) \
-             or a row of column names with a time column (t, time, time_s, second)",
+             or a row of column names with a time column (t, time, time_s, time (µs), second)",
         )
     })?;
-    let lines = split(text);
     match format {
-        ScopeFormat::Rigol => rigol(&lines, file),
-        ScopeFormat::Keysight => keysight(&lines, file),
-        ScopeFormat::Tektronix => tektronix(&lines, file),
-        ScopeFormat::Siglent => siglent(&lines, file),
-        _ => plain(&lines, file),
+        ScopeFormat::Rigol => rigol(&table, file),
+        ScopeFormat::Keysight => keysight(&table, file),
+        ScopeFormat::Tektronix => tektronix(&table, file),
+        ScopeFormat::Siglent => siglent(&table, file),
+        _ => plain(&table, file),
     }
 }
 
@@ -130,10 +154,14 @@ struct Columns {
     values: Vec<Vec<f64>>,
 }
 
+/// The rows' times and `count` channels from column `first_value` on; a row with more than
+/// `width` fields is refused ([`extra_fields`]).
 fn rows(
     file: &str,
+    table: &Table<'_>,
     rows: &[Line<'_>],
     count: usize,
+    width: usize,
     time: impl Fn(&Line<'_>) -> Result<f64, MeasureError>,
     first_value: usize,
 ) -> Result<Columns, MeasureError> {
@@ -143,6 +171,7 @@ fn rows(
         values: vec![Vec::with_capacity(rows.len()); count],
     };
     for line in rows {
+        extra_fields(file, line, width, table.separator)?;
         out.time.push(time(line)?);
         out.lines.push(line.number);
         for (c, values) in out.values.iter_mut().enumerate() {
@@ -163,7 +192,8 @@ fn header_line<'a, 'b>(
         .ok_or_else(|| MeasureError::file(file, format!("the file ends before {what}")))
 }
 
-fn rigol(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
+fn rigol(table: &Table<'_>, file: &str) -> Result<Record, MeasureError> {
+    let lines = &table.lines;
     let head = &lines[0];
     let start_column = head
         .fields
@@ -182,8 +212,9 @@ fn rigol(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
         ));
     }
     let units_line = header_line(lines, 1, file, "the units row (Sequence,Volt,…)")?;
+    extra_fields(file, units_line, head.fields.len(), table.separator)?;
     let units: Vec<String> = (0..names.len())
-        .map(|c| unit(units_line.fields.get(c + 1).copied()))
+        .map(|c| unit(units_line.field(c + 1)))
         .collect();
     let start = number(file, units_line, start_column)?;
     let increment = number(file, units_line, start_column + 1)?;
@@ -196,8 +227,10 @@ fn rigol(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
     }
     let columns = rows(
         file,
+        table,
         &lines[2..],
         names.len(),
+        1 + names.len(),
         |line| {
             let index = number(file, line, 0)?;
             Ok(start + index * increment)
@@ -243,7 +276,8 @@ fn finish(
     )
 }
 
-fn keysight(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
+fn keysight(table: &Table<'_>, file: &str) -> Result<Record, MeasureError> {
+    let lines = &table.lines;
     let names: Vec<String> = lines[0].fields[1..].iter().map(|s| s.to_string()).collect();
     if names.is_empty() {
         return Err(MeasureError::at(
@@ -254,16 +288,26 @@ fn keysight(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
     }
     let units_line = header_line(lines, 1, file, "the units row (second,Volt,…)")?;
     let units = (0..names.len())
-        .map(|c| unit(units_line.fields.get(c + 1).copied()))
+        .map(|c| unit(units_line.field(c + 1)))
         .collect();
-    let columns = rows(file, &lines[2..], names.len(), |l| number(file, l, 0), 1)?;
+    let width = 1 + names.len();
+    let columns = rows(
+        file,
+        table,
+        &lines[2..],
+        names.len(),
+        width,
+        |l| number(file, l, 0),
+        1,
+    )?;
     finish(file, ScopeFormat::Keysight, columns, names, units, vec![])
 }
 
-fn tektronix(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
+fn tektronix(table: &Table<'_>, file: &str) -> Result<Record, MeasureError> {
+    let lines = &table.lines;
     let mut metadata = Vec::new();
     for line in lines {
-        if let (Some(key), Some(value)) = (line.fields.first(), line.fields.get(1)) {
+        if let (Some(key), Some(value)) = (line.field(0), line.field(1)) {
             if !key.is_empty() && !value.is_empty() {
                 metadata.push((key.to_string(), value.to_string()));
             }
@@ -277,7 +321,7 @@ fn tektronix(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
     };
     let name = find("Source").unwrap_or_else(|| "CH1".into());
     let unit = unit(find("Vertical Units").as_deref());
-    let columns = rows(file, lines, 1, |l| number(file, l, 3), 4)?;
+    let columns = rows(file, table, lines, 1, 5, |l| number(file, l, 3), 4)?;
     finish(
         file,
         ScopeFormat::Tektronix,
@@ -288,7 +332,8 @@ fn tektronix(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
     )
 }
 
-fn siglent(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
+fn siglent(table: &Table<'_>, file: &str) -> Result<Record, MeasureError> {
+    let lines = &table.lines;
     let Some(header) = lines
         .iter()
         .position(|l| l.fields[0].eq_ignore_ascii_case("second"))
@@ -311,16 +356,17 @@ fn siglent(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
         ));
     }
     // Channel names from `Source,CH1,CH2` or `Vertical Scale,CH1: 0.05,CH2: 0.1` when given.
-    let named: Vec<String> = metadata
+    let named: Vec<String> = lines[..header]
         .iter()
-        .find(|(k, _)| k.eq_ignore_ascii_case("source"))
+        .find(|l| l.fields[0].eq_ignore_ascii_case("source"))
         .or_else(|| {
-            metadata
+            lines[..header]
                 .iter()
-                .find(|(k, _)| k.eq_ignore_ascii_case("vertical scale"))
+                .find(|l| l.fields[0].eq_ignore_ascii_case("vertical scale"))
         })
-        .map(|(_, v)| {
-            v.split(',')
+        .map(|l| {
+            l.fields[1..]
+                .iter()
                 .map(|f| f.split(':').next().unwrap_or("").trim().to_string())
                 .filter(|f| !f.is_empty())
                 .collect()
@@ -332,18 +378,28 @@ fn siglent(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
         (1..=count).map(|c| format!("CH{c}")).collect()
     };
     let units = (0..count)
-        .map(|c| unit(lines[header].fields.get(c + 1).copied()))
+        .map(|c| unit(lines[header].field(c + 1)))
         .collect();
-    let columns = rows(file, &lines[header + 1..], count, |l| number(file, l, 0), 1)?;
+    let columns = rows(
+        file,
+        table,
+        &lines[header + 1..],
+        count,
+        count + 1,
+        |l| number(file, l, 0),
+        1,
+    )?;
     finish(file, ScopeFormat::Siglent, columns, names, units, metadata)
 }
 
-fn plain(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
+fn plain(table: &Table<'_>, file: &str) -> Result<Record, MeasureError> {
+    let lines = &table.lines;
     let head = &lines[0];
-    let time_column = head
+    let (time_column, scale) = head
         .fields
         .iter()
-        .position(|f| is_time_name(f))
+        .enumerate()
+        .find_map(|(c, f)| time_scale(f).map(|s| (c, s)))
         .expect("detected by its time column");
     let mut names = Vec::new();
     let mut units = Vec::new();
@@ -388,7 +444,8 @@ fn plain(lines: &[Line<'_>], file: &str) -> Result<Record, MeasureError> {
         values: vec![Vec::new(); names.len()],
     };
     for line in &lines[1..] {
-        out.time.push(number(file, line, time_column)?);
+        extra_fields(file, line, head.fields.len(), table.separator)?;
+        out.time.push(scale * number(file, line, time_column)?);
         out.lines.push(line.number);
         for (values, &c) in out.values.iter_mut().zip(&columns_of) {
             values.push(number(file, line, c)?);

@@ -1,6 +1,7 @@
 //! The table of measured amplitudes (the paper's Fig. 4, taken point by point).
 
 use super::error::{quote, MeasureError};
+use super::text::{extra_fields, number_hint, split};
 use serde::{Deserialize, Serialize};
 
 /// Which leg of a frequency sweep a row was measured on.
@@ -83,35 +84,26 @@ fn column_of(name: &str) -> Option<usize> {
 /// number > 0 (or ≥ 0 for the response and harmonics), a direction other than `up` or
 /// `down`; each naming the line. An empty table.
 pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, MeasureError> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((header_line, header)) = lines.next() else {
+    let body = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if body.is_empty() {
+        return Err(super::text::empty(file));
+    }
+    let table = split(text, true);
+    let mut lines = table.lines.iter();
+    let Some(header) = lines.next() else {
         return Err(MeasureError::file(file, "the table is empty"));
     };
-    let fields = |l: &'_ str| -> Vec<String> {
-        let mut f: Vec<String> = l
-            .split(',')
-            .map(|f| f.trim().trim_matches('"').trim().to_string())
-            .collect();
-        while f.last().is_some_and(|f| f.is_empty()) {
-            f.pop();
-        }
-        f
-    };
+    let header_line = header.number;
     let mut columns: Vec<usize> = Vec::new();
-    for name in fields(header) {
-        let Some(c) = column_of(&name) else {
+    for name in header.fields.iter() {
+        let Some(c) = column_of(name) else {
             let known: Vec<&str> = AMPLITUDE_COLUMNS.iter().map(|c| c.0).collect();
             return Err(MeasureError::at(
                 file,
                 header_line,
                 format!(
                     "unknown column {} (the columns are {})",
-                    quote(&name),
+                    quote(name),
                     known.join(", ")
                 ),
             ));
@@ -120,7 +112,7 @@ pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, Measure
             return Err(MeasureError::at(
                 file,
                 header_line,
-                format!("column {} is given twice", quote(&name)),
+                format!("column {} is given twice", quote(name)),
             ));
         }
         columns.push(c);
@@ -135,8 +127,11 @@ pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, Measure
         }
     }
     let mut rows = Vec::new();
-    for (number, line) in lines {
-        let values = fields(line);
+    for line in lines {
+        let (number, values) = (line.number, &line.fields);
+        if values.len() > columns.len() {
+            extra_fields(file, line, columns.len(), table.separator)?;
+        }
         if values.len() != columns.len() {
             return Err(MeasureError::at(
                 file,
@@ -157,7 +152,7 @@ pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, Measure
             a1: None,
             a3: None,
         };
-        for (&c, text) in columns.iter().zip(&values) {
+        for (&c, text) in columns.iter().zip(values) {
             let name = AMPLITUDE_COLUMNS[c].0;
             if c == 3 {
                 row.direction = match text.to_ascii_lowercase().as_str() {
@@ -174,6 +169,7 @@ pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, Measure
                 continue;
             }
             let value = text.parse::<f64>().ok().filter(|v| v.is_finite());
+            let hint = number_hint(text);
             let positive = c < 2;
             let ok = value.filter(|&v| if positive { v > 0.0 } else { v >= 0.0 });
             let Some(v) = ok else {
@@ -181,7 +177,7 @@ pub fn read_amplitudes(text: &str, file: &str) -> Result<AmplitudeTable, Measure
                     file,
                     number,
                     format!(
-                        "{name} = {} must be a finite number {}",
+                        "{name} = {} must be a finite number {}{hint}",
                         quote(text),
                         if positive { "> 0" } else { ">= 0" }
                     ),

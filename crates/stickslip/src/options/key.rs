@@ -154,6 +154,14 @@ pub enum OptionKey {
     MapWSteps,
     /// Amplitudes of a map.
     MapBetaSteps,
+    /// Lowest frequency w of a map.
+    MapWMin,
+    /// Highest frequency w of a map.
+    MapWMax,
+    /// Lowest amplitude β of a map.
+    MapBetaMin,
+    /// Highest amplitude β of a map.
+    MapBetaMax,
     /// Values of a bifurcation diagram.
     BifurcationSteps,
     /// Strobe points recorded at each value of a bifurcation diagram.
@@ -347,6 +355,18 @@ rows! {
     MapBetaSteps, Map, "beta-steps", "beta_steps", Count, incl(1.0), incl(100000.0), Range,
         "must be from 1 to 100000", Some(100.0),
         "Number of amplitudes from --beta-min to --beta-max, both included.";
+    MapWMin, Map, "w-min", "w_min", Number, incl(1e-5), incl(1e5), Range,
+        "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(0.1),
+        "Lowest drive frequency w.";
+    MapWMax, Map, "w-max", "w_max", Number, incl(1e-5), incl(1e5), Range,
+        "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(2.5),
+        "Highest drive frequency w (≥ --w-min).";
+    MapBetaMin, Map, "beta-min", "beta_min", Number, incl(0.0), incl(1e9), Range,
+        "must be finite and from 0 to 1e9 (docs/limits.md)", Some(0.5),
+        "Lowest drive amplitude β.";
+    MapBetaMax, Map, "beta-max", "beta_max", Number, incl(0.0), incl(1e9), Range,
+        "must be finite and from 0 to 1e9 (docs/limits.md)", Some(4.0),
+        "Highest drive amplitude β (≥ --beta-min).";
     BifurcationSteps, Bifurcation, "steps", "steps", Count, incl(1.0), incl(100000.0), Range,
         "must be from 1 to 100000", None,
         "Number of values from --from to --to, both included.";
@@ -483,6 +503,14 @@ pub enum Allowed {
     },
     /// Above the value of another option: `must be greater than --w-min (2)`.
     Above {
+        /// The other option.
+        other: OptionKey,
+        /// Its value.
+        value: f64,
+    },
+    /// Not below the value of another option (the upper end of a range):
+    /// `must not be below --beta-min 0.5`.
+    NotBelow {
         /// The other option.
         other: OptionKey,
         /// Its value.

@@ -180,42 +180,11 @@ impl Allowed {
                 other.spelled(spelling),
                 Number(value)
             ),
-        }
-    }
-}
-
-impl Error {
-    /// The message, one line, with options spelled by `spelling` (`--max-period` on the
-    /// command line, `max_period` in Python, `max-period` in the lab's query). The same as
-    /// `to_string()` for errors that name no option, and for [`Spelling::Python`].
-    pub fn render(&self, spelling: Spelling) -> String {
-        match self {
-            Error::InvalidOption {
-                option,
-                value,
-                allowed,
-            } => render_invalid(*option, *value, allowed, spelling),
-            Error::OptionProduct {
-                what,
-                first,
-                second,
-                product,
-                max,
-            } => match spelling {
-                Spelling::Flag => format!(
-                    "{} × {} = {} {what}: at most {max} allowed",
-                    first.spelled(spelling),
-                    second.spelled(spelling),
-                    Number(*product)
-                ),
-                Spelling::Python | Spelling::Query => format!(
-                    "invalid {what} = {}: {} × {} must be at most {max}",
-                    Number(*product),
-                    first.spelled(spelling),
-                    second.spelled(spelling)
-                ),
-            },
-            other => other.to_string(),
+            Allowed::NotBelow { other, value } => format!(
+                "must not be below {} {}",
+                other.spelled(spelling),
+                Number(value)
+            ),
         }
     }
 }

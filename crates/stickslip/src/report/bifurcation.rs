@@ -9,7 +9,7 @@ use serde::Serialize;
 
 /// One strobe point of a bifurcation diagram, with the verdict of its step.
 ///
-/// The JSON fields are the CSV's columns (`y`, `v`, `direction`, `lambda`, `class`,
+/// The JSON fields are the CSV's columns (`y`, `v`, `direction`, `lambda1`, `class`,
 /// `period`; the stepped value, the CSV's first column named after the parameter, as
 /// `value`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -22,9 +22,9 @@ pub struct BifurcationRow {
     pub v: f64,
     /// The leg of the step: `up` or `down`.
     pub direction: SweepLeg,
-    /// The largest Lyapunov exponent of the step, per unit τ.
-    pub lambda: f64,
-    /// The step's verdict.
+    /// The largest Lyapunov exponent λ1 of the step, per unit τ.
+    pub lambda1: f64,
+    /// What the step settled on (`undecided`: not decided by its record).
     pub class: AttractorKind,
     /// Period in drive periods when the points repeat (an empty cell otherwise).
     pub period: Option<usize>,
@@ -52,7 +52,7 @@ impl BifurcationReport {
                     y: x.y,
                     v: x.v,
                     direction: s.leg,
-                    lambda: r.exponent,
+                    lambda1: r.exponent,
                     class: r.kind,
                     period: r.period,
                 })
@@ -62,11 +62,21 @@ impl BifurcationReport {
     }
 }
 
+impl BifurcationRow {
+    /// The JSON fields of a row, in order: the CSV's columns, the stepped value as `value`.
+    pub const FIELDS: [&'static str; 7] =
+        ["value", "y", "v", "direction", "lambda1", "class", "period"];
+
+    /// The columns of a bifurcation diagram's CSV after the stepped parameter's own (named
+    /// after the parameter).
+    pub const COLUMNS: [&'static str; 6] = ["y", "v", "direction", "lambda1", "class", "period"];
+}
+
 impl Table for BifurcationReport {
-    /// `<parameter>,y,v,direction,lambda,class,period`.
+    /// `<parameter>,y,v,direction,lambda1,class,period` ([`BifurcationRow::COLUMNS`]).
     fn columns(&self) -> Vec<String> {
         std::iter::once(self.parameter.label())
-            .chain(["y", "v", "direction", "lambda", "class", "period"])
+            .chain(BifurcationRow::COLUMNS)
             .map(String::from)
             .collect()
     }
@@ -82,7 +92,7 @@ impl Table for BifurcationReport {
             cell(p.y),
             cell(p.v),
             p.direction.label().to_string(),
-            cell(p.lambda),
+            cell(p.lambda1),
             p.class.label().to_string(),
             optional(p.period),
         ]
@@ -103,7 +113,7 @@ mod tests {
             Bifurcation::new(&e, Axis::new(Parameter::Beta, vec![1.2, 2.0]).unwrap()).unwrap();
         let steps = diagram.run(&()).unwrap();
         let report = BifurcationReport::new(Parameter::Beta, &steps);
-        assert_eq!(report.header(), "beta,y,v,direction,lambda,class,period");
+        assert_eq!(report.header(), "beta,y,v,direction,lambda1,class,period");
         let mut expected = Vec::new();
         for s in &steps {
             let r = &s.record;
@@ -128,5 +138,16 @@ mod tests {
         let json = serde_json::to_value(&report).unwrap();
         assert_eq!(json["parameter"], "beta");
         assert_eq!(json["points"][0]["class"], steps[0].record.kind.label());
+        let mut keys: Vec<&str> = json["points"][0]
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut fields = BifurcationRow::FIELDS.to_vec();
+        keys.sort_unstable();
+        fields.sort_unstable();
+        assert_eq!(keys, fields);
+        assert_eq!(BifurcationRow::FIELDS[1..], BifurcationRow::COLUMNS);
     }
 }

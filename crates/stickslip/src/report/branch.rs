@@ -14,23 +14,28 @@ pub struct BranchTable<'a> {
     pub branch: &'a Branch,
 }
 
+impl BranchTable<'_> {
+    /// The columns after the continued parameter's own (named after the parameter).
+    pub const COLUMNS: [&'static str; 12] = [
+        "y",
+        "v",
+        "amplitude",
+        "period",
+        "stops_per_period",
+        "turns",
+        "mu1_re",
+        "mu1_im",
+        "mu2_re",
+        "mu2_im",
+        "stable",
+        "arclength",
+    ];
+}
+
 impl Table for BranchTable<'_> {
     fn columns(&self) -> Vec<String> {
         std::iter::once(self.branch.parameter.label())
-            .chain([
-                "y",
-                "v",
-                "amplitude",
-                "period",
-                "stops_per_period",
-                "turns",
-                "mu1_re",
-                "mu1_im",
-                "mu2_re",
-                "mu2_im",
-                "stable",
-                "arclength",
-            ])
+            .chain(Self::COLUMNS)
             .map(String::from)
             .collect()
     }
@@ -60,19 +65,23 @@ impl Table for BranchTable<'_> {
     }
 }
 
-/// A basin map as CSV, one row per cell (y0-major): `y0,v0,attractor,kind,period`; an
-/// unsettled cell has an empty attractor and period and the kind `unsettled`.
+/// A basin map as CSV, one row per cell (y0-major): `y0,v0,attractor,class,period`; a cell
+/// not decided has an empty attractor and period and the class `undecided`.
 #[derive(Debug, Clone, Copy)]
 pub struct BasinsTable<'a> {
     /// The map.
     pub map: &'a BasinMap,
 }
 
+impl BasinsTable<'_> {
+    /// The columns: `class` is what the cell's attractor is ([`AttractorKind`]'s labels, as
+    /// the bifurcation diagram's `class`).
+    pub const COLUMNS: [&'static str; 5] = ["y0", "v0", "attractor", "class", "period"];
+}
+
 impl Table for BasinsTable<'_> {
     fn columns(&self) -> Vec<String> {
-        ["y0", "v0", "attractor", "kind", "period"]
-            .map(String::from)
-            .to_vec()
+        Self::COLUMNS.map(String::from).to_vec()
     }
 
     fn len(&self) -> usize {
@@ -95,7 +104,7 @@ impl Table for BasinsTable<'_> {
                 cell(y),
                 cell(v),
                 String::new(),
-                AttractorKind::Unsettled.label().to_string(),
+                AttractorKind::Undecided.label().to_string(),
                 String::new(),
             ],
         }

@@ -9,8 +9,8 @@ use std::fmt::Write as _;
 
 /// One point of a map.
 ///
-/// The JSON fields are the CSV's columns: `w`, `beta`, `class`, `period`,
-/// `stops_per_cycle`, `gain`, and with exponents `lambda`, `lambda_error`.
+/// The JSON fields are the CSV's columns ([`MapRow::columns`]): `w`, `beta`, `class`,
+/// `period`, `stops_per_period`, `gain`, and with exponents `lambda1`, `lambda1_error`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MapRow {
     /// Drive frequency w = Ω/ω0.
@@ -22,16 +22,16 @@ pub struct MapRow {
     /// Period in drive periods (`None`: none found within the cap; an empty cell).
     pub period: Option<usize>,
     /// Stops of non-zero duration per drive period.
-    pub stops_per_cycle: f64,
-    /// Gain (y_max − y_min)/(2β).
+    pub stops_per_period: f64,
+    /// Gain G = (y_max − y_min)/(2β).
     pub gain: f64,
-    /// Largest Lyapunov exponent per unit τ, when the map measured exponents (`None` where
-    /// the flow has no derivative: an empty cell).
+    /// Largest Lyapunov exponent λ1 per unit τ, when the map measured exponents (`None`
+    /// where the flow has no derivative: an empty cell).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda: Option<f64>,
+    pub lambda1: Option<f64>,
     /// Its standard error per unit τ.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda_error: Option<f64>,
+    pub lambda1_error: Option<f64>,
 }
 
 impl From<&GridPoint> for MapRow {
@@ -41,20 +41,26 @@ impl From<&GridPoint> for MapRow {
             beta: p.params.beta,
             class: p.class,
             period: p.period,
-            stops_per_cycle: p.stops_per_period,
+            stops_per_period: p.stops_per_period,
             gain: p.gain,
-            lambda: p.lyapunov.map(|l| l.per_tau),
-            lambda_error: p.lyapunov.map(|l| l.error_per_tau),
+            lambda1: p.lyapunov.map(|l| l.per_tau),
+            lambda1_error: p.lyapunov.map(|l| l.error_per_tau),
         }
     }
 }
 
 impl MapRow {
+    /// The columns of a map without exponents.
+    pub const COLUMNS: [&'static str; 6] =
+        ["w", "beta", "class", "period", "stops_per_period", "gain"];
+    /// The columns of the exponent, after [`MapRow::COLUMNS`] in a map that measured it.
+    pub const EXPONENT_COLUMNS: [&'static str; 2] = ["lambda1", "lambda1_error"];
+
     /// The columns of a map; `lyapunov`: with the exponent's two.
     pub fn columns(lyapunov: bool) -> Vec<&'static str> {
-        let mut columns = vec!["w", "beta", "class", "period", "stops_per_cycle", "gain"];
+        let mut columns = Self::COLUMNS.to_vec();
         if lyapunov {
-            columns.extend(["lambda", "lambda_error"]);
+            columns.extend(Self::EXPONENT_COLUMNS);
         }
         columns
     }
@@ -66,12 +72,12 @@ impl MapRow {
             cell(self.beta),
             self.class.label().to_string(),
             optional(self.period),
-            cell(self.stops_per_cycle),
+            cell(self.stops_per_period),
             cell(self.gain),
         ];
         if lyapunov {
-            row.push(optional(self.lambda));
-            row.push(optional(self.lambda_error));
+            row.push(optional(self.lambda1));
+            row.push(optional(self.lambda1_error));
         }
         row
     }
@@ -91,13 +97,13 @@ impl MapRow {
         if let Some(period) = self.period {
             let _ = write!(out, "{period}");
         }
-        let _ = write!(out, ",{},{}", self.stops_per_cycle, self.gain);
+        let _ = write!(out, ",{},{}", self.stops_per_period, self.gain);
         if lyapunov {
             let _ = write!(
                 out,
                 ",{},{}",
-                optional(self.lambda),
-                optional(self.lambda_error)
+                optional(self.lambda1),
+                optional(self.lambda1_error)
             );
         }
         out.push('\n');
@@ -193,9 +199,9 @@ mod tests {
             assert_eq!(
                 lines.next().unwrap(),
                 if lyapunov {
-                    "w,beta,class,period,stops_per_cycle,gain,lambda,lambda_error"
+                    "w,beta,class,period,stops_per_period,gain,lambda1,lambda1_error"
                 } else {
-                    "w,beta,class,period,stops_per_cycle,gain"
+                    "w,beta,class,period,stops_per_period,gain"
                 }
             );
             for (i, (line, p)) in lines.zip(&map.points).enumerate() {
@@ -215,9 +221,24 @@ mod tests {
                 assert_eq!(line, report.row(i).join(","));
             }
         }
+        // The JSON fields are the CSV's columns.
+        let mut row = MapRow::from(&map.points[0]);
+        row.lambda1 = Some(-0.5);
+        row.lambda1_error = Some(0.0);
+        let json = serde_json::to_value(row).unwrap();
+        let mut keys: Vec<&str> = json
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut columns = MapRow::columns(true);
+        keys.sort_unstable();
+        columns.sort_unstable();
+        assert_eq!(keys, columns);
         let json = serde_json::to_value(MapReport::new(&map.points, false)).unwrap();
         let first = &json["points"][0];
         assert_eq!(first["class"], map.points[0].class.label());
-        assert!(first.get("lambda").is_none());
+        assert!(first.get("lambda1").is_none());
     }
 }

@@ -11,13 +11,13 @@
 //! |---|---|---|
 //! | trajectory (`simulate`) | [`TrajectoryReport`], streamed by [`TrajectoryRun`] | `tau,y,v,drive,phase` (+ `t_s,uc_V,i_A,u_V` or `t_s,r_m,rdot_m_s,F_N`); events `tau,y,kind` |
 //! | steady state | [`SteadyReport`]; its trace [`SteadyTrace`] | `tau,drive,y,v` |
-//! | sweep | [`SweepReport`] | (`zeta`/`mu_s`,) `w,beta,direction,gain,A1,A3,class,stops_per_cycle` |
-//! | map (`phase-diagram`) | [`MapReport`] | `w,beta,class,period,stops_per_cycle,gain` (+ `lambda,lambda_error`) |
-//! | theory curves | [`TheoryReport`], [`TheoryTable`] | `w,gain_paper,gain_exact` or `w,beta_c_paper,beta_c_exact` |
+//! | sweep | [`SweepReport`] | (`zeta`/`mu_s`,) `w,beta,direction,gain,gain1,A1,A3,class,stops_per_period` |
+//! | map (`phase-diagram`) | [`MapReport`] | `w,beta,class,period,stops_per_period,gain` (+ `lambda1,lambda1_error`) |
+//! | theory curves | [`TheoryReport`], [`TheoryTable`] | `w,gain1_paper,gain1_exact` or `w,beta_c_paper,beta_c_exact` |
 //! | orbit | [`OrbitReport`] | |
 //! | Lyapunov exponent | [`LyapunovReport`] | |
-//! | bifurcation diagram | [`BifurcationReport`] | `<parameter>,y,v,direction,lambda,class,period` |
-//! | basins | [`BasinReport`], [`BasinsTable`] | `y0,v0,attractor,kind,period` |
+//! | bifurcation diagram | [`BifurcationReport`] | `<parameter>,y,v,direction,lambda1,class,period` |
+//! | basins | [`BasinReport`], [`BasinsTable`] | `y0,v0,attractor,class,period` |
 //! | branch (`continue`) | [`BranchReport`], [`BranchTable`] | `<parameter>,y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,stable,arclength` |
 //!
 //! Numbers are written as Rust's `Display` writes an `f64` (the shortest text that reads

@@ -43,11 +43,11 @@ pub struct TheoryRow {
     pub exact: Option<f64>,
 }
 
-/// The theory's curves over w as CSV: `w,gain_paper,gain_exact` or
+/// The theory's curves over w as CSV: `w,gain1_paper,gain1_exact` or
 /// `w,beta_c_paper,beta_c_exact`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TheoryTable {
-    /// The quantity's name in the column names: `gain` or `beta_c`.
+    /// The quantity's name in the column names: `gain1` or `beta_c`.
     pub quantity: &'static str,
     /// The rows.
     pub rows: Vec<TheoryRow>,

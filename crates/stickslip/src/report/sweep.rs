@@ -9,9 +9,9 @@ use serde::Serialize;
 
 /// One step of a sweep.
 ///
-/// The JSON fields are the CSV's columns (`w`, `beta`, `direction`, `gain`, `A1`, `A3`,
-/// `class`, `stops_per_cycle`; the swept value as `value`) and what the CSV leaves out
-/// (`zeta`, `mu_s`, `peak`, `period`, `phase_lag`, `f_Hz`).
+/// The JSON fields are the CSV's columns (`w`, `beta`, `direction`, `gain`, `gain1`, `A1`,
+/// `A3`, `class`, `stops_per_period`; the swept value as `value`) and what the CSV leaves
+/// out (`zeta`, `mu_s`, `peak`, `period`, `phase_lag`, `f_Hz`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepRow {
     /// The swept parameter's value.
@@ -26,8 +26,10 @@ pub struct SweepRow {
     pub mu_s: f64,
     /// The leg of the step: `up` or `down`.
     pub direction: SweepLeg,
-    /// Gain (y_max − y_min)/(2β).
+    /// Gain G = (y_max − y_min)/(2β).
     pub gain: f64,
+    /// Gain of the fundamental G1 = A1/β (`None`: not measured; the CSV writes `NaN`).
+    pub gain1: Option<f64>,
     /// Peak |y| of the steady motion (`None` for a step restored from a file that did not
     /// keep it).
     pub peak: Option<f64>,
@@ -40,7 +42,7 @@ pub struct SweepRow {
     /// Motion class.
     pub class: MotionClass,
     /// Stops of non-zero duration per drive period.
-    pub stops_per_cycle: f64,
+    pub stops_per_period: f64,
     /// Period in drive periods (`None`: none found within the cap).
     pub period: Option<usize>,
     /// Phase lag of the fundamental of y behind the drive, radians (`None`: no fundamental,
@@ -64,11 +66,12 @@ impl SweepRow {
             mu_s: point.params.mu_s,
             direction: point.leg,
             gain: s.gain,
+            gain1: s.gain1(),
             peak: Some(s.peak),
             a1: s.harmonic(1),
             a3: s.harmonic(3),
             class: s.class,
-            stops_per_cycle: s.stops_per_period,
+            stops_per_period: s.stops_per_period,
             period: s.period,
             phase_lag: s.phase_lag(),
             f_hz: experiment
@@ -119,27 +122,51 @@ impl SweepReport {
     }
 }
 
+impl SweepRow {
+    /// The JSON fields of a row, in order: the CSV's columns and what the CSV leaves out.
+    pub const FIELDS: [&'static str; 16] = [
+        "value",
+        "w",
+        "beta",
+        "zeta",
+        "mu_s",
+        "direction",
+        "gain",
+        "gain1",
+        "peak",
+        "A1",
+        "A3",
+        "class",
+        "stops_per_period",
+        "period",
+        "phase_lag",
+        "f_Hz",
+    ];
+
+    /// The columns of a sweep's CSV after the swept value's own column (which a sweep of ζ or
+    /// μs has first, [`SweepReport::value_column`]).
+    pub const COLUMNS: [&'static str; 9] = [
+        "w",
+        "beta",
+        "direction",
+        "gain",
+        "gain1",
+        "A1",
+        "A3",
+        "class",
+        "stops_per_period",
+    ];
+}
+
 impl Table for SweepReport {
-    /// `w,beta,direction,gain,A1,A3,class,stops_per_cycle`, after `zeta` or `mu_s` for a
-    /// sweep of that parameter.
+    /// `w,beta,direction,gain,gain1,A1,A3,class,stops_per_period` ([`SweepRow::COLUMNS`]),
+    /// after `zeta` or `mu_s` for a sweep of that parameter.
     fn columns(&self) -> Vec<String> {
         let mut columns = Vec::new();
         if self.value_column() {
             columns.push(self.over.label().to_string());
         }
-        columns.extend(
-            [
-                "w",
-                "beta",
-                "direction",
-                "gain",
-                "A1",
-                "A3",
-                "class",
-                "stops_per_cycle",
-            ]
-            .map(String::from),
-        );
+        columns.extend(SweepRow::COLUMNS.map(String::from));
         columns
     }
 
@@ -149,7 +176,7 @@ impl Table for SweepReport {
 
     fn row(&self, i: usize) -> Vec<String> {
         let p = &self.points[i];
-        let mut row = Vec::with_capacity(9);
+        let mut row = Vec::with_capacity(10);
         if self.value_column() {
             row.push(cell(p.value));
         }
@@ -158,10 +185,11 @@ impl Table for SweepReport {
             cell(p.beta),
             p.direction.label().to_string(),
             cell(p.gain),
+            cell(p.gain1.unwrap_or(f64::NAN)),
             cell(p.a1.unwrap_or(f64::NAN)),
             cell(p.a3.unwrap_or(f64::NAN)),
             p.class.label().to_string(),
-            cell(p.stops_per_cycle),
+            cell(p.stops_per_period),
         ]);
         row
     }
@@ -185,19 +213,20 @@ mod tests {
         let report = SweepReport::new(&e, Parameter::MuS, SweepDirection::Both, &points);
         assert_eq!(
             report.header(),
-            "mu_s,w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+            "mu_s,w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
         );
         assert_eq!(report.len(), 4);
         for (i, p) in points.iter().enumerate() {
             let s = &p.steady;
             // The CLI's line before the report type, written out.
             let line = format!(
-                "{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{}",
                 p.value,
                 p.params.w,
                 p.params.beta,
                 p.leg.label(),
                 s.gain,
+                s.harmonic(1).unwrap_or(f64::NAN) / p.params.beta,
                 s.harmonic(1).unwrap_or(f64::NAN),
                 s.harmonic(3).unwrap_or(f64::NAN),
                 s.class.label(),
@@ -214,15 +243,28 @@ mod tests {
         assert_eq!(row["class"], points[3].steady.class.label());
         assert_eq!(row["A1"], points[3].steady.harmonic(1).unwrap());
         assert!(row["f_Hz"].is_null());
+        // The JSON fields are the row's FIELDS and hold every CSV column.
+        let mut keys: Vec<&str> = row
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        let mut fields = SweepRow::FIELDS.to_vec();
+        keys.sort_unstable();
+        fields.sort_unstable();
+        assert_eq!(keys, fields);
+        assert!(SweepRow::COLUMNS.iter().all(|c| keys.contains(c)));
         for key in [
             "value",
             "w",
             "beta",
             "zeta",
             "gain",
+            "gain1",
             "peak",
             "A3",
-            "stops_per_cycle",
+            "stops_per_period",
             "period",
             "phase_lag",
         ] {
@@ -239,7 +281,7 @@ mod tests {
         let report = SweepReport::new(&e, Parameter::W, SweepDirection::Up, &points);
         assert_eq!(
             report.header(),
-            "w,beta,direction,gain,A1,A3,class,stops_per_cycle"
+            "w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
         );
         let scales = e.scales().unwrap();
         let f = report.points[0].f_hz.unwrap();

@@ -11,19 +11,25 @@ pub enum MapColor {
     /// The motion class.
     #[default]
     Class,
-    /// The largest Lyapunov exponent per unit τ.
-    Lyapunov,
+    /// The largest Lyapunov exponent λ1 per unit τ (label `lambda1`; before: `lyapunov`,
+    /// which still reads).
+    #[serde(alias = "lyapunov")]
+    Lambda1,
 }
 
 impl MapColor {
     /// Both.
-    pub const ALL: [MapColor; 2] = [MapColor::Class, MapColor::Lyapunov];
+    pub const ALL: [MapColor; 2] = [MapColor::Class, MapColor::Lambda1];
 
-    /// `class` or `lyapunov`.
+    /// Names retired, with the value each now reads as: `lyapunov` (now `lambda1`, the
+    /// exponent's name in every table).
+    pub const RETIRED: [(&'static str, MapColor); 1] = [("lyapunov", MapColor::Lambda1)];
+
+    /// `class` or `lambda1`.
     pub fn label(self) -> &'static str {
         match self {
             MapColor::Class => "class",
-            MapColor::Lyapunov => "lyapunov",
+            MapColor::Lambda1 => "lambda1",
         }
     }
 
@@ -31,12 +37,12 @@ impl MapColor {
     pub fn description(self) -> &'static str {
         match self {
             MapColor::Class => "The motion class",
-            MapColor::Lyapunov => "The largest Lyapunov exponent per unit τ",
+            MapColor::Lambda1 => "The largest Lyapunov exponent λ1 per unit τ",
         }
     }
 
     /// Whether the map measures the exponent at every point.
     pub fn needs_lyapunov(self) -> bool {
-        self == MapColor::Lyapunov
+        self == MapColor::Lambda1
     }
 }

@@ -172,15 +172,10 @@ impl Grid {
     /// (results are the same for any number).
     ///
     /// # Errors
-    /// When `threads` is 0.
+    /// [`crate::Error::InvalidOption`] naming [`crate::options::OptionKey::Threads`] outside
+    /// its row's range (1 to 1024).
     pub fn threads(mut self, threads: usize) -> Result<Self> {
-        if threads == 0 {
-            return Err(Error::InvalidParameter {
-                name: "threads",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
+        crate::options::OptionKey::Threads.check_count(threads)?;
         self.threads = Some(threads);
         Ok(self)
     }

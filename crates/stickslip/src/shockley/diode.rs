@@ -20,6 +20,7 @@
 //! We implement the physical law above; its dimensionless form is [`DiodeLaw`].
 
 use crate::error::{check, Result};
+use crate::stiff::SmoothLaw;
 use serde::{Deserialize, Serialize};
 
 /// Boltzmann constant k in J/K (exact in the 2019 SI).
@@ -301,6 +302,79 @@ impl DiodeLaw {
     }
 }
 
+impl SmoothLaw for DiodeLaw {
+    /// a = n V_T/U_t, ε = 2 I_s √(L/C)/U_t, r = R_s/√(L/C).
+    const PARAMETERS: &'static [&'static str] = &["a", "epsilon", "r"];
+
+    fn validate(&self) -> Result<Self> {
+        DiodeLaw::new(self.scale, self.knee, self.resistance)
+    }
+
+    #[inline]
+    fn value_and_slope(&self, v: f64) -> (f64, f64) {
+        DiodeLaw::value_and_slope(self, v)
+    }
+
+    /// ∂D/∂a = asinh(v/ε), ∂D/∂ε = −a v/(ε √(ε² + v²)), ∂D/∂r = v.
+    fn parameter_derivatives(&self, v: f64, out: &mut [f64]) {
+        out[0] = (v / self.knee).asinh();
+        out[1] = -self.scale * v / (self.knee * self.knee.hypot(v));
+        out[2] = v;
+    }
+
+    /// Zero current, where the junction's slope a/ε is largest.
+    #[inline]
+    fn knee(&self) -> Option<f64> {
+        Some(0.0)
+    }
+
+    /// The junction chart u = a·asinh(v/ε) (the diode voltage less its series part), in
+    /// which the law is linear: du/dv = D'(v) − r.
+    #[inline]
+    fn steep_slope(&self, _v: f64, slope: f64) -> Option<f64> {
+        Some(slope - self.resistance)
+    }
+
+    /// A Newton step `delta` in the junction voltage, returned as the new current. Beyond the
+    /// edge of the range where the diode dominates the stage (junction slope a/√(ε² + V²)
+    /// above `diagonal`), an outward step is cut back to the edge plus a·ln(1 + excess/a), so
+    /// that ε·sinh(u/a) grows at most linearly in the excess instead of exponentially (as
+    /// SPICE limits junction voltages).
+    #[inline]
+    fn steep_step(&self, v: f64, value: f64, delta: f64, diagonal: f64) -> f64 {
+        junction_step(self, v, value, delta, diagonal)
+    }
+}
+
+/// A Newton step `delta` in the junction voltage u = a·asinh(V/ε) of a stage currently at
+/// current `v` with diode voltage `value` = D(v), returned as the new current. Beyond the edge
+/// of the range where the diode dominates the stage (junction slope a/√(ε² + V²) above
+/// `diagonal`), an outward step is cut back to the edge plus a·ln(1 + excess/a), so that
+/// ε·sinh(u/a) grows at most linearly in the excess instead of exponentially.
+fn junction_step(law: &DiodeLaw, v: f64, value: f64, delta: f64, diagonal: f64) -> f64 {
+    let (a, knee) = (law.scale, law.knee);
+    // The junction voltage is the diode voltage less its series part: no asinh needed.
+    let u = value - law.resistance * v;
+    let target = u + delta;
+    let current = knee * (target / a).sinh();
+    // Edge of the diode-dominated range: a/√(ε² + V²) = diagonal. A step inside it, or
+    // inwards, stands as it is (|current| > edge_current is |target| > a·asinh(edge/ε)).
+    let edge_current = ((a / diagonal).powi(2) - knee * knee).max(0.0).sqrt();
+    if current.abs() <= edge_current || target.abs() <= u.abs() {
+        return current;
+    }
+    // a·asinh(edge/ε) = a·ln((edge + √(ε² + edge²))/ε), and √(ε² + edge²) = a/diagonal there.
+    let edge = if edge_current > 0.0 {
+        a * ((edge_current + a / diagonal) / knee).ln()
+    } else {
+        0.0
+    };
+    let base = edge.max(u.abs());
+    let excess = target.abs() - base;
+    let limited = target.signum() * (base + a * (1.0 + excess / a).ln());
+    knee * (limited / a).sinh()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -394,6 +468,42 @@ mod tests {
             match result {
                 Err(crate::Error::InvalidParameter { name, .. }) => assert_eq!(name, field),
                 other => panic!("expected an error for {field}, got {other:?}"),
+            }
+        }
+    }
+
+    /// The junction step in its plain form: u = a·asinh(V/ε), the edge a·asinh(edge/ε).
+    fn junction_step_reference(law: &DiodeLaw, v: f64, delta: f64, diagonal: f64) -> f64 {
+        let a = law.scale;
+        let u = a * (v / law.knee).asinh();
+        let mut target = u + delta;
+        let edge_current = ((a / diagonal).powi(2) - law.knee * law.knee)
+            .max(0.0)
+            .sqrt();
+        let edge = a * (edge_current / law.knee).asinh();
+        if target.abs() > edge && target.abs() > u.abs() {
+            let excess = target.abs() - edge.max(u.abs());
+            target = target.signum() * (edge.max(u.abs()) + a * (1.0 + excess / a).ln());
+        }
+        law.knee * (target / a).sinh()
+    }
+
+    #[test]
+    fn junction_step_matches_its_plain_form() {
+        let law = DiodeLaw::new(0.0704, 9.4e-6, 8.5e-4).unwrap();
+        for &v in &[0.0, 1e-9, -3e-7, 4e-6, -2e-5, 1e-4, -3e-3, 0.02, -0.4] {
+            for &delta in &[-0.3, -0.05, -1e-3, -1e-6, 0.0, 2e-6, 4e-3, 0.07, 0.5] {
+                for &diagonal in &[0.5, 30.0, 700.0, 5e3, 1e5] {
+                    let (value, _) = law.value_and_slope(v);
+                    let fast = junction_step(&law, v, value, delta, diagonal);
+                    let plain = junction_step_reference(&law, v, delta, diagonal);
+                    let scale = plain.abs().max(law.knee);
+                    let err = (fast - plain).abs() / scale;
+                    assert!(
+                        err < 1e-9,
+                        "v {v} delta {delta} diagonal {diagonal}: {fast} vs {plain}"
+                    );
+                }
             }
         }
     }

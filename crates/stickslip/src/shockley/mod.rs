@@ -21,10 +21,12 @@
 //!
 //! D is smooth but its slope at v = 0 is a/ε ≈ 7.5·10³ for a 1N4148 in the paper's circuit
 //! against about 0.07 at the working currents: the problem is stiff exactly where the current
-//! reverses. [`ShockleySolver`] integrates it with a three-stage Radau IIA method of order 5
-//! (L-stable; full Newton on the stage equations; error estimate and step control of RADAU5;
-//! collocation polynomial as dense output) behind the [`crate::Solver`] trait, so everything
-//! written against the trait works with either diode model.
+//! reverses. [`ShockleySolver`] integrates it with the stiff integrator of smooth laws
+//! ([`crate::stiff`]: a three-stage Radau IIA method of order 5, L-stable; full Newton on the
+//! stage equations; error estimate and step control of RADAU5; collocation polynomial as
+//! dense output), for which [`DiodeLaw`] is a [`crate::stiff::SmoothLaw`], behind the
+//! [`crate::Solver`] trait, so everything written against the trait works with either diode
+//! model.
 //!
 //! **Stops of a smooth diode.** The current never stays at exactly zero; a stop is an interval
 //! where |y'| stays below [`ShockleyOptions::stop_threshold`] (default 1e-3, i.e.
@@ -46,7 +48,6 @@ pub mod diode;
 pub mod model;
 pub mod netlist;
 pub mod options;
-mod radau;
 pub mod solver;
 mod stops;
 

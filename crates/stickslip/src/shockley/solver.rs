@@ -1,13 +1,14 @@
 //! The stiff solver of the Shockley model behind the common [`Solver`] trait.
 
+use super::diode::DiodeLaw;
 use super::model::ShockleyModel;
 use super::options::ShockleyOptions;
-use super::radau::{Radau5, Settings, Step};
 use super::stops::{Classifier, Mark};
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::solver::{Event, Phase, Sample, Solver, Stats};
+use crate::stiff::{Columns, Radau5, Sensitivity, Settings, Step, Track};
 use std::collections::VecDeque;
 
 /// Radau IIA (order 5) solver of y'' + 2ζ_R y' + y + D(y') = β cos(w τ + φ), with turns and
@@ -36,7 +37,7 @@ use std::collections::VecDeque;
 pub struct ShockleySolver {
     model: ShockleyModel,
     options: ShockleyOptions,
-    radau: Radau5,
+    radau: Radau5<DiodeLaw>,
     classifier: Classifier,
     /// Integrated steps not yet passed by the reported time, contiguous, in time order.
     steps: VecDeque<Step>,
@@ -51,6 +52,9 @@ pub struct ShockleySolver {
     events: u64,
     /// Checked (and charged one step) at every advance.
     cancel: Cancel,
+    /// The forward sensitivities, when asked for ([`ShockleySolver::with_sensitivities`]): at
+    /// the start of the front step of `steps`.
+    track: Option<Box<Track>>,
 }
 
 impl Drop for ShockleySolver {
@@ -97,7 +101,13 @@ impl ShockleySolver {
             max_step: options.max_step,
             initial_step: 1e-4,
         };
-        let radau = Radau5::new(model, 0.0, [initial.y, initial.v], settings);
+        let radau = Radau5::new(
+            model.params,
+            model.law,
+            0.0,
+            [initial.y, initial.v],
+            settings,
+        );
         let min_stop = options.min_stop_fraction * model.params.drive_period();
         let classifier = Classifier::new(initial.v, options.stop_threshold, min_stop);
         let mut solver = Self {
@@ -114,6 +124,7 @@ impl ShockleySolver {
             interval_phase: Phase::Stick,
             events: 0,
             cancel,
+            track: None,
         };
         let phase = loop {
             if let Some(phase) = solver.classifier.initial_phase() {
@@ -139,6 +150,110 @@ impl ShockleySolver {
     /// Newton iterations so far (each solves the three coupled stages at once).
     pub fn newton_iterations(&self) -> u64 {
         self.radau.counters.newton
+    }
+
+    /// As [`ShockleySolver::with_cancel`], carrying the forward sensitivities of the computed
+    /// solution along ([`crate::stiff::sensitivity`]): ∂x(τ)/∂(y0, v0), and with
+    /// [`Columns::Parameters`] also ∂x(τ)/∂(ζ_R, β, w, φ, a, ε, r) (a, ε, r: the
+    /// [`super::DiodeLaw`]'s scale, knee and resistance), from [I | 0] at τ = 0. The solution
+    /// itself is the one [`ShockleySolver::with_cancel`] computes, to the bit.
+    ///
+    /// # Errors
+    /// As [`ShockleySolver::with_cancel`].
+    pub fn with_sensitivities(
+        model: ShockleyModel,
+        initial: State,
+        options: ShockleyOptions,
+        cancel: Cancel,
+        columns: Columns,
+    ) -> Result<Self> {
+        let mut solver = Self::with_cancel(model, initial, options, cancel)?;
+        solver.track = Some(Box::new(Track::new(columns.count::<DiodeLaw>())));
+        Ok(solver)
+    }
+
+    /// The sensitivity ∂x(τ)/∂(y0, v0, p) at the current time τ, when the solver carries
+    /// them ([`ShockleySolver::with_sensitivities`]); `None` without. After
+    /// [`ShockleySolver::renormalize_sensitivity`], relative to the renormalised tangent.
+    ///
+    /// # Errors
+    /// [`Error::StepSizeTooSmall`] at a step whose Newton matrix is singular at its converged
+    /// stages (which its own convergence rules out in practice).
+    pub fn sensitivity(&self) -> Option<Result<Sensitivity>> {
+        let log_scale = self.track.as_ref()?.log_scale();
+        Some(self.tracked()?.map(|(mut s, _)| {
+            if log_scale != 0.0 {
+                s.scale(log_scale.exp());
+            }
+            s
+        }))
+    }
+
+    /// ln|det ∂x(τ)/∂x(0)| and its sign at the current time, when the solver carries
+    /// sensitivities: the phase-area contraction of the computed flow, kept as a logarithm
+    /// (see [`crate::stiff::Track`]; renormalisations do not change it).
+    ///
+    /// # Errors
+    /// As [`ShockleySolver::sensitivity`].
+    pub fn log_det(&self) -> Option<Result<(f64, f64)>> {
+        Some(self.tracked()?.map(|(_, d)| d))
+    }
+
+    /// Divide the carried state Jacobian J = ∂x(τ)/∂x(0) by its Frobenius norm at the current
+    /// time and return the logarithm of that norm (the growth of a tangent since the last
+    /// renormalisation, for Lyapunov exponents); `None` without sensitivities.
+    ///
+    /// # Errors
+    /// As [`ShockleySolver::sensitivity`].
+    pub fn renormalize_sensitivity(&mut self) -> Option<Result<f64>> {
+        let now = match self.tracked()? {
+            Ok((s, _)) => s,
+            Err(e) => return Some(Err(e)),
+        };
+        let norm = now
+            .state()
+            .iter()
+            .flatten()
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
+        let track = self.track.as_mut()?;
+        Some(Ok(track.renormalize(norm)))
+    }
+
+    fn tracked(&self) -> Option<Result<(Sensitivity, (f64, f64))>> {
+        let track = self.track.as_ref()?;
+        Some(match self.position() {
+            (None, _) => Ok(track.base()),
+            (Some(step), theta) => track
+                .at(&step, &self.model.params, &self.model.law, theta)
+                .ok_or(singular(&step)),
+        })
+    }
+
+    /// The step the current time lies in, and where (θ), as the state was computed.
+    fn position(&self) -> (Option<Step>, f64) {
+        match &self.last {
+            Some(step) if self.now > step.t0 => {
+                let theta = if self.now == step.t1() {
+                    1.0
+                } else {
+                    (self.now - step.t0) / step.h
+                };
+                (Some(*step), theta)
+            }
+            _ => (None, 0.0),
+        }
+    }
+
+    /// Move the sensitivities past the front step, which the reported time has passed.
+    fn pass(&mut self, step: &Step) -> Result<()> {
+        if let Some(track) = self.track.as_mut() {
+            track
+                .pass(step, &self.model.params, &self.model.law)
+                .ok_or(singular(step))?;
+        }
+        Ok(())
     }
 
     fn integrate_one(&mut self) -> Result<()> {
@@ -185,7 +300,8 @@ impl Solver for ShockleySolver {
             return Ok(None);
         }
         loop {
-            while self.steps.front().is_some_and(|s| s.t1() <= self.now) {
+            while let Some(step) = self.steps.front().copied().filter(|s| s.t1() <= self.now) {
+                self.pass(&step)?;
                 self.steps.pop_front();
             }
             let Some(&step) = self.steps.front() else {
@@ -257,5 +373,13 @@ impl Solver for ShockleySolver {
             steps: c.accepted,
             rejected: c.rejected,
         }
+    }
+}
+
+/// The error of a step whose Newton matrix is singular at its converged stages.
+fn singular(step: &Step) -> Error {
+    Error::StepSizeTooSmall {
+        tau: step.t0,
+        step: step.h,
     }
 }

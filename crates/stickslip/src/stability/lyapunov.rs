@@ -56,7 +56,7 @@
 //! logarithm of a rounded zero.
 
 use super::error::StabilityError;
-use super::tangent::TangentSolver;
+use super::tangent::{TangentRun, TangentSolver};
 use crate::error::{Error, Result};
 use crate::options::{Allowed, OptionKey};
 use crate::params::{Params, State};
@@ -334,27 +334,39 @@ pub fn lyapunov_exponents_monitored(
     let options = options.validate()?;
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
+    options.check_horizon(&params)?;
+    let mut tangent = TangentSolver::new(params, initial);
+    measure_exponents(&mut tangent, &params, &options, monitor)
+}
+
+/// The measurement of [`lyapunov_exponents_monitored`] on any tangent dynamics (the exact
+/// model's [`TangentSolver`], or a smooth law's), from where `tangent` stands (a strobe),
+/// with `options` validated and its horizon checked.
+pub(crate) fn measure_exponents<T: TangentRun + ?Sized>(
+    tangent: &mut T,
+    params: &Params,
+    options: &LyapunovOptions,
+    monitor: &dyn Monitor,
+) -> Result<LyapunovExponents> {
     let period = params.drive_period();
     let per_block = options.periods / options.blocks;
     // The monitor hears after every block of the cap's length, or every REPORT_EVERY periods.
     let every = per_block.clamp(1, REPORT_EVERY);
     // One solver runs the transient and the measurement.
-    options.check_horizon(&params)?;
     let mut progress = Progress {
         monitor,
         done: 0,
         total: options.transient_periods + per_block * options.blocks,
     };
-    let mut tangent = TangentSolver::new(params, initial);
     for k in 0..options.transient_periods {
         tangent.restart_clock();
-        tangent.run_until(period, |_| {})?;
+        tangent.run_until(period, &mut |_| {})?;
         tangent.renormalize();
         if tangent.grazing().is_some() {
             // (Only the measurement needs a finite Jacobian: start it afresh.)
             tangent.reset();
         }
-        if (k + 1) % every == 0 {
+        if (k + 1).is_multiple_of(every) {
             progress.step(every)?;
         }
     }
@@ -373,14 +385,14 @@ pub fn lyapunov_exponents_monitored(
         let k = growth.len();
         let offset = k as f64 * period;
         tangent.restart_clock();
-        tangent.run_until(period, |e| stops.event(offset, e))?;
+        tangent.run_until(period, &mut |e| stops.event(offset, e))?;
         if let Some(tau) = tangent.grazing() {
             return Err(StabilityError::NonFiniteJacobian { tau: offset + tau }.into());
         }
         growth.push(tangent.renormalize());
         log_det.push(tangent.log_det());
         let done = options.transient_periods + k + 1;
-        if done % every == 0 {
+        if done.is_multiple_of(every) {
             progress.step(done - progress.done)?;
         }
         if k + 1 == looks[look] {

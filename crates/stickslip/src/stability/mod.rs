@@ -62,6 +62,7 @@
 //! [`steady_exponent`] gives the largest exponent of any steady motion (maps of it:
 //! [`crate::scan::Grid::lyapunov`]).
 
+pub mod dynamics;
 pub(crate) mod error;
 pub mod lyapunov;
 mod matrix;
@@ -71,11 +72,13 @@ pub mod report;
 pub mod saltation;
 pub mod segment;
 pub mod sensitivity;
+pub mod smooth;
 pub mod strobe;
 pub mod tangent;
 pub mod two_trajectory;
 pub(crate) mod verdict;
 
+pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
@@ -83,14 +86,16 @@ pub use lyapunov::{
 };
 pub use matrix::{Matrix2, Multiplier};
 pub use nonperiodic::{
-    classify_nonperiodic, strobe_period, NonperiodicClassification, NonperiodicVerdict,
+    classify_nonperiodic, strobe_period, strobe_period_of, NonperiodicClassification,
+    NonperiodicVerdict,
 };
 pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stability, Stop};
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
 pub use sensitivity::{periodic_orbit_sensitivity, OrbitSample, SENSITIVITY_PARAMETERS};
+pub use smooth::{ShockleyDynamics, ShockleyTangent, SmoothImage, SmoothOrbitSample};
 pub use strobe::{strobe_map, StrobeImage};
-pub use tangent::TangentSolver;
+pub use tangent::{TangentRun, TangentSolver};
 pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
 
 // What joins a steady state to its stability lives in `crate::steady`, which builds on this

@@ -3,11 +3,11 @@
 
 pub use super::verdict::NonperiodicVerdict;
 
+use super::dynamics::{Dynamics, ExactDynamics};
 use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions};
 use crate::error::Result;
-use crate::exact::ExactSolver;
 use crate::params::{Params, State};
-use crate::solver::{run_until, Solver};
+use crate::solver::run_until;
 use serde::{Deserialize, Serialize};
 
 /// The verdict on a motion and the exponents behind it.
@@ -101,14 +101,28 @@ pub const STROBE_PERIOD_TOLERANCE: f64 = 1e-9;
 /// # Errors
 /// Invalid parameters or state; whatever the solver reports.
 pub fn strobe_period(params: &Params, state: State) -> Result<Option<usize>> {
+    strobe_period_of(&ExactDynamics, params, state)
+}
+
+/// [`strobe_period`] for the model `dynamics`, within its
+/// [`Dynamics::repeat_tolerance`] of [`STROBE_PERIOD_TOLERANCE`].
+///
+/// # Errors
+/// As [`strobe_period`].
+pub fn strobe_period_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    state: State,
+) -> Result<Option<usize>> {
     let params = params.validate()?;
     let state = State::new(state.y, state.v)?;
     let scale = 1f64.max(state.y.abs()).max(state.v.abs());
-    let mut solver = ExactSolver::new(params, state);
+    let tolerance = dynamics.repeat_tolerance(STROBE_PERIOD_TOLERANCE);
+    let mut solver = dynamics.solver(&params, state)?;
     for p in 1..=MAX_STROBE_PERIOD {
-        run_until(&mut solver, p as f64 * params.drive_period(), |_| {})?;
+        run_until(solver.as_mut(), p as f64 * params.drive_period(), |_| {})?;
         let x = solver.state();
-        if (x.y - state.y).abs().max((x.v - state.v).abs()) <= STROBE_PERIOD_TOLERANCE * scale {
+        if (x.y - state.y).abs().max((x.v - state.v).abs()) <= tolerance * scale {
             return Ok(Some(p));
         }
     }

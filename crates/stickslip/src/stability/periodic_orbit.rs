@@ -403,7 +403,7 @@ fn tends_to_one(
 
 /// The stops of one orbit period [0, end] from its events (a stop over the end joins the one
 /// at the start).
-fn stops(events: &[Event], stuck_at_start: bool, end: f64) -> Vec<Stop> {
+pub(crate) fn stops(events: &[Event], stuck_at_start: bool, end: f64) -> Vec<Stop> {
     let mut out = Vec::new();
     let mut since = stuck_at_start.then_some(0.0);
     let mut head: Option<f64> = None;

@@ -2,14 +2,14 @@
 //! --json` and `stickslip lyapunov --json` print, and what the Python package's
 //! `orbit(...).to_dict()` and `lyapunov(...).to_dict()` return.
 
+use super::dynamics::{Dynamics, ExactDynamics};
 use super::lyapunov::{LyapunovOptions, SecondExponent};
 use super::matrix::Multiplier;
-use super::nonperiodic::{strobe_period, NonperiodicClassification, NonperiodicVerdict};
+use super::nonperiodic::{strobe_period_of, NonperiodicClassification, NonperiodicVerdict};
 use super::periodic_orbit::{PeriodicOrbit, Stability, Stop};
 use crate::error::Result;
-use crate::exact::ExactSolver;
 use crate::params::Params;
-use crate::solver::{run_until, Solver};
+use crate::solver::run_until;
 use serde::Serialize;
 
 /// An exponent in JSON: a number, or the string `"-inf"` (JSON has no infinity).
@@ -70,11 +70,11 @@ pub struct OrbitReport {
     pub stable: bool,
     /// `stable`, `unstable` or `neutral` (|μ₁| within 10⁻⁹ of 1).
     pub stability: Stability,
-    /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ₁|/(pT) (`"-inf"` when both
-    /// multipliers vanish).
-    pub exponent_per_tau: ExponentValue,
+    /// The largest Lyapunov exponent λ₁ of the orbit per unit τ, ln|μ₁|/(pT) (`"-inf"` when
+    /// both multipliers vanish).
+    pub lambda1: ExponentValue,
     /// The same per drive period, ln|μ₁|/p.
-    pub exponent_per_period: ExponentValue,
+    pub lambda1_per_period: ExponentValue,
     /// The monodromy matrix ∂P^p/∂(y, y') as rows [[a, b], [c, d]].
     pub monodromy: [[f64; 2]; 2],
     /// Newton steps taken.
@@ -100,12 +100,20 @@ pub struct OrbitReport {
 }
 
 impl OrbitReport {
-    /// The report of `orbit`, an orbit of the model with `params`.
+    /// The report of `orbit`, an orbit of the exact model with `params`.
     ///
     /// # Errors
     /// Whatever the solver reports while it looks for the least period.
     pub fn new(orbit: &PeriodicOrbit, params: &Params) -> Result<Self> {
-        let least_period = least_period(orbit, params)?;
+        Self::of(orbit, params, &ExactDynamics)
+    }
+
+    /// The report of `orbit`, an orbit of the model `dynamics` with `params`.
+    ///
+    /// # Errors
+    /// Whatever the solver reports while it looks for the least period.
+    pub fn of(orbit: &PeriodicOrbit, params: &Params, dynamics: &dyn Dynamics) -> Result<Self> {
+        let least_period = least_period(orbit, params, dynamics)?;
         let exponent = orbit.exponent();
         let shortest = 1e-8 * orbit.drive_period;
         let stops = orbit.stops.iter().filter(|s| s.duration > shortest).count();
@@ -120,8 +128,8 @@ impl OrbitReport {
             moduli: orbit.multipliers.map(|m| m.modulus()),
             stable: orbit.stability == Stability::Stable,
             stability: orbit.stability,
-            exponent_per_tau: exponent.into(),
-            exponent_per_period: (exponent * orbit.drive_period).into(),
+            lambda1: exponent.into(),
+            lambda1_per_period: (exponent * orbit.drive_period).into(),
             monodromy: orbit.monodromy.0,
             iterations: orbit.iterations,
             residuals: orbit.residuals.clone(),
@@ -146,18 +154,19 @@ impl OrbitReport {
 }
 
 /// The least d dividing the orbit's period p after which the orbit's strobe state comes back
-/// (to 10⁻⁸ relative: far below the distance between distinct strobe states of one orbit,
-/// far above the rounding of a converged orbit, which an unstable orbit amplifies by its
-/// multiplier over d < p periods).
-fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
+/// (to 10⁻⁸ relative, or the model's [`Dynamics::repeat_tolerance`] of it: far below the
+/// distance between distinct strobe states of one orbit, far above the rounding of a
+/// converged orbit, which an unstable orbit amplifies by its multiplier over d < p periods).
+fn least_period(orbit: &PeriodicOrbit, params: &Params, dynamics: &dyn Dynamics) -> Result<usize> {
     let p = orbit.period;
     let x = orbit.state;
     let scale = 1f64.max(x.y.abs()).max(x.v.abs());
+    let tolerance = dynamics.repeat_tolerance(1e-8);
     for d in (1..p).filter(|d| p.is_multiple_of(*d)) {
-        let mut solver = ExactSolver::new(*params, x);
-        run_until(&mut solver, d as f64 * orbit.drive_period, |_| {})?;
+        let mut solver = dynamics.solver(params, x)?;
+        run_until(solver.as_mut(), d as f64 * orbit.drive_period, |_| {})?;
         let y = solver.state();
-        if (y.y - x.y).abs().max((y.v - x.v).abs()) <= 1e-8 * scale {
+        if (y.y - x.y).abs().max((y.v - x.v).abs()) <= tolerance * scale {
             return Ok(d);
         }
     }
@@ -168,14 +177,14 @@ fn least_period(orbit: &PeriodicOrbit, params: &Params) -> Result<usize> {
 /// or per drive period).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LyapunovReport {
-    /// The largest exponent λ₁ per unit τ.
-    pub lambda_per_tau: f64,
+    /// The largest exponent λ₁ per unit τ (JSON `lambda1`, the name of λ₁ in every report).
+    pub lambda1: f64,
     /// Its standard error per unit τ (from the block means).
-    pub error_per_tau: f64,
+    pub lambda1_error: f64,
     /// λ₁ per drive period, λ₁T.
-    pub lambda_per_period: f64,
+    pub lambda1_per_period: f64,
     /// Its standard error per drive period.
-    pub error_per_period: f64,
+    pub lambda1_error_per_period: f64,
     /// What the motion is: `periodic` when it is not chaotic and its strobe at the end of
     /// the measurement repeats with a period of at most 16 drive periods (`period`; rest has
     /// period 1); else what λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ),
@@ -186,16 +195,16 @@ pub struct LyapunovReport {
     /// The verdict of the exponent alone (`chaotic`, `quasi-periodic`, `contracting`,
     /// `undecided`), also when `class` is `periodic`.
     pub verdict: &'static str,
-    /// The period of the motion reached, in drive periods ([`strobe_period`]); `None` when
+    /// The period of the motion reached, in drive periods ([`super::strobe_period`]); `None` when
     /// the strobe does not repeat (or the motion is chaotic).
     pub period: Option<usize>,
     /// Whether the two halves of the measurement agree.
     pub converged: bool,
     /// The second exponent λ₂ per unit τ; `None` (JSON null) when λ₂ = −∞, with
     /// `lambda2_reason` saying why (JSON has no infinity).
-    pub lambda2_per_tau: Option<f64>,
+    pub lambda2: Option<f64>,
     /// Its standard error per unit τ (`None` when λ₂ = −∞).
-    pub lambda2_error_per_tau: Option<f64>,
+    pub lambda2_error: Option<f64>,
     /// λ₂ per drive period (`None` when λ₂ = −∞).
     pub lambda2_per_period: Option<f64>,
     /// Why λ₂ = −∞ (`None` when it is finite).
@@ -248,10 +257,23 @@ impl LyapunovReport {
         options: &LyapunovOptions,
         params: &Params,
     ) -> Result<Self> {
+        Self::of(c, options, params, &ExactDynamics)
+    }
+
+    /// [`LyapunovReport::new`] for a measurement on the model `dynamics`.
+    ///
+    /// # Errors
+    /// Whatever the solver reports on the run that looks for the period.
+    pub fn of(
+        c: &NonperiodicClassification,
+        options: &LyapunovOptions,
+        params: &Params,
+        dynamics: &dyn Dynamics,
+    ) -> Result<Self> {
         let e = &c.exponents;
         let period = match c.verdict {
             NonperiodicVerdict::Chaotic => None,
-            _ => strobe_period(params, e.final_state)?,
+            _ => strobe_period_of(dynamics, params, e.final_state)?,
         };
         let (lambda2, error2, reason) = match e.second {
             SecondExponent::Finite(s) => (Some(s.per_tau), Some(s.error_per_tau), None),
@@ -265,10 +287,10 @@ impl LyapunovReport {
             ),
         };
         Ok(Self {
-            lambda_per_tau: e.largest.per_tau,
-            error_per_tau: e.largest.error_per_tau,
-            lambda_per_period: e.largest.per_period,
-            error_per_period: e.largest.error_per_period,
+            lambda1: e.largest.per_tau,
+            lambda1_error: e.largest.error_per_tau,
+            lambda1_per_period: e.largest.per_period,
+            lambda1_error_per_period: e.largest.error_per_period,
             class: if period.is_some() {
                 "periodic"
             } else {
@@ -277,8 +299,8 @@ impl LyapunovReport {
             verdict: c.verdict.label(),
             period,
             converged: e.converged,
-            lambda2_per_tau: lambda2,
-            lambda2_error_per_tau: error2,
+            lambda2,
+            lambda2_error: error2,
             lambda2_per_period: lambda2.map(|l| l * e.drive_period),
             lambda2_reason: reason,
             stops_per_period: e.stops_per_period(),

@@ -198,6 +198,93 @@ impl TangentSolver {
     }
 }
 
+/// The tangent dynamics along a motion, drive period by drive period, as the Lyapunov
+/// measurement ([`super::lyapunov`]) and the strobe record ([`crate::attractor`]) use them:
+/// the exact model's [`TangentSolver`], or a smooth law's
+/// ([`super::smooth::ShockleyTangent`]).
+pub trait TangentRun {
+    /// Advance to `t_end` on the current clock (see [`TangentRun::restart_clock`]), carrying
+    /// J along and handing every event (times on that clock) to `on_event`.
+    ///
+    /// # Errors
+    /// [`Error::TimeBeforeCurrent`] when `t_end` lies before the current time; whatever the
+    /// solver reports.
+    fn run_until(&mut self, t_end: f64, on_event: &mut dyn FnMut(&Event)) -> Result<()>;
+
+    /// Start the clock afresh at the current time (a strobe), keeping J, ln|det J| and the
+    /// stops.
+    fn restart_clock(&mut self);
+
+    /// Divide J by its Frobenius norm and return the logarithm of the norm (the growth since
+    /// the last renormalisation); ln|det J| is kept.
+    fn renormalize(&mut self) -> f64;
+
+    /// Time of the first point since the last reset where the flow has no derivative (the
+    /// exact model's tangential release); `None` for a smooth law.
+    fn grazing(&self) -> Option<f64>;
+
+    /// J = I, ln|det J| = 0 and no stops at the current time (after a grazing).
+    fn reset(&mut self);
+
+    /// Restart ln|det J| and the stop count at the current time, keeping J.
+    fn reset_log_det(&mut self);
+
+    /// ln|det J| since the last reset of it, `None` when J is singular (a stop of the exact
+    /// model).
+    fn log_det(&self) -> Option<f64>;
+
+    /// Stops since the last reset of ln|det J| (a motion stuck at the reset counts one).
+    fn stops(&self) -> u64;
+
+    /// The phase of the motion at the current time.
+    fn phase(&self) -> Phase;
+
+    /// The state at the current time.
+    fn state(&self) -> State;
+}
+
+impl TangentRun for TangentSolver {
+    fn run_until(&mut self, t_end: f64, on_event: &mut dyn FnMut(&Event)) -> Result<()> {
+        TangentSolver::run_until(self, t_end, |e| on_event(e))
+    }
+
+    fn restart_clock(&mut self) {
+        TangentSolver::restart_clock(self);
+    }
+
+    fn renormalize(&mut self) -> f64 {
+        TangentSolver::renormalize(self)
+    }
+
+    fn grazing(&self) -> Option<f64> {
+        TangentSolver::grazing(self)
+    }
+
+    fn reset(&mut self) {
+        TangentSolver::reset(self);
+    }
+
+    fn reset_log_det(&mut self) {
+        TangentSolver::reset_log_det(self);
+    }
+
+    fn log_det(&self) -> Option<f64> {
+        TangentSolver::log_det(self)
+    }
+
+    fn stops(&self) -> u64 {
+        TangentSolver::stops(self)
+    }
+
+    fn phase(&self) -> Phase {
+        TangentSolver::phase(self)
+    }
+
+    fn state(&self) -> State {
+        TangentSolver::state(self)
+    }
+}
+
 impl Tangent {
     /// J = I at the current time of `solver`.
     pub(crate) fn new(solver: &ExactSolver) -> Self {

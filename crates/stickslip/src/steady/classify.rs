@@ -12,14 +12,25 @@
 use crate::solver::{Event, EventKind};
 use serde::{Deserialize, Serialize};
 
-/// The four kinds of steady motion of the paper's Fig. 6, and chaos.
+/// The largest gain of a [`MotionClass::Static`] motion: a motion is static when its amplitude
+/// (max y − min y)/2 is at most this fraction of β, i.e. its gain G = amplitude/β is at most
+/// 0.01 (1 %), whether or not it stops; [`classify`] applies it before anything else.
+pub const STATIC_GAIN: f64 = 0.01;
+
+/// The kinds of steady motion of the paper's Fig. 6, chaos, and the motions not decided
+/// within the budget.
 ///
-/// [`classify`] decides the first four from the event log. A motion that does not repeat is
-/// then measured by its largest Lyapunov exponent λ₁ (with the exact model, see
+/// [`classify`] decides from the event log. A motion that does not repeat is then measured by
+/// its largest Lyapunov exponent λ₁ (with the exact model, see
 /// [`super::SteadyOptions::lyapunov`]): it is [`MotionClass::Chaotic`] when λ₁ is positive
-/// beyond its error, and otherwise keeps its class from the event log
-/// ([`MotionClass::NonperiodicStick`] with stops, [`MotionClass::Sliding`] without), with λ₁
-/// reported beside it.
+/// beyond its error, and otherwise stays [`MotionClass::Undecided`] (with stops) or
+/// [`MotionClass::Sliding`] (without), with λ₁ and its verdict reported beside it.
+///
+/// [`MotionClass::Undecided`] is no kind of motion: it says that the budget (no period up to
+/// the maximum period within the cap on drive periods, and no significantly positive λ₁) did
+/// not decide. The paper's fourth class, "non-periodic motion with sticking", is where such
+/// motions land: its label was `nonperiodic-stick`, which [`MotionClass::from_label`] and
+/// serde still read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MotionClass {
@@ -27,9 +38,13 @@ pub enum MotionClass {
     Sliding,
     /// Periodic (period p ≤ the maximum period) with at least one stop of non-zero duration.
     PeriodicStick,
-    /// No period found within the cap on drive periods, with stops.
-    NonperiodicStick,
-    /// Amplitude of y at most β/100 (for example never leaves rest).
+    /// Not decided within the budget: no period found within the cap on drive periods, with
+    /// stops, and λ₁ not positive beyond its error (or not measured). Label `undecided`
+    /// (before: `nonperiodic-stick`, the paper's "non-periodic motion with sticking").
+    #[serde(alias = "nonperiodic-stick")]
+    Undecided,
+    /// Amplitude of y at most β/100 (gain at most [`STATIC_GAIN`]; for example never leaves
+    /// rest, or creeps with stops).
     Static,
     /// No period found, and the largest Lyapunov exponent is positive beyond its error
     /// (nearby motions separate exponentially): chaos.
@@ -49,7 +64,7 @@ impl MotionClass {
     pub const ALL: [MotionClass; 8] = [
         MotionClass::Sliding,
         MotionClass::PeriodicStick,
-        MotionClass::NonperiodicStick,
+        MotionClass::Undecided,
         MotionClass::Static,
         MotionClass::Chaotic,
         MotionClass::StickSlipCycle,
@@ -57,13 +72,23 @@ impl MotionClass {
         MotionClass::SteadySliding,
     ];
 
-    /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `nonperiodic-stick`,
-    /// `static`, `chaotic`, `stick-slip-cycle`, `pure-slip-cycle`, `steady-sliding`.
+    /// Labels retired, with the class each now reads as: `nonperiodic-stick` (now
+    /// `undecided`).
+    pub const RETIRED: [(&'static str, MotionClass); 1] =
+        [("nonperiodic-stick", MotionClass::Undecided)];
+
+    /// The former name of [`MotionClass::Undecided`].
+    #[deprecated(note = "the class is `MotionClass::Undecided` (label `undecided`)")]
+    #[allow(non_upper_case_globals)]
+    pub const NonperiodicStick: MotionClass = MotionClass::Undecided;
+
+    /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `undecided`, `static`,
+    /// `chaotic`, `stick-slip-cycle`, `pure-slip-cycle`, `steady-sliding`.
     pub fn label(self) -> &'static str {
         match self {
             MotionClass::Sliding => "sliding",
             MotionClass::PeriodicStick => "periodic-stick",
-            MotionClass::NonperiodicStick => "nonperiodic-stick",
+            MotionClass::Undecided => "undecided",
             MotionClass::Static => "static",
             MotionClass::Chaotic => "chaotic",
             MotionClass::StickSlipCycle => "stick-slip-cycle",
@@ -77,14 +102,22 @@ impl MotionClass {
     pub const DRIVEN: [MotionClass; 5] = [
         MotionClass::Sliding,
         MotionClass::PeriodicStick,
-        MotionClass::NonperiodicStick,
+        MotionClass::Undecided,
         MotionClass::Static,
         MotionClass::Chaotic,
     ];
 
-    /// The class with this label.
+    /// The class with this label (or a retired label, [`MotionClass::RETIRED`]).
     pub fn from_label(label: &str) -> Option<Self> {
-        MotionClass::ALL.into_iter().find(|c| c.label() == label)
+        MotionClass::ALL
+            .into_iter()
+            .find(|c| c.label() == label)
+            .or_else(|| {
+                MotionClass::RETIRED
+                    .iter()
+                    .find(|(old, _)| *old == label)
+                    .map(|&(_, c)| c)
+            })
     }
 }
 
@@ -154,12 +187,12 @@ pub fn classify(
         .filter(|&&d| d > min_stop && d.is_finite())
         .count();
     let longest_stop = durations.iter().copied().fold(0.0, f64::max);
-    let class = if amplitude <= beta / 100.0 {
+    let class = if amplitude <= beta * STATIC_GAIN {
         MotionClass::Static
     } else if stops > 0 && periodic {
         MotionClass::PeriodicStick
     } else if stops > 0 {
-        MotionClass::NonperiodicStick
+        MotionClass::Undecided
     } else {
         MotionClass::Sliding
     };
@@ -185,6 +218,17 @@ mod tests {
             assert_eq!(MotionClass::from_label(c.label()), Some(c));
         }
         assert_eq!(MotionClass::from_label("none"), None);
+        // The label retired keeps reading, in text and in JSON (checkpoints, old files).
+        assert_eq!(
+            MotionClass::from_label("nonperiodic-stick"),
+            Some(MotionClass::Undecided)
+        );
+        let old: MotionClass = serde_json::from_str("\"nonperiodic-stick\"").unwrap();
+        assert_eq!(old, MotionClass::Undecided);
+        assert_eq!(
+            serde_json::to_string(&MotionClass::Undecided).unwrap(),
+            "\"undecided\""
+        );
     }
 
     #[test]
@@ -196,7 +240,7 @@ mod tests {
             [
                 "sliding",
                 "periodic-stick",
-                "nonperiodic-stick",
+                "undecided",
                 "static",
                 "chaotic",
                 "stick-slip-cycle",
@@ -234,7 +278,7 @@ mod tests {
             ev(3.5, EventKind::Slip),
         ];
         let c = classify(&events, 0.0, 4.0, 2, false, false, 1.0, 1.2, 1e-8);
-        assert_eq!(c.class, MotionClass::NonperiodicStick);
+        assert_eq!(c.class, MotionClass::Undecided);
         assert_eq!(c.stops_per_period, 1.0);
     }
 

@@ -8,17 +8,30 @@ use super::{settle_from, MotionClass, SolverFactory, SteadyOptions, SteadyState}
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::stability::{
-    find_periodic_orbit, lyapunov_exponents, Estimate, LyapunovOptions, NewtonOptions,
+    lyapunov_exponents, Dynamics, Estimate, ExactDynamics, LyapunovOptions, NewtonOptions,
     NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, StabilityError,
 };
 
 /// The periodic orbit of a settled steady state (its period and first recorded strobe as the
-/// guess), refined by [`find_periodic_orbit`].
+/// guess), refined by [`crate::stability::find_periodic_orbit`].
 ///
 /// # Errors
 /// [`StabilityError::NoPeriod`] when the steady state has no period; as
-/// [`find_periodic_orbit`].
+/// [`crate::stability::find_periodic_orbit`].
 pub fn periodic_orbit_from_steady(
+    params: &Params,
+    steady: &SteadyState,
+    options: &NewtonOptions,
+) -> Result<PeriodicOrbit> {
+    periodic_orbit_from_steady_of(&ExactDynamics, params, steady, options)
+}
+
+/// [`periodic_orbit_from_steady`] on the model `dynamics` (a steady state of the same model).
+///
+/// # Errors
+/// As [`periodic_orbit_from_steady`].
+pub fn periodic_orbit_from_steady_of(
+    dynamics: &dyn Dynamics,
     params: &Params,
     steady: &SteadyState,
     options: &NewtonOptions,
@@ -37,7 +50,7 @@ pub fn periodic_orbit_from_steady(
         }
         .into());
     };
-    find_periodic_orbit(params, guess, period, options)
+    dynamics.find_periodic_orbit(params, guess, period, options)
 }
 
 /// The largest Lyapunov exponent of a steady motion of the exact model.

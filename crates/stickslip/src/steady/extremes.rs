@@ -17,8 +17,8 @@ use crate::solver::{Phase, Sample, Solver};
 const MOST_SAMPLES: f64 = 1e7;
 
 /// Each zero of y' inside the stretch `solver` last advanced through ([`Solver::interval`],
-/// where its dense output holds), as the sample there and whether y has a maximum (y' from
-/// + to −) or a minimum: every sign change between samples `spacing` apart, placed by
+/// where its dense output holds), as the sample there and whether y has a maximum (y' going
+/// from positive to negative) or a minimum: every sign change between samples `spacing` apart, placed by
 /// bisection to rounding. A zero at the stretch's start belongs to the stretch before it.
 /// Stuck stretches (y' = vb ≠ 0, or 0 without a belt) are skipped.
 pub(crate) fn velocity_zeros<S: Solver + ?Sized>(

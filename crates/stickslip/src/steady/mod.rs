@@ -27,17 +27,17 @@ pub mod self_excited;
 mod spectrum;
 mod state;
 
-pub use classify::{classify, Classification, MotionClass};
+pub use classify::{classify, Classification, MotionClass, STATIC_GAIN};
 pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
 pub(crate) use exponent::settle_with_exponent;
 pub use exponent::{
-    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
-    SEARCH_BEFORE_MEASURING,
+    periodic_orbit_from_steady, periodic_orbit_from_steady_of, steady_exponent,
+    steady_state_with_exponent, SEARCH_BEFORE_MEASURING,
 };
 pub use options::SteadyOptions;
-pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
 pub use report::SteadyReport;
+pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
 pub use spectrum::{Harmonic, Spectrum};
 pub use state::SteadyState;
 

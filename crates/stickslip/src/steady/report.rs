@@ -10,19 +10,20 @@ use serde::Serialize;
 /// that repeats has none of them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SteadyReport {
-    /// Motion class label: `sliding`, `periodic-stick`, `nonperiodic-stick`, `static` or
-    /// `chaotic`.
+    /// Motion class label: `sliding`, `periodic-stick`, `undecided`, `static` or `chaotic`.
     pub class: &'static str,
     /// Period in drive periods (`None`: none found within the cap).
     pub period: Option<usize>,
     /// Stops of non-zero duration per drive period.
-    pub stops_per_cycle: f64,
+    pub stops_per_period: f64,
     /// Whether the cycle is mapped onto itself by (y, y', τ) → (−y, −y', τ + T/2).
     pub symmetric: bool,
     /// Largest |y|.
     pub peak: f64,
-    /// Gain (y_max − y_min)/(2β) (`None` where it is infinite: β = 0 with motion).
+    /// Gain G = (y_max − y_min)/(2β) (`None` where it is infinite: β = 0 with motion).
     pub gain: Option<f64>,
+    /// Gain of the fundamental G1 = A1/β (`None` without a spectrum, or at β = 0).
+    pub gain1: Option<f64>,
     /// Lag of the fundamental behind the drive (radians), from the spectrum.
     pub phase_lag: Option<f64>,
     /// Amplitudes A_1, A_2, … of the drive harmonics of y.
@@ -47,24 +48,24 @@ pub struct SteadyReport {
     pub zeta: f64,
     /// Static-to-kinetic friction ratio μs.
     pub mu_s: f64,
-    /// Largest Lyapunov exponent per unit τ (motions that do not repeat only).
+    /// Largest Lyapunov exponent λ1 per unit τ (motions that do not repeat only).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda_per_tau: Option<f64>,
+    pub lambda1: Option<f64>,
     /// Its standard error per unit τ.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub error_per_tau: Option<f64>,
-    /// Largest Lyapunov exponent per drive period.
+    pub lambda1_error: Option<f64>,
+    /// λ1 per drive period.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda_per_period: Option<f64>,
+    pub lambda1_per_period: Option<f64>,
     /// Its standard error per drive period.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub error_per_period: Option<f64>,
-    /// Drive periods measured.
+    pub lambda1_error_per_period: Option<f64>,
+    /// Drive periods over which λ1 was measured.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda_periods: Option<usize>,
-    /// Whether the two halves of the measurement agree.
+    pub lambda1_periods: Option<usize>,
+    /// Whether the two halves of the measurement of λ1 agree.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda_converged: Option<bool>,
+    pub lambda1_converged: Option<bool>,
     /// What the exponent says: `chaotic`, `quasi-periodic`, `contracting` or `undecided`
     /// ([`crate::stability::NonperiodicVerdict`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -115,10 +116,11 @@ impl From<&SteadyState> for SteadyReport {
         Self {
             class: steady.class.label(),
             period: steady.period,
-            stops_per_cycle: steady.stops_per_period,
+            stops_per_period: steady.stops_per_period,
             symmetric: steady.symmetric,
             peak: steady.peak,
             gain: steady.gain.is_finite().then_some(steady.gain),
+            gain1: steady.gain1(),
             phase_lag: steady.phase_lag(),
             harmonics: of(|h| h.amplitude),
             harmonic_phases: of(|h| h.phase),
@@ -133,12 +135,12 @@ impl From<&SteadyState> for SteadyReport {
             beta: p.beta,
             zeta: p.zeta,
             mu_s: p.mu_s,
-            lambda_per_tau: lyapunov.map(|l| l.exponents.largest.per_tau),
-            error_per_tau: lyapunov.map(|l| l.exponents.largest.error_per_tau),
-            lambda_per_period: lyapunov.map(|l| l.exponents.largest.per_period),
-            error_per_period: lyapunov.map(|l| l.exponents.largest.error_per_period),
-            lambda_periods: lyapunov.map(|l| l.exponents.periods),
-            lambda_converged: lyapunov.map(|l| l.exponents.converged),
+            lambda1: lyapunov.map(|l| l.exponents.largest.per_tau),
+            lambda1_error: lyapunov.map(|l| l.exponents.largest.error_per_tau),
+            lambda1_per_period: lyapunov.map(|l| l.exponents.largest.per_period),
+            lambda1_error_per_period: lyapunov.map(|l| l.exponents.largest.error_per_period),
+            lambda1_periods: lyapunov.map(|l| l.exponents.periods),
+            lambda1_converged: lyapunov.map(|l| l.exponents.converged),
             verdict: lyapunov.map(|l| l.verdict.label()),
             y_max: steady.y_max,
             y_min: steady.y_min,

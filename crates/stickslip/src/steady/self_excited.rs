@@ -474,12 +474,9 @@ fn unsettled<S: Solver + ?Sized>(
         y_min = y_min.min(y);
         y_max = y_max.max(y);
     }
-    let stops = events
-        .iter()
-        .filter(|e| e.kind == EventKind::Stick)
-        .count();
+    let stops = events.iter().filter(|e| e.kind == EventKind::Stick).count();
     let class = if stops > 0 {
-        MotionClass::NonperiodicStick
+        MotionClass::Undecided
     } else {
         MotionClass::Sliding
     };

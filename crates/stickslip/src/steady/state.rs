@@ -37,7 +37,8 @@ pub struct SteadyState {
     pub y_max: f64,
     /// Largest |y| over the recorded periods.
     pub peak: f64,
-    /// Gain (y_max − y_min)/(2β), the paper's G (0 when β = 0 and nothing moves).
+    /// Gain G = (y_max − y_min)/(2β), the paper's G of its Table 1 (0 when β = 0 and nothing
+    /// moves); [`SteadyState::gain1`] is the gain of the fundamental.
     pub gain: f64,
     /// Time τ at which the record starts (a whole number of drive periods).
     pub start: f64,
@@ -87,6 +88,14 @@ impl SteadyState {
     /// Amplitude of the k-th drive harmonic of y, from the spectrum.
     pub fn harmonic(&self, k: usize) -> Option<f64> {
         self.spectrum.as_ref().and_then(|s| s.amplitude(k))
+    }
+
+    /// The gain of the fundamental G1 = A1/β (`None` without a spectrum, or at β = 0): the
+    /// gain the paper's formula (its eq. 11) gives. [`SteadyState::gain`] is the gain
+    /// G = (y_max − y_min)/(2β); the two agree for a sinusoidal motion only.
+    pub fn gain1(&self) -> Option<f64> {
+        let beta = self.params.beta;
+        self.harmonic(1).filter(|_| beta > 0.0).map(|a1| a1 / beta)
     }
 
     /// The oscilloscope's X-Y picture: (drive, y) at every sample of the trace.

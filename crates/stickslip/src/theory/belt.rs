@@ -67,10 +67,19 @@ impl CoulombBeltCycle {
     /// [`crate::Error::InvalidParameter`] naming `mu_s` or `vb` (which must not be 0: the
     /// belt at rest has no self-excited cycle).
     pub fn new(mu_s: f64, vb: f64) -> Result<Self> {
-        crate::error::check("mu_s", mu_s, limits::mu_s_ok(mu_s), "must be finite and >= 1")?;
+        crate::error::check(
+            "mu_s",
+            mu_s,
+            limits::mu_s_ok(mu_s),
+            "must be finite and >= 1",
+        )?;
         let vb = check_vb(vb)?;
         if vb == 0.0 {
-            return crate::error::invalid("vb", vb, "must not be 0: a belt at rest excites nothing");
+            return crate::error::invalid(
+                "vb",
+                vb,
+                "must not be 0: a belt at rest excites nothing",
+            );
         }
         let (sign, speed) = (vb.signum(), vb.abs());
         let excess = mu_s - 1.0;

@@ -10,7 +10,7 @@
 //! use stickslip::{Parameter, Params};
 //! let base = Params::new(0.0468, 1.0, 1.6).unwrap();
 //! let ws = [0.2, 0.9];
-//! let exact = theory_curve(Theory::Exact, TheoryQuantity::Gain, &base, Parameter::W, &ws);
+//! let exact = theory_curve(Theory::Exact, TheoryQuantity::Gain1, &base, Parameter::W, &ws);
 //! // At β = 1.6 the orbit slides at w = 0.9 and sticks at w = 0.2 (no sliding orbit).
 //! assert!(exact.y[0].is_nan() && exact.y[1] > 1.0);
 //! ```
@@ -53,19 +53,25 @@ impl Theory {
 pub enum CurveKind {
     /// The stick-slip boundary β_c over w: `w,beta_c_paper,beta_c_exact`.
     Boundary,
-    /// The gain A1/β over w at a given β: `w,gain_paper,gain_exact`.
-    Gain,
+    /// The gain of the fundamental G1 = A1/β over w at a given β:
+    /// `w,gain1_paper,gain1_exact` (label `gain1`; before: `gain`, which still reads).
+    #[serde(alias = "gain")]
+    Gain1,
 }
 
 impl CurveKind {
     /// Both.
-    pub const ALL: [CurveKind; 2] = [CurveKind::Boundary, CurveKind::Gain];
+    pub const ALL: [CurveKind; 2] = [CurveKind::Boundary, CurveKind::Gain1];
 
-    /// `boundary` or `gain`.
+    /// Names retired, with the value each now reads as: `gain` (now `gain1`: G1 = A1/β, not
+    /// the gain G = (y_max − y_min)/(2β) of a steady state).
+    pub const RETIRED: [(&'static str, CurveKind); 1] = [("gain", CurveKind::Gain1)];
+
+    /// `boundary` or `gain1`.
     pub fn label(self) -> &'static str {
         match self {
             CurveKind::Boundary => "boundary",
-            CurveKind::Gain => "gain",
+            CurveKind::Gain1 => "gain1",
         }
     }
 
@@ -73,7 +79,16 @@ impl CurveKind {
     pub fn quantity(self) -> TheoryQuantity {
         match self {
             CurveKind::Boundary => TheoryQuantity::Boundary,
-            CurveKind::Gain => TheoryQuantity::Gain,
+            CurveKind::Gain1 => TheoryQuantity::Gain1,
+        }
+    }
+
+    /// The quantity's name in the CSV columns: `beta_c` or `gain1`
+    /// ([`crate::report::TheoryTable::quantity`]).
+    pub fn quantity_name(self) -> &'static str {
+        match self {
+            CurveKind::Boundary => "beta_c",
+            CurveKind::Gain1 => "gain1",
         }
     }
 
@@ -81,7 +96,7 @@ impl CurveKind {
     pub fn columns(self) -> [&'static str; 2] {
         match self {
             CurveKind::Boundary => ["beta_c_paper", "beta_c_exact"],
-            CurveKind::Gain => ["gain_paper", "gain_exact"],
+            CurveKind::Gain1 => ["gain1_paper", "gain1_exact"],
         }
     }
 
@@ -89,7 +104,9 @@ impl CurveKind {
     pub fn description(self) -> &'static str {
         match self {
             CurveKind::Boundary => "β_c over w: `w,beta_c_paper,beta_c_exact`",
-            CurveKind::Gain => "Gain A1/β over w at the given β: `w,gain_paper,gain_exact`",
+            CurveKind::Gain1 => {
+                "Gain of the fundamental G1 = A1/β over w at the given β: `w,gain1_paper,gain1_exact`"
+            }
         }
     }
 }
@@ -97,10 +114,12 @@ impl CurveKind {
 /// What a theory curve shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum TheoryQuantity {
-    /// The gain A1/β (the paper's G).
-    Gain,
-    /// The peak gain max|y|/β of the exact orbit: what the simulated gain
-    /// (y_max − y_min)/(2β) measures on a sliding orbit. The paper has none (NaN).
+    /// The gain of the fundamental G1 = A1/β (what the paper's formula, its eq. 11, gives for
+    /// its G).
+    Gain1,
+    /// The gain G = (y_max − y_min)/(2β) of the exact orbit (its max|y|/β: the orbit is
+    /// symmetric), what a steady state's `gain` measures on a sliding orbit. The paper has
+    /// none (NaN).
     PeakGain,
     /// The amplitude A_k of the odd harmonic k of y (units of y). The paper's A_k for k ≥ 3
     /// does not depend on β and exists even where its A1 does not.
@@ -114,10 +133,10 @@ pub fn theory_value(theory: Theory, quantity: TheoryQuantity, params: &Params) -
     let (zeta, w, beta) = (params.zeta, params.w, params.beta);
     let exact = || PeriodicSolution::new(params).ok();
     let value = match (theory, quantity) {
-        (Theory::Paper, TheoryQuantity::Gain) => {
-            PaperSeries::new(zeta, w, beta).ok().map(|s| s.gain())
+        (Theory::Paper, TheoryQuantity::Gain1) => {
+            PaperSeries::new(zeta, w, beta).ok().map(|s| s.gain1())
         }
-        (Theory::Exact, TheoryQuantity::Gain) => exact().map(|s| s.gain()),
+        (Theory::Exact, TheoryQuantity::Gain1) => exact().map(|s| s.gain1()),
         (Theory::Paper, TheoryQuantity::PeakGain) => None,
         (Theory::Exact, TheoryQuantity::PeakGain) => {
             (beta > 0.0).then(exact).flatten().map(|s| s.peak / beta)
@@ -240,7 +259,7 @@ impl SweepTheory {
         let xs = abscissae(from, to, steps);
         let curve = |theory, quantity| theory_curve(theory, quantity, base, over, &xs);
         Self {
-            paper: curve(Theory::Paper, TheoryQuantity::Gain),
+            paper: curve(Theory::Paper, TheoryQuantity::Gain1),
             exact: curve(Theory::Exact, TheoryQuantity::PeakGain),
             prefix: if shockley { "PWL theory: " } else { "" },
         }
@@ -254,7 +273,7 @@ impl SweepTheory {
         (from, to, steps): (f64, f64, usize),
     ) -> TheoryCurve {
         let xs = abscissae(from, to, steps);
-        theory_curve(Theory::Exact, TheoryQuantity::Gain, base, over, &xs)
+        theory_curve(Theory::Exact, TheoryQuantity::Gain1, base, over, &xs)
     }
 }
 
@@ -401,12 +420,12 @@ mod tests {
         let orbit = PeriodicSolution::new(&params).unwrap();
         assert_eq!(exact.y[0], orbit.peak / 1.6);
         // The peak is not the fundamental: the two gains differ.
-        assert!((exact.y[0] - orbit.gain()).abs() > 1e-3 * orbit.gain());
+        assert!((exact.y[0] - orbit.gain1()).abs() > 1e-3 * orbit.gain1());
         assert!(exact.y[1].is_nan());
         assert_eq!(exact.present(), 1);
         let paper = theory_curve(
             Theory::Paper,
-            TheoryQuantity::Gain,
+            TheoryQuantity::Gain1,
             &params,
             Parameter::W,
             &xs,

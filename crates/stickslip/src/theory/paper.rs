@@ -91,10 +91,18 @@ impl PaperSeries {
         })
     }
 
-    /// Gain G = A1/β (the paper's Table 1: U_C0/U for the circuit, ω0²r0/(F/m) for the
-    /// oscillator).
-    pub fn gain(&self) -> f64 {
+    /// Gain of the fundamental G1 = A1/β: what eq. (11) gives for the paper's G (its Table 1:
+    /// U_C0/U for the circuit, ω0²r0/(F/m) for the oscillator), which for a motion that is
+    /// not sinusoidal is the gain G = (y_max − y_min)/(2β) of a steady state only
+    /// approximately.
+    pub fn gain1(&self) -> f64 {
         self.a1 / self.beta
+    }
+
+    /// The former name of [`PaperSeries::gain1`].
+    #[deprecated(note = "A1/β is `gain1` (G1); `gain` is G = (y_max − y_min)/(2β)")]
+    pub fn gain(&self) -> f64 {
+        self.gain1()
     }
 
     /// The superharmonic A_{2n−1}, φ_{2n−1} of eq. (11), for n ≥ 2 (order 3, 5, …).

@@ -368,9 +368,16 @@ impl PeriodicSolution {
         -self.harmonic(1).phase
     }
 
-    /// Gain G = A1/β, as the paper defines it (Table 1) for its eq. (11).
-    pub fn gain(&self) -> f64 {
+    /// Gain of the fundamental G1 = A1/β, what the paper's eq. (11) gives. The orbit's gain
+    /// G = (y_max − y_min)/(2β) is `peak / β` (the orbit is symmetric).
+    pub fn gain1(&self) -> f64 {
         self.a1() / self.params.beta
+    }
+
+    /// The former name of [`PeriodicSolution::gain1`].
+    #[deprecated(note = "A1/β is `gain1` (G1); the orbit's G is `peak / beta`")]
+    pub fn gain(&self) -> f64 {
+        self.gain1()
     }
 
     /// Spectral radius of the Jacobian of the turning-point map (y, θ) ↦ (−y, θ − π) at the

@@ -96,8 +96,8 @@ pub struct PaperValues {
     pub a5: Option<f64>,
     /// Lag φ0 of the fundamental behind the drive (radians).
     pub phi0: Option<f64>,
-    /// Gain A1/β.
-    pub gain: Option<f64>,
+    /// Gain of the fundamental G1 = A1/β.
+    pub gain1: Option<f64>,
     /// β_c of eq. (13).
     pub beta_c: Option<f64>,
     /// Why values are missing, and caveats.
@@ -127,8 +127,8 @@ pub struct ExactValues {
     pub a5: Option<f64>,
     /// Lag of its fundamental behind the drive (radians).
     pub phase: Option<f64>,
-    /// Its gain A1/β.
-    pub gain: Option<f64>,
+    /// Its gain of the fundamental G1 = A1/β.
+    pub gain1: Option<f64>,
     /// The exact stick-slip boundary β_c(w, ζ, μs).
     pub beta_c: Option<f64>,
     /// Spectral radius of its turning-point map (< 1: it attracts nearby motions).
@@ -260,7 +260,7 @@ impl TheoryReport {
                 a3,
                 a5,
                 phi0,
-                gain: a1.map(|a| a / beta),
+                gain1: a1.map(|a| a / beta),
                 beta_c: paper_beta_c,
                 notes: paper_notes,
             },
@@ -271,7 +271,7 @@ impl TheoryReport {
                 a3: harmonic(3),
                 a5: harmonic(5),
                 phase: orbit.as_ref().map(|s| s.phase_lag()),
-                gain: orbit.as_ref().map(|s| s.gain()),
+                gain1: orbit.as_ref().map(|s| s.gain1()),
                 beta_c: exact_beta_c,
                 spectral_radius: orbit.as_ref().map(|s| s.spectral_radius()),
                 notes: exact_notes,

@@ -161,6 +161,8 @@ impl Report {
              <title>stickslip: the paper's figures, reproduced</title>\n<style>\n\
              body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}\n\
              img{max-width:100%;border:1px solid #ddd;margin:0.5em 0}\n\
+             .fig{width:calc(100vw - 2em);margin-left:calc(50% - 50vw + 1em);overflow-x:auto;text-align:center}\n\
+             .fig img{max-width:none;height:auto}\n\
              table{border-collapse:collapse;margin:0.8em 0}td,th{border:1px solid #ccc;padding:0.25em 0.6em;text-align:right}\n\
              th{background:#f4f4f4}td:first-child,th:first-child{text-align:left}\n\
              .caption{color:#333}.files{font-size:0.85em;color:#666}\n\
@@ -176,7 +178,9 @@ impl Report {
              (L = 11.5 mH, C = 0.02 µF, R = 68 Ω, diodes U<sub>t</sub> = 0.7 V, R<sub>D</sub> = \
              3.0 Ω). Simulated values come from the exact event-driven solver (PWL diodes) or \
              the stiff solver (Shockley diodes); where they differ from the paper's series \
-             formula, the caption says so.</p>\n<nav>",
+             formula, the caption says so. The paper's Fig. 2 is not reproduced: it draws the \
+             circuit and the PWL model of a diode, and computes nothing (the PWL diode pair's \
+             I-V curve is Fig. 1 (b) here).</p>\n<nav>",
         );
         // A table of contents: one line per section, with its title, under its chapter.
         h.push_str("\n<ul>\n");
@@ -208,10 +212,16 @@ impl Report {
                 s.id,
                 escape(&s.title)
             );
+            // Each figure at its full size, wider than the text when it is wide (centred on
+            // the window, scrolling sideways only in a window narrower than the figure).
             for f in &s.figures {
+                let size = png_size(&self.staging.join(format!("{f}.png")))
+                    .map(|(w, h)| format!(" width=\"{w}\" height=\"{h}\""))
+                    .unwrap_or_default();
                 let _ = writeln!(
                     h,
-                    "<a href=\"{f}.svg\"><img src=\"{f}.png\" alt=\"{f}\"></a>"
+                    "<div class=\"fig\"><a href=\"{f}.svg\"><img src=\"{f}.png\"{size} \
+                     alt=\"{f}\"></a></div>"
                 );
             }
             for (header, rows) in &s.tables {
@@ -248,6 +258,22 @@ impl Report {
         h.push_str("<p class=\"files\"><a href=\"summary.json\">summary.json</a> holds the key numbers.</p>\n</body>\n</html>\n");
         h
     }
+}
+
+/// The width and height of a PNG file, from its header (IHDR).
+fn png_size(path: &Path) -> Option<(u32, u32)> {
+    use std::io::Read;
+    let mut header = [0u8; 24];
+    std::fs::File::open(path)
+        .ok()?
+        .read_exact(&mut header)
+        .ok()?;
+    if &header[..8] != b"\x89PNG\r\n\x1a\n" || &header[12..16] != b"IHDR" {
+        return None;
+    }
+    let be =
+        |i: usize| u32::from_be_bytes([header[i], header[i + 1], header[i + 2], header[i + 3]]);
+    Some((be(16), be(20)))
 }
 
 impl Drop for Report {

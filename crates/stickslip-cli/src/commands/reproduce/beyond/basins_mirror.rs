@@ -62,7 +62,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     let title = "basins of attraction at ζ = 0, μs = 3, w = 0.6, β = 3.269 (drive phase 0)";
     report.figure(
         "beyond-basins",
-        &crate::plot::Figure::single(crate::diagrams::basin_panel(&map, title), (900, 760)),
+        &crate::plot::Figure::single(crate::diagrams::basin_panel(&map, title), (900, 650)),
     )?;
     let mut rows = Vec::new();
     let nv = map.v0.len();
@@ -72,7 +72,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
             format!("{}", map.y0[k / nv]),
             format!("{}", map.v0[k % nv]),
             a.map(|a| a.id.to_string()).unwrap_or_default(),
-            a.map_or("unsettled", |a| a.kind.label()).into(),
+            a.map_or("undecided", |a| a.kind.label()).into(),
             a.and_then(|a| a.period)
                 .map(|p| p.to_string())
                 .unwrap_or_default(),
@@ -80,7 +80,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     report.csv(
         "beyond-basins.csv",
-        &["y0", "v0", "attractor", "kind", "period"],
+        &["y0", "v0", "attractor", "class", "period"],
         &rows,
     )?;
 
@@ -110,7 +110,7 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
         json!({
             "zeta": 0.0, "mu_s": 3.0, "w": 0.6, "beta": 3.269,
             "grid": n, "y0_range": [-8.0, 8.0], "v0_range": [-8.0, 8.0],
-            "attractors": attractors, "unsettled": map.unsettled,
+            "attractors": attractors, "undecided": map.undecided,
             "mirror_gap": mirror_gap,
         }),
     );
@@ -139,14 +139,14 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
          period cannot be symmetric, so the orbit comes in a pair). Their basins wind round \
          each other in arms. Each cell runs to its steady state (the strobe map extrapolated \
          where it converges linearly), its orbit refined by Newton's method and matched by \
-         its fixed point; {} cells unsettled. <code>stickslip basins \
+         its fixed point; {} cells undecided. <code>stickslip basins \
          --zeta 0 --mu-s 3 --w 0.6 --beta 3.269 --y0-min -8 --y0-max 8 --v0-min -8 --v0-max 8 \
          --steps {n} --plot basins.png --json</code>.",
         map.attractors.len(),
         describe(0),
         describe(1),
         mirror_gap,
-        map.unsettled,
+        map.undecided,
     );
     report.sections.push(Section {
         id: "beyond-basins".into(),

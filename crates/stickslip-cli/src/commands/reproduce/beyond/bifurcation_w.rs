@@ -5,7 +5,8 @@ use super::super::report::{sig, Report, Section};
 use super::super::{Context, Later};
 use anyhow::Result;
 use serde_json::json;
-use stickslip::attractor::{AttractorKind, RecordOptions};
+use stickslip::attractor::{same_attractor, AttractorKind, RecordOptions};
+use stickslip::basins::BasinOptions;
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::{ContinuationOptions, SpecialKind};
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
@@ -108,7 +109,7 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     report.csv(
         "beyond-bifurcation.csv",
-        &["w", "y", "v", "direction", "lambda", "class", "period"],
+        &["w", "y", "v", "direction", "lambda1", "class", "period"],
         &rows,
     )?;
     let special: Vec<&stickslip::continuation::SpecialPoint> =
@@ -142,19 +143,8 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
     let mut periods: Vec<usize> = up.iter().filter_map(|s| s.record.period).collect();
     periods.sort_unstable();
     periods.dedup();
-    let both_differ = up
-        .iter()
-        .filter(|u| {
-            steps.iter().any(|d| {
-                d.leg == SweepLeg::Down
-                    && d.value == u.value
-                    && (d.record.kind != u.record.kind
-                        || d.record.period != u.record.period
-                        || (d.record.strobes[0].y - u.record.strobes[0].y).abs()
-                            > 1e-6 * (1.0 + u.record.strobes[0].y.abs()))
-            })
-        })
-        .count();
+    let legs = compare_legs(&steps);
+    let both_differ = legs.records_differ;
     let of = |kind: SpecialKind| -> Vec<f64> {
         let mut v: Vec<f64> = special
             .iter()
@@ -181,10 +171,12 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             "up_periodic": count(AttractorKind::Periodic),
             "up_chaotic": count(AttractorKind::Chaotic),
             "up_quasiperiodic": count(AttractorKind::QuasiPeriodic),
-            "up_unsettled": count(AttractorKind::Unsettled),
+            "up_undecided": count(AttractorKind::Undecided),
             "periods": periods,
             "chaotic_windows": chaotic.iter().map(|(a, b)| [*a, *b]).collect::<Vec<_>>(),
             "values_where_up_and_down_differ": both_differ,
+            "values_with_different_attractors_up_and_down": legs.different_attractors,
+            "values_with_different_decided_attractors_up_and_down": legs.different_decided,
             "branches": branches.len(),
             "folds": folds, "grazings": grazings, "branch_points": branch_points,
             "period_doublings": doublings,
@@ -218,6 +210,17 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         }
         text
     };
+    let different = legs.different_attractors;
+    let undecided_text = match different - legs.different_decided {
+        0 => "none of them is a motion undecided either way".to_string(),
+        1 => "the other one, a motion is undecided in at least one direction (undecided \
+              matches nothing)"
+            .to_string(),
+        n => format!(
+            "the other {n}, a motion is undecided in at least one direction (undecided \
+             matches nothing)"
+        ),
+    };
     let caption = format!(
         "The motion's strobe points (y once per drive period, at drive phase 0) against the \
          drive frequency w, at ζ = 0, μs = 3, β = 9, the setting in which the stability analysis \
@@ -228,9 +231,14 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
          chaos as a vertical smear: on the way up {} values are chaotic (λ1 > 4 standard \
          errors of its block means; the chaotic stretches span w ≈ {windows_text}), {} \
          periodic (periods {}), {} quasi-periodic (no period, λ1 within 4 standard errors of \
-         0) and {} unsettled (no period and no verdict: still contracting onto a motion not \
-         reached, or a record too short to judge); every value's kind is in beyond-bifurcation.csv. The two directions differ at {both_differ} of the {steps_n} \
-         values: coexisting motions. The lines are {n_branches} branches of periodic orbits \
+         0) and {} undecided (no period and no verdict: still contracting onto a motion not \
+         reached, or a record too short to judge); every value's kind is in \
+         beyond-bifurcation.csv. The two directions' records differ at {both_differ} of the \
+         {steps_n} values, but a record is one sample of its attractor: compared as sets of \
+         strobe points, the way the basin map below tells attractors apart (a periodic orbit \
+         is the same recorded at another phase, a chaotic one the same sampled at other \
+         times), {} of those are the same attractor both ways and {different} values hold \
+         different attractors up and down. {} At {undecided_text}. The lines are {n_branches} branches of periodic orbits \
          continued from the periodic values by pseudo-arclength continuation \
          (<code>stickslip continue</code>), stable solid and unstable dashed: the unstable \
          orbits are what the simulation cannot show. {special_text} Most periodic windows end \
@@ -248,7 +256,16 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", "),
         count(AttractorKind::QuasiPeriodic),
-        count(AttractorKind::Unsettled),
+        count(AttractorKind::Undecided),
+        both_differ - different,
+        match legs.different_decided {
+            0 => "None of them with both motions decided.".to_string(),
+            1 => "One of them, with both motions decided, is a pair of coexisting motions."
+                .to_string(),
+            n => format!(
+                "{n} of them, with both motions decided, are pairs of coexisting motions."
+            ),
+        },
     );
     report.sections.push(Section {
         id: "beyond-bifurcation".into(),
@@ -262,6 +279,56 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         ..Default::default()
     });
     Ok(())
+}
+
+/// How the two legs of the diagram compare, value by value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Legs {
+    /// Values whose records differ: in kind, period or first strobe point.
+    records_differ: usize,
+    /// Values whose records are of different attractors ([`same_attractor`]).
+    different_attractors: usize,
+    /// Of those, the values where both records are decided (not
+    /// [`AttractorKind::Undecided`]).
+    different_decided: usize,
+}
+
+/// Compare the up and down records at each value: as records (the first strobe point) and
+/// as attractors, sets of strobe points matched within the basin map's tolerance.
+fn compare_legs(steps: &[BifurcationStep]) -> Legs {
+    let tolerance = BasinOptions::default().match_tolerance;
+    let mut legs = Legs {
+        records_differ: 0,
+        different_attractors: 0,
+        different_decided: 0,
+    };
+    for u in steps.iter().filter(|s| s.leg == SweepLeg::Up) {
+        let Some(d) = steps
+            .iter()
+            .find(|d| d.leg == SweepLeg::Down && d.value == u.value)
+        else {
+            continue;
+        };
+        let (a, b) = (&u.record, &d.record);
+        let first = |r: &stickslip::attractor::StrobeRecord| r.strobes.first().map(|x| x.y);
+        let records_differ = a.kind != b.kind
+            || a.period != b.period
+            || match (first(a), first(b)) {
+                (Some(x), Some(y)) => (x - y).abs() > 1e-6 * (1.0 + x.abs()),
+                (x, y) => x.is_some() != y.is_some(),
+            };
+        if !records_differ {
+            continue;
+        }
+        legs.records_differ += 1;
+        if !same_attractor(a, b, tolerance) {
+            legs.different_attractors += 1;
+            if a.kind != AttractorKind::Undecided && b.kind != AttractorKind::Undecided {
+                legs.different_decided += 1;
+            }
+        }
+    }
+    legs
 }
 
 /// The stretches of consecutive chaotic values: (first, last).

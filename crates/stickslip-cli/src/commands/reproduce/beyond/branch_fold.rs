@@ -139,7 +139,7 @@ pub fn branch_fold(report: &mut Report, ctx: &Context) -> Result<()> {
          {:.0e} in arclength); the unstable orbit goes back up in β with a growing multiplier \
          and ends near β = {} where its release moves onto the maximum of the drive and \
          becomes tangential. The markers are simulations of the sweep: from rest, nothing \
-         moves below β = μs = 1.5 (rest is stable for β < μs); going down, the motion follows \
+         moves below β = μs = 1.5 (rest is stable for β &lt; μs); going down, the motion follows \
          the stable branch to the fold and then stops: the hysteresis between β ≈ {} and 1.5 \
          is the fold, and the unstable orbit is the threshold between rest and motion.",
         at(grazing),

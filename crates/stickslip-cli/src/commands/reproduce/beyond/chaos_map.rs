@@ -34,6 +34,10 @@ const SIZE: usize = 104;
 /// Points per axis of the quick report's map.
 const QUICK_SIZE: usize = 22;
 
+/// The exact boundary's legend entry: above it the sliding orbit exists, which rest need not
+/// reach (the caption counts the points above it that stick from rest).
+const BOUNDARY_LABEL: &str = "exact β_c: the sliding orbit exists above";
+
 /// The map's grid: its axes (w, β) and the measurement of its exponents.
 fn axes(quick: bool) -> Result<(ParameterRange, ParameterRange, LyapunovOptions)> {
     let n = if quick { QUICK_SIZE } else { SIZE };
@@ -131,7 +135,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     )
     .within(beta.from() - db, beta.to() + db)
     .points();
-    let boundary = || Quantity::ExactTheory.series("exact β_c: sliding above", boundary.clone());
+    let boundary = || Quantity::ExactTheory.series(BOUNDARY_LABEL, boundary.clone());
     let frame = |title: &str| Panel {
         title: title.into(),
         x_label: "w = Ω/ω0".into(),
@@ -198,9 +202,9 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "beta",
             "class",
             "period",
-            "stops_per_cycle",
-            "lambda",
-            "lambda_error",
+            "stops_per_period",
+            "lambda1",
+            "lambda1_error",
         ],
         &rows,
     )?;
@@ -235,6 +239,18 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             !(p.params.beta >= beta_c)
         })
         .count();
+    // Above the exact boundary the sliding orbit exists; rest need not lead to it.
+    let above: Vec<&GridPoint> = points
+        .iter()
+        .filter(|p| {
+            theory_value(Theory::Exact, TheoryQuantity::Boundary, &p.params)
+                .is_some_and(|beta_c| p.params.beta >= beta_c)
+        })
+        .collect();
+    let above_sticking = above
+        .iter()
+        .filter(|p| p.class != MotionClass::Sliding)
+        .count();
     report.summary.insert(
         "beyond_chaos_map".into(),
         json!({
@@ -245,14 +261,16 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             "lyapunov_transient": TRANSIENT,
             "sliding": count(MotionClass::Sliding),
             "periodic_stick": count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": count(MotionClass::NonperiodicStick),
+            "undecided": count(MotionClass::Undecided),
             "static": count(MotionClass::Static),
             "chaotic": count(MotionClass::Chaotic),
             "periodic_with_positive_exponent": positive_periodic,
             "chaotic_with_stops": sticking,
             "chaotic_below_exact_boundary": below,
+            "above_exact_boundary": above.len(),
+            "above_exact_boundary_not_sliding": above_sticking,
             "largest": {"w": top.params.w, "beta": top.params.beta,
-                        "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
+                        "lambda1": lambda(top), "lambda1_error": error(top)},
         }),
     );
     report.sections.push(Section {
@@ -273,16 +291,18 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
              (the bar's lower end is the 2nd percentile of the negative values, lower ones take \
              its colour); white or nearly: λ1 within {} of 0, that is {at_rest} points with \
              λ1 = 0 (at rest: β ≤ μs never moves from rest) and {slow} periodic motions that \
-             contract slowly (λ1 < 0 by less than 5 % of the bar's lower end). {} of the {} \
+             contract slowly (λ1 &lt; 0 by less than 5 % of the bar's lower end). {} of the {} \
              points are chaotic, {} do not repeat without being chaotic (they contract onto a \
              periodic motion not reached, or are undecided), and {}. The largest exponent, {} \
              ± {} per unit τ, is at (w, β) = ({}, {}). {} of the {} chaotic motions stick, and \
-             {} lie below the exact stick-slip boundary (black; above it the symmetric sliding \
-             orbit exists) ({}).",
+             {} lie below the exact stick-slip boundary (black). Above that boundary the \
+             symmetric sliding orbit exists, which is not to say that rest leads to it: {} of \
+             the {} points above it do not slide from rest (another motion coexists there and \
+             attracts rest).{}",
             sig(faint, 2),
             count(MotionClass::Chaotic),
             points.len(),
-            count(MotionClass::NonperiodicStick),
+            count(MotionClass::Undecided),
             if positive_periodic == 0 {
                 "every periodic orbit found has λ1 &lt; 0 (it attracts: it was reached from rest)"
                     .to_string()
@@ -296,10 +316,12 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             sticking,
             chaotic.len(),
             below,
+            above_sticking,
+            above.len(),
             if ctx.quick {
-                format!("--quick: a coarser grid than the full report's {SIZE} × {SIZE}")
+                format!(" (--quick: a coarser grid than the full report's {SIZE} × {SIZE}.)")
             } else {
-                format!("--quick uses {QUICK_SIZE} × {QUICK_SIZE}")
+                String::new()
             }
         ),
         figures: vec!["chaos-map".into()],

@@ -65,7 +65,7 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
         if !at.is_empty() {
             let label = match class {
                 MotionClass::Chaotic => "chaotic (λ1 > 4σ, measured)".to_string(),
-                MotionClass::NonperiodicStick => "nonperiodic-stick (measured)".to_string(),
+                MotionClass::Undecided => "nonperiodic-stick (measured)".to_string(),
                 c => format!("{} (ln|μ1|/pT, exact)", c.label()),
             };
             series.push(Series::new(
@@ -138,9 +138,9 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "w",
             "class",
             "period",
-            "stops_per_cycle",
-            "lambda",
-            "lambda_error",
+            "stops_per_period",
+            "lambda1",
+            "lambda1_error",
         ],
         &rows,
     )?;
@@ -196,7 +196,7 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
             "chaotic": chaotic.len(),
             "windows": windows,
             "lambda_chaotic": [lo, hi],
-            "largest": {"w": top.params.w, "lambda_per_tau": lambda(top), "error_per_tau": error(top)},
+            "largest": {"w": top.params.w, "lambda1": lambda(top), "lambda1_error": error(top)},
             "periods": periods,
         }),
     );

@@ -101,7 +101,7 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
         .collect();
     report.csv(
         "paper-exponents.csv",
-        &["w", "beta", "class", "period", "lambda", "lambda_error"],
+        &["w", "beta", "class", "period", "lambda1", "lambda1_error"],
         &rows,
     )?;
 
@@ -126,7 +126,7 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
             "moving": moving.len(),
             "positive": positive,
             "largest_moving": {"w": top.params.w, "beta": top.params.beta,
-                               "lambda_per_tau": lambda(top)},
+                               "lambda1": lambda(top)},
         }),
     );
     let chaos = report.summary.get("beyond_chaos_map").and_then(|m| {
@@ -134,17 +134,25 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
             m["chaotic"].as_u64()?,
             m["grid"][0].as_u64()? * m["grid"][1].as_u64()?,
             m["periodic_with_positive_exponent"].as_u64()?,
+            m["undecided"].as_u64()?,
         ))
     });
     let contrast = match chaos {
-        Some((chaotic, total, positive_periodic)) => format!(
-            "With static friction above kinetic the class exists, and it is chaos: at μs = 3 \
-             (ζ = 0, the map above) {chaotic} of {total} points do not repeat and have λ1 \
-             positive beyond 4 standard errors{}.",
+        Some((chaotic, total, positive_periodic, undecided)) => format!(
+            "With static friction above kinetic, motions that do not repeat exist, chaos among \
+             them: at μs = 3 (ζ = 0, the map above) {chaotic} of {total} points do not repeat \
+             and have λ1 positive beyond 4 standard errors{}{}.",
             if positive_periodic == 0 {
                 ", while every motion there that repeats has λ1 &lt; 0"
             } else {
                 ""
+            },
+            match undecided {
+                0 => String::new(),
+                n => format!(
+                    "; {n} more do not repeat within the cap and have no verdict on λ1 \
+                     (undecided, no class of motion)"
+                ),
             }
         ),
         None => String::new(),
@@ -177,11 +185,17 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
     let absent = positive == 0 && repeating == points.len();
     let conclusion = if absent {
         " So the paper's non-periodic motion with sticking is no motion of its circuit as \
-         modelled (μs = 1): there it comes from integrating sgn(ẋ) without stick logic, which \
-         makes the velocity chatter at every stop (Fig. 6); with μs > 1 the class exists, and \
-         is chaos."
+         modelled (μs = 1): in our reading it comes from integrating sgn(ẋ) without stick \
+         logic, which makes the velocity chatter at every stop (Fig. 6); with μs > 1 motions that do not \
+         repeat exist, and the ones decided are chaos."
     } else {
         ""
+    };
+    let bar_top = if positive == 0 {
+        ", and its upper end is as far above 0, in reds that no point takes: no exponent is \
+         positive"
+    } else {
+        ", its upper end the largest exponent"
     };
     report.sections.push(Section {
         id: "paper-exponents".into(),
@@ -196,7 +210,7 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
              0.5 to 4, each from rest): exactly ln|μ1|/(pT) from the Floquet multipliers where \
              the motion repeats, measured where it does not. {verdict} White: rest (λ1 = 0: \
              the oscillator stays wherever it stopped); the colour bar's lower end is the 2nd \
-             percentile of the negative values. {contrast}{conclusion}",
+             percentile of the negative values{bar_top}. {contrast}{conclusion}",
         ),
         figures: vec!["paper-exponents".into()],
         data: vec!["paper-exponents.csv".into()],

@@ -87,9 +87,9 @@ pub fn accuracy(report: &mut Report, ctx: &Context) -> Result<()> {
         let (params, s) = steady_pwl(ctx, w, beta)?;
         rows.push(Row {
             figure: "fig4",
-            quantity: format!("G = A1/β at Ω/ω0 = {w}, β = {beta} [{}]", s.class.label()),
-            paper: PaperSeries::new(zeta, w, beta).ok().map(|p| p.gain()),
-            exact: PeriodicSolution::new(&params).ok().map(|e| e.gain()),
+            quantity: format!("G1 = A1/β at Ω/ω0 = {w}, β = {beta} [{}]", s.class.label()),
+            paper: PaperSeries::new(zeta, w, beta).ok().map(|p| p.gain1()),
+            exact: PeriodicSolution::new(&params).ok().map(|e| e.gain1()),
             simulated: s.harmonic(1).unwrap_or(f64::NAN) / beta,
         });
     }

@@ -10,6 +10,20 @@ use serde_json::json;
 const FREQUENCIES: [f64; 3] = [0.29, 0.95, 1.43];
 const TRACE_BETAS: [f64; 2] = [1.07, 2.14];
 const XY_BETAS: [f64; 4] = [1.07, 1.43, 2.14, 3.61];
+/// The spectra's lowest amplitude shown, relative to the fundamental (−80 dB).
+const SPECTRUM_FLOOR: f64 = 1e-4;
+
+/// The power of ten by which a response `uc` is drawn beside its drive `drive` so that its
+/// peak reaches at least 30 % of the drive's (1 when it already does), and its legend label.
+fn magnified(uc: &[(f64, f64)], drive: &[(f64, f64)]) -> (f64, String) {
+    let peak = |v: &[(f64, f64)]| v.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
+    let (u, d) = (peak(uc), peak(drive));
+    if u <= 0.0 || u >= 0.3 * d {
+        return (1.0, "u_C".into());
+    }
+    let gain = 10f64.powi((0.3 * d / u).log10().ceil() as i32);
+    (gain, format!("u_C × {gain}"))
+}
 
 /// Fig. 3 (1a)–(2c) traces with spectra, (3a)–(3c) X-Y loops.
 pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
@@ -21,6 +35,7 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     let mut spectrum_rows = Vec::new();
     let mut classes = Vec::new();
     let mut small = Vec::new();
+    let mut magnified_panels = Vec::new();
     for (row, &beta) in TRACE_BETAS.iter().enumerate() {
         for (col, &w) in FREQUENCIES.iter().enumerate() {
             let (params, s) = steady_pwl(ctx, w, beta)?;
@@ -52,6 +67,13 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
                 let peak = uc.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
                 small.push(format!("{label} at ±{:.1} mV", peak * 1e3));
             }
+            // Where u_C is too small to see beside U, it is drawn magnified by a power of ten,
+            // as a scope shows a channel at its own volts per division.
+            let (gain, uc_label) = magnified(&uc, &drive);
+            if gain > 1.0 {
+                magnified_panels.push(format!("{label} ×{gain}"));
+            }
+            let uc_shown = uc.iter().map(|&(t, v)| (t, v * gain)).collect();
             trace_panels.push(Panel {
                 title: format!("{label} β = {beta}, Ω/ω0 = {w}: {}", class_title(s.class)),
                 x_label: "t (ms)".into(),
@@ -59,7 +81,7 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
                 series: vec![
                     Quantity::Drive.series("U", drive),
                     Quantity::Response
-                        .series("u_C", uc)
+                        .series(uc_label, uc_shown)
                         .colored(beta_color(beta)),
                 ],
                 legend: Some(Legend::UpperRight),
@@ -67,9 +89,12 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             });
             let f_khz = ctx.scales.f0() * w / 1e3;
             let mut bars = Vec::new();
+            let floor = s.harmonic(1).map_or(0.0, |a| a * ut) * SPECTRUM_FLOOR;
             if let Some(spec) = &s.spectrum {
                 for h in spec.harmonics.iter().take(9) {
-                    bars.push((h.order as f64 * f_khz, h.amplitude * ut));
+                    if h.amplitude * ut > floor {
+                        bars.push((h.order as f64 * f_khz, h.amplitude * ut));
+                    }
                     spectrum_rows.push(vec![
                         num(w),
                         num(beta),
@@ -83,7 +108,9 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             spectrum_panels.push(Panel {
                 title: format!("{label} spectrum of u_C"),
                 x_label: "f (kHz)".into(),
-                y_label: "amplitude (V)".into(),
+                y_label: "amplitude (V, log)".into(),
+                y_log: floor > 0.0,
+                y_range: (floor > 0.0).then(|| (floor, floor / SPECTRUM_FLOOR * 2.0)),
                 series: vec![Series::new(
                     "",
                     bars,
@@ -97,9 +124,10 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
         }
     }
     let mut xy_panels = Vec::new();
+    let mut alone_panels = Vec::new();
     let mut xy_rows = Vec::new();
     for (col, &w) in FREQUENCIES.iter().enumerate() {
-        let mut series = Vec::new();
+        let mut series: Vec<Series> = Vec::new();
         for &beta in &XY_BETAS {
             let (_, s) = steady_pwl(ctx, w, beta)?;
             let mut pts: Vec<(f64, f64)> =
@@ -121,6 +149,20 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
             0.04,
         );
+        // The smallest drive's loop on a scale of its own (beside the others it is a line).
+        let smallest = series[0].clone();
+        alone_panels.push(Panel {
+            title: format!(
+                "(3{}′) Ω/ω0 = {w}, β = {} on its own scale",
+                ["a", "b", "c"][col],
+                XY_BETAS[0]
+            ),
+            x_label: "drive U (V)".into(),
+            y_label: "u_C (V)".into(),
+            x_range: padded(smallest.points.iter().map(|p| p.0), 0.04),
+            series: vec![smallest],
+            ..Default::default()
+        });
         xy_panels.push(Panel {
             title: format!("(3{}) Ω/ω0 = {w}, X-Y mode", ["a", "b", "c"][col]),
             x_label: "drive U (V)".into(),
@@ -131,13 +173,15 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             ..Default::default()
         });
     }
-    // Rows: traces β = 1.07, spectra β = 1.07, traces β = 2.14, spectra β = 2.14, X-Y.
+    // Rows: traces β = 1.07, spectra β = 1.07, traces β = 2.14, spectra β = 2.14, X-Y, and
+    // the X-Y loops of β = 1.07 alone.
     let mut panels = Vec::new();
     panels.extend(trace_panels[0..3].iter().cloned());
     panels.extend(spectrum_panels[0..3].iter().cloned());
     panels.extend(trace_panels[3..6].iter().cloned());
     panels.extend(spectrum_panels[3..6].iter().cloned());
     panels.extend(xy_panels);
+    panels.extend(alone_panels);
     report.figure(
         "fig3",
         &Figure {
@@ -158,6 +202,17 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     )?;
     report.csv("fig3_xy.csv", &["w", "beta", "u_V", "uc_V"], &xy_rows)?;
     report.summary.insert("fig3".into(), json!(classes));
+    let magnified_note = if magnified_panels.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " Where u_C is too small to see beside U it is drawn magnified, as a scope shows \
+             a channel at its own volts per division: {} (the legend says so; the CSV holds \
+             the volts).",
+            magnified_panels.join(", ")
+        )
+    };
+    let floor_db = (-20.0 * SPECTRUM_FLOOR.log10()).round();
     let static_note = if small.is_empty() {
         String::new()
     } else {
@@ -174,10 +229,14 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             "Steady state of the paper's circuit (PWL diodes, exact solver) at Ω/ω0 = \
                   0.29, 0.95 and 1.43. Rows 1–2: β = 1.07, capacitor voltage u_C (coloured) and \
                   drive U (grey) over two drive periods, and the amplitude spectrum of u_C \
-                  (harmonics 1–9 of the drive, by FFT over whole periods: no leakage). Rows \
-                  3–4: the same at β = 2.14. Row 5: u_C against U (the oscilloscope's X-Y \
-                  mode) for β = 1.07, 1.43, 2.14 and 3.61, one colour per β as in every \
-                  figure. Only odd harmonics appear (the motion is symmetric); they are \
+                  (harmonics 1–9 of the drive, by FFT over whole periods: no leakage; on a \
+                  logarithmic axis down to {floor_db} dB below the fundamental, so that the \
+                  weak harmonics show). Rows 3–4: the same at β = 2.14.{magnified_note} Row \
+                  5: u_C against U (the oscilloscope's X-Y mode) for β = 1.07, 1.43, 2.14 and \
+                  3.61, one colour per β as in every figure; row 6: the loops of β = 1.07 \
+                  alone, on their own scale (beside the others they are flat lines). Only \
+                  odd harmonics appear (the motion is symmetric: the even ones lie below \
+                  the axis); they are \
                   strongest at low frequency and small β, and at 0.29 the loop is the \
                   hysteresis loop of the paper's Fig. 3(3a). At β = 1.07 near and above \
                   resonance the PWL model, started from rest, barely moves (the drive exceeds \

@@ -1,4 +1,4 @@
-//! Fig. 4: the gain against frequency at three drive amplitudes.
+//! Fig. 4: the gain of the fundamental G1 = A1/β against frequency at three drive amplitudes.
 
 use super::super::report::{Report, Section};
 use super::super::Context;
@@ -13,7 +13,7 @@ use stickslip::Parameter;
 /// The paper's three drive amplitudes.
 pub const BETAS: [f64; 3] = [1.43, 3.61, 14.3];
 
-/// Fig. 4: gain G against Ω/ω0; simulated up and down sweeps.
+/// Fig. 4: the gain of the fundamental G1 = A1/β against Ω/ω0; simulated up and down sweeps.
 pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     let steps = if ctx.quick { 25 } else { 73 };
     let mut series = Vec::new();
@@ -25,7 +25,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
         let mut up = Vec::new();
         let mut down = Vec::new();
         for p in &points {
-            // G = A1/β, the definition of the paper's formula and of the exact curve.
+            // G1 = A1/β, the definition of the paper's formula and of the exact curve.
             let g = p.steady.harmonic(1).unwrap_or(f64::NAN) / beta;
             match p.leg {
                 SweepLeg::Up => up.push((p.params.w, g)),
@@ -44,7 +44,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             .iter()
             .chain(&down)
             .fold((0.0, 0.0), |m, &(w, g)| if g > m.1 { (w, g) } else { m });
-        peaks.push(json!({"beta": beta, "w": peak.0, "gain": peak.1}));
+        peaks.push(json!({"beta": beta, "w": peak.0, "gain1": peak.1}));
         // Down squares first and larger: the up dots show inside them.
         down_series.push(
             Quantity::SweepDown
@@ -72,11 +72,12 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
             .series("sweep down", vec![])
             .colored(INK),
     );
-    series.extend(style_legend());
+    let legend = style_legend(&series);
+    series.extend(legend);
     let panel = Panel {
-        title: "Fig. 4: resonance of the gain G = A1/β".into(),
+        title: "Fig. 4: resonance of the gain of the fundamental G1 = A1/β".into(),
         x_label: "Ω/ω0".into(),
-        y_label: "gain G".into(),
+        y_label: "G1 = A1/β".into(),
         series,
         legend: Some(Legend::Best),
         x_range: Some((0.2, 2.0)),
@@ -85,7 +86,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     report.figure("fig4", &Figure::single(panel, (900, 600)))?;
     report.csv(
         "fig4.csv",
-        &["w", "beta", "direction", "gain_A1", "gain_peak", "class"],
+        &["w", "beta", "direction", "gain1", "gain", "class"],
         &rows,
     )?;
     report.summary.insert("fig4_peaks".into(), json!(peaks));
@@ -93,7 +94,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
         id: "fig4".into(),
         title: "Fig. 4 — resonance curves".into(),
         caption: format!(
-            "Gain G against Ω/ω0 at β = 1.43, 3.61 and 14.3: \
+            "The gain of the fundamental G1 = A1/β against Ω/ω0 at β = 1.43, 3.61 and 14.3: \
              simulated steady states of the exact solver, sweeping the frequency up (dots) and \
              then down (squares), each step starting from where the last ended. {}",
             super::theory_curves::GAIN_NOTE

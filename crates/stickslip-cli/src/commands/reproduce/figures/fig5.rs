@@ -7,6 +7,7 @@ use super::theory_curves::{style_legend, INK};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use stickslip::scan::{SweepLeg, SweepPoint};
+use stickslip::steady::MotionClass;
 use stickslip::Parameter;
 
 /// Fig. 5 (a) A1, A3 against Ω/ω0 at β = 7.1; (b) against β at Ω/ω0 = 0.33.
@@ -15,6 +16,8 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
     let steps = if ctx.quick { 25 } else { 73 };
     let mut panels = Vec::new();
     let mut rows = Vec::new();
+    // Panel (b): the values of β (up sweep) and how many of them stick.
+    let (mut sticking, mut shown, mut exact_in_b) = (0, 0, false);
     for (parameter, fixed, from, to) in [
         (Parameter::W, 7.1, 0.2, 2.0),
         (Parameter::Beta, 0.33, 1.0, 15.0),
@@ -28,6 +31,10 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             let h3 = p.steady.harmonic(3).unwrap_or(f64::NAN) * ut;
             a1.push((x(p), h1));
             a3.push((x(p), h3));
+            if parameter == Parameter::Beta {
+                shown += 1;
+                sticking += usize::from(p.steady.class != MotionClass::Sliding);
+            }
         }
         for p in &points {
             rows.push(vec![
@@ -57,7 +64,11 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
         series.push(Series::new("A1", vec![], c1, Style::Bars(1.0)));
         series.push(Series::new("A3", vec![], c3, Style::Bars(1.0)));
         series.push(Series::new("simulated", vec![], INK, Style::Markers(3)));
-        series.extend(style_legend());
+        let legend = style_legend(&series);
+        if parameter == Parameter::Beta {
+            exact_in_b = legend.iter().any(|s| s.label == "exact");
+        }
+        series.extend(legend);
         let (title, x_label) = match parameter {
             Parameter::W => ("(a) β = 7.1".to_string(), "Ω/ω0"),
             _ => ("(b) Ω/ω0 = 0.33".to_string(), "β = U/U_t"),
@@ -94,7 +105,7 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             "Amplitudes of the fundamental A1 and of the third harmonic A3 of u_C (volts), \
              (a) against Ω/ω0 at β = 7.1 (logarithmic axis) and (b) against β at Ω/ω0 = 0.33. Dots: simulated \
              steady states (exact solver, spectrum by FFT over whole periods, up sweep). {}",
-            super::theory_curves::HARMONIC_NOTE
+            super::theory_curves::harmonic_note(exact_in_b, sticking, shown)
         ),
         figures: vec!["fig5".into()],
         data: vec!["fig5.csv".into()],

@@ -109,10 +109,11 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
         "The exact solver finds the class the paper gives at every point.".to_string()
     } else {
         format!(
-            "Where the exact solver differs from the paper: {}. The paper integrated \
-             ẍ + αẋ + ω0²x + sgn(ẋ) = β cos Ωt with LSODA and no stick logic, so at every stop \
-             its velocity chatters around zero instead of resting there; the chattering makes \
-             a motion that sticks look irregular. The exact solver stops the oscillator when \
+            "Where the exact solver differs from the paper: {}. The paper says only that it \
+             integrated with LSODA; our reading is that it integrated ẍ + αẋ + ω0²x + sgn(ẋ) = \
+             β cos Ωt with no stick logic (it mentions none), and then at every stop the \
+             velocity chatters around zero instead of resting there; the chattering makes a \
+             motion that sticks look irregular. The exact solver stops the oscillator when \
              the net force is within the static friction and restarts it at the exact instant \
              the force leaves it, and its stroboscopic map repeats to 1e-10: the motion is \
              periodic.",

@@ -154,7 +154,7 @@ impl Map {
             "grid": [self.w.steps(), self.beta.steps()],
             "sliding": self.count(MotionClass::Sliding),
             "periodic_stick": self.count(MotionClass::PeriodicStick),
-            "nonperiodic_stick": self.count(MotionClass::NonperiodicStick),
+            "undecided": self.count(MotionClass::Undecided),
             "static": self.count(MotionClass::Static),
             "sliding_fraction": self.sliding_fraction(),
         })
@@ -162,10 +162,10 @@ impl Map {
 
     fn describe(&self) -> String {
         format!(
-            "{n} × {n} grid: {} sliding, {} periodic stick, {} non-periodic stick, {} static",
+            "{n} × {n} grid: {} sliding, {} periodic stick, {} undecided, {} static",
             self.count(MotionClass::Sliding),
             self.count(MotionClass::PeriodicStick),
-            self.count(MotionClass::NonperiodicStick),
+            self.count(MotionClass::Undecided),
             self.count(MotionClass::Static),
             n = self.w.steps(),
         )
@@ -200,8 +200,16 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
     a.series
         .extend(super::theory_curves::boundary_curves(ctx, 0.1, 2.5)?);
     let mut b = shockley.panel("(b) Shockley diodes (stiff solver)");
-    b.series
-        .extend(super::theory_curves::boundary_curves(ctx, 0.1, 2.5)?);
+    // The curves are the PWL model's in both panels (the Shockley law has no closed-form
+    // boundary): (b)'s legend says so.
+    b.series.extend(
+        super::theory_curves::boundary_curves(ctx, 0.1, 2.5)?
+            .into_iter()
+            .map(|mut s| {
+                s.label = format!("PWL {}", s.label);
+                s
+            }),
+    );
     report.figure(
         "fig7",
         &Figure {
@@ -210,7 +218,7 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (640, 540),
         },
     )?;
-    let header = ["w", "beta", "class", "period", "stops_per_cycle", "gain"];
+    let header = ["w", "beta", "class", "period", "stops_per_period", "gain"];
     report.csv("fig7a.csv", &header, &pwl.rows())?;
     report.csv("fig7b.csv", &header, &shockley.rows())?;
     report.summary.insert("fig7a".into(), pwl.summary());
@@ -225,7 +233,11 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
              {:.0} % of the Shockley map against {:.0} % of the PWL map: as the paper says, \
              the sliding region is broader with the smooth diode law, which conducts below \
              0.7 V. With Shockley diodes a stop is |i| below 1e-3·U_t/√(L/C) for more than \
-             1 % of the drive period. {}",
+             1 % of the drive period; the sliding share of (b) depends on that threshold, \
+             since the current of a smooth diode law never stays exactly zero: a larger \
+             threshold finds more stops and less sliding. The curves of (b) are the PWL \
+             model's, as in (a), for comparison: the Shockley law has no closed-form boundary. \
+             {}",
             pwl.describe(),
             shockley.describe(),
             100.0 * shockley.sliding_fraction(),

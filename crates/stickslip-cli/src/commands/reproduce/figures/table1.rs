@@ -64,7 +64,7 @@ pub fn table1(report: &mut Report, ctx: &Context) -> Result<()> {
             "G".into(),
             "ω0²r0/(F/m)".into(),
             "U_C0/U".into(),
-            "amplitude(y)/β".into(),
+            "(y_max − y_min)/(2β)".into(),
         ],
     ];
     report.sections.push(Section {

@@ -15,17 +15,34 @@ const POINTS: usize = 400;
 /// What the gain figure's theory curves are.
 pub const GAIN_NOTE: &str = "Dashed: the paper's series solution (its eq. 11); solid: the \
     exact symmetric sliding orbit, drawn where it exists (above the exact stick-slip boundary). \
-    G is A1/β here, as in the paper's formula: the simulated points are the fundamental of the \
-    simulated u_C over U (fig4.csv also lists the peak gain). Where the exact orbit exists the \
+    The gain here is G1 = A1/β, as in the paper's formula: the simulated points are the \
+    fundamental of the simulated u_C over U (fig4.csv's gain1; its gain is G = (y_max − \
+    y_min)/(2β), Table 1's G). Where the exact orbit exists the \
     simulation lands on it; the series formula is close far above the boundary and off by tens \
     of percent near it, and below it gives a gain where the oscillator in fact sticks.";
 
-/// What the harmonic figure's theory curves are.
-pub const HARMONIC_NOTE: &str = "Dashed: the paper's series solution (eq. 11); solid: the exact \
-    sliding orbit where it exists. The series A3 (independent of β) is exact for a sliding \
-    motion, since the friction force of a symmetric sliding motion is exactly a square wave; \
-    at Ω/ω0 = 0.33 the third harmonic is near resonance (3Ω ≈ ω0) and the motion sticks for \
-    most β, where neither formula applies and the simulated A3 grows with β.";
+/// What the harmonic figure's theory curves are, given whether panel (b) draws the exact
+/// orbit anywhere and at how many of its values of β the simulated motion sticks.
+pub fn harmonic_note(exact_in_b: bool, sticking: usize, of: usize) -> String {
+    let where_exact = if exact_in_b {
+        ""
+    } else {
+        " (in (b) nowhere: at Ω/ω0 = 0.33 no β shown has one, and its legend lists only the \
+         paper's curves)"
+    };
+    let sticks = match (sticking, of) {
+        (0, _) => "the motion slides at every β shown".to_string(),
+        (s, n) if s == n => format!("the motion sticks at every one of the {n} values of β shown"),
+        (s, n) => format!("the motion sticks at {s} of the {n} values of β shown"),
+    };
+    format!(
+        "Dashed: the paper's series solution (eq. 11); solid: the exact sliding orbit where it \
+         exists{where_exact}. The series A3 (independent of β) is exact for a sliding motion, \
+         since the friction force of a symmetric sliding motion is exactly a square wave; at \
+         Ω/ω0 = 0.33 the third harmonic is near resonance (3Ω ≈ ω0) and {sticks}, where \
+         neither formula applies and the simulated A3 grows with β."
+    )
+}
 
 /// What the boundary curves are.
 pub const BOUNDARY_NOTE: &str = "Dashed: the paper's approximate boundary (its eq. 13, which \
@@ -54,12 +71,20 @@ pub fn theory_style(theory: Theory) -> Style {
     theory_quantity(theory).style()
 }
 
-/// Legend entries that say what the line styles mean (no data of their own).
-pub fn style_legend() -> Vec<Series> {
-    vec![
-        Series::new("paper, eq. 11", vec![], INK, theory_style(Theory::Paper)),
-        Series::new("exact", vec![], INK, theory_style(Theory::Exact)),
-    ]
+/// Legend entries that say what the line styles mean (no data of their own), one per theory
+/// drawn in `curves`: a theory whose curves have no point in the figure (the exact sliding
+/// orbit where it exists nowhere) has no entry.
+pub fn style_legend(curves: &[Series]) -> Vec<Series> {
+    [(Theory::Paper, "paper, eq. 11"), (Theory::Exact, "exact")]
+        .into_iter()
+        .filter(|&(theory, _)| {
+            curves.iter().any(|s| {
+                s.style == theory_style(theory)
+                    && s.points.iter().any(|(x, y)| x.is_finite() && y.is_finite())
+            })
+        })
+        .map(|(theory, label)| Series::new(label, vec![], INK, theory_style(theory)))
+        .collect()
 }
 
 /// The colour of legend entries that stand for a style, not for data.
@@ -74,7 +99,7 @@ pub fn gain_curves(ctx: &Context, betas: &[f64]) -> Result<Vec<Series>> {
         for theory in [Theory::Paper, Theory::Exact] {
             let curve = theory_curve(
                 theory,
-                TheoryQuantity::Gain,
+                TheoryQuantity::Gain1,
                 &base(ctx, 1.0, beta)?,
                 Parameter::W,
                 &ws,

@@ -1,5 +1,6 @@
 //! Radau IIA of order 5 (three stages) for y'' + 2ζ y' + y + D(y') = β cos(w τ + φ), after
-//! Hairer and Wanner, *Solving Ordinary Differential Equations II*, §IV.8 (the code RADAU5).
+//! Hairer and Wanner, *Solving Ordinary Differential Equations II*, §IV.8 (the code RADAU5),
+//! for any smooth law D ([`SmoothLaw`]).
 //!
 //! **The stage equations.** With x = (y, v), v = y', the collocation conditions at the stage
 //! times τ0 + c_i h, written with W = A⁻¹, are
@@ -9,27 +10,30 @@
 //! ```
 //!
 //! for the three stage velocities V (the stage positions Y = y0 + h A V are eliminated
-//! exactly; g_i is the drive at stage i). The only nonlinearity, D, acts stage by stage, and
-//! its slope runs from about 0.07 at working currents to a/ε ≈ 7.5·10³ at zero current for a
-//! 1N4148 (and to 10²⁰ and beyond in the PWL limit). Newton's method in V alone stalls there:
-//! where D is steep its linearisation moves V by less than the tolerance while the diode
-//! voltage is still far from consistent. So:
+//! exactly; g_i is the drive at stage i). The only nonlinearity, D, acts stage by stage. Its
+//! slope may be steep: a Shockley diode's runs from about 0.07 at working currents to
+//! a/ε ≈ 7.5·10³ at zero current for a 1N4148 (and to 10²⁰ and beyond in the PWL limit).
+//! Newton's method in V alone stalls there: where D is steep its linearisation moves V by
+//! less than the tolerance while the law's value is still far from consistent. So:
 //!
-//! - **Two charts per stage.** Where the diode dominates the stage (D'(V_i) > L_ii), the
-//!   Newton unknown of that stage is its junction voltage u = a·asinh(V/ε), in which D is
-//!   linear; elsewhere it is V. Each iteration is a Newton step in the current charts (same
-//!   linear system, columns rescaled by dV/du), so convergence stays quadratic near the root.
-//! - **Limiting**: a junction-voltage step that leaves the diode-dominated range is cut back
-//!   logarithmically beyond its edge (as SPICE limits junction voltages), so sinh cannot
-//!   overshoot; a current step across zero stops at zero (the linearisation in the current
-//!   cannot see the diode's jump there), where the junction chart takes over.
+//! - **Two charts per stage.** Where the law offers a steep chart ([`SmoothLaw::steep_slope`])
+//!   and it dominates the stage (du/dV > L_ii), the Newton unknown of that stage is u (for a
+//!   diode its junction voltage u = a·asinh(V/ε), in which D is linear); elsewhere it is V.
+//!   Each iteration is a Newton step in the current charts (same linear system, columns
+//!   rescaled by dV/du), so convergence stays quadratic near the root.
+//! - **Limiting**: a step in the steep chart is limited by the law
+//!   ([`SmoothLaw::steep_step`]: a diode cuts a junction-voltage step that leaves the
+//!   diode-dominated range back logarithmically beyond its edge, as SPICE limits junction
+//!   voltages, so sinh cannot overshoot); a step in V across the law's knee
+//!   ([`SmoothLaw::knee`], a diode's zero current) stops on it (the linearisation in V cannot
+//!   see the jump of the law's slope there), where the steep chart takes over.
 //! - **Convergence** is measured on the increments of V, of Y and of h·D(V), each scaled by
-//!   the error weights, so a stage is converged only when its diode voltage is.
+//!   the error weights, so a stage is converged only when its law's value is.
 //! - **Full Newton**: the matrix L + diag(D'(V)) is re-evaluated at every iteration.
-//! - **Reversals**: after a step is rejected in which the current changed sign, the retry
-//!   ends at the reversal predicted by the rejected step's collocation polynomial (the error
-//!   of a step across the diode's jump does not shrink like h⁴, so the controller alone
-//!   rejects several times; this halves the rejections at loose tolerances).
+//! - **Reversals**: after a step is rejected across the knee, the retry ends at the crossing
+//!   predicted by the rejected step's collocation polynomial (the error of a step across a
+//!   diode's jump does not shrink like h⁴, so the controller alone rejects several times; this
+//!   halves the rejections at loose tolerances).
 //!
 //! Kept from RADAU5: the embedded error estimate filtered by (I − h γ0 J)⁻¹, with the second
 //! filtering after a rejection; the step-size controller with Gustafsson's predictive rule;
@@ -37,19 +41,21 @@
 //! which is that polynomial (cubic in θ through the step start and the three stage values,
 //! continuous across steps since c3 = 1). Tolerances are used as given (RADAU5 rescales them).
 
-use super::model::ShockleyModel;
+use super::cubic::crossings;
+use super::law::SmoothLaw;
 use crate::error::{Error, Result};
+use crate::params::Params;
 
 /// Dimension of the first-order system (y, y').
-pub(crate) const N: usize = 2;
+pub const N: usize = 2;
 /// A state vector (y, y').
-pub(crate) type Vector = [f64; N];
+pub type Vector = [f64; N];
 
 const SQ6: f64 = 2.449_489_742_783_178;
 const C1: f64 = (4.0 - SQ6) / 10.0;
 const C2: f64 = (4.0 + SQ6) / 10.0;
-const C: [f64; 3] = [C1, C2, 1.0];
-const A: [[f64; 3]; 3] = [
+pub(super) const C: [f64; 3] = [C1, C2, 1.0];
+pub(super) const A: [[f64; 3]; 3] = [
     [
         (88.0 - 7.0 * SQ6) / 360.0,
         (296.0 - 169.0 * SQ6) / 1800.0,
@@ -83,7 +89,7 @@ const FAC_SHRINK: f64 = 5.0;
 
 /// Accuracy settings of [`Radau5`].
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Settings {
+pub struct Settings {
     /// Relative tolerance.
     pub rtol: f64,
     /// Absolute tolerance.
@@ -96,7 +102,7 @@ pub(crate) struct Settings {
 
 /// One accepted step with its dense output.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Step {
+pub struct Step {
     /// Start time.
     pub t0: f64,
     /// Step size.
@@ -107,6 +113,11 @@ pub(crate) struct Step {
     pub x1: Vector,
     /// Per component, the monomial coefficients of x(t0 + θh) − x0 in θ (degree 1 to 3).
     coef: [[f64; 3]; N],
+    /// The converged stage velocities V_i at τ0 + c_i h (V_3 is the end's).
+    pub stages: [f64; 3],
+    /// The law's slope D'(V_i) there: with them the Newton matrix of the converged stages,
+    /// which the forward sensitivities solve with ([`super::sensitivity`]).
+    pub slopes: [f64; 3],
 }
 
 impl Step {
@@ -130,8 +141,20 @@ impl Step {
             x0,
             x1,
             coef,
+            stages: [x0[1] + z[0][1], x0[1] + z[1][1], x1[1]],
+            slopes: [f64::NAN; 3],
         }
     }
+
+    /// The step with its converged stage velocities and the law's slopes there.
+    fn with_stages(mut self, stages: [f64; 3], slopes: [f64; 3]) -> Self {
+        self.stages = stages;
+        self.slopes = slopes;
+        self
+    }
+
+    /// The abscissae c_i of the three stages in the step (θ = c_i).
+    pub const NODES: [f64; 3] = C;
 
     /// End time.
     pub fn t1(&self) -> f64 {
@@ -170,7 +193,7 @@ impl Step {
 
 /// Work counters of [`Radau5`].
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Counters {
+pub struct Counters {
     /// Accepted steps.
     pub accepted: u64,
     /// Rejected step attempts (error too large or Newton failure).
@@ -182,7 +205,7 @@ pub(crate) struct Counters {
 }
 
 /// W = A⁻¹ by Gauss–Jordan elimination (A is well conditioned).
-fn inverse_of_a() -> [[f64; 3]; 3] {
+pub(super) fn inverse_of_a() -> [[f64; 3]; 3] {
     let mut m = A;
     let mut w = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     for col in 0..3 {
@@ -209,10 +232,12 @@ fn inverse_of_a() -> [[f64; 3]; 3] {
     w
 }
 
-/// The integrator's state between steps.
+/// The integrator's state between steps, for the law `L`.
 #[derive(Debug, Clone)]
-pub(crate) struct Radau5 {
-    model: ShockleyModel,
+pub struct Radau5<L: SmoothLaw> {
+    /// ζ, w, β and φ.
+    params: Params,
+    law: L,
     settings: Settings,
     /// A⁻¹.
     w: [[f64; 3]; 3],
@@ -229,6 +254,7 @@ pub(crate) struct Radau5 {
     last: Option<Step>,
     /// The drive and (D, D') at the current state, when the last Newton solve left them.
     start: Option<(f64, (f64, f64))>,
+    /// Work done so far.
     pub counters: Counters,
 }
 
@@ -236,17 +262,22 @@ pub(crate) struct Radau5 {
 struct Converged {
     /// Stage increments Z_i = (Y_i − y0, V_i − v0).
     z: [Vector; 3],
+    /// The stage velocities V_i and the law's slopes D'(V_i) there.
+    stages: [f64; 3],
+    slopes: [f64; 3],
     /// Newton iterations used.
     iterations: usize,
     /// The drive and (D, D') at the last stage, which is the step's end.
     end: (f64, (f64, f64)),
 }
 
-impl Radau5 {
-    /// Start at (t, x).
-    pub fn new(model: ShockleyModel, t: f64, x: Vector, settings: Settings) -> Self {
+impl<L: SmoothLaw> Radau5<L> {
+    /// Start at (t, x) on y'' + 2ζ y' + y + D(y') = β cos(w τ + φ) with ζ, w, β, φ from
+    /// `params` and D the law `law` (taken as valid).
+    pub fn new(params: Params, law: L, t: f64, x: Vector, settings: Settings) -> Self {
         Self {
-            model,
+            params,
+            law,
             settings,
             w: inverse_of_a(),
             t,
@@ -268,6 +299,21 @@ impl Radau5 {
         self.t
     }
 
+    /// The state at [`Radau5::time`].
+    pub fn state(&self) -> Vector {
+        self.x
+    }
+
+    /// The parameters ζ, w, β, φ of the equation.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The law.
+    pub fn law(&self) -> &L {
+        &self.law
+    }
+
     /// Weights atol + rtol·max(|a|, |b|).
     fn scale(&self, a: &Vector, b: &Vector) -> Vector {
         let s = &self.settings;
@@ -280,8 +326,8 @@ impl Radau5 {
 
     /// f(t, x) = (v, a(t, y, v)) and the Jacobian entries a_y = −1, a_v = −2ζ − D'(v).
     fn rhs(&self, t: f64, x: &Vector) -> (Vector, f64) {
-        let p = &self.model.params;
-        let (d, slope) = self.model.law.value_and_slope(x[1]);
+        let p = &self.params;
+        let (d, slope) = self.law.value_and_slope(x[1]);
         let c = 2.0 * p.zeta;
         ([x[1], p.drive(t) - x[0] - c * x[1] - d], -c - slope)
     }
@@ -291,8 +337,9 @@ impl Radau5 {
     fn newton(&mut self, h: f64, start: [f64; 3]) -> Option<Converged> {
         let scale = self.scale(&self.x, &self.x);
         let kappa = self.settings.rtol.sqrt().min(0.03);
-        let law = self.model.law;
-        let p = self.model.params;
+        let law = self.law;
+        let knee = law.knee();
+        let p = self.params;
         let [y0, v0] = self.x;
         let damping = 2.0 * p.zeta;
         let w = &self.w;
@@ -329,9 +376,10 @@ impl Radau5 {
                 let (value, slope) = d[i];
                 jac[i][i] += slope;
                 residual[i] = l[i][0] * v[0] + l[i][1] * v[1] + l[i][2] * v[2] + value - b[i];
-                let junction_slope = slope - law.resistance;
-                if junction_slope > l[i][i] {
-                    dv_du[i] = 1.0 / junction_slope;
+                if let Some(steep) = law.steep_slope(v[i], slope) {
+                    if steep > l[i][i] {
+                        dv_du[i] = 1.0 / steep;
+                    }
                 }
             }
             for row in &mut jac {
@@ -346,15 +394,15 @@ impl Radau5 {
                 let old = v[i];
                 v[i] = if dv_du[i] == 1.0 {
                     let next = old + delta[i];
-                    // A linearisation in the current cannot see the diode's jump at zero:
-                    // a step across zero stops at zero, where the junction chart takes over.
-                    if next * old < 0.0 {
-                        0.0
-                    } else {
-                        next
+                    // A linearisation in V cannot see the jump of the law's slope at its
+                    // knee (a diode's zero current): a step across the knee stops on it,
+                    // where the steep chart takes over.
+                    match knee {
+                        Some(k) if (next - k) * (old - k) < 0.0 => k,
+                        _ => next,
                     }
                 } else {
-                    junction_step(&law, old, d[i].0, delta[i], l[i][i])
+                    law.steep_step(old, d[i].0, delta[i], l[i][i])
                 };
                 moved[i] = v[i] - old;
                 let next = law.value_and_slope(v[i]);
@@ -395,6 +443,8 @@ impl Radau5 {
                 }
                 return Some(Converged {
                     z,
+                    stages: v,
+                    slopes: [d[0].1, d[1].1, d[2].1],
                     iterations: iteration + 1,
                     end: (drive[2], d[2]),
                 });
@@ -423,7 +473,7 @@ impl Radau5 {
         let (f0, av0) = match self.start.take() {
             // The last Newton iterate of the previous step ends exactly here.
             Some((drive, (d, slope))) => {
-                let c = 2.0 * self.model.params.zeta;
+                let c = 2.0 * self.params.zeta;
                 (
                     [self.x[1], drive - self.x[0] - c * self.x[1] - d],
                     -c - slope,
@@ -442,7 +492,13 @@ impl Radau5 {
                     step: h,
                 });
             }
-            let Some(Converged { z, iterations, end }) = self.newton(h, self.start_values(h))
+            let Some(Converged {
+                z,
+                stages,
+                slopes,
+                iterations,
+                end,
+            }) = self.newton(h, self.start_values(h))
             else {
                 self.counters.rejected += 1;
                 self.h = h * 0.5;
@@ -483,7 +539,7 @@ impl Radau5 {
                 if self.reject {
                     h_new = h_new.min(h);
                 }
-                let step = Step::new(self.t, h, self.x, &z);
+                let step = Step::new(self.t, h, self.x, &z).with_stages(stages, slopes);
                 self.t += h;
                 self.x = x1;
                 self.h = h_new.min(self.settings.max_step);
@@ -495,13 +551,18 @@ impl Radau5 {
                 return Ok(step);
             }
             self.counters.rejected += 1;
-            if self.x[1] * x1[1] < 0.0 {
-                // The current reversed inside the rejected step: its error is the diode's
-                // jump, which the h^4 law of the controller underestimates. Retry up to the
-                // reversal predicted by the rejected step's own polynomial.
+            if let Some(k) = self
+                .law
+                .knee()
+                .filter(|k| (self.x[1] - k) * (x1[1] - k) < 0.0)
+            {
+                // The velocity crossed the knee inside the rejected step (a diode's current
+                // reversed): its error is the jump of the law's slope, which the h^4 law of
+                // the controller underestimates. Retry up to the crossing predicted by the
+                // rejected step's own polynomial.
                 let cubic = Step::new(self.t, h, self.x, &z).cubic(1);
                 let mut first_zero = f64::NAN;
-                super::stops::crossings(&cubic, 0.0, |theta| {
+                crossings(&cubic, k, |theta| {
                     if first_zero.is_nan() {
                         first_zero = theta;
                     }
@@ -518,48 +579,13 @@ impl Radau5 {
     /// One step of exactly size `h`, without error control (for convergence-order tests).
     #[cfg(test)]
     pub fn fixed_step(&mut self, h: f64) -> Option<Step> {
-        let z = self.newton(h, [0.0; 3])?.z;
-        let step = Step::new(self.t, h, self.x, &z);
+        let c = self.newton(h, [0.0; 3])?;
+        let step = Step::new(self.t, h, self.x, &c.z).with_stages(c.stages, c.slopes);
         self.t += h;
         self.x = step.x1;
         self.last = Some(step);
         Some(step)
     }
-}
-
-/// A Newton step `delta` in the junction voltage u = a·asinh(V/ε) of a stage currently at
-/// current `v` with diode voltage `value` = D(v), returned as the new current. Beyond the edge
-/// of the range where the diode dominates the stage (junction slope a/√(ε² + V²) above
-/// `diagonal`), an outward step is cut back to the edge plus a·ln(1 + excess/a), so that
-/// ε·sinh(u/a) grows at most linearly in the excess instead of exponentially.
-fn junction_step(
-    law: &super::diode::DiodeLaw,
-    v: f64,
-    value: f64,
-    delta: f64,
-    diagonal: f64,
-) -> f64 {
-    let (a, knee) = (law.scale, law.knee);
-    // The junction voltage is the diode voltage less its series part: no asinh needed.
-    let u = value - law.resistance * v;
-    let target = u + delta;
-    let current = knee * (target / a).sinh();
-    // Edge of the diode-dominated range: a/√(ε² + V²) = diagonal. A step inside it, or
-    // inwards, stands as it is (|current| > edge_current is |target| > a·asinh(edge/ε)).
-    let edge_current = ((a / diagonal).powi(2) - knee * knee).max(0.0).sqrt();
-    if current.abs() <= edge_current || target.abs() <= u.abs() {
-        return current;
-    }
-    // a·asinh(edge/ε) = a·ln((edge + √(ε² + edge²))/ε), and √(ε² + edge²) = a/diagonal there.
-    let edge = if edge_current > 0.0 {
-        a * ((edge_current + a / diagonal) / knee).ln()
-    } else {
-        0.0
-    };
-    let base = edge.max(u.abs());
-    let excess = target.abs() - base;
-    let limited = target.signum() * (base + a * (1.0 + excess / a).ln());
-    knee * (limited / a).sinh()
 }
 
 /// Root-mean-square of e/scale; infinite when the estimate failed.
@@ -595,7 +621,7 @@ fn solve2(fac: f64, av: f64, b: Vector) -> Option<Vector> {
 }
 
 /// Solve M x = b (3×3) by Gaussian elimination with partial pivoting; None when singular.
-fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+pub(super) fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     for col in 0..3 {
         let mut pivot = col;
         for row in col + 1..3 {
@@ -631,44 +657,7 @@ fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Params;
-    use crate::shockley::DiodeLaw;
-
-    /// The junction step in its plain form: u = a·asinh(V/ε), the edge a·asinh(edge/ε).
-    fn junction_step_reference(law: &DiodeLaw, v: f64, delta: f64, diagonal: f64) -> f64 {
-        let a = law.scale;
-        let u = a * (v / law.knee).asinh();
-        let mut target = u + delta;
-        let edge_current = ((a / diagonal).powi(2) - law.knee * law.knee)
-            .max(0.0)
-            .sqrt();
-        let edge = a * (edge_current / law.knee).asinh();
-        if target.abs() > edge && target.abs() > u.abs() {
-            let excess = target.abs() - edge.max(u.abs());
-            target = target.signum() * (edge.max(u.abs()) + a * (1.0 + excess / a).ln());
-        }
-        law.knee * (target / a).sinh()
-    }
-
-    #[test]
-    fn junction_step_matches_its_plain_form() {
-        let law = DiodeLaw::new(0.0704, 9.4e-6, 8.5e-4).unwrap();
-        for &v in &[0.0, 1e-9, -3e-7, 4e-6, -2e-5, 1e-4, -3e-3, 0.02, -0.4] {
-            for &delta in &[-0.3, -0.05, -1e-3, -1e-6, 0.0, 2e-6, 4e-3, 0.07, 0.5] {
-                for &diagonal in &[0.5, 30.0, 700.0, 5e3, 1e5] {
-                    let (value, _) = law.value_and_slope(v);
-                    let fast = junction_step(&law, v, value, delta, diagonal);
-                    let plain = junction_step_reference(&law, v, delta, diagonal);
-                    let scale = plain.abs().max(law.knee);
-                    let err = (fast - plain).abs() / scale;
-                    assert!(
-                        err < 1e-9,
-                        "v {v} delta {delta} diagonal {diagonal}: {fast} vs {plain}"
-                    );
-                }
-            }
-        }
-    }
+    use crate::shockley::{DiodeLaw, ShockleyModel};
 
     /// y'' + c y' + y = β cos(w t + φ): exact solution from (y0, v0) at t = 0 (c < 2).
     fn linear_exact(c: f64, p: &Params, y0: f64, v0: f64, t: f64) -> (f64, f64) {
@@ -734,7 +723,7 @@ mod tests {
     fn fixed_run(n: usize) -> (f64, f64) {
         let (model, c) = linear_model();
         let (y0, v0) = (0.4, -0.2);
-        let mut r = Radau5::new(model, 0.0, [y0, v0], settings());
+        let mut r = Radau5::new(model.params, model.law, 0.0, [y0, v0], settings());
         let h = 10.0 / n as f64;
         let mut dense = 0.0f64;
         for _ in 0..n {
@@ -780,7 +769,7 @@ mod tests {
                 max_step: 10.0,
                 initial_step: 1e-3,
             };
-            let mut r = Radau5::new(model, 0.0, [0.0, 0.0], s);
+            let mut r = Radau5::new(model.params, model.law, 0.0, [0.0, 0.0], s);
             while r.time() < 30.0 {
                 r.step().unwrap();
             }
@@ -803,7 +792,7 @@ mod tests {
         let params = Params::new(0.05, 0.5, 0.5).unwrap();
         let model = ShockleyModel::new(params, law).unwrap();
         for x0 in [[0.2, 0.3], [0.0, 0.0], [0.1, -1e-30]] {
-            let mut r = Radau5::new(model, 0.0, x0, settings());
+            let mut r = Radau5::new(model.params, model.law, 0.0, x0, settings());
             let step = r.fixed_step(0.5).expect("converges");
             assert!(step.x1[1].abs() < 1e-20, "{x0:?} -> {:?}", step.x1);
         }
