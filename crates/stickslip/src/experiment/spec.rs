@@ -616,7 +616,10 @@ impl ExperimentSpec {
                 },
             },
             other => other,
-        })
+        })?;
+        // Checked, but not yet solved: the slips of a smooth law need the smooth-law
+        // integrator (refused here, before any work, rather than by the first solver).
+        Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw))
     }
 
     /// The circuit: its parts from the values, else from the preset.

@@ -28,7 +28,7 @@
 //! **The record.** One cycle from the last section but p to the last: its period, events,
 //! time stuck (the stick fraction), and the extremes of y: at stops (a stop moves with the
 //! belt, so y has its extremes at its ends, which are events) and inside slides, where y' = 0
-//! ([`super::extremes`]).
+//! (found in the dense output of each slide).
 //!
 //! **Length.** The search runs at most [`SteadyOptions::max_periods`] natural periods 2π (of
 //! τ = ω0·t: there is no drive period).
@@ -208,8 +208,8 @@ pub(crate) fn settle_self_excited<F: SolverFactory + ?Sized>(
 /// vb ≠ 0), from where it stands: see the module documentation.
 ///
 /// # Errors
-/// [`Error::HorizonTooLong`] when [`SteadyOptions::max_periods`] natural periods reach past
-/// the time range the solvers resolve; whatever the solver reports.
+/// [`crate::Error::HorizonTooLong`] when [`SteadyOptions::max_periods`] natural periods reach
+/// past the time range the solvers resolve; whatever the solver reports.
 pub fn self_excited_state<S: Solver + ?Sized>(
     solver: &mut S,
     options: &SteadyOptions,
