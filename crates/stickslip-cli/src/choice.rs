@@ -6,6 +6,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use std::marker::PhantomData;
 use std::str::FromStr;
 use stickslip::basins::BasinMethod;
+use stickslip::continuation::Follow;
 use stickslip::experiment::{DiodeModel, Preset};
 use stickslip::scan::{MapColor, SweepDirection};
 use stickslip::theory::curves::CurveKind;
@@ -130,6 +131,7 @@ choice_of!(BasinMethod, label);
 choice_of!(MapColor, label, description, retired);
 choice_of!(CurveKind, label, description, retired);
 choice_of!(stickslip::friction::FrictionLawKind, label, description);
+choice_of!(Follow, label, words);
 
 #[cfg(test)]
 mod tests {

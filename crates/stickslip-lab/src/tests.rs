@@ -181,6 +181,23 @@ async fn shockley_and_mechanics_answer_as_the_library() {
         &serde_json::to_value(SteadyReport::from(&steady)).unwrap(),
     );
     assert_eq!(answer["model"], "shockley");
+    // A Shockley motion that has not repeated is measured by the stiff solver's tangent
+    // dynamics, as the library's steady state (`stickslip steady --json`).
+    let (status, answer) =
+        get("/api/steady?preset=paper&model=shockley&w=1.1&beta=3.61&max-periods=2").await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let e = spec(
+        Some(Preset::Paper),
+        Some(DiodeModel::Shockley),
+        &[(Key::W, 1.1), (Key::Beta, 3.61)],
+    );
+    let options = e.steady_options().with_max_periods(2).unwrap();
+    let report =
+        serde_json::to_value(SteadyReport::from(&e.steady_with(&options).unwrap())).unwrap();
+    assert!(answer["period"].is_null() && answer["lambda1"].as_f64().unwrap() < 0.0);
+    for key in ["lambda1", "lambda1_error", "verdict"] {
+        assert_eq!(answer[key], report[key], "{key}");
+    }
 
     let (status, answer) =
         get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")

@@ -7,6 +7,7 @@ import csv
 import json
 import os
 import pathlib
+import signal
 import subprocess
 from typing import Dict, List
 
@@ -16,6 +17,13 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")).resolve()
 CLI = pathlib.Path(os.environ.get("STICKSLIP_CLI", TARGET / "release" / "stickslip"))
+
+
+# The Ctrl-C tests interrupt this process (and the scripts it starts) as a terminal would. A
+# test run started in the background of a shell begins with SIGINT ignored, and Python then
+# leaves it ignored: give it Python's own handler, as an interactive session has it.
+if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 class Cli:

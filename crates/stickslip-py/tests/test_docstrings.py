@@ -9,6 +9,9 @@ import pytest
 
 import stickslip
 import stickslip._api
+import stickslip._stability
+import stickslip._tables
+import stickslip._trajectory
 import stickslip._dynamics
 import stickslip.dask
 from stickslip import Experiment
@@ -22,6 +25,9 @@ def _examples(obj, name):
 
 TESTS = (
     _examples(stickslip._api, "stickslip")
+    + _examples(stickslip._trajectory, "stickslip")
+    + _examples(stickslip._tables, "stickslip")
+    + _examples(stickslip._stability, "stickslip")
     + _examples(stickslip._dynamics, "stickslip")
     + _examples(stickslip.dask, "stickslip.dask")
     + _examples(Experiment, "stickslip.Experiment")

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import stickslip
-import stickslip._api
+import stickslip._common
 from stickslip import Experiment, _core
 
 from conftest import read_csv
@@ -49,7 +49,7 @@ def test_the_tables_columns_are_the_tools_csv_headers(cli, tmp_path):
     cli.run("sweep", "--zeta", 0.05, "--beta", 2, "--over", "w", "--from", 0.8, "--to", 1,
             "--steps", 2, "--out", tmp_path / "s.csv")
     assert list(read_csv(tmp_path / "s.csv")) == list(_core.SWEEP_COLUMNS)
-    assert set(_core.SWEEP_COLUMNS) <= set(stickslip._api.SWEEP_COLUMNS)
+    assert set(_core.SWEEP_COLUMNS) <= set(stickslip._common.SWEEP_COLUMNS)
     cli.run("bifurcation", "--zeta", 0, "--mu-s", 3, "--beta", 9, "--over", "w", "--from", 0.3,
             "--to", 0.31, "--steps", 2, "--points", 4, "--out", tmp_path / "b.csv")
     assert list(read_csv(tmp_path / "b.csv")) == ["w"] + list(_core.BIFURCATION_COLUMNS)

@@ -267,9 +267,12 @@ def test_map_of_exponents_is_the_tools_csv(cli, tmp_path):
     plain = stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=w, beta=beta)
     assert plain.lambda1 is None
     np.testing.assert_array_equal(plain.class_code, m.class_code)
-    with pytest.raises(ValueError, match="piecewise-linear"):
-        stickslip.phase_diagram(Experiment.paper(diode="shockley"), w=[0.9], beta=[2.0],
+    # With Shockley diodes: the exponent of the stiff solver's orbit, as stickslip.orbit's.
+    s = stickslip.phase_diagram(Experiment.paper(diode="shockley"), w=[0.9], beta=[2.0],
                                 lyapunov=True)
+    assert s.lambda1_error.ravel()[0] == 0.0
+    orbit = stickslip.orbit(Experiment.paper(diode="shockley", w=0.9, beta=2.0))
+    assert math.isclose(s.lambda1.ravel()[0], orbit.lambda1, rel_tol=1e-6)
     with pytest.raises(ValueError, match="lyapunov_periods must not be 0"):
         stickslip.phase_diagram(Experiment(zeta=0, mu_s=3), w=w, beta=beta, lyapunov=True,
                                 lyapunov_periods=0)

@@ -12,6 +12,7 @@ use stickslip::solver::sample_at;
 use stickslip::steady::SolverFactory;
 use stickslip::DiodePair;
 
+pub mod allowances;
 pub mod ngspice;
 
 /// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.

@@ -1,12 +1,14 @@
 //! The phase diagram the README quotes (400 × 400 points, the paper's ζ, w 0.1–2.5,
-//! β 0.5–4, each point from rest), and the cost of one point against its distance from the
-//! stick-slip boundary.
+//! β 0.5–4, each point from rest), the cost of one point against its distance from the
+//! stick-slip boundary, and the Shockley map of the report's Fig. 7 (b) (64 × 64 points on
+//! one thread, the search capped at 500 periods as there; criterion's throughput is points
+//! per second).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Duration;
 use stickslip::scan::{Axis, Grid, ParameterRange};
 use stickslip::steady::{exact_solver, steady_state_from, SteadyOptions};
-use stickslip::{Circuit, Experiment, MotionClass, Parameter, Params, State};
+use stickslip::{Circuit, DiodePair, Experiment, MotionClass, Parameter, Params, State};
 
 fn zeta() -> f64 {
     Circuit::paper().scales().zeta()
@@ -79,5 +81,48 @@ fn bench_near_boundary(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_near_boundary, bench_grid);
+fn bench_shockley_map(c: &mut Criterion) {
+    let mut group = c.benchmark_group("phase_diagram");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(30));
+    let shockley = Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .expect("valid");
+    let n = 64;
+    let w = ParameterRange::new("w", 0.1, 2.5, n).expect("valid");
+    let beta = ParameterRange::new("beta", 0.5, 4.0, n).expect("valid");
+    group.throughput(Throughput::Elements((n * n) as u64));
+    // As the report computes it (motions that do not repeat measured), and without the
+    // measurement (`--lyapunov-periods 0`).
+    for (name, measured) in [
+        ("shockley_fig7b", true),
+        ("shockley_fig7b_unmeasured", false),
+    ] {
+        let options = shockley
+            .steady_options()
+            .with_max_periods(500)
+            .expect("valid");
+        let options = if measured {
+            options
+        } else {
+            options.with_lyapunov(None).expect("valid")
+        };
+        let grid = Grid::new(
+            &shockley,
+            Axis::range(Parameter::W, &w).expect("valid"),
+            Axis::range(Parameter::Beta, &beta).expect("valid"),
+        )
+        .expect("valid")
+        .options(options)
+        .expect("valid")
+        .threads(1)
+        .expect("valid");
+        group.bench_function(BenchmarkId::new(name, format!("{n}x{n}")), |b| {
+            b.iter(|| grid.run(&()).expect("runs"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_near_boundary, bench_grid, bench_shockley_map);
 criterion_main!(benches);

@@ -352,8 +352,8 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact orbit) are those of the piecewise-linear
     /// model.
     TheoryNeedsPwl,
-    /// A map of Lyapunov exponents is measured with the exact piecewise-linear model (the
-    /// other stability tools take Shockley diodes too).
+    /// A tool of the exact piecewise-linear model alone
+    /// ([`crate::Experiment::exact_params`]; the stability tools take Shockley diodes too).
     StabilityNeedsPwl,
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
@@ -361,6 +361,9 @@ pub enum Unsupported {
     /// The Stribeck and cubic friction laws need the smooth-law integrator (the exact
     /// solver follows Coulomb's law).
     SmoothFrictionLaw,
+    /// Curves of special points in two parameters are followed with the exact
+    /// piecewise-linear model (its grazings are events of the exact solver).
+    CurveNeedsPwl,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -377,9 +380,9 @@ impl std::fmt::Display for Unsupported {
                  Shockley diodes"
             }
             Unsupported::StabilityNeedsPwl => {
-                "a map of Lyapunov exponents is measured with the exact piecewise-linear diode \
-                 (Coulomb friction) model, not Shockley diodes (`stickslip lyapunov` and \
-                 `stickslip orbit` measure a point of either)"
+                "this tool takes the exact piecewise-linear diode (Coulomb friction) model, \
+                 not Shockley diodes (`stickslip orbit`, `lyapunov`, `continue`, \
+                 `bifurcation`, `basins` and `phase-diagram --color lambda1` take either)"
             }
             Unsupported::MuSNeedsPwl => {
                 "mu_s (static friction) is a parameter of the piecewise-linear law only: a \
@@ -388,6 +391,11 @@ impl std::fmt::Display for Unsupported {
             Unsupported::SmoothFrictionLaw => {
                 "the Stribeck and cubic friction laws need the smooth-law integrator, which \
                  this build does not have yet: use --friction-law coulomb (solved exactly)"
+            }
+            Unsupported::CurveNeedsPwl => {
+                "curves of special points in two parameters are followed with the exact \
+                 piecewise-linear diode (Coulomb friction) model, not Shockley diodes \
+                 (`stickslip continue` follows a branch of either)"
             }
         })
     }

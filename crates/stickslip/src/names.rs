@@ -13,6 +13,7 @@
 
 use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
+use crate::continuation::Follow;
 use crate::experiment::{DiodeModel, Key, Preset};
 use crate::friction::FrictionLawKind;
 use crate::params::Parameter;
@@ -94,6 +95,7 @@ names!(MapColor, "map colour", display, retired);
 names!(AttractorKind, "attractor kind", display, retired);
 names!(BasinMethod, "basin method", display);
 names!(FrictionLawKind, "friction law", display);
+names!(Follow, "followed special point");
 
 impl SweepDirection {
     /// Every direction.

@@ -13,7 +13,6 @@ use stickslip::steady::{
 };
 use stickslip::{
     Circuit, DiodePair, Error, ExactSolver, Experiment, Parameter, Params, Solver, State,
-    Unsupported,
 };
 use stickslip_testkit::paper_shockley;
 
@@ -147,7 +146,7 @@ fn motions_that_repeat_are_not_measured_and_unchanged() {
 }
 
 #[test]
-fn without_the_option_or_the_exact_solver_nothing_is_measured() {
+fn without_the_option_or_a_tangent_dynamics_nothing_is_measured() {
     let params = literature(0.33);
     let off = settle(params, &no_spectrum().with_lyapunov(None).unwrap());
     assert_eq!(
@@ -199,7 +198,8 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
     let mut exact = ExactSolver::new(params, State::default());
     let s = steady_state(&mut exact, &options).unwrap();
     assert_eq!(s.class, MotionClass::Chaotic);
-    // Shockley diodes: the stiff solver is not the exact model.
+    // Shockley diodes: the stiff solver is not the exact model, but its factory has the
+    // smooth law's tangent dynamics (tests/smooth_stability.rs compares their exponent).
     let shockley = paper_shockley();
     let s = shockley
         .steady_with(
@@ -210,7 +210,7 @@ fn without_the_option_or_the_exact_solver_nothing_is_measured() {
                 .unwrap(),
         )
         .unwrap();
-    assert_eq!((s.period, s.lyapunov.is_none()), (None, true));
+    assert_eq!((s.period, s.lyapunov.is_some()), (None, true));
 }
 
 #[test]
@@ -370,20 +370,8 @@ fn a_grid_maps_the_exponent_and_the_chaotic_class() {
     for (a, b) in plain.points.iter().zip(&one.points) {
         assert_eq!((a.class, a.period, a.lyapunov), (b.class, b.period, None));
     }
-    // Shockley diodes have no exact tangent dynamics.
-    let shockley = Experiment::paper()
-        .with_shockley(DiodePair::one_n4148())
-        .unwrap();
-    let grid = Grid::new(
-        &shockley,
-        Axis::new(Parameter::W, vec![0.9]).unwrap(),
-        Axis::new(Parameter::Beta, vec![2.0]).unwrap(),
-    )
-    .unwrap();
-    assert!(matches!(
-        grid.lyapunov(options),
-        Err(Error::Unsupported(Unsupported::StabilityNeedsPwl))
-    ));
+    // With Shockley diodes the map is of the stiff solver's tangent dynamics
+    // (tests/smooth_stability.rs).
 }
 
 #[test]

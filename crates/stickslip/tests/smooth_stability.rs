@@ -673,3 +673,125 @@ fn multipliers_converge_with_the_tolerance() {
     );
     assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
 }
+
+/// A map of exponents with Shockley diodes (`phase-diagram --color lambda1 --model
+/// shockley`): every point's λ1 is that of its periodic orbit (`orbit`), the same for one
+/// thread and two; at one point the measured exponent (`lyapunov`) agrees within its error.
+#[test]
+fn a_shockley_map_of_exponents_is_its_orbits_exponents() {
+    use stickslip::scan::{Axis, Grid};
+    use stickslip::steady::MotionClass;
+    use stickslip::{DiodePair, Experiment, Parameter};
+
+    let e = Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .unwrap();
+    let grid = |threads: usize| {
+        Grid::new(
+            &e,
+            Axis::new(Parameter::W, vec![0.9, 1.1]).unwrap(),
+            Axis::new(Parameter::Beta, vec![2.0, 3.61]).unwrap(),
+        )
+        .unwrap()
+        .lyapunov(stickslip::SteadyOptions::DEFAULT_LYAPUNOV)
+        .unwrap()
+        .threads(threads)
+        .unwrap()
+        .run(&())
+        .unwrap()
+    };
+    let (one, two) = (grid(1), grid(2));
+    assert_eq!(one.points, two.points);
+    for p in &one.points {
+        assert_eq!(
+            (p.class, p.period),
+            (MotionClass::Sliding, Some(1)),
+            "{p:?}"
+        );
+        let at = e
+            .clone()
+            .with_w(p.params.w)
+            .unwrap()
+            .with_beta(p.params.beta)
+            .unwrap();
+        let orbit = at
+            .periodic_orbit(
+                None,
+                0,
+                &at.steady_options(),
+                &NewtonOptions::default(),
+                &(),
+            )
+            .unwrap();
+        let lambda = p.lyapunov.expect("an exponent at every point");
+        assert!(
+            lambda.per_tau < 0.0 && lambda.error_per_tau == 0.0,
+            "{lambda:?}"
+        );
+        assert!(
+            (lambda.per_tau - orbit.exponent()).abs() <= 1e-9 * orbit.exponent().abs(),
+            "{} vs the orbit's {} at {:?}",
+            lambda.per_tau,
+            orbit.exponent(),
+            p.params
+        );
+        assert!(
+            (lambda.per_period - lambda.per_tau * p.params.drive_period()).abs()
+                <= 1e-12 * lambda.per_period.abs()
+        );
+    }
+    // The measurement of the tangent dynamics over 2000 periods, against the map's exact one.
+    let p = &one.points[3];
+    let at = e
+        .clone()
+        .with_w(p.params.w)
+        .unwrap()
+        .with_beta(p.params.beta)
+        .unwrap();
+    let options = LyapunovOptions {
+        transient_periods: 300,
+        periods: 2000,
+        ..Default::default()
+    };
+    let measured = at.lyapunov(&options, &()).unwrap().exponents.largest;
+    let exact = p.lyapunov.unwrap().per_tau;
+    assert!(
+        (measured.per_tau - exact).abs() <= 4.0 * measured.error_per_tau + 1e-3 * exact.abs(),
+        "measured {measured:?} vs the map's {exact}"
+    );
+}
+
+/// A Shockley motion that has not repeated within the search's cap is measured, as the PWL
+/// model's are (`steady`'s λ1): here a transient cut short, contracting onto the orbit whose
+/// exponent it measures.
+#[test]
+fn a_shockley_motion_that_does_not_repeat_is_measured() {
+    use stickslip::stability::NonperiodicVerdict;
+    use stickslip::{DiodePair, Experiment};
+
+    let e = Experiment::paper()
+        .with_shockley(DiodePair::one_n4148())
+        .unwrap()
+        .with_w(1.1)
+        .unwrap()
+        .with_beta(3.61)
+        .unwrap();
+    let short = e.steady_options().with_max_periods(2).unwrap();
+    let steady = e.steady_with(&short).unwrap();
+    assert_eq!(steady.period, None);
+    let c = steady.lyapunov.expect("the motion is measured");
+    let orbit = e
+        .periodic_orbit(None, 0, &e.steady_options(), &NewtonOptions::default(), &())
+        .unwrap();
+    assert_eq!(c.verdict, NonperiodicVerdict::Contracting, "{c:?}");
+    let l = c.exponents.largest;
+    assert!(
+        (l.per_tau - orbit.exponent()).abs()
+            <= 4.0 * l.error_per_tau + 1e-3 * orbit.exponent().abs(),
+        "{l:?} vs the orbit's {}",
+        orbit.exponent()
+    );
+    // Without the measurement, nothing is measured.
+    let off = short.with_lyapunov(None).unwrap();
+    assert!(e.steady_with(&off).unwrap().lyapunov.is_none());
+}

@@ -6,6 +6,7 @@ pub mod basins;
 pub mod bifurcation;
 pub mod continuation;
 pub mod convert;
+pub mod curve;
 pub mod fit;
 pub mod lab;
 pub mod lyapunov;
@@ -47,6 +48,8 @@ pub enum Command {
     Basins(basins::Args),
     /// Continue a branch of periodic orbits through folds and changes of the event sequence.
     Continue(continuation::Args),
+    /// Follow a fold, period doubling, Neimark–Sacker point or grazing in two parameters.
+    Curve(curve::Args),
     Fit(fit::Args),
 }
 
@@ -67,6 +70,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Bifurcation(a) => bifurcation::run(a),
         Command::Basins(a) => basins::run(a),
         Command::Continue(a) => continuation::run(a),
+        Command::Curve(a) => curve::run(a),
         Command::Fit(a) => fit::run(a),
     }
 }

@@ -21,7 +21,7 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 /// Classify the steady motion on a grid of drive frequencies w and amplitudes β, each point
 /// started from the initial state (rest by default), in parallel: sliding, periodic-stick
 /// or static (the paper's Figs. 6 and 7), chaotic (a motion that does not repeat and whose
-/// largest Lyapunov exponent is positive beyond 4 standard errors, exact PWL model), or
+/// largest Lyapunov exponent is positive beyond 4 standard errors), or
 /// undecided (no period found within the budget, and not chaotic: the paper's non-periodic
 /// class lands here; see `stickslip steady --help`).
 ///
@@ -29,7 +29,8 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 /// τ = ω0·t: exactly, ln|μ1|/(pT) from the Floquet multiplier μ1 of its periodic orbit
 /// (refined by Newton's method) where the motion repeats, and measured over
 /// --lyapunov-periods where it does not; the plot maps λ1 (red: chaos, blue: contraction,
-/// white: 0, e.g. rest).
+/// white: 0, e.g. rest). With --model shockley the multipliers and the tangent dynamics are
+/// those of the stiff solver's computed solution (as `orbit` and `lyapunov` give them).
 ///
 /// Output CSV columns: w,beta,class,period,stops_per_period,gain, and with --color lambda1
 /// also lambda1,lambda1_error (λ1 and its standard error per unit τ; 0 error for an exact

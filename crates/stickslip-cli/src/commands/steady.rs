@@ -21,7 +21,8 @@ use stickslip::Scales;
 /// harmonics A_k of y from a real FFT of the recorded periods; gain = (max y − min y)/(2β);
 /// phase_lag = lag of the fundamental behind the drive (radians).
 ///
-/// A motion that does not repeat within --max-periods is then measured (exact PWL model):
+/// A motion that does not repeat within --max-periods is then measured (with --model shockley
+/// by the tangent dynamics of the stiff solver's computed solution):
 /// its largest Lyapunov exponent λ1 over --lyapunov-periods more periods, with a standard
 /// error σ from 20 blocks. λ1 > 4σ: nearby motions separate exponentially, the class is
 /// `chaotic`. Otherwise the class is `undecided` (not decided within the budget; sliding

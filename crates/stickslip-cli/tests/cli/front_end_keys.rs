@@ -15,66 +15,59 @@ use std::path::{Path, PathBuf};
 use stickslip::experiment::{Key, KeyForm, KeyGroup};
 use stickslip::fit::FitParameter;
 use stickslip::Parameter;
-
-/// An occurrence a front end may write: in `file`, on a line holding `fragment`.
-struct Allowed {
-    file: &'static str,
-    word: &'static str,
-    fragment: &'static str,
-    /// Why it is written there.
-    reason: &'static str,
-}
+use stickslip_testkit::allowances::{Allowance, Scan};
 
 /// Python's static signatures: pyo3 needs each keyword of a constructor written out (so that
 /// `help()` shows it); `tests/test_keys.py` checks every one against the key table.
 const SIGNATURE: &str = "a keyword of a Python constructor's static signature (pyo3), which \
                          tests/test_keys.py checks against the table";
 
-const ALLOWED: &[Allowed] = &[
-    Allowed {
+/// The occurrences a front end may write, each on a line holding its fragment.
+const ALLOWED: &[Allowance] = &[
+    Allowance {
         file: "stickslip-cli/src/commands/reproduce/figures/fig1.rs",
         word: "friction",
         fragment: "&[\"velocity\", \"friction\"]",
         reason: "the columns of fig1a.csv: the friction force against the velocity (the \
                  paper's Fig. 1), not the key F0",
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "U_t",
         fragment: "(\"U_t\", U_t)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "R_D",
         fragment: "(\"R_D\", R_D)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "Is",
         fragment: "(\"Is\", Is)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "Rs",
         fragment: "(\"Rs\", Rs)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "temperature",
         fragment: "(\"temperature\", temperature)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "gamma",
         fragment: "(\"gamma\", gamma)",
         reason: SIGNATURE,
     },
-    Allowed {
+    Allowance {
         file: "stickslip-py/src/experiment.rs",
         word: "F0",
         fragment: "(\"F0\", F0)",
@@ -215,8 +208,7 @@ fn files(dir: &Path, out: &mut Vec<PathBuf>) {
 /// `file:line: word: the line`, and the allowances that matched nothing.
 fn hand_written(sources: &[(String, String)]) -> (Vec<String>, Vec<String>) {
     let (words, whole) = spellings();
-    let mut used = vec![false; ALLOWED.len()];
-    let mut found = Vec::new();
+    let mut scan = Scan::new(ALLOWED);
     for (file, text) in sources {
         let python = file.ends_with(".py");
         let code = if python {
@@ -238,23 +230,11 @@ fn hand_written(sources: &[(String, String)]) -> (Vec<String>, Vec<String>) {
             };
             let source = lines.get(line - 1).copied().unwrap_or_default();
             for word in hits {
-                let allowed = ALLOWED.iter().position(|a| {
-                    file.ends_with(a.file) && a.word == word && source.contains(a.fragment)
-                });
-                match allowed {
-                    Some(a) => used[a] = true,
-                    None => found.push(format!("{file}:{line}: {word}: {}", source.trim())),
-                }
+                scan.occurrence(file, line, word, source);
             }
         }
     }
-    let stale = ALLOWED
-        .iter()
-        .zip(used)
-        .filter(|(_, used)| !used)
-        .map(|(a, _)| format!("{}: {} ({})", a.file, a.fragment, a.reason))
-        .collect();
-    (found, stale)
+    scan.finish()
 }
 
 /// The front ends' sources: the command line's, the lab's and the Python package's.

@@ -6,6 +6,7 @@ mod common;
 mod belt;
 mod checkpoint;
 mod convert;
+mod curve;
 mod determinism;
 mod dynamics;
 mod fit;

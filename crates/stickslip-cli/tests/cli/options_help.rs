@@ -20,6 +20,7 @@ fn commands(group: OptionGroup) -> &'static [&'static str] {
         OptionGroup::Basins => &["basins"],
         OptionGroup::Continuation => &["continue"],
         OptionGroup::Curve => &["theory"],
+        OptionGroup::TwoParameter => &["curve"],
         OptionGroup::SteadyReport => &["steady"],
         OptionGroup::Checkpoint => &["sweep", "phase-diagram", "basins"],
         OptionGroup::Netlist => &["netlist"],

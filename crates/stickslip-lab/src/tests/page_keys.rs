@@ -9,51 +9,44 @@
 
 use crate::router::{LAB_JS, MODULES};
 use stickslip::experiment::{Key, KeyGroup};
+use stickslip_testkit::allowances::{Allowance, Scan};
 
-/// An occurrence of a key's flag the page may write: in `file`, on a line holding `fragment`.
-struct Allowed {
-    file: &'static str,
-    flag: &'static str,
-    fragment: &'static str,
-    /// Why the key is written there.
-    reason: &'static str,
-}
-
-const ALLOWED: [Allowed; 6] = [
-    Allowed {
+/// The occurrences of a key's flag the page may write, each on a line holding its fragment.
+const ALLOWED: [Allowance; 6] = [
+    Allowance {
         file: "lab/state.js",
-        flag: "preset",
+        word: "preset",
         fragment: "p.set('preset', 'paper')",
         reason: "behaviour of its own: while no part is edited, the paper's circuit is sent \
                  by the preset's name, as the page has always sent it",
     },
-    Allowed {
+    Allowance {
         file: "lab/state.js",
-        flag: "model",
+        word: "model",
         fragment: "p.set('model', 'shockley')",
         reason: "behaviour of its own: the diode law is the system's selector, not a field",
     },
-    Allowed {
+    Allowance {
         file: "lab.js",
-        flag: "model",
+        word: "model",
         fragment: "steady.model === 'shockley'",
         reason: "the steady state's answer field `model` (its diode law), not a query key",
     },
-    Allowed {
+    Allowance {
         file: "lab/panels.js",
-        flag: "model",
+        word: "model",
         fragment: "state.stuckVelocity[s.model]",
         reason: "the steady state's answer field `model`, which picks the served stuck speed",
     },
-    Allowed {
+    Allowance {
         file: "lab/sweepmap.js",
-        flag: "model",
+        word: "model",
         fragment: "answer.model",
         reason: "a sweep's or map's answer field `model`: what it was computed for",
     },
-    Allowed {
+    Allowance {
         file: "lab/panels.js",
-        flag: "zeta",
+        word: "zeta",
         fragment: "num(c.zeta, 5)",
         reason: "the answer's ζ of the circuit, shown derived (the form has no field for it)",
     },
@@ -217,8 +210,7 @@ fn model_flags() -> Vec<&'static str> {
 /// the line`, and the allowances that matched nothing (with their reasons).
 fn hand_written(scripts: &[(String, &str)]) -> (Vec<String>, Vec<String>) {
     let flags = model_flags();
-    let mut used = [false; ALLOWED.len()];
-    let mut found = Vec::new();
+    let mut scan = Scan::new(&ALLOWED);
     for (file, text) in scripts {
         let lines: Vec<&str> = text.lines().collect();
         for (line, word) in words(text) {
@@ -226,22 +218,10 @@ fn hand_written(scripts: &[(String, &str)]) -> (Vec<String>, Vec<String>) {
                 continue;
             }
             let source = lines.get(line - 1).copied().unwrap_or_default();
-            let allowed = ALLOWED
-                .iter()
-                .position(|a| a.file == file && a.flag == word && source.contains(a.fragment));
-            match allowed {
-                Some(a) => used[a] = true,
-                None => found.push(format!("{file}:{line}: {word}: {}", source.trim())),
-            }
+            scan.occurrence(file, line, &word, source);
         }
     }
-    let stale = ALLOWED
-        .iter()
-        .zip(used)
-        .filter(|(_, used)| !used)
-        .map(|(a, _)| format!("{}: {} ({})", a.file, a.fragment, a.reason))
-        .collect();
-    (found, stale)
+    scan.finish()
 }
 
 /// The scripts the page runs, as the server serves them.

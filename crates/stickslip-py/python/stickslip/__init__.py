@@ -43,28 +43,11 @@ Example::
     print(m.counts())
 """
 
-from ._api import (
-    EVENT_DTYPE,
-    EVENT_KINDS,
-    MOTION_CLASSES,
-    PARAMETERS,
-    PHASE_LABELS,
-    STOP_DTYPE,
-    LyapunovResult,
-    PeriodicOrbit,
-    PhaseDiagram,
-    SteadyState,
-    SweepResult,
-    Trajectory,
-    boundary,
-    lyapunov,
-    orbit,
-    phase_diagram,
-    simulate,
-    steady,
-    sweep,
-    theory,
-)
+from ._api import boundary, phase_diagram, simulate, steady, sweep, theory
+from ._common import EVENT_DTYPE, EVENT_KINDS, MOTION_CLASSES, PARAMETERS, PHASE_LABELS
+from ._stability import STOP_DTYPE, LyapunovResult, PeriodicOrbit, lyapunov, orbit
+from ._tables import PhaseDiagram, SweepResult
+from ._trajectory import SteadyState, Trajectory
 from ._core import Experiment, __version__
 from ._fit import (
     AmplitudeTable,

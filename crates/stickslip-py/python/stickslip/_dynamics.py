@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Un
 import numpy as np
 
 from . import _checks, _core, _progress
-from ._api import (_coordinate, _fixed_attributes, _optional_period,
-                   _physical_coordinates, _plain, _values, _with_model)
+from ._common import (_coordinate, _fixed_attributes, _optional_period,
+                      _physical_coordinates, _plain, _values, _with_model)
 from ._core import Experiment
 from ._names import Renamed, renamed_key, warn_renamed
 from ._progress import Progress

@@ -12,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _checks, _core, _progress
-from ._api import _with_model
+from ._common import _with_model
 from ._progress import Progress
 from ._core import Experiment
 from ._names import Renamed

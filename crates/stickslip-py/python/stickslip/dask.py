@@ -57,7 +57,9 @@ from typing import (Any, Callable, Dict, List, Literal, Optional, Sequence, Set,
 import numpy as np
 
 from . import _checks, _core, _progress
-from ._api import PhaseDiagram, _axes, _with_model
+from ._api import _axes
+from ._common import _with_model
+from ._tables import PhaseDiagram
 from ._core import Experiment
 from ._progress import Progress
 
@@ -454,7 +456,7 @@ def phase_diagram(experiment: Experiment, *, chunks: Chunks = "auto", client: An
         progress: True for a progress bar (tqdm), a callable ``progress(done, total)``
             (points of the blocks finished) or a tqdm bar's ``update``; called from the
             calling thread.
-        lyapunov: also the largest Lyapunov exponent of every point (exact PWL model):
+        lyapunov: also the largest Lyapunov exponent of every point (either law):
             arrays ``lyapunov`` and ``lyapunov_error`` per unit τ, as
             ``stickslip.phase_diagram(..., lyapunov=True)``.
         **axes_and_options: two parameter arrays (any two of zeta, w, beta, mu_s; the first

@@ -913,6 +913,14 @@ impl SolverFactory for ExperimentFactory {
     fn cancel(&self) -> Cancel {
         self.cancel.clone()
     }
+
+    /// A smooth law's [`Dynamics`] (its solvers are not exact); `None` for the PWL law.
+    fn smooth_dynamics(&self) -> Option<Box<dyn Dynamics>> {
+        match self.law() {
+            Ok(Law::Pwl) | Err(_) => None,
+            Ok(_) => self.dynamics().ok(),
+        }
+    }
 }
 
 /// Conversion between the dimensionless samples of a run and physical units.

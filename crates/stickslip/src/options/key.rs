@@ -38,6 +38,8 @@ pub enum OptionGroup {
     Continuation,
     /// A curve of the theory (`theory --curve`).
     Curve,
+    /// A curve of special points in two parameters (`curve`).
+    TwoParameter,
     /// The pool of threads of a parallel computation.
     Pool,
     /// The report of one steady state (`steady` on the command line, `/api/steady` in the
@@ -201,6 +203,17 @@ pub enum OptionKey {
     ContinuationFrom,
     /// Value of the parameter a branch is continued towards.
     ContinuationTo,
+    /// Value of P the search for a curve's start heads for (the orbit settled on at the
+    /// model's point is continued in P towards it).
+    TwoParameterVaryTo,
+    /// One end of the range of Q a curve of special points is followed over.
+    TwoParameterFrom,
+    /// The end of Q's range a curve of special points heads for.
+    TwoParameterTo,
+    /// Most points of a curve of special points.
+    TwoParameterMaxPoints,
+    /// Largest step of arclength of a curve of special points.
+    TwoParameterMaxStep,
     /// Smallest frequency w of a theory curve.
     CurveWMin,
     /// Largest frequency w of a theory curve.
@@ -424,6 +437,21 @@ rows! {
     ContinuationTo, Continuation, "to", "to", Number, None, None, Range,
         "must be a finite value of the parameter", None,
         "Value to continue towards (above or below --from); the branch stays between the two.";
+    TwoParameterVaryTo, TwoParameter, "vary-to", "vary_to", Number, None, None, Range,
+        "must be a finite value of the varied parameter, other than the model's", None,
+        "Value of --vary that the search for the start heads for: the orbit the motion settles on at the model's point is continued in --vary towards it, up to its first special point of the followed kind.";
+    TwoParameterFrom, TwoParameter, "from", "start", Number, None, None, Range,
+        "must be a finite value of the parameter", None,
+        "One end of the range of --over (the model's value of --over must lie between --from and --to; the curve goes both ways when it lies inside).";
+    TwoParameterTo, TwoParameter, "to", "to", Number, None, None, Range,
+        "must be a finite value of the parameter", None,
+        "The end of the range of --over the curve heads for (above or below --from).";
+    TwoParameterMaxPoints, TwoParameter, "max-points", "max_points", Count, incl(2.0),
+        incl(1e7), Range, "must be from 2 to 10000000", Some(5000.0),
+        "Most points of the curve, each way.";
+    TwoParameterMaxStep, TwoParameter, "max-step", "max_step", Number, excl(0.0), incl(10.0),
+        Range, "must be > 0 and <= 10", Some(0.1),
+        "Largest step of arclength in (y, y', --over, --vary).";
     CurveWMin, Curve, "w-min", "w_min", Number, incl(1e-5), incl(1e5), Range,
         "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(0.2),
         "Smallest w of the curve (> 0) [default: 0.2].";

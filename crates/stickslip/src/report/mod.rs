@@ -19,6 +19,7 @@
 //! | bifurcation diagram | [`BifurcationReport`] | `<parameter>,y,v,direction,lambda1,class,period` |
 //! | basins | [`BasinReport`], [`BasinsTable`] | `y0,v0,attractor,class,period` |
 //! | branch (`continue`) | [`BranchReport`], [`BranchTable`] | `<parameter>,y,v,amplitude,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,stable,arclength` |
+//! | curve (`curve`) | [`CurveReport`], [`CurveTable`] | `<over>,<vary>,y,v,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,mu2_im,largest_multiplier,stability,arclength,special` |
 //!
 //! Numbers are written as Rust's `Display` writes an `f64` (the shortest text that reads
 //! back to the same number: `0.1`, `1e-7`, `NaN`, `inf`); a missing value is an empty cell
@@ -26,6 +27,7 @@
 
 mod bifurcation;
 mod branch;
+mod curve;
 mod map;
 mod steady;
 mod sweep;
@@ -36,12 +38,14 @@ pub use crate::basins::{AttractorReport, BasinReport};
 /// The report of a basin map (the name beside the other reports'; the type is
 /// [`BasinReport`]).
 pub type BasinsReport = BasinReport;
+pub use crate::continuation::CurveReport;
 pub use crate::continuation::{BranchReport, SideReport, SpecialReport};
 pub use crate::stability::{LyapunovReport, OrbitReport};
 pub use crate::steady::SteadyReport;
 pub use crate::theory::TheoryReport;
 pub use bifurcation::{BifurcationReport, BifurcationRow};
 pub use branch::{BasinsTable, BranchTable};
+pub use curve::CurveTable;
 pub use map::{AxisCells, MapReport, MapRow};
 pub use steady::{SteadyTrace, TheoryRow, TheoryTable};
 pub use sweep::{SweepReport, SweepRow};

@@ -4,9 +4,9 @@
 use super::axis::Axis;
 use super::monitor::Monitor;
 use crate::error::{Error, Result};
-use crate::experiment::{DiodeModel, Experiment};
+use crate::experiment::Experiment;
 use crate::params::Params;
-use crate::stability::{Estimate, LyapunovOptions};
+use crate::stability::{Dynamics, Estimate, LyapunovOptions};
 use crate::steady::{
     check_horizon, settle_from, settle_with_exponent, MotionClass, SolverFactory, SteadyOptions,
 };
@@ -90,6 +90,8 @@ pub struct Grid {
     options: SteadyOptions,
     threads: Option<usize>,
     lyapunov: Option<LyapunovOptions>,
+    /// The experiment's stability tools, which measure the exponents ([`Grid::lyapunov`]).
+    dynamics: Arc<dyn Dynamics>,
 }
 
 impl Grid {
@@ -134,6 +136,7 @@ impl Grid {
             second,
             threads: None,
             lyapunov: None,
+            dynamics: Arc::from(experiment.dynamics()?),
         };
         grid.check_horizons()?;
         Ok(grid)
@@ -181,22 +184,21 @@ impl Grid {
     }
 
     /// Also find the largest Lyapunov exponent of every point ([`GridPoint::lyapunov`], by
-    /// [`crate::stability::steady_exponent`]): exactly, from the Floquet multipliers of the
-    /// periodic orbit, where the motion repeats (a Newton step or two from the recorded cycle),
-    /// and measured with `options` where it does not (unless the steady-state search measured
-    /// it already, with [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting
-    /// early in its search stops there ([`crate::steady::steady_state_with_exponent`]). Points
-    /// still differ only by what they compute, so the map stays the same for any number of
-    /// threads.
+    /// [`crate::stability::steady_exponent_of`] with the experiment's
+    /// [`Experiment::dynamics`]): exactly, from the Floquet multipliers of the periodic orbit,
+    /// where the motion repeats (a Newton step or two from the recorded cycle), and measured
+    /// with `options` where it does not (unless the steady-state search measured it already,
+    /// with [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting early in its
+    /// search stops there ([`crate::steady::steady_state_with_exponent`]). With Shockley
+    /// diodes the multipliers and the tangent dynamics are those of the stiff solver's
+    /// computed solution ([`crate::stability::ShockleyDynamics`]), exact to its tolerance.
+    /// Points still differ only by what they compute, so the map stays the same for any
+    /// number of threads.
     ///
     /// # Errors
-    /// Invalid options; [`Error::Unsupported`] with Shockley diodes (the tangent dynamics are
-    /// those of the exact piecewise-linear model); [`Error::HorizonTooLong`] when the
-    /// measurement reaches beyond the time range the solvers resolve at some w of the grid.
+    /// Invalid options; [`Error::HorizonTooLong`] when the measurement reaches beyond the
+    /// time range the solvers resolve at some w of the grid.
     pub fn lyapunov(mut self, options: LyapunovOptions) -> Result<Self> {
-        if self.experiment.diode_model() != DiodeModel::Pwl {
-            return Err(Error::Unsupported(crate::Unsupported::StabilityNeedsPwl));
-        }
         let options = options.validate()?;
         // The measurement starts again at τ = 0 from the end of the steady-state search; the
         // axes' edges hold every value of w.
@@ -270,6 +272,7 @@ impl Grid {
             // (The options were validated when the grid took them.)
             Some(options) => settle_with_exponent(
                 self.factory.as_ref(),
+                self.dynamics.as_ref(),
                 &params,
                 self.experiment.initial(),
                 &self.options,

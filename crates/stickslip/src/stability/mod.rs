@@ -92,7 +92,10 @@ pub use nonperiodic::{
 pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stability, Stop};
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
-pub use sensitivity::{periodic_orbit_sensitivity, OrbitSample, SENSITIVITY_PARAMETERS};
+pub use sensitivity::{
+    periodic_orbit_sensitivity, strobe_map_parameter_derivatives, OrbitSample,
+    SENSITIVITY_PARAMETERS,
+};
 pub use smooth::{ShockleyDynamics, ShockleyTangent, SmoothImage, SmoothOrbitSample};
 pub use strobe::{strobe_map, StrobeImage};
 pub use tangent::{TangentRun, TangentSolver};
@@ -101,6 +104,6 @@ pub use two_trajectory::{two_trajectory_exponent, TwoTrajectoryEstimate};
 // What joins a steady state to its stability lives in `crate::steady`, which builds on this
 // module (never the other way round); these names stay here for the paths users know.
 pub use crate::steady::{
-    periodic_orbit_from_steady, steady_exponent, steady_state_with_exponent,
+    periodic_orbit_from_steady, steady_exponent, steady_exponent_of, steady_state_with_exponent,
     SEARCH_BEFORE_MEASURING,
 };

@@ -107,6 +107,36 @@ pub struct PeriodicOrbit {
 }
 
 impl PeriodicOrbit {
+    /// The orbit of period `period` (drive periods of `params`) through `state`, from the
+    /// image of the `period`-fold strobe map there (its events, stops and Jacobian: the
+    /// monodromy matrix), with its multipliers and verdict and Newton's `iterations` and
+    /// `residuals` (either law's Newton method builds its orbit so).
+    pub(crate) fn from_image(
+        params: &Params,
+        period: usize,
+        state: State,
+        image: StrobeImage,
+        (multipliers, stability): ([Multiplier; 2], Stability),
+        iterations: usize,
+        residuals: Vec<f64>,
+    ) -> Self {
+        let drive_period = params.drive_period();
+        let end = period as f64 * drive_period;
+        PeriodicOrbit {
+            period,
+            drive_period,
+            state,
+            stuck_at_strobe: image.stuck_at_start,
+            stops: stops(&image.events, image.stuck_at_start, end),
+            events: image.events,
+            monodromy: image.jacobian,
+            multipliers,
+            stability,
+            iterations,
+            residuals,
+        }
+    }
+
     /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ_max|/(pT) (−∞ when both
     /// multipliers vanish).
     pub fn exponent(&self) -> f64 {
@@ -326,21 +356,15 @@ fn find_orbit(
             x = next;
         }
     }
-    let drive_period = params.drive_period();
-    let end = period as f64 * drive_period;
-    let orbit = PeriodicOrbit {
+    let orbit = PeriodicOrbit::from_image(
+        params,
         period,
-        drive_period,
-        state: x,
-        stuck_at_strobe: image.stuck_at_start,
-        stops: stops(&image.events, image.stuck_at_start, end),
-        events: image.events,
-        monodromy: image.jacobian,
-        multipliers,
-        stability,
+        x,
+        image,
+        (multipliers, stability),
         iterations,
         residuals,
-    };
+    );
     Ok((orbit, hints))
 }
 

@@ -293,6 +293,33 @@ impl Propagation {
     }
 }
 
+/// Check a request for samples of a periodic orbit (either law's): `period` at least 1, the
+/// times `taus` sorted and ≥ 0.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for p = 0; [`Error::TimeBeforeCurrent`] for the first time
+/// before the one before it (or before 0).
+pub(crate) fn check_orbit_samples(period: usize, taus: &[f64]) -> Result<()> {
+    if period == 0 {
+        return Err(Error::InvalidParameter {
+            name: "periods",
+            value: 0.0,
+            allowed: "must be at least 1",
+        });
+    }
+    let mut previous = 0.0;
+    for &tau in taus {
+        if !(tau >= previous) {
+            return Err(Error::TimeBeforeCurrent {
+                requested: tau,
+                current: previous,
+            });
+        }
+        previous = tau;
+    }
+    Ok(())
+}
+
 /// The periodic orbit through `fixed_point` (the state at a strobe, drive phase φ, that the
 /// `period`-fold strobe map keeps), sampled at the sorted times `taus` ≥ 0 with the
 /// derivatives of y by (ζ, β, w, φ, μs) (see the module documentation).
@@ -326,23 +353,7 @@ pub fn periodic_orbit_sensitivity(
 ) -> Result<Vec<OrbitSample>> {
     let params = params.validate()?;
     let fixed_point = State::new(fixed_point.y, fixed_point.v)?;
-    if period == 0 {
-        return Err(Error::InvalidParameter {
-            name: "periods",
-            value: 0.0,
-            allowed: "must be at least 1",
-        });
-    }
-    let mut previous = 0.0;
-    for &tau in taus {
-        if !(tau >= previous) {
-            return Err(Error::TimeBeforeCurrent {
-                requested: tau,
-                current: previous,
-            });
-        }
-        previous = tau;
-    }
+    check_orbit_samples(period, taus)?;
     let strobe = period as f64 * params.drive_period();
     let mut run = Propagation::new(params, fixed_point)?;
     // Per sample: y, v and the y row of [J | S_p]; then M, S_p(kT) and ẋ(kT).
@@ -404,6 +415,45 @@ pub fn periodic_orbit_sensitivity(
             OrbitSample { tau, y, v, dy }
         })
         .collect())
+}
+
+/// The derivatives of the p-fold strobe map P^p by the parameters at `state` (the state at a
+/// strobe, not necessarily a fixed point): ∂P^p/∂(ζ, β, w, φ, μs) as columns of
+/// [`SENSITIVITY_PARAMETERS`]' order, rows (y, y'). The propagation of
+/// [`periodic_orbit_sensitivity`] up to the strobe p drive periods on, with the strobe's time
+/// moving with w (the column of w gains ẋ(pT)·d(pT)/dw, d(pT)/dw = −2πp/w²): what the
+/// continuation of special points in two parameters ([`crate::continuation`]) needs exactly.
+///
+/// # Errors
+/// As [`periodic_orbit_sensitivity`] (no singular I − M: nothing is inverted here).
+pub fn strobe_map_parameter_derivatives(
+    params: &Params,
+    state: State,
+    period: usize,
+) -> Result<[[f64; 5]; 2]> {
+    let params = params.validate()?;
+    let state = State::new(state.y, state.v)?;
+    if period == 0 {
+        return Err(Error::InvalidParameter {
+            name: "periods",
+            value: 0.0,
+            allowed: "must be at least 1",
+        });
+    }
+    let strobe = period as f64 * params.drive_period();
+    let mut run = Propagation::new(params, state)?;
+    while run.solver.time() < strobe {
+        run.advance(strobe)?;
+    }
+    let field = run.velocity_field();
+    let period_by_w = -TAU * period as f64 / (params.w * params.w);
+    let mut out = [[0.0; 5]; 2];
+    for (r, row) in out.iter_mut().enumerate() {
+        for (p, d) in row.iter_mut().enumerate() {
+            *d = run.s[r][2 + p] + if p == 2 { field[r] * period_by_w } else { 0.0 };
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -34,7 +34,7 @@
 use super::error::StabilityError;
 use super::lyapunov::{measure_exponents, LyapunovExponents, LyapunovOptions};
 use super::matrix::{Matrix2, Multiplier};
-use super::periodic_orbit::{stops, NewtonOptions, PeriodicOrbit, Stability};
+use super::periodic_orbit::{NewtonOptions, PeriodicOrbit, Stability};
 use super::sensitivity::SENSITIVITY_PARAMETERS;
 use super::strobe::StrobeImage;
 use super::tangent::TangentRun;
@@ -434,21 +434,15 @@ impl ShockleyDynamics {
         } else {
             Stability::Unstable
         };
-        let drive_period = params.drive_period();
-        let end = period as f64 * drive_period;
-        Ok(PeriodicOrbit {
+        Ok(PeriodicOrbit::from_image(
+            &params,
             period,
-            drive_period,
-            state: x,
-            stuck_at_strobe: image.stuck_at_start,
-            stops: stops(&image.events, image.stuck_at_start, end),
-            events: image.events,
-            monodromy: image.jacobian,
-            multipliers,
-            stability,
+            x,
+            image,
+            (multipliers, stability),
             iterations,
             residuals,
-        })
+        ))
     }
 
     /// The periodic orbit through `fixed_point` (the state at a strobe that the
@@ -475,23 +469,7 @@ impl ShockleyDynamics {
         taus: &[f64],
     ) -> Result<Vec<SmoothOrbitSample>> {
         let params = params.validate()?;
-        if period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "periods",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
-        let mut previous = 0.0;
-        for &tau in taus {
-            if !(tau >= previous) {
-                return Err(Error::TimeBeforeCurrent {
-                    requested: tau,
-                    current: previous,
-                });
-            }
-            previous = tau;
-        }
+        super::sensitivity::check_orbit_samples(period, taus)?;
         let strobe = period as f64 * params.drive_period();
         let mut solver = self.solver(&params, fixed_point, Columns::Parameters)?;
         let columns = Columns::Parameters.count::<DiodeLaw>();

@@ -76,7 +76,10 @@
 //! **Motions that do not repeat** are then measured, when the solver follows the exact
 //! piecewise-linear model ([`Solver::is_exact`]) and [`SteadyOptions::lyapunov`] asks for it:
 //! the Lyapunov exponents of the motion from the final state of the record, by the exact
-//! tangent dynamics ([`crate::stability::lyapunov_exponents`]). A largest exponent positive
+//! tangent dynamics ([`crate::stability::lyapunov_exponents`]); with a smooth law (a factory
+//! whose [`super::SolverFactory::smooth_dynamics`] has them, as an experiment's with Shockley
+//! diodes) by the tangent dynamics of the stiff solver's computed solution
+//! ([`crate::stability::ShockleyDynamics::lyapunov_exponents`]). A largest exponent positive
 //! beyond its error makes the motion [`MotionClass::Chaotic`]; otherwise it keeps its class
 //! from the event log, with the exponents in [`SteadyState::lyapunov`] (a motion contracting
 //! onto a periodic attractor not reached within the cap, or one on a torus, or one not
@@ -124,8 +127,9 @@ use crate::solver::{run_steps, run_until, Event, EventKind, Hints, Phase, Sample
 use crate::stability::periodic_orbit::{find_periodic_orbit_finished, Finish};
 use crate::stability::strobe::image_along;
 use crate::stability::{
-    lyapunov_exponents, lyapunov_exponents_monitored, NewtonOptions, NonperiodicClassification,
-    NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError, StrobeImage,
+    lyapunov_exponents, lyapunov_exponents_monitored, Dynamics, NewtonOptions,
+    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, Stability, StabilityError,
+    StrobeImage,
 };
 use std::collections::VecDeque;
 
@@ -830,7 +834,7 @@ pub fn steady_state<S: Solver + ?Sized>(
     let settled = run_to_cycle(&mut holder, &params, &options, false)?;
     let exact = holder.0.is_exact();
     let steady = record(holder.0, &params, &options, &settled)?;
-    measure(steady, exact, &options, &Cancel::never())
+    measure(steady, exact, None, &options, &Cancel::never())
 }
 
 /// The steady state reached from `initial` (at τ = 0) by solvers from `factory`.
@@ -884,23 +888,34 @@ pub(crate) fn settle_from<F: SolverFactory + ?Sized>(
         drop(holder);
         return settle_from(factory, params, initial, &options.with_newton(false));
     }
-    measure(steady, exact, options, &factory.cancel())
+    let smooth = if exact {
+        None
+    } else {
+        factory.smooth_dynamics()
+    };
+    measure(steady, exact, smooth.as_deref(), options, &factory.cancel())
 }
 
-/// Measure a motion that did not repeat (see the module documentation).
+/// Measure a motion that did not repeat (see the module documentation): by the exact tangent
+/// dynamics when the solver is `exact`, else by `smooth`'s, else not.
 fn measure(
     mut steady: SteadyState,
     exact: bool,
+    smooth: Option<&dyn Dynamics>,
     options: &SteadyOptions,
     cancel: &Cancel,
 ) -> Result<SteadyState> {
     let Some(lyapunov) = options
         .lyapunov
-        .filter(|_| exact && steady.period.is_none())
+        .filter(|_| (exact || smooth.is_some()) && steady.period.is_none())
     else {
         return Ok(steady);
     };
-    let measured = if cancel.is_never() {
+    let measured = if let (false, Some(dynamics)) = (exact, smooth) {
+        dynamics
+            .lyapunov_exponents(&steady.params, steady.final_state(), &lyapunov, cancel)
+            .map_err(|e| cancel.stopped().map_or(e, |stop| stop.error()))
+    } else if cancel.is_never() {
         lyapunov_exponents(&steady.params, steady.final_state(), &lyapunov)
     } else {
         lyapunov_exponents_monitored(&steady.params, steady.final_state(), &lyapunov, cancel)

@@ -8,8 +8,8 @@ use super::{settle_from, MotionClass, SolverFactory, SteadyOptions, SteadyState}
 use crate::error::{Error, Result};
 use crate::params::{Params, State};
 use crate::stability::{
-    lyapunov_exponents, Dynamics, Estimate, ExactDynamics, LyapunovOptions, NewtonOptions,
-    NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, StabilityError,
+    lyapunov_exponents, Dynamics, Estimate, ExactDynamics, LyapunovExponents, LyapunovOptions,
+    NewtonOptions, NonperiodicClassification, NonperiodicVerdict, PeriodicOrbit, StabilityError,
 };
 
 /// The periodic orbit of a settled steady state (its period and first recorded strobe as the
@@ -82,9 +82,27 @@ pub fn steady_exponent(
     steady: &SteadyState,
     options: &LyapunovOptions,
 ) -> Result<Option<Estimate>> {
+    steady_exponent_of(&ExactDynamics, steady, options)
+}
+
+/// [`steady_exponent`] on the model `dynamics` (a steady state of the same model): with a
+/// smooth law ([`crate::stability::ShockleyDynamics`]) the orbit's Floquet multipliers and the
+/// tangent dynamics are those of the stiff solver's computed solution, so the exponent of a
+/// periodic orbit is exact to the solver's tolerance rather than to rounding (its stated
+/// error is still 0: it is not a statistical estimate).
+///
+/// # Errors
+/// As [`steady_exponent`].
+pub fn steady_exponent_of(
+    dynamics: &dyn Dynamics,
+    steady: &SteadyState,
+    options: &LyapunovOptions,
+) -> Result<Option<Estimate>> {
     let params = &steady.params;
     if steady.period.is_some() {
-        if let Ok(orbit) = periodic_orbit_from_steady(params, steady, &NewtonOptions::default()) {
+        if let Ok(orbit) =
+            periodic_orbit_from_steady_of(dynamics, params, steady, &NewtonOptions::default())
+        {
             let per_tau = orbit.exponent();
             return Ok(Some(Estimate {
                 per_tau,
@@ -96,7 +114,7 @@ pub fn steady_exponent(
     } else if let Some(measured) = &steady.lyapunov {
         return Ok(Some(measured.exponents.largest));
     }
-    match lyapunov_exponents(params, steady.final_state(), options) {
+    match measure_from(dynamics, params, steady.final_state(), options) {
         Ok(exponents) => Ok(Some(exponents.largest)),
         Err(Error::Stability(StabilityError::NonFiniteJacobian { .. })) => Ok(None),
         Err(e) => Err(e),
@@ -122,7 +140,8 @@ pub const SEARCH_BEFORE_MEASURING: usize = 300;
 /// in the class also where a contracting motion reaches its orbit between the two lengths
 /// (the full search then calls it periodic, with the exact exponent of its orbit).
 ///
-/// The solvers from `factory` must be exact ([`crate::Solver::is_exact`]); without
+/// The solvers from `factory` must be exact ([`crate::Solver::is_exact`]; a map of a smooth
+/// law's exponents, [`crate::scan::Grid::lyapunov`], takes its law's dynamics); without
 /// `options.lyapunov` this is the full search and [`steady_exponent`] with
 /// `fallback` for motions that do not repeat.
 ///
@@ -135,13 +154,37 @@ pub fn steady_state_with_exponent<F: SolverFactory + ?Sized>(
     options: &SteadyOptions,
     fallback: &LyapunovOptions,
 ) -> Result<(SteadyState, Option<Estimate>)> {
-    settle_with_exponent(factory, params, initial, &options.validate()?, fallback)
+    settle_with_exponent(
+        factory,
+        &ExactDynamics,
+        params,
+        initial,
+        &options.validate()?,
+        fallback,
+    )
+}
+
+/// The Lyapunov exponents of the motion from `initial` by `dynamics`: the exact model's by
+/// [`lyapunov_exponents`] itself (unmonitored), any other's by its own tangent dynamics.
+fn measure_from(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    initial: State,
+    options: &LyapunovOptions,
+) -> Result<LyapunovExponents> {
+    if dynamics.is_exact() {
+        lyapunov_exponents(params, initial, options)
+    } else {
+        dynamics.lyapunov_exponents(params, initial, options, &())
+    }
 }
 
 /// [`steady_state_with_exponent`] with `options` already validated (a map's points share
-/// them: they are checked once, when the map is built).
+/// them: they are checked once, when the map is built), on the model `dynamics` whose
+/// solvers `factory` makes (the exact one's, or a smooth law's: a Shockley map of exponents).
 pub(crate) fn settle_with_exponent<F: SolverFactory + ?Sized>(
     factory: &F,
+    dynamics: &dyn Dynamics,
     params: &Params,
     initial: State,
     options: &SteadyOptions,
@@ -149,7 +192,7 @@ pub(crate) fn settle_with_exponent<F: SolverFactory + ?Sized>(
 ) -> Result<(SteadyState, Option<Estimate>)> {
     let full = |options: &SteadyOptions| -> Result<(SteadyState, Option<Estimate>)> {
         let steady = settle_from(factory, params, initial, options)?;
-        let exponent = steady_exponent(&steady, fallback)?;
+        let exponent = steady_exponent_of(dynamics, &steady, fallback)?;
         Ok((steady, exponent))
     };
     let Some(measure) = options.lyapunov else {
@@ -166,10 +209,10 @@ pub(crate) fn settle_with_exponent<F: SolverFactory + ?Sized>(
     let mut steady = settle_from(factory, params, initial, &short)?;
     if steady.period.is_some() {
         // The search is causal: the full one finds the same cycle at the same strobe.
-        let exponent = steady_exponent(&steady, fallback)?;
+        let exponent = steady_exponent_of(dynamics, &steady, fallback)?;
         return Ok((steady, exponent));
     }
-    match lyapunov_exponents(params, steady.final_state(), &measure) {
+    match measure_from(dynamics, params, steady.final_state(), &measure) {
         Ok(exponents) => {
             let c = NonperiodicClassification::new(exponents, measure.significance);
             let decided = matches!(

@@ -32,7 +32,7 @@ pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
 pub(crate) use exponent::settle_with_exponent;
 pub use exponent::{
-    periodic_orbit_from_steady, periodic_orbit_from_steady_of, steady_exponent,
+    periodic_orbit_from_steady, periodic_orbit_from_steady_of, steady_exponent, steady_exponent_of,
     steady_state_with_exponent, SEARCH_BEFORE_MEASURING,
 };
 pub use options::SteadyOptions;
@@ -46,6 +46,7 @@ use crate::error::Result;
 use crate::exact::ExactSolver;
 use crate::params::{Params, State};
 use crate::solver::Solver;
+use crate::stability::Dynamics;
 
 /// Something that builds a solver for given parameters and initial state at τ = 0.
 ///
@@ -65,6 +66,15 @@ pub trait SolverFactory: Sync {
     /// say). [`Cancel::never`] unless the factory carries one ([`crate::Experiment::factory`]).
     fn cancel(&self) -> Cancel {
         Cancel::never()
+    }
+
+    /// The stability tools of the model its solvers follow when they are not exact (a smooth
+    /// law's tangent dynamics), with which the steady-state search measures the Lyapunov
+    /// exponents of a motion that does not repeat ([`SteadyOptions::lyapunov`]). `None` (the
+    /// default): only the motions of exact solvers are measured, by the exact tangent
+    /// dynamics.
+    fn smooth_dynamics(&self) -> Option<Box<dyn Dynamics>> {
+        None
     }
 }
 

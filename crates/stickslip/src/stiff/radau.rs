@@ -387,7 +387,9 @@ impl<L: SmoothLaw> Radau5<L> {
                     row[k] *= dv_du[k];
                 }
             }
-            let delta = solve3(jac, [-residual[0], -residual[1], -residual[2]])?;
+            let [[d0], [d1], [d2]] =
+                solve3(jac, [[-residual[0]], [-residual[1]], [-residual[2]]], 1)?;
+            let delta = [d0, d1, d2];
             let mut norm = 0.0;
             let mut moved = [0.0; 3];
             for i in 0..3 {
@@ -620,8 +622,16 @@ fn solve2(fac: f64, av: f64, b: Vector) -> Option<Vector> {
     ])
 }
 
-/// Solve M x = b (3×3) by Gaussian elimination with partial pivoting; None when singular.
-pub(super) fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+/// Solve M X = R (3×3) for the first `columns` of the N right-hand sides in the columns of
+/// R, by Gaussian elimination with partial pivoting; `None` when M is singular (a pivot zero
+/// or not finite). The Newton corrector solves for one column, the sensitivities
+/// ([`super::sensitivity`]) for all of theirs with the same elimination. A row whose factor
+/// is zero is left as it is.
+pub(super) fn solve3<const N: usize>(
+    mut m: [[f64; 3]; 3],
+    mut r: [[f64; N]; 3],
+    columns: usize,
+) -> Option<[[f64; N]; 3]> {
     for col in 0..3 {
         let mut pivot = col;
         for row in col + 1..3 {
@@ -633,23 +643,31 @@ pub(super) fn solve3(mut m: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> 
             return None;
         }
         m.swap(col, pivot);
-        b.swap(col, pivot);
+        r.swap(col, pivot);
         let inv = 1.0 / m[col][col];
         for row in col + 1..3 {
             let factor = m[row][col] * inv;
+            if factor == 0.0 {
+                continue;
+            }
             for k in col..3 {
                 m[row][k] -= factor * m[col][k];
             }
-            b[row] -= factor * b[col];
+            let pivot_row = r[col];
+            for (x, p) in r[row][..columns].iter_mut().zip(&pivot_row[..columns]) {
+                *x -= factor * p;
+            }
         }
     }
-    let mut x = [0.0; 3];
+    let mut x = [[0.0; N]; 3];
     for row in (0..3).rev() {
-        let mut s = b[row];
-        for k in row + 1..3 {
-            s -= m[row][k] * x[k];
+        for c in 0..columns {
+            let mut s = r[row][c];
+            for k in row + 1..3 {
+                s -= m[row][k] * x[k][c];
+            }
+            x[row][c] = s / m[row][row];
         }
-        x[row] = s / m[row][row];
     }
     Some(x)
 }

@@ -37,7 +37,7 @@
 //! product could show.
 
 use super::law::{SmoothLaw, MAX_LAW_PARAMETERS};
-use super::radau::{inverse_of_a, Step, A, C};
+use super::radau::{inverse_of_a, solve3, Step, A, C};
 use crate::params::Params;
 use std::sync::OnceLock;
 
@@ -210,7 +210,10 @@ impl StepDerivative {
                 }
             }
         }
-        let dv = solve_columns(jac, rhs, columns)?;
+        let dv = solve3(jac, rhs, columns).filter(|x| {
+            x.iter()
+                .all(|row| row[..columns].iter().all(|v| v.is_finite()))
+        })?;
         let mut dz = [[[0.0; MAX_COLUMNS]; 2]; 3];
         for i in 0..3 {
             for c in 0..columns {
@@ -266,55 +269,6 @@ impl StepDerivative {
         }
         g
     }
-}
-
-/// Solve J X = R for `columns` right-hand sides by Gaussian elimination with partial
-/// pivoting; `None` when J is singular or the result not finite.
-fn solve_columns(
-    mut m: [[f64; 3]; 3],
-    mut r: [[f64; MAX_COLUMNS]; 3],
-    columns: usize,
-) -> Option<[[f64; MAX_COLUMNS]; 3]> {
-    for col in 0..3 {
-        let mut pivot = col;
-        for row in col + 1..3 {
-            if m[row][col].abs() > m[pivot][col].abs() {
-                pivot = row;
-            }
-        }
-        if m[pivot][col] == 0.0 || !m[pivot][col].is_finite() {
-            return None;
-        }
-        m.swap(col, pivot);
-        r.swap(col, pivot);
-        let inv = 1.0 / m[col][col];
-        for row in col + 1..3 {
-            let factor = m[row][col] * inv;
-            if factor == 0.0 {
-                continue;
-            }
-            for k in col..3 {
-                m[row][k] -= factor * m[col][k];
-            }
-            let pivot_row = r[col];
-            for (x, p) in r[row][..columns].iter_mut().zip(&pivot_row[..columns]) {
-                *x -= factor * p;
-            }
-        }
-    }
-    let mut x = [[0.0; MAX_COLUMNS]; 3];
-    for row in (0..3).rev() {
-        for c in 0..columns {
-            let mut s = r[row][c];
-            for k in row + 1..3 {
-                s -= m[row][k] * x[k][c];
-            }
-            x[row][c] = s / m[row][row];
-        }
-    }
-    x.iter()
-        .all(|row| row[..columns].iter().all(|v| v.is_finite()))
-        .then_some(x)
 }
 
 /// ln|det| and the sign of the determinant of a 2×2 matrix.

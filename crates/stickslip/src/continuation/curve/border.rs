@@ -1,0 +1,312 @@
+//! The conditions of a grazing, evaluated on the motion from a strobe state: each event that
+//! can appear or disappear has a function h that changes sign where it does (see
+//! [`BorderKind`]).
+//!
+//! - [`BorderKind::TurnAtLimit`] at every velocity zero (a turning point or the start of a
+//!   stop) at τ_e: h = |F(τ_e) − y(τ_e)| − μs, positive at a turning point, at most 0 at a
+//!   stop.
+//! - [`BorderKind::SlideTouchesRest`] at every minimum of the speed inside a slide (y'' = 0,
+//!   found on 32 samples and refined by Newton's method on y'' with its closed-form
+//!   derivative): h = s·y'(τ_m), the lowest speed, s the slide's direction.
+//! - [`BorderKind::ReleaseTangential`] at every extremum τ* of the drive (F'(τ*) = 0) inside a
+//!   stop at y_s, or in the slide right after its release (before its next event):
+//!   h = |F(τ*) − y_s| − μs, at most 0 inside (no release there), positive after a release.
+//!
+//! Each h is a function of the strobe state and the parameters through the motion up to its
+//! event, exact to rounding (the exact solver's events and dense output).
+
+use super::BorderKind;
+use crate::error::Result;
+use crate::exact::ExactSolver;
+use crate::params::{Params, State};
+use crate::solver::{EventKind, Phase, Solver};
+use std::f64::consts::PI;
+
+/// One condition on one motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Candidate {
+    pub kind: BorderKind,
+    /// See [`super::Border::variant`].
+    pub variant: bool,
+    /// Its time from the strobe.
+    pub tau: f64,
+    /// h.
+    pub value: f64,
+    /// For the start of a stop ([`BorderKind::TurnAtLimit`] of the stop's variant): how long
+    /// the stop lasts (to the end of the motion when it is not released); 0 otherwise.
+    pub extent: f64,
+}
+
+/// Samples of a slide's speed for its minima.
+const SAMPLES: usize = 32;
+
+/// Every condition on the motion from `state` at `params` over `period` drive periods.
+pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result<Vec<Candidate>> {
+    let end = period as f64 * params.drive_period();
+    let mut solver = ExactSolver::new(*params, state);
+    let mut out = Vec::new();
+    // The position of the stop just released, until the slide after it has an event.
+    let mut released: Option<f64> = None;
+    // The direction of the last slide.
+    let mut last_sign = 0.0;
+    // The candidate of the stop under way.
+    let mut stop_start: Option<usize> = None;
+    while solver.time() < end {
+        let event = solver.advance(end)?;
+        let (a, b) = solver.interval();
+        if b > a {
+            let middle = solver.dense(0.5 * (a + b));
+            match middle.phase {
+                Phase::Stick => {
+                    for tau in extrema(params, a, b) {
+                        out.push(Candidate {
+                            kind: BorderKind::ReleaseTangential,
+                            variant: true,
+                            tau,
+                            value: (params.drive(tau) - middle.y).abs() - params.mu_s,
+                            extent: 0.0,
+                        });
+                    }
+                }
+                phase => {
+                    let sign = phase.sign();
+                    last_sign = sign;
+                    if let Some(y_s) = released.take() {
+                        for tau in extrema(params, a, b) {
+                            out.push(Candidate {
+                                kind: BorderKind::ReleaseTangential,
+                                variant: false,
+                                tau,
+                                value: (params.drive(tau) - y_s).abs() - params.mu_s,
+                                extent: 0.0,
+                            });
+                        }
+                    }
+                    minima(params, &solver, a, b, sign, &mut out);
+                }
+            }
+        }
+        match event {
+            Some(e) if matches!(e.kind, EventKind::Turn | EventKind::Stick) => {
+                released = None;
+                if e.kind == EventKind::Stick && last_sign != 0.0 {
+                    if let Some(c) = virtual_minimum(params, e.tau, e.y, last_sign) {
+                        out.push(c);
+                    }
+                }
+                if e.kind == EventKind::Stick {
+                    stop_start = Some(out.len());
+                }
+                out.push(Candidate {
+                    kind: BorderKind::TurnAtLimit,
+                    variant: e.kind == EventKind::Turn,
+                    tau: e.tau,
+                    value: (params.drive(e.tau) - e.y).abs() - params.mu_s,
+                    extent: if e.kind == EventKind::Stick {
+                        end - e.tau
+                    } else {
+                        0.0
+                    },
+                });
+            }
+            Some(e) if e.kind == EventKind::Slip => {
+                released = Some(e.y);
+                if let Some(k) = stop_start.take() {
+                    out[k].extent = e.tau - out[k].tau;
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(out)
+}
+
+/// The extrema of the drive, w·τ + φ ≡ 0 (mod π), in [a, b].
+fn extrema(params: &Params, a: f64, b: f64) -> impl Iterator<Item = f64> {
+    let (w, phi) = (params.w, params.phi);
+    let first = ((w * a + phi) / PI).ceil() as i64;
+    let last = ((w * b + phi) / PI).floor() as i64;
+    (first..=last)
+        .map(move |k| (k as f64 * PI - phi) / w)
+        .filter(move |&t| t >= a && t <= b)
+}
+
+/// The interior minima of the speed of the slide in direction `sign` over [a, b].
+fn minima(
+    params: &Params,
+    solver: &ExactSolver,
+    a: f64,
+    b: f64,
+    sign: f64,
+    out: &mut Vec<Candidate>,
+) {
+    let h = (b - a) / SAMPLES as f64;
+    let speeds: Vec<f64> = (0..=SAMPLES)
+        .map(|k| sign * solver.dense(a + k as f64 * h).v)
+        .collect();
+    // y'' on the slide, and its derivative y''' = F' − y' − 2ζ y''.
+    let acceleration = |t: f64| {
+        let s = solver.dense(t);
+        params.drive(t) - s.y - 2.0 * params.zeta * s.v - sign
+    };
+    let jerk = |t: f64, acc: f64| {
+        let s = solver.dense(t);
+        -params.beta * params.w * (params.w * t + params.phi).sin() - s.v - 2.0 * params.zeta * acc
+    };
+    for k in 1..SAMPLES {
+        if !(speeds[k] <= speeds[k - 1] && speeds[k] <= speeds[k + 1]) {
+            continue;
+        }
+        // The speed's derivative s·y'' goes from negative to positive in the bracket.
+        let (mut lo, mut hi) = (a + (k - 1) as f64 * h, a + (k + 1) as f64 * h);
+        let (f_lo, f_hi) = (sign * acceleration(lo), sign * acceleration(hi));
+        if !(f_lo <= 0.0 && f_hi >= 0.0) {
+            continue;
+        }
+        let mut t = a + k as f64 * h;
+        for _ in 0..100 {
+            let acc = acceleration(t);
+            let f = sign * acc;
+            if f == 0.0 {
+                break;
+            }
+            if f < 0.0 {
+                lo = t;
+            } else {
+                hi = t;
+            }
+            let step = acc / jerk(t, acc);
+            let next = t - step;
+            let next = if next > lo && next < hi && step.is_finite() {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) || hi - lo <= 0.0 {
+                t = next;
+                break;
+            }
+            t = next;
+        }
+        // A minimum the slide reaches (not one past its end, where it has stopped).
+        let value = sign * solver.dense(t).v;
+        if t > a && t < b && value > 0.0 {
+            out.push(Candidate {
+                kind: BorderKind::SlideTouchesRest,
+                variant: false,
+                tau: t,
+                value,
+                extent: 0.0,
+            });
+        }
+    }
+}
+
+/// The candidate of `kind` (and of `variant`, when given) nearest in time to `tau`
+/// (cyclically over the orbit's period `span`), if one lies within a twentieth of it.
+pub(crate) fn nearest(
+    candidates: &[Candidate],
+    kind: BorderKind,
+    variant: Option<bool>,
+    tau: f64,
+    span: f64,
+) -> Option<Candidate> {
+    let distance = |c: &Candidate| {
+        let d = (c.tau - tau).rem_euclid(span);
+        d.min(span - d)
+    };
+    candidates
+        .iter()
+        .filter(|c| {
+            c.kind == kind
+                && (kind == BorderKind::SlideTouchesRest || variant.is_none_or(|v| c.variant == v))
+        })
+        .filter(|c| distance(c) <= 0.05 * span)
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+        .copied()
+}
+
+/// Of the candidates of `kind` and `variant` whose value lies within `within` of the one
+/// nearest `tau`, the first after the strobe: a followed event with a partner at the same
+/// border (the two turning points of a symmetric orbit) is taken as the earlier one, so that
+/// the motion up to it, and with it the condition, does not cross the partner's border.
+pub(crate) fn earliest(
+    candidates: &[Candidate],
+    kind: BorderKind,
+    variant: bool,
+    tau: f64,
+    span: f64,
+    within: f64,
+) -> Option<Candidate> {
+    let reference = nearest(candidates, kind, Some(variant), tau, span)?;
+    candidates
+        .iter()
+        .filter(|c| {
+            c.kind == kind && c.variant == variant && (c.value - reference.value).abs() <= within
+        })
+        .min_by(|a, b| a.tau.total_cmp(&b.tau))
+        .copied()
+}
+
+/// The lowest speed of the slide in direction `sign` that stops at `tau` at `y`, continued in
+/// closed form past the stop as if it went on (its speed s·y' falls below zero and comes
+/// back): the condition [`BorderKind::SlideTouchesRest`] across its border. `None` when it
+/// does not come back within half a drive period (the slide would turn, not touch rest).
+fn virtual_minimum(params: &Params, tau: f64, y: f64, sign: f64) -> Option<Candidate> {
+    let theta = (params.w * tau + params.phi).rem_euclid(std::f64::consts::TAU);
+    let segment = crate::linear::LinearSegment::new(
+        crate::linear::Damping::new(params.zeta),
+        params.w,
+        params.beta,
+        theta,
+        sign,
+        y,
+        0.0,
+    );
+    let horizon = 0.5 * params.drive_period();
+    let n = 64;
+    let h = horizon / n as f64;
+    // s·y'' from negative to positive: the speed's minimum.
+    let acc = |t: f64| sign * segment.eval(t).d[2];
+    let mut previous = acc(0.0);
+    if !(previous < 0.0) {
+        return None;
+    }
+    for k in 1..=n {
+        let t = k as f64 * h;
+        let a = acc(t);
+        if a >= 0.0 {
+            let (mut lo, mut hi) = (t - h, t);
+            let mut m = t - h * a / (a - previous);
+            for _ in 0..60 {
+                let d = segment.eval(m).d;
+                let f = sign * d[2];
+                if f < 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+                let next = m - d[2] / d[3];
+                let next = if next > lo && next < hi && next.is_finite() {
+                    next
+                } else {
+                    0.5 * (lo + hi)
+                };
+                if (next - m).abs() <= 4.0 * f64::EPSILON * (tau + m).abs().max(1.0) {
+                    m = next;
+                    break;
+                }
+                m = next;
+            }
+            return Some(Candidate {
+                kind: BorderKind::SlideTouchesRest,
+                variant: true,
+                tau: tau + m,
+                value: sign * segment.eval(m).d[1],
+                extent: 0.0,
+            });
+        }
+        previous = a;
+    }
+    None
+}
