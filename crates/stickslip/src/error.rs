@@ -358,9 +358,6 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
-    /// The Stribeck and cubic friction laws need the smooth-law integrator (the exact
-    /// solver follows Coulomb's law).
-    SmoothFrictionLaw,
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
     CurveNeedsPwl,
@@ -387,10 +384,6 @@ impl std::fmt::Display for Unsupported {
             Unsupported::MuSNeedsPwl => {
                 "mu_s (static friction) is a parameter of the piecewise-linear law only: a \
                  Shockley diode has no static threshold; continue in w, beta or zeta"
-            }
-            Unsupported::SmoothFrictionLaw => {
-                "the Stribeck and cubic friction laws need the smooth-law integrator, which \
-                 this build does not have yet: use --friction-law coulomb (solved exactly)"
             }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \

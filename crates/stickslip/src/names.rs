@@ -15,7 +15,6 @@ use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::continuation::Follow;
 use crate::experiment::{DiodeModel, Key, Preset};
-use crate::friction::FrictionLawKind;
 use crate::params::Parameter;
 use crate::physical::SystemKind;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
@@ -94,7 +93,6 @@ names!(CurveKind, "curve", display, retired);
 names!(MapColor, "map colour", display, retired);
 names!(AttractorKind, "attractor kind", display, retired);
 names!(BasinMethod, "basin method", display);
-names!(FrictionLawKind, "friction law", display);
 names!(Follow, "followed special point");
 
 impl SweepDirection {
@@ -126,11 +124,6 @@ impl Parameter {
             Parameter::Beta => Key::Beta,
             Parameter::MuS => Key::MuS,
             Parameter::Vb => Key::Vb,
-            Parameter::Vs => Key::Vs,
-            Parameter::Delta => Key::Delta,
-            Parameter::Eta => Key::Eta,
-            Parameter::K1 => Key::K1,
-            Parameter::K3 => Key::K3,
         }
     }
 
@@ -143,11 +136,6 @@ impl Parameter {
             Parameter::Zeta => &[Key::Zeta],
             Parameter::MuS => &[Key::MuS],
             Parameter::Vb => &[Key::Vb, Key::BeltSpeed],
-            Parameter::Vs => &[Key::Vs, Key::StribeckSpeed],
-            Parameter::Delta => &[Key::Delta],
-            Parameter::Eta => &[Key::Eta, Key::ViscousFriction],
-            Parameter::K1 => &[Key::K1, Key::CubicK1],
-            Parameter::K3 => &[Key::K3, Key::CubicK3],
         }
     }
 }
@@ -202,7 +190,6 @@ mod tests {
         round_trip(&CurveKind::ALL);
         round_trip(&MapColor::ALL);
         round_trip(&Parameter::ALL);
-        round_trip(&FrictionLawKind::ALL);
     }
 
     #[test]
@@ -240,7 +227,7 @@ mod tests {
         assert_eq!("mu_s".parse::<Parameter>().unwrap(), Parameter::MuS);
         assert_eq!(
             "f".parse::<Parameter>().unwrap_err().to_string(),
-            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb, vs, delta, eta, k1, k3"
+            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb"
         );
         for p in Parameter::ALL {
             assert_eq!(p.keys()[0], p.key());

@@ -1,6 +1,7 @@
 //! A block on a moving belt at the command line: the self-excited steady state of the
 //! undamped Coulomb belt against its closed form, the mechanical twin's belt speed in m/s,
-//! and bad belt input refused in one line.
+//! a sweep of the belt speed up and down (hysteresis), and bad belt input refused in one
+//! line.
 
 use crate::common::*;
 
@@ -89,71 +90,10 @@ fn bad_belt_input_is_one_line() {
                 "--vb",
             ),
             (&["--zeta", "0.1", "--vb", "2e6"], "--vb"),
+            // Coulomb's is the one law solved: no other is offered.
             (
-                &["--zeta", "0.1", "--vb", "0.2", "--vs", "0.2"],
-                "--friction-law stribeck",
-            ),
-            (
-                &[
-                    "--zeta",
-                    "0.1",
-                    "--vb",
-                    "0.2",
-                    "--friction-law",
-                    "stribeck",
-                    "--vs",
-                    "0",
-                ],
-                "--vs",
-            ),
-            (
-                &[
-                    "--zeta",
-                    "0.1",
-                    "--vb",
-                    "0.2",
-                    "--friction-law",
-                    "stribeck",
-                    "--vs",
-                    "0.1",
-                    "--delta",
-                    "-1",
-                ],
-                "--delta",
-            ),
-            (
-                &[
-                    "--zeta",
-                    "0.1",
-                    "--mu-s",
-                    "1",
-                    "--vb",
-                    "0.2",
-                    "--friction-law",
-                    "cubic",
-                    "--k1",
-                    "5",
-                    "--k3",
-                    "0.1",
-                ],
-                "k1",
-            ),
-            (
-                &["--zeta", "0.1", "--vb", "0.2", "--friction-law", "dahl"],
+                &["--zeta", "0.1", "--vb", "0.2", "--friction-law", "stribeck"],
                 "--friction-law",
-            ),
-            (
-                &[
-                    "--zeta",
-                    "0.1",
-                    "--vb",
-                    "0.2",
-                    "--friction-law",
-                    "stribeck",
-                    "--vs",
-                    "0.1",
-                ],
-                "--friction-law coulomb",
             ),
         ],
     );
@@ -193,4 +133,77 @@ fn simulate_on_a_belt_sticks_at_the_belts_speed() {
         }
     }
     assert!(stuck > 10, "{text}");
+}
+
+/// The damped Coulomb belt without a drive (ζ = 0.05, μs = 1.5): from rest at a slow belt the
+/// block settles on a stick-slip cycle, while steady sliding (y = 1, y' = 0) is stable at
+/// every belt speed. Swept up from rest the cycle holds until it ceases to exist; swept down
+/// from steady sliding, the block stays sliding where the cycle coexists with it.
+#[test]
+fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = ["--zeta", "0.05", "--mu-s", "1.5"];
+    let out = run_in(
+        dir.path(),
+        &[
+            &["sweep"][..],
+            &model,
+            &[
+                "--over",
+                "vb",
+                "--from",
+                "0.1",
+                "--to",
+                "1",
+                "--steps",
+                "4",
+                "--direction",
+                "both",
+                "--out",
+                "sweep.csv",
+            ],
+        ]
+        .concat(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "vb,w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
+    );
+    // (vb, direction, class) of each step, in the order run: up, then down.
+    let steps: Vec<(f64, String, String)> = lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            (
+                cells[0].parse().unwrap(),
+                cells[3].to_string(),
+                cells[8].to_string(),
+            )
+        })
+        .collect();
+    let vbs: Vec<f64> = steps.iter().map(|s| s.0).collect();
+    assert_eq!(vbs, [0.1, 0.4, 0.7, 1.0, 1.0, 0.7, 0.4, 0.1]);
+    // Each class as `steady` finds it from the state the step starts in: the first step from
+    // rest, as the sweep does; the last from steady sliding itself (y = 1, y' = 0), where the
+    // down leg arrives.
+    let class = |extra: &[&str]| {
+        let v = json(&[&["steady"][..], &model, extra, &["--json"]].concat());
+        v["class"].as_str().unwrap().to_string()
+    };
+    assert_eq!(steps[0].2, class(&["--vb", "0.1"]));
+    assert_eq!(steps[0].2, "stick-slip-cycle");
+    assert_eq!(
+        class(&["--vb", "0.1", "--y0", "1", "--v0", "0"]),
+        "steady-sliding"
+    );
+    assert_eq!(steps[7].2, "steady-sliding");
+    assert!(steps[..4].iter().all(|s| s.1 == "up"));
+    assert!(steps[4..].iter().all(|s| s.1 == "down"));
+    // The hysteresis: at the slowest belt the two legs end on different motions, and the
+    // fast belt slides steadily on both.
+    assert_ne!(steps[0].2, steps[7].2);
+    assert_eq!(steps[3].2, "steady-sliding");
+    assert_eq!(steps[4].2, "steady-sliding");
 }

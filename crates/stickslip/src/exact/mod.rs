@@ -133,16 +133,7 @@ impl ExactSolver {
     }
 
     /// The solver at τ = 0 stuck at y for ever, before [`ExactSolver::start`].
-    ///
-    /// # Panics
-    /// When `params` asks for a friction law other than Coulomb's (the stiff solver of smooth
-    /// laws follows those): a broken contract of the caller.
     fn unstarted(params: Params, y: f64) -> Self {
-        assert!(
-            params.law.is_coulomb(),
-            "the exact solver follows Coulomb's law, not {:?}",
-            params.law
-        );
         let stuck = Segment::Stick {
             y,
             exit: f64::INFINITY,
@@ -631,7 +622,6 @@ mod tests {
             phi: 0.0,
             mu_s: 1.0,
             vb: 0.0,
-            law: crate::friction::FrictionLaw::Coulomb,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();
@@ -657,7 +647,6 @@ mod tests {
             phi: 2.511_453_442_477_732_6,
             mu_s: 1.0,
             vb: 0.0,
-            law: crate::friction::FrictionLaw::Coulomb,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();
