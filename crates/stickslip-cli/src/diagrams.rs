@@ -18,6 +18,7 @@ pub fn parameter_label(parameter: Parameter) -> &'static str {
         Parameter::Beta => "β (drive amplitude)",
         Parameter::Zeta => "ζ (damping ratio)",
         Parameter::MuS => "μs (static/kinetic friction)",
+        Parameter::Vb => "vb (belt speed)",
     }
 }
 
@@ -28,6 +29,7 @@ pub fn symbol(parameter: Parameter) -> &'static str {
         Parameter::Beta => "β",
         Parameter::Zeta => "ζ",
         Parameter::MuS => "μs",
+        Parameter::Vb => "vb",
     }
 }
 

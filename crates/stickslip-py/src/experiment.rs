@@ -14,11 +14,14 @@ use stickslip::experiment::{
 };
 
 /// One experiment: a dimensionless model, a circuit with PWL or Shockley diodes, or a
-/// mechanical oscillator; a drive; the friction ratio μs; an initial state.
+/// mechanical oscillator (on a belt moving at vb, or at rest); a drive; the friction ratio μs;
+/// an initial state.
 ///
 /// Everything is dimensionless inside (τ = ω0·t):
-///     y'' + 2ζ y' + y + sgn(y') = β cos(w τ + φ)   while sliding,
-///     y' = 0 and |β cos(w τ + φ) − y| ≤ μs          while stuck.
+///     y'' + 2ζ y' + y + sgn(y' − vb) = β cos(w τ + φ)   while slipping,
+///     y' = vb and |β cos(w τ + φ) − y − 2ζ vb| ≤ μs       while stuck
+/// (vb = 0, the paper's model, unless a belt is given; a belt without a drive is
+/// self-excited).
 ///
 /// Build one with ``Experiment(zeta=, w=, beta=)`` (dimensionless),
 /// ``Experiment.paper(w=, beta=)`` (the paper's circuit), ``Experiment.circuit(...)``,
@@ -26,12 +29,14 @@ use stickslip::experiment::{
 /// ``Experiment.from_toml(path)``; change values with ``.replace(**changes)``, which returns a
 /// new experiment. The drive (w and β) may be left out when a sweep or a phase diagram sets
 /// it. Keyword names are those of the TOML experiment file: zeta w beta phi mu_s y0 v0, L C R
-/// U_t R_D, m k gamma F0, U (or F) f omega, uc0 i0, Is n Rs temperature, diode, preset.
+/// U_t R_D, m k gamma F0, U (or F) f omega, uc0 i0, Is n Rs temperature, diode, preset, vb
+/// (the belt speed, dimensionless) or belt_speed (m/s; mechanical only: a circuit has no
+/// belt).
 /// Physical values may be numbers in SI units or strings with an SI prefix ("11.5m").
 ///
 /// Experiments are immutable, comparable and picklable (through their JSON, ``to_json``).
 ///
-/// ``Experiment(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0)`` is the
+/// ``Experiment(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0, vb=0)`` is the
 /// dimensionless model:
 ///
 /// Args:
@@ -43,6 +48,8 @@ use stickslip::experiment::{
 ///     mu_s: static-to-kinetic friction ratio μs ≥ 1 (default 1, as in the paper).
 ///     y0: initial position (default 0).
 ///     v0: initial velocity (default 0).
+///     vb: belt speed vb in units of y' (default 0: no belt; with vb ≠ 0 and no drive the
+///         motion is self-excited, and ``steady`` finds its own period).
 ///
 /// Raises:
 ///     ValueError: a value out of range, or a description that is incomplete or contradicts
@@ -213,8 +220,8 @@ impl PyExperiment {
     /// physical one (`omega`, `L`, ...) goes.
     #[new]
     #[pyo3(
-        signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None, **others),
-        text_signature = "(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0)"
+        signature = (zeta=None, w=None, beta=None, phi=None, mu_s=None, y0=None, v0=None, vb=None, **others),
+        text_signature = "(zeta=None, w=None, beta=None, phi=0, mu_s=1, y0=0, v0=0, vb=0)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -225,12 +232,13 @@ impl PyExperiment {
         mu_s: Option<&Bound<'_, PyAny>>,
         y0: Option<&Bound<'_, PyAny>>,
         v0: Option<&Bound<'_, PyAny>>,
+        vb: Option<&Bound<'_, PyAny>>,
         others: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         if let Some((name, _)) = others.and_then(|o| o.iter().next()) {
             let name: String = name.extract()?;
             let known = "Experiment() takes the dimensionless model's keywords zeta, w, beta, \
-                         phi, mu_s, y0, v0";
+                         phi, mu_s, y0, v0, vb";
             let elsewhere = "Experiment.paper(...), Experiment.circuit(...), \
                              Experiment.shockley(...), Experiment.mechanics(...) or \
                              Experiment.from_dict(...)";
@@ -262,6 +270,7 @@ impl PyExperiment {
             ("mu_s", mu_s),
             ("y0", y0),
             ("v0", v0),
+            ("vb", vb),
         ];
         from_layer(ExperimentSpec::new(), &named, None)
     }
@@ -395,7 +404,8 @@ impl PyExperiment {
     ///     F0: kinetic friction force in N (> 0): the unit of β.
     ///     F: drive amplitude in newtons (or beta=).
     ///     omega: drive angular frequency in rad/s (or w=, or f= in Hz).
-    ///     **keys: any other experiment key (mu_s, phi, uc0 = r(0) in m, i0 = ṙ(0) in m/s).
+    ///     **keys: any other experiment key (mu_s, phi, uc0 = r(0) in m, i0 = ṙ(0) in m/s,
+    ///         belt_speed in m/s: the block on a moving belt).
     ///
     /// Example:
     ///     >>> exp = Experiment.mechanics(m=2, k=8, gamma=0.4, F0=0.5, F=1, omega=1.8)

@@ -165,9 +165,11 @@ def test_map_to_xarray(tool_map):
                                 max_period=8)
     ds = m.to_xarray()
     assert ds["motion_class"].dims == ("w", "beta") and ds["motion_class"].dtype == np.int8
-    assert list(ds["motion_class"].attrs["flag_values"]) == [0, 1, 2, 3, 4]
+    # Every class by its code; the driven motion's five come first, their codes fixed.
+    assert list(ds["motion_class"].attrs["flag_values"]) == list(range(8))
     assert (ds["motion_class"].attrs["flag_meanings"]
-            == "sliding periodic-stick undecided static chaotic")
+            == "sliding periodic-stick undecided static chaotic stick-slip-cycle "
+               "pure-slip-cycle steady-sliding")
     for name in ("w", "beta"):
         assert ds[name].attrs == {"units": "1", "long_name": stickslip.PARAMETERS[name]}
     # -1 (no period found) is a value, not a fill value: netCDF gives the int16 back.

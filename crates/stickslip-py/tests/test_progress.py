@@ -87,7 +87,7 @@ def test_progress_true_without_tqdm_names_the_extra(tmp_path):
 
 def test_help_shows_the_experiments_keywords():
     signature = inspect.signature(Experiment)
-    assert list(signature.parameters) == ["zeta", "w", "beta", "phi", "mu_s", "y0", "v0"]
+    assert list(signature.parameters) == ["zeta", "w", "beta", "phi", "mu_s", "y0", "v0", "vb"]
     assert "*args" not in str(signature)
 
 
@@ -96,7 +96,7 @@ def test_a_physical_keyword_of_the_dimensionless_constructor_says_where_it_goes(
         Experiment(omega=1)
     message = str(e.value)
     assert message.startswith("Experiment() takes the dimensionless model's keywords zeta, w, "
-                              "beta, phi, mu_s, y0, v0; omega (drive angular frequency"), message
+                              "beta, phi, mu_s, y0, v0, vb; omega (drive angular frequency"), message
     assert "Experiment.mechanics(...)" in message and "Experiment.paper(...)" in message
     with pytest.raises(TypeError, match="unknown experiment keyword 'gama'.*gamma"):
         Experiment(gama=1)

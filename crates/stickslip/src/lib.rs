@@ -64,6 +64,7 @@ pub mod error;
 pub mod exact;
 pub mod experiment;
 pub mod fit;
+pub mod friction;
 pub mod limits;
 mod linear;
 pub mod measure;

@@ -123,6 +123,7 @@ impl Parameter {
             Parameter::W => Key::W,
             Parameter::Beta => Key::Beta,
             Parameter::MuS => Key::MuS,
+            Parameter::Vb => Key::Vb,
         }
     }
 
@@ -134,6 +135,7 @@ impl Parameter {
             Parameter::Beta => &[Key::Beta, Key::Amplitude],
             Parameter::Zeta => &[Key::Zeta],
             Parameter::MuS => &[Key::MuS],
+            Parameter::Vb => &[Key::Vb, Key::BeltSpeed],
         }
     }
 }
@@ -225,7 +227,7 @@ mod tests {
         assert_eq!("mu_s".parse::<Parameter>().unwrap(), Parameter::MuS);
         assert_eq!(
             "f".parse::<Parameter>().unwrap_err().to_string(),
-            "invalid parameter 'f': one of zeta, w, beta, mu-s"
+            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb"
         );
         for p in Parameter::ALL {
             assert_eq!(p.keys()[0], p.key());

@@ -12,6 +12,7 @@
 //! static to kinetic friction (the paper takes μs = 1).
 
 use crate::error::{check, Result};
+use crate::friction::check_vb;
 use crate::limits;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -30,6 +31,15 @@ pub struct Params {
     pub phi: f64,
     /// Static-to-kinetic friction ratio μs ≥ 1 (1 in the paper).
     pub mu_s: f64,
+    /// Belt speed vb (dimensionless, in units of y'; 0 in the paper): friction acts on the
+    /// slip y' − vb ([`crate::friction`]). Mechanical models only.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub vb: f64,
+}
+
+/// Whether a value is zero (serde skips a belt at rest).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Params {
@@ -45,6 +55,7 @@ impl Params {
             beta: check("beta", beta, limits::beta_ok(beta), limits::BETA_ALLOWED)?,
             phi: 0.0,
             mu_s: 1.0,
+            vb: 0.0,
         })
     }
 
@@ -66,14 +77,50 @@ impl Params {
         Ok(self)
     }
 
+    /// Set the belt speed vb (−0 is read as 0).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] when vb is not finite or |vb| > 1e6.
+    pub fn with_vb(mut self, vb: f64) -> Result<Self> {
+        self.vb = check_vb(vb)?;
+        Ok(self)
+    }
+
     /// Re-check all fields (for values built by struct literal or deserialised).
     ///
     /// # Errors
     /// The first invalid field, as in [`Params::new`].
     pub fn validate(&self) -> Result<Self> {
-        Params::new(self.zeta, self.w, self.beta)?
+        let p = Params::new(self.zeta, self.w, self.beta)?
             .with_phi(self.phi)?
-            .with_mu_s(self.mu_s)
+            .with_mu_s(self.mu_s)?;
+        if self.vb == 0.0 {
+            // (The paper's model: nothing more to check.)
+            return Ok(p);
+        }
+        p.with_vb(self.vb)
+    }
+
+    /// Whether the model is the paper's own: no belt.
+    pub fn is_paper_friction(&self) -> bool {
+        self.vb == 0.0
+    }
+
+    /// The viscous force 2ζ·vb of a block stuck to the belt, which static friction must
+    /// hold besides the drive and the spring: while stuck, |β cos(wτ + φ) − y − 2ζ vb| ≤ μs.
+    /// Exactly 0 without a belt.
+    pub fn belt_force(&self) -> f64 {
+        if self.vb == 0.0 {
+            0.0
+        } else {
+            2.0 * self.zeta * self.vb
+        }
+    }
+
+    /// The net force β cos(wτ + φ) − y − 2ζ·vb that static friction holds at y while stuck
+    /// to the belt (β cos(wτ + φ) − y without one, bit for bit).
+    pub fn net_force(&self, tau: f64, y: f64) -> f64 {
+        self.drive(tau) - y - self.belt_force()
     }
 
     /// The drive β cos(w τ + φ) at time τ.
@@ -92,7 +139,8 @@ impl Params {
     }
 }
 
-/// One of the four dimensionless parameters that sweeps and grids vary.
+/// One of the dimensionless parameters that sweeps and grids vary: the paper's four (ζ, w,
+/// β, μs) and the belt speed vb.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Parameter {
@@ -104,24 +152,29 @@ pub enum Parameter {
     Beta,
     /// Static-to-kinetic friction ratio μs ≥ 1.
     MuS,
+    /// Belt speed vb ([`crate::friction`]).
+    Vb,
 }
 
 impl Parameter {
-    /// All four, in the order ζ, w, β, μs.
-    pub const ALL: [Parameter; 4] = [
+    /// All of them, in the order ζ, w, β, μs, vb (the paper's four first, so that their codes
+    /// stay what they were).
+    pub const ALL: [Parameter; 5] = [
         Parameter::Zeta,
         Parameter::W,
         Parameter::Beta,
         Parameter::MuS,
+        Parameter::Vb,
     ];
 
-    /// The name used in files, flags and column headers: `zeta`, `w`, `beta`, `mu_s`.
+    /// The name used in files, flags and column headers: `zeta`, `w`, `beta`, `mu_s`, `vb`.
     pub fn label(self) -> &'static str {
         match self {
             Parameter::Zeta => "zeta",
             Parameter::W => "w",
             Parameter::Beta => "beta",
             Parameter::MuS => "mu_s",
+            Parameter::Vb => "vb",
         }
     }
 
@@ -138,6 +191,24 @@ impl Parameter {
             Parameter::W => "drive frequency w = Ω/ω0",
             Parameter::Beta => "drive amplitude β (in units of the kinetic friction force)",
             Parameter::MuS => "static-to-kinetic friction ratio μs",
+            Parameter::Vb => "belt speed vb (in units of F/(k)·ω0)",
+        }
+    }
+
+    /// Whether the parameter belongs to the belt (not to the paper's model).
+    pub fn is_friction(self) -> bool {
+        !matches!(
+            self,
+            Parameter::Zeta | Parameter::W | Parameter::Beta | Parameter::MuS
+        )
+    }
+
+    /// Whether `params` has something to say about the parameter: the paper's four always, the
+    /// belt speed when the belt moves (what a title of fixed values lists).
+    pub fn is_set_in(self, params: &Params) -> bool {
+        match self {
+            Parameter::Vb => params.vb != 0.0,
+            _ => true,
         }
     }
 
@@ -148,6 +219,7 @@ impl Parameter {
             Parameter::W => params.w,
             Parameter::Beta => params.beta,
             Parameter::MuS => params.mu_s,
+            Parameter::Vb => params.vb,
         }
     }
 
@@ -163,6 +235,7 @@ impl Parameter {
             Parameter::W => p.w = value,
             Parameter::Beta => p.beta = value,
             Parameter::MuS => p.mu_s = value,
+            Parameter::Vb => p.vb = value,
         }
         p.validate()
     }

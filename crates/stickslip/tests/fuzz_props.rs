@@ -187,6 +187,7 @@ fn regression_a_false_velocity_zero_from_a_rounded_coefficient() {
                 beta: 1e9,
                 phi: 6.283_185_307_179_575,
                 mu_s: 1.911_885_451_822_636,
+                vb: 0.0,
             },
             initial: State {
                 y: 999_999_874.348_546_4,

@@ -25,7 +25,7 @@ const LAYERS: &[&[&str]] = &[
         "fit::linalg",
     ],
     &["error", "linear", "measure"],
-    &["options", "scan::monitor", "scan::range"],
+    &["options", "scan::monitor", "scan::range", "friction"],
     &["limits"],
     &["params"],
     &["solver"],

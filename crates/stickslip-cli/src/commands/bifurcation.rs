@@ -250,16 +250,10 @@ pub(crate) fn fixed(steps: &[BifurcationStep], parameter: stickslip::Parameter) 
     let Some(p) = steps.first().map(|s| s.params) else {
         return String::new();
     };
-    let name = |q: Parameter| match q {
-        Parameter::Zeta => "ζ",
-        Parameter::W => "w",
-        Parameter::Beta => "β",
-        Parameter::MuS => "μs",
-    };
     Parameter::ALL
         .into_iter()
-        .filter(|&q| q != parameter)
-        .map(|q| format!("{} = {}", name(q), short(q.get(&p))))
+        .filter(|&q| q != parameter && q.is_set_in(&p))
+        .map(|q| format!("{} = {}", crate::diagrams::symbol(q), short(q.get(&p))))
         .collect::<Vec<_>>()
         .join(", ")
 }

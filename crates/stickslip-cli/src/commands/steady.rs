@@ -97,7 +97,8 @@ pub fn run(args: Args) -> Result<()> {
         let report = SteadyReport::from(&steady);
         crate::output::print(&format!("{}\n", serde_json::to_string_pretty(&report)?))?;
     } else {
-        crate::output::print(&text(&steady))?;
+        let omega0 = experiment.scales().map(|s| s.omega0);
+        crate::output::print(&text(&steady, omega0))?;
     }
     if let Some(path) = &args.xy {
         let mut file = AtomicFile::create(path)?;
@@ -118,7 +119,9 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// The steady state as text.
-fn text(steady: &SteadyState) -> String {
+///
+/// `omega0`: ω0 in rad/s of a physical model, to give times in seconds too.
+fn text(steady: &SteadyState, omega0: Option<f64>) -> String {
     let mut text = String::new();
     let params = &steady.params;
     let period = steady
@@ -126,6 +129,10 @@ fn text(steady: &SteadyState) -> String {
         .map(|p| p.to_string())
         .unwrap_or_else(|| "none found".into());
     outln!(text, "class             {}", steady.class.label());
+    if let Some(cycle) = &steady.self_excited {
+        self_excited_text(&mut text, steady, cycle, omega0);
+        return text;
+    }
     outln!(text, "period            {period} (drive periods)");
     outln!(text, "stops per period  {}", steady.stops_per_period);
     outln!(text, "symmetric         {}", steady.symmetric);
@@ -141,6 +148,15 @@ fn text(steady: &SteadyState) -> String {
         None => outln!(text, "phase lag         none (no fundamental)"),
     }
     outln!(text, "periods to settle {}", steady.periods_to_settle);
+    if params.vb != 0.0 {
+        // (Without a belt, peak |y| says it for the symmetric orbits; --json has both.)
+        outln!(
+            text,
+            "y max / y min     {:.10} / {:.10}",
+            steady.y_max,
+            steady.y_min
+        );
+    }
     if let Some(c) = &steady.lyapunov {
         let l = c.exponents.largest;
         outln!(
@@ -179,6 +195,43 @@ fn text(steady: &SteadyState) -> String {
         }
     }
     text
+}
+
+/// The self-excited motion of a block on a belt without a drive: its own period, extremes,
+/// time stuck and the stability of steady sliding.
+fn self_excited_text(
+    text: &mut String,
+    steady: &SteadyState,
+    cycle: &stickslip::steady::SelfExcited,
+    omega0: Option<f64>,
+) {
+    match (cycle.period, omega0) {
+        (Some(t), Some(omega0)) => outln!(
+            text,
+            "cycle period      {t:.10} (τ = ω0·t), {:.6e} s",
+            t / omega0
+        ),
+        (Some(t), None) => outln!(text, "cycle period      {t:.10} (τ = ω0·t)"),
+        (None, _) => outln!(text, "cycle period      none (no cycle)"),
+    }
+    outln!(text, "stops per cycle   {}", steady.stops_per_period);
+    outln!(text, "stick fraction    {:.10}", cycle.stick_fraction);
+    outln!(
+        text,
+        "y max / y min     {:.10} / {:.10}",
+        steady.y_max,
+        steady.y_min
+    );
+    if let Some(section) = cycle.section {
+        outln!(text, "section           {}", section.label());
+    }
+    outln!(
+        text,
+        "steady sliding    y = {:.10}, damping 2ζ + μ'(|vb|) = {:+.6e}: {}",
+        cycle.equilibrium,
+        cycle.sliding_damping,
+        cycle.sliding_stability.label()
+    );
 }
 
 /// What the exponent of a motion that does not repeat says, in words.

@@ -19,13 +19,15 @@ use stickslip::theory::curves::{
 };
 use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 
-/// Sweep one parameter (w, β, ζ or μs) with the others fixed; each step starts from the final
-/// state of the step before, as when turning a knob, so hysteresis and coexisting motions
-/// show up.
+/// Sweep one parameter (w, β, ζ, μs or vb) with the others fixed; each step starts from the
+/// final state of the step before, as when turning a knob, so hysteresis and coexisting
+/// motions show up.
 ///
 /// Output CSV columns: w,beta,direction,gain,gain1,A1,A3,class,stops_per_period
 /// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y); a sweep of
-/// zeta or mu_s puts the swept value first: zeta,w,beta,... or mu_s,w,beta,...
+/// zeta, mu_s or vb (the belt speed) puts the swept value first: zeta,w,beta,... Without a
+/// drive a belt's motion is self-excited: sweep vb up and down for its stick-slip cycles and
+/// steady sliding (and where they coexist).
 ///
 /// Example: stickslip sweep --preset paper --over w --beta 2.14 --from 0.2 --to 2 --steps 91 \
 ///          --direction both --out sweep.csv --plot sweep.png
@@ -426,7 +428,9 @@ fn plot(
         Some(p) => {
             let fixed: Vec<String> = Parameter::ALL
                 .into_iter()
-                .filter(|&q| q != parameter && (q != Parameter::MuS || p.mu_s != 1.0))
+                .filter(|&q| {
+                    q != parameter && q.is_set_in(&p) && (q != Parameter::MuS || p.mu_s != 1.0)
+                })
                 .map(|q| format!("{} = {:.3}", crate::diagrams::symbol(q), q.get(&p)))
                 .collect();
             format!(

@@ -313,6 +313,9 @@ pub fn class_color(class: stickslip::steady::MotionClass) -> RGBColor {
         MotionClass::Undecided => PALETTE[1],
         MotionClass::Static => PALETTE[2],
         MotionClass::Chaotic => CHAOTIC,
+        MotionClass::StickSlipCycle => PALETTE[0],
+        MotionClass::PureSlipCycle => PALETTE[4],
+        MotionClass::SteadySliding => SLIDING,
     }
 }
 

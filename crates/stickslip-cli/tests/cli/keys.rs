@@ -23,6 +23,7 @@ fn descriptions() -> Vec<(Vec<Value>, Option<DiodeModel>)> {
                 (Key::MuS, "1.2", 1.2),
                 (Key::Y0, "0.1", 0.1),
                 (Key::V0, "-0.2", -0.2),
+                (Key::Vb, "0.3", 0.3),
             ],
             None,
         ),
@@ -52,6 +53,7 @@ fn descriptions() -> Vec<(Vec<Value>, Option<DiodeModel>)> {
                 (Key::Friction, "1", 1.0),
                 (Key::Omega, "14", 14.0),
                 (Key::Amplitude, "1.4", 1.4),
+                (Key::BeltSpeed, "0.05", 0.05),
             ],
             None,
         ),
@@ -163,8 +165,12 @@ fn every_key_refuses_a_value_outside_its_range_with_the_librarys_words() {
         }
         let Some(value) = outside(key) else {
             // Only the initial state in volts and amperes takes any finite number: its
-            // image in y0, v0 is checked when the experiment is built.
-            assert!(matches!(key, Key::Uc0 | Key::I0), "{key} has no range");
+            // image in y0, v0 is checked when the experiment is built; so does the belt speed
+            // in m/s (its image vb).
+            assert!(
+                matches!(key, Key::Uc0 | Key::I0 | Key::BeltSpeed),
+                "{key} has no range"
+            );
             continue;
         };
         assert!(key.check(value).is_err(), "{key} {value}");

@@ -3,6 +3,7 @@
 
 mod common;
 
+mod belt;
 mod checkpoint;
 mod convert;
 mod curve;

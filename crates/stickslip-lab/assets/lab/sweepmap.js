@@ -198,7 +198,9 @@ export function drawSweep() {
   }
 }
 
-export const CLASS_COLORS = { sliding: '#dadada', 'periodic-stick': '#0072b2', undecided: '#d55e00', static: '#009e73', chaotic: '#7570b3' };
+// Every class of the library, in its order (docs/plot-style.md); the last three are a belt's
+// self-excited motions, which a map of (w, β) does not show.
+export const CLASS_COLORS = { sliding: '#dadada', 'periodic-stick': '#0072b2', undecided: '#d55e00', static: '#009e73', chaotic: '#7570b3', 'stick-slip-cycle': '#0072b2', 'pure-slip-cycle': '#e69f00', 'steady-sliding': '#dadada' };
 export function drawMap() {
   const canvas = $('#map-plot');
   const m = state.map;

@@ -13,7 +13,9 @@ from ._core import Experiment
 #: The classes of steady motion (``motion_class``, the reports' ``class``), in the order of
 #: their codes in ``class_code`` arrays: 'sliding', 'periodic-stick', 'undecided', 'static'
 #: and 'chaotic' (a motion that does not repeat, with a largest Lyapunov exponent positive
-#: beyond its error). 'undecided' is no kind of motion: no period was found within the budget
+#: beyond its error), then the self-excited motions of a block on a moving belt without a
+#: drive: 'stick-slip-cycle', 'pure-slip-cycle' and 'steady-sliding' (a new class is always
+#: added last: a code never changes). 'undecided' is no kind of motion: no period was found within the budget
 #: and λ1 is not positive beyond its error (the paper's "non-periodic motion with sticking"
 #: lands there; its label was 'nonperiodic-stick'). 'static' is the paper's rule: a motion
 #: whose amplitude (y_max − y_min)/2 is below β/100, whether or not it stops; it can hold a

@@ -216,7 +216,9 @@ class PhaseDiagram(Generic[_Exponents]):
         coords: dict from each parameter to its float64 values.
         motion_class: array of shape ``tuple(len(coords[d]) for d in dims)`` of the class
             labels, ``MOTION_CLASSES`` = ('sliding', 'periodic-stick', 'undecided', 'static',
-            'chaotic'); class_code: their int8 codes into ``labels``. 'undecided': no period
+            'chaotic', then the belt's self-excited 'stick-slip-cycle', 'pure-slip-cycle',
+            'steady-sliding'); class_code: their int8 codes into ``labels`` (fixed: a new
+            class is added last). 'undecided': no period
             within the budget and not chaotic. 'static' is the paper's rule, an amplitude
             (y_max − y_min)/2 below β/100, whether or not the motion stops (at (w, β) =
             (2.0, 1.1) of the paper's circuit it holds a motion that stops twice a period):

@@ -98,7 +98,7 @@ pub(crate) fn slide_minimum(
         }
         let h = (b - a) / SAMPLES as f64;
         let speeds: Vec<f64> = (0..=SAMPLES)
-            .map(|k| solver.dense(a + k as f64 * h).v.abs())
+            .map(|k| (solver.dense(a + k as f64 * h).v - params.vb).abs())
             .collect();
         fastest = speeds.iter().fold(fastest, |m, &s| m.max(s));
         let Some(k) = (1..SAMPLES)
@@ -109,7 +109,7 @@ pub(crate) fn slide_minimum(
         };
         // Golden sections on the bracket around the sampled minimum.
         let g = 0.5 * (5f64.sqrt() - 1.0);
-        let speed = |t: f64| solver.dense(t).v.abs();
+        let speed = |t: f64| (solver.dense(t).v - params.vb).abs();
         let (mut lo, mut hi) = (a + (k - 1) as f64 * h, a + (k + 1) as f64 * h);
         let (mut c, mut d) = (hi - g * (hi - lo), lo + g * (hi - lo));
         let (mut fc, mut fd) = (speed(c), speed(d));
@@ -128,8 +128,9 @@ pub(crate) fn slide_minimum(
         }
         let tau = 0.5 * (lo + hi);
         let s = solver.dense(tau);
-        if best.is_none_or(|(_, v, _)| s.v.abs() < v) {
-            best = Some((tau, s.v.abs(), s.y));
+        let slip = (s.v - params.vb).abs();
+        if best.is_none_or(|(_, v, _)| slip < v) {
+            best = Some((tau, slip, s.y));
         }
     }
     let Some((tau, velocity, y)) = best else {
@@ -198,7 +199,7 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
         let phase = params.w * e.tau + params.phi;
         match e.kind {
             crate::solver::EventKind::Turn => {
-                let margin = ((params.drive(e.tau) - e.y).abs() - params.mu_s) / params.mu_s;
+                let margin = (params.net_force(e.tau, e.y).abs() - params.mu_s) / params.mu_s;
                 if margin.abs() < best.0 {
                     best = (
                         margin.abs(),
@@ -207,7 +208,14 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
                 }
             }
             crate::solver::EventKind::Slip if params.mu_s > 1.0 => {
-                let rate = phase.sin().abs();
+                // The net force's rate at the release relative to its largest, the drive's
+                // βw (and the belt's vb that loads the spring).
+                let rate = if params.vb == 0.0 {
+                    phase.sin().abs()
+                } else {
+                    (params.beta * params.w * phase.sin() + params.vb).abs()
+                        / (params.beta * params.w + params.vb.abs())
+                };
                 if rate < best.0 {
                     best = (rate, Obstacle::TangentialRelease { tau: e.tau, rate });
                 }

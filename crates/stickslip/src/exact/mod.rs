@@ -12,7 +12,16 @@
 //!
 //! **Stick exit** is solved in closed form: while stuck at y_s the net force
 //! β cos(wτ + φ) − y_s is a shifted cosine, and its first outward crossing of ±μs is an arccos.
+//!
+//! **A moving belt** (vb ≠ 0, Coulomb's law: [`crate::friction`]) keeps every piece linear:
+//! a slide is the same closed form with the friction force sgn(y' − vb), whose end is the
+//! first zero of the slip y' − vb (the same search, on y' − vb); a stop moves with the belt,
+//! y = y_s + vb (τ − τ_s), and ends where the net force β cos(wτ + φ) − y − 2ζ vb, now a
+//! cosine minus a ramp, first reaches ±μs (the private module `belt`: monotone pieces between
+//! the ramp's and the cosine's balance points, known in closed form). Without a belt every
+//! number is computed as before, bit for bit.
 
+mod belt;
 mod search;
 
 use crate::cancel::Cancel;
@@ -82,6 +91,10 @@ pub struct ExactSolver {
     last: (usize, f64, f64, f64),
     /// Checked (and charged one step) at every advance.
     cancel: Cancel,
+    /// Belt speed vb (0: none; then every belt term below is an exact 0).
+    vb: f64,
+    /// The viscous force 2ζ vb of a block stuck to the belt ([`Params::belt_force`]).
+    belt_force: f64,
 }
 
 impl Drop for ExactSolver {
@@ -135,9 +148,11 @@ impl ExactSolver {
             slots: [stuck; 2],
             current: 0,
             time: 0.0,
-            search: ZeroSearch::new(params.w),
+            search: ZeroSearch::new(params.w, params.vb),
             last: (0, 0.0, 0.0, 0.0),
             cancel: Cancel::never(),
+            vb: params.vb,
+            belt_force: params.belt_force(),
         }
     }
 
@@ -157,7 +172,7 @@ impl ExactSolver {
         self.repeats = 0;
         self.time = 0.0;
         let stats = self.search.stats;
-        self.search = ZeroSearch::new(self.params.w);
+        self.search = ZeroSearch::new(self.params.w, self.vb);
         self.search.stats = stats;
         if let Some(hints) = hints {
             self.take_hints(hints);
@@ -170,14 +185,15 @@ impl ExactSolver {
         let params = self.params;
         let theta = self.theta0;
         let trig = sin_cos(theta);
-        if initial.v != 0.0 {
-            self.start_slide(0.0, theta, trig, initial.y, initial.v, initial.v.signum());
+        if initial.v != self.vb {
+            let sign = (initial.v - self.vb).signum();
+            self.start_slide(0.0, theta, trig, initial.y, initial.v, sign);
         } else {
-            let force = params.beta * trig.1 - initial.y;
+            let force = params.beta * trig.1 - initial.y - self.belt_force;
             if force.abs() <= params.mu_s {
                 self.start_stick(0.0, theta, initial.y);
             } else {
-                self.start_slide(0.0, theta, trig, initial.y, 0.0, force.signum());
+                self.start_slide(0.0, theta, trig, initial.y, self.vb, force.signum());
             }
         }
         self.last = (self.current, self.tau0, 0.0, 0.0);
@@ -261,6 +277,10 @@ impl ExactSolver {
     /// error behind θ means "now" (a stop of zero duration).
     fn stick_exit(&self, theta: f64, y: f64, allow_now: bool) -> (f64, f64) {
         let p = &self.params;
+        if self.vb != 0.0 {
+            let c = y + self.belt_force;
+            return belt::stop_end(p.beta, p.w, theta, p.mu_s, c, self.vb, allow_now);
+        }
         if p.beta == 0.0 {
             return (f64::INFINITY, 0.0);
         }
@@ -304,7 +324,7 @@ impl ExactSolver {
         }
     }
 
-    fn segment_sample(segment: &Segment, tau0: f64, tau: f64) -> Sample {
+    fn segment_sample(segment: &Segment, tau0: f64, tau: f64, vb: f64) -> Sample {
         match segment {
             Segment::Slide { sign, linear } => {
                 let (y, v) = linear.state(tau - tau0);
@@ -319,10 +339,16 @@ impl ExactSolver {
                     },
                 }
             }
-            Segment::Stick { y, .. } => Sample {
+            Segment::Stick { y, .. } if vb == 0.0 => Sample {
                 tau,
                 y: *y,
                 v: 0.0,
+                phase: Phase::Stick,
+            },
+            Segment::Stick { y, .. } => Sample {
+                tau,
+                y: *y + vb * (tau - tau0),
+                v: vb,
                 phase: Phase::Stick,
             },
         }
@@ -356,7 +382,7 @@ impl Solver for ExactSolver {
     }
 
     fn state(&self) -> State {
-        let s = Self::segment_sample(self.segment(), self.tau0, self.time);
+        let s = Self::segment_sample(self.segment(), self.tau0, self.time, self.vb);
         State { y: s.y, v: s.v }
     }
 
@@ -392,7 +418,12 @@ impl Solver for ExactSolver {
                 let theta = self.phase_at(exit);
                 self.count_repeat(tau == self.tau0);
                 self.close(from, tau);
-                self.start_slide(tau, theta, sin_cos(theta), y, 0.0, exit_sign);
+                let (y, v) = if self.vb == 0.0 {
+                    (y, 0.0)
+                } else {
+                    (y + self.vb * exit, self.vb)
+                };
+                self.start_slide(tau, theta, sin_cos(theta), y, v, exit_sign);
                 return self.event(tau, y, EventKind::Slip);
             }
             Segment::Slide { sign, linear } => {
@@ -410,10 +441,12 @@ impl Solver for ExactSolver {
         self.count_repeat(tau == self.tau0);
         self.close(from, tau);
         let trig = drive.unwrap_or_else(|| sin_cos(theta));
-        let force = self.params.beta * trig.1 - y;
+        let force = self.params.beta * trig.1 - y - self.belt_force;
         let onward = force.signum() == sign;
-        // Rounding of the force β cos − y at the edge ±μs.
-        let edge = 4.0 * f64::EPSILON * (self.params.beta + y.abs() + self.params.mu_s);
+        // Rounding of the force β cos − y (− 2ζvb) at the edge ±μs.
+        let edge = 4.0
+            * f64::EPSILON
+            * (self.params.beta + y.abs() + self.params.mu_s + self.belt_force.abs());
         if force.abs() <= self.params.mu_s
             || (t == 0.0 && onward)
             || (onward && (self.repeats >= MAX_REPEATS || force.abs() <= self.params.mu_s + edge))
@@ -425,12 +458,12 @@ impl Solver for ExactSolver {
             self.start_stick(tau, theta, y);
             self.event(tau, y, EventKind::Stick)
         } else if force.signum() != sign {
-            self.start_slide(tau, theta, trig, y, 0.0, force.signum());
+            self.start_slide(tau, theta, trig, y, self.vb, force.signum());
             self.event(tau, y, EventKind::Turn)
         } else {
             // The velocity touched zero while the force still pushes onward: the motion goes
             // on in the same direction (a tangency within rounding), no event.
-            self.start_slide(tau, theta, trig, y, 0.0, sign);
+            self.start_slide(tau, theta, trig, y, self.vb, sign);
             self.advance(t_end)
         }
     }
@@ -440,7 +473,7 @@ impl Solver for ExactSolver {
     }
 
     fn dense(&self, tau: f64) -> Sample {
-        Self::segment_sample(&self.slots[self.last.0], self.last.1, tau)
+        Self::segment_sample(&self.slots[self.last.0], self.last.1, tau, self.vb)
     }
 
     fn stats(&self) -> Stats {
@@ -588,6 +621,7 @@ mod tests {
             beta: 1.000_000_000_000_000_4,
             phi: 0.0,
             mu_s: 1.0,
+            vb: 0.0,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();
@@ -612,6 +646,7 @@ mod tests {
             beta: 1.000_000_000_000_000_4,
             phi: 2.511_453_442_477_732_6,
             mu_s: 1.0,
+            vb: 0.0,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();

@@ -18,6 +18,10 @@
 //! rounding. Every step is thus derived from the segment's own frequencies, amplitudes and
 //! curvature (not from a fixed dt) and can never pass a zero, however tangential.
 //!
+//! **A moving belt.** With a belt at speed vb the slide ends where the slip y' − vb
+//! vanishes: g(t) = s·(y'(t) − vb), whose derivatives are those of s·y' (vb is constant), so
+//! every bound and step below holds unchanged.
+//!
 //! **Predicted search.** A slide usually lasts as long as the last slide that started the same
 //! way (same direction, from a stop or not): in a steady state exactly so. The search
 //! evaluates the closed form once, a hair before that predicted end b, and then proves, from
@@ -98,12 +102,15 @@ pub(super) struct ZeroSearch {
     pub(super) predict: bool,
     /// Work counters.
     pub(super) stats: Stats,
+    /// The belt speed vb: the search looks for the zeros of the slip y' − vb (an exact 0
+    /// without a belt, so that every number is what it was).
+    vb: f64,
 }
 
 impl ZeroSearch {
     /// The search of a solver at drive frequency `w`, its predictions the first guesses (see
     /// the module documentation).
-    pub(super) fn new(w: f64) -> Self {
+    pub(super) fn new(w: f64, vb: f64) -> Self {
         let half_period = std::f64::consts::PI / w;
         let from_stop = 0.6 * half_period.min(std::f64::consts::PI);
         let mut durations = [f64::NAN; KINDS];
@@ -120,6 +127,7 @@ impl ZeroSearch {
             durations,
             predict: true,
             stats: Stats::default(),
+            vb,
         }
     }
 
@@ -184,8 +192,14 @@ impl ZeroSearch {
         if !(predicted > 0.0) || !linear.is_two_phasor() {
             return Predicted::Clear(0.0);
         }
+        let vb = self.vb;
         let jet = |e: &Derivatives| Jet {
-            g: [sign * e.d[1], sign * e.d[2], sign * e.d[3], sign * e.d[4]],
+            g: [
+                sign * (e.d[1] - vb),
+                sign * e.d[2],
+                sign * e.d[3],
+                sign * e.d[4],
+            ],
             noise: e.velocity_noise,
         };
         let mut start = jet(linear.start());
@@ -272,7 +286,7 @@ impl ZeroSearch {
                 Location::Closer(offset) => {
                     let q = p + offset;
                     let eq = self.evaluate(linear, q);
-                    if sign * eq.d[1] > eq.velocity_noise && q > from {
+                    if sign * (eq.d[1] - vb) > eq.velocity_noise && q > from {
                         // g decreases from `from` to q and is still positive at q.
                         from = q;
                     }
@@ -326,7 +340,7 @@ impl ZeroSearch {
                     steps,
                 });
             }
-            let g = sign * e.d[1];
+            let g = sign * (e.d[1] - self.vb);
             let mut g1 = sign * e.d[2];
             let g2 = sign * e.d[3];
             if a == 0.0 && g == 0.0 {
@@ -343,7 +357,13 @@ impl ZeroSearch {
                 } else {
                     0.0
                 };
-                return Ok(Some((a + newton, e.d[0])));
+                // (y moves by y'·newton, nothing without a belt: y' is at rounding there.)
+                let y = if self.vb == 0.0 {
+                    e.d[0]
+                } else {
+                    e.d[0] + e.d[1] * newton
+                };
+                return Ok(Some((a + newton, y)));
             }
             let (m2, m3) = linear.derivative_bounds(a, span, &e);
             let g = g.max(0.0);
@@ -383,7 +403,7 @@ impl ZeroSearch {
                     self.stats.evaluations += 1;
                     steps += 1;
                     self.stats.steps += 1;
-                    if sign * eb.d[1] > 0.0 {
+                    if sign * (eb.d[1] - self.vb) > 0.0 {
                         if b >= limit {
                             self.searched = limit;
                             return Ok(None);
@@ -433,7 +453,7 @@ impl ZeroSearch {
         // y, y', y'' at t: all that Newton's method reads.
         let mut d = [eb.d[0], eb.d[1], eb.d[2]];
         for _ in 0..100 {
-            let g = sign * d[1];
+            let g = sign * (d[1] - self.vb);
             if g > 0.0 {
                 a = t;
             } else {
@@ -480,7 +500,7 @@ mod tests {
     #[test]
     fn regression_no_zero_reported_past_the_requested_end() {
         let linear = rising_slide();
-        let mut search = ZeroSearch::new(0.9);
+        let mut search = ZeroSearch::new(0.9, 0.0);
         search.begin(slide_kind(1.0, false));
         search.durations[search.kind] = 1.0;
         let early = search.first_zero(1.0, &linear, 0.5, 0.0).unwrap();
@@ -490,7 +510,7 @@ mod tests {
             "the prediction cleared past the limit"
         );
         let zero = search.first_zero(1.0, &linear, 10.0, 0.0).unwrap().unwrap();
-        let mut careful = ZeroSearch::new(0.9);
+        let mut careful = ZeroSearch::new(0.9, 0.0);
         careful.predict = false;
         careful.begin(slide_kind(1.0, false));
         let expected = careful

@@ -52,6 +52,12 @@ pub enum SpecError {
         /// The physical value.
         key: Key,
     },
+    /// A belt speed was given with a circuit, which has no belt.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    NoBelt {
+        /// The belt's key that was given.
+        key: Key,
+    },
 }
 
 /// An experiment file that is not a valid experiment description.

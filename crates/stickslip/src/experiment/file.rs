@@ -17,6 +17,7 @@
 //! y0 = 0.0           # or uc0 (V or m)
 //! v0 = 0.0           # or i0 (A or m/s)
 //! diode = "pwl"      # or "shockley"
+//! # vb = 0.5         # a belt under the block (mechanics or dimensionless only)
 //! # zeta = 0.05      # only without [circuit] or [mechanics]
 //! [shockley]         # 1N4148 defaults
 //! Is = 4.352e-9      # A

@@ -14,6 +14,7 @@
 pub use super::keys::Key;
 use super::{DiodeModel, Preset};
 use crate::error::{check, Error, Result};
+use crate::friction::{VB_ALLOWED, VB_MAX};
 use crate::limits;
 use crate::physical::{Circuit, Scales, SystemKind};
 use crate::shockley::diode::ZERO_CELSIUS;
@@ -48,6 +49,9 @@ pub enum KeyGroup {
     Drive,
     /// The diode law and the Shockley diodes' parameters.
     Diode,
+    /// The belt under a mechanical oscillator: its speed vb (Coulomb's law acts on the slip
+    /// against it).
+    Friction,
     /// The initial state.
     Initial,
     /// Options of a computation (no key of an experiment belongs here; options have their
@@ -57,20 +61,22 @@ pub enum KeyGroup {
 
 impl KeyGroup {
     /// Every group, in the order of forms and tables.
-    pub const ALL: [KeyGroup; 5] = [
+    pub const ALL: [KeyGroup; 6] = [
         KeyGroup::System,
         KeyGroup::Drive,
         KeyGroup::Diode,
+        KeyGroup::Friction,
         KeyGroup::Initial,
         KeyGroup::Options,
     ];
 
-    /// `system`, `drive`, `diode`, `initial` or `options`.
+    /// `system`, `drive`, `diode`, `friction`, `initial` or `options`.
     pub fn label(self) -> &'static str {
         match self {
             KeyGroup::System => "system",
             KeyGroup::Drive => "drive",
             KeyGroup::Diode => "diode",
+            KeyGroup::Friction => "friction",
             KeyGroup::Initial => "initial",
             KeyGroup::Options => "options",
         }
@@ -1011,6 +1017,56 @@ const ROWS: &[Row] = &[
         image: None,
         fit: None,
     },
+    Row {
+        key: Key::Vb,
+        name: "vb",
+        symbol: "v_b",
+        name_aliases: &[],
+        flag: "vb",
+        aliases: &[],
+        metavar: "VB",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange::closed(-VB_MAX, VB_MAX),
+        allowed: VB_ALLOWED,
+        description: "belt speed vb (dimensionless, in units of y')",
+        help: "Belt speed vb in units of y' = dy/dτ: friction acts on the slip y' − vb \
+               (mechanical twin or dimensionless model; a circuit has no belt) [default: 0]",
+        default: Some(|| KeyDefault::Number(0.0)),
+        quantity: Some("belt speed"),
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::BeltSpeed,
+        name: "belt_speed",
+        symbol: "v_belt",
+        name_aliases: &[],
+        flag: "belt-speed",
+        aliases: &[],
+        metavar: "BELT_SPEED",
+        group: KeyGroup::Friction,
+        section: Some(Section::Mechanics),
+        part: Part::Any,
+        form: KeyForm::Si,
+        unit: Some("m/s"),
+        units: &[],
+        range: KeyRange::ANY,
+        allowed: "must be finite (m/s)",
+        description: "belt speed (m/s)",
+        help: "Belt speed in m/s under the mechanical oscillator (instead of --vb)",
+        default: None,
+        quantity: None,
+        image: Some(Image {
+            of: Key::Vb,
+            scale: |s| s.velocity,
+        }),
+        fit: None,
+    },
 ];
 
 /// Everything about one key, as [`Key::table`] gives it (serialisable: the lab's
@@ -1182,6 +1238,7 @@ impl Key {
     pub fn heading(self) -> &'static str {
         match (self.group(), self.form()) {
             (KeyGroup::Diode, _) => "Diode model",
+            (KeyGroup::Friction, _) => "Moving belt (mechanical)",
             (_, KeyForm::Plain) => "Model (dimensionless)",
             _ => "Model (physical)",
         }
@@ -1527,9 +1584,11 @@ mod tests {
             | Key::SeriesResistance
             | Key::Temperature
             | Key::Diode
-            | Key::Preset => k as usize,
+            | Key::Preset
+            | Key::Vb
+            | Key::BeltSpeed => k as usize,
         };
-        assert_eq!(listed(Key::Preset) + 1, ROWS.len());
+        assert_eq!(listed(Key::BeltSpeed) + 1, ROWS.len());
     }
 
     #[test]

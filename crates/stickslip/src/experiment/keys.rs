@@ -65,4 +65,8 @@ pub enum Key {
     Diode,
     /// A built-in physical description (`paper`).
     Preset,
+    /// Belt speed vb (dimensionless).
+    Vb,
+    /// Belt speed (m/s).
+    BeltSpeed,
 }

@@ -42,6 +42,7 @@ pub use trajectory::Trajectory;
 
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
+use crate::friction::check_vb;
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use crate::scan::ParameterRange;
@@ -152,10 +153,18 @@ pub struct Experiment {
     initial: State,
     origin: Origin,
     shockley: ShockleyOptions,
+    /// The belt speed vb (mechanical or dimensionless systems; 0: no belt).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    vb: f64,
     /// The token every solver of the experiment checks (not part of what the experiment is:
     /// not saved, not compared).
     #[serde(skip)]
     cancel: CancelSlot,
+}
+
+/// Whether a value is zero (serde skips a belt at rest).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// An experiment's [`Cancel`] token: equal to any other (the token says how long to work,
@@ -181,6 +190,7 @@ impl Experiment {
             initial: State::default(),
             origin,
             shockley: ShockleyOptions::default(),
+            vb: 0.0,
             cancel: CancelSlot::default(),
         }
     }
@@ -283,6 +293,31 @@ impl Experiment {
     pub fn with_mu_s(mut self, mu_s: f64) -> Result<Self> {
         self.mu_s = Key::MuS.check(mu_s)?;
         Ok(self)
+    }
+
+    /// Put the block on a belt moving at the dimensionless speed vb (0: no belt). A circuit
+    /// has no belt.
+    ///
+    /// # Errors
+    /// [`SpecError::NoBelt`] for a circuit; when vb is not finite or |vb| > 1e6.
+    pub fn with_vb(mut self, vb: f64) -> Result<Self> {
+        if matches!(self.system, Some(System::Circuit(_))) {
+            return Err(SpecError::NoBelt { key: Key::Vb }.into());
+        }
+        self.vb = check_vb(vb)?;
+        Ok(self)
+    }
+
+    /// The belt speed vb (0: no belt).
+    pub fn vb(&self) -> f64 {
+        self.vb
+    }
+
+    /// Whether the experiment is self-excited: a belt moves and no drive is given (or its
+    /// amplitude is 0); its period is then the motion's own, found by the steady-state search
+    /// ([`crate::steady::self_excited`]).
+    pub fn is_self_excited(&self) -> bool {
+        self.vb != 0.0 && self.beta.unwrap_or(0.0) == 0.0
     }
 
     /// Set ζ of a dimensionless experiment.
@@ -538,37 +573,43 @@ impl Experiment {
     /// range.
     pub fn params_with(&self, values: &[(Parameter, f64)]) -> Result<Params> {
         let given = |p: Parameter| values.iter().rev().find(|(q, _)| *q == p).map(|v| v.1);
-        let w = given(Parameter::W)
-            .or(self.w)
-            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::W }))?;
+        let vb = given(Parameter::Vb).unwrap_or(self.vb);
+        // A belt without a drive: β = 0, and w (which then sets no period of the motion, only
+        // the unit of time that runs count in) 1.
+        let undriven = vb != 0.0 && self.beta.is_none() && given(Parameter::Beta).is_none();
         let beta = given(Parameter::Beta)
             .or(self.beta)
+            .or(undriven.then_some(0.0))
             .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::Beta }))?;
+        let w = given(Parameter::W)
+            .or(self.w)
+            .or((vb != 0.0 && beta == 0.0).then_some(1.0))
+            .ok_or(Error::Spec(SpecError::MissingDrive { key: Key::W }))?;
         let zeta = given(Parameter::Zeta).unwrap_or(self.zeta);
         let mu_s = given(Parameter::MuS).unwrap_or(self.mu_s);
-        Params::new(zeta, w, beta)?
+        let mut params = Params::new(zeta, w, beta)?
             .with_phi(self.phi)?
-            .with_mu_s(mu_s)
+            .with_mu_s(mu_s)?;
+        if vb != 0.0 {
+            params = params.with_vb(vb)?;
+        }
+        Ok(params)
     }
 
-    /// The same experiment with some of ζ, w, β, μs changed (ζ too, even for a physical
+    /// The same experiment with one of its parameters changed (ζ too, even for a physical
     /// system: the parameters are dimensionless).
     ///
     /// # Errors
-    /// A value out of range.
+    /// A value out of range; a belt with a circuit.
     pub fn with_parameter(mut self, parameter: Parameter, value: f64) -> Result<Self> {
-        let key = match parameter {
-            Parameter::Zeta => Key::Zeta,
-            Parameter::W => Key::W,
-            Parameter::Beta => Key::Beta,
-            Parameter::MuS => Key::MuS,
-        };
+        let key = parameter.key();
         let value = key.check(value)?;
         match parameter {
             Parameter::Zeta => self.zeta = value,
             Parameter::W => self.w = Some(value),
             Parameter::Beta => self.beta = Some(value),
             Parameter::MuS => self.mu_s = value,
+            Parameter::Vb => return self.with_vb(value),
         }
         Ok(self)
     }
@@ -767,7 +808,11 @@ impl std::fmt::Display for Experiment {
             self.mu_s,
             self.initial.y,
             self.initial.v
-        )
+        )?;
+        if self.vb != 0.0 {
+            write!(f, ", vb = {}", self.vb)?;
+        }
+        Ok(())
     }
 }
 
@@ -810,6 +855,7 @@ impl ExperimentFactory {
 
 impl SolverFactory for ExperimentFactory {
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        let params = params.validate()?;
         self.law()?
             .solver(params, initial, self.options, self.cancel.clone())
     }

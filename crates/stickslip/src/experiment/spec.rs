@@ -2,7 +2,7 @@
 //! keyword arguments), turned into an [`Experiment`] by [`ExperimentSpec::build`].
 
 use super::errors::SpecError;
-use super::key::Key;
+use super::key::{Key, KeyGroup};
 use super::{DiodeModel, Experiment, Origin, Preset};
 use crate::error::{Error, Result, Unsupported};
 use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System};
@@ -17,7 +17,8 @@ impl SpecError {
         match *self {
             SpecError::Missing { key, .. }
             | SpecError::MissingDrive { key }
-            | SpecError::NeedsPhysical { key } => Some(key),
+            | SpecError::NeedsPhysical { key }
+            | SpecError::NoBelt { key } => Some(key),
             SpecError::Twice { second, .. } => Some(second),
             SpecError::ZetaWithPhysical => Some(Key::Zeta),
             SpecError::CircuitAndMechanics { mechanical } => Some(mechanical),
@@ -72,6 +73,11 @@ impl SpecError {
                  a mechanical oscillator)",
                 name(key),
                 name(Key::Preset)
+            ),
+            SpecError::NoBelt { key } => format!(
+                "{} belongs to a block on a moving belt: a circuit has no belt (use the \
+                 mechanical twin or the dimensionless model)",
+                name(key)
             ),
         }
     }
@@ -389,6 +395,14 @@ impl ExperimentSpec {
         if model == DiodeModel::Shockley && !matches!(system, Some(System::Circuit(_))) {
             return Err(Error::Unsupported(Unsupported::ShockleyNeedsCircuit));
         }
+        if matches!(system, Some(System::Circuit(_))) {
+            let given = Key::ALL
+                .into_iter()
+                .find(|&k| k.group() == KeyGroup::Friction && has(k));
+            if let Some(key) = given {
+                return Err(SpecError::NoBelt { key }.into());
+            }
+        }
         if system.is_none() {
             if let Some(key) = Key::ALL
                 .into_iter()
@@ -472,6 +486,7 @@ impl ExperimentSpec {
             initial: crate::limits::check_state(y0, v0)?,
             origin,
             shockley: ShockleyOptions::default(),
+            vb: 0.0,
             cancel: Default::default(),
         };
         if let Some(w) = w {
@@ -479,6 +494,9 @@ impl ExperimentSpec {
         }
         if let Some(beta) = beta {
             experiment.beta = Some(checked(beta, Key::Beta)?);
+        }
+        if let Some(vb) = value(Key::Vb) {
+            experiment.vb = crate::friction::check_vb(image(vb, Key::Vb)?)?;
         }
         Ok(experiment)
     }

@@ -84,7 +84,7 @@ impl SweepRow {
 /// A sweep: the swept parameter, the direction asked for, and the steps.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepReport {
-    /// The swept parameter (`w`, `beta`, `zeta` or `mu_s`).
+    /// The swept parameter (`w`, `beta`, `zeta`, `mu_s` or `vb`).
     pub over: Parameter,
     /// `up`, `down` or `both`.
     #[serde(serialize_with = "direction")]
@@ -115,10 +115,10 @@ impl SweepReport {
         }
     }
 
-    /// Whether the CSV puts the swept value in a column of its own, first (a sweep of ζ or
-    /// μs, whose value is not among the other columns).
+    /// Whether the CSV puts the swept value in a column of its own, first (a sweep of ζ, μs
+    /// or the belt speed vb, whose value is not among the other columns).
     pub fn value_column(&self) -> bool {
-        matches!(self.over, Parameter::Zeta | Parameter::MuS)
+        matches!(self.over, Parameter::Zeta | Parameter::MuS | Parameter::Vb)
     }
 }
 
@@ -143,8 +143,8 @@ impl SweepRow {
         "f_Hz",
     ];
 
-    /// The columns of a sweep's CSV after the swept value's own column (which a sweep of ζ or
-    /// μs has first, [`SweepReport::value_column`]).
+    /// The columns of a sweep's CSV after the swept value's own column (which a sweep of ζ, μs
+    /// or vb has first, [`SweepReport::value_column`]).
     pub const COLUMNS: [&'static str; 9] = [
         "w",
         "beta",
@@ -160,7 +160,7 @@ impl SweepRow {
 
 impl Table for SweepReport {
     /// `w,beta,direction,gain,gain1,A1,A3,class,stops_per_period` ([`SweepRow::COLUMNS`]),
-    /// after `zeta` or `mu_s` for a sweep of that parameter.
+    /// after `zeta`, `mu_s` or `vb` for a sweep of that parameter.
     fn columns(&self) -> Vec<String> {
         let mut columns = Vec::new();
         if self.value_column() {

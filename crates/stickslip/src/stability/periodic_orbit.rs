@@ -254,18 +254,19 @@ fn find_orbit(
     // Iterates on the jump of the map: y' = 0 (to `within`) with the net force in the band
     // between kinetic and static friction and y' along it (see the module documentation).
     let on_jump = |x: State, image: &StrobeImage, within: f64| {
-        let net_force = params.beta * params.phi.cos() - x.y;
+        let net_force = params.beta * params.phi.cos() - x.y - params.belt_force();
+        let slip = x.v - params.vb;
         !image.stuck_at_start
-            && x.v * net_force >= 0.0
+            && slip * net_force >= 0.0
             && net_force.abs() > 1.0
             && net_force.abs() <= params.mu_s
-            && x.v.abs() <= within
+            && slip.abs() <= within
     };
     let jump = |x: State| {
         Error::from(StabilityError::OnDiscontinuity {
             y: x.y,
             v: x.v,
-            net_force: params.beta * params.phi.cos() - x.y,
+            net_force: params.beta * params.phi.cos() - x.y - params.belt_force(),
         })
     };
     let done = |norm: f64, x: State, image: &StrobeImage| {

@@ -301,6 +301,14 @@ impl ShockleyDynamics {
                               threshold): take w, beta or zeta",
                 })
             }
+            other => {
+                return Err(Error::InvalidParameter {
+                    name: other.label(),
+                    value: other.get(params),
+                    allowed: "is no parameter of the Shockley law (a circuit has no belt nor \
+                              friction law): take w, beta or zeta",
+                })
+            }
         };
         let image = self.strobe_image(params, state, periods, Columns::Parameters)?;
         let mut d = image.sensitivity.column(column);

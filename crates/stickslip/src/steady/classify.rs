@@ -49,17 +49,27 @@ pub enum MotionClass {
     /// No period found, and the largest Lyapunov exponent is positive beyond its error
     /// (nearby motions separate exponentially): chaos.
     Chaotic,
+    /// A self-excited cycle on a moving belt (no drive) with stops: the block sticks to the
+    /// belt, is carried, slips and sticks again ([`super::self_excited`]).
+    StickSlipCycle,
+    /// A self-excited cycle on a moving belt that never sticks.
+    PureSlipCycle,
+    /// Steady sliding on a moving belt: the equilibrium y' = 0, y = sgn(vb)·μ(|vb|).
+    SteadySliding,
 }
 
 impl MotionClass {
     /// All classes, in the order used for legends and colours. The index of a class here is
     /// its code in the Python package's `motion` arrays, so a new class is always added last.
-    pub const ALL: [MotionClass; 5] = [
+    pub const ALL: [MotionClass; 8] = [
         MotionClass::Sliding,
         MotionClass::PeriodicStick,
         MotionClass::Undecided,
         MotionClass::Static,
         MotionClass::Chaotic,
+        MotionClass::StickSlipCycle,
+        MotionClass::PureSlipCycle,
+        MotionClass::SteadySliding,
     ];
 
     /// Labels retired, with the class each now reads as: `nonperiodic-stick` (now
@@ -73,7 +83,7 @@ impl MotionClass {
     pub const NonperiodicStick: MotionClass = MotionClass::Undecided;
 
     /// The label used in CSV and JSON: `sliding`, `periodic-stick`, `undecided`, `static`,
-    /// `chaotic`.
+    /// `chaotic`, `stick-slip-cycle`, `pure-slip-cycle`, `steady-sliding`.
     pub fn label(self) -> &'static str {
         match self {
             MotionClass::Sliding => "sliding",
@@ -81,8 +91,21 @@ impl MotionClass {
             MotionClass::Undecided => "undecided",
             MotionClass::Static => "static",
             MotionClass::Chaotic => "chaotic",
+            MotionClass::StickSlipCycle => "stick-slip-cycle",
+            MotionClass::PureSlipCycle => "pure-slip-cycle",
+            MotionClass::SteadySliding => "steady-sliding",
         }
     }
+
+    /// The classes of the paper's driven oscillator (and chaos): those a map of a driven
+    /// motion can show, in [`MotionClass::ALL`]'s order.
+    pub const DRIVEN: [MotionClass; 5] = [
+        MotionClass::Sliding,
+        MotionClass::PeriodicStick,
+        MotionClass::Undecided,
+        MotionClass::Static,
+        MotionClass::Chaotic,
+    ];
 
     /// The class with this label (or a retired label, [`MotionClass::RETIRED`]).
     pub fn from_label(label: &str) -> Option<Self> {
@@ -219,7 +242,10 @@ mod tests {
                 "periodic-stick",
                 "undecided",
                 "static",
-                "chaotic"
+                "chaotic",
+                "stick-slip-cycle",
+                "pure-slip-cycle",
+                "steady-sliding"
             ]
         );
     }

@@ -114,6 +114,7 @@
 //! makes this 10⁻¹⁰·scale, with J bounded from the events of the cycle by (1 + μs)/w² per event.
 
 use super::classify::{classify, MotionClass};
+use super::extremes::velocity_zeros;
 use super::options::SteadyOptions;
 use super::spectrum::Spectrum;
 use super::state::SteadyState;
@@ -131,6 +132,12 @@ use crate::stability::{
     StrobeImage,
 };
 use std::collections::VecDeque;
+
+/// Whether the motion is self-excited: a belt moves and nothing drives the block (see
+/// [`super::self_excited`], which finds its own period).
+pub(crate) fn is_self_excited(params: &Params) -> bool {
+    params.vb != 0.0 && params.beta == 0.0
+}
 
 /// Largest |component| difference of two states.
 fn distance(a: State, b: State) -> f64 {
@@ -545,7 +552,7 @@ struct OrbitEvent {
 impl OrbitEvent {
     fn new(params: &Params, e: &Event) -> Self {
         let drive = params.drive(e.tau);
-        let force = drive - e.y;
+        let force = drive - e.y - params.belt_force();
         let margin = match e.kind {
             EventKind::Turn => force.abs() - params.mu_s,
             EventKind::Stick => params.mu_s - force.abs(),
@@ -819,6 +826,9 @@ pub fn steady_state<S: Solver + ?Sized>(
 ) -> Result<SteadyState> {
     let options = options.validate()?;
     let params = *solver.params();
+    if is_self_excited(&params) {
+        return super::self_excited::self_excited_state(solver, &options);
+    }
     check_horizon(&params, &options, solver.time())?;
     let mut holder = Plain(solver);
     let settled = run_to_cycle(&mut holder, &params, &options, false)?;
@@ -855,6 +865,9 @@ pub(crate) fn settle_from<F: SolverFactory + ?Sized>(
     initial: State,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
+    if is_self_excited(params) {
+        return super::self_excited::settle_self_excited(factory, params, initial, options);
+    }
     check_horizon(params, options, 0.0)?;
     let mut holder = FromFactory {
         factory,
@@ -971,9 +984,19 @@ fn record<S: Solver + ?Sized>(
         });
         next += 1;
     }
+    // On a belt y also turns inside slides (where y' = 0, which is no event): those extremes
+    // are found in the dense output of each stretch (`super::extremes`).
+    let belt = params.vb != 0.0;
+    let spacing = 0.2 * params.w.recip().min(1.0);
+    let mut inner = (f64::INFINITY, f64::NEG_INFINITY);
     let mut run_to = |solver: &mut S, t_end: f64, events: &mut Vec<Event>| -> Result<()> {
         run_steps(solver, t_end, |solver, event| {
             events.extend(event.copied());
+            if belt {
+                velocity_zeros(solver, spacing, |s, _| {
+                    inner = (inner.0.min(s.y), inner.1.max(s.y));
+                });
+            }
             let to = solver.interval().1;
             while next < times.len() && times[next] <= to {
                 trace.push(solver.dense(times[next]));
@@ -1013,6 +1036,10 @@ fn record<S: Solver + ?Sized>(
         y_min = y_min.min(y);
         y_max = y_max.max(y);
     }
+    if belt {
+        y_min = y_min.min(inner.0);
+        y_max = y_max.max(inner.1);
+    }
     let amplitude = 0.5 * (y_max - y_min);
     let gain = if params.beta > 0.0 {
         amplitude / params.beta
@@ -1022,7 +1049,8 @@ fn record<S: Solver + ?Sized>(
         f64::INFINITY
     };
 
-    let symmetric = found.is_some() && {
+    // (A belt breaks the symmetry y → −y: it maps vb to −vb.)
+    let symmetric = found.is_some() && !belt && {
         let limit = 1e3 * options.tolerance * scale;
         (0..recorded).any(|shift| {
             (0..recorded).all(|j| {
@@ -1066,6 +1094,7 @@ fn record<S: Solver + ?Sized>(
         spectrum,
         trace,
         lyapunov: None,
+        self_excited: None,
     })
 }
 

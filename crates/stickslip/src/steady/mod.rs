@@ -20,8 +20,10 @@
 mod classify;
 mod cycle;
 mod exponent;
+mod extremes;
 pub mod options;
 mod report;
+pub mod self_excited;
 mod spectrum;
 mod state;
 
@@ -35,6 +37,7 @@ pub use exponent::{
 };
 pub use options::SteadyOptions;
 pub use report::SteadyReport;
+pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
 pub use spectrum::{Harmonic, Spectrum};
 pub use state::SteadyState;
 

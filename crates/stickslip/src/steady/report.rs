@@ -70,6 +70,33 @@ pub struct SteadyReport {
     /// ([`crate::stability::NonperiodicVerdict`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdict: Option<&'static str>,
+    /// Largest y over the recorded cycle (periods).
+    pub y_max: f64,
+    /// Smallest y over the recorded cycle (periods).
+    pub y_min: f64,
+    /// Belt speed vb (a belt only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vb: Option<f64>,
+    /// The period of a self-excited cycle in τ (a belt without a drive; null for steady
+    /// sliding).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle_period_tau: Option<Option<f64>>,
+    /// The fraction of the self-excited cycle stuck to the belt.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stick_fraction: Option<f64>,
+    /// The section a self-excited cycle was found at: `stick-onset`, `reversal` or
+    /// `turning-point` (null for steady sliding).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section: Option<Option<&'static str>>,
+    /// The position y_e = sgn(vb)·μ(|vb|) of steady sliding (a belt without a drive).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sliding_y: Option<f64>,
+    /// The damping 2ζ + μ'(|vb|) of small oscillations about steady sliding.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sliding_damping: Option<f64>,
+    /// Whether steady sliding is `stable`, `unstable` or `neutral`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sliding_stability: Option<&'static str>,
 }
 
 impl From<&SteadyState> for SteadyReport {
@@ -77,6 +104,7 @@ impl From<&SteadyState> for SteadyReport {
         let spectrum = steady.spectrum.as_ref();
         let p = &steady.params;
         let lyapunov = steady.lyapunov.as_ref();
+        let cycle = steady.self_excited.as_ref();
         let of = |f: fn(&super::Harmonic) -> f64| -> Vec<f64> {
             spectrum
                 .map(|s| s.harmonics.iter().map(f).collect())
@@ -111,6 +139,15 @@ impl From<&SteadyState> for SteadyReport {
             lambda1_periods: lyapunov.map(|l| l.exponents.periods),
             lambda1_converged: lyapunov.map(|l| l.exponents.converged),
             verdict: lyapunov.map(|l| l.verdict.label()),
+            y_max: steady.y_max,
+            y_min: steady.y_min,
+            vb: (p.vb != 0.0).then_some(p.vb),
+            cycle_period_tau: cycle.map(|c| c.period),
+            stick_fraction: cycle.map(|c| c.stick_fraction),
+            section: cycle.map(|c| c.section.map(|s| s.label())),
+            sliding_y: cycle.map(|c| c.equilibrium),
+            sliding_damping: cycle.map(|c| c.sliding_damping),
+            sliding_stability: cycle.map(|c| c.sliding_stability.label()),
         }
     }
 }

@@ -2,6 +2,7 @@
 //! extremes, record of events and strobes, and spectrum.
 
 use super::classify::MotionClass;
+use super::self_excited::SelfExcited;
 use super::spectrum::Spectrum;
 use crate::params::{Params, State};
 use crate::solver::{Event, Sample};
@@ -57,6 +58,11 @@ pub struct SteadyState {
     /// with a solver other than the exact one, without the option, or when the measurement
     /// met a tangential release (where the flow has no derivative).
     pub lyapunov: Option<NonperiodicClassification>,
+    /// What a self-excited motion (on a moving belt without a drive) settled on: its own
+    /// period, stick fraction and the stability of steady sliding
+    /// ([`super::self_excited`]); `None` for a driven motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_excited: Option<SelfExcited>,
 }
 
 impl SteadyState {

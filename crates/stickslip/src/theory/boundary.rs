@@ -66,6 +66,7 @@ pub fn stick_slip_boundary(zeta: f64, w: f64, mu_s: f64) -> Result<StickSlipBoun
             beta,
             phi: 0.0,
             mu_s,
+            vb: 0.0,
         };
         PeriodicSolution::from_matching(&params, &matching)
     };

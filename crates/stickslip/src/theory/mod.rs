@@ -10,6 +10,9 @@
 //! - [`curves`]: either theory's gain, harmonics or boundary along one parameter, cut where
 //!   they do not exist (the curves drawn over sweeps and maps).
 //! - [`report`]: both theories side by side at one point ([`TheoryReport`]).
+//! - [`belt`]: the block on a moving belt without a drive: the undamped Coulomb belt's
+//!   stick-slip cycle in closed form ([`CoulombBeltCycle`]), and the stability of steady
+//!   sliding.
 //!
 //! ```
 //! use stickslip::theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};
@@ -26,6 +29,7 @@
 //! assert!(paper_boundary(params.zeta, params.w).unwrap() < 2.0);
 //! ```
 
+pub mod belt;
 pub mod boundary;
 pub mod curves;
 pub mod fourier;
@@ -34,6 +38,7 @@ pub mod paper;
 pub mod periodic;
 pub mod report;
 
+pub use belt::CoulombBeltCycle;
 pub use boundary::{stick_slip_boundary, StickSlipBoundary};
 pub use fourier::Harmonic;
 pub use paper::{paper_boundary, PaperHarmonic, PaperSeries, UndampedSeries};

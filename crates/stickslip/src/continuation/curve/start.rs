@@ -237,6 +237,8 @@ pub fn find_start(
             allowed: "must be another parameter than vary",
         });
     }
+    super::system::column(over)?;
+    super::system::column(vary)?;
     let options = options.validate()?;
     let branch = continue_orbit(params, vary, orbit, vary_to, &options, monitor)?;
     let from = vary.get(params);

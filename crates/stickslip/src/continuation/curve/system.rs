@@ -65,13 +65,22 @@ pub(crate) fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> 
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
-/// The column of [`strobe_map_parameter_derivatives`] for `parameter`.
-fn column(parameter: Parameter) -> usize {
+/// The column of [`strobe_map_parameter_derivatives`] for `parameter` (one of the paper's
+/// four: a curve in the belt's speed or a friction law's parameters is refused).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming a parameter of the belt or of a friction law.
+pub(crate) fn column(parameter: Parameter) -> Result<usize> {
     match parameter {
-        Parameter::Zeta => 0,
-        Parameter::Beta => 1,
-        Parameter::W => 2,
-        Parameter::MuS => 4,
+        Parameter::Zeta => Ok(0),
+        Parameter::Beta => Ok(1),
+        Parameter::W => Ok(2),
+        Parameter::MuS => Ok(4),
+        other => Err(Error::InvalidParameter {
+            name: other.label(),
+            value: f64::NAN,
+            allowed: "is no parameter a curve follows yet: take w, beta, zeta or mu_s",
+        }),
     }
 }
 
@@ -496,7 +505,7 @@ impl System {
             Err(e) => return Err(e),
         };
         let m = at.image.jacobian.0;
-        let (a, b) = (column(self.over), column(self.vary));
+        let (a, b) = (column(self.over)?, column(self.vary)?);
         let mut rows = [
             [m[0][0] - 1.0, m[0][1], dp[0][a], dp[0][b]],
             [m[1][0], m[1][1] - 1.0, dp[1][a], dp[1][b]],

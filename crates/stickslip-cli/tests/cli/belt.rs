@@ -1,0 +1,209 @@
+//! A block on a moving belt at the command line: the self-excited steady state of the
+//! undamped Coulomb belt against its closed form, the mechanical twin's belt speed in m/s,
+//! a sweep of the belt speed up and down (hysteresis), and bad belt input refused in one
+//! line.
+
+use crate::common::*;
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (_dir, out) = run(args);
+    assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).unwrap()
+}
+
+/// ζ = 0, μs = 1.5, vb = 0.5: a circle of radius R = √((μs − 1)² + vb²) about y = 1 and a
+/// stop of 2(μs − 1)/vb (`stickslip::theory::belt`).
+#[test]
+fn steady_finds_the_undamped_coulomb_belts_cycle() {
+    let v = json(&[
+        "steady", "--zeta", "0", "--mu-s", "1.5", "--vb", "0.5", "--json",
+    ]);
+    let (mu_s, vb) = (1.5f64, 0.5f64);
+    let r = ((mu_s - 1.0).powi(2) + vb * vb).sqrt();
+    let period = std::f64::consts::PI + 2.0 * vb.atan2(mu_s - 1.0) + 2.0 * (mu_s - 1.0) / vb;
+    let close = |key: &str, want: f64| {
+        let got = v[key].as_f64().unwrap_or_else(|| panic!("{key}: {v}"));
+        assert!((got - want).abs() < 1e-12, "{key}: {got} against {want}");
+    };
+    close("y_max", 1.0 + r);
+    close("y_min", 1.0 - r);
+    close("cycle_period_tau", period);
+    close("stick_fraction", 2.0 * (mu_s - 1.0) / (vb * period));
+    assert_eq!(v["class"], "stick-slip-cycle");
+    assert_eq!(v["sliding_stability"], "neutral");
+}
+
+/// The belt speed in m/s is vb·F0/(k)·ω0: the same motion as the dimensionless model's, its
+/// period also in seconds.
+#[test]
+fn the_mechanical_belt_speed_is_the_dimensionless_one_in_metres_per_second() {
+    // m = 0.1 kg, k = 1000 N/m, F0 = 2 N: ω0 = 100 rad/s, a unit of y' is 0.2 m/s.
+    let mech = [
+        "steady",
+        "--mass",
+        "0.1",
+        "--stiffness",
+        "1000",
+        "--damping",
+        "0.5",
+        "--friction",
+        "2",
+        "--mu-s",
+        "1.4",
+        "--belt-speed",
+        "0.02",
+    ];
+    let a = json(&[&mech[..], &["--json"]].concat());
+    let b = json(&[
+        "steady", "--zeta", "0.025", "--mu-s", "1.4", "--vb", "0.1", "--json",
+    ]);
+    for key in ["y_max", "y_min", "cycle_period_tau", "stick_fraction"] {
+        let (x, y) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+        assert!((x - y).abs() < 1e-12 * x.abs().max(1.0), "{key}: {x} {y}");
+    }
+    let (_dir, out) = run(&mech);
+    let text = stdout(&out);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("cycle period"))
+        .unwrap();
+    let seconds: f64 = line
+        .split(", ")
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(" s")
+        .parse()
+        .unwrap();
+    let tau = a["cycle_period_tau"].as_f64().unwrap();
+    assert!((seconds - tau / 100.0).abs() < 1e-6 * seconds, "{line}");
+}
+
+#[test]
+fn bad_belt_input_is_one_line() {
+    assert_usage_errors(
+        &["steady"],
+        &[
+            (
+                &[
+                    "--preset", "paper", "--w", "0.5", "--beta", "1", "--vb", "0.3",
+                ],
+                "--vb",
+            ),
+            (&["--zeta", "0.1", "--vb", "2e6"], "--vb"),
+            // Coulomb's is the one law solved: no other is offered.
+            (
+                &["--zeta", "0.1", "--vb", "0.2", "--friction-law", "stribeck"],
+                "--friction-law",
+            ),
+        ],
+    );
+    assert_usage_errors(
+        &["simulate"],
+        &[(
+            &[
+                "--preset", "paper", "--w", "0.5", "--beta", "1", "--vb", "0.3",
+            ],
+            "--vb",
+        )],
+    );
+}
+
+/// A belt's trajectory: while stuck the block moves with the belt, y' = vb.
+#[test]
+fn simulate_on_a_belt_sticks_at_the_belts_speed() {
+    let (_dir, out) = run(&[
+        "simulate",
+        "--zeta",
+        "0.05",
+        "--mu-s",
+        "1.5",
+        "--vb",
+        "0.5",
+        "--periods",
+        "3",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let mut stuck = 0;
+    for line in text.lines().skip(1) {
+        let cols: Vec<&str> = line.split(',').collect();
+        if cols[4] == "stick" {
+            stuck += 1;
+            assert_eq!(cols[2].parse::<f64>().unwrap(), 0.5, "{line}");
+        }
+    }
+    assert!(stuck > 10, "{text}");
+}
+
+/// The damped Coulomb belt without a drive (ζ = 0.05, μs = 1.5): from rest at a slow belt the
+/// block settles on a stick-slip cycle, while steady sliding (y = 1, y' = 0) is stable at
+/// every belt speed. Swept up from rest the cycle holds until it ceases to exist; swept down
+/// from steady sliding, the block stays sliding where the cycle coexists with it.
+#[test]
+fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = ["--zeta", "0.05", "--mu-s", "1.5"];
+    let out = run_in(
+        dir.path(),
+        &[
+            &["sweep"][..],
+            &model,
+            &[
+                "--over",
+                "vb",
+                "--from",
+                "0.1",
+                "--to",
+                "1",
+                "--steps",
+                "4",
+                "--direction",
+                "both",
+                "--out",
+                "sweep.csv",
+            ],
+        ]
+        .concat(),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = std::fs::read_to_string(dir.path().join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "vb,w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
+    );
+    // (vb, direction, class) of each step, in the order run: up, then down.
+    let steps: Vec<(f64, String, String)> = lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            (
+                cells[0].parse().unwrap(),
+                cells[3].to_string(),
+                cells[8].to_string(),
+            )
+        })
+        .collect();
+    let vbs: Vec<f64> = steps.iter().map(|s| s.0).collect();
+    assert_eq!(vbs, [0.1, 0.4, 0.7, 1.0, 1.0, 0.7, 0.4, 0.1]);
+    // Each class as `steady` finds it from the state the step starts in: the first step from
+    // rest, as the sweep does; the last from steady sliding itself (y = 1, y' = 0), where the
+    // down leg arrives.
+    let class = |extra: &[&str]| {
+        let v = json(&[&["steady"][..], &model, extra, &["--json"]].concat());
+        v["class"].as_str().unwrap().to_string()
+    };
+    assert_eq!(steps[0].2, class(&["--vb", "0.1"]));
+    assert_eq!(steps[0].2, "stick-slip-cycle");
+    assert_eq!(
+        class(&["--vb", "0.1", "--y0", "1", "--v0", "0"]),
+        "steady-sliding"
+    );
+    assert_eq!(steps[7].2, "steady-sliding");
+    assert!(steps[..4].iter().all(|s| s.1 == "up"));
+    assert!(steps[4..].iter().all(|s| s.1 == "down"));
+    // The hysteresis: at the slowest belt the two legs end on different motions, and the
+    // fast belt slides steadily on both.
+    assert_ne!(steps[0].2, steps[7].2);
+    assert_eq!(steps[3].2, "steady-sliding");
+    assert_eq!(steps[4].2, "steady-sliding");
+}

@@ -1,0 +1,57 @@
+"""A block on a moving belt from Python: the dimensionless keyword vb, a sweep of the belt
+speed up and down (hysteresis) and a map over (vb, mu_s), each point against a steady state
+computed on its own, and the CLI's sweep CSV."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import stickslip
+from stickslip import Experiment
+
+from conftest import numbers, read_csv
+
+#: The damped Coulomb belt without a drive: a stick-slip cycle from rest at a slow belt,
+#: steady sliding (stable at every belt speed) at a fast one.
+BELT = dict(zeta=0.05, mu_s=1.5)
+
+
+def test_the_dimensionless_model_takes_a_belt_and_a_circuit_refuses_one():
+    s = stickslip.steady(Experiment(vb=0.5, zeta=0, mu_s=1.5))
+    # The undamped belt's closed form: a circle of radius √((μs − 1)² + vb²) about y = 1.
+    radius = np.hypot(0.5, 0.5)
+    assert s.motion_class == "stick-slip-cycle"
+    assert abs(s.to_dict()["y_max"] - (1 + radius)) < 1e-12
+    with pytest.raises(ValueError, match="vb belongs to a block on a moving belt"):
+        Experiment.paper(w=0.5, beta=1.0, vb=0.3)
+
+
+def test_a_map_over_belt_speed_and_mu_s_is_each_points_steady_state():
+    vb, mu_s = [0.1, 0.4, 0.7, 1.0], [1.2, 1.5, 2.0]
+    m = stickslip.phase_diagram(Experiment(zeta=0.05), vb=vb, mu_s=mu_s)
+    assert m.dims == ("vb", "mu_s") and m.motion_class.shape == (4, 3)
+    for i, v in enumerate(vb):
+        for j, mu in enumerate(mu_s):
+            alone = stickslip.steady(Experiment(zeta=0.05, vb=v, mu_s=mu))
+            assert m.motion_class[i, j] == alone.motion_class, (v, mu)
+    # Both kinds of motion are in the map: slow belts and high static friction stick.
+    assert m.motion_class[0, 2] == "stick-slip-cycle"
+    assert m.motion_class[3, 0] == "steady-sliding"
+
+
+def test_a_sweep_of_the_belt_speed_is_the_tools_and_shows_hysteresis(cli, tmp_path):
+    out = tmp_path / "sweep.csv"
+    cli.run("sweep", "--zeta", 0.05, "--mu-s", 1.5, "--over", "vb", "--from", 0.1, "--to", 1,
+            "--steps", 4, "--direction", "both", "--out", out)
+    table = read_csv(out)
+    s = stickslip.sweep(Experiment(**BELT), "vb", numbers(table["vb"])[:4], direction="both")
+    assert np.array_equal(s.value, numbers(table["vb"]))
+    assert list(s.motion_class) == table["class"]
+    assert list(s.direction) == table["direction"]
+    # The first step starts from rest, as a steady state of its own does; the down leg
+    # arrives at the slow belt sliding steadily, where the up leg found the cycle.
+    assert s.motion_class[0] == stickslip.steady(Experiment(vb=0.1, **BELT)).motion_class
+    assert s.motion_class[0] == "stick-slip-cycle" and s.motion_class[-1] == "steady-sliding"
+    sliding = stickslip.steady(Experiment(vb=0.1, y0=1.0, v0=0.0, **BELT))
+    assert sliding.motion_class == "steady-sliding"
