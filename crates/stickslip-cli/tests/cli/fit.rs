@@ -603,7 +603,7 @@ fn fit_refuses_swapped_channels_and_warns_of_what_it_cannot_separate() {
 
 /// `--compare` on records of `bench` (ngspice's traces of the 10 mH, 47 nF, 120 Ω circuit,
 /// drawn with noise from the seed `seed` and written in their scope formats into `dir`), R, L
-/// and C given as built: the comparison's JSON.
+/// and C given as built (U_t = 0.6 V and R_D = 1 Ω the PWL fit's start): the comparison's JSON.
 fn compare_bench(
     dir: &std::path::Path,
     bench: &stickslip_testkit::ngspice::Bench,
@@ -618,6 +618,10 @@ fn compare_bench(
         "47nF",
         "--resistance",
         "120",
+        "--ut",
+        "0.6",
+        "--rd",
+        "1",
         "--compare",
         "--free",
         "ut,rd",
@@ -717,7 +721,7 @@ fn fit_refuses_a_drive_that_is_not_a_sine() {
     let mut text = String::from("t_s,drive_V,uc_V\n");
     for k in 0..2000 {
         let t = k as f64 * 1e-6;
-        let phase = (t * 1000.0).fract();
+        let phase = (t * 1234.5).fract();
         let triangle = 4.0 * (phase - 0.5).abs() - 1.0;
         let square = if phase < 0.5 { 0.5 } else { -0.5 };
         text.push_str(&format!("{t:e},{triangle:.4},{square:.4}\n"));
