@@ -340,7 +340,11 @@ fn noisy_codes(values: &[f64], v_per_div: f64, rng: &mut Rng, noise: f64) -> Vec
     values
         .iter()
         .map(|&x| {
-            let dither = if noise > 0.0 { noise * rng.gauss() } else { 0.0 };
+            let dither = if noise > 0.0 {
+                noise * rng.gauss()
+            } else {
+                0.0
+            };
             let code = (x / q + dither).round();
             assert!(
                 (-128.0..=127.0).contains(&code),

@@ -88,11 +88,7 @@ fn bench_fit(c: &mut Criterion) {
         })
     });
     let bench = stickslip_testkit::ngspice::D1N914;
-    let records: Vec<Measurement> = bench
-        .measurements(1)
-        .into_iter()
-        .map(|(_, m)| m)
-        .collect();
+    let records: Vec<Measurement> = bench.measurements(1).into_iter().map(|(_, m)| m).collect();
     let from = Experiment::circuit(bench.circuit())
         .expect("a circuit")
         .with_shockley(stickslip::DiodePair::one_n4148())

@@ -119,7 +119,10 @@ fn normal(columns: &[Vec<f64>], r: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let support: Vec<(usize, usize)> = columns
         .iter()
         .map(|c| match c.iter().position(|v| *v != 0.0) {
-            Some(first) => (first, c.iter().rposition(|v| *v != 0.0).map_or(first, |l| l + 1)),
+            Some(first) => (
+                first,
+                c.iter().rposition(|v| *v != 0.0).map_or(first, |l| l + 1),
+            ),
             None => (0, 0),
         })
         .collect();
