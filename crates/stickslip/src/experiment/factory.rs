@@ -11,7 +11,7 @@ use crate::solver::Solver;
 use crate::stability::Dynamics;
 use crate::steady::SolverFactory;
 
-/// The solver factory of an [`Experiment`]: the exact solver, or the stiff solver of the
+/// The solver factory of an [`Experiment`](super::Experiment): the exact solver, or the stiff solver of the
 /// experiment's Shockley circuit (ζ of the parameters is then ζ_R).
 #[derive(Debug, Clone)]
 pub struct ExperimentFactory {
@@ -34,7 +34,7 @@ impl ExperimentFactory {
     /// The law its solvers follow ([`Law`]).
     ///
     /// # Errors
-    /// As [`Experiment::law`].
+    /// As [`Experiment::law`](super::Experiment::law).
     pub fn law(&self) -> Result<Law> {
         law_of(self.circuit.as_ref())
     }
@@ -42,7 +42,7 @@ impl ExperimentFactory {
     /// The stability tools of the model its solvers solve.
     ///
     /// # Errors
-    /// As [`Experiment::law`].
+    /// As [`Experiment::law`](super::Experiment::law).
     pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
         self.law()?.dynamics(self.options, self.cancel.clone())
     }
