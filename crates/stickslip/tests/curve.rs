@@ -6,7 +6,7 @@
 
 use stickslip::continuation::{
     continue_orbit, curve, settled_orbit, BorderKind, ContinuationOptions, Curve, CurveEnd,
-    CurveReport, CurveSpec, Follow, SpecialKind,
+    CurveReport, CurveSpec, Follow, SpecialKind, SpecialPoint,
 };
 use stickslip::stability::{find_periodic_orbit, NewtonOptions};
 use stickslip::theory::stick_slip_boundary;
@@ -56,6 +56,21 @@ fn located(
     vary_to: f64,
     kind: SpecialKind,
 ) -> Option<f64> {
+    located_where(base, over, at, vary, start_vary, vary_to, kind, &|_| true)
+}
+
+/// [`located`], the first special point of `kind` that also satisfies `which`.
+#[allow(clippy::too_many_arguments)]
+fn located_where(
+    base: &Experiment,
+    over: Parameter,
+    at: f64,
+    vary: Parameter,
+    start_vary: f64,
+    vary_to: f64,
+    kind: SpecialKind,
+    which: &dyn Fn(&SpecialPoint) -> bool,
+) -> Option<f64> {
     let e = with(&with(base, over, at), vary, start_vary);
     let (params, orbit) = settled_orbit(&e).unwrap();
     let branch = continue_orbit(
@@ -70,7 +85,7 @@ fn located(
     branch
         .special
         .iter()
-        .find(|s| s.kind == kind && s.located)
+        .find(|s| s.kind == kind && s.located && which(s))
         .map(|s| s.value)
 }
 
@@ -330,5 +345,107 @@ fn the_strobe_maps_parameter_derivatives_are_its_difference_quotients() {
                 );
             }
         }
+    }
+}
+
+/// The curve of `follow` at ζ = 0, μs = 3, followed in w over β from `from` to `to`, from the
+/// orbit the motion settles on at (w, β) from `start`, continued in w towards 0.7.
+fn mu_s_3_curve(
+    follow: Follow,
+    (w, beta): (f64, f64),
+    start: State,
+    (from, to): (f64, f64),
+) -> (Experiment, Curve) {
+    let e = experiment(0.0, 3.0, w, beta, start);
+    let spec = CurveSpec {
+        follow,
+        vary: Parameter::W,
+        vary_to: 0.7,
+        over: Parameter::Beta,
+        from,
+        to,
+    };
+    let c = traced(&e, &spec);
+    (e, c)
+}
+
+#[test]
+fn the_grazing_curve_at_mu_s_3_passes_through_the_located_grazings() {
+    // The period-1 orbit with one stop at w = 0.6 loses its stop as w rises: the sliding orbit
+    // (two turning points) grazes the static limit along this curve.
+    let (e, c) = mu_s_3_curve(
+        Follow::Grazing,
+        (0.6, 3.269),
+        State { y: 4.9, v: 0.0 },
+        (3.1, 4.4),
+    );
+    assert_eq!(c.border.map(|b| b.kind), Some(BorderKind::TurnAtLimit));
+    assert_eq!(c.begin, CurveEnd::Boundary { value: 3.1 });
+    assert_eq!(c.end, CurveEnd::Boundary { value: 4.4 });
+    for p in &c.points {
+        assert_eq!((p.turns, p.stops), (2, 0), "β = {}", p.over);
+    }
+    for i in spread(&c, 6) {
+        let p = &c.points[i];
+        // On its way from the stop orbit the branch passes through orbits with two stops and
+        // back before the stop disappears: the grazing into the sliding orbit is the curve's.
+        let grazing = located_where(
+            &e,
+            Parameter::Beta,
+            p.over,
+            Parameter::W,
+            0.6,
+            0.75,
+            SpecialKind::Grazing,
+            &|s| (s.after.turns, s.after.stops) == (2, 0),
+        )
+        .unwrap_or_else(|| panic!("no grazing located at β = {}", p.over));
+        assert!(
+            (grazing - p.vary).abs() < 1e-7,
+            "β = {}: curve w = {} against the branch's grazing at {grazing}",
+            p.over,
+            p.vary
+        );
+    }
+}
+
+#[test]
+fn the_fold_curve_at_mu_s_3_passes_through_the_located_folds() {
+    // A period-3 orbit with two stops in its three drive periods, settled on at w = 0.62,
+    // β = 4.3, folds as w rises.
+    let (e, c) = mu_s_3_curve(
+        Follow::Fold,
+        (0.62, 4.3),
+        State { y: 0.0, v: 0.0 },
+        (4.0, 4.8),
+    );
+    assert_eq!(c.period, 3);
+    assert_eq!(c.begin, CurveEnd::Boundary { value: 4.0 });
+    assert_eq!(c.end, CurveEnd::Boundary { value: 4.8 });
+    for p in &c.points {
+        let m = p.orbit.multipliers;
+        assert!(
+            m.iter().any(|m| (m.re - 1.0).abs() < 1e-6 && m.im == 0.0),
+            "{m:?}"
+        );
+    }
+    for i in spread(&c, 6) {
+        let p = &c.points[i];
+        let fold = located(
+            &e,
+            Parameter::Beta,
+            p.over,
+            Parameter::W,
+            0.62,
+            0.7,
+            SpecialKind::Fold,
+        )
+        .unwrap_or_else(|| panic!("no fold located at β = {}", p.over));
+        assert!(
+            (fold - p.vary).abs() < 1e-7,
+            "β = {}: curve w = {} against the branch's fold at {fold}",
+            p.over,
+            p.vary
+        );
     }
 }
