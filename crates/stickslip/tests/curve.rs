@@ -5,8 +5,8 @@
 //! derivatives against difference quotients.
 
 use stickslip::continuation::{
-    continue_orbit, curve, settled_orbit, BorderKind, ContinuationOptions, Curve, CurveEnd,
-    CurveReport, CurveSpec, Follow, SpecialKind, SpecialPoint,
+    continue_orbit, curve, settled_orbit, BorderKind, Codim2Kind, ContinuationOptions, Curve,
+    CurveEnd, CurveReport, CurveSpec, Follow, SpecialKind, SpecialPoint,
 };
 use stickslip::stability::{find_periodic_orbit, NewtonOptions};
 use stickslip::theory::stick_slip_boundary;
@@ -448,4 +448,69 @@ fn the_fold_curve_at_mu_s_3_passes_through_the_located_folds() {
             p.vary
         );
     }
+}
+
+#[test]
+fn the_period_doubling_grazing_point_is_reached_from_both_curves() {
+    // At ζ = 0, μs = 3 the grazing curve of the sliding orbit meets the period doubling of the
+    // orbit with one stop across it; the period-doubling curve of that orbit, followed over β
+    // from 2 to 6, ends there (it passes through the grazing onto the orbit's mirror image,
+    // whose curve in (β, w) is the same, and must not trace it back).
+    let (_, grazing) = mu_s_3_curve(
+        Follow::Grazing,
+        (0.6, 3.269),
+        State { y: 4.9, v: 0.0 },
+        (3.1, 4.6),
+    );
+    let kinds: Vec<_> = grazing.codim2.iter().map(|c| c.kind).collect();
+    assert_eq!(
+        kinds,
+        [Codim2Kind::PeriodDoublingGrazing, Codim2Kind::FoldGrazing],
+        "{:?}",
+        grazing.codim2
+    );
+    // Each where the curve found it (not another meeting far along the curves).
+    let pdg = &grazing.codim2[0];
+    let fg = &grazing.codim2[1];
+    assert!(pdg.located && fg.located);
+    assert!((pdg.over - 3.5667484).abs() < 1e-6 && (pdg.vary - 0.6815310).abs() < 1e-6);
+    assert!((fg.over - 4.4919836).abs() < 1e-6 && (fg.vary - 0.6354210).abs() < 1e-6);
+
+    let e = experiment(0.0, 3.0, 0.6, 3.269, State { y: 4.9, v: 0.0 });
+    let spec = CurveSpec {
+        follow: Follow::PeriodDoubling,
+        vary: Parameter::W,
+        vary_to: 0.7,
+        over: Parameter::Beta,
+        from: 2.0,
+        to: 6.0,
+    };
+    let pd = traced(&e, &spec);
+    for p in &pd.points {
+        assert!(
+            (p.orbit.multipliers[0].re + 1.0).abs() < 1e-6,
+            "β = {}",
+            p.over
+        );
+        assert_eq!((p.turns, p.stops), (1, 1), "β = {}", p.over);
+    }
+    let CurveEnd::Codim2 { kind, over, vary } = pd.end else {
+        panic!("ends {:?}", pd.end);
+    };
+    assert_eq!(kind, Codim2Kind::PeriodDoublingGrazing);
+    let last = pd.codim2.last().unwrap();
+    assert_eq!((last.kind, last.over, last.vary), (kind, over, vary));
+    assert!(
+        (over - pdg.over).abs() < 1e-7 && (vary - pdg.vary).abs() < 1e-7,
+        "from the period-doubling curve ({over}, {vary}), from the grazing curve ({}, {})",
+        pdg.over,
+        pdg.vary
+    );
+    // The curve's last point is next to it, not back near β = 2.32.
+    let end = pd.points.last().unwrap();
+    assert!(
+        (end.over - over).abs() < 1e-6,
+        "last point at β = {}",
+        end.over
+    );
 }
