@@ -119,6 +119,12 @@
 //!     assert!((p.vary - exact).abs() < 1e-8);
 //! }
 //! ```
+//!
+//! [`ContinuationOptions::derivative_step`]: crate::continuation::ContinuationOptions::derivative_step
+//! [`ContinuationOptions::max_step`]: crate::continuation::ContinuationOptions::max_step
+//! [`ContinuationOptions::max_parameter_step`]: crate::continuation::ContinuationOptions::max_parameter_step
+//! [`ContinuationOptions::max_angle`]: crate::continuation::ContinuationOptions::max_angle
+//! [`ContinuationOptions::locate_tolerance`]: crate::continuation::ContinuationOptions::locate_tolerance
 
 mod border;
 mod kinds;
