@@ -193,8 +193,14 @@ test('the curves over the map: stickslip curve, drawn in the map axes', async ()
     assert.ok(k >= 0, 'a point of the curve inside the plot');
     const [x, y] = g.pixels[k];
     const rgb = await page.$eval('#map-plot', (c, [x, y]) => {
+      // Read from a copy made for reading (the map's own context is not).
       const ratio = Number(c.dataset.ratio || 1);
-      return Array.from(c.getContext('2d').getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data.slice(0, 3));
+      const copy = document.createElement('canvas');
+      copy.width = c.width;
+      copy.height = c.height;
+      const g = copy.getContext('2d', { willReadFrequently: true });
+      g.drawImage(c, 0, 0);
+      return Array.from(g.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data.slice(0, 3));
     }, [x, y]);
     // #e69f00: orange.
     assert.ok(Math.abs(rgb[0] - 230) < 50 && Math.abs(rgb[1] - 159) < 50 && rgb[2] < 80, `pixel at (${x}, ${y}): ${rgb}`);
