@@ -23,7 +23,10 @@
 //! assert!((scales.drive_amplitude(2.14) - 1.498).abs() < 1e-12);
 //! ```
 
+mod choices;
+mod display;
 pub(crate) mod errors;
+mod factory;
 mod file;
 mod key;
 pub mod keys;
@@ -32,13 +35,18 @@ mod spec;
 mod stability;
 mod text;
 mod trajectory;
+mod units;
 
+pub use choices::{DiodeModel, Origin, Preset};
 pub use errors::{ConfigError, SpecError};
+use factory::law_of;
+pub use factory::ExperimentFactory;
 pub use key::{FitRole, KeyDefault, KeyForm, KeyGroup, KeyInfo, KeyRange, Section};
 pub use keys::Key;
 pub use law::Law;
 pub use spec::ExperimentSpec;
 pub use trajectory::Trajectory;
+pub use units::{Conversion, PhysicalUnits};
 
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
@@ -52,91 +60,6 @@ use crate::stability::Dynamics;
 use crate::steady::{steady_state_from, SolverFactory, SteadyOptions, SteadyState};
 use crate::theory::curves::{SweepTheory, TheoryCurve};
 use serde::{Deserialize, Serialize};
-use std::f64::consts::TAU;
-
-/// Which law the diode pair follows, and so which solver runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum DiodeModel {
-    /// Piecewise linear U_t sgn(i) + R_D i, or Coulomb friction: the exact solver.
-    #[default]
-    Pwl,
-    /// The Shockley law of two anti-parallel diodes: the stiff solver.
-    Shockley,
-}
-
-impl DiodeModel {
-    /// Both laws.
-    pub const ALL: [DiodeModel; 2] = [DiodeModel::Pwl, DiodeModel::Shockley];
-
-    /// What the law is and which solver runs it, in one line.
-    pub fn description(self) -> &'static str {
-        match self {
-            DiodeModel::Pwl => {
-                "Piecewise linear: U_t sgn(i) + R_D i (the paper's model; solved exactly)"
-            }
-            DiodeModel::Shockley => {
-                "Shockley law of two anti-parallel diodes: n V_T asinh(i/2I_s) + R_s i (stiff \
-                 solver)"
-            }
-        }
-    }
-
-    /// `pwl` or `shockley`.
-    pub fn label(self) -> &'static str {
-        match self {
-            DiodeModel::Pwl => "pwl",
-            DiodeModel::Shockley => "shockley",
-        }
-    }
-}
-
-/// Built-in physical descriptions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Preset {
-    /// The paper's experiment ([`Circuit::paper`]).
-    Paper,
-}
-
-impl Preset {
-    /// Every preset.
-    pub const ALL: [Preset; 1] = [Preset::Paper];
-
-    /// What the preset describes, in one line.
-    pub fn description(self) -> &'static str {
-        match self {
-            Preset::Paper => "The paper's experiment",
-        }
-    }
-
-    /// The preset's name: `paper`.
-    pub fn label(self) -> &'static str {
-        match self {
-            Preset::Paper => "paper",
-        }
-    }
-
-    /// The circuit it describes (with PWL diodes).
-    pub fn circuit(self) -> Circuit {
-        match self {
-            Preset::Paper => Circuit::paper(),
-        }
-    }
-}
-
-/// Where a physical description came from, for descriptions of the experiment.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Origin {
-    /// Dimensionless parameters only.
-    Parameters,
-    /// A built-in description.
-    Preset(Preset),
-    /// A file, by name.
-    File(String),
-    /// Parts given one by one.
-    Parts,
-}
 
 /// One experiment, validated. See the module documentation.
 ///
@@ -695,239 +618,11 @@ impl Experiment {
     }
 }
 
-/// `value` with an SI prefix and `unit`, to 6 significant digits (`11.5 mH`, `20 nF`,
-/// `0.7 V`).
-fn si(value: f64, unit: &str) -> String {
-    const PREFIXES: [(f64, &str); 9] = [
-        (1e9, "G"),
-        (1e6, "M"),
-        (1e3, "k"),
-        (1.0, ""),
-        (1e-3, "m"),
-        (1e-6, "µ"),
-        (1e-9, "n"),
-        (1e-12, "p"),
-        (1e-15, "f"),
-    ];
-    let magnitude = value.abs();
-    // No prefix from 0.1 to 1000: 0.7 V, not 700 mV.
-    let (scale, prefix) = if (0.1..1e3).contains(&magnitude) {
-        (1.0, "")
-    } else {
-        PREFIXES
-            .iter()
-            .copied()
-            .find(|&(scale, _)| magnitude >= scale)
-            .filter(|_| magnitude > 0.0 && magnitude < 1e12)
-            .unwrap_or((1.0, ""))
-    };
-    let scaled = value / scale;
-    // Six significant digits, without trailing zeros.
-    let digits = (5 - scaled.abs().log10().floor().max(0.0) as i32).max(0) as usize;
-    let text = format!("{scaled:.digits$}");
-    let text = if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
-    };
-    format!("{text} {prefix}{unit}")
-}
-
-impl std::fmt::Display for Experiment {
-    /// One line: which description this is, its natural frequency and drive in physical
-    /// units, and the dimensionless numbers.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let origin = match &self.origin {
-            Origin::Preset(p) => format!("preset {}", p.label()),
-            Origin::File(name) => name.clone(),
-            Origin::Parts | Origin::Parameters => "flags".into(),
-        };
-        match &self.system {
-            Some(System::Circuit(c)) => {
-                write!(
-                    f,
-                    "circuit ({origin}): L = {}, C = {}, R = {}, ",
-                    si(c.inductance, "H"),
-                    si(c.capacitance, "F"),
-                    si(c.resistance, "Ω")
-                )?;
-                match c.diode {
-                    Diode::Pwl(d) => write!(
-                        f,
-                        "U_t = {}, R_D = {}; ",
-                        si(d.turn_on, "V"),
-                        si(d.resistance, "Ω")
-                    )?,
-                    Diode::Shockley(d) => write!(
-                        f,
-                        "Shockley diodes I_s = {}, n = {}, R_s = {} at {} °C, U_t = {} \
-                         (reference); ",
-                        si(d.pair.saturation_current, "A"),
-                        d.pair.emission,
-                        si(d.pair.series_resistance, "Ω"),
-                        d.pair.temperature,
-                        si(d.reference_voltage, "V")
-                    )?,
-                }
-            }
-            Some(System::Mechanics(m)) => write!(
-                f,
-                "mechanics ({origin}): m = {}, k = {}, γ = {}, F0 = {}; ",
-                si(m.mass, "kg"),
-                si(m.stiffness, "N/m"),
-                si(m.damping, "N·s/m"),
-                si(m.friction, "N")
-            )?,
-            None => {}
-        }
-        if let Some(s) = self.scales() {
-            write!(f, "ω0 = {:.1} rad/s (f0 = {:.2} Hz); ", s.omega0, s.f0())?;
-            if let (Some(w), Some(beta)) = (self.w, self.beta) {
-                let unit = if matches!(self.system, Some(System::Mechanics(_))) {
-                    "N"
-                } else {
-                    "V"
-                };
-                write!(
-                    f,
-                    "drive {:.6} {unit} at {:.3} Hz; ",
-                    s.drive_amplitude(beta),
-                    s.drive_omega(w) / TAU
-                )?;
-            }
-        }
-        let value =
-            |x: Option<f64>| x.map_or_else(|| "(not set)".to_string(), |x| format!("{x:.6}"));
-        write!(
-            f,
-            "dimensionless: ζ = {:.6}, w = {}, β = {}, φ = {}, μs = {}, y0 = {}, v0 = {}",
-            self.zeta,
-            value(self.w),
-            value(self.beta),
-            self.phi,
-            self.mu_s,
-            self.initial.y,
-            self.initial.v
-        )?;
-        if self.vb != 0.0 {
-            write!(f, ", vb = {}", self.vb)?;
-        }
-        Ok(())
-    }
-}
-
-/// The solver factory of an [`Experiment`]: the exact solver, or the stiff solver of the
-/// experiment's Shockley circuit (ζ of the parameters is then ζ_R).
-#[derive(Debug, Clone)]
-pub struct ExperimentFactory {
-    circuit: Option<Circuit>,
-    options: ShockleyOptions,
-    cancel: Cancel,
-}
-
-/// The law of `circuit` (Shockley diodes), or the PWL law without one.
-fn law_of(circuit: Option<&Circuit>) -> Result<Law> {
-    match circuit.map(|c| (c, c.diode)) {
-        Some((c, Diode::Shockley(d))) => Ok(Law::Shockley(
-            d.pair.law(d.reference_voltage, c.impedance())?,
-        )),
-        _ => Ok(Law::Pwl),
-    }
-}
-
-impl ExperimentFactory {
-    /// The law its solvers follow ([`Law`]).
-    ///
-    /// # Errors
-    /// As [`Experiment::law`].
-    pub fn law(&self) -> Result<Law> {
-        law_of(self.circuit.as_ref())
-    }
-
-    /// The stability tools of the model its solvers solve.
-    ///
-    /// # Errors
-    /// As [`Experiment::law`].
-    pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
-        self.law()?.dynamics(self.options, self.cancel.clone())
-    }
-}
-
-impl SolverFactory for ExperimentFactory {
-    fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
-        let params = params.validate()?;
-        self.law()?
-            .solver(params, initial, self.options, self.cancel.clone())
-    }
-
-    fn cancel(&self) -> Cancel {
-        self.cancel.clone()
-    }
-
-    /// A smooth law's [`Dynamics`] (its solvers are not exact); `None` for the PWL law.
-    fn smooth_dynamics(&self) -> Option<Box<dyn Dynamics>> {
-        match self.law() {
-            Ok(Law::Pwl) | Err(_) => None,
-            Ok(_) => self.dynamics().ok(),
-        }
-    }
-}
-
-/// Conversion between the dimensionless samples of a run and physical units.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PhysicalUnits {
-    /// Whether the system is a circuit (volts, amperes) or a mechanical oscillator (metres,
-    /// newtons).
-    pub circuit: bool,
-    /// The scales.
-    pub scales: Scales,
-}
-
-impl PhysicalUnits {
-    /// Column names of [`PhysicalUnits::convert`]: `t_s, uc_V, i_A, u_V` for a circuit,
-    /// `t_s, r_m, rdot_m_s, F_N` for a mechanical oscillator.
-    pub fn columns(&self) -> [&'static str; 4] {
-        if self.circuit {
-            ["t_s", "uc_V", "i_A", "u_V"]
-        } else {
-            ["t_s", "r_m", "rdot_m_s", "F_N"]
-        }
-    }
-
-    /// Time (s), position (V or m), velocity (A or m/s) and drive (V or N) of a sample at τ
-    /// with position y, velocity y' and drive β cos(wτ + φ).
-    pub fn convert(&self, tau: f64, y: f64, v: f64, drive: f64) -> [f64; 4] {
-        let s = &self.scales;
-        [s.time(tau), y * s.position, v * s.velocity, drive * s.force]
-    }
-}
-
-/// What a physical description means in the dimensionless model.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Conversion {
-    /// Natural angular frequency ω0 (rad/s).
-    pub omega0: f64,
-    /// Natural frequency f0 = ω0/2π (Hz).
-    pub f0: f64,
-    /// The paper's α = 2ζω0 (1/s).
-    pub alpha: f64,
-    /// Damping ratio ζ.
-    pub zeta: f64,
-    /// Quality factor Q = 1/(2ζ).
-    #[serde(rename = "Q")]
-    pub q: f64,
-    /// Drive frequency w = Ω/ω0, when a drive was given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub w: Option<f64>,
-    /// Drive amplitude β, when a drive was given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub beta: Option<f64>,
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::steady::MotionClass;
+    use std::f64::consts::TAU;
 
     #[test]
     fn paper_shockley_uses_the_stiff_solver_with_its_own_zeta() {
@@ -1054,18 +749,6 @@ mod tests {
         let units = e.units().unwrap();
         assert_eq!(units.columns()[1], "r_m");
         assert_eq!(units.convert(2.0, 1.0, 0.0, 0.0)[0], 1.0);
-    }
-
-    #[test]
-    fn descriptions_use_si_prefixes() {
-        assert_eq!(si(11.5e-3, "H"), "11.5 mH");
-        assert_eq!(si(0.02e-6, "F"), "20 nF");
-        assert_eq!(si(68.0, "Ω"), "68 Ω");
-        assert_eq!(si(4.352e-9, "A"), "4.352 nA");
-        assert_eq!(si(0.0, "Ω"), "0 Ω");
-        assert_eq!(si(65938.0, "Hz"), "65.938 kHz");
-        let text = Experiment::paper().to_string();
-        assert!(text.starts_with("circuit (preset paper): L = 11.5 mH, C = 20 nF, R = 68 Ω, U_t = 0.7 V, R_D = 3 Ω; ω0 = 65938.0 rad/s"), "{text}");
     }
 
     #[test]
