@@ -1,7 +1,7 @@
 //! Settling by Newton on the stroboscopic map.
 //!
-//! When [`SteadyOptions::newton`] is on (the default; the exact solver or a smooth law's,
-//! with a factory and [`SteadyOptions::accelerate`]; see the end for smooth laws): from the
+//! When [`SteadyOptions::newton`](super::SteadyOptions::newton) is on (the default; the exact solver or a smooth law's,
+//! with a factory and [`SteadyOptions::accelerate`](super::SteadyOptions::accelerate); see the end for smooth laws): from the
 //! third strobe x_2 on, whenever the strobe
 //! step |x_k − x_{k−1}| is shorter than the one before (and at most a quarter of the step at the
 //! last attempt, at most three attempts of six steps each), Newton's method on the strobe map
@@ -58,7 +58,7 @@
 //! `periods_to_settle` of a motion that settles counts the strobe periods run and the periods
 //! of the Newton attempts (one per step, and the image at the guess where the trajectory did
 //! not compute it along its own period). The attempts do not
-//! shorten the trajectory: a motion that does not settle runs [`SteadyOptions::max_periods`]
+//! shorten the trajectory: a motion that does not settle runs [`SteadyOptions::max_periods`](super::SteadyOptions::max_periods)
 //! strobe periods and is recorded exactly as without Newton (its `periods_to_settle` is the
 //! cap); an attempt is made only while the cap leaves room for its longest run.
 //!
@@ -92,7 +92,7 @@ use crate::stability::periodic_orbit::{find_periodic_orbit_finished, Finish};
 use crate::stability::{Dynamics, NewtonOptions, PeriodicOrbit, Stability, StrobeImage};
 use std::collections::VecDeque;
 
-/// Newton's method on the stroboscopic map (see [`SteadyOptions::newton`] and the module
+/// Newton's method on the stroboscopic map (see [`SteadyOptions::newton`](super::SteadyOptions::newton) and the module
 /// documentation): the stable period-1 orbit it found, and whether the trajectory has been
 /// seen within its basin.
 pub(super) struct NewtonSettling {
