@@ -102,8 +102,6 @@ class _PaperKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _CircuitKeys(TypedDict, total=False):
     """The keys of Experiment.circuit beside its own."""
@@ -129,8 +127,6 @@ class _CircuitKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _ShockleyKeys(TypedDict, total=False):
     """The keys of Experiment.shockley beside its own."""
@@ -153,8 +149,6 @@ class _ShockleyKeys(TypedDict, total=False):
     i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _MechanicsKeys(TypedDict, total=False):
     """The keys of Experiment.mechanics beside its own."""
@@ -181,8 +175,6 @@ class _MechanicsKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _ExperimentKeys(TypedDict, total=False):
     """Every experiment key."""
@@ -215,8 +207,6 @@ class _ExperimentKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 # END keywords
 
@@ -234,7 +224,6 @@ class Experiment:
         mu_s: _Value = 1,
         y0: _Value = 0,
         v0: _Value = 0,
-        vb: _Value = 0,
     ) -> Experiment: ...
     @classmethod
     def paper(
