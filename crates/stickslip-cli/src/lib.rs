@@ -17,6 +17,10 @@ mod legend_check;
 mod measured;
 pub mod model;
 pub mod output;
+
+/// The columns of the CSV files of `stickslip reproduce` that no library table holds, for
+/// the tests that read the report.
+pub use commands::reproduce::columns as reproduce_columns;
 mod plot;
 
 /// Forced oscillator with dry (Coulomb) friction, and its twin: a series RLC circuit damped by

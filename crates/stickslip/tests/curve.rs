@@ -5,8 +5,8 @@
 //! derivatives against difference quotients.
 
 use stickslip::continuation::{
-    continue_orbit, curve, settled_orbit, BorderKind, ContinuationOptions, Curve, CurveEnd,
-    CurveReport, CurveSpec, Follow, SpecialKind,
+    continue_orbit, curve, settled_orbit, BorderKind, Codim2Kind, ContinuationOptions, Curve,
+    CurveEnd, CurveReport, CurveSpec, Follow, SpecialKind, SpecialPoint,
 };
 use stickslip::stability::{find_periodic_orbit, NewtonOptions};
 use stickslip::theory::stick_slip_boundary;
@@ -56,6 +56,21 @@ fn located(
     vary_to: f64,
     kind: SpecialKind,
 ) -> Option<f64> {
+    located_where(base, over, at, vary, start_vary, vary_to, kind, &|_| true)
+}
+
+/// [`located`], the first special point of `kind` that also satisfies `which`.
+#[allow(clippy::too_many_arguments)]
+fn located_where(
+    base: &Experiment,
+    over: Parameter,
+    at: f64,
+    vary: Parameter,
+    start_vary: f64,
+    vary_to: f64,
+    kind: SpecialKind,
+    which: &dyn Fn(&SpecialPoint) -> bool,
+) -> Option<f64> {
     let e = with(&with(base, over, at), vary, start_vary);
     let (params, orbit) = settled_orbit(&e).unwrap();
     let branch = continue_orbit(
@@ -70,7 +85,7 @@ fn located(
     branch
         .special
         .iter()
-        .find(|s| s.kind == kind && s.located)
+        .find(|s| s.kind == kind && s.located && which(s))
         .map(|s| s.value)
 }
 
@@ -331,4 +346,171 @@ fn the_strobe_maps_parameter_derivatives_are_its_difference_quotients() {
             }
         }
     }
+}
+
+/// The curve of `follow` at ζ = 0, μs = 3, followed in w over β from `from` to `to`, from the
+/// orbit the motion settles on at (w, β) from `start`, continued in w towards 0.7.
+fn mu_s_3_curve(
+    follow: Follow,
+    (w, beta): (f64, f64),
+    start: State,
+    (from, to): (f64, f64),
+) -> (Experiment, Curve) {
+    let e = experiment(0.0, 3.0, w, beta, start);
+    let spec = CurveSpec {
+        follow,
+        vary: Parameter::W,
+        vary_to: 0.7,
+        over: Parameter::Beta,
+        from,
+        to,
+    };
+    let c = traced(&e, &spec);
+    (e, c)
+}
+
+#[test]
+fn the_grazing_curve_at_mu_s_3_passes_through_the_located_grazings() {
+    // The period-1 orbit with one stop at w = 0.6 loses its stop as w rises: the sliding orbit
+    // (two turning points) grazes the static limit along this curve.
+    let (e, c) = mu_s_3_curve(
+        Follow::Grazing,
+        (0.6, 3.269),
+        State { y: 4.9, v: 0.0 },
+        (3.1, 4.4),
+    );
+    assert_eq!(c.border.map(|b| b.kind), Some(BorderKind::TurnAtLimit));
+    assert_eq!(c.begin, CurveEnd::Boundary { value: 3.1 });
+    assert_eq!(c.end, CurveEnd::Boundary { value: 4.4 });
+    for p in &c.points {
+        assert_eq!((p.turns, p.stops), (2, 0), "β = {}", p.over);
+    }
+    for i in spread(&c, 6) {
+        let p = &c.points[i];
+        // On its way from the stop orbit the branch passes through orbits with two stops and
+        // back before the stop disappears: the grazing into the sliding orbit is the curve's.
+        let grazing = located_where(
+            &e,
+            Parameter::Beta,
+            p.over,
+            Parameter::W,
+            0.6,
+            0.75,
+            SpecialKind::Grazing,
+            &|s| (s.after.turns, s.after.stops) == (2, 0),
+        )
+        .unwrap_or_else(|| panic!("no grazing located at β = {}", p.over));
+        assert!(
+            (grazing - p.vary).abs() < 1e-7,
+            "β = {}: curve w = {} against the branch's grazing at {grazing}",
+            p.over,
+            p.vary
+        );
+    }
+}
+
+#[test]
+fn the_fold_curve_at_mu_s_3_passes_through_the_located_folds() {
+    // A period-3 orbit with two stops in its three drive periods, settled on at w = 0.62,
+    // β = 4.3, folds as w rises.
+    let (e, c) = mu_s_3_curve(
+        Follow::Fold,
+        (0.62, 4.3),
+        State { y: 0.0, v: 0.0 },
+        (4.0, 4.8),
+    );
+    assert_eq!(c.period, 3);
+    assert_eq!(c.begin, CurveEnd::Boundary { value: 4.0 });
+    assert_eq!(c.end, CurveEnd::Boundary { value: 4.8 });
+    for p in &c.points {
+        let m = p.orbit.multipliers;
+        assert!(
+            m.iter().any(|m| (m.re - 1.0).abs() < 1e-6 && m.im == 0.0),
+            "{m:?}"
+        );
+    }
+    for i in spread(&c, 6) {
+        let p = &c.points[i];
+        let fold = located(
+            &e,
+            Parameter::Beta,
+            p.over,
+            Parameter::W,
+            0.62,
+            0.7,
+            SpecialKind::Fold,
+        )
+        .unwrap_or_else(|| panic!("no fold located at β = {}", p.over));
+        assert!(
+            (fold - p.vary).abs() < 1e-7,
+            "β = {}: curve w = {} against the branch's fold at {fold}",
+            p.over,
+            p.vary
+        );
+    }
+}
+
+#[test]
+fn the_period_doubling_grazing_point_is_reached_from_both_curves() {
+    // At ζ = 0, μs = 3 the grazing curve of the sliding orbit meets the period doubling of the
+    // orbit with one stop across it; the period-doubling curve of that orbit, followed over β
+    // from 2 to 6, ends there (it passes through the grazing onto the orbit's mirror image,
+    // whose curve in (β, w) is the same, and must not trace it back).
+    let (_, grazing) = mu_s_3_curve(
+        Follow::Grazing,
+        (0.6, 3.269),
+        State { y: 4.9, v: 0.0 },
+        (3.1, 4.6),
+    );
+    let kinds: Vec<_> = grazing.codim2.iter().map(|c| c.kind).collect();
+    assert_eq!(
+        kinds,
+        [Codim2Kind::PeriodDoublingGrazing, Codim2Kind::FoldGrazing],
+        "{:?}",
+        grazing.codim2
+    );
+    // Each where the curve found it (not another meeting far along the curves).
+    let pdg = &grazing.codim2[0];
+    let fg = &grazing.codim2[1];
+    assert!(pdg.located && fg.located);
+    assert!((pdg.over - 3.5667484).abs() < 1e-6 && (pdg.vary - 0.6815310).abs() < 1e-6);
+    assert!((fg.over - 4.4919836).abs() < 1e-6 && (fg.vary - 0.6354210).abs() < 1e-6);
+
+    let e = experiment(0.0, 3.0, 0.6, 3.269, State { y: 4.9, v: 0.0 });
+    let spec = CurveSpec {
+        follow: Follow::PeriodDoubling,
+        vary: Parameter::W,
+        vary_to: 0.7,
+        over: Parameter::Beta,
+        from: 2.0,
+        to: 6.0,
+    };
+    let pd = traced(&e, &spec);
+    for p in &pd.points {
+        assert!(
+            (p.orbit.multipliers[0].re + 1.0).abs() < 1e-6,
+            "β = {}",
+            p.over
+        );
+        assert_eq!((p.turns, p.stops), (1, 1), "β = {}", p.over);
+    }
+    let CurveEnd::Codim2 { kind, over, vary } = pd.end else {
+        panic!("ends {:?}", pd.end);
+    };
+    assert_eq!(kind, Codim2Kind::PeriodDoublingGrazing);
+    let last = pd.codim2.last().unwrap();
+    assert_eq!((last.kind, last.over, last.vary), (kind, over, vary));
+    assert!(
+        (over - pdg.over).abs() < 1e-7 && (vary - pdg.vary).abs() < 1e-7,
+        "from the period-doubling curve ({over}, {vary}), from the grazing curve ({}, {})",
+        pdg.over,
+        pdg.vary
+    );
+    // The curve's last point is next to it, not back near β = 2.32.
+    let end = pd.points.last().unwrap();
+    assert!(
+        (end.over - over).abs() < 1e-6,
+        "last point at β = {}",
+        end.over
+    );
 }

@@ -2,6 +2,114 @@
 
 use crate::common::*;
 use std::path::Path;
+use stickslip::experiment::{Experiment, Key};
+use stickslip::report::{
+    BasinsTable, BifurcationRow, BranchTable, MapRow, SweepRow, TrajectoryColumns,
+};
+use stickslip::Parameter;
+use stickslip_cli::reproduce_columns as columns;
+
+/// A CSV file of the report without quoted cells: its columns, and its rows, whose cells are
+/// read by column name ([`Csv::at`]).
+struct Csv {
+    columns: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Csv {
+    fn read(report: &Path, name: &str) -> Self {
+        let text =
+            std::fs::read_to_string(report.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut lines = text
+            .lines()
+            .map(|l| l.split(',').map(String::from).collect());
+        let columns: Vec<String> = lines.next().unwrap_or_else(|| panic!("{name} is empty"));
+        let rows: Vec<Vec<String>> = lines.collect();
+        assert!(
+            rows.iter().all(|r| r.len() == columns.len()),
+            "{name}: a row without a cell per column"
+        );
+        Self { columns, rows }
+    }
+
+    /// The index of the column `name`.
+    fn at(&self, name: &str) -> usize {
+        self.columns
+            .iter()
+            .position(|c| c == name)
+            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.columns))
+    }
+}
+
+/// The columns of every CSV file of the report: a file that holds a library result has the
+/// columns of the library's table (as `stickslip sweep`, `phase-diagram`, `simulate`,
+/// `bifurcation`, `basins` and `continue` write them), after the columns the figure adds;
+/// the report's own files the columns their figure writes once. Every CSV the page lists
+/// is one of them.
+fn every_csv_has_its_columns(report: &Path, html: &str) {
+    let names = |c: &[&str]| c.iter().map(|s| s.to_string()).collect::<Vec<String>>();
+    let then = |lead: &[&str], c: &[&str]| [names(lead), names(c)].concat();
+    let map = MapRow::columns(false);
+    let exponents = MapRow::columns(true);
+    let trace = then(
+        &[Key::W.name(), Key::Beta.name()],
+        &TrajectoryColumns {
+            units: Experiment::paper().units(),
+        }
+        .names(),
+    );
+    let expected: Vec<(&str, Vec<String>)> = vec![
+        ("fig1a.csv", names(columns::FRICTION_COLUMNS)),
+        ("fig1b.csv", names(&columns::DIODE_COLUMNS)),
+        ("table1.csv", names(&columns::TABLE1_COLUMNS)),
+        ("fig3_traces.csv", trace.clone()),
+        ("fig3_spectra.csv", names(&columns::SPECTRA_COLUMNS)),
+        ("fig3_xy.csv", names(&columns::XY_COLUMNS)),
+        ("fig4.csv", names(&SweepRow::COLUMNS)),
+        ("fig5.csv", then(&columns::FIG5_LEADING, &SweepRow::COLUMNS)),
+        ("fig6.csv", trace),
+        ("fig7a.csv", names(&map)),
+        ("fig7b.csv", names(&map)),
+        ("accuracy.csv", names(&columns::ACCURACY_COLUMNS)),
+        ("chaos-sweep.csv", names(&exponents)),
+        ("chaos-map.csv", names(&exponents)),
+        ("paper-exponents.csv", names(&exponents)),
+        (
+            "beyond-bifurcation.csv",
+            then(&[Parameter::W.label()], &BifurcationRow::COLUMNS),
+        ),
+        (
+            "beyond-bifurcation-special.csv",
+            names(&columns::SPECIAL_COLUMNS),
+        ),
+        ("beyond-basins.csv", names(&BasinsTable::COLUMNS)),
+        (
+            "beyond-branch.csv",
+            then(&[Parameter::Beta.label()], &BranchTable::COLUMNS),
+        ),
+    ];
+    for (csv, header) in &expected {
+        let text = std::fs::read_to_string(report.join(csv)).unwrap();
+        assert_eq!(
+            text.lines().next(),
+            Some(header.join(",").as_str()),
+            "{csv}"
+        );
+    }
+    for csv in html
+        .split("href=\"")
+        .skip(1)
+        .filter_map(|s| s.split('"').next())
+        .filter(|s| s.ends_with(".csv"))
+    {
+        assert!(
+            expected.iter().any(|(name, _)| *name == csv),
+            "{csv}: a CSV of the report whose columns this test does not know (write it \
+             through a library table, Report::table, or with columns written once beside its \
+             figure, and list it here)"
+        );
+    }
+}
 
 /// Decode a PNG fully and return its size.
 fn decode_png(path: &Path) -> (u32, u32) {
@@ -107,22 +215,7 @@ fn writes_every_figure_table_and_the_report() {
         "fig4's axis"
     );
     assert!(html.contains("(y_max − y_min)/(2β)"), "Table 1's G");
-    for (csv, header) in [
-        ("fig4.csv", "w,beta,direction,gain1,gain,class"),
-        ("fig7a.csv", "w,beta,class,period,stops_per_period,gain"),
-        (
-            "chaos-map.csv",
-            "w,beta,class,period,stops_per_period,lambda1,lambda1_error",
-        ),
-        ("beyond-basins.csv", "y0,v0,attractor,class,period"),
-        (
-            "beyond-bifurcation.csv",
-            "w,y,v,direction,lambda1,class,period",
-        ),
-    ] {
-        let text = std::fs::read_to_string(report.join(csv)).unwrap();
-        assert_eq!(text.lines().next(), Some(header), "{csv}");
-    }
+    every_csv_has_its_columns(&report, &html);
     // Fig. 5's legend lists only the theories drawn, and its caption counts the values of β
     // of (b) that stick, recounted here from fig5.csv (the up sweep against β).
     let fig5 = std::fs::read_to_string(report.join("fig5.svg")).unwrap();
@@ -136,14 +229,18 @@ fn writes_every_figure_table_and_the_report() {
     } else {
         assert_eq!(exact_entries, 2, "fig5");
     }
-    let text = std::fs::read_to_string(report.join("fig5.csv")).unwrap();
-    let rows: Vec<Vec<&str>> = text
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .filter(|f: &Vec<&str>| f[0] == "beta" && f[3] == "up")
+    let fig5 = Csv::read(&report, "fig5.csv");
+    let (swept, direction, class) = (
+        fig5.at(columns::FIG5_LEADING[0]),
+        fig5.at("direction"),
+        fig5.at("class"),
+    );
+    let rows: Vec<&Vec<String>> = fig5
+        .rows
+        .iter()
+        .filter(|f| f[swept] == "beta" && f[direction] == "up")
         .collect();
-    let sticking = rows.iter().filter(|f| f[6] != "sliding").count();
+    let sticking = rows.iter().filter(|f| f[class] != "sliding").count();
     let said = if sticking == rows.len() {
         format!(
             "sticks at every one of the {} values of β shown",
@@ -275,17 +372,17 @@ fn above_the_boundary_the_sliding_orbit_exists(report: &Path, map: &serde_json::
         svg.contains("exact β_c: the sliding orbit exists above") && !svg.contains("sliding above"),
         "the chaos map's legend"
     );
-    let text = std::fs::read_to_string(report.join("chaos-map.csv")).unwrap();
+    let csv = Csv::read(report, "chaos-map.csv");
+    let (w, beta, class) = (csv.at("w"), csv.at("beta"), csv.at("class"));
     let (mut above, mut not_sliding) = (0, 0);
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
+    for f in &csv.rows {
         let mut params =
-            stickslip::Params::new(0.0, f[0].parse().unwrap(), f[1].parse().unwrap()).unwrap();
+            stickslip::Params::new(0.0, f[w].parse().unwrap(), f[beta].parse().unwrap()).unwrap();
         params.mu_s = 3.0;
         let beta_c = theory_value(Theory::Exact, TheoryQuantity::Boundary, &params);
         if beta_c.is_some_and(|b| params.beta >= b) {
             above += 1;
-            not_sliding += usize::from(f[2] != "sliding");
+            not_sliding += usize::from(f[class] != "sliding");
         }
     }
     assert_eq!(map["above_exact_boundary"], above, "{map}");
@@ -305,26 +402,28 @@ fn above_the_boundary_the_sliding_orbit_exists(report: &Path, map: &serde_json::
 fn legs_compared_as_attractors(report: &Path, bif: &serde_json::Value, html: &str) {
     use stickslip::attractor::{same_attractor, AttractorKind, StrobeRecord};
     use stickslip::State;
-    let text = std::fs::read_to_string(report.join("beyond-bifurcation.csv")).unwrap();
+    let csv = Csv::read(report, "beyond-bifurcation.csv");
+    let at = |name: &str| csv.at(name);
+    let (w, y, v, direction) = (at("w"), at("y"), at("v"), at("direction"));
+    let (lambda1, class, period) = (at("lambda1"), at("class"), at("period"));
     let mut records: std::collections::BTreeMap<(String, String), StrobeRecord> =
         Default::default();
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
+    for f in &csv.rows {
         let r = records
-            .entry((f[3].to_string(), f[0].to_string()))
+            .entry((f[direction].clone(), f[w].clone()))
             .or_insert_with(|| StrobeRecord {
                 strobes: vec![],
-                exponent: f[4].parse().unwrap(),
+                exponent: f[lambda1].parse().unwrap(),
                 exponent_error: 0.0,
-                period: (!f[6].is_empty()).then(|| f[6].parse().unwrap()),
-                kind: AttractorKind::from_label(f[5]).unwrap_or_else(|| panic!("{line}")),
+                period: (!f[period].is_empty()).then(|| f[period].parse().unwrap()),
+                kind: AttractorKind::from_label(&f[class]).unwrap_or_else(|| panic!("{f:?}")),
                 events: 0,
                 stops: 0,
                 drive_period: 1.0,
             });
         r.strobes.push(State {
-            y: f[1].parse().unwrap(),
-            v: f[2].parse().unwrap(),
+            y: f[y].parse().unwrap(),
+            v: f[v].parse().unwrap(),
         });
     }
     let tolerance = stickslip::basins::BasinOptions::default().match_tolerance;
@@ -406,12 +505,13 @@ fn bad_output_directory_is_a_usage_error() {
 /// and the caption name; the spectra are on a logarithmic axis (the caption says how far
 /// down); the loops of β = 1.07 have a row of their own.
 fn fig3_shows_what_is_small(report: &Path, html: &str) {
-    let text = std::fs::read_to_string(report.join("fig3_traces.csv")).unwrap();
+    let csv = Csv::read(report, "fig3_traces.csv");
+    let (w, beta) = (csv.at(Key::W.name()), csv.at(Key::Beta.name()));
+    let (uc_v, u_v) = (csv.at("uc_V"), csv.at("u_V"));
     let mut peaks: Vec<((String, String), (f64, f64))> = Vec::new();
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
-        let key = (f[0].to_string(), f[1].to_string());
-        let (uc, u): (f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap());
+    for f in &csv.rows {
+        let key = (f[w].clone(), f[beta].clone());
+        let (uc, u): (f64, f64) = (f[uc_v].parse().unwrap(), f[u_v].parse().unwrap());
         match peaks.iter_mut().find(|(k, _)| *k == key) {
             Some((_, p)) => *p = (p.0.max(uc.abs()), p.1.max(u.abs())),
             None => peaks.push((key, (uc.abs(), u.abs()))),

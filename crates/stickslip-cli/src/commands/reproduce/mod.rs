@@ -6,6 +6,16 @@ mod beyond;
 mod figures;
 mod report;
 
+/// The columns of the report's own CSV files, each written once beside its figure (the files
+/// that hold a library result take their columns from the library's table).
+pub mod columns {
+    pub use super::beyond::SPECIAL_COLUMNS;
+    pub use super::figures::{
+        ACCURACY_COLUMNS, DIODE_COLUMNS, FIG5_LEADING, FRICTION_COLUMNS, SPECTRA_COLUMNS,
+        TABLE1_COLUMNS, XY_COLUMNS,
+    };
+}
+
 use crate::output::{interrupted, progress};
 use anyhow::{anyhow, bail, Result};
 use report::Report;

@@ -10,6 +10,9 @@ use anyhow::{Context, Result};
 use serde_json::{Map, Value};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use stickslip::experiment::PhysicalUnits;
+use stickslip::report::{Table, TrajectoryColumns, TrajectorySample};
+use stickslip::solver::Sample;
 
 /// One section of the report: a figure or a table of the paper, with its caption.
 #[derive(Debug, Default)]
@@ -121,6 +124,61 @@ impl Report {
         w.flush()?;
         self.files.push(name.to_string());
         Ok(())
+    }
+
+    /// Write a library result's table as a CSV file, its columns and cells the library's
+    /// (as `stickslip … --out` writes them).
+    pub fn table<T: Table>(&mut self, name: &str, table: &T) -> Result<()> {
+        self.tables(name, &[], [(Vec::new(), table)])
+    }
+
+    /// Write several tables of one shape (one per value of the figure) as one CSV file: the
+    /// `leading` columns the figure adds (which β, which model), each part's cells for them,
+    /// then the table's own columns and cells.
+    ///
+    /// # Errors
+    /// A part whose columns differ from the first's, or whose leading cells are not one per
+    /// leading column (a mistake in the figure, not in its input); a failed write.
+    pub fn tables<'a, T: Table + 'a>(
+        &mut self,
+        name: &str,
+        leading: &[&str],
+        parts: impl IntoIterator<Item = (Vec<String>, &'a T)>,
+    ) -> Result<()> {
+        let mut header: Option<Vec<String>> = None;
+        let mut rows = Vec::new();
+        for (cells, table) in parts {
+            let columns = table.columns();
+            match &header {
+                None => header = Some(columns),
+                Some(h) => anyhow::ensure!(
+                    *h == columns,
+                    "{name}: the tables have different columns ({} and {})",
+                    h.join(","),
+                    columns.join(",")
+                ),
+            }
+            anyhow::ensure!(
+                cells.len() == leading.len(),
+                "{name}: {} leading cells for the columns {}",
+                cells.len(),
+                leading.join(",")
+            );
+            for i in 0..table.len() {
+                let mut row = cells.clone();
+                row.extend(table.row(i));
+                rows.push(row);
+            }
+        }
+        let Some(columns) = header else {
+            anyhow::bail!("{name}: no table to write");
+        };
+        let header: Vec<&str> = leading
+            .iter()
+            .copied()
+            .chain(columns.iter().map(String::as_str))
+            .collect();
+        self.csv(name, &header, &rows)
     }
 
     /// Write a stacked figure as `stem.png` and `stem.svg`.
@@ -257,6 +315,55 @@ impl Report {
         }
         h.push_str("<p class=\"files\"><a href=\"summary.json\">summary.json</a> holds the key numbers.</p>\n</body>\n</html>\n");
         h
+    }
+}
+
+/// Samples of a motion in the shape of `stickslip simulate --out` (the library's
+/// [`TrajectoryColumns`] and [`TrajectorySample`] cells): `tau,y,v,drive,phase`, and with
+/// physical units `t_s,uc_V,i_A,u_V`.
+pub struct Samples {
+    units: Option<PhysicalUnits>,
+    samples: Vec<TrajectorySample>,
+}
+
+impl Samples {
+    /// No samples yet, in `units` when the experiment has them.
+    pub fn new(units: Option<PhysicalUnits>) -> Self {
+        Self {
+            units,
+            samples: Vec::new(),
+        }
+    }
+
+    /// Add the sample `s` of a solver, shown at time `tau` (its own, or shifted), under the
+    /// drive `drive` (units of y).
+    pub fn push(&mut self, tau: f64, s: &Sample, drive: f64) {
+        self.samples.push(TrajectorySample {
+            tau,
+            y: s.y,
+            v: s.v,
+            drive,
+            phase: s.phase,
+            physical: self.units.map(|u| u.convert(tau, s.y, s.v, drive)),
+        });
+    }
+}
+
+impl Table for Samples {
+    fn columns(&self) -> Vec<String> {
+        TrajectoryColumns { units: self.units }
+            .names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    }
+
+    fn len(&self) -> usize {
+        self.samples.len()
+    }
+
+    fn row(&self, i: usize) -> Vec<String> {
+        self.samples[i].row()
     }
 }
 

@@ -79,7 +79,11 @@
 //!   orbit (det(M ∓ I) or det M − 1 changing sign): where a fold curve meets it. Where the
 //!   event counts of a fold, period-doubling or Neimark–Sacker curve change, the curve meets a
 //!   grazing: that point is located and the curve ends there ([`CurveEnd::Codim2`]), its
-//!   special point going on, if at all, as a border collision of another event sequence;
+//!   special point going on, if at all, as a border collision of another event sequence.
+//!   The same where such a curve reverses sharply in (Q, P) with the same event counts on both
+//!   sides: it has passed through a grazing onto the mirror image of its orbit (a stop shrunk
+//!   to nothing at one turning point, appearing at the other), whose curve in the parameters is
+//!   the same; the meeting is located from the step's point nearest the border;
 //! - why it ends ([`CurveEnd`]): the end of Q's range, another event sequence, a
 //!   codimension-two point, the model's range of a parameter, or no progress, with what the
 //!   last orbit is closest to.
@@ -115,6 +119,12 @@
 //!     assert!((p.vary - exact).abs() < 1e-8);
 //! }
 //! ```
+//!
+//! [`ContinuationOptions::derivative_step`]: crate::continuation::ContinuationOptions::derivative_step
+//! [`ContinuationOptions::max_step`]: crate::continuation::ContinuationOptions::max_step
+//! [`ContinuationOptions::max_parameter_step`]: crate::continuation::ContinuationOptions::max_parameter_step
+//! [`ContinuationOptions::max_angle`]: crate::continuation::ContinuationOptions::max_angle
+//! [`ContinuationOptions::locate_tolerance`]: crate::continuation::ContinuationOptions::locate_tolerance
 
 mod border;
 mod kinds;

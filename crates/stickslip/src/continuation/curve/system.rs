@@ -842,6 +842,32 @@ impl System {
         Ok(self.evaluate(&u, node.tau)?.map(|e| e.image.jacobian))
     }
 
+    /// How far `node` is from the border of `border`'s event (near `tau` from the strobe) in
+    /// u = (y, y', Q, P): the condition's value over the length of its gradient (by
+    /// differences, as the corrector's); `None` where the event or the gradient cannot be had.
+    pub(crate) fn border_distance(
+        &self,
+        border: Border,
+        node: &Node,
+        tau: f64,
+    ) -> Result<Option<f64>> {
+        let graze = System {
+            follow: Follow::Grazing,
+            border: Some(border),
+            ..self.clone()
+        };
+        let Some(at) = graze.evaluate(&node.u, tau)? else {
+            return Ok(None);
+        };
+        let Some(rows) = graze.jacobian(&node.u, &at)? else {
+            return Ok(None);
+        };
+        let params = self.params(&node.u)?;
+        let value = at.g + graze.offset(&params);
+        let gradient = norm(&rows[2]);
+        Ok((gradient > 0.0 && gradient.is_finite()).then(|| value.abs() / gradient))
+    }
+
     /// The grazing condition nearest zero on the motion of `node`, followed on the node's
     /// side: the event whose border a curve through `node` meets.
     pub(crate) fn border_at(&self, node: &Node) -> Result<Option<(Border, f64, f64)>> {

@@ -94,8 +94,11 @@ fn rechart(system: &mut System, node: &Node) -> Result<Option<Node>> {
 
 /// Where a fold, period-doubling or Neimark–Sacker curve that cannot go on at `node` (at
 /// `params`, the point after `index`) meets the grazing condition nearest zero there: both
-/// conditions solved at once from `node` ([`System::meet`]), or `node` itself where its
-/// grazing condition holds to 1e-9 already.
+/// conditions solved at once from `node` ([`System::meet`]), or `node` itself where it lies
+/// within 10⁻⁶ (relative to max(1, |u|)) of the border by the condition's value and gradient
+/// (where the meeting's equations are degenerate: at a symmetric orbit grazing at both turning
+/// points, a stop of no length is a second border at once); that distance is then the point's
+/// width, and it counts as located when within the locating tolerance.
 fn meeting_at(
     system: &System,
     node: &Node,
@@ -109,10 +112,19 @@ fn meeting_at(
         return Ok(None);
     };
     let scale = 1f64.max(params.beta).max(params.mu_s);
-    let met = match system.meet(border, &node.u, tau)? {
-        Some(n) => n,
-        None if value.abs() <= 1e-9 * scale => node.clone(),
-        None => return Ok(None),
+    let (met, width) = match system
+        .meet(border, &node.u, tau)?
+        .filter(|n| near(&n.u, &node.u))
+    {
+        Some(n) => {
+            let width = system.options.tolerance * norm(&n.u).max(1.0);
+            (n, width)
+        }
+        None if value.abs() <= 1e-9 * scale => (node.clone(), 0.0),
+        None => match system.border_distance(border, node, tau)? {
+            Some(d) if d <= 1e-6 * norm(&node.u).max(1.0) => (node.clone(), d),
+            _ => return Ok(None),
+        },
     };
     let here = Sample {
         t: 0.0,
@@ -127,8 +139,15 @@ fn meeting_at(
         y: at.node.u[0],
         v: at.node.u[1],
     };
-    c.width = system.options.tolerance * norm(&at.node.u).max(1.0);
+    c.width = width.max(system.options.tolerance * norm(&at.node.u).max(1.0));
+    c.located = c.width <= system.options.locate_tolerance * norm(&at.node.u).max(1.0);
     Ok(Some(c))
+}
+
+/// Whether a meeting solved from `from` is the one there: within 10⁻⁴ of it (relative to
+/// max(1, |u|)).
+fn near(meeting: &U, from: &U) -> bool {
+    distance(meeting, from) <= 1e-4 * norm(from).max(1.0)
 }
 
 /// Events closer to the strobe than this fraction of the orbit's period make the curve change
@@ -195,13 +214,6 @@ fn tests(system: &System, current: &Node) -> Vec<(Codim2Kind, Test)> {
                 let across = |system: System, f: fn(&crate::stability::Matrix2) -> f64| {
                     Box::new(move |n: &Node| {
                         let r = system.across(n);
-                        if std::env::var("CURVE_DEBUG7").is_ok() {
-                            eprintln!(
-                                "across {:?}: {:?}",
-                                n.u,
-                                r.as_ref().map(|m| m.map(|m| (m.eigenvalues(), f(&m))))
-                            );
-                        }
                         r.ok().flatten().map_or(f64::NAN, |m| f(&m))
                     }) as Test
                 };
@@ -249,6 +261,60 @@ impl Step<'_> {
             },
             &c.tangent,
         )
+    }
+
+    /// The point of the step (from `current` to `next`) whose grazing condition nearest
+    /// zero ([`System::border_at`]) is smallest: a golden-section search over the fraction
+    /// of the way, until the bracket is at most the locating tolerance wide in u (or 60
+    /// rounds); the condition falls to zero at a grazing the step passes through and rises
+    /// again on the far side.
+    fn closest_to_border(&self, current: &Node, next: &Node) -> Result<Node> {
+        let value = |n: &Node| -> Result<f64> {
+            Ok(self
+                .system
+                .border_at(n)?
+                .map_or(f64::INFINITY, |(_, _, v)| v.abs()))
+        };
+        let mut best = (value(current)?, current.clone());
+        let v = value(next)?;
+        if v < best.0 {
+            best = (v, next.clone());
+        }
+        let golden = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (0.0, 1.0);
+        let at = |t: f64, best: &mut (f64, Node)| -> Result<f64> {
+            let Some(n) = self.at(t)? else {
+                return Ok(f64::INFINITY);
+            };
+            let v = value(&n)?;
+            if v < best.0 {
+                *best = (v, n);
+            }
+            Ok(v)
+        };
+        let mut c = b - golden * (b - a);
+        let mut d = a + golden * (b - a);
+        let (mut fc, mut fd) = (at(c, &mut best)?, at(d, &mut best)?);
+        let tolerance = self.system.options.locate_tolerance;
+        for _ in 0..60 {
+            if (b - a) * self.ds <= tolerance {
+                break;
+            }
+            if fc < fd {
+                b = d;
+                d = c;
+                fd = fc;
+                c = b - golden * (b - a);
+                fc = at(c, &mut best)?;
+            } else {
+                a = c;
+                c = d;
+                fc = fd;
+                d = a + golden * (b - a);
+                fd = at(d, &mut best)?;
+            }
+        }
+        Ok(best.1)
     }
 
     /// Bisection until the bracket is at most the locating tolerance wide: `lo` satisfies
@@ -344,7 +410,9 @@ fn refined(
         }
         _ => None,
     };
-    if let Some(n) = meeting {
+    // Newton's method on the meeting's four equations can converge to another meeting far
+    // along the curves (another fold–grazing point): only one next to the bracket is this one.
+    if let Some(n) = meeting.filter(|n| near(&n.u, &lo.node.u)) {
         c.over = n.u[2];
         c.vary = n.u[3];
         c.state = crate::params::State {
@@ -475,6 +543,31 @@ fn one_way(
             };
             found.push(c);
             break end;
+        }
+        // A sharp reversal in the parameter plane, taken only because the steps crawl, with
+        // the same event counts on both sides: on a fold, period-doubling or Neimark–Sacker
+        // curve, the step has passed through a grazing onto the mirror image of the orbit
+        // (whose stop has shrunk to nothing at one turning point and appears at the other),
+        // which has the same curve in the parameters, traced back. The curve meets the
+        // grazing there: located from the point of the step nearest the border, and the curve
+        // ends.
+        let ahead =
+            |n: &Node| n.tangent[2] * current.tangent[2] + n.tangent[3] * current.tangent[3] > 0.0;
+        if follow != Follow::Grazing
+            && angle(&next.tangent, &current.tangent) > options.max_angle
+            && !ahead(&next)
+        {
+            let nearest = step.closest_to_border(&current, &next)?;
+            let params = system.params(&nearest.u)?;
+            if let Some(c) = meeting_at(&system, &nearest, &params, index)? {
+                let end = CurveEnd::Codim2 {
+                    kind: c.kind,
+                    over: c.over,
+                    vary: c.vary,
+                };
+                found.push(c);
+                break end;
+            }
         }
         // Past an end of Q's range: the point at the end itself.
         let mut boundary = None;

@@ -6,6 +6,7 @@ use super::super::{Context, Later};
 use anyhow::Result;
 use serde_json::json;
 use stickslip::basins::Basins;
+use stickslip::report::BasinsTable;
 use stickslip::scan::ParameterRange;
 use stickslip::solver::run_until;
 use stickslip::{ExactSolver, Experiment, Solver, State};
@@ -64,25 +65,8 @@ pub fn basins_mirror(report: &mut Report, ctx: &Context) -> Result<()> {
         "beyond-basins",
         &crate::plot::Figure::single(crate::diagrams::basin_panel(&map, title), (900, 650)),
     )?;
-    let mut rows = Vec::new();
-    let nv = map.v0.len();
-    for (k, a) in map.cells.iter().enumerate() {
-        let a = a.map(|i| &map.attractors[i]);
-        rows.push(vec![
-            format!("{}", map.y0[k / nv]),
-            format!("{}", map.v0[k % nv]),
-            a.map(|a| a.id.to_string()).unwrap_or_default(),
-            a.map_or("undecided", |a| a.kind.label()).into(),
-            a.and_then(|a| a.period)
-                .map(|p| p.to_string())
-                .unwrap_or_default(),
-        ]);
-    }
-    report.csv(
-        "beyond-basins.csv",
-        &["y0", "v0", "attractor", "class", "period"],
-        &rows,
-    )?;
+    // The CSV of `stickslip basins --out`: the library's table of a basin map.
+    report.table("beyond-basins.csv", &BasinsTable { map: &map })?;
 
     // The two orbits are mirror images: half a period on, one is minus the other.
     let mirror_gap = match map.attractors.as_slice() {

@@ -9,6 +9,7 @@ use stickslip::attractor::{same_attractor, AttractorKind, RecordOptions};
 use stickslip::basins::BasinOptions;
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions, BifurcationStep};
 use stickslip::continuation::{ContinuationOptions, SpecialKind};
+use stickslip::report::BifurcationReport;
 use stickslip::scan::{Axis, ParameterRange, SweepDirection, SweepLeg};
 use stickslip::Parameter;
 
@@ -27,6 +28,10 @@ impl Diagram {
         Later::start(move || compute(quick))
     }
 }
+
+/// The columns of beyond-bifurcation-special.csv, the report's own (no library table lists
+/// the special points of several branches).
+pub const SPECIAL_COLUMNS: [&str; 7] = ["branch", "period", "kind", "w", "y", "v", "width"];
 
 /// The values of w (0.2 to 0.55) and the strobe points recorded at each.
 fn sizes(quick: bool) -> Result<(ParameterRange, usize)> {
@@ -93,24 +98,10 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         "beyond-bifurcation",
         &crate::diagrams::diagram_figure(&steps, &branches, Parameter::W, title),
     )?;
-    let mut rows = Vec::new();
-    for s in &steps {
-        for x in &s.record.strobes {
-            rows.push(vec![
-                format!("{}", s.value),
-                format!("{}", x.y),
-                format!("{}", x.v),
-                s.leg.label().into(),
-                format!("{}", s.record.exponent),
-                s.record.kind.label().into(),
-                s.record.period.map(|p| p.to_string()).unwrap_or_default(),
-            ]);
-        }
-    }
-    report.csv(
+    // The CSV of `stickslip bifurcation --out`: the library's table of a diagram.
+    report.table(
         "beyond-bifurcation.csv",
-        &["w", "y", "v", "direction", "lambda1", "class", "period"],
-        &rows,
+        &BifurcationReport::new(Parameter::W, &steps),
     )?;
     let special: Vec<&stickslip::continuation::SpecialPoint> =
         branches.iter().flat_map(|b| b.special.iter()).collect();
@@ -133,7 +124,7 @@ pub fn bifurcation_w(report: &mut Report, ctx: &Context) -> Result<()> {
         .collect();
     report.csv(
         "beyond-bifurcation-special.csv",
-        &["branch", "period", "kind", "w", "y", "v", "width"],
+        &SPECIAL_COLUMNS,
         &special_rows,
     )?;
 

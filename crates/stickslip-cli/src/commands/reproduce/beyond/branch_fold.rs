@@ -10,7 +10,7 @@ use serde_json::json;
 use stickslip::continuation::{
     continue_both_ways, settled_orbit, BranchEnd, ContinuationOptions, SpecialKind,
 };
-use stickslip::report::{BranchTable, Table};
+use stickslip::report::BranchTable;
 use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg};
 use stickslip::{Parameter, State};
 
@@ -91,11 +91,7 @@ pub fn branch_fold(report: &mut Report, ctx: &Context) -> Result<()> {
     }
     report.stack("beyond-branch", &figure)?;
     // The CSV of `stickslip continue`: the library's table of a branch.
-    let table = BranchTable { branch: &branch };
-    let rows: Vec<Vec<String>> = (0..table.len()).map(|i| table.row(i)).collect();
-    let columns = table.columns();
-    let header: Vec<&str> = columns.iter().map(String::as_str).collect();
-    report.csv("beyond-branch.csv", &header, &rows)?;
+    report.table("beyond-branch.csv", &BranchTable { branch: &branch })?;
     let find = |kind: SpecialKind| branch.special.iter().find(|s| s.kind == kind);
     let fold = find(SpecialKind::Fold);
     let grazing = find(SpecialKind::Grazing);

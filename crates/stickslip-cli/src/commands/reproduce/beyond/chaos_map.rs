@@ -7,6 +7,7 @@ use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
+use stickslip::report::MapReport;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::{LyapunovOptions, SEARCH_BEFORE_MEASURING};
 use stickslip::steady::MotionClass;
@@ -181,33 +182,8 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (760, 600),
         },
     )?;
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|p| {
-            vec![
-                format!("{}", p.params.w),
-                format!("{}", p.params.beta),
-                p.class.label().into(),
-                p.period.map(|x| x.to_string()).unwrap_or_default(),
-                format!("{}", p.stops_per_period),
-                format!("{}", lambda(p)),
-                format!("{}", error(p)),
-            ]
-        })
-        .collect();
-    report.csv(
-        "chaos-map.csv",
-        &[
-            "w",
-            "beta",
-            "class",
-            "period",
-            "stops_per_period",
-            "lambda1",
-            "lambda1_error",
-        ],
-        &rows,
-    )?;
+    // The CSV of `stickslip phase-diagram --lyapunov --out`: the library's table of a map.
+    report.table("chaos-map.csv", &MapReport::new(&points, true))?;
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     let top = points
         .iter()

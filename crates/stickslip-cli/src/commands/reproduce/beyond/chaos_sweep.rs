@@ -8,6 +8,7 @@ use crate::plot::{Figure, Legend, Panel, Series, Style};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
+use stickslip::report::MapReport;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::SEARCH_BEFORE_MEASURING;
 use stickslip::steady::MotionClass;
@@ -119,31 +120,8 @@ pub fn chaos_sweep(report: &mut Report, ctx: &Context) -> Result<()> {
         },
     )?;
 
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|p| {
-            vec![
-                format!("{}", p.params.w),
-                p.class.label().into(),
-                p.period.map(|x| x.to_string()).unwrap_or_default(),
-                format!("{}", p.stops_per_period),
-                format!("{}", lambda(p)),
-                format!("{}", error(p)),
-            ]
-        })
-        .collect();
-    report.csv(
-        "chaos-sweep.csv",
-        &[
-            "w",
-            "class",
-            "period",
-            "stops_per_period",
-            "lambda1",
-            "lambda1_error",
-        ],
-        &rows,
-    )?;
+    // A map of one β: the CSV of `stickslip phase-diagram --lyapunov --out`.
+    report.table("chaos-sweep.csv", &MapReport::new(&points, true))?;
 
     let chaotic: Vec<&GridPoint> = points
         .iter()

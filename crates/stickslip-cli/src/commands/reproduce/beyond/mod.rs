@@ -11,7 +11,7 @@ mod chaos_sweep;
 mod paper_exponents;
 
 pub use basins_mirror::BasinMap;
-pub use bifurcation_w::Diagram as BifurcationDiagram;
+pub use bifurcation_w::{Diagram as BifurcationDiagram, SPECIAL_COLUMNS};
 pub use chaos_map::ChaosMap;
 pub use paper_exponents::paper_exponent_map;
 

@@ -7,6 +7,7 @@ use super::frequency;
 use crate::plot::{Cell, ColorBar, Figure, Legend, Panel};
 use anyhow::Result;
 use serde_json::json;
+use stickslip::report::MapReport;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::steady::MotionClass;
 use stickslip::{Parameter, SteadyOptions};
@@ -61,7 +62,6 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
     let points = paper_exponent_map(ctx)?;
     let n = w.steps();
     let lambda = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.per_tau);
-    let error = |p: &GridPoint| p.lyapunov.map_or(f64::NAN, |l| l.error_per_tau);
 
     let values: Vec<f64> = points.iter().map(lambda).collect();
     let bar = ColorBar::for_values("λ1 per unit τ", &values);
@@ -86,24 +86,8 @@ pub fn paper_exponents(report: &mut Report, ctx: &Context) -> Result<()> {
         ..Default::default()
     };
     report.figure("paper-exponents", &Figure::single(panel, (960, 640)))?;
-    let rows: Vec<Vec<String>> = points
-        .iter()
-        .map(|p| {
-            vec![
-                format!("{}", p.params.w),
-                format!("{}", p.params.beta),
-                p.class.label().into(),
-                p.period.map(|x| x.to_string()).unwrap_or_default(),
-                format!("{}", lambda(p)),
-                format!("{}", error(p)),
-            ]
-        })
-        .collect();
-    report.csv(
-        "paper-exponents.csv",
-        &["w", "beta", "class", "period", "lambda1", "lambda1_error"],
-        &rows,
-    )?;
+    // The CSV of `stickslip phase-diagram --lyapunov --out`: the library's table of a map.
+    report.table("paper-exponents.csv", &MapReport::new(points, true))?;
 
     // Rest (never leaving it, or an amplitude below β/100) has λ1 = 0 exactly or contracts;
     // the motions that move are the ones that could be chaotic.

@@ -6,6 +6,12 @@ use crate::plot::{Figure, Legend, Panel, Series, Style, PALETTE};
 use anyhow::Result;
 use stickslip::shockley::DiodePair;
 
+/// The columns of fig1a.csv, the report's own (the friction law, no library result).
+pub const FRICTION_COLUMNS: &[&str] = &["velocity", "friction"];
+
+/// The columns of fig1b.csv, the report's own (the diode pairs' I-V curves).
+pub const DIODE_COLUMNS: [&str; 3] = ["model", "U_V", "I_A"];
+
 /// Fig. 1 (a) the Coulomb friction law with its static band; (b) the diode pair's I-V curve.
 pub fn fig1(report: &mut Report, ctx: &Context) -> Result<()> {
     // (a) f(v) = −F0 sgn(v) − γ v for v ≠ 0 and any value in [−F0, F0] at v = 0 (in units of F0,
@@ -91,7 +97,7 @@ pub fn fig1(report: &mut Report, ctx: &Context) -> Result<()> {
         .iter()
         .map(|(v, f)| vec![format!("{v}"), format!("{f}")])
         .collect();
-    report.csv("fig1a.csv", &["velocity", "friction"], &rows)?;
+    report.csv("fig1a.csv", FRICTION_COLUMNS, &rows)?;
     let rows: Vec<Vec<String>> = pwl
         .iter()
         .map(|(u, i)| vec!["pwl".into(), format!("{u}"), format!("{}", i / 1e3)])
@@ -101,7 +107,7 @@ pub fn fig1(report: &mut Report, ctx: &Context) -> Result<()> {
                 .map(|(u, i)| vec!["shockley".into(), format!("{u}"), format!("{}", i / 1e3)]),
         )
         .collect();
-    report.csv("fig1b.csv", &["model", "U_V", "I_A"], &rows)?;
+    report.csv("fig1b.csv", &DIODE_COLUMNS, &rows)?;
     report.sections.push(Section {
         id: "fig1".into(),
         title: "Fig. 1 — friction law and diode I-V curve".into(),

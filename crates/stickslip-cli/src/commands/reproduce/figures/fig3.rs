@@ -1,17 +1,24 @@
 //! Fig. 3: capacitor voltage and drive against time with their spectra, and X-Y loops.
 
-use super::super::report::{Report, Section};
+use super::super::report::{Report, Samples, Section};
 use super::super::Context;
 use super::common::{beta_color, class_title, num, padded, steady_pwl};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use serde_json::json;
+use stickslip::experiment::Key;
 
 const FREQUENCIES: [f64; 3] = [0.29, 0.95, 1.43];
 const TRACE_BETAS: [f64; 2] = [1.07, 2.14];
 const XY_BETAS: [f64; 4] = [1.07, 1.43, 2.14, 3.61];
 /// The spectra's lowest amplitude shown, relative to the fundamental (−80 dB).
 const SPECTRUM_FLOOR: f64 = 1e-4;
+
+/// The columns of fig3_spectra.csv, the report's own (no library table holds a spectrum).
+pub const SPECTRA_COLUMNS: [&str; 6] = ["w", "beta", "k", "f_kHz", "amplitude_V", "phase_rad"];
+
+/// The columns of fig3_xy.csv, the report's own (the X-Y loops of the oscilloscope).
+pub const XY_COLUMNS: [&str; 4] = ["w", "beta", "u_V", "uc_V"];
 
 /// The power of ten by which a response `uc` is drawn beside its drive `drive` so that its
 /// peak reaches at least 30 % of the drive's (1 when it already does), and its legend label.
@@ -31,7 +38,7 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
     let ms = 1e3 / ctx.scales.omega0;
     let mut trace_panels = Vec::new();
     let mut spectrum_panels = Vec::new();
-    let mut trace_rows = Vec::new();
+    let mut traces = Vec::new();
     let mut spectrum_rows = Vec::new();
     let mut classes = Vec::new();
     let mut small = Vec::new();
@@ -44,6 +51,7 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             let mut uc = Vec::new();
             let mut drive = Vec::new();
             let cycle = s.recorded_periods.max(1) as f64 * period;
+            let mut trace = Samples::new(ctx.paper.units());
             let mut k = 0.0;
             while k * cycle < 2.0 * period - 1e-12 {
                 for p in &s.trace {
@@ -51,17 +59,12 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
                     if t <= 2.0 * period {
                         uc.push((t * ms, p.y * ut));
                         drive.push((t * ms, params.drive(p.tau) * ut));
-                        trace_rows.push(vec![
-                            num(w),
-                            num(beta),
-                            num(t * ms),
-                            num(p.y * ut),
-                            num(params.drive(p.tau) * ut),
-                        ]);
+                        trace.push(t, p, params.drive(p.tau));
                     }
                 }
                 k += 1.0;
             }
+            traces.push((vec![num(w), num(beta)], trace));
             let label = format!("({}{})", row + 1, ["a", "b", "c"][col]);
             if s.class == stickslip::steady::MotionClass::Static {
                 let peak = uc.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
@@ -190,17 +193,15 @@ pub fn fig3(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (440, 290),
         },
     )?;
-    report.csv(
+    // Two drive periods of each steady state in the shape of `stickslip simulate --out`
+    // (τ from the start of the two periods), after its w and β.
+    report.tables(
         "fig3_traces.csv",
-        &["w", "beta", "t_ms", "uc_V", "u_V"],
-        &trace_rows,
+        &[Key::W.name(), Key::Beta.name()],
+        traces.iter().map(|(point, t)| (point.clone(), t)),
     )?;
-    report.csv(
-        "fig3_spectra.csv",
-        &["w", "beta", "k", "f_kHz", "amplitude_V", "phase_rad"],
-        &spectrum_rows,
-    )?;
-    report.csv("fig3_xy.csv", &["w", "beta", "u_V", "uc_V"], &xy_rows)?;
+    report.csv("fig3_spectra.csv", &SPECTRA_COLUMNS, &spectrum_rows)?;
+    report.csv("fig3_xy.csv", &XY_COLUMNS, &xy_rows)?;
     report.summary.insert("fig3".into(), json!(classes));
     let magnified_note = if magnified_panels.is_empty() {
         String::new()

@@ -2,12 +2,13 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{beta_color, num, sweep_pwl};
+use super::common::{beta_color, sweep_pwl};
 use super::theory_curves::{style_legend, INK};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use serde_json::json;
-use stickslip::scan::SweepLeg;
+use stickslip::report::SweepReport;
+use stickslip::scan::{SweepDirection, SweepLeg};
 use stickslip::Parameter;
 
 /// The paper's three drive amplitudes.
@@ -18,7 +19,7 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
     let steps = if ctx.quick { 25 } else { 73 };
     let mut series = Vec::new();
     let (mut up_series, mut down_series) = (Vec::new(), Vec::new());
-    let mut rows = Vec::new();
+    let mut sweeps = Vec::new();
     let mut peaks = Vec::new();
     for &beta in &BETAS {
         let points = sweep_pwl(ctx, Parameter::W, beta, 0.2, 2.0, steps, true)?;
@@ -31,15 +32,13 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
                 SweepLeg::Up => up.push((p.params.w, g)),
                 SweepLeg::Down => down.push((p.params.w, g)),
             }
-            rows.push(vec![
-                num(p.params.w),
-                num(beta),
-                p.leg.label().into(),
-                num(g),
-                num(p.steady.gain),
-                p.steady.class.label().into(),
-            ]);
         }
+        sweeps.push(SweepReport::new(
+            &ctx.paper,
+            Parameter::W,
+            SweepDirection::Both,
+            &points,
+        ));
         let peak = up
             .iter()
             .chain(&down)
@@ -84,11 +83,8 @@ pub fn fig4(report: &mut Report, ctx: &Context) -> Result<()> {
         ..Default::default()
     };
     report.figure("fig4", &Figure::single(panel, (900, 600)))?;
-    report.csv(
-        "fig4.csv",
-        &["w", "beta", "direction", "gain1", "gain", "class"],
-        &rows,
-    )?;
+    // The CSV of `stickslip sweep --out`, the three sweeps one after the other.
+    report.tables("fig4.csv", &[], sweeps.iter().map(|s| (Vec::new(), s)))?;
     report.summary.insert("fig4_peaks".into(), json!(peaks));
     report.sections.push(Section {
         id: "fig4".into(),

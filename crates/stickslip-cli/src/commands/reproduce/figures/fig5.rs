@@ -2,20 +2,25 @@
 
 use super::super::report::{Report, Section};
 use super::super::Context;
-use super::common::{num, sweep_pwl};
+use super::common::sweep_pwl;
 use super::theory_curves::{style_legend, INK};
 use crate::plot::{Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
-use stickslip::scan::{SweepLeg, SweepPoint};
+use stickslip::report::SweepReport;
+use stickslip::scan::{SweepDirection, SweepLeg, SweepPoint};
 use stickslip::steady::MotionClass;
 use stickslip::Parameter;
+
+/// The column fig5.csv adds before the sweep's own: which parameter the row's sweep varies
+/// (`w` for panel (a), `beta` for (b)).
+pub const FIG5_LEADING: [&str; 1] = ["swept"];
 
 /// Fig. 5 (a) A1, A3 against Ω/ω0 at β = 7.1; (b) against β at Ω/ω0 = 0.33.
 pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
     let ut = ctx.diode.turn_on;
     let steps = if ctx.quick { 25 } else { 73 };
     let mut panels = Vec::new();
-    let mut rows = Vec::new();
+    let mut sweeps = Vec::new();
     // Panel (b): the values of β (up sweep) and how many of them stick.
     let (mut sticking, mut shown, mut exact_in_b) = (0, 0, false);
     for (parameter, fixed, from, to) in [
@@ -36,17 +41,10 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
                 sticking += usize::from(p.steady.class != MotionClass::Sliding);
             }
         }
-        for p in &points {
-            rows.push(vec![
-                parameter.label().into(),
-                num(p.params.w),
-                num(p.params.beta),
-                p.leg.label().into(),
-                num(p.steady.harmonic(1).unwrap_or(f64::NAN) * ut),
-                num(p.steady.harmonic(3).unwrap_or(f64::NAN) * ut),
-                p.steady.class.label().into(),
-            ]);
-        }
+        sweeps.push((
+            vec![parameter.label().to_string()],
+            SweepReport::new(&ctx.paper, parameter, SweepDirection::Both, &points),
+        ));
         let (c1, c3) = (Quantity::Harmonic1.color(), Quantity::Harmonic3.color());
         let mut series = vec![
             Quantity::Harmonic1.series("", a1),
@@ -93,10 +91,12 @@ pub fn fig5(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (620, 460),
         },
     )?;
-    report.csv(
+    // The CSV of `stickslip sweep --out` (A1 and A3 in units of U_t), after the swept
+    // parameter's name.
+    report.tables(
         "fig5.csv",
-        &["swept", "w", "beta", "direction", "A1_V", "A3_V", "class"],
-        &rows,
+        &FIG5_LEADING,
+        sweeps.iter().map(|(swept, s)| (swept.clone(), s)),
     )?;
     report.sections.push(Section {
         id: "fig5".into(),

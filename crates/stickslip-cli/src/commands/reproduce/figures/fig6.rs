@@ -1,11 +1,12 @@
 //! Fig. 6: the four types of motion.
 
-use super::super::report::{Report, Section};
+use super::super::report::{Report, Samples, Section};
 use super::super::Context;
 use super::common::{beta_color, class_title, num, paper_at, steady_pwl};
 use crate::plot::{Figure, Legend, Panel, Quantity};
 use anyhow::Result;
 use serde_json::json;
+use stickslip::experiment::Key;
 use stickslip::solver::{grid, sample_at};
 use stickslip::EventKind;
 
@@ -22,7 +23,7 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
     let ut = ctx.diode.turn_on;
     let ms = 1e3 / ctx.scales.omega0;
     let mut panels = Vec::new();
-    let mut rows = Vec::new();
+    let mut traces = Vec::new();
     let mut summary = Vec::new();
     let mut differ = Vec::new();
     for (i, &(w, beta, paper_class)) in POINTS.iter().enumerate() {
@@ -45,17 +46,11 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
             .iter()
             .map(|p| (p.tau * ms, params.drive(p.tau) * ut))
             .collect();
+        let mut trace = Samples::new(ctx.paper.units());
         for p in &samples {
-            rows.push(vec![
-                num(w),
-                num(beta),
-                num(p.tau * ms),
-                num(p.y * ut),
-                num(p.v * ctx.scales.velocity),
-                num(params.drive(p.tau) * ut),
-                p.phase.label().into(),
-            ]);
+            trace.push(p.tau, p, params.drive(p.tau));
         }
+        traces.push((vec![num(w), num(beta)], trace));
         let class = s.class.label();
         if class != paper_class {
             differ.push(format!(
@@ -99,10 +94,11 @@ pub fn fig6(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (620, 340),
         },
     )?;
-    report.csv(
+    // The CSV of `stickslip simulate --out` at each point, after its w and β.
+    report.tables(
         "fig6.csv",
-        &["w", "beta", "t_ms", "uc_V", "i_A", "u_V", "phase"],
-        &rows,
+        &[Key::W.name(), Key::Beta.name()],
+        traces.iter().map(|(point, t)| (point.clone(), t)),
     )?;
     report.summary.insert("fig6".into(), json!(summary));
     let difference = if differ.is_empty() {

@@ -3,10 +3,10 @@
 use super::super::beyond::paper_exponent_map;
 use super::super::report::{Report, Section};
 use super::super::{Context, Later};
-use super::common::num;
 use crate::plot::{class_color, Cell, Figure, Legend, Panel};
 use anyhow::Result;
 use serde_json::{json, Value};
+use stickslip::report::MapReport;
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::SEARCH_BEFORE_MEASURING;
 use stickslip::steady::MotionClass;
@@ -133,22 +133,6 @@ impl Map {
         }
     }
 
-    fn rows(&self) -> Vec<Vec<String>> {
-        self.points
-            .iter()
-            .map(|p| {
-                vec![
-                    num(p.params.w),
-                    num(p.params.beta),
-                    p.class.label().into(),
-                    p.period.map(|x| x.to_string()).unwrap_or_default(),
-                    num(p.stops_per_period),
-                    num(p.gain),
-                ]
-            })
-            .collect()
-    }
-
     fn summary(&self) -> Value {
         json!({
             "grid": [self.w.steps(), self.beta.steps()],
@@ -218,9 +202,9 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
             panel_size: (640, 540),
         },
     )?;
-    let header = ["w", "beta", "class", "period", "stops_per_period", "gain"];
-    report.csv("fig7a.csv", &header, &pwl.rows())?;
-    report.csv("fig7b.csv", &header, &shockley.rows())?;
+    // The CSV of `stickslip phase-diagram --out`: the library's table of a map.
+    report.table("fig7a.csv", &MapReport::new(&pwl.points, false))?;
+    report.table("fig7b.csv", &MapReport::new(&shockley.points, false))?;
     report.summary.insert("fig7a".into(), pwl.summary());
     report.summary.insert("fig7b".into(), shockley.summary());
     report.sections.push(Section {

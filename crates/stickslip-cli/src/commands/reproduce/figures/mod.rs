@@ -11,12 +11,12 @@ mod fig7;
 mod table1;
 mod theory_curves;
 
-pub use accuracy::accuracy;
-pub use fig1::fig1;
-pub use fig3::fig3;
+pub use accuracy::{accuracy, ACCURACY_COLUMNS};
+pub use fig1::{fig1, DIODE_COLUMNS, FRICTION_COLUMNS};
+pub use fig3::{fig3, SPECTRA_COLUMNS, XY_COLUMNS};
 pub use fig4::fig4;
-pub use fig5::fig5;
+pub use fig5::{fig5, FIG5_LEADING};
 pub use fig6::fig6;
 pub use fig7::{fig7, ShockleyMap};
-pub use table1::table1;
+pub use table1::{table1, TABLE1_COLUMNS};
 pub use theory_curves::boundary_curves;

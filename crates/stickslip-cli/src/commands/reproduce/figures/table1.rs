@@ -5,6 +5,9 @@ use super::super::Context;
 use anyhow::Result;
 use serde_json::json;
 
+/// The columns of table1.csv (and of the page's second table), the report's own.
+pub const TABLE1_COLUMNS: [&str; 4] = ["quantity", "stickslip", "unit", "paper"];
+
 /// Table 1 with α, ω0, ζ, Q and f0 of the paper's circuit.
 pub fn table1(report: &mut Report, ctx: &Context) -> Result<()> {
     let s = ctx.scales;
@@ -48,7 +51,7 @@ pub fn table1(report: &mut Report, ctx: &Context) -> Result<()> {
             "0.7".into(),
         ],
     ];
-    let header = ["quantity", "stickslip", "unit", "paper"];
+    let header = TABLE1_COLUMNS;
     report.csv("table1.csv", &header, &rows)?;
     let correspondence = vec![
         vec![
