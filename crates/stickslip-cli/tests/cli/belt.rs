@@ -162,8 +162,6 @@ fn bad_belt_input_is_one_line() {
                     "1",
                     "--friction-law",
                     "stribeck",
-                    "--vs",
-                    "0.1",
                 ],
                 "--friction-law",
             ),
