@@ -1213,9 +1213,10 @@ fn records_with(
         Some((_, c)) => c.clone(),
         None => Covariance::of(&solution, n_free),
     };
+    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(&problem));
     let linear: Vec<([f64; 2], Interval)> = (0..n_free)
         .map(|k| {
-            let sigma = covariance.sigma(k, solution.sum_squares / dof as f64);
+            let sigma = covariance.sigma(k, s2);
             (
                 [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
                 if sigma.is_finite() {
@@ -1228,7 +1229,7 @@ fn records_with(
         .collect();
     let found = intervals.map_or(linear, |(found, _)| found);
     let (fitted_parameters, correlation) =
-        uncertainties(&setup, &solution, &covariance, &found, dof);
+        uncertainties(&setup, &solution, &covariance, &found, s2);
     // Every parameter named, in the order named: the held ones at their starting values.
     let parameters: Vec<FittedParameter> = free
         .iter()
