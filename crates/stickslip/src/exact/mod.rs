@@ -116,6 +116,11 @@ impl ExactSolver {
 
     /// A solver starting at τ = 0 from `initial`. With y'(0) = 0 the oscillator starts stuck
     /// when the net force |β cos φ − y0| is at most μs.
+    ///
+    /// # Panics
+    /// When `params` asks for a friction law other than Coulomb's: those are solved by
+    /// [`crate::friction_solver::FrictionSolver`], which `Law::solver` (and every front end)
+    /// chooses for them.
     pub fn new(params: Params, initial: State) -> Self {
         let mut solver = Self::unstarted(params, initial.y);
         solver.start(initial);
