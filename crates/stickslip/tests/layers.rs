@@ -32,7 +32,7 @@ const LAYERS: &[&[&str]] = &[
     &["cancel"],
     &["stiff"],
     &["exact", "shockley"],
-    &["physical", "stability", "theory"],
+    &["physical", "stability", "theory", "friction_solver"],
     &["attractor", "shockley::netlist", "steady"],
     &["experiment"],
     &["continuation", "fit", "scan"],
