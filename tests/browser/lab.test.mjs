@@ -169,6 +169,93 @@ test('sweep up and down and the (w, beta) map, computed on load', async () => {
   for (const [c, n] of Object.entries(counts)) assert.match(map, new RegExp(`${c} ${n}\\b`));
 });
 
+test('the curves over the map: stickslip curve, drawn in the map axes', async () => {
+  await mapReady();
+  const curvesReady = () => page.waitForFunction(() => ['ready', 'error'].includes(document.querySelector('[data-curves="status"]').dataset.state), null, { timeout: PATIENCE });
+  const overlay = () => page.evaluate(() => {
+    const o = window.stickslipLab.mapCurves;
+    return { xr: o.xr, yr: o.yr, box: o.box, curves: o.curves, queries: o.queries };
+  });
+  /** Every drawn point at the pixel of the map's axes, the points inside `wRange`, and the
+   *  canvas painted in the grazing curve's colour at a point in the middle of the plot. */
+  const drawnInAxes = async (o, wRange) => {
+    const g = o.curves.grazing;
+    assert.ok(g && g.x.length > 10, JSON.stringify(Object.keys(o.curves)));
+    const { l, r, t, b } = o.box;
+    for (let i = 0; i < g.x.length; i++) {
+      assert.ok(g.x[i] >= wRange[0] && g.x[i] <= wRange[1], `w = ${g.x[i]}`);
+      const px = l + ((g.x[i] - o.xr[0]) / (o.xr[1] - o.xr[0])) * (r - l);
+      const py = b - ((g.y[i] - o.yr[0]) / (o.yr[1] - o.yr[0])) * (b - t);
+      assert.ok(Math.abs(g.pixels[i][0] - px) < 1e-9 && Math.abs(g.pixels[i][1] - py) < 1e-9, `point ${i}: ${g.pixels[i]} against ${px}, ${py}`);
+    }
+    // A point well inside the plot, away from its key (upper left) and its edges.
+    const k = g.pixels.findIndex(([x, y]) => x > l + 160 && x < r - 20 && y > t + 60 && y < b - 20);
+    assert.ok(k >= 0, 'a point of the curve inside the plot');
+    const [x, y] = g.pixels[k];
+    const rgb = await page.$eval('#map-plot', (c, [x, y]) => {
+      // Read from a copy made for reading (the map's own context is not).
+      const ratio = Number(c.dataset.ratio || 1);
+      const copy = document.createElement('canvas');
+      copy.width = c.width;
+      copy.height = c.height;
+      const g = copy.getContext('2d', { willReadFrequently: true });
+      g.drawImage(c, 0, 0);
+      return Array.from(g.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data.slice(0, 3));
+    }, [x, y]);
+    // #e69f00: orange.
+    assert.ok(Math.abs(rgb[0] - 230) < 50 && Math.abs(rgb[1] - 159) < 50 && rgb[2] < 80, `pixel at (${x}, ${y}): ${rgb}`);
+  };
+  // The query as command-line flags: its keys are the flags without dashes.
+  const flags = (query) => [...new URLSearchParams(query)].flatMap(([k, v]) => [`--${k}`, v]);
+  const cliCurve = (query) => {
+    const lines = stickslip(['curve', ...flags(query)]).trim().split('\n');
+    const header = lines[0].split(',');
+    const rows = lines.slice(1).map((l) => l.split(','));
+    return { w: rows.map((r) => Number(r[header.indexOf('w')])), beta: rows.map((r) => Number(r[header.indexOf('beta')])) };
+  };
+
+  await page.check('input[name="map-curves"]');
+  await curvesReady();
+  let status = await page.$eval('[data-curves="status"]', (e) => e.textContent);
+  assert.match(status, /^curves: grazing \d+ points, no fold, no period doubling$/);
+  let o = await overlay();
+  // The grazing curve of the map's circuit: the tool's for the same query, number for number.
+  const sent = (query, expected) => {
+    const q = Object.fromEntries(new URLSearchParams(query));
+    for (const [k, v] of Object.entries(expected)) {
+      if (typeof v === 'number') assert.ok(Math.abs(Number(q[k]) - v) < 1e-12, `${k} in ${query}`);
+      else assert.equal(q[k], v, `${k} in ${query}`);
+    }
+  };
+  // From the current point's w at the top of the map, down to its bottom, over its w range.
+  sent(o.queries.grazing, { preset: 'paper', w: 0.95, beta: 4, follow: 'grazing', vary: 'beta', 'vary-to': 0.5, over: 'w', from: 0.1, to: 2.5 });
+  const cli = cliCurve(o.queries.grazing);
+  assert.deepEqual(o.curves.grazing.x, cli.w);
+  assert.deepEqual(o.curves.grazing.y, cli.beta);
+  await drawnInAxes(o, [0.1, 2.5]);
+
+  // A map of other ranges: the curves are asked for again, over its w, in its axes.
+  const setRanges = async (ranges) => {
+    for (const [name, v] of Object.entries(ranges)) await page.locator(`input[name="${name}"]`).fill(v);
+    await page.click('[data-action="map"]');
+    await mapReady();
+  };
+  await setRanges({ 'map-w-min': '0.5', 'map-w-max': '1.5', 'map-beta-min': '1', 'map-beta-max': '3' });
+  await curvesReady();
+  o = await overlay();
+  sent(o.queries.grazing, { w: 0.95, beta: 3, 'vary-to': 1, from: 0.5, to: 1.5 });
+  assert.deepEqual(o.xr.map((x) => Number(x.toFixed(6))), [0.491525, 1.508475]);
+  await drawnInAxes(o, [0.5, 1.5]);
+  assert.deepEqual(o.curves.grazing.x, cliCurve(o.queries.grazing).w);
+
+  // Unticked: nothing drawn.
+  await page.uncheck('input[name="map-curves"]');
+  o = await overlay();
+  assert.deepEqual(o.curves, {});
+  assert.equal(await page.$eval('[data-curves="status"]', (e) => e.textContent), '');
+  await setRanges({ 'map-w-min': '0.1', 'map-w-max': '2.5', 'map-beta-min': '0.5', 'map-beta-max': '4' });
+});
+
 test('changing frequency and amplitude gives the numbers of stickslip steady', async () => {
   for (const [freq, amplitude] of [['9.5k', '1.2'], ['3050', '0.749'], ['15k', '2.5']]) {
     await type('freq', freq);

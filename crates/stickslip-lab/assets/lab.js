@@ -7,7 +7,7 @@ import { api, slots, latest, isAbort } from './lab/api.js';
 import { state, statusEl, setStatus, clearErrors, showError, value, modelParams, holdGenerator } from './lab/state.js';
 import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPreset, fillMapSizes, showSystem } from './lab/panels.js';
 import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
-import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap } from './lab/sweepmap.js';
+import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap, runCurves } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
 import { wireRecord } from './lab/record.js';
 import { buildForm, fieldsOf, isPart, fieldText } from './lab/form.js';
@@ -282,6 +282,7 @@ export function wire() {
   $('[data-action="sweep"]').addEventListener('click', runSweep);
   $('[data-action="copy-measurements"]').addEventListener('click', copyMeasurements);
   $('[data-action="map"]').addEventListener('click', runMap);
+  field('map-curves').addEventListener('change', runCurves);
   wireRecord({ schedule, redraw, leavePresetPoint });
   window.addEventListener('resize', () => {
     redraw();

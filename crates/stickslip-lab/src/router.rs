@@ -268,6 +268,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/simulate", get(simulate))
         .route("/api/sweep", get(sweep))
         .route("/api/map", get(map))
+        .route("/api/curve", get(curve))
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
         .route("/api/keys", get(keys))
@@ -434,7 +435,7 @@ async fn not_found(request: Request) -> Response {
         StatusCode::NOT_FOUND,
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
-             /api/map, /api/theory, /api/presets, /api/keys; POST /api/record, /api/fit)",
+             /api/map, /api/curve, /api/theory, /api/presets, /api/keys; POST /api/record, /api/fit)",
             clip(request.uri().path(), 80)
         ),
     )
@@ -476,6 +477,13 @@ async fn sweep(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) 
 
 async fn map(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::MapRequest::parse(raw.as_deref()) {
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
+        Err(err) => err.into_response(),
+    }
+}
+
+async fn curve(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
+    match api::CurveRequest::parse(raw.as_deref()) {
         Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }

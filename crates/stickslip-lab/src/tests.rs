@@ -3,6 +3,7 @@
 //! with one line of JSON; the time limit stops a computation.
 
 mod connections;
+mod curve;
 mod page_keys;
 
 use super::router::{router, Lab, Settings};

@@ -10,6 +10,7 @@
 //! `KeyboardInterrupt` (see the `runner` module).
 
 mod compute;
+mod curve;
 mod dynamics;
 mod experiment;
 mod fit;
@@ -130,6 +131,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dynamics::bifurcation, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::basins, m)?)?;
     m.add_function(wrap_pyfunction!(dynamics::continuation, m)?)?;
+    m.add_function(wrap_pyfunction!(curve::curve, m)?)?;
     m.add_function(wrap_pyfunction!(fit::read_scope, m)?)?;
     m.add_function(wrap_pyfunction!(fit::read_amplitudes, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit, m)?)?;

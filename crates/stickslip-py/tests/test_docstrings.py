@@ -9,6 +9,7 @@ import pytest
 
 import stickslip
 import stickslip._api
+import stickslip._curve
 import stickslip._stability
 import stickslip._tables
 import stickslip._trajectory
@@ -29,6 +30,7 @@ TESTS = (
     + _examples(stickslip._tables, "stickslip")
     + _examples(stickslip._stability, "stickslip")
     + _examples(stickslip._dynamics, "stickslip")
+    + _examples(stickslip._curve, "stickslip")
     + _examples(stickslip.dask, "stickslip.dask")
     + _examples(Experiment, "stickslip.Experiment")
 )
@@ -37,7 +39,7 @@ TESTS = (
 def test_every_public_function_and_constructor_has_an_example():
     named = {t.name.split(".")[-1] for t in TESTS if t.examples}
     for name in ["simulate", "steady", "theory", "boundary", "sweep", "phase_diagram", "orbit",
-                 "lyapunov", "bifurcation", "basins", "continuation",
+                 "lyapunov", "bifurcation", "basins", "continuation", "curve",
                  "sweep_grid", "paper", "circuit", "shockley", "mechanics", "from_toml",
                  "replace", "convert", "from_dict", "Experiment"]:
         assert name in named, f"{name} has no example in its docstring"

@@ -284,11 +284,17 @@ impl Bench {
     /// Record `i` drawn with noise from `rng`: the files of its export (one; two for a
     /// Tektronix pair), each (name, text).
     pub fn export(&self, i: usize, rng: &mut Rng) -> Vec<(String, String)> {
+        self.export_with_noise(i, rng, 1.0)
+    }
+
+    /// Record `i` as [`Bench::export`] makes it, with `noise` codes (RMS) of Gaussian noise
+    /// instead of one; 0: the converter's rounding alone (and no draw from `rng`).
+    pub fn export_with_noise(&self, i: usize, rng: &mut Rng, noise: f64) -> Vec<(String, String)> {
         let spec = &self.records[i];
         let drive = spec.drive();
         let response: Vec<f64> = self.trace(i).iter().map(|u| u + spec.offset_v).collect();
-        let drive = codes(&drive, volts_per_div(&drive), rng);
-        let response = codes(&response, volts_per_div(&response), rng);
+        let drive = noisy_codes(&drive, volts_per_div(&drive), rng, noise);
+        let response = noisy_codes(&response, volts_per_div(&response), rng, noise);
         let start = -0.5 * spec.samples as f64 * spec.interval_s;
         let record = Synthetic::new(drive, response, start, spec.interval_s);
         let name = |suffix: &str| format!("{}{suffix}.csv", spec.name);
@@ -325,11 +331,21 @@ pub fn volts_per_div(values: &[f64]) -> f64 {
 /// # Panics
 /// When a value is off the converter's range (a wrong setting: the scope would clip it).
 pub fn codes(values: &[f64], v_per_div: f64, rng: &mut Rng) -> Vec<f64> {
+    noisy_codes(values, v_per_div, rng, 1.0)
+}
+
+/// [`codes`] with `noise` codes (RMS) of Gaussian noise; 0: rounding alone.
+fn noisy_codes(values: &[f64], v_per_div: f64, rng: &mut Rng, noise: f64) -> Vec<f64> {
     let q = v_per_div / CODES_PER_DIV;
     values
         .iter()
         .map(|&x| {
-            let code = (x / q + rng.gauss()).round();
+            let dither = if noise > 0.0 {
+                noise * rng.gauss()
+            } else {
+                0.0
+            };
+            let code = (x / q + dither).round();
             assert!(
                 (-128.0..=127.0).contains(&code),
                 "{x} V is off the screen at {v_per_div} V/div"
@@ -344,11 +360,21 @@ impl Bench {
     /// (a Tektronix pair merged), prepared for fitting with the default channels: (the
     /// name as `--data` gives it, the measurement).
     pub fn measurements(&self, seed: u64) -> Vec<(String, stickslip::measure::Measurement)> {
+        self.measurements_with_noise(seed, 1.0)
+    }
+
+    /// [`Bench::measurements`] with `noise` codes (RMS) of Gaussian noise instead of one; 0:
+    /// the noise-free traces, rounded to the converter's codes.
+    pub fn measurements_with_noise(
+        &self,
+        seed: u64,
+        noise: f64,
+    ) -> Vec<(String, stickslip::measure::Measurement)> {
         use stickslip::measure::{read_scope, Measurement, Record};
         let mut rng = Rng(seed);
         (0..self.records.len())
             .map(|i| {
-                let files = self.export(i, &mut rng);
+                let files = self.export_with_noise(i, &mut rng, noise);
                 let parts: Vec<Record> = files
                     .iter()
                     .map(|(name, text)| read_scope(text, name).expect("the export reads"))

@@ -92,16 +92,19 @@ fn bench_shockley_map(c: &mut Criterion) {
     let w = ParameterRange::new("w", 0.1, 2.5, n).expect("valid");
     let beta = ParameterRange::new("beta", 0.5, 4.0, n).expect("valid");
     group.throughput(Throughput::Elements((n * n) as u64));
-    // As the report computes it (motions that do not repeat measured), and without the
-    // measurement (`--lyapunov-periods 0`).
-    for (name, measured) in [
-        ("shockley_fig7b", true),
-        ("shockley_fig7b_unmeasured", false),
+    // As the report computes it (motions that do not repeat measured), without the
+    // measurement (`--lyapunov-periods 0`), and as the report computed it before Newton
+    // settled Shockley points (`_plain`: Newton off, the baseline of issue 34).
+    for (name, measured, newton) in [
+        ("shockley_fig7b", true, true),
+        ("shockley_fig7b_unmeasured", false, true),
+        ("shockley_fig7b_plain", true, false),
     ] {
         let options = shockley
             .steady_options()
             .with_max_periods(500)
-            .expect("valid");
+            .expect("valid")
+            .with_newton(newton);
         let options = if measured {
             options
         } else {

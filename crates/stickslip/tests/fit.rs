@@ -152,6 +152,26 @@ fn a_sine_whose_whole_periods_end_at_a_sample_is_fitted() {
     assert_eq!(m.drive.periods, 3);
 }
 
+/// A noise-free record (ngspice's 1N914-like traces rounded to 8-bit codes) whose whole
+/// periods end within the frequency's uncertainty of a sample, so that the window alternates
+/// between two lengths: the sine fit takes the shorter and ends (it went round for ever);
+/// each drive's frequency is the generator's.
+#[test]
+fn a_window_that_alternates_settles_on_the_shorter() {
+    let bench = stickslip_testkit::ngspice::D1N914;
+    for (spec, (name, m)) in bench
+        .records
+        .iter()
+        .zip(bench.measurements_with_noise(0, 0.0))
+    {
+        assert!(
+            (m.drive.frequency / spec.freq_hz - 1.0).abs() < 1e-5,
+            "{name}: {:?}",
+            m.drive
+        );
+    }
+}
+
 fn error(text: &str) -> String {
     match read_scope(text, "bad.csv") {
         Ok(r) => Measurement::new(&r, None, None).unwrap_err().to_string(),

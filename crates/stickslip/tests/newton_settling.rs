@@ -412,3 +412,179 @@ fn the_record_does_not_depend_on_the_spectrum() {
         }
     }
 }
+
+/// The report's Fig. 7 (b) window with the paper's circuit and a 1N4148 pair (Shockley law),
+/// n × n points from rest, the search capped at 500 periods as the report's.
+fn shockley_map(n: usize, newton: bool) -> GridMap {
+    let shockley = Experiment::paper()
+        .with_shockley(stickslip::DiodePair::one_n4148())
+        .unwrap();
+    let grid = Grid::new(
+        &shockley,
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.1, 2.5, n).unwrap(),
+        )
+        .unwrap(),
+        Axis::range(
+            Parameter::Beta,
+            &ParameterRange::new("beta", 0.5, 4.0, n).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let options = shockley
+        .steady_options()
+        .with_max_periods(500)
+        .unwrap()
+        .with_newton(newton);
+    grid.options(options).unwrap().run(&()).unwrap()
+}
+
+/// Newton settling of a smooth law (the Shockley diode pair: Newton on the strobe map of the
+/// stiff solver at the trajectories' options, the monodromy from its sensitivities) gives the
+/// report's Fig. 7 (b) map (32 × 32 here) with the classes of the plain iteration: the same
+/// class, period, stops and symmetry at every point where the iteration repeats, and the
+/// gains within 10 rtol (both are the solver's solutions, to rtol = 10⁻⁶). Where the
+/// iteration does not repeat (a sliding orbit whose strobes wander within the solver's
+/// accuracy, see `SHOCKLEY_MAX_PERIODS` in the report's fig7.rs), Newton's cycle must be of
+/// period 1 with the same class and stops, and the iteration's strobes all within
+/// 10⁻⁴ scale of Newton's fixed point.
+#[test]
+fn shockley_map_by_newton_has_the_classes_of_the_plain_iteration() {
+    let n = 32;
+    let (new, old) = (shockley_map(n, true), shockley_map(n, false));
+    assert_eq!(new.points.len(), n * n);
+    let shockley = Experiment::paper()
+        .with_shockley(stickslip::DiodePair::one_n4148())
+        .unwrap();
+    let options = shockley.steady_options().with_max_periods(500).unwrap();
+    let rtol = options.tolerance;
+    let (mut settled_by_newton, mut wandering) = (0, 0);
+    for (a, b) in new.points.iter().zip(&old.points) {
+        let at = (a.params.w, a.params.beta);
+        let newton = (a.class, a.period, a.stops_per_period, a.symmetric);
+        let plain = (b.class, b.period, b.stops_per_period, b.symmetric);
+        if b.period.is_none() && a.period == Some(1) {
+            wandering += 1;
+            assert_eq!((a.class, a.stops_per_period), (b.class, b.stops_per_period));
+            let factory = shockley.factory();
+            let run = |newton: bool| {
+                steady_state_from(
+                    &factory,
+                    &a.params,
+                    State::default(),
+                    &options.with_newton(newton),
+                )
+                .unwrap()
+            };
+            let (by_newton, plain) = (run(true), run(false));
+            let star = by_newton.strobes[0];
+            let scale = star.y.abs().max(star.v.abs()).max(1.0);
+            let far = plain
+                .strobes
+                .iter()
+                .map(|s| (s.y - star.y).abs().max((s.v - star.v).abs()))
+                .fold(0.0, f64::max);
+            assert!(
+                far <= 1e-4 * scale,
+                "at {at:?}: the iteration's strobes are {far:e} from Newton's fixed point"
+            );
+        } else {
+            assert_eq!(newton, plain, "at {at:?}: with Newton, without");
+            assert!(
+                (a.gain - b.gain).abs() <= 10.0 * rtol * b.gain.max(1.0),
+                "at {at:?}: gain {} with Newton, {} without",
+                a.gain,
+                b.gain
+            );
+        }
+        settled_by_newton += usize::from(a.periods_to_settle < b.periods_to_settle);
+    }
+    // The comparison means something only if Newton settled many of the cells.
+    assert!(
+        settled_by_newton > n * n / 2,
+        "Newton shortened {settled_by_newton} cells"
+    );
+    assert!(wandering <= 4, "{wandering} points settled only by Newton");
+    eprintln!("{settled_by_newton} cells shortened by Newton, {wandering} settled by it alone");
+}
+
+/// The map Newton settling solves for a smooth law is the trajectories' own: the strobe map
+/// with sensitivities at the trajectories' options (the sensitivities do not steer the
+/// steps) lands where a plain solver of the experiment's factory started at the same state
+/// lands after one period, to the bit, at a sliding and a sticking point.
+#[test]
+fn the_smooth_settling_map_is_the_solvers_own() {
+    use stickslip::solver::run_until;
+    use stickslip::steady::SolverFactory;
+    let shockley = Experiment::paper()
+        .with_shockley(stickslip::DiodePair::one_n4148())
+        .unwrap();
+    let map = shockley
+        .dynamics()
+        .unwrap()
+        .settling()
+        .expect("a smooth law");
+    for (w, beta) in [(0.9, 1.6), (0.3, 1.5)] {
+        let params = Params::new(0.0468, w, beta).unwrap();
+        let x = State { y: 0.3, v: -0.2 };
+        let image = map.strobe_map(&params, x, 1).unwrap();
+        let mut solver = shockley.factory().make(params, x).unwrap();
+        run_until(solver.as_mut(), params.drive_period(), |_| {}).unwrap();
+        assert_eq!(image.state, solver.state(), "at w = {w}, beta = {beta}");
+    }
+}
+
+/// A Shockley sweep (the resonance curve of Fig. 4 at β = 2.14 with a 1N4148 pair, up and
+/// down, each step from the one before) settled by Newton has the classes of the plain
+/// iteration: the same class, period, stops and symmetry at every step, the gains within
+/// 10 rtol, and Newton shortens most steps.
+#[test]
+fn shockley_sweep_by_newton_has_the_classes_of_the_plain_iteration() {
+    use stickslip::scan::{Sweep, SweepDirection};
+    let shockley = Experiment::paper()
+        .with_shockley(stickslip::DiodePair::one_n4148())
+        .unwrap()
+        .with_beta(2.14)
+        .unwrap();
+    let sweep = Sweep::new(
+        &shockley,
+        Axis::range(
+            Parameter::W,
+            &ParameterRange::new("w", 0.2, 2.0, 37).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap()
+    .direction(SweepDirection::Both);
+    let options = *sweep.steady_options();
+    let run = |newton: bool| {
+        sweep
+            .clone()
+            .options(options.with_newton(newton))
+            .unwrap()
+            .run(&())
+            .unwrap()
+    };
+    let (new, old) = (run(true), run(false));
+    assert_eq!(new.len(), 74);
+    let mut shortened = 0;
+    for (a, b) in new.iter().zip(&old) {
+        let (a, b) = (&a.steady, &b.steady);
+        let at = (a.params.w, a.params.beta);
+        assert_eq!(
+            (a.class, a.period, a.stops_per_period, a.symmetric),
+            (b.class, b.period, b.stops_per_period, b.symmetric),
+            "at {at:?}: with Newton, without"
+        );
+        assert!(
+            (a.gain - b.gain).abs() <= 10.0 * options.tolerance * b.gain.max(1.0),
+            "at {at:?}: gain {} with Newton, {} without",
+            a.gain,
+            b.gain
+        );
+        shortened += usize::from(a.periods_to_settle < b.periods_to_settle);
+    }
+    assert!(shortened > 37, "Newton shortened {shortened} steps");
+}

@@ -600,3 +600,142 @@ fn fit_refuses_swapped_channels_and_warns_of_what_it_cannot_separate() {
     );
     assert!(!text.contains("NaN"), "{text}");
 }
+
+/// `--compare` on records of `bench` (ngspice's traces of the 10 mH, 47 nF, 120 Ω circuit,
+/// drawn with noise from the seed `seed` and written in their scope formats into `dir`), R, L
+/// and C given as built (U_t = 0.6 V and R_D = 1 Ω the PWL fit's start): the comparison's JSON.
+fn compare_bench(
+    dir: &std::path::Path,
+    bench: &stickslip_testkit::ngspice::Bench,
+    seed: u64,
+) -> serde_json::Value {
+    let mut rng = stickslip_testkit::Rng(seed);
+    let mut args: Vec<String> = [
+        "fit",
+        "--inductance",
+        "10mH",
+        "--capacitance",
+        "47nF",
+        "--resistance",
+        "120",
+        "--ut",
+        "0.6",
+        "--rd",
+        "1",
+        "--compare",
+        "--free",
+        "ut,rd",
+        "--free-shockley",
+        "diode-is,diode-n,diode-rs",
+        "--json",
+    ]
+    .map(String::from)
+    .to_vec();
+    for i in 0..bench.records.len() {
+        let files = bench.export(i, &mut rng);
+        for (name, text) in &files {
+            std::fs::write(dir.join(name), text).unwrap();
+        }
+        args.push("--data".into());
+        args.push(
+            files
+                .iter()
+                .map(|(name, _)| name.as_str())
+                .collect::<Vec<_>>()
+                .join("+"),
+        );
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let out = run_in(dir, &args);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{}: {err}", bench.name);
+    serde_json::from_str(&stdout(&out)).unwrap()
+}
+
+/// The preferred law, ΔAIC and both fits' convergence of a comparison's JSON, printed.
+fn preferred(name: &str, v: &serde_json::Value) -> String {
+    eprintln!(
+        "{name}: preferred {}, AIC Shockley - PWL = {}, converged PWL {} Shockley {}",
+        v["preferred"], v["delta_aic"], v["pwl"]["converged"], v["shockley"]["converged"]
+    );
+    v["preferred"].as_str().unwrap().to_string()
+}
+
+/// `--compare` prefers the law that made the data: Shockley's for records that ngspice made
+/// with 1N914-like diodes and with red LEDs (the LED's n = 3.5 reached from the PWL fit's
+/// knee, not stalled on the way), PWL's for records of the exact PWL solver.
+#[test]
+fn compare_prefers_the_law_that_made_the_records() {
+    use stickslip_testkit::ngspice::{D1N914, LED};
+    for (bench, seed) in [(&D1N914, 11), (&LED, 12)] {
+        let dir = tempfile::tempdir().unwrap();
+        let v = compare_bench(dir.path(), bench, seed);
+        assert_eq!(preferred(bench.name, &v), "shockley", "{}", bench.name);
+        assert!(v["delta_aic"].as_f64().unwrap() < 0.0, "{}", bench.name);
+        assert_eq!(v["shockley"]["converged"], true, "{}", bench.name);
+        // The card's n, within the fit's own interval.
+        let ci = v["shockley"]["parameters"]["diode-n"]["ci95"]
+            .as_array()
+            .unwrap();
+        let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
+        assert!(
+            lo <= bench.n && bench.n <= hi,
+            "{}: n = {} in [{lo}, {hi}]",
+            bench.name,
+            bench.n
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write_records(dir.path());
+    let out = run_in(
+        dir.path(),
+        &[
+            "fit",
+            "--preset",
+            "paper",
+            "--data",
+            "a.csv",
+            "--data",
+            "b.csv",
+            "--compare",
+            "--free",
+            "resistance,ut",
+            "--free-shockley",
+            "resistance,diode-is,diode-n",
+            "--json",
+        ],
+    );
+    let err = stderr(&out);
+    assert!(matches!(out.status.code(), Some(0 | 3)), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(preferred("pwl", &v), "pwl");
+    assert!(v["delta_aic"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["pwl"]["converged"], true);
+}
+
+/// A drive channel that is not a sine (a triangle wave), beside a response that is not one
+/// either, is refused in one line naming the channel and what a drive must be (exit 2).
+#[test]
+fn fit_refuses_a_drive_that_is_not_a_sine() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::from("t_s,drive_V,uc_V\n");
+    for k in 0..2000 {
+        let t = k as f64 * 1e-6;
+        let phase = (t * 1234.5).fract();
+        let triangle = 4.0 * (phase - 0.5).abs() - 1.0;
+        let square = if phase < 0.5 { 0.5 } else { -0.5 };
+        text.push_str(&format!("{t:e},{triangle:.4},{square:.4}\n"));
+    }
+    std::fs::write(dir.path().join("triangle.csv"), text).unwrap();
+    let out = run_in(
+        dir.path(),
+        &["fit", "--preset", "paper", "--data", "triangle.csv"],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("triangle.csv") && err.contains("is not a sine") && err.contains("drive"),
+        "{err}"
+    );
+}

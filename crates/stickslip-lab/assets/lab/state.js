@@ -30,6 +30,7 @@ export const state = {
   theoryNote: '',
   sweep: null,
   map: null,
+  curves: null, // the curves over the map (/api/curve): { map, answers: { follow: answer } }
   mode: 'yt',
   trigger: 'steady',
   autoscalePending: true,

@@ -258,8 +258,9 @@ export function drawMap() {
     label(o, key, box.r, ky, '#222', 'right');
     text.push(TextBoxes.box(o, key, box.r, ky, 'right'));
     window.stickslipLab.mapText = text;
-    return { X, Y, box };
+    return { X, Y, box, xr, yr };
   });
+  drawCurves(g, layer, m);
   // The current point.
   if (s && s.system === m.system) {
     const { X, Y, box } = layer;
@@ -347,6 +348,7 @@ export async function runMap() {
     out.textContent = Object.entries(counts).map(([k, v]) => `${k} ${v}`).join(', ');
     out.dataset.state = 'ready';
     drawMap();
+    if (field('map-curves').checked) runCurves();
   } catch (e) {
     clearInterval(ticker);
     if (isAbort(e)) return;
@@ -354,4 +356,95 @@ export async function runMap() {
     out.textContent = '';
     showError(e, out);
   }
+}
+
+// ---------------------------------------------------------------- curves over the map
+/** The curves drawn over the map, in the order they are asked for: colour and dash of each
+ *  special point followed (/api/curve's `follow`). */
+export const CURVE_STYLES = { grazing: ['#e69f00', []], fold: ['#cc0000', [7, 3]], 'period-doubling': ['#56b4e9', [2, 3]] };
+const CURVE_WORDS = { grazing: 'grazing', fold: 'fold', 'period-doubling': 'period doubling' };
+
+/** The curves of the current circuit over the map on the screen (when "curves" is ticked):
+ *  the orbit the motion settles on at the top of the map (the largest β, at the current
+ *  point's w, or the middle of the map's w when the point lies outside) is followed down in
+ *  β to its first special point of each kind, which is then followed over the map's w range,
+ *  as `stickslip curve --vary beta --vary-to <β min> --over w --from <w min> --to <w max>`. */
+export async function runCurves() {
+  const out = $('[data-curves="status"]');
+  const m = state.map;
+  if (!field('map-curves').checked || !m) {
+    state.curves = null;
+    out.textContent = '';
+    delete out.dataset.state;
+    drawMap();
+    return;
+  }
+  const [wLo, wHi] = [m.w[0], m.w[m.w.length - 1]];
+  const [bLo, bHi] = [m.beta[0], m.beta[m.beta.length - 1]];
+  const s = state.steady;
+  const w0 = s && s.w > wLo && s.w < wHi ? s.w : (wLo + wHi) / 2;
+  const curves = { map: m, answers: {}, queries: {} };
+  state.curves = curves;
+  out.textContent = 'computing curves…';
+  out.dataset.state = 'computing';
+  out.title = '';
+  try {
+    for (const follow of Object.keys(CURVE_STYLES)) {
+      const p = modelParams({ frequency: false, amplitude: false });
+      for (const [k, v] of [['w', w0], ['beta', bHi], ['follow', follow], ['vary', 'beta'], ['vary-to', bLo], ['over', 'w'], ['from', wLo], ['to', wHi]]) p.set(k, String(v));
+      curves.queries[follow] = p.toString();
+      const answer = await latest('curve', 'curve', p);
+      if (state.curves !== curves) return;
+      curves.answers[follow] = answer;
+      drawMap();
+    }
+    const parts = Object.entries(curves.answers).map(([follow, a]) => (a.points ? `${CURVE_WORDS[follow]} ${a.report.points} points` : `no ${CURVE_WORDS[follow]}`));
+    out.textContent = `curves: ${parts.join(', ')}`;
+    out.title = Object.values(curves.answers).map((a) => a.none || `${CURVE_WORDS[a.follow]}: ends at ${a.report.end_text}`).join('\n');
+    out.dataset.state = 'ready';
+  } catch (e) {
+    if (isAbort(e)) return;
+    out.dataset.state = 'error';
+    out.textContent = `curves: ${e.message}`;
+  }
+}
+
+/** Draw the curves of `state.curves` over the map `m` in the map's axes (`layer`: X, Y, box),
+ *  each in its colour, with a key in the plot's upper left corner. The drawn points are kept
+ *  in `window.stickslipLab.mapCurves` with the axes. */
+function drawCurves(g, layer, m) {
+  const c = state.curves;
+  const drawn = {};
+  window.stickslipLab.mapCurves = { xr: layer.xr, yr: layer.yr, box: layer.box, curves: drawn, queries: c ? c.queries : {} };
+  if (!c || c.map !== m || !field('map-curves').checked) return;
+  const { X, Y, box } = layer;
+  g.save();
+  g.beginPath();
+  g.rect(box.l, box.t, box.r - box.l, box.b - box.t);
+  g.clip();
+  const shown = [];
+  for (const [follow, answer] of Object.entries(c.answers)) {
+    if (!answer.points) continue;
+    // The columns named by the report's parameters: the table's own names.
+    const xs = answer.points[answer.report.over];
+    const ys = answer.points[answer.report.vary];
+    const pts = xs.map((x, i) => [X(x), Y(ys[i])]);
+    const [color, dash] = CURVE_STYLES[follow];
+    polyline(g, pts, 'rgba(255, 255, 255, 0.8)', 4.5);
+    polyline(g, pts, color, 2.5, dash);
+    drawn[follow] = { x: xs, y: ys, pixels: pts };
+    shown.push(follow);
+  }
+  let ky = box.t + 14;
+  g.font = '11px system-ui, sans-serif';
+  for (const follow of shown) {
+    const text = `${CURVE_WORDS[follow]} curve`;
+    g.fillStyle = 'rgba(255, 255, 255, 0.85)';
+    g.fillRect(box.l + 4, ky - 10, g.measureText(text).width + 30, 14);
+    const [color, dash] = CURVE_STYLES[follow];
+    polyline(g, [[box.l + 8, ky - 3], [box.l + 26, ky - 3]], color, 2.5, dash);
+    label(g, text, box.l + 30, ky, '#222');
+    ky += 14;
+  }
+  g.restore();
 }

@@ -9,6 +9,7 @@
 
 pub mod answer;
 pub mod caps;
+mod curve;
 mod fit;
 mod keys;
 mod map;
@@ -21,6 +22,7 @@ mod sweep;
 mod theory;
 pub mod upload;
 
+pub use curve::*;
 pub use fit::*;
 pub use keys::*;
 pub use map::*;

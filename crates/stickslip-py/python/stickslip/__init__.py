@@ -23,6 +23,8 @@ For the circuit y = u_C/U_t, 2ζ = (R + R_D)√(C/L), β = U/U_t, w = Ω/ω0.
 - ``basins``: the attractor reached from each initial state of a grid, attractors numbered.
 - ``continuation``: a branch of periodic orbits with its stability, folds, period doublings
   and grazings.
+- ``curve``: a fold, period doubling, Neimark–Sacker point or grazing followed in two
+  parameters, with its codimension-two points; ``to_xarray()``, ``to_pandas()``.
 - ``read_scope``, ``read_amplitudes``: oscilloscope exports and tables of measured amplitudes.
 - ``fit``: the circuit's parameters (R, U_t, diode laws, ...) fitted to measurements, with error
   bars and residuals; ``to_dict()`` is ``stickslip fit --json``.
@@ -59,6 +61,7 @@ from ._fit import (
     read_amplitudes,
     read_scope,
 )
+from ._curve import Curve, curve
 from ._dynamics import (
     ATTRACTOR_KINDS,
     BasinMap,
@@ -85,6 +88,8 @@ __all__ = [
     "basins",
     "bifurcation",
     "continuation",
+    "Curve",
+    "curve",
     "EVENT_DTYPE",
     "EVENT_KINDS",
     "Experiment",

@@ -34,6 +34,7 @@ __all__ = [
     "boundary",
     "check_option",
     "continuation",
+    "curve",
     "fit",
     "grid",
     "lyapunov",
@@ -387,6 +388,18 @@ def basins(
 ) -> Dict[str, Any]: ...
 def continuation(
     experiment: Experiment,
+    over: str,
+    start: float,
+    to: float,
+    max_points: int,
+    max_step: float,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def curve(
+    experiment: Experiment,
+    follow_kind: str,
+    vary: str,
+    vary_to: float,
     over: str,
     start: float,
     to: float,

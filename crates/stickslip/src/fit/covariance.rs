@@ -111,17 +111,26 @@ impl Covariance {
     }
 }
 
+/// The residuals' variance s² that scales the error bars and the profiles: the sum of squares
+/// over the degrees of freedom, never below the data's precision `floor`
+/// ([`lm::Problem::floor`]). Rounding to a converter's codes or to printed digits is an error
+/// of every sample (of variance q²/12 for a step q) that no parameter explains: a fit of
+/// records without noise, down to that rounding, has error bars of the rounding's size, not
+/// of the few residuals that happen to fall below it.
+pub(super) fn variance(sum_squares: f64, dof: usize, floor: f64) -> f64 {
+    (sum_squares / dof.max(1) as f64).max(floor)
+}
+
 /// Standard errors, intervals and correlation of the free values from the solution (the
-/// weighted residuals' variance s² scales (JᵀJ)⁻¹), the intervals' ends `found` in the
-/// coordinates with how they were found.
+/// weighted residuals' variance `s2` ([`variance`]) scales (JᵀJ)⁻¹), the intervals' ends
+/// `found` in the coordinates with how they were found.
 pub(super) fn uncertainties(
     setup: &Setup,
     solution: &lm::Solution,
     covariance: &Covariance,
     found: &[([f64; 2], Interval)],
-    dof: usize,
+    s2: f64,
 ) -> (Vec<FittedParameter>, Vec<Vec<f64>>) {
-    let s2 = solution.sum_squares / dof as f64;
     let free = setup.free.len();
     let n = covariance.n;
     let values = setup.values(&solution.x[..free]);
@@ -177,4 +186,19 @@ pub(super) fn criteria(groups: &[(f64, usize)], p: usize) -> (f64, f64) {
 /// The RMS of `values`.
 pub(super) fn rms(values: &[f64]) -> f64 {
     (values.iter().map(|v| v * v).sum::<f64>() / values.len().max(1) as f64).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::variance;
+
+    /// χ²/dof where it is above the data's precision; the precision where the residuals fall
+    /// below it (a record without noise fitted to its rounding).
+    #[test]
+    fn the_variance_is_never_below_the_precision() {
+        assert_eq!(variance(200.0, 100, 0.08), 2.0);
+        assert_eq!(variance(1e-6, 100, 1.0 / 12.0), 1.0 / 12.0);
+        // No degree of freedom: the sum itself.
+        assert_eq!(variance(3.0, 0, 0.0), 3.0);
+    }
 }

@@ -110,14 +110,38 @@ pub(crate) fn decrement(a: &[f64], g: &[f64], ssr: f64, residuals: usize, floor:
     }
 }
 
+/// The normal matrix JᵀJ (row-major) and the gradient Jᵀr of Jacobian `columns` at residuals
+/// `r`. A record's own values (its drive, offset, time shift) have columns that vanish outside
+/// the record's residuals: each product runs over the rows where both columns can be nonzero
+/// (the same sums as over every row, whose other terms are exact zeros).
 fn normal(columns: &[Vec<f64>], r: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let n = columns.len();
+    let support: Vec<(usize, usize)> = columns
+        .iter()
+        .map(|c| match c.iter().position(|v| *v != 0.0) {
+            Some(first) => (
+                first,
+                c.iter().rposition(|v| *v != 0.0).map_or(first, |l| l + 1),
+            ),
+            None => (0, 0),
+        })
+        .collect();
+    let dot = |a: &[f64], b: &[f64], (lo, hi): (usize, usize)| -> f64 {
+        if lo >= hi {
+            return 0.0;
+        }
+        a[lo..hi].iter().zip(&b[lo..hi]).map(|(a, b)| a * b).sum()
+    };
     let mut a = vec![0.0; n * n];
     let mut g = vec![0.0; n];
     for i in 0..n {
-        g[i] = columns[i].iter().zip(r).map(|(j, r)| j * r).sum();
+        g[i] = dot(&columns[i], r, support[i]);
         for k in 0..=i {
-            let v: f64 = columns[i].iter().zip(&columns[k]).map(|(a, b)| a * b).sum();
+            let span = (
+                support[i].0.max(support[k].0),
+                support[i].1.min(support[k].1),
+            );
+            let v = dot(&columns[i], &columns[k], span);
             a[i * n + k] = v;
             a[k * n + i] = v;
         }

@@ -20,7 +20,7 @@
 //! minimum: it is returned, and the fit goes on from there.
 
 use super::linalg::{cholesky, cholesky_solve};
-use super::{lm, FitError, Interval, Records, RESTART_LOWER};
+use super::{lm, variance, FitError, Interval, Records, RESTART_LOWER};
 
 /// The outcome of [`intervals`]: per fitted value the interval's ends in its coordinate and
 /// how they were found; or a point with a lower sum of squares.
@@ -93,8 +93,8 @@ pub(super) fn intervals(
 ) -> Result<Outcome, FitError> {
     let n = solution.x.len();
     let x = &solution.x;
-    let dof = solution.residuals.len().saturating_sub(n).max(1) as f64;
-    let s2 = solution.sum_squares / dof;
+    let dof = solution.residuals.len().saturating_sub(n);
+    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(problem));
     let bounds = lm::Problem::bounds(problem, n);
     let rise = |ssr: f64| (ssr - solution.sum_squares) / s2;
     let mut out = Vec::with_capacity(free);

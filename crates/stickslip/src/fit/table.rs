@@ -101,6 +101,14 @@ impl lm::Problem for Table<'_> {
     fn iteration(&mut self, iteration: usize, sum_squares: f64) -> Result<(), FitError> {
         self.watch.tell(iteration, sum_squares)
     }
+
+    /// The table's precision (V²): 10⁻⁹ of its largest amplitude, as a record's channel
+    /// without noise or a known resolution ([`noise_floor`]); the digits a table prints are
+    /// not kept, and the model's amplitudes are no finer.
+    fn floor(&self) -> f64 {
+        let responses: Vec<f64> = self.table.rows.iter().map(|r| r.response).collect();
+        noise_floor(0.0, &responses, None).powi(2)
+    }
 }
 
 /// Fit the free parameters of `experiment` to a table of measured amplitudes (see the module
@@ -206,7 +214,7 @@ pub fn fit_table_monitored(
     let dof = solution.residuals.len().saturating_sub(n_values).max(1);
     let covariance = Covariance::of(&solution, n_values);
     let t = t_quantile_975(dof);
-    let s2 = solution.sum_squares / dof as f64;
+    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(&problem));
     let linear: Vec<([f64; 2], Interval)> = (0..n_values)
         .map(|k| {
             let sigma = covariance.sigma(k, s2);
@@ -216,7 +224,7 @@ pub fn fit_table_monitored(
             )
         })
         .collect();
-    let (parameters, correlation) = uncertainties(&setup, &solution, &covariance, &linear, dof);
+    let (parameters, correlation) = uncertainties(&setup, &solution, &covariance, &linear, s2);
     let fitted = setup.at(&solution.x).expect("the solution was evaluated");
     let amplitudes = problem
         .amplitudes(&solution.x)

@@ -158,6 +158,8 @@ pub fn fit_sine(
     // iteration jump between the fits with and without it.)
     let within = |end: f64| (0..x.len()).filter(|&i| used[i] && s[i] <= end).count();
     let mut windows: Vec<usize> = Vec::new();
+    // Set when the window alternated and the shorter was taken: its fit is the last.
+    let mut last = false;
     loop {
         let mut converged = false;
         for _ in 0..50 {
@@ -197,6 +199,9 @@ pub fn fit_sine(
         if !converged {
             return Err(fail("did not converge in 50 iterations"));
         }
+        if last {
+            break;
+        }
         let whole = (duration * frequency + 1e-9).floor() as usize;
         if whole > 0 {
             periods = whole;
@@ -207,11 +212,13 @@ pub fn fit_sine(
             break;
         }
         // A window that alternates (its end within the frequency's uncertainty of a sample)
-        // keeps the shorter of the two; a window that keeps moving is refused.
+        // keeps the shorter of the two (fitted once more on it, then done: the fit on the
+        // shorter window may point to the longer again); a window that keeps moving is
+        // refused.
         if windows.contains(&then) {
             if then < now {
                 end = next;
-                windows.clear();
+                last = true;
                 continue;
             }
             break;

@@ -23,10 +23,12 @@
 //!
 //! Numbers are written as Rust's `Display` writes an `f64` (the shortest text that reads
 //! back to the same number: `0.1`, `1e-7`, `NaN`, `inf`); a missing value is an empty cell
-//! ([`cell`], [`optional`]).
+//! ([`cell`], [`optional`]). A front end that hands out columns (arrays, JSON) takes them
+//! from the table as [`Columns`]: the CSV's names and numbers, typed.
 
 mod bifurcation;
 mod branch;
+mod columns;
 mod curve;
 mod map;
 mod steady;
@@ -45,6 +47,7 @@ pub use crate::steady::SteadyReport;
 pub use crate::theory::TheoryReport;
 pub use bifurcation::{BifurcationReport, BifurcationRow};
 pub use branch::{BasinsTable, BranchTable};
+pub use columns::{Column, Columns};
 pub use curve::CurveTable;
 pub use map::{AxisCells, MapReport, MapRow};
 pub use steady::{SteadyTrace, TheoryRow, TheoryTable};

@@ -100,6 +100,15 @@ pub trait Dynamics: Send + Sync + std::fmt::Debug {
         let _ = (params, state, periods, parameter);
         None
     }
+
+    /// The same dynamics with the strobe map of [`Dynamics::find_periodic_orbit`] integrated
+    /// as the trajectories are (a solver started at the strobe with the trajectories' own
+    /// options), for Newton settling of a steady state ([`crate::SteadyOptions::newton`]):
+    /// its fixed point is the state from which the recorded cycle repeats. `None` (the
+    /// default) when the model has no such map (the exact model settles by its own).
+    fn settling(&self) -> Option<Box<dyn Dynamics>> {
+        None
+    }
 }
 
 /// The exact PWL model (Coulomb friction): [`crate::ExactSolver`] and the tools of
@@ -214,5 +223,12 @@ impl Dynamics for ShockleyDynamics {
         parameter: Parameter,
     ) -> Option<Result<[f64; 2]>> {
         Some(self.strobe_parameter_derivative(params, state, periods, parameter))
+    }
+
+    /// The map at the trajectories' options (the sensitivities do not steer the steps, so
+    /// the map's states are those of a plain solver from the same strobe, to the bit).
+    fn settling(&self) -> Option<Box<dyn Dynamics>> {
+        let options = *self.options();
+        Some(Box::new(self.clone().with_map_options(options).ok()?))
     }
 }

@@ -13,7 +13,8 @@
 //! the motion is called non-periodic.
 //!
 //! **Settling by Newton**: see the `newton` module (a stable fixed point of the strobe map,
-//! found by Newton and checked against the trajectory's own steps, settles the motion early).
+//! found by Newton and checked against the trajectory's own steps, settles the motion early;
+//! the exact solver's map, or a smooth law's at the solvers' options).
 //!
 //! **Motions that do not repeat** are then measured, when the solver follows the exact
 //! piecewise-linear model ([`Solver::is_exact`]) and [`SteadyOptions::lyapunov`] asks for it:
@@ -193,6 +194,11 @@ trait Holder {
     fn can_restart(&self) -> bool;
     /// The token the solvers check (charged with the work of Newton's tangent periods too).
     fn cancel(&self) -> Cancel;
+    /// The strobe map of a smooth law at the solvers' options, for Newton settling
+    /// ([`Dynamics::settling`]); `None` for the exact solver or without a factory.
+    fn settling(&self) -> Option<Box<dyn Dynamics>> {
+        None
+    }
 }
 
 /// A solver that cannot be restarted.
@@ -243,6 +249,9 @@ impl<F: SolverFactory + ?Sized> Holder for FromFactory<'_, F> {
     fn cancel(&self) -> Cancel {
         self.factory.cancel()
     }
+    fn settling(&self) -> Option<Box<dyn Dynamics>> {
+        self.factory.smooth_dynamics()?.settling()
+    }
 }
 
 /// Iterate the stroboscopic map until it repeats (see the module documentation). With
@@ -286,9 +295,14 @@ fn run_to_cycle<H: Holder>(
     let mut local = 0usize;
     let mut restarts = 0usize;
     let mut periods_run = 0;
-    let mut newton =
-        (accelerate && options.newton && holder.can_restart() && holder.solver().is_exact())
-            .then(NewtonSettling::new);
+    // (The exact solver's own map, or a smooth law's at the solvers' options.)
+    let mut newton = if !(accelerate && options.newton && holder.can_restart()) {
+        None
+    } else if holder.solver().is_exact() {
+        Some(NewtonSettling::new(None))
+    } else {
+        holder.settling().map(|map| NewtonSettling::new(Some(map)))
+    };
     // Newton's periods are counted in `periods_to_settle` of a motion that settles; they do
     // not shorten the trajectory, so a motion that does not settle is run and recorded as
     // without Newton.
@@ -392,7 +406,9 @@ fn run_to_cycle<H: Holder>(
             }
         }
         let tangent = spent(&newton) - before;
-        if tangent > 0 {
+        // (A smooth law's Newton runs on solvers of the factory's law, which charge their
+        // steps themselves.)
+        if tangent > 0 && !newton.as_ref().is_some_and(NewtonSettling::is_smooth) {
             // Newton's periods run on a tangent solver of their own: charge them to the token
             // of the factory's solvers like the strobes' (a step an event, and one a period),
             // so that budgets, deadlines and cancellation see them.

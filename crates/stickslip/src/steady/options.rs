@@ -33,11 +33,12 @@ pub struct SteadyOptions {
     pub accelerate: bool,
     /// Whether [`steady_state_from`](super::steady_state_from) (and so every front end's
     /// steady state, sweeps, phase diagrams and basins) may settle the motion by Newton's
-    /// method on the stroboscopic map once its strobes contract (exact solver only, together
-    /// with [`SteadyOptions::accelerate`]): the stable fixed point found is accepted when the
-    /// trajectory is within its basin by the checks of the documentation of
-    /// `steady/cycle.rs` (two strobe steps that follow the orbit's linearisation through the
-    /// orbit's events), and the cycle is recorded from it. Default true. A map's point and
+    /// method on the stroboscopic map once its strobes contract (the exact solver, or a
+    /// smooth law's solver whose factory has its stability tools, such as an experiment's
+    /// with Shockley diodes; together with [`SteadyOptions::accelerate`]): the stable fixed
+    /// point found is accepted when the trajectory is within its basin by the checks of the
+    /// documentation of `steady/newton.rs` (two strobe steps that follow the orbit's
+    /// linearisation through the orbit's events), and the cycle is recorded from it. Default true. A map's point and
     /// the steady state of the same point go through the same search with the same options
     /// (the spectrum, which a map does not compute, changes nothing in the record), so they
     /// are equal whichever way the motion settles.

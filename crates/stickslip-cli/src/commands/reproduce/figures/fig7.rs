@@ -19,6 +19,8 @@ use stickslip::{DiodePair, Experiment, Parameter};
 /// class of those points is the same after 500 periods as after 5000 (sliding, no period),
 /// and their gain, measured over the last period, agrees far within that rtol (10⁻⁶): to
 /// 3·10⁻¹¹ relative on the 64 × 64 map, 2.3·10⁻⁸ at 2 points of the quick report's 24 × 24.
+/// Since Newton settles Shockley points too, those 2 points of the 24 × 24 settle on the
+/// period-1 orbit their strobes wander around (gain within 1.7·10⁻⁶ of the wandering one).
 const SHOCKLEY_MAX_PERIODS: usize = 500;
 
 /// A map from rest over the paper's range, with its grid.
