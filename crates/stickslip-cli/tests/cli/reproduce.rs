@@ -377,7 +377,7 @@ fn writes_every_figure_table_and_the_report() {
 fn curves_over_the_chaos_map(report: &Path) {
     let svg = std::fs::read_to_string(report.join("chaos-map.svg")).unwrap();
     for (label, file, starts, multiplier) in [
-        ("grazing curves", "chaos-map-grazing.csv", 2, None),
+        ("grazing curve", "chaos-map-grazing.csv", 1, None),
         ("fold curve", "chaos-map-fold.csv", 1, Some(1.0)),
         (
             "period-doubling curve",
