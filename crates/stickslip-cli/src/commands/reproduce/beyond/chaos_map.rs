@@ -220,7 +220,15 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
                     if !points.is_empty() {
                         points.push((f64::NAN, f64::NAN));
                     }
-                    points.extend(c.points.iter().map(|p| (p.vary, p.over)));
+                    // Outside the map's w the line breaks (not drawn along its edge).
+                    let inside = |x: f64| (w.from() - dw..=w.to() + dw).contains(&x);
+                    points.extend(c.points.iter().map(|p| {
+                        if inside(p.vary) {
+                            (p.vary, p.over)
+                        } else {
+                            (f64::NAN, f64::NAN)
+                        }
+                    }));
                 }
                 (!points.is_empty()).then(|| {
                     Series::new(if label { name } else { "" }, points, color, Style::Line(2))
