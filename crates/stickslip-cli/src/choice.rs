@@ -130,6 +130,7 @@ choice_of!(SweepDirection, label);
 choice_of!(BasinMethod, label);
 choice_of!(MapColor, label, description, retired);
 choice_of!(CurveKind, label, description, retired);
+choice_of!(stickslip::friction::FrictionLawKind, label, description);
 choice_of!(Follow, label, words);
 
 #[cfg(test)]
@@ -153,6 +154,7 @@ mod tests {
         reads_back::<BasinMethod>();
         reads_back::<MapColor>();
         reads_back::<CurveKind>();
+        reads_back::<stickslip::friction::FrictionLawKind>();
         for (old, now) in MapColor::RETIRED {
             assert_eq!(MapColor::from_str(old).ok(), Some(now));
         }

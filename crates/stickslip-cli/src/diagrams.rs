@@ -19,6 +19,11 @@ pub fn parameter_label(parameter: Parameter) -> &'static str {
         Parameter::Zeta => "ζ (damping ratio)",
         Parameter::MuS => "μs (static/kinetic friction)",
         Parameter::Vb => "vb (belt speed)",
+        Parameter::Vs => "vs (Stribeck speed)",
+        Parameter::Delta => "δ (Stribeck exponent)",
+        Parameter::Eta => "η (viscous friction)",
+        Parameter::K1 => "k1 (cubic law)",
+        Parameter::K3 => "k3 (cubic law)",
     }
 }
 
@@ -30,6 +35,11 @@ pub fn symbol(parameter: Parameter) -> &'static str {
         Parameter::Zeta => "ζ",
         Parameter::MuS => "μs",
         Parameter::Vb => "vb",
+        Parameter::Vs => "vs",
+        Parameter::Delta => "δ",
+        Parameter::Eta => "η",
+        Parameter::K1 => "k1",
+        Parameter::K3 => "k3",
     }
 }
 

@@ -11,6 +11,7 @@ use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use stickslip::experiment::{DiodeModel, Experiment, ExperimentSpec, Key, KeyForm, Preset};
+use stickslip::friction::FrictionLawKind;
 use stickslip::units::NumberError;
 use stickslip::Spelling;
 
@@ -28,6 +29,8 @@ pub struct ModelArgs {
     pub preset: Option<Preset>,
     /// `--model`: the diode law.
     pub diode: Option<DiodeModel>,
+    /// `--friction-law`: the friction law of a block on a belt.
+    pub law: Option<FrictionLawKind>,
     /// `--config`: a TOML experiment file.
     pub config: Option<PathBuf>,
 }
@@ -70,6 +73,7 @@ fn choice_arg(key: Key) -> Arg {
     match key {
         Key::Preset => arg.value_parser(choice::<Preset>()),
         Key::Diode => arg.value_parser(choice::<DiodeModel>()),
+        Key::FrictionLaw => arg.value_parser(choice::<FrictionLawKind>()),
         other => unreachable!("{other} is not a key of names"),
     }
 }
@@ -149,6 +153,9 @@ impl clap::FromArgMatches for ModelArgs {
         if let Some(&diode) = matches.get_one::<DiodeModel>(Key::Diode.flag()) {
             self.diode = Some(diode);
         }
+        if let Some(&law) = matches.get_one::<FrictionLawKind>(Key::FrictionLaw.flag()) {
+            self.law = Some(law);
+        }
         if let Some(path) = matches.get_one::<PathBuf>(CONFIG) {
             self.config = Some(path.clone());
         }
@@ -180,6 +187,7 @@ impl ModelArgs {
         match key {
             Key::Preset => self.preset.is_some(),
             Key::Diode => self.diode.is_some(),
+            Key::FrictionLaw => self.law.is_some(),
             _ => self.values.contains_key(&key),
         }
     }
@@ -206,6 +214,9 @@ impl ModelArgs {
         }
         if let Some(diode) = self.diode {
             flags.set_diode(diode);
+        }
+        if let Some(law) = self.law {
+            flags.set_law(law);
         }
         Ok(file.overlay(&flags))
     }

@@ -1704,3 +1704,20 @@ async fn the_time_limit_stops_a_fit() {
         "the fit kept running after its time limit"
     );
 }
+
+/// Issue 36: a bad friction law is a 400 naming the field (vs ≤ 0, δ ≤ 0, a cubic law that
+/// goes negative), and a good one is solved.
+#[tokio::test]
+async fn a_bad_friction_law_is_a_400_naming_its_field() {
+    let bad = StatusCode::BAD_REQUEST;
+    let belt = "zeta=0.05&mu-s=1.5&vb=0.3";
+    for (law, key) in [
+        ("friction-law=stribeck&vs=0", "vs"),
+        ("friction-law=stribeck&vs=0.1&delta=-1", "delta"),
+        ("friction-law=cubic&k1=5&k3=0.1", "k1"),
+    ] {
+        let uri = format!("/api/steady?{belt}&{law}");
+        let body = refused(&uri, bad, key).await;
+        assert_eq!(body["field"], key, "{uri}: {body}");
+    }
+}

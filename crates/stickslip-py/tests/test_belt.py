@@ -55,3 +55,20 @@ def test_a_sweep_of_the_belt_speed_is_the_tools_and_shows_hysteresis(cli, tmp_pa
     assert s.motion_class[0] == "stick-slip-cycle" and s.motion_class[-1] == "steady-sliding"
     sliding = stickslip.steady(Experiment(vb=0.1, y0=1.0, v0=0.0, **BELT))
     assert sliding.motion_class == "steady-sliding"
+
+
+def test_the_stribeck_and_cubic_laws_are_keywords_and_bad_laws_a_value_error():
+    base = Experiment(zeta=0.05, mu_s=1.5, vb=0.3)
+    s = stickslip.steady(base.replace(friction_law="stribeck", vs=0.5))
+    assert s.motion_class == "stick-slip-cycle"
+    cubic = stickslip.steady(base.replace(friction_law="cubic", k1=1.0, k3=0.4))
+    assert cubic.motion_class == "stick-slip-cycle"
+    with pytest.raises(ValueError, match="vs"):
+        base.replace(friction_law="stribeck", vs=0.0)
+    with pytest.raises(ValueError, match="delta"):
+        base.replace(friction_law="stribeck", vs=0.1, delta=-1.0)
+    # μs − k1 s + k3 s³ with k1 = 5, k3 = 0.1 goes negative (from s ≈ 0.3 on).
+    with pytest.raises(ValueError, match="k1"):
+        base.replace(friction_law="cubic", k1=5.0, k3=0.1)
+    with pytest.raises(ValueError, match="friction_law"):
+        Experiment.paper(w=0.5, beta=1.0, friction_law="stribeck", vs=0.1)

@@ -358,6 +358,9 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
+    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady` and `sweep`;
+    /// the stability tools follow Coulomb's law only.
+    SmoothFrictionLaw,
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
     CurveNeedsPwl,
@@ -384,6 +387,11 @@ impl std::fmt::Display for Unsupported {
             Unsupported::MuSNeedsPwl => {
                 "mu_s (static friction) is a parameter of the piecewise-linear law only: a \
                  Shockley diode has no static threshold; continue in w, beta or zeta"
+            }
+            Unsupported::SmoothFrictionLaw => {
+                "the stability tools follow Coulomb's friction law so far: the Stribeck and \
+                 cubic laws are solved by simulate, steady and sweep (use --friction-law \
+                 coulomb here)"
             }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \

@@ -65,6 +65,7 @@ pub mod exact;
 pub mod experiment;
 pub mod fit;
 pub mod friction;
+pub mod friction_solver;
 pub mod limits;
 mod linear;
 pub mod measure;

@@ -15,6 +15,7 @@ use crate::attractor::AttractorKind;
 use crate::basins::BasinMethod;
 use crate::continuation::Follow;
 use crate::experiment::{DiodeModel, Key, Preset};
+use crate::friction::FrictionLawKind;
 use crate::params::Parameter;
 use crate::physical::SystemKind;
 use crate::scan::{MapColor, SweepDirection, SweepLeg};
@@ -93,6 +94,7 @@ names!(CurveKind, "curve", display, retired);
 names!(MapColor, "map colour", display, retired);
 names!(AttractorKind, "attractor kind", display, retired);
 names!(BasinMethod, "basin method", display);
+names!(FrictionLawKind, "friction law", display);
 names!(Follow, "followed special point");
 
 impl SweepDirection {
@@ -124,6 +126,11 @@ impl Parameter {
             Parameter::Beta => Key::Beta,
             Parameter::MuS => Key::MuS,
             Parameter::Vb => Key::Vb,
+            Parameter::Vs => Key::Vs,
+            Parameter::Delta => Key::Delta,
+            Parameter::Eta => Key::Eta,
+            Parameter::K1 => Key::K1,
+            Parameter::K3 => Key::K3,
         }
     }
 
@@ -136,6 +143,11 @@ impl Parameter {
             Parameter::Zeta => &[Key::Zeta],
             Parameter::MuS => &[Key::MuS],
             Parameter::Vb => &[Key::Vb, Key::BeltSpeed],
+            Parameter::Vs => &[Key::Vs, Key::StribeckSpeed],
+            Parameter::Delta => &[Key::Delta],
+            Parameter::Eta => &[Key::Eta, Key::ViscousFriction],
+            Parameter::K1 => &[Key::K1, Key::CubicK1],
+            Parameter::K3 => &[Key::K3, Key::CubicK3],
         }
     }
 }
@@ -190,6 +202,7 @@ mod tests {
         round_trip(&CurveKind::ALL);
         round_trip(&MapColor::ALL);
         round_trip(&Parameter::ALL);
+        round_trip(&FrictionLawKind::ALL);
     }
 
     #[test]
@@ -227,7 +240,7 @@ mod tests {
         assert_eq!("mu_s".parse::<Parameter>().unwrap(), Parameter::MuS);
         assert_eq!(
             "f".parse::<Parameter>().unwrap_err().to_string(),
-            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb"
+            "invalid parameter 'f': one of zeta, w, beta, mu-s, vb, vs, delta, eta, k1, k3"
         );
         for p in Parameter::ALL {
             assert_eq!(p.keys()[0], p.key());

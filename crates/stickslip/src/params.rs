@@ -12,7 +12,7 @@
 //! static to kinetic friction (the paper takes μs = 1).
 
 use crate::error::{check, Result};
-use crate::friction::check_vb;
+use crate::friction::{check_vb, FrictionLaw};
 use crate::limits;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -35,6 +35,9 @@ pub struct Params {
     /// slip y' − vb ([`crate::friction`]). Mechanical models only.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub vb: f64,
+    /// The friction law of the slip speed ([`FrictionLaw`]; Coulomb's in the paper).
+    #[serde(default, skip_serializing_if = "FrictionLaw::is_coulomb")]
+    pub law: FrictionLaw,
 }
 
 /// Whether a value is zero (serde skips a belt at rest).
@@ -56,6 +59,7 @@ impl Params {
             phi: 0.0,
             mu_s: 1.0,
             vb: 0.0,
+            law: FrictionLaw::Coulomb,
         })
     }
 
@@ -86,6 +90,15 @@ impl Params {
         Ok(self)
     }
 
+    /// Set the friction law, checked with this μs ([`FrictionLaw::validate`]).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] naming the law's parameter.
+    pub fn with_law(mut self, law: FrictionLaw) -> Result<Self> {
+        self.law = law.validate(self.mu_s)?;
+        Ok(self)
+    }
+
     /// Re-check all fields (for values built by struct literal or deserialised).
     ///
     /// # Errors
@@ -94,16 +107,16 @@ impl Params {
         let p = Params::new(self.zeta, self.w, self.beta)?
             .with_phi(self.phi)?
             .with_mu_s(self.mu_s)?;
-        if self.vb == 0.0 {
+        if self.vb == 0.0 && self.law.is_coulomb() {
             // (The paper's model: nothing more to check.)
             return Ok(p);
         }
-        p.with_vb(self.vb)
+        p.with_vb(self.vb)?.with_law(self.law)
     }
 
-    /// Whether the model is the paper's own: no belt.
+    /// Whether the model is the paper's own: no belt and Coulomb's law.
     pub fn is_paper_friction(&self) -> bool {
-        self.vb == 0.0
+        self.vb == 0.0 && self.law.is_coulomb()
     }
 
     /// The viscous force 2ζ·vb of a block stuck to the belt, which static friction must
@@ -140,7 +153,7 @@ impl Params {
 }
 
 /// One of the dimensionless parameters that sweeps and grids vary: the paper's four (ζ, w,
-/// β, μs) and the belt speed vb.
+/// β, μs), the belt speed vb and the friction law's own parameters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Parameter {
@@ -154,20 +167,40 @@ pub enum Parameter {
     MuS,
     /// Belt speed vb ([`crate::friction`]).
     Vb,
+    /// Stribeck speed vs > 0 (Stribeck law).
+    Vs,
+    /// Stribeck exponent δ > 0 (Stribeck law).
+    Delta,
+    /// Viscous coefficient η ≥ 0 (Stribeck law).
+    Eta,
+    /// Linear coefficient k1 (cubic law).
+    K1,
+    /// Cubic coefficient k3 ≥ 0 (cubic law).
+    K3,
 }
 
+/// What a law's parameter asks when the law is another.
+const STRIBECK_ONLY: &str = "is a parameter of the Stribeck law (friction_law = stribeck)";
+const CUBIC_ONLY: &str = "is a parameter of the cubic law (friction_law = cubic)";
+
 impl Parameter {
-    /// All of them, in the order ζ, w, β, μs, vb (the paper's four first, so that their codes
-    /// stay what they were).
-    pub const ALL: [Parameter; 5] = [
+    /// All of them, in the order ζ, w, β, μs, vb, vs, δ, η, k1, k3 (the paper's four first,
+    /// so that their codes stay what they were).
+    pub const ALL: [Parameter; 10] = [
         Parameter::Zeta,
         Parameter::W,
         Parameter::Beta,
         Parameter::MuS,
         Parameter::Vb,
+        Parameter::Vs,
+        Parameter::Delta,
+        Parameter::Eta,
+        Parameter::K1,
+        Parameter::K3,
     ];
 
-    /// The name used in files, flags and column headers: `zeta`, `w`, `beta`, `mu_s`, `vb`.
+    /// The name used in files, flags and column headers: `zeta`, `w`, `beta`, `mu_s`, `vb`,
+    /// `vs`, `delta`, `eta`, `k1`, `k3`.
     pub fn label(self) -> &'static str {
         match self {
             Parameter::Zeta => "zeta",
@@ -175,6 +208,11 @@ impl Parameter {
             Parameter::Beta => "beta",
             Parameter::MuS => "mu_s",
             Parameter::Vb => "vb",
+            Parameter::Vs => "vs",
+            Parameter::Delta => "delta",
+            Parameter::Eta => "eta",
+            Parameter::K1 => "k1",
+            Parameter::K3 => "k3",
         }
     }
 
@@ -192,10 +230,16 @@ impl Parameter {
             Parameter::Beta => "drive amplitude β (in units of the kinetic friction force)",
             Parameter::MuS => "static-to-kinetic friction ratio μs",
             Parameter::Vb => "belt speed vb (in units of F/(k)·ω0)",
+            Parameter::Vs => "Stribeck speed vs",
+            Parameter::Delta => "Stribeck exponent δ",
+            Parameter::Eta => "viscous friction coefficient η",
+            Parameter::K1 => "linear coefficient k1 of the cubic law",
+            Parameter::K3 => "cubic coefficient k3 of the cubic law",
         }
     }
 
-    /// Whether the parameter belongs to the belt (not to the paper's model).
+    /// Whether the parameter belongs to the friction law or the belt (not to the paper's
+    /// model).
     pub fn is_friction(self) -> bool {
         !matches!(
             self,
@@ -204,22 +248,29 @@ impl Parameter {
     }
 
     /// Whether `params` has something to say about the parameter: the paper's four always, the
-    /// belt speed when the belt moves (what a title of fixed values lists).
+    /// belt speed when the belt moves, a law's parameters when `params` follows that law
+    /// (what a title of fixed values lists).
     pub fn is_set_in(self, params: &Params) -> bool {
         match self {
             Parameter::Vb => params.vb != 0.0,
-            _ => true,
+            _ => !self.get(params).is_nan(),
         }
     }
 
-    /// Its value in `params`.
+    /// Its value in `params` (NaN for a parameter of a law that `params` does not follow).
     pub fn get(self, params: &Params) -> f64 {
-        match self {
-            Parameter::Zeta => params.zeta,
-            Parameter::W => params.w,
-            Parameter::Beta => params.beta,
-            Parameter::MuS => params.mu_s,
-            Parameter::Vb => params.vb,
+        match (self, params.law) {
+            (Parameter::Zeta, _) => params.zeta,
+            (Parameter::W, _) => params.w,
+            (Parameter::Beta, _) => params.beta,
+            (Parameter::MuS, _) => params.mu_s,
+            (Parameter::Vb, _) => params.vb,
+            (Parameter::Vs, FrictionLaw::Stribeck { vs, .. }) => vs,
+            (Parameter::Delta, FrictionLaw::Stribeck { delta, .. }) => delta,
+            (Parameter::Eta, FrictionLaw::Stribeck { eta, .. }) => eta,
+            (Parameter::K1, FrictionLaw::Cubic { k1, .. }) => k1,
+            (Parameter::K3, FrictionLaw::Cubic { k3, .. }) => k3,
+            _ => f64::NAN,
         }
     }
 
@@ -227,15 +278,25 @@ impl Parameter {
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] when the value is out of range
-    /// ([`crate::limits`]).
+    /// ([`crate::limits`]), or for a parameter of a law that `params` does not follow.
     pub fn set(self, params: Params, value: f64) -> Result<Params> {
         let mut p = params;
-        match self {
-            Parameter::Zeta => p.zeta = value,
-            Parameter::W => p.w = value,
-            Parameter::Beta => p.beta = value,
-            Parameter::MuS => p.mu_s = value,
-            Parameter::Vb => p.vb = value,
+        let law_only = |allowed| crate::error::invalid(self.label(), value, allowed);
+        match (self, &mut p.law) {
+            (Parameter::Zeta, _) => p.zeta = value,
+            (Parameter::W, _) => p.w = value,
+            (Parameter::Beta, _) => p.beta = value,
+            (Parameter::MuS, _) => p.mu_s = value,
+            (Parameter::Vb, _) => p.vb = value,
+            (Parameter::Vs, FrictionLaw::Stribeck { vs, .. }) => *vs = value,
+            (Parameter::Delta, FrictionLaw::Stribeck { delta, .. }) => *delta = value,
+            (Parameter::Eta, FrictionLaw::Stribeck { eta, .. }) => *eta = value,
+            (Parameter::K1, FrictionLaw::Cubic { k1, .. }) => *k1 = value,
+            (Parameter::K3, FrictionLaw::Cubic { k3, .. }) => *k3 = value,
+            (Parameter::Vs | Parameter::Delta | Parameter::Eta, _) => {
+                return law_only(STRIBECK_ONLY)
+            }
+            (_, _) => return law_only(CUBIC_ONLY),
         }
         p.validate()
     }

@@ -188,6 +188,7 @@ fn regression_a_false_velocity_zero_from_a_rounded_coefficient() {
                 phi: 6.283_185_307_179_575,
                 mu_s: 1.911_885_451_822_636,
                 vb: 0.0,
+                law: Default::default(),
             },
             initial: State {
                 y: 999_999_874.348_546_4,

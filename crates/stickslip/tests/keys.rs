@@ -175,6 +175,7 @@ fn every_key_is_read_from_its_toml_section() {
                     let spec = ExperimentSpec::from_toml(&text, "k.toml").unwrap();
                     match key {
                         Key::Diode => assert_eq!(spec.diode(), Some(choice.parse().unwrap())),
+                        Key::FrictionLaw => assert_eq!(spec.law(), Some(choice.parse().unwrap())),
                         other => panic!("{other} takes names: read it here"),
                     }
                 }

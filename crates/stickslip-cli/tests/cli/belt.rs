@@ -90,9 +90,79 @@ fn bad_belt_input_is_one_line() {
                 "--vb",
             ),
             (&["--zeta", "0.1", "--vb", "2e6"], "--vb"),
-            // Coulomb's is the one law solved: no other is offered.
+            // A law's parameter without its law; a law without its parameter.
+            (
+                &["--zeta", "0.1", "--vb", "0.2", "--vs", "0.2"],
+                "--friction-law stribeck",
+            ),
             (
                 &["--zeta", "0.1", "--vb", "0.2", "--friction-law", "stribeck"],
+                "--vs",
+            ),
+            // vs ≤ 0, δ ≤ 0.
+            (
+                &[
+                    "--zeta",
+                    "0.1",
+                    "--vb",
+                    "0.2",
+                    "--friction-law",
+                    "stribeck",
+                    "--vs",
+                    "0",
+                ],
+                "--vs",
+            ),
+            (
+                &[
+                    "--zeta",
+                    "0.1",
+                    "--vb",
+                    "0.2",
+                    "--friction-law",
+                    "stribeck",
+                    "--vs",
+                    "0.1",
+                    "--delta",
+                    "-1",
+                ],
+                "--delta",
+            ),
+            // The cubic law μs − k1 s + k3 s³ with k1 = 5, k3 = 0.1 goes negative from
+            // s ≈ 0.21 on (its minimum at s = √(k1/3k3) ≈ 4.08 is −12.6).
+            (
+                &[
+                    "--zeta",
+                    "0.1",
+                    "--mu-s",
+                    "1",
+                    "--vb",
+                    "0.2",
+                    "--friction-law",
+                    "cubic",
+                    "--k1",
+                    "5",
+                    "--k3",
+                    "0.1",
+                ],
+                "k1",
+            ),
+            (
+                &["--zeta", "0.1", "--vb", "0.2", "--friction-law", "dahl"],
+                "--friction-law",
+            ),
+            // A circuit has no friction law.
+            (
+                &[
+                    "--preset",
+                    "paper",
+                    "--w",
+                    "0.5",
+                    "--beta",
+                    "1",
+                    "--friction-law",
+                    "stribeck",
+                ],
                 "--friction-law",
             ),
         ],
@@ -206,4 +276,71 @@ fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
     assert_ne!(steps[0].2, steps[7].2);
     assert_eq!(steps[3].2, "steady-sliding");
     assert_eq!(steps[4].2, "steady-sliding");
+}
+
+/// A self-excited Stribeck belt at the command line: `steady` finds a stick-slip cycle, the
+/// same as the library's friction solver, and the mechanical twin's physical law parameters
+/// give the same cycle as the dimensionless ones.
+#[test]
+fn steady_takes_the_stribeck_and_cubic_laws() {
+    let stribeck = [
+        "steady",
+        "--zeta",
+        "0.05",
+        "--mu-s",
+        "1.5",
+        "--vb",
+        "0.3",
+        "--friction-law",
+        "stribeck",
+        "--vs",
+        "0.5",
+        "--json",
+    ];
+    let a = json(&stribeck);
+    assert_eq!(a["class"], "stick-slip-cycle", "{a}");
+    assert_eq!(a["friction_law"], "stribeck", "{a}");
+    let cubic = json(&[
+        "steady",
+        "--zeta",
+        "0.05",
+        "--mu-s",
+        "1.5",
+        "--vb",
+        "0.3",
+        "--friction-law",
+        "cubic",
+        "--k1",
+        "1",
+        "--k3",
+        "0.4",
+        "--json",
+    ]);
+    assert_eq!(cubic["class"], "stick-slip-cycle", "{cubic}");
+    // m = 1 kg, k = 10⁴ N/m (ω0 = 100 rad/s), γ = 10 N·s/m (ζ = 0.05), F0 = 1 N: speeds in
+    // units of F0·ω0/k = 0.01 m/s.
+    let mech = json(&[
+        "steady",
+        "--mass",
+        "1",
+        "--stiffness",
+        "1e4",
+        "--damping",
+        "10",
+        "--friction",
+        "1",
+        "--mu-s",
+        "1.5",
+        "--belt-speed",
+        "0.003",
+        "--friction-law",
+        "stribeck",
+        "--stribeck-speed",
+        "0.005",
+        "--json",
+    ]);
+    for key in ["y_max", "y_min", "cycle_period_tau"] {
+        let (x, y) = (a[key].as_f64().unwrap(), mech[key].as_f64().unwrap());
+        assert!((x - y).abs() < 1e-9 * x.abs().max(1.0), "{key}: {x} {y}");
+    }
 }

@@ -103,8 +103,6 @@ class _PaperKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _CircuitKeys(TypedDict, total=False):
     """The keys of Experiment.circuit beside its own."""
@@ -130,8 +128,6 @@ class _CircuitKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _ShockleyKeys(TypedDict, total=False):
     """The keys of Experiment.shockley beside its own."""
@@ -154,8 +150,6 @@ class _ShockleyKeys(TypedDict, total=False):
     i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _MechanicsKeys(TypedDict, total=False):
     """The keys of Experiment.mechanics beside its own."""
@@ -182,8 +176,6 @@ class _MechanicsKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 class _ExperimentKeys(TypedDict, total=False):
     """Every experiment key."""
@@ -216,8 +208,6 @@ class _ExperimentKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
-    vb: _Value  # belt speed vb (dimensionless, in units of y')
-    belt_speed: _Value  # belt speed (m/s)
 
 # END keywords
 
@@ -235,7 +225,6 @@ class Experiment:
         mu_s: _Value = 1,
         y0: _Value = 0,
         v0: _Value = 0,
-        vb: _Value = 0,
     ) -> Experiment: ...
     @classmethod
     def paper(

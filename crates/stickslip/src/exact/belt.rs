@@ -27,7 +27,7 @@ use std::f64::consts::{PI, TAU};
 /// - `c`: y_s + 2ζ vb; `vb` ≠ 0;
 /// - `allow_now`: a net force already at or beyond ±μs ends the stop at once (otherwise the
 ///   stop lasts until h next crosses ±μs outward).
-pub(super) fn stop_end(
+pub(crate) fn stop_end(
     beta: f64,
     w: f64,
     theta: f64,

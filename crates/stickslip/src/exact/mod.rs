@@ -21,7 +21,7 @@
 //! the ramp's and the cosine's balance points, known in closed form). Without a belt every
 //! number is computed as before, bit for bit.
 
-mod belt;
+pub(crate) mod belt;
 mod search;
 
 use crate::cancel::Cancel;
@@ -116,6 +116,11 @@ impl ExactSolver {
 
     /// A solver starting at τ = 0 from `initial`. With y'(0) = 0 the oscillator starts stuck
     /// when the net force |β cos φ − y0| is at most μs.
+    ///
+    /// # Panics
+    /// When `params` asks for a friction law other than Coulomb's: those are solved by
+    /// [`crate::friction_solver::FrictionSolver`], which `Law::solver` (and every front end)
+    /// chooses for them.
     pub fn new(params: Params, initial: State) -> Self {
         let mut solver = Self::unstarted(params, initial.y);
         solver.start(initial);
@@ -133,7 +138,16 @@ impl ExactSolver {
     }
 
     /// The solver at τ = 0 stuck at y for ever, before [`ExactSolver::start`].
+    ///
+    /// # Panics
+    /// When `params` asks for a friction law other than Coulomb's (the stiff solver of smooth
+    /// laws follows those): a broken contract of the caller.
     fn unstarted(params: Params, y: f64) -> Self {
+        assert!(
+            params.law.is_coulomb(),
+            "the exact solver follows Coulomb's law, not {:?}",
+            params.law
+        );
         let stuck = Segment::Stick {
             y,
             exit: f64::INFINITY,
@@ -622,6 +636,7 @@ mod tests {
             phi: 0.0,
             mu_s: 1.0,
             vb: 0.0,
+            law: crate::friction::FrictionLaw::Coulomb,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();
@@ -647,6 +662,7 @@ mod tests {
             phi: 2.511_453_442_477_732_6,
             mu_s: 1.0,
             vb: 0.0,
+            law: crate::friction::FrictionLaw::Coulomb,
         };
         let mut solver = ExactSolver::new(params, State::default());
         let mut events = Vec::new();

@@ -122,6 +122,12 @@ impl std::fmt::Display for Experiment {
         if self.vb != 0.0 {
             write!(f, ", vb = {}", self.vb)?;
         }
+        if !self.law.is_coulomb() {
+            write!(f, "; friction law {}", self.law.kind().label())?;
+            for (name, value) in self.law.parameters() {
+                write!(f, ", {name} = {value}")?;
+            }
+        }
         Ok(())
     }
 }

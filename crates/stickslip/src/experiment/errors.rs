@@ -52,11 +52,27 @@ pub enum SpecError {
         /// The physical value.
         key: Key,
     },
-    /// A belt speed was given with a circuit, which has no belt.
+    /// A belt or a friction law was given with a circuit, which has neither.
     #[error("{}", self.render(&|k: Key| k.name().to_string()))]
     NoBelt {
-        /// The belt's key that was given.
+        /// The belt's or the law's key that was given.
         key: Key,
+    },
+    /// A parameter of one friction law was given with another law.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    OtherLaw {
+        /// The parameter.
+        key: Key,
+        /// The law it belongs to (`stribeck`, `cubic`).
+        law: &'static str,
+    },
+    /// A friction law was chosen without a parameter it needs.
+    #[error("{}", self.render(&|k: Key| k.name().to_string()))]
+    MissingLawParameter {
+        /// The parameter.
+        key: Key,
+        /// The law (`stribeck`, `cubic`).
+        law: &'static str,
     },
 }
 

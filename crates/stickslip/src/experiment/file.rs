@@ -17,7 +17,8 @@
 //! y0 = 0.0           # or uc0 (V or m)
 //! v0 = 0.0           # or i0 (A or m/s)
 //! diode = "pwl"      # or "shockley"
-//! # vb = 0.5         # a belt under the block (mechanics or dimensionless only)
+//! # vb = 0.5         # a belt under the block (mechanics or dimensionless only);
+//! # friction_law = "stribeck"   # with vs, delta, eta; or "cubic" with k1, k3
 //! # zeta = 0.05      # only without [circuit] or [mechanics]
 //! [shockley]         # 1N4148 defaults
 //! Is = 4.352e-9      # A
@@ -33,6 +34,7 @@ use super::key::{Key, Section};
 use super::spec::ExperimentSpec;
 use super::DiodeModel;
 use crate::error::{Error, Result};
+use crate::friction::FrictionLawKind;
 use crate::units::parse_si;
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
@@ -72,6 +74,7 @@ impl<'de> Deserialize<'de> for Number {
 enum Entry {
     Number(Spanned<Number>),
     Diode(DiodeModel),
+    Law(FrictionLawKind),
 }
 
 /// The file: each section given, with its values under the names the file gives them.
@@ -182,6 +185,7 @@ impl<'de> Visitor<'de> for SectionSeed {
         while let Some((key, name)) = map.next_key_seed(Name(entry))? {
             let entry = match key {
                 Key::Diode => Entry::Diode(map.next_value()?),
+                Key::FrictionLaw => Entry::Law(map.next_value()?),
                 _ => Entry::Number(map.next_value()?),
             };
             entries.push((name, entry));
@@ -269,6 +273,10 @@ impl ExperimentSpec {
                 let value = match entry {
                     Entry::Diode(diode) => {
                         spec.set_diode(*diode);
+                        continue;
+                    }
+                    Entry::Law(law) => {
+                        spec.set_law(*law);
                         continue;
                     }
                     Entry::Number(value) => value,

@@ -14,7 +14,10 @@
 pub use super::keys::Key;
 use super::{DiodeModel, Preset};
 use crate::error::{check, Error, Result};
-use crate::friction::{VB_ALLOWED, VB_MAX};
+use crate::friction::{
+    FrictionLawKind, DELTA_ALLOWED, DELTA_MAX, ETA_ALLOWED, K1_ALLOWED, K3_ALLOWED, LAW_MAX,
+    VB_ALLOWED, VB_MAX, VS_ALLOWED,
+};
 use crate::limits;
 use crate::physical::{Circuit, Scales, SystemKind};
 use crate::shockley::diode::ZERO_CELSIUS;
@@ -49,8 +52,8 @@ pub enum KeyGroup {
     Drive,
     /// The diode law and the Shockley diodes' parameters.
     Diode,
-    /// The belt under a mechanical oscillator: its speed vb (Coulomb's law acts on the slip
-    /// against it).
+    /// The belt under a mechanical oscillator and the friction law: vb, the law and its
+    /// parameters.
     Friction,
     /// The initial state.
     Initial,
@@ -1042,6 +1045,157 @@ const ROWS: &[Row] = &[
         fit: None,
     },
     Row {
+        key: Key::FrictionLaw,
+        name: "friction_law",
+        symbol: "",
+        name_aliases: &[],
+        flag: "friction-law",
+        aliases: &[],
+        metavar: "LAW",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Choice,
+        unit: None,
+        units: &[],
+        range: KeyRange::NONE,
+        allowed: "is not a number",
+        description: "friction law of the slip speed: coulomb, stribeck or cubic",
+        help: "Friction law of the slip speed s: `coulomb` (1 while slipping; solved exactly), \
+               `stribeck` (1 + (μs − 1)·exp(−(s/vs)^δ) + η·s) or `cubic` (μs − k1·s + k3·s³)",
+        default: Some(|| KeyDefault::Name(FrictionLawKind::Coulomb.label())),
+        quantity: None,
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::Vs,
+        name: "vs",
+        symbol: "v_s",
+        name_aliases: &[],
+        flag: "vs",
+        aliases: &[],
+        metavar: "VS",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange {
+            min: 0.0,
+            min_inclusive: false,
+            max: LAW_MAX,
+            max_inclusive: true,
+        },
+        allowed: VS_ALLOWED,
+        description: "Stribeck speed vs (dimensionless, as vb)",
+        help: "Stribeck speed vs > 0 of the Stribeck law, in the units of vb",
+        default: None,
+        quantity: Some("Stribeck speed"),
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::Delta,
+        name: "delta",
+        symbol: "δ",
+        name_aliases: &[],
+        flag: "delta",
+        aliases: &[],
+        metavar: "DELTA",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange {
+            min: 0.0,
+            min_inclusive: false,
+            max: DELTA_MAX,
+            max_inclusive: true,
+        },
+        allowed: DELTA_ALLOWED,
+        description: "Stribeck exponent δ",
+        help: "Exponent δ > 0 of the Stribeck law (2: a Gaussian fall) [default: 2]",
+        default: Some(|| KeyDefault::Number(2.0)),
+        quantity: None,
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::Eta,
+        name: "eta",
+        symbol: "η",
+        name_aliases: &[],
+        flag: "eta",
+        aliases: &[],
+        metavar: "ETA",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange::closed(0.0, LAW_MAX),
+        allowed: ETA_ALLOWED,
+        description: "viscous coefficient η of the Stribeck law (dimensionless)",
+        help: "Viscous coefficient η ≥ 0 of the Stribeck law (friction η·s at slip speed s) \
+               [default: 0]",
+        default: Some(|| KeyDefault::Number(0.0)),
+        quantity: Some("viscous friction"),
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::K1,
+        name: "k1",
+        symbol: "k_1",
+        name_aliases: &[],
+        flag: "k1",
+        aliases: &[],
+        metavar: "K1",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange::closed(-LAW_MAX, LAW_MAX),
+        allowed: K1_ALLOWED,
+        description: "coefficient k1 of the cubic law (dimensionless)",
+        help: "Coefficient k1 of the cubic law μs − k1·s + k3·s³ (k1 > 0: friction falls with \
+               the slip speed; the law must not go negative: 4·k1³ ≤ 27·μs²·k3)",
+        default: None,
+        quantity: Some("linear coefficient of the cubic law"),
+        image: None,
+        fit: None,
+    },
+    Row {
+        key: Key::K3,
+        name: "k3",
+        symbol: "k_3",
+        name_aliases: &[],
+        flag: "k3",
+        aliases: &[],
+        metavar: "K3",
+        group: KeyGroup::Friction,
+        section: Some(Section::Model),
+        part: Part::Any,
+        form: KeyForm::Plain,
+        unit: None,
+        units: &[],
+        range: KeyRange::closed(0.0, LAW_MAX),
+        allowed: K3_ALLOWED,
+        description: "coefficient k3 of the cubic law (dimensionless)",
+        help: "Coefficient k3 ≥ 0 of the cubic law μs − k1·s + k3·s³",
+        default: None,
+        quantity: Some("cubic coefficient of the cubic law"),
+        image: None,
+        fit: None,
+    },
+    Row {
         key: Key::BeltSpeed,
         name: "belt_speed",
         symbol: "v_belt",
@@ -1064,6 +1218,114 @@ const ROWS: &[Row] = &[
         image: Some(Image {
             of: Key::Vb,
             scale: |s| s.velocity,
+        }),
+        fit: None,
+    },
+    Row {
+        key: Key::StribeckSpeed,
+        name: "stribeck_speed",
+        symbol: "v_S",
+        name_aliases: &[],
+        flag: "stribeck-speed",
+        aliases: &[],
+        metavar: "STRIBECK_SPEED",
+        group: KeyGroup::Friction,
+        section: Some(Section::Mechanics),
+        part: Part::Any,
+        form: KeyForm::Si,
+        unit: Some("m/s"),
+        units: &[],
+        range: KeyRange::positive_from(0.0),
+        allowed: "must be finite and > 0 (m/s)",
+        description: "Stribeck speed (m/s)",
+        help: "Stribeck speed in m/s of the mechanical oscillator's Stribeck law (instead of \
+               --vs)",
+        default: None,
+        quantity: None,
+        image: Some(Image {
+            of: Key::Vs,
+            scale: |s| s.velocity,
+        }),
+        fit: None,
+    },
+    Row {
+        key: Key::ViscousFriction,
+        name: "viscous_friction",
+        symbol: "c_v",
+        name_aliases: &[],
+        flag: "viscous-friction",
+        aliases: &[],
+        metavar: "VISCOUS_FRICTION",
+        group: KeyGroup::Friction,
+        section: Some(Section::Mechanics),
+        part: Part::Any,
+        form: KeyForm::Si,
+        unit: Some("N s/m"),
+        units: &[],
+        range: KeyRange::closed(0.0, f64::INFINITY),
+        allowed: "must be finite and >= 0 (N s/m)",
+        description: "viscous friction coefficient of the Stribeck law (N·s/m)",
+        help: "Viscous friction of the Stribeck law in N·s/m, a force on the slip against the \
+               belt (instead of --eta; not the damping γ)",
+        default: None,
+        quantity: None,
+        image: Some(Image {
+            of: Key::Eta,
+            scale: |s| s.force / s.velocity,
+        }),
+        fit: None,
+    },
+    Row {
+        key: Key::CubicK1,
+        name: "cubic_k1",
+        symbol: "K_1",
+        name_aliases: &[],
+        flag: "cubic-k1",
+        aliases: &[],
+        metavar: "CUBIC_K1",
+        group: KeyGroup::Friction,
+        section: Some(Section::Mechanics),
+        part: Part::Any,
+        form: KeyForm::Si,
+        unit: Some("N s/m"),
+        units: &[],
+        range: KeyRange::ANY,
+        allowed: "must be finite (N s/m)",
+        description: "linear coefficient of the cubic law (N·s/m)",
+        help: "Linear coefficient of the cubic law F0·μs − K1·s + K3·s³ in N·s/m (instead of \
+               --k1)",
+        default: None,
+        quantity: None,
+        image: Some(Image {
+            of: Key::K1,
+            scale: |s| s.force / s.velocity,
+        }),
+        fit: None,
+    },
+    Row {
+        key: Key::CubicK3,
+        name: "cubic_k3",
+        symbol: "K_3",
+        name_aliases: &[],
+        flag: "cubic-k3",
+        aliases: &[],
+        metavar: "CUBIC_K3",
+        group: KeyGroup::Friction,
+        section: Some(Section::Mechanics),
+        part: Part::Any,
+        form: KeyForm::Si,
+        unit: Some("N s^3/m^3"),
+        units: &[],
+        range: KeyRange::closed(0.0, f64::INFINITY),
+        allowed: "must be finite and >= 0 (N s^3/m^3)",
+        description: "cubic coefficient of the cubic law (N·s³/m³)",
+        help: "Cubic coefficient of the cubic law F0·μs − K1·s + K3·s³ in N·s³/m³ (instead of \
+               --k3)",
+        default: None,
+        quantity: None,
+        image: Some(Image {
+            of: Key::K3,
+            scale: |s| s.force / (s.velocity * s.velocity * s.velocity),
         }),
         fit: None,
     },
@@ -1238,7 +1500,7 @@ impl Key {
     pub fn heading(self) -> &'static str {
         match (self.group(), self.form()) {
             (KeyGroup::Diode, _) => "Diode model",
-            (KeyGroup::Friction, _) => "Moving belt (mechanical)",
+            (KeyGroup::Friction, _) => "Belt and friction law (mechanical)",
             (_, KeyForm::Plain) => "Model (dimensionless)",
             _ => "Model (physical)",
         }
@@ -1310,6 +1572,7 @@ impl Key {
         match self {
             Key::Diode => DiodeModel::ALL.iter().map(|d| d.label()).collect(),
             Key::Preset => Preset::ALL.iter().map(|p| p.label()).collect(),
+            Key::FrictionLaw => FrictionLawKind::ALL.iter().map(|l| l.label()).collect(),
             _ => Vec::new(),
         }
     }
@@ -1586,9 +1849,19 @@ mod tests {
             | Key::Diode
             | Key::Preset
             | Key::Vb
-            | Key::BeltSpeed => k as usize,
+            | Key::FrictionLaw
+            | Key::Vs
+            | Key::Delta
+            | Key::Eta
+            | Key::K1
+            | Key::K3
+            | Key::BeltSpeed
+            | Key::StribeckSpeed
+            | Key::ViscousFriction
+            | Key::CubicK1
+            | Key::CubicK3 => k as usize,
         };
-        assert_eq!(listed(Key::BeltSpeed) + 1, ROWS.len());
+        assert_eq!(listed(Key::CubicK3) + 1, ROWS.len());
     }
 
     #[test]

@@ -67,6 +67,26 @@ pub enum Key {
     Preset,
     /// Belt speed vb (dimensionless).
     Vb,
+    /// The friction law, `coulomb`, `stribeck` or `cubic`.
+    FrictionLaw,
+    /// Stribeck speed vs (dimensionless).
+    Vs,
+    /// Stribeck exponent δ.
+    Delta,
+    /// Viscous friction coefficient η of the Stribeck law (dimensionless).
+    Eta,
+    /// Coefficient k1 of the cubic law (dimensionless).
+    K1,
+    /// Coefficient k3 of the cubic law (dimensionless).
+    K3,
     /// Belt speed (m/s).
     BeltSpeed,
+    /// Stribeck speed (m/s).
+    StribeckSpeed,
+    /// Viscous friction coefficient (N·s/m).
+    ViscousFriction,
+    /// Coefficient of the cubic law's linear term (N·s/m).
+    CubicK1,
+    /// Coefficient of the cubic law's cubic term (N·s³/m³).
+    CubicK3,
 }

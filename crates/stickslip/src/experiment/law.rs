@@ -5,6 +5,7 @@ use super::DiodeModel;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::exact::ExactSolver;
+use crate::friction_solver::FrictionSolver;
 use crate::params::{Params, State};
 use crate::shockley::{DiodeLaw, ShockleyModel, ShockleyOptions, ShockleySolver};
 use crate::solver::Solver;
@@ -22,7 +23,9 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "lowercase")]
 pub enum Law {
     /// The paper's piecewise-linear law, sgn(y') with the static ratio μs (PWL diodes, Coulomb
-    /// friction): the exact solver.
+    /// friction): the exact solver. A mechanical oscillator's Stribeck or cubic friction law
+    /// ([`Params::law`]) is solved by [`FrictionSolver`]: its slips on the smooth integrator,
+    /// its stops exactly.
     Pwl,
     /// The Shockley law of two anti-parallel diodes, D(v) = a·asinh(v/ε) + r·v: the stiff
     /// solver.
@@ -53,6 +56,10 @@ impl Law {
         let params = params.validate()?;
         let initial = State::new(initial.y, initial.v)?;
         match self {
+            // A Stribeck or cubic friction law: slips on the smooth integrator, stops exact.
+            Law::Pwl if !params.law.is_coulomb() => Ok(Box::new(FrictionSolver::with_cancel(
+                params, initial, cancel,
+            )?)),
             Law::Pwl => Ok(ExactSolver::boxed(params, initial, cancel)),
             Law::Shockley(law) => Ok(Box::new(ShockleySolver::with_cancel(
                 ShockleyModel::new(params, *law)?,

@@ -50,7 +50,7 @@ pub use units::{Conversion, PhysicalUnits};
 
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
-use crate::friction::check_vb;
+use crate::friction::{check_vb, FrictionLaw};
 use crate::params::{Parameter, Params, State};
 use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use crate::scan::ParameterRange;
@@ -79,6 +79,9 @@ pub struct Experiment {
     /// The belt speed vb (mechanical or dimensionless systems; 0: no belt).
     #[serde(default, skip_serializing_if = "is_zero")]
     vb: f64,
+    /// The friction law.
+    #[serde(default, skip_serializing_if = "FrictionLaw::is_coulomb")]
+    law: FrictionLaw,
     /// The token every solver of the experiment checks (not part of what the experiment is:
     /// not saved, not compared).
     #[serde(skip)]
@@ -114,6 +117,7 @@ impl Experiment {
             origin,
             shockley: ShockleyOptions::default(),
             vb: 0.0,
+            law: FrictionLaw::Coulomb,
             cancel: CancelSlot::default(),
         }
     }
@@ -231,9 +235,31 @@ impl Experiment {
         Ok(self)
     }
 
+    /// Set the friction law (checked with this experiment's μs). A circuit has none but the
+    /// diodes'.
+    ///
+    /// # Errors
+    /// [`SpecError::NoBelt`] for a circuit and a law other than Coulomb's; an invalid law
+    /// ([`FrictionLaw::validate`]).
+    pub fn with_law(mut self, law: FrictionLaw) -> Result<Self> {
+        if !law.is_coulomb() && matches!(self.system, Some(System::Circuit(_))) {
+            return Err(SpecError::NoBelt {
+                key: Key::FrictionLaw,
+            }
+            .into());
+        }
+        self.law = law.validate(self.mu_s)?;
+        Ok(self)
+    }
+
     /// The belt speed vb (0: no belt).
     pub fn vb(&self) -> f64 {
         self.vb
+    }
+
+    /// The friction law.
+    pub fn friction_law(&self) -> FrictionLaw {
+        self.law
     }
 
     /// Whether the experiment is self-excited: a belt moves and no drive is given (or its
@@ -513,17 +539,25 @@ impl Experiment {
         let mut params = Params::new(zeta, w, beta)?
             .with_phi(self.phi)?
             .with_mu_s(mu_s)?;
-        if vb != 0.0 {
-            params = params.with_vb(vb)?;
+        if vb == 0.0 && self.law.is_coulomb() && values.iter().all(|(p, _)| !p.is_friction()) {
+            return Ok(params);
         }
-        Ok(params)
+        params = params.with_vb(vb)?;
+        params.law = self.law;
+        for &(p, value) in values {
+            if p.is_friction() && p != Parameter::Vb {
+                params = p.set(params, value)?;
+            }
+        }
+        params.validate()
     }
 
     /// The same experiment with one of its parameters changed (ζ too, even for a physical
     /// system: the parameters are dimensionless).
     ///
     /// # Errors
-    /// A value out of range; a belt with a circuit.
+    /// A value out of range; a parameter of a law the experiment does not follow; a belt or
+    /// a law with a circuit.
     pub fn with_parameter(mut self, parameter: Parameter, value: f64) -> Result<Self> {
         let key = parameter.key();
         let value = key.check(value)?;
@@ -533,6 +567,13 @@ impl Experiment {
             Parameter::Beta => self.beta = Some(value),
             Parameter::MuS => self.mu_s = value,
             Parameter::Vb => return self.with_vb(value),
+            _ => {
+                let base = Params::new(0.0, 1.0, 0.0)?
+                    .with_mu_s(self.mu_s)?
+                    .with_law(self.law)?;
+                let law = parameter.set(base, value)?.law;
+                return self.with_law(law);
+            }
         }
         Ok(self)
     }

@@ -5,6 +5,7 @@ use super::errors::SpecError;
 use super::key::{Key, KeyGroup};
 use super::{DiodeModel, Experiment, Origin, Preset};
 use crate::error::{Error, Result, Unsupported};
+use crate::friction::{FrictionLaw, FrictionLawKind};
 use crate::physical::{Circuit, Diode, Mechanics, PwlDiode, ShockleyDiode, System};
 use crate::shockley::{DiodePair, ShockleyOptions};
 use serde::{Deserialize, Serialize};
@@ -18,7 +19,9 @@ impl SpecError {
             SpecError::Missing { key, .. }
             | SpecError::MissingDrive { key }
             | SpecError::NeedsPhysical { key }
-            | SpecError::NoBelt { key } => Some(key),
+            | SpecError::NoBelt { key }
+            | SpecError::OtherLaw { key, .. }
+            | SpecError::MissingLawParameter { key, .. } => Some(key),
             SpecError::Twice { second, .. } => Some(second),
             SpecError::ZetaWithPhysical => Some(Key::Zeta),
             SpecError::CircuitAndMechanics { mechanical } => Some(mechanical),
@@ -75,10 +78,18 @@ impl SpecError {
                 name(Key::Preset)
             ),
             SpecError::NoBelt { key } => format!(
-                "{} belongs to a block on a moving belt: a circuit has no belt (use the \
-                 mechanical twin or the dimensionless model)",
+                "{} belongs to a block on a moving belt: a circuit has no belt and no friction \
+                 law (use the mechanical twin or the dimensionless model)",
                 name(key)
             ),
+            SpecError::OtherLaw { key, law } => format!(
+                "{} is a parameter of the {law} friction law: also give {} {law}",
+                name(key),
+                name(Key::FrictionLaw)
+            ),
+            SpecError::MissingLawParameter { key, law } => {
+                format!("the {law} friction law needs {}", name(key))
+            }
         }
     }
 }
@@ -233,6 +244,9 @@ pub struct ExperimentSpec {
     values: BTreeMap<Key, f64>,
     preset: Option<Preset>,
     diode: Option<DiodeModel>,
+    /// The friction law (of a block on a belt).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    law: Option<FrictionLawKind>,
     /// Where the values came from (a file name), for descriptions and messages.
     source: Option<String>,
 }
@@ -269,6 +283,7 @@ impl ExperimentSpec {
         match key {
             Key::Preset => self.preset = None,
             Key::Diode => self.diode = None,
+            Key::FrictionLaw => self.law = None,
             _ => {}
         }
         self
@@ -300,6 +315,7 @@ impl ExperimentSpec {
         match key {
             Key::Preset => self.preset.is_some(),
             Key::Diode => self.diode.is_some(),
+            Key::FrictionLaw => self.law.is_some(),
             _ => self.values.contains_key(&key),
         }
     }
@@ -314,6 +330,17 @@ impl ExperimentSpec {
     pub fn set_diode(&mut self, diode: DiodeModel) -> &mut Self {
         self.diode = Some(diode);
         self
+    }
+
+    /// Choose the friction law (of a block on a belt: not with a circuit).
+    pub fn set_law(&mut self, law: FrictionLawKind) -> &mut Self {
+        self.law = Some(law);
+        self
+    }
+
+    /// The friction law, if chosen.
+    pub fn law(&self) -> Option<FrictionLawKind> {
+        self.law
     }
 
     /// Name where the values came from (a file name), for descriptions.
@@ -349,6 +376,7 @@ impl ExperimentSpec {
         }
         out.preset = top.preset.or(self.preset);
         out.diode = top.diode.or(self.diode);
+        out.law = top.law.or(self.law);
         out.source = top.source.clone().or_else(|| self.source.clone());
         out
     }
@@ -396,9 +424,11 @@ impl ExperimentSpec {
             return Err(Error::Unsupported(Unsupported::ShockleyNeedsCircuit));
         }
         if matches!(system, Some(System::Circuit(_))) {
+            let law = self.law.filter(|l| *l != FrictionLawKind::Coulomb);
             let given = Key::ALL
                 .into_iter()
-                .find(|&k| k.group() == KeyGroup::Friction && has(k));
+                .find(|&k| k.group() == KeyGroup::Friction && has(k))
+                .or(law.map(|_| Key::FrictionLaw));
             if let Some(key) = given {
                 return Err(SpecError::NoBelt { key }.into());
             }
@@ -487,6 +517,7 @@ impl ExperimentSpec {
             origin,
             shockley: ShockleyOptions::default(),
             vb: 0.0,
+            law: FrictionLaw::Coulomb,
             cancel: Default::default(),
         };
         if let Some(w) = w {
@@ -498,7 +529,95 @@ impl ExperimentSpec {
         if let Some(vb) = value(Key::Vb) {
             experiment.vb = crate::friction::check_vb(image(vb, Key::Vb)?)?;
         }
+        experiment.law = self.friction_law(&value, experiment.mu_s)?;
         Ok(experiment)
+    }
+
+    /// The friction law chosen, with its parameters (each as given, or from the physical
+    /// value that gives it, `value`), checked with the static level `mu_s`.
+    fn friction_law(
+        &self,
+        value: &dyn Fn(Key) -> Option<(Key, f64, f64)>,
+        mu_s: f64,
+    ) -> Result<FrictionLaw> {
+        let kind = self.law.unwrap_or_default();
+        let stribeck = [Key::Vs, Key::Delta, Key::Eta];
+        let cubic = [Key::K1, Key::K3];
+        // A parameter of a law that is not the one chosen.
+        for (keys, law) in [
+            (&stribeck[..], FrictionLawKind::Stribeck),
+            (&cubic[..], FrictionLawKind::Cubic),
+        ] {
+            if law == kind {
+                continue;
+            }
+            if let Some(key) = keys.iter().find_map(|&k| value(k).map(|v| v.0)) {
+                return Err(SpecError::OtherLaw {
+                    key,
+                    law: law.label(),
+                }
+                .into());
+            }
+        }
+        let parameter = |key: Key| -> Result<(Key, f64)> {
+            match value(key) {
+                Some(v) => Ok((v.0, image(v, key)?)),
+                None => match key.default_value() {
+                    Some(crate::experiment::KeyDefault::Number(x)) => Ok((key, x)),
+                    _ => Err(SpecError::MissingLawParameter {
+                        key,
+                        law: kind.label(),
+                    }
+                    .into()),
+                },
+            }
+        };
+        let (law, blamed) = match kind {
+            FrictionLawKind::Coulomb => return Ok(FrictionLaw::Coulomb),
+            FrictionLawKind::Stribeck => {
+                let (vs, delta, eta) = (
+                    parameter(Key::Vs)?,
+                    parameter(Key::Delta)?,
+                    parameter(Key::Eta)?,
+                );
+                let law = FrictionLaw::Stribeck {
+                    vs: vs.1,
+                    delta: delta.1,
+                    eta: eta.1,
+                };
+                (law, [vs, delta, eta].to_vec())
+            }
+            FrictionLawKind::Cubic => {
+                let (k1, k3) = (parameter(Key::K1)?, parameter(Key::K3)?);
+                (FrictionLaw::Cubic { k1: k1.1, k3: k3.1 }, [k1, k3].to_vec())
+            }
+        };
+        law.validate(mu_s).map_err(|error| match error {
+            // The law as a whole (a cubic that goes negative): blame the key the user gave
+            // for the parameter named.
+            Error::InvalidParameter {
+                name,
+                value: image_value,
+                allowed,
+            } => match blamed.iter().find(|(k, _)| {
+                k.image_key().unwrap_or(*k).name() == name && k.image_key().is_some()
+            }) {
+                Some(&(key, _)) => Error::ImageOutOfRange {
+                    key,
+                    value: self.get(key).unwrap_or(f64::NAN),
+                    image: name,
+                    image_value,
+                    allowed,
+                },
+                None => Error::InvalidParameter {
+                    name,
+                    value: image_value,
+                    allowed,
+                },
+            },
+            other => other,
+        })?;
+        Ok(law)
     }
 
     /// The circuit: its parts from the values, else from the preset.

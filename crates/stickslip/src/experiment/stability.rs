@@ -27,6 +27,9 @@ impl Experiment {
         if self.diode_model() != DiodeModel::Pwl {
             return Err(Error::Unsupported(Unsupported::StabilityNeedsPwl));
         }
+        if !self.friction_law().is_coulomb() {
+            return Err(Error::Unsupported(Unsupported::SmoothFrictionLaw));
+        }
         self.params()
     }
 

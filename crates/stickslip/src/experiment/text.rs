@@ -71,6 +71,10 @@ impl ExperimentSpec {
                 let i = key.choice(text)?;
                 self.set_diode(DiodeModel::ALL[i]);
             }
+            Key::FrictionLaw => {
+                let i = key.choice(text)?;
+                self.set_law(crate::friction::FrictionLawKind::ALL[i]);
+            }
             _ => {
                 let value = key.parse(text)?;
                 self.set(key, value)?;

@@ -118,7 +118,7 @@ impl SweepReport {
     /// Whether the CSV puts the swept value in a column of its own, first (a sweep of ζ, μs
     /// or the belt speed vb, whose value is not among the other columns).
     pub fn value_column(&self) -> bool {
-        matches!(self.over, Parameter::Zeta | Parameter::MuS | Parameter::Vb)
+        !matches!(self.over, Parameter::W | Parameter::Beta)
     }
 }
 

@@ -96,5 +96,10 @@ where
 pub fn exact_solver(params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
     let params = params.validate()?;
     let initial = State::new(initial.y, initial.v)?;
+    if !params.law.is_coulomb() {
+        return Err(crate::Error::Unsupported(
+            crate::Unsupported::SmoothFrictionLaw,
+        ));
+    }
     Ok(Box::new(ExactSolver::new(params, initial)))
 }

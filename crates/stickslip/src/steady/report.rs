@@ -77,6 +77,9 @@ pub struct SteadyReport {
     /// Belt speed vb (a belt only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vb: Option<f64>,
+    /// The friction law's name (a law other than Coulomb's only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_law: Option<&'static str>,
     /// The period of a self-excited cycle in τ (a belt without a drive; null for steady
     /// sliding).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -142,6 +145,7 @@ impl From<&SteadyState> for SteadyReport {
             y_max: steady.y_max,
             y_min: steady.y_min,
             vb: (p.vb != 0.0).then_some(p.vb),
+            friction_law: (!p.law.is_coulomb()).then(|| p.law.kind().label()),
             cycle_period_tau: cycle.map(|c| c.period),
             stick_fraction: cycle.map(|c| c.stick_fraction),
             section: cycle.map(|c| c.section.map(|s| s.label())),

@@ -16,16 +16,14 @@
 //!   y' = 0 with y at a maximum. The cycle is found when the section repeats (period p ≤
 //!   [`SteadyOptions::max_period`] crossings) to [`SteadyOptions::tolerance`]·scale.
 //! - **steady sliding** ([`MotionClass::SteadySliding`]): the equilibrium y' = 0,
-//!   y = y_e = sgn(vb), reached when the turning points' distance from y_e falls below
+//!   y = y_e = sgn(vb)·μ(|vb|), reached when the turning points' distance from y_e falls below
 //!   the tolerance, or decays geometrically (three ratios of successive distances agreeing to
 //!   10⁻³, all below 1, the distance below 10⁻² of the scale): the linearisation about y_e,
 //!   y'' + (2ζ + μ'(|vb|)) y' + y = 0, then takes it there.
 //!
 //! Beside the class every answer carries the equilibrium y_e and its stability: small
 //! oscillations about steady sliding are damped by 2ζ + μ'(|vb|) (stable where positive,
-//! unstable where negative, neutral at 0), whether or not the motion settled there. Coulomb's
-//! law has μ' = 0, so the damping is 2ζ ([`crate::friction::sliding_damping`]): stable with
-//! damping, neutral without (a law falling with the slip speed would make it unstable).
+//! unstable where negative, neutral at 0), whether or not the motion settled there.
 //!
 //! **The record.** One cycle from the last section but p to the last: its period, events,
 //! time stuck (the stick fraction), and the extremes of y: at stops (a stop moves with the
@@ -221,8 +219,9 @@ pub fn self_excited_state<S: Solver + ?Sized>(
     let start = solver.time();
     let cap = start + options.max_periods as f64 * TAU;
     crate::params::check_time(&params, cap)?;
-    let equilibrium = crate::friction::sliding_equilibrium(params.vb);
-    let damping = crate::friction::sliding_damping(params.zeta);
+    let law = params.law;
+    let equilibrium = law.sliding_equilibrium(params.mu_s, params.vb);
+    let damping = law.sliding_damping(params.zeta, params.mu_s, params.vb);
     let scale = 1f64
         .max(equilibrium.abs())
         .max(params.vb.abs())

@@ -578,9 +578,9 @@ impl<L: SmoothLaw> Radau5<L> {
         }
     }
 
-    /// One step of exactly size `h`, without error control (for convergence-order tests).
-    #[cfg(test)]
-    pub fn fixed_step(&mut self, h: f64) -> Option<Step> {
+    /// One step of exactly size `h`, without error control (convergence-order tests, and
+    /// the step that ends on an event of a friction law's slip, [`crate::friction_solver`]).
+    pub(crate) fn fixed_step(&mut self, h: f64) -> Option<Step> {
         let c = self.newton(h, [0.0; 3])?;
         let step = Step::new(self.t, h, self.x, &c.z).with_stages(c.stages, c.slopes);
         self.t += h;

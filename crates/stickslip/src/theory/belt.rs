@@ -25,10 +25,9 @@
 //! the release point). At μs = 1 the stop shrinks to an instant and the cycle is the circle
 //! of radius vb, T = 2π. A belt moving backwards (vb < 0) gives the mirror image y → −y.
 //!
-//! **Steady sliding** (y' = 0, y = sgn(vb)) is stable where the damping 2ζ of small
-//! oscillations about it is positive ([`crate::friction::sliding_damping`]; a friction law
-//! μ(s) would add its slope μ'(|vb|), Coulomb's has none): the Coulomb belt's is stable for
-//! every ζ > 0 and neutral at ζ = 0, where it is the centre of the family of
+//! **Steady sliding** of any law (y' = 0, y = sgn(vb)·μ(|vb|)) is stable where
+//! 2ζ + μ'(|vb|) > 0 ([`crate::friction::FrictionLaw::sliding_damping`]): the Coulomb belt's
+//! is stable for every ζ > 0 and neutral at ζ = 0, where it is the centre of the family of
 //! circles of radius below |vb| that never reach the belt's speed (pure-slip cycles of period
 //! 2π).
 

@@ -67,6 +67,7 @@ pub fn stick_slip_boundary(zeta: f64, w: f64, mu_s: f64) -> Result<StickSlipBoun
             phi: 0.0,
             mu_s,
             vb: 0.0,
+            law: crate::friction::FrictionLaw::Coulomb,
         };
         PeriodicSolution::from_matching(&params, &matching)
     };
