@@ -4,7 +4,7 @@ use crate::common::*;
 use std::path::Path;
 use stickslip::experiment::{Experiment, Key};
 use stickslip::report::{
-    BasinsTable, BifurcationRow, BranchTable, MapRow, SweepRow, TrajectoryColumns,
+    BasinsTable, BifurcationRow, BranchTable, CurveTable, MapRow, SweepRow, TrajectoryColumns,
 };
 use stickslip::Parameter;
 use stickslip_cli::reproduce_columns as columns;
@@ -58,6 +58,11 @@ fn every_csv_has_its_columns(report: &Path, html: &str) {
         }
         .names(),
     );
+    // The curves over the chaos map: the library's table of a curve in (β, w).
+    let curve = then(
+        &[Parameter::Beta.label(), Parameter::W.label()],
+        &CurveTable::COLUMNS,
+    );
     let expected: Vec<(&str, Vec<String>)> = vec![
         ("fig1a.csv", names(columns::FRICTION_COLUMNS)),
         ("fig1b.csv", names(&columns::DIODE_COLUMNS)),
@@ -83,6 +88,9 @@ fn every_csv_has_its_columns(report: &Path, html: &str) {
             names(&columns::SPECIAL_COLUMNS),
         ),
         ("beyond-basins.csv", names(&BasinsTable::COLUMNS)),
+        ("chaos-map-grazing.csv", curve.clone()),
+        ("chaos-map-fold.csv", curve.clone()),
+        ("chaos-map-period-doubling.csv", curve),
         (
             "beyond-branch.csv",
             then(&[Parameter::Beta.label()], &BranchTable::COLUMNS),
@@ -314,6 +322,7 @@ fn writes_every_figure_table_and_the_report() {
     let map = &summary["beyond_chaos_map"];
     assert!(map["chaotic"].as_u64().unwrap() > 0, "{map}");
     above_the_boundary_the_sliding_orbit_exists(&report, map, &html);
+    curves_over_the_chaos_map(&report);
     assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
     let paper = &summary["beyond_paper_exponents"];
     assert_eq!(paper["positive"], 0, "{paper}");
@@ -362,6 +371,46 @@ fn writes_every_figure_table_and_the_report() {
 /// The chaos map's exact boundary: its legend says that the sliding orbit exists above it
 /// (not that the motion slides there), and the caption counts the points above it that do
 /// not slide from rest, recounted here from chaos-map.csv and the exact boundary.
+/// The chaos map's curves: a legend entry per kind, and each kind's CSV holding curves of
+/// that kind (their followed multiplier at +1 or −1) inside the map's range of β, one start
+/// marked per curve.
+fn curves_over_the_chaos_map(report: &Path) {
+    let svg = std::fs::read_to_string(report.join("chaos-map.svg")).unwrap();
+    for (label, file, starts, multiplier) in [
+        ("grazing curve", "chaos-map-grazing.csv", 1, None),
+        ("fold curve", "chaos-map-fold.csv", 1, Some(1.0)),
+        (
+            "period-doubling curve",
+            "chaos-map-period-doubling.csv",
+            1,
+            Some(-1.0),
+        ),
+    ] {
+        assert!(svg.contains(label), "the chaos map's legend has no {label}");
+        let csv = Csv::read(report, file);
+        let (beta, special) = (csv.at("beta"), csv.at("special"));
+        let (mu1, mu2) = (csv.at("mu1_re"), csv.at("mu2_re"));
+        assert!(!csv.rows.is_empty(), "{file} is empty");
+        let count = csv
+            .rows
+            .iter()
+            .filter(|r| r[special].split(';').any(|s| s == "start"))
+            .count();
+        assert_eq!(count, starts, "{file}: the curves' starts");
+        for r in &csv.rows {
+            let b: f64 = r[beta].parse().unwrap();
+            assert!((3.0..=14.0).contains(&b), "{file}: β = {b}");
+            if let Some(m) = multiplier {
+                let near = [mu1, mu2]
+                    .iter()
+                    .map(|&i| (r[i].parse::<f64>().unwrap() - m).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(near < 1e-6, "{file}: β = {b}, no multiplier at {m}");
+            }
+        }
+    }
+}
+
 fn above_the_boundary_the_sliding_orbit_exists(report: &Path, map: &serde_json::Value, html: &str) {
     use stickslip::theory::curves::{theory_value, Theory, TheoryQuantity};
     for ext in ["svg", "png"] {

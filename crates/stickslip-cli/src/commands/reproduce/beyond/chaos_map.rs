@@ -3,11 +3,12 @@
 use super::super::report::{sig, Report, Section};
 use super::super::{Context, Later};
 use super::{frequency, literature};
-use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity};
+use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series, Style};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde_json::json;
-use stickslip::report::MapReport;
+use stickslip::continuation::{curve, ContinuationOptions, Curve, CurveSpec, Follow};
+use stickslip::report::{CurveTable, MapReport};
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::{LyapunovOptions, SEARCH_BEFORE_MEASURING};
 use stickslip::steady::MotionClass;
@@ -39,6 +40,71 @@ const QUICK_SIZE: usize = 22;
 /// reach (the caption counts the points above it that stick from rest).
 const BOUNDARY_LABEL: &str = "exact β_c: the sliding orbit exists above";
 
+/// The curves drawn over the map, each from the orbit the motion settles on from rest at
+/// (w, β), continued in w towards the third value up to its first special point of the kind,
+/// then followed over β (3 to 14, both ways from β): the grazing at the map's left edge of
+/// chaos (a slide of the period-1 orbit with three stops touches rest, and a stop appears
+/// mid-swing), the fold of the period-1 orbit with one stop on the right, and the period
+/// doubling of the period-3 orbit at the band's lower tip. (The grazing of the period-3 orbit
+/// inside the band, from w = 0.48, β = 10 towards w = 0.3, is left out: it winds back and forth
+/// in w and took 1.5 s of CPU for 170 points, a sixth of the whole report.) Starts found with `stickslip curve --zeta 0 --mu-s 3 --w W --beta B
+/// --follow KIND --vary w --vary-to V --over beta --from 3 --to 14`.
+const CURVES: [(Follow, f64, f64, f64); 3] = [
+    (Follow::Grazing, 0.28, 8.0, 0.45),
+    (Follow::Fold, 0.5, 12.0, 0.6),
+    (Follow::PeriodDoubling, 0.44, 4.5, 0.6),
+];
+
+/// Most points of each curve each way: a few hundred in all, fast beside the map.
+const CURVE_POINTS: usize = 150;
+
+/// The followed kinds drawn, each with its legend entry, colour and CSV.
+const KINDS: [(Follow, &str, RGBColor, &str); 3] = [
+    (
+        Follow::Grazing,
+        "grazing curve",
+        RGBColor(0, 150, 0),
+        "chaos-map-grazing.csv",
+    ),
+    (
+        Follow::Fold,
+        "fold curve",
+        RGBColor(230, 130, 0),
+        "chaos-map-fold.csv",
+    ),
+    (
+        Follow::PeriodDoubling,
+        "period-doubling curve",
+        RGBColor(150, 0, 200),
+        "chaos-map-period-doubling.csv",
+    ),
+];
+
+/// The curves of [`CURVES`] at ζ = 0, μs = 3.
+fn curves() -> Result<Vec<Curve>> {
+    let options = ContinuationOptions {
+        max_points: CURVE_POINTS,
+        ..ContinuationOptions::default()
+    };
+    CURVES
+        .iter()
+        .map(|&(follow, w, beta, vary_to)| {
+            let experiment = literature()?.with_w(w)?.with_beta(beta)?;
+            let spec = CurveSpec {
+                follow,
+                vary: Parameter::W,
+                vary_to,
+                over: Parameter::Beta,
+                from: 3.0,
+                to: 14.0,
+            };
+            let monitor = |_: usize, _: usize| !crate::output::interrupted();
+            curve(&experiment, &spec, &options, &monitor)?
+                .map_err(|no| anyhow::anyhow!("the chaos map's {} curve: {no}", follow.label()))
+        })
+        .collect()
+}
+
 /// The map's grid: its axes (w, β) and the measurement of its exponents.
 fn axes(quick: bool) -> Result<(ParameterRange, ParameterRange, LyapunovOptions)> {
     let n = if quick { QUICK_SIZE } else { SIZE };
@@ -58,6 +124,7 @@ fn axes(quick: bool) -> Result<(ParameterRange, ParameterRange, LyapunovOptions)
 /// figures from the start of `reproduce` ([`Later`]); [`chaos_map`] takes them.
 pub struct ChaosMap {
     points: Vec<GridPoint>,
+    curves: Vec<Curve>,
     seconds: f64,
 }
 
@@ -76,6 +143,7 @@ fn compute(quick: bool) -> Result<ChaosMap> {
         .with_max_periods(PERIODS)?
         .with_lyapunov(Some(measure))?;
     let started = std::time::Instant::now();
+    let curves = curves()?;
     let points = Grid::new(
         &literature()?,
         Axis::range(Parameter::W, &w)?,
@@ -87,6 +155,7 @@ fn compute(quick: bool) -> Result<ChaosMap> {
     .points;
     Ok(ChaosMap {
         points,
+        curves,
         seconds: started.elapsed().as_secs_f64(),
     })
 }
@@ -104,7 +173,11 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
         _ => looks.join(""),
     };
-    let ChaosMap { points, seconds } = ctx.chaos_map.take()?;
+    let ChaosMap {
+        points,
+        curves,
+        seconds,
+    } = ctx.chaos_map.take()?;
     // The time goes to standard error: the report itself is the same on every run.
     eprintln!(
         "reproduce: chaos map {nw} × {nb} in {seconds:.1} s (alongside the chapters before it)"
@@ -137,6 +210,32 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     .within(beta.from() - db, beta.to() + db)
     .points();
     let boundary = || Quantity::ExactTheory.series(BOUNDARY_LABEL, boundary.clone());
+    // The curves, one series per kind (a non-finite point between two curves breaks the line).
+    let kind_series = |label: bool| -> Vec<Series> {
+        KINDS
+            .iter()
+            .filter_map(|&(follow, name, color, _)| {
+                let mut points = Vec::new();
+                for c in curves.iter().filter(|c| c.follow == follow) {
+                    if !points.is_empty() {
+                        points.push((f64::NAN, f64::NAN));
+                    }
+                    // Outside the map's w the line breaks (not drawn along its edge).
+                    let inside = |x: f64| (w.from() - dw..=w.to() + dw).contains(&x);
+                    points.extend(c.points.iter().map(|p| {
+                        if inside(p.vary) {
+                            (p.vary, p.over)
+                        } else {
+                            (f64::NAN, f64::NAN)
+                        }
+                    }));
+                }
+                (!points.is_empty()).then(|| {
+                    Series::new(if label { name } else { "" }, points, color, Style::Line(2))
+                })
+            })
+            .collect()
+    };
     let frame = |title: &str| Panel {
         title: title.into(),
         x_label: "w = Ω/ω0".into(),
@@ -145,7 +244,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
         y_range: Some((beta.from() - db, beta.to() + db)),
         // (The upper left is uniformly periodic: nothing to hide there.)
         legend: Some(Legend::UpperLeft),
-        series: vec![boundary()],
+        series: [vec![boundary()], kind_series(true)].concat(),
         ..Default::default()
     };
     // The boundary's legend entry is in (a), with the classes: (b), beside its colour bar,
@@ -155,7 +254,7 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     let exponents = Panel {
         cells: cells(&|p| bar.color(lambda(p))),
         color_bar: Some(bar.clone()),
-        series: vec![line],
+        series: [vec![line], kind_series(false)].concat(),
         legend: None,
         ..frame("(b) largest Lyapunov exponent λ1, ζ = 0, μs = 3")
     };
@@ -184,6 +283,16 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
     )?;
     // The CSV of `stickslip phase-diagram --lyapunov --out`: the library's table of a map.
     report.table("chaos-map.csv", &MapReport::new(&points, true))?;
+    // The curves of each kind in one CSV: the library's table of a curve, one after another
+    // (each begins where its arclength is 0).
+    for &(follow, _, _, file) in &KINDS {
+        let tables: Vec<CurveTable> = curves
+            .iter()
+            .filter(|c| c.follow == follow)
+            .map(|curve| CurveTable { curve })
+            .collect();
+        report.tables(file, &[], tables.iter().map(|t| (Vec::new(), t)))?;
+    }
     let count = |c: MotionClass| points.iter().filter(|p| p.class == c).count();
     let top = points
         .iter()
@@ -249,6 +358,34 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
                         "lambda1": lambda(top), "lambda1_error": error(top)},
         }),
     );
+    let curve_list = curves
+        .iter()
+        .map(|c| {
+            let (lo, hi) = c
+                .points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.over), b.max(p.over))
+                });
+            let (wlo, whi) = c
+                .points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.vary), b.max(p.vary))
+                });
+            format!(
+                "the {} of the period-{} orbit for β from {} to {} (w from {} to {}, {} points)",
+                c.follow.label(),
+                c.period,
+                sig(lo, 3),
+                sig(hi, 3),
+                sig(wlo, 3),
+                sig(whi, 3),
+                c.points.len()
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
     report.sections.push(Section {
         id: "chaos-map".into(),
         title: "Chaos at ζ = 0, μs = 3: the (w, β) map of the largest Lyapunov exponent".into(),
@@ -274,7 +411,17 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
              {} lie below the exact stick-slip boundary (black). Above that boundary the \
              symmetric sliding orbit exists, which is not to say that rest leads to it: {} of \
              the {} points above it do not slide from rest (another motion coexists there and \
-             attracts rest).{}",
+             attracts rest). Over both panels, curves traced exactly in (β, w) by \
+             `continuation::curve` (stickslip curve): {curve_list}. The green grazing curve on \
+             the left is the left edge of the chaotic band between the β its curve covers: there \
+             a slide of the period-1 orbit with three stops touches rest, a stop appears \
+             mid-swing and the strobe map jumps with no orbit of that period past it, so rest \
+             leads to chaos on its right; the fold (orange) ends the period-1 orbit with one \
+             stop, right of which rest reaches the sliding orbit; the period doubling (violet) \
+             is a special point of the period-3 orbit at the band's lower tip. Each curve ends where its event \
+             sequence changes, where no orbit can be corrected past (the map jumps) or at \
+             {CURVE_POINTS} points each way; the CSVs chaos-map-grazing.csv, chaos-map-fold.csv \
+             and chaos-map-period-doubling.csv hold them, one after another.{}",
             sig(faint, 2),
             count(MotionClass::Chaotic),
             points.len(),
@@ -301,7 +448,11 @@ pub fn chaos_map(report: &mut Report, ctx: &Context) -> Result<()> {
             }
         ),
         figures: vec!["chaos-map".into()],
-        data: vec!["chaos-map.csv".into()],
+        data: [&["chaos-map.csv"][..], &KINDS.map(|k| k.3)]
+            .concat()
+            .iter()
+            .map(|f| f.to_string())
+            .collect(),
         tables: vec![],
     });
     Ok(())
