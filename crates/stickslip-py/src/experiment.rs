@@ -31,7 +31,9 @@ use stickslip::experiment::{
 /// it. Keyword names are those of the TOML experiment file: zeta w beta phi mu_s y0 v0, L C R
 /// U_t R_D, m k gamma F0, U (or F) f omega, uc0 i0, Is n Rs temperature, diode, preset, vb
 /// (the belt speed, dimensionless) or belt_speed (m/s; mechanical only: a circuit has no
-/// belt).
+/// belt), friction_law (coulomb, stribeck or cubic) with vs delta eta (Stribeck) or k1 k3
+/// (cubic), dimensionless, or stribeck_speed viscous_friction cubic_k1 cubic_k3 (mechanical,
+/// SI units).
 /// Physical values may be numbers in SI units or strings with an SI prefix ("11.5m").
 ///
 /// Experiments are immutable, comparable and picklable (through their JSON, ``to_json``).

@@ -163,7 +163,7 @@ def test_errors_name_the_parameter():
     with pytest.raises(TypeError) as raised:
         stickslip.phase_diagram(e, gamma=[1, 2], beta=[1, 2])
     assert str(raised.value).startswith("phase_diagram() got an unknown keyword 'gamma' "
-                                        "(the parameters: zeta, w, beta, mu_s, vb; the options: ")
+                                        "(the parameters: zeta, w, beta, mu_s, vb, vs, delta, eta, k1, k3; the options: ")
     with pytest.raises(TypeError, match=r"^stickslip\.dask\.sweep_grid\(\) got an unknown "
                                         r"keyword 'gamma'"):
         stickslip.dask.sweep_grid(e, gamma=[1, 2], w=[1.0], beta=[1.0])

@@ -70,5 +70,5 @@ def test_the_stribeck_and_cubic_laws_are_keywords_and_bad_laws_a_value_error():
     # μs − k1 s + k3 s³ with k1 = 5, k3 = 0.1 goes negative (from s ≈ 0.3 on).
     with pytest.raises(ValueError, match="k1"):
         base.replace(friction_law="cubic", k1=5.0, k3=0.1)
-    with pytest.raises(ValueError, match="friction_law"):
+    with pytest.raises(ValueError, match="a circuit has no belt and no friction law"):
         Experiment.paper(w=0.5, beta=1.0, friction_law="stribeck", vs=0.1)

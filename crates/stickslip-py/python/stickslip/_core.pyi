@@ -103,6 +103,18 @@ class _PaperKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
+    vb: _Value  # belt speed vb (dimensionless, in units of y')
+    friction_law: Optional[str]  # friction law of the slip speed: coulomb, stribeck or cubic
+    vs: _Value  # Stribeck speed vs (dimensionless, as vb)
+    delta: _Value  # Stribeck exponent δ
+    eta: _Value  # viscous coefficient η of the Stribeck law (dimensionless)
+    k1: _Value  # coefficient k1 of the cubic law (dimensionless)
+    k3: _Value  # coefficient k3 of the cubic law (dimensionless)
+    belt_speed: _Value  # belt speed (m/s)
+    stribeck_speed: _Value  # Stribeck speed (m/s)
+    viscous_friction: _Value  # viscous friction coefficient of the Stribeck law (N·s/m)
+    cubic_k1: _Value  # linear coefficient of the cubic law (N·s/m)
+    cubic_k3: _Value  # cubic coefficient of the cubic law (N·s³/m³)
 
 class _CircuitKeys(TypedDict, total=False):
     """The keys of Experiment.circuit beside its own."""
@@ -128,6 +140,18 @@ class _CircuitKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
+    vb: _Value  # belt speed vb (dimensionless, in units of y')
+    friction_law: Optional[str]  # friction law of the slip speed: coulomb, stribeck or cubic
+    vs: _Value  # Stribeck speed vs (dimensionless, as vb)
+    delta: _Value  # Stribeck exponent δ
+    eta: _Value  # viscous coefficient η of the Stribeck law (dimensionless)
+    k1: _Value  # coefficient k1 of the cubic law (dimensionless)
+    k3: _Value  # coefficient k3 of the cubic law (dimensionless)
+    belt_speed: _Value  # belt speed (m/s)
+    stribeck_speed: _Value  # Stribeck speed (m/s)
+    viscous_friction: _Value  # viscous friction coefficient of the Stribeck law (N·s/m)
+    cubic_k1: _Value  # linear coefficient of the cubic law (N·s/m)
+    cubic_k3: _Value  # cubic coefficient of the cubic law (N·s³/m³)
 
 class _ShockleyKeys(TypedDict, total=False):
     """The keys of Experiment.shockley beside its own."""
@@ -150,6 +174,18 @@ class _ShockleyKeys(TypedDict, total=False):
     i0: _Value  # initial current i(0) (A) or velocity ṙ(0) (m/s)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
+    vb: _Value  # belt speed vb (dimensionless, in units of y')
+    friction_law: Optional[str]  # friction law of the slip speed: coulomb, stribeck or cubic
+    vs: _Value  # Stribeck speed vs (dimensionless, as vb)
+    delta: _Value  # Stribeck exponent δ
+    eta: _Value  # viscous coefficient η of the Stribeck law (dimensionless)
+    k1: _Value  # coefficient k1 of the cubic law (dimensionless)
+    k3: _Value  # coefficient k3 of the cubic law (dimensionless)
+    belt_speed: _Value  # belt speed (m/s)
+    stribeck_speed: _Value  # Stribeck speed (m/s)
+    viscous_friction: _Value  # viscous friction coefficient of the Stribeck law (N·s/m)
+    cubic_k1: _Value  # linear coefficient of the cubic law (N·s/m)
+    cubic_k3: _Value  # cubic coefficient of the cubic law (N·s³/m³)
 
 class _MechanicsKeys(TypedDict, total=False):
     """The keys of Experiment.mechanics beside its own."""
@@ -176,6 +212,18 @@ class _MechanicsKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
+    vb: _Value  # belt speed vb (dimensionless, in units of y')
+    friction_law: Optional[str]  # friction law of the slip speed: coulomb, stribeck or cubic
+    vs: _Value  # Stribeck speed vs (dimensionless, as vb)
+    delta: _Value  # Stribeck exponent δ
+    eta: _Value  # viscous coefficient η of the Stribeck law (dimensionless)
+    k1: _Value  # coefficient k1 of the cubic law (dimensionless)
+    k3: _Value  # coefficient k3 of the cubic law (dimensionless)
+    belt_speed: _Value  # belt speed (m/s)
+    stribeck_speed: _Value  # Stribeck speed (m/s)
+    viscous_friction: _Value  # viscous friction coefficient of the Stribeck law (N·s/m)
+    cubic_k1: _Value  # linear coefficient of the cubic law (N·s/m)
+    cubic_k3: _Value  # cubic coefficient of the cubic law (N·s³/m³)
 
 class _ExperimentKeys(TypedDict, total=False):
     """Every experiment key."""
@@ -208,6 +256,18 @@ class _ExperimentKeys(TypedDict, total=False):
     temperature: _Value  # diode temperature (°C)
     diode: Optional[str]  # diode law: pwl or shockley
     preset: Optional[str]  # built-in physical description
+    vb: _Value  # belt speed vb (dimensionless, in units of y')
+    friction_law: Optional[str]  # friction law of the slip speed: coulomb, stribeck or cubic
+    vs: _Value  # Stribeck speed vs (dimensionless, as vb)
+    delta: _Value  # Stribeck exponent δ
+    eta: _Value  # viscous coefficient η of the Stribeck law (dimensionless)
+    k1: _Value  # coefficient k1 of the cubic law (dimensionless)
+    k3: _Value  # coefficient k3 of the cubic law (dimensionless)
+    belt_speed: _Value  # belt speed (m/s)
+    stribeck_speed: _Value  # Stribeck speed (m/s)
+    viscous_friction: _Value  # viscous friction coefficient of the Stribeck law (N·s/m)
+    cubic_k1: _Value  # linear coefficient of the cubic law (N·s/m)
+    cubic_k3: _Value  # cubic coefficient of the cubic law (N·s³/m³)
 
 # END keywords
 
@@ -225,6 +285,7 @@ class Experiment:
         mu_s: _Value = 1,
         y0: _Value = 0,
         v0: _Value = 0,
+        vb: _Value = 0,
     ) -> Experiment: ...
     @classmethod
     def paper(
