@@ -2,6 +2,7 @@
 //! command-line tool's) for the same point; bad input, caps and unknown paths are refused
 //! with one line of JSON; the time limit stops a computation.
 
+mod belt;
 mod connections;
 mod curve;
 mod page_keys;
