@@ -107,7 +107,7 @@ export function showMeasurements() {
   setMeasure('y-extremes', `${num(s.y_max * sc.position, 5)} / ${num(s.y_min * sc.position, 5)}`);
   if (belt.selfExcited) {
     setMeasure('cycle-period', s.cycle_period_s === undefined ? 'none (no cycle)' : num(s.cycle_period_s, 6), s.cycle_period_s);
-    setMeasure('stick-fraction', num(s.stick_fraction, 4), s.stick_fraction);
+    setMeasure('stick-fraction', num(s.stick_fraction, 6), s.stick_fraction);
     setMeasure('sliding', `${s.sliding_stability} at ${num(s.sliding_y * sc.position, 4)}`);
   }
   setMeasure('stops', num(s.stops_per_period, 4), s.stops_per_period);
@@ -359,17 +359,20 @@ export function applyPreset(id) {
 }
 
 /** Map sizes that finish within the time limit (10 s) on a 2-core laptop: the exact
- * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md), and so do the
- * Stribeck and cubic laws, whose slips it integrates. */
+ * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md); the Stribeck
+ * and cubic laws, whose slips it integrates, far longer. */
 export const MAP_SIZES = {
   pwl: [['40x30', '40 × 30'], ['60x50', '60 × 50'], ['120x100', '120 × 100']],
   shockley: [['16x12', '16 × 12'], ['24x20', '24 × 20'], ['32x24', '32 × 24']],
+  // A forced Stribeck or cubic belt's steady state from rest took about 1 s a point at a
+  // load average of 16 on 2 cores (docs/lab.md): small maps only.
+  law: [['8x6', '8 × 6'], ['12x9', '12 × 9'], ['16x12', '16 × 12']],
 };
 export function fillMapSizes() {
   const select = field('map-size');
-  // A friction law other than Coulomb's slips on the stiff integrator: the stiff sizes.
-  const stiff = state.system === 'shockley' || (state.system === 'mechanics' && !['coulomb', null].includes(chosenLaw()));
-  const sizes = MAP_SIZES[stiff ? 'shockley' : 'pwl'];
+  // A friction law other than Coulomb's slips on the stiff integrator: small maps.
+  const law = state.system === 'mechanics' && !['coulomb', null].includes(chosenLaw());
+  const sizes = MAP_SIZES[law ? 'law' : state.system === 'shockley' ? 'shockley' : 'pwl'];
   const keep = select.value;
   select.replaceChildren(...sizes.map(([v, text]) => new Option(text, v)));
   select.value = sizes.some(([v]) => v === keep) ? keep : sizes[1][0];
