@@ -524,6 +524,12 @@ test('issue 36: the block on a moving belt: the law shows its own fields, a Stri
   for (const stuck of ['true', 'false', 'true']) {
     await page.waitForFunction((s) => document.querySelector('#mechanics-view').dataset.stuck === s, stuck, { timeout: PATIENCE });
   }
+  // The belt's fields and readouts fit the page, wide and on a phone.
+  for (const [width, height] of [[1500, 1100], [390, 844]]) {
+    await resize(page, width, height);
+    assert.deepEqual(await layoutProblems(page), [], `the belt at ${width} × ${height}`);
+  }
+  await resize(page, 1500, 1100);
 
   // Bad laws: the server's message beside the field at fault.
   expectedConsole = /status of 400/;
