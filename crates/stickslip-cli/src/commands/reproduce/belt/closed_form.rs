@@ -91,11 +91,10 @@ pub fn closed_form(report: &mut Report, _ctx: &Context) -> Result<()> {
              = 1 + R, y_min = 1 − R, T = π + 2 atan2(vb, μs − 1) + 2(μs − 1)/vb. The exact \
              solver's steady state from a stop on the belt (<code>stickslip steady --vb</code>, \
              the cycle's period found, not given) at {} pairs (μs, vb): the largest difference \
-             of the {} quantities below is {} (the test <code>tests/belt.rs</code> holds it to \
+             of the {} quantities below is {worst:.1e} (the test <code>tests/belt.rs</code> holds it to \
              10⁻¹²). A belt moving backwards gives the mirror image.",
             POINTS.len(),
             rows.len(),
-            format!("{worst:.1e}"),
         ),
         figures: vec![],
         data: vec!["belt-closed-form.csv".into()],
