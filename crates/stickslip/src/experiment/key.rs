@@ -1246,7 +1246,12 @@ const ROWS: &[Row] = &[
             of: Key::Vs,
             scale: |s| s.velocity,
         }),
-        fit: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 13,
+        }),
     },
     Row {
         key: Key::ViscousFriction,
@@ -1273,7 +1278,12 @@ const ROWS: &[Row] = &[
             of: Key::Eta,
             scale: |s| s.force / s.velocity,
         }),
-        fit: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 14,
+        }),
     },
     Row {
         key: Key::CubicK1,
