@@ -329,3 +329,34 @@ fn a_stribeck_parameter_without_the_stribeck_law_is_refused() {
         "{e}"
     );
 }
+
+/// The two records of the worked example in docs/fit.md (`examples/fit/belt/stick.csv` and
+/// `fast.csv`): those of the Stribeck belt's recovery test above (the oracle's motion at
+/// [`DRIVES`], seed 2031), committed so that the page's command runs as written (the docs'
+/// test runs it and compares its output). This test makes them again and requires the
+/// committed files byte for byte; with `STICKSLIP_BLESS=1` it writes them.
+#[test]
+fn the_committed_belt_records_are_what_the_oracle_makes() {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/fit/belt");
+    let bless = std::env::var("STICKSLIP_BLESS").is_ok_and(|v| v != "0");
+    let truth = stribeck(TRUTH);
+    let law = oracle_law(&truth);
+    let mut rng = Rng(2031);
+    let mut stale = Vec::new();
+    for (file, &(w, beta, phi)) in ["stick.csv", "fast.csv"].iter().zip(&DRIVES) {
+        let text = record(&truth, law, w, beta, phi, &mut rng);
+        let path = dir.join(file);
+        if bless {
+            std::fs::create_dir_all(&dir).unwrap();
+            std::fs::write(&path, &text).unwrap();
+        } else if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
+            stale.push(file);
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "examples/fit/belt: {stale:?} differ from what this test makes; \
+         STICKSLIP_BLESS=1 cargo test --release -p stickslip --test fit_belt -- committed \
+         writes them"
+    );
+}
