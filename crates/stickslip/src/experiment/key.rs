@@ -292,7 +292,9 @@ pub struct FitRole {
     /// The systems whose value it is (μs: a circuit's and a mechanical oscillator's).
     pub systems: &'static [SystemKind],
     /// The diode law it belongs to (`None`: either). A mechanical oscillator's Coulomb law
-    /// is the PWL law.
+    /// is the PWL law, and so are its other friction laws here: the parameters of the
+    /// Stribeck law (`stribeck-speed`, `viscous-friction`) are checked against the
+    /// oscillator's friction law when a fit reads them.
     pub law: Option<DiodeModel>,
     /// Whether a fit of its systems and law frees it when told nothing (the default free
     /// set, `FitParameter::defaults`).

@@ -7,10 +7,12 @@
 //! neither the closed-form tangent dynamics of the beltless PWL law nor a smooth law's
 //! forward sensitivities exist. Its Jacobian is then by central differences,
 //! (r(x + h) − r(x − h))/2h: an error of order h² instead of forward differences' h, with
-//! h = [`CENTRAL_STEP`] of each value's coordinate (scaled to 1 at the start), so that the
-//! truncation (about h² ≈ 10⁻⁸ of a column) and the model's own error over the step
-//! (10⁻¹⁰/h ≈ 10⁻⁶ of a column, from the steady state sought to 10⁻¹⁰) stay far below what the
-//! fit's steps and error bars need. Each record's own drive columns (amplitude, frequency,
+//! h = [`CENTRAL_STEP`] of each value's coordinate (scaled to 1 at the start): the
+//! truncation is of order h² ≈ 10⁻⁸ of a column, and the model's own error over the step of
+//! order 10⁻¹²/h ≈ 10⁻⁸ (the solver's tolerance and the steady state's, both 10⁻¹²), far
+//! below what the fit's steps and error bars need. Each record's steady state settles from
+//! the last model's strobe state (`Records::warm_start`), so that both sides of a
+//! difference are the same attractor. Each record's own drive columns (amplitude, frequency,
 //! phase; the time shift's is the phase's) come from that record alone. The report then
 //! says `central-differences` ([`super::Jacobian::CentralDifferences`]).
 

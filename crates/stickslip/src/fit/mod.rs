@@ -66,7 +66,11 @@
 //! free parameters `damping` (γ), `friction` (F0), `mass` (m), `stiffness` (k) and `mu-s`
 //! ([`FitParameter::MECHANICS`]); its scales take the circuit's place (ζ = γ/(2√(km)),
 //! ω0 = √(k/m), β = F/F0, r = (F0/k)·y), and its Coulomb law is the PWL law, so that its
-//! Jacobian is exact wherever every record's model is a periodic orbit. The record's channels
+//! Jacobian is exact wherever every record's model is a periodic orbit. On a moving belt, or
+//! with the Stribeck law (whose `stribeck-speed` and `viscous-friction` a fit may free beside
+//! `mu-s`), the belt speed and the law's values are held in their physical units while m, k
+//! and F0 move their dimensionless images, and the Jacobian is by central differences of the
+//! whole model (`central.rs`, [`Jacobian::CentralDifferences`]). The record's channels
 //! must say their units (`N` and `m`: a plain CSV's header `time_s,F (N),r (m)`), a circuit's
 //! parameter on a mechanical oscillator (or the other way round) is refused naming the
 //! parameters allowed, and so is a table of amplitudes (read in volts). The report's fields

@@ -231,8 +231,8 @@ impl Setup {
         }
     }
 
-    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s and
-    /// γ down to 0, μs down to 1 (the others are positive and refused at 0, which the
+    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s, γ
+    /// and the viscous friction down to 0, μs down to 1 (the others are positive and refused at 0, which the
     /// minimisation treats as a failed step; I_s is fitted in its logarithm).
     pub(super) fn bounds(&self, k: usize) -> (f64, f64) {
         let lowest = match self.free[k] {
