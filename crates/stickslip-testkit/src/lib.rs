@@ -14,6 +14,7 @@ use stickslip::DiodePair;
 
 pub mod allowances;
 pub mod ngspice;
+pub mod oracle;
 
 /// xorshift64 from a fixed seed, with Gaussian numbers by Box–Muller.
 pub struct Rng(pub u64);

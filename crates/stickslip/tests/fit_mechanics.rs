@@ -182,7 +182,7 @@ fn parameters_of_the_other_twin_and_volts_are_refused() {
     assert_eq!(
         e.to_string(),
         "resistance is not a parameter of a mechanical oscillator (its parameters are damping, \
-         friction, mass, stiffness, mu-s)"
+         friction, mass, stiffness, mu-s, stribeck-speed, viscous-friction)"
     );
     let e = fit_records(
         &start(),

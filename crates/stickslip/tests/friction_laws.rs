@@ -3,39 +3,24 @@
 //! a drive (self-excited stick-slip: y_max, y_min and the period) and forced belts; steady
 //! sliding recognised where 2ζ + μ'(vb) > 0 and a stick-slip cycle where it is negative.
 //!
-//! The independent integrator ([`Oracle`]) is another method with another tolerance: the
-//! classical fourth-order Runge–Kutta method at a fixed step h = 5e-4 on the slips, with the
-//! law written out here again, the stops as y = y_s + vb t checked on the same grid, and every
-//! event placed by bisection on a partial Runge–Kutta step from the last grid point.
+//! The independent integrator is the test kit's ([`stickslip_testkit::oracle::Oracle`]):
+//! another method with another tolerance, the classical fourth-order Runge–Kutta method at a
+//! fixed step h = 5e-4 on the slips, with the laws written out there again, the stops as
+//! y = y_s + vb t checked on the same grid, and every event placed by bisection on a partial
+//! Runge–Kutta step from the last grid point.
 
-use stickslip::friction::FrictionLaw;
 use stickslip::friction_solver::FrictionSolver;
 use stickslip::steady::{MotionClass, SlidingStability, SteadyOptions};
 use stickslip::{steady, EventKind, Params, Solver, State};
+use stickslip_testkit::oracle::{Oracle, OracleLaw as TestLaw};
 
-/// The laws, written out independently of the library's.
-#[derive(Debug, Clone, Copy)]
-enum TestLaw {
-    Stribeck { vs: f64, delta: f64, eta: f64 },
-    Cubic { k1: f64, k3: f64 },
-}
+/// The oracle's step on the slips.
+const H: f64 = 5e-4;
 
-impl TestLaw {
-    fn mu(&self, mu_s: f64, s: f64) -> f64 {
-        match *self {
-            TestLaw::Stribeck { vs, delta, eta } => {
-                1.0 + (mu_s - 1.0) * (-(s / vs).powf(delta)).exp() + eta * s
-            }
-            TestLaw::Cubic { k1, k3 } => mu_s - k1 * s + k3 * s * s * s,
-        }
-    }
-
-    fn library(&self) -> FrictionLaw {
-        match *self {
-            TestLaw::Stribeck { vs, delta, eta } => FrictionLaw::Stribeck { vs, delta, eta },
-            TestLaw::Cubic { k1, k3 } => FrictionLaw::Cubic { k1, k3 },
-        }
-    }
+/// A self-excited cycle's period and extremes from the oracle: the interval between its
+/// last two stops, and the extremes between them.
+fn oracle_cycle(p: Params, law: TestLaw, initial: State, sticks: usize) -> (f64, f64, f64) {
+    Oracle::new(p, law, H, initial.y, initial.v).cycle(sticks)
 }
 
 fn params(zeta: f64, mu_s: f64, vb: f64, w: f64, beta: f64, law: TestLaw) -> Params {
@@ -58,179 +43,10 @@ const STRIBECK_LINEAR: TestLaw = TestLaw::Stribeck {
 };
 const CUBIC: TestLaw = TestLaw::Cubic { k1: 1.0, k3: 0.4 };
 
-/// What the oracle is doing.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Mode {
-    /// Slipping with slip sign ±1.
-    Slip(f64),
-    /// Stuck since τ_s at y_s.
-    Stick { tau: f64, y: f64 },
-}
-
-/// The independent integrator (see the module documentation).
-struct Oracle {
-    p: Params,
-    law: TestLaw,
-    h: f64,
-    tau: f64,
-    y: f64,
-    v: f64,
-    mode: Mode,
-    /// (τ, y, kind) of every event.
-    events: Vec<(f64, f64, EventKind)>,
-    /// (τ, y) of every zero of y' (an extreme of y) inside a slide.
-    extremes: Vec<(f64, f64)>,
-}
-
-impl Oracle {
-    fn new(p: Params, law: TestLaw, y: f64, v: f64) -> Self {
-        let mut o = Self {
-            p,
-            law,
-            h: 5e-4,
-            tau: 0.0,
-            y,
-            v,
-            mode: Mode::Slip(1.0),
-            events: Vec::new(),
-            extremes: Vec::new(),
-        };
-        o.mode = if v != p.vb {
-            Mode::Slip((v - p.vb).signum())
-        } else {
-            let f = o.force(0.0, y);
-            if f.abs() <= p.mu_s {
-                Mode::Stick { tau: 0.0, y }
-            } else {
-                Mode::Slip(f.signum())
-            }
-        };
-        o
-    }
-
-    fn drive(&self, tau: f64) -> f64 {
-        self.p.beta * (self.p.w * tau + self.p.phi).cos()
-    }
-
-    /// The net force static friction must hold while stuck.
-    fn force(&self, tau: f64, y: f64) -> f64 {
-        self.drive(tau) - y - 2.0 * self.p.zeta * self.p.vb
-    }
-
-    fn accel(&self, tau: f64, y: f64, v: f64, sign: f64) -> f64 {
-        // The law continued by its value at s = 0 where an RK4 stage overshoots.
-        let s = (sign * (v - self.p.vb)).max(0.0);
-        self.drive(tau) - y - 2.0 * self.p.zeta * v - sign * self.law.mu(self.p.mu_s, s)
-    }
-
-    /// One RK4 step of size `h` from (τ, y, v) sliding with `sign`.
-    fn rk4(&self, tau: f64, y: f64, v: f64, sign: f64, h: f64) -> (f64, f64) {
-        let f = |t: f64, y: f64, v: f64| (v, self.accel(t, y, v, sign));
-        let k1 = f(tau, y, v);
-        let k2 = f(tau + 0.5 * h, y + 0.5 * h * k1.0, v + 0.5 * h * k1.1);
-        let k3 = f(tau + 0.5 * h, y + 0.5 * h * k2.0, v + 0.5 * h * k2.1);
-        let k4 = f(tau + h, y + h * k3.0, v + h * k3.1);
-        (
-            y + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0),
-            v + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1),
-        )
-    }
-
-    /// Bisection for the first θ in (0, 1] where `past` holds along a partial step.
-    fn bisect(&self, past: impl Fn(f64) -> bool) -> f64 {
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if past(mid) {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        hi
-    }
-
-    /// Advance one grid step (or to the event inside it).
-    fn step(&mut self) {
-        let h = self.h;
-        let vb = self.p.vb;
-        match self.mode {
-            Mode::Slip(sign) => {
-                let (y1, v1) = self.rk4(self.tau, self.y, self.v, sign, h);
-                if self.v * v1 < 0.0 || (v1 == 0.0 && self.v != 0.0) {
-                    let (t0, y0, v0) = (self.tau, self.y, self.v);
-                    let theta = self.bisect(|th| {
-                        let v = self.rk4(t0, y0, v0, sign, th * h).1;
-                        v * v0 <= 0.0
-                    });
-                    let (y, _) = self.rk4(t0, y0, v0, sign, theta * h);
-                    self.extremes.push((t0 + theta * h, y));
-                }
-                if sign * (v1 - vb) <= 0.0 {
-                    let (t0, y0, v0) = (self.tau, self.y, self.v);
-                    let theta = self.bisect(|th| {
-                        let v = self.rk4(t0, y0, v0, sign, th * h).1;
-                        sign * (v - vb) <= 0.0
-                    });
-                    let (y, _) = self.rk4(t0, y0, v0, sign, theta * h);
-                    self.tau = t0 + theta * h;
-                    self.y = y;
-                    self.v = vb;
-                    let f = self.force(self.tau, y);
-                    if f.abs() <= self.p.mu_s {
-                        self.mode = Mode::Stick { tau: self.tau, y };
-                        self.events.push((self.tau, y, EventKind::Stick));
-                    } else if f.signum() != sign {
-                        self.mode = Mode::Slip(f.signum());
-                        self.events.push((self.tau, y, EventKind::Turn));
-                    }
-                    return;
-                }
-                self.tau += h;
-                self.y = y1;
-                self.v = v1;
-            }
-            Mode::Stick { tau: ts, y: ys } => {
-                let at = |t: f64| ys + vb * (t - ts);
-                let t1 = self.tau + h;
-                let f1 = self.force(t1, at(t1));
-                if f1.abs() > self.p.mu_s {
-                    let t0 = self.tau;
-                    let theta = self
-                        .bisect(|th| self.force(t0 + th * h, at(t0 + th * h)).abs() > self.p.mu_s);
-                    self.tau = t0 + theta * h;
-                    self.y = at(self.tau);
-                    self.v = vb;
-                    self.mode = Mode::Slip(f1.signum());
-                    self.events.push((self.tau, self.y, EventKind::Slip));
-                    return;
-                }
-                self.tau = t1;
-                self.y = at(t1);
-                self.v = vb;
-            }
-        }
-    }
-
-    /// Run to τ = `end` (the last step shortened to land on it).
-    fn run_to(&mut self, end: f64) {
-        while self.tau < end - 1e-12 {
-            let full = self.h;
-            if self.tau + full > end {
-                self.h = end - self.tau;
-                self.step();
-                self.h = full;
-            } else {
-                self.step();
-            }
-        }
-    }
-}
-
 /// The solver's trajectory against the oracle's, sample by sample, and their events.
 fn compare_trajectories(p: Params, law: TestLaw, initial: State, end: f64) {
     let mut solver = FrictionSolver::new(p, initial).unwrap();
-    let mut oracle = Oracle::new(p, law, initial.y, initial.v);
+    let mut oracle = Oracle::new(p, law, H, initial.y, initial.v);
     let mut events = Vec::new();
     for k in 1..=(end / 0.5) as usize {
         let tau = 0.5 * k as f64;
@@ -312,37 +128,6 @@ fn events_are_located_to_1e_12() {
         }
         assert!(count > 10, "{count}");
     }
-}
-
-/// A self-excited cycle's period and extremes from the oracle: the interval between its
-/// last two stops, and the extremes between them.
-fn oracle_cycle(p: Params, law: TestLaw, initial: State, sticks: usize) -> (f64, f64, f64) {
-    let mut o = Oracle::new(p, law, initial.y, initial.v);
-    while o.events.iter().filter(|e| e.2 == EventKind::Stick).count() < sticks {
-        o.step();
-    }
-    let onsets: Vec<f64> = o
-        .events
-        .iter()
-        .filter(|e| e.2 == EventKind::Stick)
-        .map(|e| e.0)
-        .collect();
-    let (a, b) = (onsets[sticks - 2], onsets[sticks - 1]);
-    let ys = o
-        .events
-        .iter()
-        .filter(|e| e.0 >= a && e.0 <= b)
-        .map(|e| e.1)
-        .chain(
-            o.extremes
-                .iter()
-                .filter(|e| e.0 > a && e.0 < b)
-                .map(|e| e.1),
-        );
-    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-        (lo.min(y), hi.max(y))
-    });
-    (b - a, hi, lo)
 }
 
 #[test]

@@ -43,9 +43,12 @@ use stickslip::{DiodeModel, SystemKind};
 /// A mechanical oscillator (--mass, --stiffness, --damping, --friction) is fitted to records
 /// of the drive force and the displacement, whose header says their units in N and m (a
 /// plain CSV: time_s,F (N),r (m)). Free parameters: damping, friction, mass, stiffness, mu-s
-/// (default damping,friction). The keys and columns named in V then hold N (the drive) and m
-/// (the displacement), and the JSON says so: units {drive: N, response: m}. Tables and
-/// --compare are for circuits.
+/// (default damping,friction), and with --friction-law stribeck its stribeck-speed and
+/// viscous-friction (the belt speed, --belt-speed in m/s, is given; the law's values not
+/// freed are held in their physical units). On a belt or with the Stribeck law the Jacobian
+/// is by central differences of the solver. The keys and columns named in V then hold N (the
+/// drive) and m (the displacement), and the JSON says so: units {drive: N, response: m}.
+/// Tables and --compare are for circuits.
 ///
 /// What to trust. A fit is converged when the step and gradient criteria hold at its solution
 /// and a restart from elsewhere finds no lower χ². The 95 % intervals are value ± t·stderr
@@ -65,8 +68,8 @@ use stickslip::{DiodeModel, SystemKind};
 /// profile, held or none)}}, correlation, records [{file, freq_Hz, amplitude_V, w, beta,
 /// class, periods, clipped, rms_residual_V, offset_V, time_shift_s}], rows (a table) [{line,
 /// freq_Hz, U_V, direction, measured_V, model_V, class}], rms_residual_V, chi2_dof,
-/// converged, iterations, jacobian (exact, sensitivities or finite-differences: how the Jacobian at the
-/// solution was computed), aic, bic, warnings [{kind, parameters, message}]; with
+/// converged, iterations, jacobian (exact, sensitivities, central-differences or
+/// finite-differences: how the Jacobian at the solution was computed), aic, bic, warnings [{kind, parameters, message}]; with
 /// --per-record a list of such objects; with --compare {pwl, shockley, preferred,
 /// delta_aic}.
 ///

@@ -500,7 +500,7 @@ fn fit_recovers_a_mechanical_oscillators_damping_and_friction() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(
-        err.contains("resistance is not a parameter of a mechanical oscillator (its parameters are damping, friction, mass, stiffness, mu-s)"),
+        err.contains("resistance is not a parameter of a mechanical oscillator (its parameters are damping, friction, mass, stiffness, mu-s, stribeck-speed, viscous-friction)"),
         "{err}"
     );
     let out = run_in(

@@ -10,6 +10,7 @@ mod curve;
 mod determinism;
 mod dynamics;
 mod fit;
+mod fit_belt;
 mod front_end_keys;
 mod fuzz_props;
 mod keys;

@@ -253,7 +253,8 @@ class FitResult:
             Levenberg–Marquardt; jacobian: how its Jacobian at the solution was computed,
             'exact' (from the tangent dynamics of the PWL model's periodic orbits),
             'sensitivities' (the stiff solver's forward sensitivities along the Shockley
-            model's periodic orbits) or 'finite-differences';
+            model's periodic orbits), 'central-differences' (a mechanical oscillator on a
+            belt or with the Stribeck law) or 'finite-differences';
             aic, bic: information criteria; model: the diode law, 'pwl' or 'shockley' (a
             mechanical oscillator's Coulomb law is 'pwl').
         units: the units of the drive and of the response, ``{'drive': 'V', 'response':
@@ -395,7 +396,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
     A mechanical oscillator (``Experiment(mass=..., stiffness=..., damping=...,
     friction=...)``) is fitted to records of the drive force and the displacement whose
     header gives their units, N and m (a plain CSV ``time_s,F (N),r (m)``); its free
-    parameters are 'damping' (γ), 'friction' (F0), 'mass', 'stiffness' and 'mu-s'. The
+    parameters are 'damping' (γ), 'friction' (F0), 'mass', 'stiffness' and 'mu-s', and on
+    a belt with the Stribeck law (``belt_speed=``, ``friction_law='stribeck'``) also
+    'stribeck-speed' and 'viscous-friction' (docs/fit.md, "A belt's friction law"). The
     values named in V (``rms_residual_V``, a record's ``amplitude_V``, ``measured_V`` …) then
     hold newtons (the drive) and metres (the response), as ``units`` says. Tables are for
     circuits.
@@ -406,8 +409,9 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
             the default channels), or one ``AmplitudeTable`` (``read_amplitudes``).
         free: the free parameters: 'resistance', 'ut', 'rd' (PWL), 'diode-is', 'diode-n',
             'diode-rs' (Shockley), 'inductance', 'capacitance', 'mu-s' (underscores are
-            accepted); for mechanics 'damping', 'friction', 'mass', 'stiffness', 'mu-s'; a
-            comma-separated string or a sequence [default: the library's free set of the system
+            accepted); for mechanics 'damping', 'friction', 'mass', 'stiffness', 'mu-s', and
+            with the Stribeck friction law 'stribeck-speed' (m/s) and 'viscous-friction'
+            (N·s/m), the belt speed given; a comma-separated string or a sequence [default: the library's free set of the system
             and diode law: ('resistance', 'ut') with PWL diodes, ('resistance', 'diode-is',
             'diode-n') with Shockley diodes; mechanics: ('damping', 'friction')].
         model: the diode law, 'pwl' or 'shockley' [default: the experiment's].

@@ -292,7 +292,9 @@ pub struct FitRole {
     /// The systems whose value it is (μs: a circuit's and a mechanical oscillator's).
     pub systems: &'static [SystemKind],
     /// The diode law it belongs to (`None`: either). A mechanical oscillator's Coulomb law
-    /// is the PWL law.
+    /// is the PWL law, and so are its other friction laws here: the parameters of the
+    /// Stribeck law (`stribeck-speed`, `viscous-friction`) are checked against the
+    /// oscillator's friction law when a fit reads them.
     pub law: Option<DiodeModel>,
     /// Whether a fit of its systems and law frees it when told nothing (the default free
     /// set, `FitParameter::defaults`).
@@ -1246,7 +1248,12 @@ const ROWS: &[Row] = &[
             of: Key::Vs,
             scale: |s| s.velocity,
         }),
-        fit: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 13,
+        }),
     },
     Row {
         key: Key::ViscousFriction,
@@ -1273,7 +1280,12 @@ const ROWS: &[Row] = &[
             of: Key::Eta,
             scale: |s| s.force / s.velocity,
         }),
-        fit: None,
+        fit: Some(FitRole {
+            systems: &[SystemKind::Mechanics],
+            law: Some(DiodeModel::Pwl),
+            default: false,
+            order: 14,
+        }),
     },
     Row {
         key: Key::CubicK1,

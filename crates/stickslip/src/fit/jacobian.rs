@@ -109,6 +109,10 @@ impl Records<'_> {
         x: &[f64],
         r: &[f64],
     ) -> Result<(Vec<Vec<f64>>, Jacobian), FitError> {
+        if self.exact && self.central() {
+            let columns = self.central_difference_jacobian(x)?;
+            return Ok((columns, Jacobian::CentralDifferences));
+        }
         if let Some(columns) = self.exact_jacobian(x) {
             return Ok((columns, Jacobian::Exact));
         }

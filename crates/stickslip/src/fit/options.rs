@@ -64,6 +64,19 @@ pub enum FitError {
         /// The law of the experiment.
         model: DiodeModel,
     },
+    /// A parameter of a friction law (the Stribeck speed, the viscous friction) that the
+    /// mechanical oscillator's law does not have.
+    #[error(
+        "{parameter} is a parameter of the stribeck friction law, and this oscillator's law is \
+         {} (a coulomb belt's friction is fitted by friction and mu-s)",
+        law.label()
+    )]
+    WrongFrictionLaw {
+        /// The parameter.
+        parameter: FitParameter,
+        /// The oscillator's friction law.
+        law: crate::friction::FrictionLawKind,
+    },
     /// No free parameter, or one given twice.
     #[error("{0}")]
     FreeParameters(&'static str),

@@ -5,14 +5,16 @@
 
 use super::FitError;
 use crate::experiment::{DiodeModel, Experiment, FitRole, Key};
-use crate::physical::{Circuit, Diode, Mechanics, System, SystemKind};
+use crate::friction::FrictionLaw;
+use crate::physical::{Circuit, Diode, Mechanics, Scales, System, SystemKind};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// A value of the circuit or of the mechanical oscillator that a fit may free: a key of the
 /// experiment's table with a [`FitRole`] ([`Key::fit_role`]), named as its command-line flag
 /// (a circuit's `resistance`, `ut`, `rd`, `diode-is`, `diode-n`, `diode-rs`, `inductance`,
 /// `capacitance`; a mechanical oscillator's `damping` (γ), `friction` (F0), `mass` (m),
-/// `stiffness` (k); either's `mu-s`). Its unit and symbol are its key's.
+/// `stiffness` (k) and, with the Stribeck friction law, `stribeck-speed` and
+/// `viscous-friction`; either's `mu-s`). Its unit and symbol are its key's.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct FitParameter(Key);
 
@@ -91,6 +93,12 @@ impl FitParameter {
     pub const Mass: FitParameter = FitParameter(Key::Mass);
     /// Spring constant k of a mechanical oscillator (N/m), [`Key::Stiffness`].
     pub const Stiffness: FitParameter = FitParameter(Key::Stiffness);
+    /// Stribeck speed of a mechanical oscillator's Stribeck law (m/s),
+    /// [`Key::StribeckSpeed`].
+    pub const StribeckSpeed: FitParameter = FitParameter(Key::StribeckSpeed);
+    /// Viscous friction η·F0/v of a mechanical oscillator's Stribeck law (N·s/m),
+    /// [`Key::ViscousFriction`].
+    pub const ViscousFriction: FitParameter = FitParameter(Key::ViscousFriction);
 }
 
 impl FitParameter {
@@ -218,6 +226,21 @@ impl FitParameter {
                     FitParameter::Friction => m.friction,
                     FitParameter::Mass => m.mass,
                     FitParameter::Stiffness => m.stiffness,
+                    FitParameter::StribeckSpeed | FitParameter::ViscousFriction => {
+                        let law = experiment.friction_law();
+                        let FrictionLaw::Stribeck { vs, eta, .. } = law else {
+                            return Err(FitError::WrongFrictionLaw {
+                                parameter: self,
+                                law: law.kind(),
+                            });
+                        };
+                        let dimensionless = if self == FitParameter::StribeckSpeed {
+                            vs
+                        } else {
+                            eta
+                        };
+                        physical(self.0, dimensionless, &m.scales())
+                    }
                     _ => experiment.mu_s(),
                 })
             }
@@ -282,6 +305,18 @@ impl FitParameter {
             _ => {}
         }
     }
+}
+
+/// The physical value (m/s, N·s/m, …) of the key `key` whose dimensionless image is
+/// `dimensionless` with `scales` ([`Key::image`]; the key itself for a key without an image).
+pub(super) fn physical(key: Key, dimensionless: f64, scales: &Scales) -> f64 {
+    key.image(1.0, scales)
+        .map_or(dimensionless, |unit| dimensionless / unit)
+}
+
+/// The dimensionless image of the physical value `value` of `key` with `scales`.
+pub(super) fn dimensionless(key: Key, value: f64, scales: &Scales) -> f64 {
+    key.image(value, scales).unwrap_or(value)
 }
 
 impl std::fmt::Display for FitParameter {
@@ -360,7 +395,8 @@ mod tests {
             err,
             "unknown fit parameter \"zeta\" (the parameters are resistance, ut, rd, diode-is, \
              diode-n, diode-rs, inductance, capacitance, mu-s for a circuit; damping, friction, \
-             mass, stiffness, mu-s for a mechanical oscillator)"
+             mass, stiffness, mu-s, stribeck-speed, viscous-friction for a mechanical \
+             oscillator)"
         );
         for (symbol, p) in [
             ("gamma", FitParameter::Damping),
@@ -395,7 +431,7 @@ mod tests {
         assert!(FitParameter::ALL.windows(2).all(|w| w[0] < w[1]));
         assert_eq!(
             FitParameter::names(&FitParameter::MECHANICS),
-            "damping, friction, mass, stiffness, mu-s"
+            "damping, friction, mass, stiffness, mu-s, stribeck-speed, viscous-friction"
         );
         assert_eq!(FitParameter::Damping.unit(), "N s/m");
         assert_eq!(FitParameter::MuS.symbol(), "μ_s");

@@ -253,10 +253,11 @@ impl Records<'_> {
 
     /// Where the steady state of record j is sought: with Shockley diodes from the strobe
     /// state of the record's last model (a few periods instead of a transient from rest, and
-    /// the same attractor as the model before); with PWL diodes from rest, whose exact solver
-    /// settles by Newton's method anyway.
+    /// the same attractor as the model before), and so on a belt or with a friction law
+    /// other than Coulomb's; with PWL diodes from rest, whose exact solver settles by
+    /// Newton's method anyway.
     pub(super) fn warm_start(&self, j: usize) -> Option<State> {
-        if self.setup.experiment.diode_model() != DiodeModel::Shockley {
+        if self.setup.experiment.diode_model() != DiodeModel::Shockley && !self.central() {
             return None;
         }
         self.orbits.as_ref().map(|(_, orbits)| orbits[j].strobe)
@@ -331,7 +332,7 @@ impl Records<'_> {
     /// Shockley diodes, a record whose model has no period (chaos), a tangential release, a
     /// multiplier 1.
     pub(super) fn exact_jacobian(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
-        if !self.exact || self.setup.experiment.diode_model() != DiodeModel::Pwl {
+        if !self.exact || self.setup.experiment.diode_model() != DiodeModel::Pwl || self.central() {
             return None;
         }
         let free = self.setup.free.len();

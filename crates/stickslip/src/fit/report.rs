@@ -24,15 +24,21 @@ pub enum Jacobian {
     /// ([`crate::stability::ShockleyDynamics::orbit_sensitivity`]): Shockley diodes, every
     /// record's model a periodic orbit.
     Sensitivities,
+    /// By central differences of the whole model, the friction solver at its tolerance of
+    /// 10⁻¹² (`central.rs`): a mechanical oscillator on a belt or with the Stribeck or cubic
+    /// friction law, whose solvers have no sensitivities.
+    CentralDifferences,
 }
 
 impl Jacobian {
-    /// The label in reports: `exact`, `finite-differences` or `sensitivities`.
+    /// The label in reports: `exact`, `finite-differences`, `sensitivities` or
+    /// `central-differences`.
     pub fn label(self) -> &'static str {
         match self {
             Jacobian::Exact => "exact",
             Jacobian::FiniteDifferences => "finite-differences",
             Jacobian::Sensitivities => "sensitivities",
+            Jacobian::CentralDifferences => "central-differences",
         }
     }
 }

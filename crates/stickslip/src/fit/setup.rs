@@ -1,8 +1,9 @@
 //! What a fit keeps fixed: the experiment, its system, the free parameters and their scales
 //! (I_s in its logarithm), and how a vector of the optimizer's unknowns becomes an experiment.
 
-use crate::experiment::{DiodeModel, Experiment};
-use crate::physical::System;
+use crate::experiment::{DiodeModel, Experiment, Key};
+use crate::friction::FrictionLaw;
+use crate::physical::{Scales, System};
 use crate::shockley::ShockleyOptions;
 use crate::steady::SteadyOptions;
 
@@ -20,6 +21,79 @@ pub(super) struct Setup {
     pub(super) log: Vec<bool>,
     pub(super) steady: SteadyOptions,
     pub(super) step: f64,
+    /// A mechanical oscillator's belt and friction law in physical units, which the fit
+    /// holds (or frees) while m, k and F0 move their dimensionless images; `None` for a
+    /// circuit and for an oscillator without a belt and with Coulomb's law.
+    pub(super) friction: Option<Friction>,
+}
+
+/// A mechanical oscillator's belt speed (m/s) and friction law with its parameters in
+/// physical units (the Stribeck speed in m/s, the viscous friction and the cubic law's K1 in
+/// N·s/m, K3 in N·s³/m³; δ and μs are numbers): what stays fixed when the fit moves m, k or
+/// F0, whose scales make the dimensionless vb, vs, η, k1 and k3 ([`Key::image`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Friction {
+    belt_speed: f64,
+    law: FrictionLaw,
+}
+
+impl Friction {
+    /// The belt and law of `experiment` in physical units, or `None` (see [`Setup::friction`]).
+    fn of(experiment: &Experiment) -> Option<Self> {
+        let Some(System::Mechanics(m)) = experiment.system() else {
+            return None;
+        };
+        let law = experiment.friction_law();
+        if experiment.vb() == 0.0 && law.is_coulomb() {
+            return None;
+        }
+        let s = m.scales();
+        let p = |key, v| super::parameter::physical(key, v, &s);
+        Some(Self {
+            belt_speed: p(Key::BeltSpeed, experiment.vb()),
+            law: match law {
+                FrictionLaw::Coulomb => law,
+                FrictionLaw::Stribeck { vs, delta, eta } => FrictionLaw::Stribeck {
+                    vs: p(Key::StribeckSpeed, vs),
+                    delta,
+                    eta: p(Key::ViscousFriction, eta),
+                },
+                FrictionLaw::Cubic { k1, k3 } => FrictionLaw::Cubic {
+                    k1: p(Key::CubicK1, k1),
+                    k3: p(Key::CubicK3, k3),
+                },
+            },
+        })
+    }
+
+    /// With the free value `p` set to `value` (the Stribeck speed, the viscous friction).
+    fn set(&mut self, p: FitParameter, value: f64) {
+        if let FrictionLaw::Stribeck { vs, eta, .. } = &mut self.law {
+            match p {
+                FitParameter::StribeckSpeed => *vs = value,
+                FitParameter::ViscousFriction => *eta = value,
+                _ => {}
+            }
+        }
+    }
+
+    /// The dimensionless belt speed and law at `scales`.
+    fn images(&self, scales: &Scales) -> (f64, FrictionLaw) {
+        let d = |key, v| super::parameter::dimensionless(key, v, scales);
+        let law = match self.law {
+            FrictionLaw::Coulomb => self.law,
+            FrictionLaw::Stribeck { vs, delta, eta } => FrictionLaw::Stribeck {
+                vs: d(Key::StribeckSpeed, vs),
+                delta,
+                eta: d(Key::ViscousFriction, eta),
+            },
+            FrictionLaw::Cubic { k1, k3 } => FrictionLaw::Cubic {
+                k1: d(Key::CubicK1, k1),
+                k3: d(Key::CubicK3, k3),
+            },
+        };
+        (d(Key::BeltSpeed, self.belt_speed), law)
+    }
 }
 
 /// The strobe tolerance of a smooth law's steady state in a fit: 10⁻⁶, the stiff solver's
@@ -87,6 +161,7 @@ impl Setup {
             log: free.iter().map(|&p| fitted_in_log(p)).collect(),
             steady,
             step: if model == DiodeModel::Pwl { 1e-6 } else { 1e-4 },
+            friction: Friction::of(experiment),
         })
     }
 
@@ -95,6 +170,7 @@ impl Setup {
     pub(super) fn at(&self, x: &[f64]) -> Option<Experiment> {
         let mut system = self.system;
         let mut mu_s = self.experiment.mu_s();
+        let mut friction = self.friction;
         for (k, (p, &x)) in self.free.iter().zip(x).enumerate() {
             let v = self.value(k, x);
             if !v.is_finite() {
@@ -103,7 +179,12 @@ impl Setup {
             match (*p, &mut system) {
                 (FitParameter::MuS, _) => mu_s = v,
                 (p, System::Circuit(c)) => p.set(c, v),
-                (p, System::Mechanics(m)) => p.set_mechanics(m, v),
+                (p, System::Mechanics(m)) => {
+                    p.set_mechanics(m, v);
+                    if let Some(f) = friction.as_mut() {
+                        f.set(p, v);
+                    }
+                }
             }
         }
         let e = match system {
@@ -113,10 +194,14 @@ impl Setup {
         let e = e
             .with_shockley_options(*self.experiment.shockley_options())
             .ok()?;
+        let mut e = e.with_mu_s(mu_s).ok()?;
+        // The belt and the law at this oscillator's scales.
+        if let (Some(f), System::Mechanics(m)) = (friction, system) {
+            let (vb, law) = f.images(&m.scales());
+            e = e.with_vb(vb).ok()?.with_law(law).ok()?;
+        }
         // The rebuilt experiment keeps the caller's cancellation token.
-        e.with_mu_s(mu_s)
-            .ok()
-            .map(|e| e.with_cancel(self.experiment.cancel().clone()))
+        Some(e.with_cancel(self.experiment.cancel().clone()))
     }
 
     /// `Err(FitError::Stopped)` once the caller's token stops the fit (Ctrl-C, a deadline):
@@ -146,15 +231,16 @@ impl Setup {
         }
     }
 
-    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s and
-    /// γ down to 0, μs down to 1 (the others are positive and refused at 0, which the
+    /// The bounds of free parameter `k`'s coordinate that a value may reach: R, R_D, R_s, γ
+    /// and the viscous friction down to 0, μs down to 1 (the others are positive and refused at 0, which the
     /// minimisation treats as a failed step; I_s is fitted in its logarithm).
     pub(super) fn bounds(&self, k: usize) -> (f64, f64) {
         let lowest = match self.free[k] {
             FitParameter::Resistance
             | FitParameter::Rd
             | FitParameter::DiodeRs
-            | FitParameter::Damping => Some(0.0),
+            | FitParameter::Damping
+            | FitParameter::ViscousFriction => Some(0.0),
             FitParameter::MuS => Some(1.0),
             _ => None,
         };

@@ -55,7 +55,8 @@ pub enum FitWarning {
         held: FitParameter,
     },
     /// A parameter the records do not see at these values (its column of the Jacobian is
-    /// zero: μs when no record sticks): no error bar.
+    /// zero: μs when no record sticks, the Stribeck speed when no slip comes near zero): no
+    /// error bar.
     Unseen {
         /// The parameter.
         parameter: FitParameter,
@@ -168,7 +169,8 @@ impl fmt::Display for FitWarning {
             FitWarning::Unseen { parameter } => write!(
                 f,
                 "the records do not change with {parameter} at these values (with mu-s: no \
-                 record sticks): it keeps its starting value and has no error bar"
+                 record sticks; with stribeck-speed: no slip comes near zero): they do not \
+                 determine it, and it has no error bar"
             ),
             FitWarning::Correlated {
                 first,

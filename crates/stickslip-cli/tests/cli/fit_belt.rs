@@ -1,0 +1,53 @@
+//! `stickslip fit` of a mechanical oscillator on a belt with its friction law's parameters
+//! free (the fit itself: the library's tests/fit_belt.rs, and docs/fit.md's worked example,
+//! which the docs' test runs): a law's parameter that the oscillator's law does not have, or
+//! on a circuit, is refused in one line with exit status 2, before a file is read.
+
+use super::common::assert_usage_errors;
+
+const OSCILLATOR: [&str; 10] = [
+    "--mass",
+    "0.5",
+    "--stiffness",
+    "200",
+    "--damping",
+    "0.8",
+    "--friction",
+    "0.3",
+    "--belt-speed",
+    "0.009",
+];
+
+#[test]
+fn a_friction_laws_parameter_without_that_law_is_refused_in_one_line() {
+    let coulomb = [&OSCILLATOR[..], &["--data", "stick.csv"]].concat();
+    let with =
+        |free: &'static str| -> Vec<&'static str> { [&coulomb[..], &["--free", free]].concat() };
+    let (a, b) = (with("mu-s,stribeck-speed"), with("viscous-friction"));
+    assert_usage_errors(
+        &["fit"],
+        &[
+            (
+                &a,
+                "stribeck-speed is a parameter of the stribeck friction law, and this \
+                 oscillator's law is coulomb (a coulomb belt's friction is fitted by friction \
+                 and mu-s)",
+            ),
+            (
+                &b,
+                "viscous-friction is a parameter of the stribeck friction law",
+            ),
+            (
+                &[
+                    "--preset",
+                    "paper",
+                    "--free",
+                    "stribeck-speed",
+                    "--data",
+                    "x.csv",
+                ],
+                "stribeck-speed is not a parameter of a circuit",
+            ),
+        ],
+    );
+}

@@ -1,0 +1,42 @@
+"""stickslip.fit of a mechanical oscillator on a belt with the Stribeck law's parameters free:
+the committed records of docs/fit.md ("A belt's friction law", made by the test kit's
+Runge–Kutta oracle at μs = 1.5, vs = 15 mm/s, η = 0.5 N·s/m), fitted from other starting
+values, equal ``stickslip fit --json`` on the same files and cover the truth; a law's
+parameter on an oscillator without that law raises ValueError."""
+
+from __future__ import annotations
+
+import pytest
+
+import stickslip
+from conftest import ROOT
+
+RECORDS = [ROOT / "examples" / "fit" / "belt" / name for name in ("stick.csv", "fast.csv")]
+OSCILLATOR = dict(m=0.5, k=200.0, gamma=0.8, F0=0.3, belt_speed=0.009)
+FREE = ["mu-s", "stribeck-speed", "viscous-friction"]
+TRUTH = {"mu-s": 1.5, "stribeck-speed": 0.015, "viscous-friction": 0.5}
+
+
+def test_a_stribeck_belt_fit_recovers_the_law_and_matches_the_cli(cli):
+    start = stickslip.Experiment.mechanics(
+        **OSCILLATOR, friction_law="stribeck", stribeck_speed=0.0105,
+        viscous_friction=0.25, mu_s=1.3)
+    result = stickslip.fit(start, data=RECORDS, free=FREE)
+    expected = cli.json(
+        "fit", "--mass", 0.5, "--stiffness", 200, "--damping", 0.8, "--friction", 0.3,
+        "--belt-speed", 0.009, "--friction-law", "stribeck", "--mu-s", 1.3,
+        "--stribeck-speed", 0.0105, "--viscous-friction", 0.25,
+        "--free", ",".join(FREE), "--data", RECORDS[0], "--data", RECORDS[1])
+    assert result.to_dict() == expected
+    assert result.names == tuple(FREE)
+    assert result.jacobian == "central-differences" and result.converged
+    for name, truth in TRUTH.items():
+        lo, hi = result.ci95[name]
+        assert lo <= truth <= hi, (name, lo, hi)
+
+
+def test_a_stribeck_parameter_without_the_stribeck_law_raises_value_error():
+    start = stickslip.Experiment.mechanics(**OSCILLATOR, mu_s=1.3)
+    with pytest.raises(ValueError, match="stribeck-speed is a parameter of the stribeck "
+                                         "friction law, and this oscillator's law is coulomb"):
+        stickslip.fit(start, data=RECORDS, free="mu-s,stribeck-speed")
