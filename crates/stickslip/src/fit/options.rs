@@ -64,6 +64,13 @@ pub enum FitError {
         /// The law of the experiment.
         model: DiodeModel,
     },
+    /// A belt speed or a Stribeck or cubic friction law: the fit's model rebuilds the
+    /// oscillator from its parts, the base at rest and Coulomb's law.
+    #[error(
+        "the fit models Coulomb friction on a base at rest: it takes no belt speed and no \
+         Stribeck or cubic law yet"
+    )]
+    Belt,
     /// No free parameter, or one given twice.
     #[error("{0}")]
     FreeParameters(&'static str),

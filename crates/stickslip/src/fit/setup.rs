@@ -35,6 +35,10 @@ pub(super) fn fitted_in_log(p: FitParameter) -> bool {
 impl Setup {
     pub(super) fn new(experiment: &Experiment, free: &[FitParameter]) -> Result<Self, FitError> {
         let system = *experiment.system().ok_or(FitError::NeedsCircuit)?;
+        // `Setup::at` rebuilds the oscillator from its parts alone.
+        if experiment.vb() != 0.0 || !experiment.friction_law().is_coulomb() {
+            return Err(FitError::Belt);
+        }
         if free.is_empty() {
             return Err(FitError::FreeParameters(
                 "no free parameter: name at least one",
