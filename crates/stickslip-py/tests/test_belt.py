@@ -91,3 +91,37 @@ def test_the_stribeck_and_cubic_laws_are_keywords_and_bad_laws_a_value_error():
         base.replace(friction_law="cubic", k1=5.0, k3=0.1)
     with pytest.raises(ValueError, match="a circuit has no belt and no friction law"):
         Experiment.paper(w=0.5, beta=1.0, friction_law="stribeck", vs=0.1)
+
+
+#: Stribeck's and the cubic law on a belt, forced.
+SMOOTH_LAWS = [dict(friction_law="stribeck", vs=0.3), dict(friction_law="cubic", k1=0.5, k3=0.5)]
+
+
+@pytest.mark.parametrize("law", SMOOTH_LAWS, ids=["stribeck", "cubic"])
+def test_the_stability_tools_refuse_the_smooth_laws_with_a_value_error(law):
+    e = Experiment(zeta=0.05, w=1.0, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
+    over_w = Experiment(zeta=0.05, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
+    unset = Experiment(zeta=0.05, mu_s=1.5, vb=0.3).replace(**law)
+    coulomb_only = "the stability tools follow Coulomb's friction law"
+    calls = [
+        lambda: stickslip.orbit(e),
+        lambda: stickslip.lyapunov(e, transient=50, periods=100),
+        lambda: stickslip.continuation(over_w, "w", 1.0, 1.1),
+        lambda: stickslip.bifurcation(over_w, "w", [1.0, 1.05], points=10, transient=10,
+                                      first_transient=10),
+        lambda: stickslip.basins(e, (-1.0, 1.0), (-1.0, 1.0), 3),
+        lambda: stickslip.phase_diagram(unset, lyapunov=True, w=[0.5, 1.0], beta=[1.0, 2.0]),
+        lambda: stickslip.curve(e, "fold", "beta", 1.2, "w", 0.8, 1.0),
+    ]
+    for call in calls:
+        with pytest.raises(ValueError, match=coulomb_only):
+            call()
+    with pytest.raises(ValueError, match="the theory"):
+        stickslip.theory(e)
+
+
+def test_the_coulomb_belts_orbit_and_exponent_are_computed():
+    e = Experiment(zeta=0.05, w=1.0, beta=2.0, mu_s=1.5, vb=0.5)
+    o = stickslip.orbit(e)
+    assert o.period == 1
+    assert stickslip.lyapunov(e, transient=50, periods=200).lambda1 < 0.0

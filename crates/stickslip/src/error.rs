@@ -364,6 +364,9 @@ pub enum Unsupported {
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
     CurveNeedsPwl,
+    /// The theories (the paper's series, the exact periodic solution) are those of Coulomb
+    /// friction on a base at rest (vb = 0).
+    TheoryNeedsCoulombAtRest,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -392,6 +395,11 @@ impl std::fmt::Display for Unsupported {
                 "the stability tools follow Coulomb's friction law so far: the Stribeck and \
                  cubic laws are solved by simulate, steady and sweep (use --friction-law \
                  coulomb here)"
+            }
+            Unsupported::TheoryNeedsCoulombAtRest => {
+                "the theory (the paper's series, the exact periodic solution) is that of \
+                 Coulomb friction on a base at rest: it takes neither a belt speed vb nor the \
+                 Stribeck or cubic law (`stickslip steady` finds a belt's steady state)"
             }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \

@@ -106,6 +106,20 @@ impl Drop for ExactSolver {
     }
 }
 
+/// `Ok` when `params` follow Coulomb's law, the law of [`ExactSolver`] and of the tools built
+/// on it (its tangent dynamics, strobe map, sensitivities).
+///
+/// # Errors
+/// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law: the caller's
+/// refusal, in place of the solver's panic.
+pub(crate) fn check_coulomb(params: &Params) -> Result<()> {
+    if params.law.is_coulomb() {
+        Ok(())
+    } else {
+        Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw))
+    }
+}
+
 impl ExactSolver {
     /// This solver, stopping with the token's error at its next advance once `cancel` is
     /// cancelled, past its deadline or over its budget (one step charged per advance).

@@ -122,6 +122,7 @@ impl Dynamics for ExactDynamics {
     }
 
     fn solver(&self, params: &Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        crate::exact::check_coulomb(params)?;
         Ok(Box::new(ExactSolver::new(
             params.validate()?,
             State::new(initial.y, initial.v)?,
@@ -153,6 +154,7 @@ impl Dynamics for ExactDynamics {
     }
 
     fn tangent(&self, params: &Params, initial: State) -> Result<Box<dyn TangentRun + Send>> {
+        crate::exact::check_coulomb(params)?;
         Ok(Box::new(TangentSolver::new(
             params.validate()?,
             State::new(initial.y, initial.v)?,

@@ -333,6 +333,7 @@ pub fn lyapunov_exponents_monitored(
 ) -> Result<LyapunovExponents> {
     let options = options.validate()?;
     let params = params.validate()?;
+    crate::exact::check_coulomb(&params)?;
     let initial = State::new(initial.y, initial.v)?;
     options.check_horizon(&params)?;
     let mut tangent = TangentSolver::new(params, initial);

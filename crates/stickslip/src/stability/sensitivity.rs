@@ -352,6 +352,7 @@ pub fn periodic_orbit_sensitivity(
     taus: &[f64],
 ) -> Result<Vec<OrbitSample>> {
     let params = params.validate()?;
+    crate::exact::check_coulomb(&params)?;
     let fixed_point = State::new(fixed_point.y, fixed_point.v)?;
     check_orbit_samples(period, taus)?;
     let strobe = period as f64 * params.drive_period();
@@ -432,6 +433,7 @@ pub fn strobe_map_parameter_derivatives(
     period: usize,
 ) -> Result<[[f64; 5]; 2]> {
     let params = params.validate()?;
+    crate::exact::check_coulomb(&params)?;
     let state = State::new(state.y, state.v)?;
     if period == 0 {
         return Err(Error::InvalidParameter {

@@ -105,6 +105,7 @@ pub(crate) fn strobe_map_on(
     hints: Option<Hints>,
 ) -> Result<(StrobeImage, Option<Hints>)> {
     let params = params.validate()?;
+    crate::exact::check_coulomb(&params)?;
     let state = State::new(state.y, state.v)?;
     if periods == 0 {
         return Err(Error::InvalidParameter {

@@ -73,6 +73,10 @@ pub(crate) struct Tangent {
 
 impl TangentSolver {
     /// A solver starting at τ = 0 from `initial`, with J = I.
+    ///
+    /// # Panics
+    /// As [`ExactSolver::new`], for a friction law other than Coulomb's (the tools that take
+    /// a user's law check it first and refuse).
     pub fn new(params: Params, initial: State) -> Self {
         Self::from_solver(ExactSolver::new(params, initial))
     }

@@ -87,6 +87,7 @@ pub fn two_trajectory_exponent(
 ) -> Result<TwoTrajectoryEstimate> {
     let options = options.validate()?;
     let params = params.validate()?;
+    crate::exact::check_coulomb(&params)?;
     if !(separation > 0.0 && separation.is_finite()) {
         return Err(Error::InvalidParameter {
             name: "separation",

@@ -197,6 +197,20 @@ pub struct PeriodicSolution {
     c1: Complex64,
 }
 
+/// `Ok` for Coulomb's law with the base at rest, the model of the theories.
+///
+/// # Errors
+/// [`crate::Unsupported::TheoryNeedsCoulombAtRest`] for a belt speed or another law.
+pub(crate) fn check_coulomb_at_rest(params: &Params) -> Result<()> {
+    if params.vb == 0.0 && params.law.is_coulomb() {
+        Ok(())
+    } else {
+        Err(crate::Error::Unsupported(
+            crate::Unsupported::TheoryNeedsCoulombAtRest,
+        ))
+    }
+}
+
 impl PeriodicSolution {
     /// The symmetric non-sticking periodic solution at `params` (φ sets where it sits in
     /// time; μs enters the stop condition at the turning points).
@@ -228,6 +242,7 @@ impl PeriodicSolution {
         params: &Params,
         matching: &Matching,
     ) -> Result<std::result::Result<Self, Obstruction>> {
+        check_coulomb_at_rest(params)?;
         let (peak, theta, force, _) = match matching.root(params.beta) {
             Ok(root) => root,
             Err(why) => return Ok(Err(why)),

@@ -183,9 +183,11 @@ impl TheoryReport {
     /// Both theories at `params`.
     ///
     /// # Errors
-    /// Invalid parameters; a numerical failure of the exact construction.
+    /// Invalid parameters; [`crate::Unsupported::TheoryNeedsCoulombAtRest`] for a belt or a
+    /// Stribeck or cubic law; a numerical failure of the exact construction.
     pub fn new(params: &Params) -> Result<Self> {
         let params = params.validate()?;
+        super::periodic::check_coulomb_at_rest(&params)?;
         let (zeta, w, beta) = (params.zeta, params.w, params.beta);
         let mut paper_notes = Vec::new();
         let series = PaperSeries::new(zeta, w, beta);

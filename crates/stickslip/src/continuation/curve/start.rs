@@ -406,6 +406,9 @@ pub fn curve(
     if experiment.diode_model() != crate::experiment::DiodeModel::Pwl {
         return Err(Error::Unsupported(crate::Unsupported::CurveNeedsPwl));
     }
+    if !experiment.friction_law().is_coulomb() {
+        return Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw));
+    }
     let options = options.validate()?;
     let (params, orbit) = settled_orbit(experiment)?;
     if orbit.events.is_empty() {
