@@ -89,6 +89,7 @@ fn no_legend_of_the_report_hides_data() {
             "beyond-bifurcation.png",
             "beyond-basins.png",
             "beyond-branch.png",
+            "floquet-laws.png",
         ],
     );
     // The basin map is a phase plane, y0 and y0' over the same range: a square plotting area.

@@ -482,6 +482,43 @@ fn a_joint_fit_recovers_r_and_ut() {
     }
 }
 
+/// Records whose noise is below the quantisation step (none at all: 8-bit codes of the exact
+/// steady state) weigh each channel by no more than its rounding allows (the floor q/√12 of
+/// `noise_floor`; here the first pass's RMS residual is that rounding too): the standard
+/// errors do not collapse. Beside the same records with one step of Gaussian noise
+/// (σ² = q²/12 + q²), the errors shrink by about √(1/12)/√(13/12) = 0.28, not by orders of
+/// magnitude.
+#[test]
+fn standard_errors_stop_at_the_quantisation_floor() {
+    let made = |noise: f64| -> Vec<Measurement> {
+        let mut rng = Rng(77);
+        DRIVES
+            .iter()
+            .map(|&(w, beta, phi)| {
+                let s = synthesise(w, beta, phi, 0.0, noise, &mut rng);
+                Measurement::new(&read_scope(&plain(&s), "q.csv").unwrap(), None, None).unwrap()
+            })
+            .collect()
+    };
+    let (quiet, noisy) = (fit(&made(0.0)), fit(&made(1.0)));
+    assert!(quiet.converged && noisy.converged);
+    for p in FREE {
+        let (a, b) = (quiet.value(p).unwrap(), noisy.value(p).unwrap());
+        let ratio = a.stderr / b.stderr;
+        eprintln!(
+            "{p:?}: ± {} without noise, ± {} with a step of noise: ratio {ratio:.3}",
+            a.stderr, b.stderr
+        );
+        assert!((0.18..0.45).contains(&ratio), "{p:?}: ratio {ratio}");
+        // And the truth within the floor's error bars.
+        let truth = match p {
+            FitParameter::Resistance => TRUE_R,
+            _ => TRUE_UT,
+        };
+        assert!((a.value - truth).abs() < 5.0 * a.stderr, "{p:?}: {a:?}");
+    }
+}
+
 /// A record made by the model itself, as `stickslip simulate` writes it (the exact solver's
 /// trajectory of the recovery tests' circuit at 5.25 kHz and 1.5 V, every digit printed;
 /// the last 3 of 40 periods at 400 samples a period, as a plain CSV of t_s, u_V and uc_V):

@@ -385,6 +385,11 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
         }
         if let Some(obj) = report_json.as_object_mut() {
             if let (Some(p), Some(d)) = (obj.get("preferred"), obj.get("delta_aic")) {
+                // AIC differences below a few tenths mean nothing: one decimal (the JSON
+                // keeps every digit).
+                let d = d
+                    .as_f64()
+                    .map_or_else(|| d.to_string(), |d| format!("{d:+.1}"));
                 outln!(
                     text,
                     "preferred         {} (AIC Shockley − PWL = {d})",

@@ -152,10 +152,7 @@ fn check(dir: &std::path::Path, args: &[&str], outcome: Outcome) {
     assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
     match outcome {
         Outcome::Works => assert!(out.status.success(), "{args:?}: {err}"),
-        Outcome::Fits => assert!(
-            matches!(out.status.code(), Some(0 | 3)),
-            "{args:?}: {err}"
-        ),
+        Outcome::Fits => assert!(matches!(out.status.code(), Some(0 | 3)), "{args:?}: {err}"),
         Outcome::Refuses(text) => {
             assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
             let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();

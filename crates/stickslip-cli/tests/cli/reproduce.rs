@@ -4,7 +4,8 @@ use crate::common::*;
 use std::path::Path;
 use stickslip::experiment::{Experiment, Key};
 use stickslip::report::{
-    BasinsTable, BifurcationRow, BranchTable, CurveTable, MapRow, SweepRow, TrajectoryColumns,
+    BasinsTable, BifurcationRow, BranchTable, CurveTable, MapRow, OrbitTable, SweepRow,
+    TrajectoryColumns,
 };
 use stickslip::Parameter;
 use stickslip_cli::reproduce_columns as columns;
@@ -94,6 +95,10 @@ fn every_csv_has_its_columns(report: &Path, html: &str) {
         (
             "beyond-branch.csv",
             then(&[Parameter::Beta.label()], &BranchTable::COLUMNS),
+        ),
+        (
+            "floquet-laws.csv",
+            then(&[Key::Diode.name()], &OrbitTable::COLUMNS),
         ),
         // The chapter "Friction-induced vibration".
         (

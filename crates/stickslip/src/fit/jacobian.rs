@@ -21,7 +21,6 @@ use crate::physical::{Diode, System};
 use crate::shockley::ShockleyOptions;
 use crate::stability::{ShockleyDynamics, SmoothOrbitSample};
 use rayon::prelude::*;
-use std::f64::consts::TAU;
 
 /// The relative and absolute tolerance of the stiff solver in a fit with a smooth law (its
 /// own default is 10⁻⁶): the residuals' own noise, which the steps of the minimisation and
@@ -191,12 +190,15 @@ impl Records<'_> {
                         + dr * link.resistance;
                     columns[k][row] = wr * position * dy * self.setup.slope(k, x[k]);
                 }
-                columns[slots.drive][row] = wr * position * db * sine.amplitude / force;
-                columns[slots.drive + 1][row] = wr * position * dw * TAU * sine.frequency / omega0;
-                columns[slots.drive + 2][row] = wr * position * dphi;
-                if let Some(k) = slots.shift {
-                    columns[k][row] = wr * position * dphi;
-                }
+                slots.fill_drive(
+                    &mut columns,
+                    row,
+                    wr * position,
+                    [db, dw, dphi],
+                    sine,
+                    force,
+                    omega0,
+                );
             }
         }
         Some(columns)

@@ -167,6 +167,32 @@ pub(super) struct Slots {
     pub(super) drive: usize,
 }
 
+impl Slots {
+    /// Fill `row` of the Jacobian's columns of the record's drive (its amplitude and
+    /// frequency, each relative to its sine-fit value, and its phase) and of the response's
+    /// shift, from the derivatives `[dy/dβ, dy/dw, dy/dφ]` of the model's y at one sample;
+    /// `scale` is the row's weight times the position scale (u = position·y), `force` the
+    /// force scale (β = amplitude/force) and `omega0` the natural frequency (rad/s).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn fill_drive(
+        &self,
+        columns: &mut [Vec<f64>],
+        row: usize,
+        scale: f64,
+        [db, dw, dphi]: [f64; 3],
+        sine: &crate::measure::SineFit,
+        force: f64,
+        omega0: f64,
+    ) {
+        columns[self.drive][row] = scale * db * sine.amplitude / force;
+        columns[self.drive + 1][row] = scale * dw * TAU * sine.frequency / omega0;
+        columns[self.drive + 2][row] = scale * dphi;
+        if let Some(k) = self.shift {
+            columns[k][row] = scale * dphi;
+        }
+    }
+}
+
 /// The least-squares problem of records: for each record the drive samples (against the
 /// drive's sine) and the response samples (against the model), each divided by its channel's
 /// noise.
@@ -390,12 +416,15 @@ impl Records<'_> {
                     };
                     columns[k][row] = wr * du * self.setup.slope(k, x[k]);
                 }
-                columns[slots.drive][row] = wr * position * db * sine.amplitude / force;
-                columns[slots.drive + 1][row] = wr * position * dw * TAU * sine.frequency / omega0;
-                columns[slots.drive + 2][row] = wr * position * dphi;
-                if let Some(k) = slots.shift {
-                    columns[k][row] = wr * position * dphi;
-                }
+                slots.fill_drive(
+                    &mut columns,
+                    row,
+                    wr * position,
+                    [db, dw, dphi],
+                    sine,
+                    force,
+                    omega0,
+                );
             }
         }
         Some(columns)

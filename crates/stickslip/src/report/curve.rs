@@ -64,11 +64,7 @@ impl Table for CurveTable<'_> {
                     .map(|x| x.kind.label()),
             )
             .collect();
-        let stability = match p.stability {
-            crate::stability::Stability::Stable => "stable",
-            crate::stability::Stability::Unstable => "unstable",
-            crate::stability::Stability::Neutral => "neutral",
-        };
+        let stability = p.stability.label();
         vec![
             cell(p.over),
             cell(p.vary),

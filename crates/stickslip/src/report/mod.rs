@@ -14,7 +14,7 @@
 //! | sweep | [`SweepReport`] | (`zeta`/`mu_s`,) `w,beta,direction,gain,gain1,A1,A3,class,stops_per_period` |
 //! | map (`phase-diagram`) | [`MapReport`] | `w,beta,class,period,stops_per_period,gain` (+ `lambda1,lambda1_error`) |
 //! | theory curves | [`TheoryReport`], [`TheoryTable`] | `w,gain1_paper,gain1_exact` or `w,beta_c_paper,beta_c_exact` |
-//! | orbit | [`OrbitReport`] | |
+//! | orbits (one row each) | [`OrbitReport`], [`OrbitTable`] | `w,beta,period,least_period,y,v,stuck_at_strobe,mu1_re,mu1_im,mu2_re,mu2_im,largest_multiplier,smallest_multiplier,stability,lambda1,stops_per_period,iterations` |
 //! | Lyapunov exponent | [`LyapunovReport`] | |
 //! | bifurcation diagram | [`BifurcationReport`] | `<parameter>,y,v,direction,lambda1,class,period` |
 //! | basins | [`BasinReport`], [`BasinsTable`] | `y0,v0,attractor,class,period` |
@@ -31,6 +31,7 @@ mod branch;
 mod columns;
 mod curve;
 mod map;
+mod orbit;
 mod steady;
 mod sweep;
 mod trajectory;
@@ -50,6 +51,7 @@ pub use branch::{BasinsTable, BranchTable};
 pub use columns::{Column, Columns};
 pub use curve::CurveTable;
 pub use map::{AxisCells, MapReport, MapRow};
+pub use orbit::OrbitTable;
 pub use steady::{SteadyTrace, TheoryRow, TheoryTable};
 pub use sweep::{SweepReport, SweepRow};
 pub use trajectory::{

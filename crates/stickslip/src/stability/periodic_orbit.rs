@@ -67,6 +67,17 @@ pub enum Stability {
     Neutral,
 }
 
+impl Stability {
+    /// The label of the JSON and the CSV columns: `stable`, `unstable` or `neutral`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Stability::Stable => "stable",
+            Stability::Unstable => "unstable",
+            Stability::Neutral => "neutral",
+        }
+    }
+}
+
 /// A stop of the motion within an orbit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Stop {

@@ -8,6 +8,7 @@ mod bifurcation_w;
 mod branch_fold;
 mod chaos_map;
 mod chaos_sweep;
+mod floquet_laws;
 mod paper_exponents;
 
 pub use basins_mirror::BasinMap;
@@ -28,6 +29,7 @@ use bifurcation_w::bifurcation_w;
 use branch_fold::branch_fold;
 use chaos_map::chaos_map;
 use chaos_sweep::chaos_sweep;
+use floquet_laws::floquet_laws;
 use paper_exponents::paper_exponents;
 
 /// The chapter's jobs, in the report's order: (progress label, function).
@@ -39,6 +41,7 @@ pub const JOBS: &[Job] = &[
     ("bifurcation diagram in w", bifurcation_w),
     ("basins of attraction", basins_mirror),
     ("a branch and its stability", branch_fold),
+    ("Floquet multipliers, PWL and Shockley", floquet_laws),
 ];
 
 /// The chapter's heading and introduction.

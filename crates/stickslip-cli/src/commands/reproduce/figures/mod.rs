@@ -12,9 +12,10 @@ mod table1;
 mod theory_curves;
 
 pub use accuracy::{accuracy, ACCURACY_COLUMNS};
+pub use common::beta_color;
 pub use fig1::{fig1, DIODE_COLUMNS, FRICTION_COLUMNS};
 pub use fig3::{fig3, SPECTRA_COLUMNS, XY_COLUMNS};
-pub use fig4::fig4;
+pub use fig4::{fig4, BETAS as FIG4_BETAS};
 pub use fig5::{fig5, FIG5_LEADING};
 pub use fig6::fig6;
 pub use fig7::{fig7, ShockleyMap};
