@@ -3,7 +3,7 @@
 //! check that they lie on the map's edges.
 
 use anyhow::Result;
-use stickslip::continuation::{curve, ContinuationOptions, Curve, CurveSpec, Follow};
+use stickslip::continuation::{curve_within, ContinuationOptions, Curve, CurveSpec, Follow};
 use stickslip::scan::{GridPoint, ParameterRange};
 use stickslip::steady::MotionClass;
 use stickslip::{Experiment, Parameter};
@@ -161,7 +161,7 @@ pub struct StopCurves {
 }
 
 /// Trace the grazing curves of the map `grid` of `experiment` (over β within the map's range,
-/// w following): from the first pair of neighbouring cells along w (in the map's order)
+/// w following within its range): from the first pair of neighbouring cells along w (in the map's order)
 /// whose numbers of stops per period differ, the orbit the motion settles on in the first
 /// cell is continued in w towards the second's w up to its first grazing, which is followed
 /// over β; then from the next such pair that no curve crosses, up to [`MAX_STARTS`] starts.
@@ -203,7 +203,9 @@ pub fn stop_curves(experiment: &Experiment, grid: &MapGrid) -> Result<StopCurves
                 .with_w(a.params.w)?
                 .with_beta(a.params.beta)?;
             let monitor = |_: usize, _: usize| !crate::output::interrupted();
-            match curve(&start, &spec, &options, &monitor)? {
+            // Within the map's range of w: the curve ends where it leaves the map.
+            let within = Some((grid.w.from(), grid.w.to()));
+            match curve_within(&start, &spec, within, &options, &monitor)? {
                 Ok(c) => {
                     let line: Vec<(f64, f64)> = c.points.iter().map(|p| (p.vary, p.over)).collect();
                     grid.mark(&mut crossed, &line);
