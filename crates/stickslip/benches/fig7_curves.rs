@@ -29,7 +29,7 @@ const STARTS: [f64; 5] = [
 ];
 
 /// The second column's w of the 200 × 200 map.
-const NEXT_W: f64 = 0.11206030150753769;
+const NEXT_W: f64 = 0.112_060_301_507_537_7;
 
 /// The points of the five curves.
 fn curves(paper: &Experiment) -> usize {
