@@ -116,7 +116,7 @@ test('the page opens on the paper circuit at its Fig. 3 point (0.95, 2.14)', asy
 
 test('issue 19: the model form is built from /api/keys: a field per key, its symbol, unit and help, and the fit boxes served', async () => {
   const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
-  const fields = await page.$$eval('fieldset[data-for-system] .field input[type="text"]', (inputs) =>
+  const fields = await page.$$eval('fieldset[data-for-system] .field input[type="text"], fieldset[data-for-system] .field select', (inputs) =>
     inputs.map((i) => ({ id: i.id, name: i.name, title: i.title, fieldset: i.closest('fieldset').dataset.forSystem, label: i.labels[0].innerHTML, unit: i.parentElement.querySelector('.unit')?.textContent ?? '', error: i.parentElement.querySelector('.error').dataset.errorFor })),
   );
   const byId = new Map(fields.map((f) => [f.id, f]));
@@ -139,7 +139,7 @@ test('issue 19: the model form is built from /api/keys: a field per key, its sym
   assert.equal(fields.length, keys.form.length);
   assert.deepEqual(
     fields.map((f) => `${f.id}:${f.fieldset}:${f.label}:${f.unit}`),
-    ['inductance:pwl shockley:L:H', 'capacitance:pwl shockley:C:F', 'resistance:pwl shockley:R:Ω', 'ut:pwl shockley:U<sub>t</sub>:V', 'rd:pwl:R<sub>D</sub>:Ω', 'diode-is:shockley:I<sub>s</sub>:A', 'diode-n:shockley:n:', 'diode-rs:shockley:R<sub>s</sub>:Ω', 'temperature:shockley:T:°C', 'mu-s:mechanics:μ<sub>s</sub>:≥ 1', 'mass:mechanics:m:kg', 'stiffness:mechanics:k:N/m', 'damping:mechanics:γ:N·s/m', 'friction:mechanics:F<sub>0</sub>:N'],
+    ['inductance:pwl shockley:L:H', 'capacitance:pwl shockley:C:F', 'resistance:pwl shockley:R:Ω', 'ut:pwl shockley:U<sub>t</sub>:V', 'rd:pwl:R<sub>D</sub>:Ω', 'diode-is:shockley:I<sub>s</sub>:A', 'diode-n:shockley:n:', 'diode-rs:shockley:R<sub>s</sub>:Ω', 'temperature:shockley:T:°C', 'mu-s:mechanics:μ<sub>s</sub>:≥ 1', 'mass:mechanics:m:kg', 'stiffness:mechanics:k:N/m', 'damping:mechanics:γ:N·s/m', 'friction:mechanics:F<sub>0</sub>:N', 'belt-speed:mechanics:v<sub>belt</sub>:m/s', 'friction-law:mechanics:friction law:', 'stribeck-speed:mechanics:v<sub>S</sub>:m/s', 'delta:mechanics:δ:', 'viscous-friction:mechanics:c<sub>v</sub>:N·s/m', 'cubic-k1:mechanics:K<sub>1</sub>:N·s/m', 'cubic-k3:mechanics:K<sub>3</sub>:N·s³/m³'],
   );
   assert.equal(await page.$eval('#ut', (e) => e.parentElement.outerHTML), `<div class="field"><label for="ut">U<sub>t</sub></label><input id="ut" name="ut" type="text" title="${keys.keys.find((k) => k.flag === 'ut').help}" data-part=""><span class="unit">V</span><label class="free" data-fit-laws="pwl" title="free in the fit: fitted to the record"><input type="checkbox" name="free-ut" data-free="ut" checked=""> fit</label><span class="error" data-error-for="ut" role="alert"></span></div>`);
   assert.equal(await page.$eval('#mu-s', (e) => e.getAttribute('value')), '1');
@@ -462,6 +462,100 @@ test('the mechanical twin: a mass on a spring with dry friction', async () => {
   const sticky = cliSteady(flags.map((f, i) => (flags[i - 1] === '--mu-s' ? '1.5' : f)));
   assert.equal(await readout('class'), sticky.class);
   await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+});
+
+test('issue 36: the block on a moving belt: the law shows its own fields, a Stribeck belt sticks and slips on its own, bad laws are named beside their field', async () => {
+  const keys = await page.evaluate(async () => (await fetch('/api/keys')).json());
+  const lawOf = new Map(keys.form.filter((f) => f.law).map((f) => [f.flag, f.law]));
+  assert.deepEqual([...lawOf.keys()], ['stribeck-speed', 'delta', 'viscous-friction', 'cubic-k1', 'cubic-k3']);
+  const visible = (flag) => page.$eval(`[name="${flag}"]`, (e) => e.getClientRects().length > 0);
+  const sent = async () => [...new URLSearchParams(await shownQuery()).keys()];
+  /** The law's fields are shown and sent, the other laws' neither. */
+  async function onlyFieldsOf(law) {
+    const query = await sent();
+    for (const [flag, of] of lawOf) {
+      assert.equal(await visible(flag), of === law, `${flag} shown with ${law}`);
+      assert.equal(query.includes(flag), of === law, `${flag} sent with ${law}`);
+    }
+    assert.equal(new URLSearchParams(await shownQuery()).get('friction-law'), law);
+  }
+  await page.selectOption('select[name="system"]', 'mechanics');
+  await ready();
+  assert.equal(await page.inputValue('select[name="friction-law"]'), 'coulomb');
+  assert.ok(await visible('belt-speed'));
+  await onlyFieldsOf('coulomb');
+  for (const law of ['stribeck', 'cubic', 'coulomb']) {
+    await page.selectOption('select[name="friction-law"]', law);
+    await ready();
+    await onlyFieldsOf(law);
+  }
+
+  // The block on a belt at 3 cm/s with Stribeck friction and no drive: a stick-slip cycle
+  // of its own, as `stickslip steady` finds it; its period and extremes instead of the drive
+  // period's quantities.
+  await page.selectOption('select[name="preset-choice"]', 'belt-stribeck');
+  await ready();
+  await onlyFieldsOf('stribeck');
+  const query = new URLSearchParams(await shownQuery());
+  assert.equal(query.get('belt-speed'), '0.03');
+  assert.equal(query.get('beta'), '0');
+  const flags = [...query].flatMap(([k, v]) => [`--${k}`, v]);
+  const cli = cliSteady(flags);
+  assert.equal(cli.class, 'stick-slip-cycle');
+  assert.equal(await readout('class'), cli.class);
+  const omega0 = 20; // √(k/m) = √(200/0.5)
+  sameTo4Digits(await readout('cycle-period'), cli.cycle_period_tau / omega0, 'cycle period (s)');
+  sameTo4Digits(await readout('stick-fraction'), cli.stick_fraction, 'stick fraction');
+  const [max, min] = (await readout('y-extremes')).split(' / ');
+  sameTo4Digits(max, cli.y_max * 0.005, 'max (m)');
+  sameTo4Digits(min, cli.y_min * 0.005, 'min (m)');
+  assert.match(await readout('sliding'), /^unstable at /);
+  for (const name of ['gain', 'gain1', 'A1', 'period']) {
+    assert.equal(await page.$eval(`[data-measure="${name}"]`, (e) => e.getClientRects().length), 0, `${name} is hidden`);
+  }
+  assert.equal(await page.$eval('[data-label="stops"]', (e) => e.textContent), 'stops per cycle');
+  // The screen repeats the cycle: its class line gives the period in seconds.
+  const text = await page.evaluate(() => window.stickslipLab.screenText.map((b) => b.text).join(' | '));
+  assert.match(text, /stick-slip-cycle, period \d/);
+  // The block on the belt: drawn stuck (riding on the belt) and sliding in turn.
+  const view = page.locator('#mechanics-view');
+  assert.equal(await view.getAttribute('data-belt'), 'true');
+  for (const stuck of ['true', 'false', 'true']) {
+    await page.waitForFunction((s) => document.querySelector('#mechanics-view').dataset.stuck === s, stuck, { timeout: PATIENCE });
+  }
+  // The belt's fields and readouts fit the page, wide and on a phone.
+  for (const [width, height] of [[1500, 1100], [390, 844]]) {
+    await resize(page, width, height);
+    assert.deepEqual(await layoutProblems(page), [], `the belt at ${width} × ${height}`);
+  }
+  await resize(page, 1500, 1100);
+
+  // Bad laws: the server's message beside the field at fault.
+  expectedConsole = /status of 400/;
+  for (const [law, flag, text, pattern] of [
+    ['stribeck', 'stribeck-speed', '0', /invalid stribeck-speed 0/],
+    ['stribeck', 'delta', '-1', /invalid delta -1/],
+    ['cubic', 'cubic-k1', '1000', /go negative/],
+  ]) {
+    if ((await page.inputValue('select[name="friction-law"]')) !== law) {
+      await page.selectOption('select[name="friction-law"]', law);
+      await ready();
+    }
+    const before = await page.inputValue(`input[name="${flag}"]`);
+    await page.locator(`input[name="${flag}"]`).fill(text);
+    await page.locator(`input[name="${flag}"]`).press('Enter');
+    await page.waitForFunction((f) => document.querySelector(`[data-error-for~="${f}"]`).textContent !== '', flag, { timeout: PATIENCE });
+    assert.match(await page.$eval(`[data-error-for~="${flag}"]`, (e) => e.textContent), pattern);
+    assert.equal(await page.getAttribute(`input[name="${flag}"]`, 'aria-invalid'), 'true');
+    await type(flag, before);
+    assert.equal(await page.$eval(`[data-error-for~="${flag}"]`, (e) => e.textContent), '');
+  }
+  expectedConsole = null;
+  // Back to the paper's circuit for the tests after this one.
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
   await ready();
 });
 
@@ -851,11 +945,14 @@ test('issue 19: the query of each system holds exactly the served keys of its fi
   await retype('diode-n');
   assert.deepEqual(await modelKeys(), [...fieldsOf('shockley', true), 'model', ...fieldsOf('shockley', false)]);
   assert.deepEqual(fieldsOf('shockley', false), ['diode-is', 'diode-n', 'diode-rs', 'temperature']);
-  // The mechanical oscillator: every field of its fieldset.
+  // The mechanical oscillator: every field of its fieldset in use (a friction law's
+  // parameters only while that law is chosen: Coulomb's has none).
   await page.selectOption('select[name="system"]', 'mechanics');
   await ready();
-  assert.deepEqual(await modelKeys(), fieldsOf('mechanics'));
-  assert.deepEqual([...fieldsOf('mechanics')].sort(), ['damping', 'friction', 'mass', 'mu-s', 'stiffness']);
+  const inUse = (law) => keys.form.filter((f) => f.fieldset === 'mechanics' && (!f.law || f.law === law)).map((f) => f.flag);
+  assert.deepEqual(await modelKeys(), inUse('coulomb'));
+  assert.deepEqual([...inUse('coulomb')].sort(), ['belt-speed', 'damping', 'friction', 'friction-law', 'mass', 'mu-s', 'stiffness']);
+  assert.deepEqual(fieldsOf('mechanics').filter((f) => !inUse('coulomb').includes(f)), ['stribeck-speed', 'delta', 'viscous-friction', 'cubic-k1', 'cubic-k3']);
   await page.selectOption('select[name="system"]', 'pwl');
   await ready();
   await page.selectOption('select[name="preset-choice"]', 'fig3-2b');

@@ -5,12 +5,12 @@
 import { $, $$, field, num, FFT_MAX_HARMONICS } from './lab/util.js';
 import { api, slots, latest, isAbort } from './lab/api.js';
 import { state, statusEl, setStatus, clearErrors, showError, value, modelParams, holdGenerator } from './lab/state.js';
-import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPreset, fillMapSizes, showSystem } from './lab/panels.js';
+import { showDerived, knobRange, showMeasurements, showTheory, animate, applyPreset, fillMapSizes, showSystem, beltOf } from './lab/panels.js';
 import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap, runCurves } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
 import { wireRecord } from './lab/record.js';
-import { buildForm, fieldsOf, isPart, fieldText } from './lab/form.js';
+import { buildForm, fieldsOf, isPart, fieldText, showLawFields, lawChooserFlag } from './lab/form.js';
 
 // ---------------------------------------------------------------- computing
 // One computation in flight at a time. Inputs that arrive meanwhile are merged: when the
@@ -108,10 +108,13 @@ export async function compute() {
 /** The paper's series and the exact orbit at the shown point (PWL model only). */
 export function refreshTheory(params, query) {
   const table = $('#measurements');
-  if (state.system === 'shockley') {
+  const belt = state.steady ? beltOf(state.steady) : { moving: false };
+  if (state.system === 'shockley' || belt.moving) {
     if (slots.theory) slots.theory.abort();
     state.theory = null;
-    state.theoryNote = 'The series and the exact orbit are those of the PWL model; with Shockley diodes they are not shown.';
+    state.theoryNote = belt.moving
+      ? 'The series and the exact orbit are those of Coulomb friction on a surface at rest; on a belt, or with another friction law, they are not shown.'
+      : 'The series and the exact orbit are those of the PWL model; with Shockley diodes they are not shown.';
     table.dataset.theory = 'none';
     showTheory();
     return;
@@ -209,6 +212,14 @@ export function wire() {
     });
   }
   for (const k of fieldsOf('mechanics')) typed(k, holdGenerator);
+  // The friction law shows its own parameters (and the map the sizes its solver finishes).
+  const chooser = lawChooserFlag();
+  if (chooser) {
+    field(chooser).addEventListener('change', () => {
+      showLawFields();
+      fillMapSizes();
+    });
+  }
 
   // Knobs: every movement computes at once; a newer request drops the one before.
   field('freq-knob').addEventListener('input', (event) => {
@@ -229,6 +240,7 @@ export function wire() {
 
   field('preset-choice').addEventListener('change', (event) => {
     applyPreset(event.target.value);
+    fillMapSizes();
     schedule(0);
   });
   field('system').addEventListener('change', (event) => {
@@ -325,7 +337,9 @@ export async function start() {
   for (const k of fieldsOf('shockley').filter((f) => !isPart(f))) field(k).value = fieldText(k, state.shockley[k]);
   // Mechanical parts start as the example, for when the model is switched.
   const m = state.presets.find((p) => p.id === 'mechanics');
-  for (const k of fieldsOf('mechanics')) field(k).value = num(m.values[k], 6);
+  for (const k of fieldsOf('mechanics')) if (typeof m.values[k] === 'number') field(k).value = num(m.values[k], 6);
+  // Each friction law's parameters start from the served values, for when it is chosen.
+  for (const values of Object.values(presets.laws)) for (const [k, x] of Object.entries(values)) field(k).value = num(x, 6);
   // The paper's circuit at its Fig. 3 point (2b): Ω/ω0 = 0.95, β = 2.14.
   select.value = 'fig3-2b';
   applyPreset('fig3-2b');

@@ -2,6 +2,7 @@
 //! command-line tool's) for the same point; bad input, caps and unknown paths are refused
 //! with one line of JSON; the time limit stops a computation.
 
+mod belt;
 mod connections;
 mod curve;
 mod page_keys;
@@ -640,7 +641,8 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
     )
     .await;
     // The form: the fields of the circuit's, the diodes' and the mechanical parts and μs,
-    // in the table's order; the fit boxes are the circuit's fit parameters.
+    // in the table's order, then the belt's and the friction laws' (tests/belt.rs); the fit
+    // boxes are the circuit's fit parameters.
     let form: Vec<(&str, &str)> = keys["form"]
         .as_array()
         .unwrap()
@@ -657,7 +659,11 @@ async fn keys_serve_the_model_keys_the_caps_and_the_stuck_speed() {
         })
         .map(Key::flag)
         .collect();
-    assert_eq!(form.iter().map(|f| f.0).collect::<Vec<_>>(), expected);
+    let flags: Vec<&str> = form.iter().map(|f| f.0).collect();
+    assert_eq!(flags[..expected.len()], expected);
+    assert!(flags[expected.len()..].iter().all(|f| Key::ALL
+        .into_iter()
+        .any(|k| k.flag() == *f && k.group() == stickslip::experiment::KeyGroup::Friction)));
     assert!(form.contains(&("rd", "pwl")) && form.contains(&("ut", "pwl shockley")));
     assert!(form.contains(&("diode-n", "shockley")) && form.contains(&("mu-s", "mechanics")));
     let fit: Vec<&str> = keys["fit"]["parameters"]

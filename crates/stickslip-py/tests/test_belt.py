@@ -38,6 +38,11 @@ def test_a_map_over_belt_speed_and_mu_s_is_each_points_steady_state():
     # Both kinds of motion are in the map: slow belts and high static friction stick.
     assert m.motion_class[0, 2] == "stick-slip-cycle"
     assert m.motion_class[3, 0] == "steady-sliding"
+    # The report and the dataset name the keys, as the CLI's CSV does.
+    assert list(m.to_dict()["points"][0])[:3] == ["vb", "mu_s", "class"]
+    assert m.to_dict()["points"][1]["mu_s"] == 1.5
+    ds = m.to_xarray()
+    assert ds.motion_class.dims == ("vb", "mu_s")
 
 
 def test_a_sweep_of_the_belt_speed_is_the_tools_and_shows_hysteresis(cli, tmp_path):
@@ -55,6 +60,20 @@ def test_a_sweep_of_the_belt_speed_is_the_tools_and_shows_hysteresis(cli, tmp_pa
     assert s.motion_class[0] == "stick-slip-cycle" and s.motion_class[-1] == "steady-sliding"
     sliding = stickslip.steady(Experiment(vb=0.1, y0=1.0, v0=0.0, **BELT))
     assert sliding.motion_class == "steady-sliding"
+    # The columns of the amplitude against belt speed are the CSV's, number for number.
+    for name in ("amplitude", "y_max", "y_min", "cycle_period_tau", "stick_fraction"):
+        assert np.array_equal(s[name], numbers(table[name]), equal_nan=True), name
+    assert np.all(np.isnan(s.cycle_period_s))
+    first = stickslip.steady(Experiment(vb=0.1, **BELT)).to_dict()
+    assert s.amplitude[0] == pytest.approx(0.5 * (first["y_max"] - first["y_min"]), abs=1e-12)
+    assert s.cycle_period_tau[0] == pytest.approx(first["cycle_period_tau"], abs=1e-12)
+    assert s.amplitude[0] > 0.1 and s.amplitude[-1] == 0.0
+    assert s.to_dict()["points"][0]["stick_fraction"] == s.stick_fraction[0]
+    ds = s.to_xarray()
+    assert ds.amplitude.dims == ("direction", "vb")
+    # The hysteresis: at the slowest belt the up leg's cycle, the down leg's sliding.
+    assert ds.amplitude.sel(direction="up", vb=0.1) > 0.1
+    assert ds.amplitude.sel(direction="down", vb=0.1) == 0.0
 
 
 def test_the_stribeck_and_cubic_laws_are_keywords_and_bad_laws_a_value_error():

@@ -18,7 +18,8 @@ from stickslip import Experiment
 from conftest import read_csv
 
 SWEEP_KEYS = ["value", "w", "beta", "zeta", "mu_s", "direction", "gain", "gain1", "peak", "A1",
-              "A3", "class", "stops_per_period", "period", "phase_lag", "f_Hz"]
+              "A3", "class", "stops_per_period", "period", "phase_lag", "f_Hz", "amplitude",
+              "y_max", "y_min", "cycle_period_tau", "cycle_period_s", "stick_fraction"]
 MAP_KEYS = ["w", "beta", "class", "period", "stops_per_period", "gain"]
 BIFURCATION_KEYS = ["value", "y", "v", "direction", "lambda1", "class", "period"]
 

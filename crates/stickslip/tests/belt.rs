@@ -408,3 +408,44 @@ fn a_forced_belt_steady_state_follows_an_independent_integrator() {
         assert!((end.y - o.y).abs() <= 1e-8 && (end.v - o.v).abs() <= 1e-8);
     }
 }
+
+/// Where the steady-state search decides that a damped Coulomb belt slides steadily (at the
+/// first turning point nearer y = 1 than vb, issue 36's map speed), the motion from rest
+/// indeed never sticks again: the exact solver run on for 300 natural periods has no stop
+/// after that point and ends at y = 1, y' = 0.
+#[test]
+fn where_a_damped_coulomb_belt_is_decided_sliding_it_never_sticks_again() {
+    let mut sliding = 0;
+    for vb in [0.3, 0.5, 0.8, 1.2, 2.0] {
+        for mu_s in [1.0, 1.5, 2.5] {
+            let p = belt(0.05, mu_s, vb);
+            let s = steady::steady_state(
+                &mut ExactSolver::new(p, State::default()),
+                &SteadyOptions::default(),
+            )
+            .unwrap();
+            if s.class != MotionClass::SteadySliding {
+                continue;
+            }
+            sliding += 1;
+            let settled = s.self_excited.unwrap().time_to_settle;
+            let mut solver = ExactSolver::new(p, State::default());
+            let end = 300.0 * std::f64::consts::TAU;
+            while solver.time() < end {
+                if let Some(e) = solver.advance(end).unwrap() {
+                    assert!(
+                        e.kind != EventKind::Stick || e.tau < settled,
+                        "vb = {vb}, μs = {mu_s}: a stop at τ = {} after {settled}",
+                        e.tau
+                    );
+                }
+            }
+            let last = solver.state();
+            assert!(
+                (last.y - 1.0).abs() < 1e-9 && last.v.abs() < 1e-9,
+                "vb = {vb}, μs = {mu_s}: {last:?}"
+            );
+        }
+    }
+    assert!(sliding >= 5, "{sliding}");
+}

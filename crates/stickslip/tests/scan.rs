@@ -174,3 +174,77 @@ fn streamed_rows_are_the_map_in_order() {
     assert!(matches!(err, stickslip::Error::Cancelled { .. }));
     assert_eq!(calls, 1);
 }
+
+/// A self-excited belt's map over (vb, μs), Coulomb's law and Stribeck's: each point's class
+/// is `steady`'s at that point from rest (the same experiment with vb and μs set), and the
+/// map is bit for bit the same on 1 and 2 threads (and its report's CSV names the keys).
+#[test]
+fn a_belt_map_of_vb_and_mu_s_has_the_steady_states_classes_on_any_threads() {
+    use stickslip::friction::FrictionLaw;
+    use stickslip::report::MapRow;
+    let laws = [
+        FrictionLaw::Coulomb,
+        FrictionLaw::Stribeck {
+            vs: 0.5,
+            delta: 2.0,
+            eta: 0.05,
+        },
+    ];
+    for law in laws {
+        let belt = Experiment::dimensionless(0.05, 1.0, 0.0)
+            .and_then(|e| e.with_law(law))
+            .unwrap();
+        let vb = ParameterRange::new("vb", 0.1, 1.5, 3).unwrap();
+        let mu_s = ParameterRange::new("mu_s", 1.0, 3.0, 3).unwrap();
+        let grid = Grid::new(
+            &belt,
+            Axis::range(Parameter::Vb, &vb).unwrap(),
+            Axis::range(Parameter::MuS, &mu_s).unwrap(),
+        )
+        .unwrap();
+        let one = grid.clone().threads(1).unwrap().run(&()).unwrap();
+        let two = grid.clone().threads(2).unwrap().run(&()).unwrap();
+        assert_eq!(one, two, "{law:?}");
+        let mut seen = Vec::new();
+        for (i, &v) in vb.values().iter().enumerate() {
+            for (j, &m) in mu_s.values().iter().enumerate() {
+                let point = one.at(i, j);
+                let steady = belt
+                    .clone()
+                    .with_mu_s(m)
+                    .and_then(|e| e.with_vb(v))
+                    .and_then(|e| e.steady())
+                    .unwrap();
+                assert_eq!(point.class, steady.class, "{law:?} at vb = {v}, μs = {m}");
+                assert!(
+                    matches!(
+                        point.class,
+                        MotionClass::StickSlipCycle
+                            | MotionClass::PureSlipCycle
+                            | MotionClass::SteadySliding
+                    ),
+                    "{law:?} at vb = {v}, μs = {m}: {:?}",
+                    point.class
+                );
+                seen.push(point.class);
+            }
+        }
+        // A slow belt with μs > 1 sticks; a fast one slides steadily.
+        assert!(
+            seen.contains(&MotionClass::StickSlipCycle),
+            "{law:?}: {seen:?}"
+        );
+        assert!(
+            seen.contains(&MotionClass::SteadySliding),
+            "{law:?}: {seen:?}"
+        );
+    }
+    assert_eq!(
+        MapRow::columns_over(Parameter::Vb, Parameter::MuS, false),
+        ["vb", "mu_s", "class", "period", "stops_per_period", "gain"]
+    );
+    assert_eq!(
+        MapRow::columns_over(Parameter::W, Parameter::Beta, true),
+        MapRow::columns(true)
+    );
+}

@@ -1,8 +1,10 @@
-//! `stickslip phase-diagram`: motion classes on a (w, β) grid, each point from rest.
+//! `stickslip phase-diagram`: motion classes on a grid of two keys ((w, β) by default), each
+//! point from rest.
 
 use crate::checkpoint::CheckpointFlags;
 use crate::choice::choice;
-use crate::flags::{count, help, int, num, reject_swept_flags, SteadyFlags};
+use crate::diagrams::symbol;
+use crate::flags::{count, help, int, num, range_from_flags, reject_swept_flags, SteadyFlags};
 use crate::model::{finite, ModelArgs};
 use crate::output::{check_plot_path, Sink};
 use crate::plot::{class_color, Cell, ColorBar, Figure, Legend, Panel, Quantity, Series};
@@ -32,6 +34,11 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 /// white: 0, e.g. rest). With --model shockley the multipliers and the tangent dynamics are
 /// those of the stiff solver's computed solution (as `orbit` and `lyapunov` give them).
 ///
+/// Any two keys instead of (w, β): --x KEY --x-from A --x-to B --x-steps N and the same with
+/// --y (as `sweep --over`), e.g. the self-excited belt's (vb, μs) map without a drive: its
+/// classes stick-slip-cycle, pure-slip-cycle and steady-sliding. The CSV's first two columns
+/// are then the keys' names (vb,mu_s,class,...) and the plot's axes are named by them.
+///
 /// Output CSV columns: w,beta,class,period,stops_per_period,gain, and with --color lambda1
 /// also lambda1,lambda1_error (λ1 and its standard error per unit τ; 0 error for an exact
 /// Floquet exponent, -inf where both multipliers vanish). Period empty when none ≤
@@ -45,6 +52,8 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter};
 ///          --out map.csv --plot map.png
 ///          stickslip phase-diagram --zeta 0 --mu-s 3 --w-min 0.2 --w-max 0.55 \
 ///          --beta-min 6 --beta-max 12 --color lambda1 --plot lambda1.png
+///          stickslip phase-diagram --beta 0 --x vb --x-from 0.05 --x-to 2 --x-steps 100 \
+///          --y mu-s --y-from 1 --y-to 3 --y-steps 100 --plot belt-map.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -64,6 +73,29 @@ pub struct Args {
     beta_max: f64,
     #[arg(long = OptionKey::MapBetaSteps.flag(), help = help(OptionKey::MapBetaSteps), default_value_t = int(OptionKey::MapBetaSteps) as _, allow_hyphen_values = true)]
     beta_steps: i64,
+    /// The map's first key (its rows and the plot's x axis) instead of w: any parameter
+    /// `sweep --over` takes; with --y.
+    #[arg(long, value_parser = choice::<Parameter>(), requires_all = ["y", "x_from", "x_to"], conflicts_with_all = ["w_min", "w_max", "w_steps", "beta_min", "beta_max", "beta_steps"])]
+    x: Option<Parameter>,
+    /// First value of --x (dimensionless).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "x")]
+    x_from: Option<f64>,
+    /// Last value of --x (dimensionless, ≥ --x-from).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "x")]
+    x_to: Option<f64>,
+    #[arg(long = OptionKey::MapXSteps.flag(), help = help(OptionKey::MapXSteps), default_value_t = int(OptionKey::MapXSteps) as _, allow_hyphen_values = true)]
+    x_steps: i64,
+    /// The map's second key (its columns and the plot's y axis) instead of β; with --x.
+    #[arg(long, value_parser = choice::<Parameter>(), requires_all = ["x", "y_from", "y_to"])]
+    y: Option<Parameter>,
+    /// First value of --y (dimensionless).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "y")]
+    y_from: Option<f64>,
+    /// Last value of --y (dimensionless, ≥ --y-from).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "y")]
+    y_to: Option<f64>,
+    #[arg(long = OptionKey::MapYSteps.flag(), help = help(OptionKey::MapYSteps), default_value_t = int(OptionKey::MapYSteps) as _, allow_hyphen_values = true)]
+    y_steps: i64,
     /// CSV file [default: standard output].
     #[arg(long, short)]
     out: Option<PathBuf>,
@@ -82,6 +114,49 @@ pub struct Args {
 
 /// Run `stickslip phase-diagram`.
 pub fn run(args: Args) -> Result<()> {
+    let ((first, w), (second, beta)) = axes(&args)?;
+    run_over(args, (first, w), (second, beta))
+}
+
+/// The map's two keys and their ranges: --x and --y, else w and β.
+fn axes(args: &Args) -> Result<((Parameter, ParameterRange), (Parameter, ParameterRange))> {
+    if let (Some(x), Some(y)) = (args.x, args.y) {
+        if x == y {
+            crate::output::usage!(
+                "invalid --y {}: must differ from --x {}",
+                y.label(),
+                x.label()
+            );
+        }
+        let range = |p: Parameter, from: (&str, Option<f64>), to: (&str, Option<f64>), steps| {
+            range_from_flags(
+                p.label(),
+                (from.0, from.1.unwrap_or(f64::NAN)),
+                (to.0, to.1.unwrap_or(f64::NAN)),
+                steps,
+            )
+        };
+        return Ok((
+            (
+                x,
+                range(
+                    x,
+                    ("x-from", args.x_from),
+                    ("x-to", args.x_to),
+                    (OptionKey::MapXSteps, args.x_steps),
+                )?,
+            ),
+            (
+                y,
+                range(
+                    y,
+                    ("y-from", args.y_from),
+                    ("y-to", args.y_to),
+                    (OptionKey::MapYSteps, args.y_steps),
+                )?,
+            ),
+        ));
+    }
     // The library checks each end and count against its row, and the ends' order.
     let w = ParameterRange::between(
         (OptionKey::MapWMin, args.w_min),
@@ -99,17 +174,32 @@ pub fn run(args: Args) -> Result<()> {
             count(OptionKey::MapBetaSteps, args.beta_steps)?,
         ),
     )?;
+    Ok(((Parameter::W, w), (Parameter::Beta, beta)))
+}
+
+/// Run the map over `first` × `second`.
+fn run_over(
+    args: Args,
+    (first, w): (Parameter, ParameterRange),
+    (second, beta): (Parameter, ParameterRange),
+) -> Result<()> {
+    let keys = (first, second);
     // A map whose points are kept (for the plot, or in the checkpoint) is capped by its
     // memory; a streamed one only by its axes (docs/limits.md).
     if args.plot.is_some() || args.checkpoint.checkpoint.is_some() {
         stickslip::limits::check_kept_map(w.steps(), beta.steps())?;
     }
-    reject_swept_flags(&args.model, Parameter::W, "phase-diagram (--w-min/--w-max)")?;
-    reject_swept_flags(
-        &args.model,
-        Parameter::Beta,
-        "phase-diagram (--beta-min/--beta-max)",
-    )?;
+    if keys == (Parameter::W, Parameter::Beta) && args.x.is_none() {
+        reject_swept_flags(&args.model, Parameter::W, "phase-diagram (--w-min/--w-max)")?;
+        reject_swept_flags(
+            &args.model,
+            Parameter::Beta,
+            "phase-diagram (--beta-min/--beta-max)",
+        )?;
+    } else {
+        reject_swept_flags(&args.model, first, "phase-diagram (--x)")?;
+        reject_swept_flags(&args.model, second, "phase-diagram (--y)")?;
+    }
     if let Some(p) = &args.plot {
         check_plot_path(p)?;
     }
@@ -121,8 +211,8 @@ pub fn run(args: Args) -> Result<()> {
     let options = args.steady.options(&experiment)?;
     let mut grid = Grid::new(
         &experiment,
-        Axis::range(Parameter::W, &w)?,
-        Axis::range(Parameter::Beta, &beta)?,
+        Axis::range(first, &w)?,
+        Axis::range(second, &beta)?,
     )?
     .options(options)?;
     if lyapunov {
@@ -131,11 +221,13 @@ pub fn run(args: Args) -> Result<()> {
     // A checkpoint of other parameters, or a damaged one, is refused before any work.
     let checkpoint = args.checkpoint.open(identity(&grid)?, w.steps())?;
     eprintln!(
-        "phase-diagram: {experiment}; grid {} × {} (w {}–{}, β {}–{}), cap {} periods",
+        "phase-diagram: {experiment}; grid {} × {} ({} {}–{}, {} {}–{}), cap {} periods",
         w.steps(),
         beta.steps(),
+        symbol(first),
         w.from(),
         w.to(),
+        symbol(second),
         beta.from(),
         beta.to(),
         options.max_periods
@@ -145,7 +237,11 @@ pub fn run(args: Args) -> Result<()> {
     let started = std::time::Instant::now();
     let open = || -> Result<Sink> {
         let mut sink = Sink::open(args.out.as_deref())?;
-        writeln!(sink, "{}", MapRow::columns(lyapunov).join(","))?;
+        writeln!(
+            sink,
+            "{}",
+            MapRow::columns_over(first, second, lyapunov).join(",")
+        )?;
         Ok(sink)
     };
     let mut summary = Summary::new(args.plot.is_some());
@@ -175,7 +271,7 @@ pub fn run(args: Args) -> Result<()> {
                 });
                 let mut axes = AxisCells::default();
                 let written = receive.iter().try_for_each(|points| {
-                    write_points(&mut sink, &points, lyapunov, &mut summary, &mut axes)
+                    write_points(&mut sink, &points, keys, lyapunov, &mut summary, &mut axes)
                 });
                 drop(receive);
                 let computed = worker
@@ -209,7 +305,7 @@ pub fn run(args: Args) -> Result<()> {
             let mut axes = AxisCells::default();
             for i in 0..grid.shape().0 {
                 let row = row_points(&grid, file.checkpoint(), i)?;
-                write_points(&mut sink, &row, lyapunov, &mut summary, &mut axes)?;
+                write_points(&mut sink, &row, keys, lyapunov, &mut summary, &mut axes)?;
             }
             checkpoint_file = Some(file);
             (sink, computed)
@@ -218,15 +314,23 @@ pub fn run(args: Args) -> Result<()> {
     let elapsed = started.elapsed().as_secs_f64();
     sink.finish()?;
     if let Some(path) = &args.plot {
-        plot(&summary.kept, &w, &beta, &experiment, lyapunov, path)?;
+        plot(
+            &summary.kept,
+            (keys, &w, &beta),
+            &experiment,
+            lyapunov,
+            path,
+        )?;
     }
     if let Some((p, l)) = summary.top {
         eprintln!(
-            "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at (w, β) = ({}, {}), {}",
+            "phase-diagram: largest exponent λ1 = {:+.4e} ± {:.1e} per unit τ at ({}, {}) = ({}, {}), {}",
             l.per_tau,
             l.error_per_tau,
-            p.params.w,
-            p.params.beta,
+            symbol(first),
+            symbol(second),
+            first.get(&p.params),
+            second.get(&p.params),
             p.class.label()
         );
     }
@@ -296,13 +400,20 @@ impl Summary {
 fn write_points(
     sink: &mut Sink,
     points: &[GridPoint],
+    (first, second): (Parameter, Parameter),
     lyapunov: bool,
     summary: &mut Summary,
     axes: &mut AxisCells,
 ) -> Result<()> {
     let mut text = String::new();
+    let paper = (first, second) == (Parameter::W, Parameter::Beta);
     for p in points {
-        MapRow::from(p).write_row_with(lyapunov, axes, &mut text);
+        if paper {
+            MapRow::from(p).write_row_with(lyapunov, axes, &mut text);
+        } else {
+            let at = (first.get(&p.params), second.get(&p.params));
+            MapRow::from(p).write_row_over(at, lyapunov, &mut text);
+        }
         summary.add(p);
     }
     sink.write_all(text.as_bytes())?;
@@ -394,8 +505,7 @@ fn row_points(grid: &Grid, checkpoint: &Checkpoint, i: usize) -> Result<Vec<Grid
 
 fn plot(
     points: &[GridPoint],
-    w: &ParameterRange,
-    beta: &ParameterRange,
+    ((first, second), w, beta): ((Parameter, Parameter), &ParameterRange, &ParameterRange),
     experiment: &Experiment,
     lyapunov: bool,
     path: &std::path::Path,
@@ -413,8 +523,8 @@ fn plot(
     let cells = points
         .iter()
         .map(|p| Cell {
-            x: (p.params.w - hw, p.params.w + hw),
-            y: (p.params.beta - hb, p.params.beta + hb),
+            x: (first.get(&p.params) - hw, first.get(&p.params) + hw),
+            y: (second.get(&p.params) - hb, second.get(&p.params) + hb),
             color: match &color_bar {
                 Some(bar) => bar.color(p.lyapunov.map_or(f64::NAN, |l| l.per_tau)),
                 None => class_color(p.class),
@@ -433,20 +543,28 @@ fn plot(
     // The boundaries of the piecewise-linear theory, where they exist inside the β range,
     // across the cells' full width (but w > 0).
     let (beta_lo, beta_hi) = (beta.from() - hb, beta.to() + hb);
-    let ws = abscissae((w.from() - hw).max(0.5 * w.from()), w.to() + hw, w.steps());
-    let base =
-        experiment.params_with(&[(Parameter::W, w.from()), (Parameter::Beta, beta.from())])?;
+    // The paper's boundaries are curves of the (w, β) plane: outside it the abscissae are
+    // none, and so are the curves.
+    let paper_plane = (first, second) == (Parameter::W, Parameter::Beta);
+    let ws = if paper_plane {
+        abscissae((w.from() - hw).max(0.5 * w.from()), w.to() + hw, w.steps())
+    } else {
+        Vec::new()
+    };
+    let base = experiment.params_with(&[(first, w.from()), (second, beta.from())])?;
     let boundary = |theory| {
         theory_curve(theory, TheoryQuantity::Boundary, &base, Parameter::W, &ws)
             .within(beta_lo, beta_hi)
     };
     let (paper, exact) = (boundary(Theory::Paper), boundary(Theory::Exact));
-    eprintln!(
-        "phase-diagram: theory on the plot: paper's boundary at {} and exact boundary at {} of {} frequencies inside the β range",
-        paper.present(),
-        exact.present(),
-        ws.len()
-    );
+    if paper_plane {
+        eprintln!(
+            "phase-diagram: theory on the plot: paper's boundary at {} and exact boundary at {} of {} frequencies inside the β range",
+            paper.present(),
+            exact.present(),
+            ws.len()
+        );
+    }
     let prefix = match experiment.diode_model() {
         DiodeModel::Pwl => "",
         DiodeModel::Shockley => "PWL theory: ",
@@ -473,11 +591,37 @@ fn plot(
     } else {
         "motion classes"
     };
+    let (title, x_label, y_label) = if paper_plane {
+        (
+            format!("{what} from rest, ζ = {:.4}, μs = {}", base.zeta, base.mu_s),
+            "w = Ω/ω0".to_string(),
+            "β = U/U_t".to_string(),
+        )
+    } else {
+        let fixed: Vec<String> = [
+            Parameter::Zeta,
+            Parameter::W,
+            Parameter::Beta,
+            Parameter::MuS,
+            Parameter::Vb,
+        ]
+        .into_iter()
+        .filter(|&q| q != first && q != second && q.is_set_in(&base))
+        // Without a drive its frequency means nothing.
+        .filter(|&q| q != Parameter::W || base.beta != 0.0)
+        .map(|q| format!("{} = {:.4}", symbol(q), q.get(&base)))
+        .collect();
+        (
+            format!("{what} from rest, {}", fixed.join(", ")),
+            axis_label(first),
+            axis_label(second),
+        )
+    };
     let panel = Panel {
         series,
-        title: format!("{what} from rest, ζ = {:.4}, μs = {}", base.zeta, base.mu_s),
-        x_label: "w = Ω/ω0".into(),
-        y_label: "β = U/U_t".into(),
+        title,
+        x_label,
+        y_label,
         cells,
         cell_legend,
         x_range: Some((w.from() - hw, w.to() + hw)),
@@ -497,4 +641,13 @@ fn exponent_bar(points: &[GridPoint]) -> ColorBar {
         .filter_map(|p| p.lyapunov.map(|l| l.per_tau))
         .collect();
     ColorBar::for_values("λ1 per unit τ (ω0·t)", &values)
+}
+
+/// A key's symbol, with its name where they differ: `μs (mu_s)`, `vb`.
+fn axis_label(key: Parameter) -> String {
+    if symbol(key) == key.label() {
+        key.label().to_string()
+    } else {
+        format!("{} ({})", symbol(key), key.label())
+    }
 }

@@ -27,10 +27,16 @@ use stickslip::{DiodeModel, Experiment, OptionKey, Parameter, Params, State};
 /// (direction = up|down; A1, A3 = amplitudes of the 1st and 3rd harmonics of y); a sweep of
 /// zeta, mu_s or vb (the belt speed) puts the swept value first: zeta,w,beta,... Without a
 /// drive a belt's motion is self-excited: sweep vb up and down for its stick-slip cycles and
-/// steady sliding (and where they coexist).
+/// steady sliding (and where they coexist). Its columns are those of the classic amplitude
+/// against belt speed: vb,direction,amplitude,y_max,y_min,cycle_period_tau,stick_fraction,
+/// class (amplitude = (y_max − y_min)/2; the cycle's period in τ = ω0·t, empty for steady
+/// sliding; cycle_period_s after cycle_period_tau for a mechanical oscillator), and --plot
+/// draws the amplitude up and down.
 ///
 /// Example: stickslip sweep --preset paper --over w --beta 2.14 --from 0.2 --to 2 --steps 91 \
 ///          --direction both --out sweep.csv --plot sweep.png
+///          stickslip sweep --over vb --from 0.05 --to 2 --steps 40 --beta 0 --mu-s 1.5 \
+///          --friction-law stribeck --vs 0.3 --plot belt.png
 #[derive(Debug, clap::Args)]
 #[command(verbatim_doc_comment)]
 pub struct Args {
@@ -53,9 +59,13 @@ pub struct Args {
     /// then down again from where the up sweep ended).
     #[arg(long, value_parser = choice::<SweepDirection>(), default_value_t = SweepDirection::Both)]
     direction: SweepDirection,
-    /// CSV file [default: standard output].
+    /// CSV file [default: standard output, unless --json].
     #[arg(long, short)]
     out: Option<PathBuf>,
+    /// Print the sweep as JSON on standard output: `over`, `direction` and one record per
+    /// step in `points` (the CSV's columns and what the CSV leaves out).
+    #[arg(long)]
+    json: bool,
     /// Plot of the gain of the fundamental G1 = A1/β against the swept parameter, up and
     /// down, with the paper's G1 (eq. 11) and the exact sliding orbit's G1 where it exists
     /// (.png or .svg). The CSV has both gains: `gain` is G = (y_max − y_min)/(2β), `gain1` G1.
@@ -130,19 +140,28 @@ pub fn run(args: Args) -> Result<()> {
         direction,
         points: points.iter().map(|p| p.report_row(&experiment)).collect(),
     };
-    let mut sink = Sink::open(args.out.as_deref())?;
-    crate::output::write_table(&mut sink, &report)?;
-    sink.finish()?;
+    if args.out.is_some() || !args.json {
+        let mut sink = Sink::open(args.out.as_deref())?;
+        crate::output::write_table(&mut sink, &report)?;
+        sink.finish()?;
+    }
+    if args.json {
+        crate::output::print(&format!("{}\n", serde_json::to_string_pretty(&report)?))?;
+    }
     if let Some(path) = &args.plot {
-        let theory = Theory::new(&experiment, parameter, &range)?;
-        let exact_a1 = Theory::exact_a1(&experiment, parameter, &range)?;
-        eprintln!(
+        if report.self_excited() {
+            plot_self_excited(&report, path)?;
+        } else {
+            let theory = Theory::new(&experiment, parameter, &range)?;
+            let exact_a1 = Theory::exact_a1(&experiment, parameter, &range)?;
+            eprintln!(
             "sweep: theory on the plot: paper's gain at {} and exact sliding orbit at {} of {} values",
             theory.paper.present(),
             exact_a1.present(),
             theory.paper.x.len()
         );
-        plot(&points, parameter, &theory, &exact_a1, path)?;
+            plot(&points, parameter, &theory, &exact_a1, path)?;
+        }
     }
     if let Some(file) = file {
         file.remove()?;
@@ -188,6 +207,10 @@ struct Row {
     stops_per_period: f64,
     stops: usize,
     final_state: State,
+    /// y_max, y_min, the self-excited cycle's period in τ (NaN: none) and its stick fraction
+    /// (NaN: a forced step); `None` for a step restored from a checkpoint that did not keep
+    /// them.
+    extremes: Option<[f64; 4]>,
 }
 
 impl From<&SweepPoint> for Row {
@@ -204,6 +227,12 @@ impl From<&SweepPoint> for Row {
             stops_per_period: s.stops_per_period,
             stops: s.stops,
             final_state: s.final_state(),
+            extremes: Some([
+                s.y_max,
+                s.y_min,
+                s.self_excited.and_then(|c| c.period).unwrap_or(f64::NAN),
+                s.self_excited.map_or(f64::NAN, |c| c.stick_fraction),
+            ]),
         }
     }
 }
@@ -235,25 +264,39 @@ impl Row {
             f_hz: experiment
                 .scales()
                 .map(|s| s.drive_omega(self.params.w) / std::f64::consts::TAU),
+            amplitude: self.extremes.map(|[max, min, ..]| 0.5 * (max - min)),
+            y_max: self.extremes.map(|[max, ..]| max),
+            y_min: self.extremes.map(|[_, min, ..]| min),
+            cycle_period_tau: self.extremes.and_then(|[.., tau, _]| measured(tau)),
+            cycle_period_s: None,
+            stick_fraction: self.extremes.and_then(|[.., fraction]| measured(fraction)),
         }
+        .with_seconds(experiment)
     }
 
-    /// The row as a checkpoint unit (its parameters, value and leg follow from the sweep).
+    /// The row as a checkpoint unit (its parameters, value and leg follow from the sweep;
+    /// the extremes, period and stick fraction last, which a checkpoint written before they
+    /// were kept lacks).
     fn encode(&self) -> Vec<u8> {
         let class = MotionClass::ALL
             .iter()
             .position(|&c| c == self.class)
             .expect("a class of ALL");
-        UnitWriter::new()
-            .f64(self.gain)
+        let mut unit = UnitWriter::new();
+        unit.f64(self.gain)
             .f64(self.a1)
             .f64(self.a3)
             .u8(class as u8)
             .f64(self.stops_per_period)
             .u64(self.stops as u64)
             .f64(self.final_state.y)
-            .f64(self.final_state.v)
-            .finish()
+            .f64(self.final_state.v);
+        if let Some(extremes) = self.extremes {
+            for x in extremes {
+                unit.f64(x);
+            }
+        }
+        unit.finish()
     }
 
     /// The row of step `index` from its checkpoint unit.
@@ -261,7 +304,7 @@ impl Row {
         let damaged = || anyhow::anyhow!("checkpoint holds a malformed sweep step");
         let mut r = UnitReader::new(unit);
         let (value, leg) = sweep.plan()[index];
-        let row = Self {
+        let mut row = Self {
             params: sweep.params(index)?,
             value,
             leg,
@@ -277,7 +320,15 @@ impl Row {
                 y: r.f64().ok_or_else(damaged)?,
                 v: r.f64().ok_or_else(damaged)?,
             },
+            extremes: None,
         };
+        if !r.is_empty() {
+            let mut extremes = [0.0; 4];
+            for x in &mut extremes {
+                *x = r.f64().ok_or_else(damaged)?;
+            }
+            row.extremes = Some(extremes);
+        }
         if !r.is_empty() {
             return Err(damaged());
         }
@@ -482,6 +533,52 @@ fn plot(
         title,
         x_label: parameter.label().into(),
         y_label: "G1 = A1/β (gain of the fundamental)".into(),
+        series,
+        legend: Some(Legend::Best),
+        ..Default::default()
+    };
+    Figure::single(panel, (900, 560)).render(path)
+}
+
+/// The plot of a self-excited belt's sweep: the amplitude (y_max − y_min)/2 against the swept
+/// parameter, up and down (where they differ, two motions coexist), the steps with stops
+/// marked.
+fn plot_self_excited(report: &SweepReport, path: &std::path::Path) -> Result<()> {
+    let leg = |which: SweepLeg, stuck: bool| -> Vec<(f64, f64)> {
+        report
+            .points
+            .iter()
+            .filter(|p| p.direction == which && (!stuck || p.stick_fraction > Some(0.0)))
+            .filter_map(|p| p.amplitude.map(|a| (p.value, a)))
+            .collect()
+    };
+    let mut series = Vec::new();
+    for (which, color, style, label) in [
+        (
+            SweepLeg::Up,
+            Quantity::SweepUp.color(),
+            Style::Line(2),
+            "sweep up",
+        ),
+        (
+            SweepLeg::Down,
+            Quantity::SweepDown.color(),
+            Style::Dashed(2),
+            "sweep down",
+        ),
+    ] {
+        let data = leg(which, false);
+        if !data.is_empty() {
+            series.push(Series::new(label, data, color, style));
+        }
+    }
+    series.push(Quantity::SweepDown.series("with stops (down)", leg(SweepLeg::Down, true)));
+    series.push(Quantity::SweepUp.series("with stops (up)", leg(SweepLeg::Up, true)));
+    let symbol = crate::diagrams::symbol(report.over);
+    let panel = Panel {
+        title: format!("self-excited motion: amplitude against {symbol}"),
+        x_label: report.over.label().into(),
+        y_label: "amplitude (y_max − y_min)/2".into(),
         series,
         legend: Some(Legend::Best),
         ..Default::default()

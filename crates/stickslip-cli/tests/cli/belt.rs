@@ -238,18 +238,23 @@ fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
     assert!(out.status.success(), "{}", stderr(&out));
     let csv = std::fs::read_to_string(dir.path().join("sweep.csv")).unwrap();
     let mut lines = csv.lines();
+    // The columns of the classic amplitude against belt speed (a motion without a drive has
+    // no gain nor harmonics of one).
     assert_eq!(
         lines.next().unwrap(),
-        "vb,w,beta,direction,gain,gain1,A1,A3,class,stops_per_period"
+        "vb,direction,amplitude,y_max,y_min,cycle_period_tau,stick_fraction,class"
     );
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
     // (vb, direction, class) of each step, in the order run: up, then down.
-    let steps: Vec<(f64, String, String)> = lines
-        .map(|l| {
-            let cells: Vec<&str> = l.split(',').collect();
+    let steps: Vec<(f64, String, String)> = rows
+        .iter()
+        .map(|cells| {
             (
                 cells[0].parse().unwrap(),
-                cells[3].to_string(),
-                cells[8].to_string(),
+                cells[1].to_string(),
+                cells[7].to_string(),
             )
         })
         .collect();
@@ -276,6 +281,189 @@ fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
     assert_ne!(steps[0].2, steps[7].2);
     assert_eq!(steps[3].2, "steady-sliding");
     assert_eq!(steps[4].2, "steady-sliding");
+    // The numbers of the first step are `steady`'s from rest: amplitude (y_max − y_min)/2,
+    // the extremes, the cycle's period and stick fraction; the down leg's last step slides
+    // (amplitude 0, no period, never stuck).
+    let rest = json(&[&["steady"][..], &model, &["--vb", "0.1", "--json"]].concat());
+    let number = |i: usize, j: usize| -> f64 { rows[i][j].parse().unwrap() };
+    let (y_max, y_min) = (
+        rest["y_max"].as_f64().unwrap(),
+        rest["y_min"].as_f64().unwrap(),
+    );
+    let close = |got: f64, want: f64| assert!((got - want).abs() <= 1e-12, "{got} {want}");
+    close(number(0, 2), 0.5 * (y_max - y_min));
+    close(number(0, 3), y_max);
+    close(number(0, 4), y_min);
+    close(number(0, 5), rest["cycle_period_tau"].as_f64().unwrap());
+    close(number(0, 6), rest["stick_fraction"].as_f64().unwrap());
+    assert!(number(0, 2) > 0.1, "{rows:?}");
+    assert_eq!(number(7, 2), 0.0);
+    assert_eq!(rows[7][5], "");
+    assert_eq!(number(7, 6), 0.0);
+    // --json holds the same steps, beside what the CSV leaves out.
+    let v = json(
+        &[
+            &["sweep"][..],
+            &model,
+            &[
+                "--over", "vb", "--from", "0.1", "--to", "1", "--steps", "4", "--json",
+            ],
+        ]
+        .concat(),
+    );
+    assert_eq!(v["over"], "vb");
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 8);
+    for (p, row) in points.iter().zip(&rows) {
+        assert_eq!(p["direction"], row[1].as_str());
+        assert_eq!(p["class"], row[7].as_str());
+        assert_eq!(p["amplitude"].as_f64().unwrap().to_string(), row[2]);
+        assert_eq!(
+            p["cycle_period_tau"]
+                .as_f64()
+                .map(|x| x.to_string())
+                .unwrap_or_default(),
+            row[5]
+        );
+        assert!(p["cycle_period_s"].is_null());
+    }
+}
+
+/// A mechanical belt's sweep has the cycle's period in seconds too: τ/ω0.
+#[test]
+fn a_mechanical_belt_sweep_has_the_period_in_seconds() {
+    // m = 0.1 kg, k = 1000 N/m: ω0 = 100 rad/s.
+    let (_dir, out) = run(&[
+        "sweep",
+        "--mass",
+        "0.1",
+        "--stiffness",
+        "1000",
+        "--damping",
+        "0.5",
+        "--friction",
+        "2",
+        "--mu-s",
+        "1.4",
+        "--over",
+        "vb",
+        "--from",
+        "0.1",
+        "--to",
+        "0.2",
+        "--steps",
+        "2",
+        "--direction",
+        "up",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "vb,direction,amplitude,y_max,y_min,cycle_period_tau,cycle_period_s,stick_fraction,class"
+    );
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[8], "stick-slip-cycle", "{text}");
+        let tau: f64 = cells[5].parse().unwrap();
+        let seconds: f64 = cells[6].parse().unwrap();
+        assert!((seconds - tau / 100.0).abs() <= 1e-15 * tau, "{text}");
+    }
+}
+
+/// The self-excited belt's map over (vb, μs): the CSV's first columns are the keys' names,
+/// and each class is what `steady` finds at that point from rest.
+#[test]
+fn a_map_of_belt_speed_and_static_friction_has_the_steady_states_classes() {
+    let (_dir, out) = run(&[
+        "phase-diagram",
+        "--zeta",
+        "0.05",
+        "--beta",
+        "0",
+        "--x",
+        "vb",
+        "--x-from",
+        "0.1",
+        "--x-to",
+        "1.5",
+        "--x-steps",
+        "3",
+        "--y",
+        "mu-s",
+        "--y-from",
+        "1",
+        "--y-to",
+        "3",
+        "--y-steps",
+        "3",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "vb,mu_s,class,period,stops_per_period,gain"
+    );
+    let mut classes = Vec::new();
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let v = json(&[
+            "steady", "--zeta", "0.05", "--vb", cells[0], "--mu-s", cells[1], "--json",
+        ]);
+        assert_eq!(v["class"], cells[2], "{line}");
+        classes.push(cells[2].to_string());
+    }
+    assert_eq!(classes.len(), 9);
+    // Both motions are on the map: stick-slip at a slow belt with μs > 1, steady sliding at
+    // the fast one.
+    assert!(classes.contains(&"stick-slip-cycle".to_string()), "{text}");
+    assert!(classes.contains(&"steady-sliding".to_string()), "{text}");
+}
+
+/// --x and --y come together with their ranges, and name two different keys.
+#[test]
+fn a_map_over_two_keys_refuses_half_an_axis() {
+    let (_dir, out) = run(&["phase-diagram", "--x", "vb", "--x-from", "0", "--x-to", "1"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let (_dir, out) = run(&[
+        "phase-diagram",
+        "--beta",
+        "0",
+        "--x",
+        "vb",
+        "--x-from",
+        "0.1",
+        "--x-to",
+        "1",
+        "--y",
+        "vb",
+        "--y-from",
+        "0.2",
+        "--y-to",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("invalid --y vb: must differ from --x vb"));
+    let (_dir, out) = run(&[
+        "phase-diagram",
+        "--x",
+        "vb",
+        "--x-from",
+        "0.1",
+        "--x-to",
+        "1",
+        "--y",
+        "mu-s",
+        "--y-from",
+        "1",
+        "--y-to",
+        "2",
+        "--w-min",
+        "0.5",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
 }
 
 /// A self-excited Stribeck belt at the command line: `steady` finds a stick-slip cycle, the

@@ -88,9 +88,9 @@ fn kill_part_way(dir: &Path, args: &[&str], units: u64, unit_bytes: u64) {
 }
 
 /// Bytes of a saved row of the map (200 points of 34 bytes, index and length) and of a
-/// sweep step.
+/// sweep step (57 bytes, then y_max, y_min, the self-excited period and stick fraction).
 const ROW: u64 = 200 * 34 + 16;
-const STEP: u64 = 57 + 16;
+const STEP: u64 = 57 + 4 * 8 + 16;
 
 fn with_checkpoint<'a>(args: &[&'a str]) -> Vec<&'a str> {
     let mut v = args.to_vec();

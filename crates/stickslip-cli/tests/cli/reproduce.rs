@@ -97,6 +97,34 @@ fn every_csv_has_its_columns(report: &Path, html: &str) {
             "beyond-branch.csv",
             then(&[Parameter::Beta.label()], &BranchTable::COLUMNS),
         ),
+        // The chapter "Friction-induced vibration".
+        (
+            "belt-sweep.csv",
+            then(
+                &[Key::FrictionLaw.name(), Parameter::Vb.label()],
+                &columns::BELT_SWEEP_COLUMNS,
+            ),
+        ),
+        (
+            "belt-closed-form.csv",
+            then(
+                &[Key::MuS.name(), Parameter::Vb.label()],
+                &columns::CLOSED_FORM_COLUMNS,
+            ),
+        ),
+        (
+            "belt-approximation.csv",
+            then(
+                &[
+                    Key::Zeta.name(),
+                    Key::K1.name(),
+                    Key::K3.name(),
+                    Parameter::Vb.label(),
+                ],
+                &columns::APPROXIMATION_COLUMNS,
+            ),
+        ),
+        ("belt-forced-map.csv", names(&map)),
     ];
     for (csv, header) in &expected {
         let text = std::fs::read_to_string(report.join(csv)).unwrap();
@@ -156,6 +184,9 @@ fn writes_every_figure_table_and_the_report() {
         "beyond-bifurcation",
         "beyond-basins",
         "beyond-branch",
+        "belt-sweep",
+        "belt-approximation",
+        "belt-forced-map",
     ];
     let html = std::fs::read_to_string(report.join("index.html")).expect("index.html");
     for f in figures {
@@ -355,6 +386,7 @@ fn writes_every_figure_table_and_the_report() {
     for id in ["beyond-bifurcation", "beyond-basins", "beyond-branch"] {
         assert!(html.contains(&format!("id=\"{id}\"")), "no section {id}");
     }
+    belt_chapter(&report, &summary, &html);
     // The report is the same on every run: no timings in it.
     assert!(!html.contains(" s on "), "a timing in index.html");
     assert!(
@@ -635,4 +667,52 @@ fn fig3_shows_what_is_small(report: &Path, html: &str) {
             "no loop (3{col}′) of its own"
         );
     }
+}
+
+/// The chapter "Friction-induced vibration": the closed form agrees with the exact cycle far
+/// below the test's 1e-12, the approximation names the exact motion at every speed, and the
+/// numbers the captions give are those of the CSV files, recounted here.
+fn belt_chapter(report: &Path, summary: &serde_json::Value, html: &str) {
+    assert!(html.contains("id=\"belt\"") && html.contains("Friction-induced vibration"));
+    for id in [
+        "belt-sweep",
+        "belt-closed-form",
+        "belt-approximation",
+        "belt-forced-map",
+    ] {
+        assert!(html.contains(&format!("id=\"{id}\"")), "no section {id}");
+    }
+    let closed = Csv::read(report, "belt-closed-form.csv");
+    let difference = closed.at("difference");
+    let worst = closed
+        .rows
+        .iter()
+        .map(|r| r[difference].parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-12, "{worst}");
+    assert_eq!(
+        summary["belt_closed_form"]["largest_difference"].as_f64(),
+        Some(worst)
+    );
+    let approx = Csv::read(report, "belt-approximation.csv");
+    let (motion, class) = (approx.at("approximation_motion"), approx.at("class"));
+    let agree = approx.rows.iter().filter(|r| r[motion] == r[class]).count();
+    assert_eq!(agree, approx.rows.len());
+    assert!(html.contains(&format!("at {agree} of the {} speeds", approx.rows.len())));
+    // Both legs of both laws; the Coulomb belt's legs differ (hysteresis).
+    let sweep = Csv::read(report, "belt-sweep.csv");
+    let (law, direction) = (sweep.at("friction_law"), sweep.at("direction"));
+    for l in ["coulomb", "stribeck"] {
+        for d in ["up", "down"] {
+            assert!(sweep.rows.iter().any(|r| r[law] == l && r[direction] == d));
+        }
+    }
+    assert!(
+        summary["belt_sweep"]["coulomb_hysteresis_steps"]
+            .as_u64()
+            .unwrap()
+            > 0
+    );
+    let map = Csv::read(report, "belt-forced-map.csv");
+    assert!(map.rows.len() >= 100);
 }

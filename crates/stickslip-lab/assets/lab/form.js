@@ -17,6 +17,37 @@ const served = { form: [], keys: new Map(), fit: { parameters: [], by_law: {}, f
  * `data-for-system`), in the table's order. */
 export const fieldsOf = (system) => served.form.filter((f) => f.fieldset.split(' ').includes(system)).map((f) => f.flag);
 
+/** The flag of the field that chooses the friction law (served `chooses_law`), if any. */
+const lawChooser = () => served.form.find((f) => f.chooses_law)?.flag;
+
+/** The friction law chosen now (`coulomb`, `stribeck`, `cubic`: the chooser's value). */
+export const chosenLaw = () => {
+  const flag = lawChooser();
+  return flag ? $(`[name="${CSS.escape(flag)}"]`).value : null;
+};
+
+/** Whether a field is sent and shown now: a friction law's parameter (served `law`) only
+ * while that law is chosen. */
+export const inUse = (flag) => {
+  const f = served.form.find((g) => g.flag === flag);
+  return !f || !f.law || f.law === chosenLaw();
+};
+
+/** The flags of the fields of `system` sent with a query: those of its fieldsets in use
+ * (`inUse`), in the table's order. */
+export const sentFieldsOf = (system) => fieldsOf(system).filter(inUse);
+
+/** Show the chosen law's parameters and hide the others'. */
+export function showLawFields() {
+  for (const f of served.form) {
+    if (!f.law) continue;
+    $(`[name="${CSS.escape(f.flag)}"]`).closest('.field').hidden = f.law !== chosenLaw();
+  }
+}
+
+/** The flag of the law chooser, for the page's wiring (its change shows other fields). */
+export const lawChooserFlag = () => lawChooser();
+
 /** Whether the field is a part of the circuit (L, C, R, U_t, R_D: a preset gives them). */
 export const isPart = (flag) => served.form.some((f) => f.flag === flag && f.part);
 
@@ -59,10 +90,15 @@ export function buildForm(answer) {
   for (const f of answer.form) {
     const key = keys.get(f.flag);
     const fieldset = $(`fieldset[data-for-system="${CSS.escape(f.fieldset)}"]:not(#fit)`);
-    const input = el('input', { id: f.flag, name: f.flag, type: 'text', title: key.help });
+    // A choice (the friction law) is a list of its names; a number a text field.
+    const input = f.choices && f.choices.length
+      ? el('select', { id: f.flag, name: f.flag, title: key.help }, f.choices.map((c) => new Option(c, c, c === f.value, c === f.value)))
+      : el('input', { id: f.flag, name: f.flag, type: 'text', title: key.help });
     if (f.part) input.setAttribute('data-part', '');
-    if (f.value !== null) input.setAttribute('value', f.value);
-    const children = [el('label', { for: f.flag }, symbolNodes(key.symbol)), input];
+    if (f.value !== null && input.tagName === 'INPUT') input.setAttribute('value', f.value);
+    // A name's key has no symbol: its description's first words label it ("friction law").
+    const text = key.symbol ? symbolNodes(key.symbol) : [key.description.split(/ of |:/)[0]];
+    const children = [el('label', { for: f.flag }, text), input];
     if (f.unit) children.push(el('span', { class: 'unit' }, [f.unit]));
     const fits = answer.fit.parameters.includes(f.flag) && f.fieldset.split(' ').some((s) => fitSystems.includes(s));
     if (fits) {
@@ -72,6 +108,7 @@ export function buildForm(answer) {
       children.push(el('label', { class: 'free', 'data-fit-laws': laws.join(' '), title: 'free in the fit: fitted to the record' }, [box, ' fit']));
     }
     children.push(el('span', { class: 'error', 'data-error-for': f.flag, role: 'alert' }));
-    fieldset.append(el('div', { class: 'field' }, children));
+    fieldset.append(el('div', f.law ? { class: 'field', 'data-law': f.law } : { class: 'field' }, children));
   }
+  showLawFields();
 }

@@ -3,7 +3,7 @@
 
 import { $, $$, field, num, si, siText } from './util.js';
 import { state, setGenerator, holdGenerator } from './state.js';
-import { fieldsOf, isPart } from './form.js';
+import { fieldsOf, isPart, showLawFields, chosenLaw } from './form.js';
 import { channelColumns, prepare, COLORS, label, displayed } from './scope.js';
 
 // ---------------------------------------------------------------- derived readouts
@@ -13,6 +13,20 @@ export function scales() {
 export function units() {
   const mech = state.steady && state.steady.system === 'mechanics';
   return mech ? { drive: 'N', position: 'm', velocity: 'm/s' } : { drive: 'V', position: 'V', velocity: 'A' };
+}
+
+/** The belt of a steady state's answer: its speed vb (dimensionless, 0 without a belt), its
+ * friction law, and whether the motion is self-excited (a belt without a drive: its period
+ * is the cycle's own, `cycle_period_tau`, and it has no drive-period quantities). */
+export function beltOf(s) {
+  const speed = s.vb ?? 0;
+  return { speed, law: s.friction_law ?? 'coulomb', moving: speed !== 0 || s.friction_law !== undefined, selfExcited: s.cycle_period_tau !== undefined };
+}
+
+/** The seconds the answer's trace covers, after which the scope repeats it: its drive
+ * periods, or a self-excited motion's cycle (`trace.span_s`). */
+export function traceSeconds(s) {
+  return beltOf(s).selfExcited ? s.trace.span_s : s.trace.periods / s.drive.f_Hz;
 }
 
 export function showDerived() {
@@ -33,8 +47,11 @@ export function showDerived() {
   $('[data-label="ch1"]').textContent = mech ? 'F' : 'U';
   $('[data-label="ch2"]').textContent = mech ? 'position r' : 'u_C';
   $('[data-label="ch3"]').textContent = mech ? 'velocity ṙ' : 'current i';
+  const belt = beltOf(s);
   $('[data-derived="twin"]').textContent = mech
-    ? 'The block is the model itself: spring k, damping γ, dry friction F0 (static μs·F0), driven by F cos Ωt.'
+    ? belt.moving
+      ? `The block rides on a belt: friction acts on the slip ṙ − v_belt by the ${belt.law} law (static μs·F0); red: stuck to the belt, carried along${belt.selfExcited ? '; no drive: the belt alone makes it stick and slip' : ', driven by F cos Ωt'}.`
+      : 'The block is the model itself: spring k, damping γ, dry friction F0 (static μs·F0), driven by F cos Ωt.'
     : 'The same model as a mass on a spring: u_C ↔ position, i ↔ velocity, U ↔ drive force, the diode pair ↔ dry friction (U_t ↔ F0). Red: the motion stops.';
 }
 
@@ -81,6 +98,18 @@ export function showMeasurements() {
   const deg = (rad) => (rad === null || rad === undefined ? null : (rad * 180) / Math.PI);
   setMeasure('class', s.class);
   $('[data-note="class"]').textContent = staticNote(s, false);
+  // A block on a belt: its extremes; without a drive, its own cycle instead of the
+  // drive-period quantities.
+  const belt = beltOf(s);
+  for (const row of $$('#measurements tr[data-driven]')) row.hidden = belt.selfExcited;
+  for (const row of $$('#measurements tr[data-belt]')) row.hidden = !(row.dataset.belt === 'any' ? belt.moving : belt.selfExcited);
+  $('[data-label="stops"]').textContent = belt.selfExcited ? 'stops per cycle' : 'stops per period';
+  setMeasure('y-extremes', `${num(s.y_max * sc.position, 5)} / ${num(s.y_min * sc.position, 5)}`);
+  if (belt.selfExcited) {
+    setMeasure('cycle-period', s.cycle_period_s === undefined ? 'none (no cycle)' : num(s.cycle_period_s, 6), s.cycle_period_s);
+    setMeasure('stick-fraction', num(s.stick_fraction, 6), s.stick_fraction);
+    setMeasure('sliding', `${s.sliding_stability} at ${num(s.sliding_y * sc.position, 4)}`);
+  }
   setMeasure('stops', num(s.stops_per_period, 4), s.stops_per_period);
   setMeasure('period', s.period === null ? 'none found' : `${s.period} (settled after ${s.periods_to_settle})`, s.period);
   setMeasure('gain', num(s.gain, 6), s.gain);
@@ -116,7 +145,8 @@ export function showMeasurements() {
   const st3 = stats(source.ch3);
   setMeasure('ch3-vpp', st3 ? num(st3.hi - st3.lo, 5) : '—', st3 ? st3.hi - st3.lo : undefined);
   const f = s.drive ? s.drive.f_Hz : NaN;
-  setMeasure('frequency', `${num(f, 6)} / ${num(s.period ? f / s.period : NaN, 6)}`, f);
+  if (belt.selfExcited) setMeasure('frequency', `— / ${num(1 / s.cycle_period_s, 6)}`, 1 / s.cycle_period_s);
+  else setMeasure('frequency', `${num(f, 6)} / ${num(s.period ? f / s.period : NaN, 6)}`, f);
 
   showTheory();
 }
@@ -176,12 +206,20 @@ export function drawMechanics(now) {
   g.fillRect(0, 0, w, h);
   const cols = s.trace.columns;
   const n = cols.y.length;
+  // The record plays in 2.5 s per drive period (per cycle, for a self-excited belt).
   const cycleSeconds = 2.5 * s.trace.periods;
-  const phase = (((now - mech.start) / 1000) % cycleSeconds) / cycleSeconds;
+  const elapsed = (now - mech.start) / 1000;
+  const phase = (elapsed % cycleSeconds) / cycleSeconds;
   const i = Math.min(n - 1, Math.floor(phase * n));
+  const belt = beltOf(s);
   if (!s.extent) {
+    // The block's swing about the middle of its extremes fills the reach.
+    const lo = Math.min(...cols.y);
+    const hi = Math.max(...cols.y);
+    const centre = belt.moving ? (lo + hi) / 2 : 0;
     s.extent = {
-      y: Math.max(...cols.y.map(Math.abs), 1e-9),
+      centre,
+      y: Math.max(...cols.y.map((y) => Math.abs(y - centre)), 1e-9),
       drive: Math.max(...cols.drive.map(Math.abs), 1e-9),
     };
   }
@@ -189,20 +227,50 @@ export function drawMechanics(now) {
   const floor = h - 28;
   const x0 = w / 2 + 20;
   const reach = w / 2 - 90;
-  const x = x0 + (cols.y[i] / ymax) * reach;
-  // Ground with friction hatching.
+  const perY = reach / ymax; // pixels per unit of y
+  const x = x0 + (cols.y[i] - s.extent.centre) * perY;
   g.strokeStyle = '#6b756f';
   g.lineWidth = 1;
   g.beginPath();
-  g.moveTo(20, floor);
-  g.lineTo(w - 10, floor);
-  for (let k = 24; k < w - 10; k += 9) {
-    g.moveTo(k, floor);
-    g.lineTo(k - 6, floor + 7);
+  if (belt.moving) {
+    // The belt: a band between two rollers whose marks move at the belt's speed, on the
+    // block's scale (y' = vb moves the block and the marks alike: a stuck block rides along).
+    const tauPerSecond = s.trace.span_tau / cycleSeconds;
+    const spacing = 18;
+    const shift = (((belt.speed * elapsed * tauPerSecond * perY) % spacing) + spacing) % spacing;
+    const left = 34;
+    const right = w - 16;
+    g.moveTo(left, floor);
+    g.lineTo(right, floor);
+    g.moveTo(left, floor + 10);
+    g.lineTo(right, floor + 10);
+    g.stroke();
+    for (const cx of [left, right]) {
+      g.beginPath();
+      g.arc(cx, floor + 5, 5, 0, 2 * Math.PI);
+      g.stroke();
+    }
+    g.beginPath();
+    for (let k = left - spacing + shift; k < right; k += spacing) {
+      if (k < left + 2 || k + 4 > right - 2) continue;
+      g.moveTo(k, floor + 2);
+      g.lineTo(k + 4, floor + 8);
+    }
+    g.moveTo(20, 12);
+    g.lineTo(20, floor - 4);
+    g.stroke();
+  } else {
+    // Ground with friction hatching.
+    g.moveTo(20, floor);
+    g.lineTo(w - 10, floor);
+    for (let k = 24; k < w - 10; k += 9) {
+      g.moveTo(k, floor);
+      g.lineTo(k - 6, floor + 7);
+    }
+    g.moveTo(20, 12);
+    g.lineTo(20, floor);
+    g.stroke();
   }
-  g.moveTo(20, 12);
-  g.lineTo(20, floor);
-  g.stroke();
   // Spring from the wall to the block.
   const bw = 48;
   const bh = 36;
@@ -219,9 +287,9 @@ export function drawMechanics(now) {
   }
   g.lineTo(left, y);
   g.stroke();
-  // The block: red while stuck (velocity zero).
+  // The block: red while stuck (its velocity that of the ground or the belt).
   const v = cols.v[i];
-  const stuck = Math.abs(v) <= state.stuckVelocity[s.model];
+  const stuck = Math.abs(v - belt.speed) <= state.stuckVelocity[s.model] * Math.max(1, Math.abs(belt.speed));
   g.fillStyle = stuck ? '#c0392b' : '#2e7d66';
   g.fillRect(left, floor - bh, bw, bh);
   // The drive force.
@@ -243,7 +311,15 @@ export function drawMechanics(now) {
   }
   g.font = '11px system-ui, sans-serif';
   label(g, stuck ? 'stuck' : 'sliding', left + bw / 2, floor - bh / 2 + 4, '#ffffff', 'center');
-  label(g, 'drive force', w - 12, 14, '#8a6d00', 'right');
+  if (belt.moving) {
+    const u = units();
+    const arrowText = belt.speed > 0 ? '→' : belt.speed < 0 ? '←' : '';
+    label(g, `belt ${si(belt.speed * scales().velocity, u.velocity, 3)} ${arrowText}`, w - 12, h - 4, '#2e5d50', 'right');
+  }
+  if (!belt.selfExcited) label(g, 'drive force', w - 12, 14, '#8a6d00', 'right');
+  // For tests: what the view shows now.
+  canvas.dataset.stuck = String(stuck);
+  canvas.dataset.belt = String(belt.moving);
 }
 export function animate(now) {
   drawMechanics(now);
@@ -258,7 +334,8 @@ export function applyPreset(id) {
   const v = chosen.values;
   if (chosen.system === 'mechanics') {
     state.system = 'mechanics';
-    for (const k of fieldsOf('mechanics')) if (k in v) field(k).value = num(v[k], 6);
+    for (const k of fieldsOf('mechanics')) if (k in v) field(k).value = typeof v[k] === 'string' ? v[k] : num(v[k], 6);
+    showLawFields();
   } else {
     if (state.system === 'mechanics') state.system = 'pwl';
     for (const k of fieldsOf('pwl').filter(isPart)) if (k in v) field(k).value = siText(v[k]);
@@ -282,14 +359,20 @@ export function applyPreset(id) {
 }
 
 /** Map sizes that finish within the time limit (10 s) on a 2-core laptop: the exact
- * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md). */
+ * solver takes about 0.3 ms a point, the stiff one about 6 ms (docs/lab.md); the Stribeck
+ * and cubic laws, whose slips it integrates, far longer. */
 export const MAP_SIZES = {
   pwl: [['40x30', '40 × 30'], ['60x50', '60 × 50'], ['120x100', '120 × 100']],
   shockley: [['16x12', '16 × 12'], ['24x20', '24 × 20'], ['32x24', '32 × 24']],
+  // A forced Stribeck or cubic belt's steady state from rest took about 1 s a point at a
+  // load average of 16 on 2 cores (docs/lab.md): small maps only.
+  law: [['8x6', '8 × 6'], ['12x9', '12 × 9'], ['16x12', '16 × 12']],
 };
 export function fillMapSizes() {
   const select = field('map-size');
-  const sizes = MAP_SIZES[state.system === 'shockley' ? 'shockley' : 'pwl'];
+  // A friction law other than Coulomb's slips on the stiff integrator: small maps.
+  const law = state.system === 'mechanics' && !['coulomb', null].includes(chosenLaw());
+  const sizes = MAP_SIZES[law ? 'law' : state.system === 'shockley' ? 'shockley' : 'pwl'];
   const keep = select.value;
   select.replaceChildren(...sizes.map(([v, text]) => new Option(text, v)));
   select.value = sizes.some(([v]) => v === keep) ? keep : sizes[1][0];

@@ -2,7 +2,7 @@
 
 import { $, field, num, si, STEPS, niceAtLeast, nice125, FFT_SPAN_HARMONICS } from './util.js';
 import { state } from './state.js';
-import { scales, units, staticNote } from './panels.js';
+import { scales, units, staticNote, beltOf, traceSeconds } from './panels.js';
 import { drawRefsYT, drawRefsXY, refLabel } from './record.js';
 
 // ---------------------------------------------------------------- scope settings
@@ -55,9 +55,11 @@ export function autoscale() {
   fillScaleSelect(field('ch1-vdiv'), u.drive);
   fillScaleSelect(field('ch2-vdiv'), u.position);
   fillScaleSelect(field('ch3-vdiv'), u.velocity);
-  // About two cycles across the ten divisions (at least 1.9).
+  // About two cycles across the ten divisions (at least 1.9): drive periods, or a
+  // self-excited belt's own cycles.
   const periods = Math.max(2, s.trace.periods);
-  setSelect(field('tdiv'), (0.95 * periods) / s.drive.f_Hz / 10);
+  if (beltOf(s).selfExcited) setSelect(field('tdiv'), (0.95 * periods * traceSeconds(s)) / 10);
+  else setSelect(field('tdiv'), (0.95 * periods) / s.drive.f_Hz / 10);
   field('hpos').value = '0';
   const cols = channelColumns();
   const span = (arr) => Math.max(...arr) - Math.min(...arr);
@@ -251,7 +253,7 @@ export function displayed() {
   // The steady cycle repeats: its samples, continued over the window (sample j at j·dt, the
   // cycle's sample j mod n), at most about 60000 of them (every stride-th on a long window).
   const n = cols.t.length;
-  const P = s.trace.periods / s.drive.f_Hz;
+  const P = traceSeconds(s);
   const dt = P / n;
   const stride = Math.max(1, Math.ceil((right - left) / dt / 60000));
   const first = Math.floor(left / dt / stride) * stride - stride;
@@ -489,7 +491,9 @@ export function screenText(g, w) {
   const s = state.steady;
   const u = units();
   const width = w - 24;
-  const motion = { text: `${s.class}${s.period ? `, period ${s.period}` : ''}${staticNote(s, true)}`, color: COLORS.text, right: true };
+  const belt = beltOf(s);
+  const period = belt.selfExcited ? (s.cycle_period_s ? `, period ${si(s.cycle_period_s, 's')}` : '') : s.period ? `, period ${s.period}` : '';
+  const motion = { text: `${s.class}${period}${staticNote(s, true)}`, color: COLORS.text, right: true };
   let head;
   const foot = [];
   if (state.mode === 'fft') {
@@ -500,7 +504,7 @@ export function screenText(g, w) {
     const level = ax.db ? `${ax.perDiv} dB/div, top ${ax.top} dB${ax.unit} ${ax.rms ? 'RMS' : 'peak'} (re 1 ${ax.unit}${ax.rms ? ' RMS' : ' peak'})` : `${si(ax.perDiv, ax.unit)}/div`;
     foot.push(...flow(g, [{ text: level, color: COLORS.text }, { text: `${si(ax.hzdiv, 'Hz', 3)}/div`, color: COLORS.text }], width));
   } else {
-    const trig = state.trigger === 'transient' ? 'from rest (t = 0: start)' : 'steady cycle, trigger on the drive';
+    const trig = state.trigger === 'transient' ? 'from rest (t = 0: start)' : belt.selfExcited ? 'self-excited cycle (no drive)' : 'steady cycle, trigger on the drive';
     head = { text: state.mode === 'xy' ? `X-Y: X = CH1, Y = CH2; ${trig}` : `${si(tdiv(), 's')}/div; ${trig}`, color: COLORS.text };
     const names = { 1: u.drive, 2: u.position, 3: u.velocity };
     const items = [];
@@ -554,7 +558,7 @@ export function valuesAt(t) {
     x = t / dt;
     if (x < 0 || x > n - 1) return null;
   } else {
-    const P = s.trace.periods / s.drive.f_Hz;
+    const P = traceSeconds(s);
     x = ((((t % P) + P) % P) / P) * n;
   }
   const i = Math.floor(x) % n;

@@ -2,7 +2,7 @@
 // beside fields, and the model keys of the query.
 
 import { $, $$, field } from './util.js';
-import { fieldsOf, isPart } from './form.js';
+import { fieldsOf, sentFieldsOf, isPart } from './form.js';
 
 // ---------------------------------------------------------------- state
 export const state = {
@@ -95,14 +95,16 @@ export function holdGenerator() {
 }
 
 /** The model keys for the API: the description, and the drive unless `withoutDrive`. The
- * keys are the fields of the system's fieldsets (form.js, from /api/keys). Two keys have
+ * keys are the fields of the system's fieldsets in use (form.js, from /api/keys: a friction
+ * law's parameters only while it is chosen). Two keys have
  * behaviour of their own: `preset` (the paper's parts, while none is edited, are sent by the
  * preset's name) and `model` (the diode law, from the system's selector). */
 export function modelParams({ frequency = true, amplitude = true } = {}) {
   const p = new URLSearchParams();
   const fields = fieldsOf(state.system);
   if (state.system === 'mechanics') {
-    for (const k of fields) p.set(k, value(k));
+    // Its fields in use: the belt, the law, and the chosen law's parameters alone.
+    for (const k of sentFieldsOf('mechanics')) p.set(k, value(k));
   } else {
     if (state.paperParts) p.set('preset', 'paper');
     else for (const k of fields.filter(isPart)) p.set(k, value(k));

@@ -210,10 +210,17 @@ pub(crate) fn pwl_prefix(e: &Experiment) -> &'static str {
 pub struct Trace {
     /// Samples per drive period.
     pub samples_per_period: usize,
-    /// Drive periods covered.
+    /// Drive periods covered (a self-excited motion: 1, its one cycle).
     pub periods: f64,
     /// τ of the first sample.
     pub start: f64,
+    /// The τ the record covers, from its first sample to where it repeats (the drive's
+    /// periods, or the self-excited cycle's period, 2π where there is none); the page's scope
+    /// repeats the record with this period.
+    pub span_tau: f64,
+    /// The span in seconds (`span_tau` / ω0) of a physical description; null for a
+    /// dimensionless one.
+    pub span_s: Option<f64>,
     /// `tau, y, v, drive` (dimensionless) and the physical columns.
     pub columns: Columns,
 }

@@ -32,11 +32,19 @@ pub fn fieldset(key: Key) -> Option<&'static str> {
         Some("pwl shockley")
     } else if key.group() == KeyGroup::Diode && key.form() != KeyForm::Choice {
         Some("shockley")
-    } else if key.is_mechanics_part() || key == Key::MuS {
+    } else if key.is_mechanics_part() || key == Key::MuS || mechanical_friction(key) {
         Some("mechanics")
     } else {
         None
     }
+}
+
+/// A friction key the mechanical oscillator's form takes: the belt, the law and its
+/// parameters as the mechanical twin gives them, in physical units where the table has a
+/// physical key for the value (`belt-speed` in m/s, not `vb`), as they are (`friction-law`,
+/// `delta`) where it has none.
+fn mechanical_friction(key: Key) -> bool {
+    key.group() == KeyGroup::Friction && !Key::ALL.into_iter().any(|k| k.image_key() == Some(key))
 }
 
 /// A unit as the page writes it ([`Key::shown_unit`]: `Ω` for `ohm`, `N·s/m`); for μs,
@@ -49,23 +57,38 @@ fn shown_unit(key: Key) -> String {
     }
 }
 
-/// The page's form, in the key table's order: for each field its key's `flag` (the input's
+/// The page's form, in the key table's order (a physical key at its dimensionless image's
+/// place): for each field its key's `flag` (the input's
 /// id and name), `fieldset` ([`fieldset`]), `part` (a circuit's part: the input carries
-/// `data-part`), the `unit` it shows and its initial `value` (μs: 1, the paper's; the others
-/// are filled from the presets).
+/// `data-part`), the `unit` it shows, its initial `value` (μs: 1, the paper's; a friction
+/// key's default: the law `coulomb`, δ = 2; the others are filled from the presets), `choices` (the names a choice
+/// takes: the field is a list of them), `law` (the friction law whose parameter it is
+/// ([`Key::law`]): shown and sent only while that law is chosen) and `chooses_law` (the field
+/// that chooses it).
 fn form() -> Vec<serde_json::Value> {
-    Key::ALL
-        .into_iter()
+    // A physical key stands where its dimensionless image stands in the table: the belt's
+    // speed, the law, then the law's parameters (the Stribeck speed, δ, the viscous term).
+    let place = |key: Key| {
+        let of = key.image_key().unwrap_or(key);
+        Key::ALL.iter().position(|&k| k == of).unwrap_or(usize::MAX)
+    };
+    let mut keys = Key::ALL.to_vec();
+    keys.sort_by_key(|&k| place(k));
+    keys.into_iter()
         .filter_map(|key| {
             let fieldset = fieldset(key)?;
+            let initial = key == Key::MuS || key.group() == KeyGroup::Friction;
             Some(serde_json::json!({
                 "flag": key.flag(),
                 "fieldset": fieldset,
                 "part": key.is_circuit_part(),
                 "unit": shown_unit(key),
-                "value": (key == Key::MuS)
+                "value": initial
                     .then(|| key.default_value().map(|d| d.to_string()))
                     .flatten(),
+                "choices": key.choices(),
+                "law": key.law().map(|law| law.label()),
+                "chooses_law": key == Key::FrictionLaw,
             }))
         })
         .collect()

@@ -3,8 +3,45 @@
 use super::answer::{About, Drive};
 use crate::query::{api_name, Query};
 use serde::Serialize;
+use stickslip::experiment::Key;
+use stickslip::friction::{FrictionLaw, FrictionLawKind};
 use stickslip::physical::{Circuit, Mechanics};
 use stickslip::SystemKind;
+
+/// The belt speed of the belt presets (dimensionless: 0.3 of the example's velocity unit
+/// F0/k·ω0 = 0.1 m/s, so 3 cm/s) and their static ratio μs.
+const BELT: (f64, f64) = (0.3, 1.5);
+
+/// The laws of the belt presets, dimensionless: a Stribeck law falling over vs = 0.5 (Gaussian,
+/// no viscous term), and a cubic law μs − s + 0.5·s³ (its least value 0.956 at s = 0.816).
+/// Both fall at the belt speed fast enough to make steady sliding unstable (2ζ + μ'(vb) < 0):
+/// the block sticks and slips on its own, without a drive.
+const LAWS: [FrictionLaw; 2] = [
+    FrictionLaw::Stribeck {
+        vs: 0.5,
+        delta: 2.0,
+        eta: 0.0,
+    },
+    FrictionLaw::Cubic { k1: 1.0, k3: 0.5 },
+];
+
+/// The parameters of `law` for the example's mechanical oscillator, by the query keys of the
+/// mechanical form (the physical twin of each dimensionless parameter, converted with the
+/// example's scales; δ as it is).
+fn law_values(law: &FrictionLaw) -> Vec<(String, f64)> {
+    let scales = Mechanics::example().scales();
+    law.parameters()
+        .into_iter()
+        .filter_map(|(name, x)| {
+            let key = Key::ALL.into_iter().find(|k| k.name() == name)?;
+            let physical = Key::ALL.into_iter().find(|k| k.image_key() == Some(key));
+            Some(match physical {
+                Some(p) => (api_name(p), x / p.image(1.0, &scales)?),
+                None => (api_name(key), x),
+            })
+        })
+        .collect()
+}
 
 /// The points of the paper's Fig. 3: (label, w = Ω/ω0, β), panels (1a)–(2c).
 pub const FIG3_POINTS: [(&str, f64, f64); 6] = [
@@ -27,6 +64,9 @@ pub struct PresetRow {
     pub system: &'static str,
     /// Values by query key (numbers in SI units); `preset=paper` stands for the paper's parts.
     pub values: Vec<(String, f64)>,
+    /// The friction law of a mechanical preset (its parameters are among `values`), sent as
+    /// `friction-law`; `None` for a circuit.
+    pub law: Option<FrictionLawKind>,
     /// Whether the preset is the paper's circuit (`preset=paper` describes it exactly).
     pub paper: bool,
 }
@@ -46,7 +86,7 @@ fn drive_of(query: &str) -> Option<Drive> {
 /// setting it stands for (`drive`: `f_Hz` and `amplitude` in V or N): the page sets its
 /// generator to it once, and changing a part afterwards leaves the generator where it is.
 pub fn presets() -> serde_json::Value {
-    use stickslip::experiment::{Key, KeyDefault, KeyGroup};
+    use stickslip::experiment::{KeyDefault, KeyGroup};
     use stickslip::physical::Diode;
     let paper = Circuit::paper();
     let (turn_on, rd) = match paper.diode {
@@ -66,6 +106,7 @@ pub fn presets() -> serde_json::Value {
             .into(),
         system: SystemKind::Circuit.label(),
         values: parts.clone(),
+        law: None,
         paper: true,
     }];
     for (panel, w, beta) in FIG3_POINTS {
@@ -77,6 +118,7 @@ pub fn presets() -> serde_json::Value {
             label: format!("paper, Fig. 3 ({panel}): Ω/ω0 = {w}, β = {beta}"),
             system: SystemKind::Circuit.label(),
             values,
+            law: None,
             paper: true,
         });
     }
@@ -95,11 +137,45 @@ pub fn presets() -> serde_json::Value {
             (api_name(Key::Damping), example.damping),
             (api_name(Key::Friction), example.friction),
             (api_name(Key::MuS), 1.0),
+            (api_name(Key::BeltSpeed), 0.0),
             (api_name(Key::W), 0.95),
             (api_name(Key::Beta), 2.14),
         ],
+        law: Some(FrictionLawKind::Coulomb),
         paper: false,
     });
+    // The same block on a belt at 3 cm/s, without a drive: a stick-slip cycle of its own
+    // with each falling law.
+    let scales = example.scales();
+    for law in LAWS {
+        let kind = law.kind();
+        let mut values = vec![
+            (api_name(Key::Mass), example.mass),
+            (api_name(Key::Stiffness), example.stiffness),
+            (api_name(Key::Damping), example.damping),
+            (api_name(Key::Friction), example.friction),
+            (api_name(Key::MuS), BELT.1),
+            (
+                api_name(Key::BeltSpeed),
+                BELT.0 / Key::BeltSpeed.image(1.0, &scales).unwrap_or(1.0),
+            ),
+        ];
+        values.extend(law_values(&law));
+        values.push((api_name(Key::W), 1.0));
+        values.push((api_name(Key::Beta), 0.0));
+        rows.push(PresetRow {
+            id: format!("belt-{}", kind.label()),
+            label: format!(
+                "the block on a belt at {} m/s, {} friction (no drive: stick-slip of its own)",
+                BELT.0 / Key::BeltSpeed.image(1.0, &scales).unwrap_or(1.0),
+                kind.label()
+            ),
+            system: SystemKind::Mechanics.label(),
+            values,
+            law: Some(kind),
+            paper: false,
+        });
+    }
     // The Shockley diodes' values the page starts from: every number of the diode group at
     // its default (the 1N4148's), from the key table.
     let shockley: serde_json::Map<_, _> = Key::ALL
@@ -117,8 +193,26 @@ pub fn presets() -> serde_json::Value {
             .filter(|(k, _)| !r.paper || k == "w" || k == "beta");
         let keys = values.map(|(k, v)| format!("{k}={v}"));
         let preset = r.paper.then(|| "preset=paper".to_string());
-        preset.into_iter().chain(keys).collect::<Vec<_>>().join("&")
+        let law = r
+            .law
+            .map(|law| format!("{}={}", api_name(Key::FrictionLaw), law.label()));
+        preset
+            .into_iter()
+            .chain(keys)
+            .chain(law)
+            .collect::<Vec<_>>()
+            .join("&")
     };
+    // The parameters of each law, to start its fields from when it is chosen.
+    let laws: serde_json::Map<_, _> = LAWS
+        .iter()
+        .map(|law| {
+            let values = law_values(law)
+                .into_iter()
+                .map(|(k, v)| (k, serde_json::json!(v)));
+            (law.kind().label().to_string(), values.collect())
+        })
+        .collect();
     serde_json::json!({
         "presets": rows.iter().map(|r| serde_json::json!({
             "id": r.id,
@@ -126,10 +220,12 @@ pub fn presets() -> serde_json::Value {
             "system": r.system,
             "paper": r.paper,
             "values": r.values.iter().map(|(k, v)| (k.clone(), serde_json::json!(v)))
+                .chain(r.law.map(|law| (api_name(Key::FrictionLaw), serde_json::json!(law.label()))))
                 .collect::<serde_json::Map<_, _>>(),
             "drive": drive_of(&query(r)),
         })).collect::<Vec<_>>(),
         "shockley": shockley,
+        "laws": laws,
         "caps": super::keys::caps_json(),
     })
 }

@@ -9,7 +9,7 @@ use serde::Serialize;
 use std::sync::Arc;
 use stickslip::experiment::Experiment;
 use stickslip::options::OptionKey;
-use stickslip::steady::{steady_state_from, SteadyOptions, SteadyReport};
+use stickslip::steady::{self_excited_trace, steady_state_from, SteadyOptions, SteadyReport};
 
 /// `GET /api/steady`.
 #[derive(Debug)]
@@ -29,7 +29,12 @@ pub struct SteadyAnswer {
     /// The experiment.
     #[serde(flatten)]
     pub about: About,
-    /// The recorded cycle, decimated to `samples` per drive period.
+    /// The period of a self-excited cycle in seconds (`cycle_period_tau` / ω0; a physical
+    /// description of a belt without a drive only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle_period_s: Option<f64>,
+    /// The recorded cycle, decimated to `samples` per drive period (a self-excited motion:
+    /// its one cycle in `samples` samples).
     pub trace: Trace,
     /// Events inside the recorded cycle.
     pub events: Vec<EventRow>,
@@ -87,24 +92,54 @@ impl SteadyRequest {
     pub fn run(self, budget: &Arc<Budget>) -> Result<SteadyAnswer, ApiError> {
         let e = &budget.limit_experiment(&self.experiment);
         let params = e.params().map_err(|err| ApiError::library(&err))?;
-        let steady = steady_state_from(&e.factory(), &params, e.initial(), &self.options)
+        let factory = e.factory();
+        let steady = steady_state_from(&factory, &params, e.initial(), &self.options)
             .map_err(|err| failed(err, budget, "steady state"))?;
-        let per_period = steady.spectrum.as_ref().map_or(1, |s| s.samples_per_period);
-        let stride = (per_period / self.samples).max(1);
-        let rows = steady
-            .trace
-            .iter()
-            .step_by(stride)
-            .map(|s| (s.tau, s.y, s.v, params.drive(s.tau)));
+        let span_s = |tau: f64| e.scales().map(|s| tau / s.omega0);
+        // A self-excited motion (a belt without a drive) has no drive period: its trace is
+        // its one cycle, `samples` samples run again from its section (the library's
+        // `self_excited_trace`).
+        let cycle = self_excited_trace(&factory, &steady, self.samples)
+            .map_err(|err| failed(err, budget, "steady state"))?;
+        let trace = match (cycle, steady.self_excited) {
+            (Some(samples), Some(c)) => {
+                let span = c.period.unwrap_or(std::f64::consts::TAU);
+                let rows = samples
+                    .iter()
+                    .map(|s| (s.tau, s.y, s.v, params.drive(s.tau)));
+                Trace {
+                    samples_per_period: samples.len(),
+                    periods: 1.0,
+                    start: steady.start,
+                    span_tau: span,
+                    span_s: span_s(span),
+                    columns: columns(e, rows),
+                }
+            }
+            _ => {
+                let per_period = steady.spectrum.as_ref().map_or(1, |s| s.samples_per_period);
+                let stride = (per_period / self.samples).max(1);
+                let rows = steady
+                    .trace
+                    .iter()
+                    .step_by(stride)
+                    .map(|s| (s.tau, s.y, s.v, params.drive(s.tau)));
+                let span = steady.recorded_periods as f64 * params.drive_period();
+                Trace {
+                    samples_per_period: per_period / stride,
+                    periods: steady.recorded_periods as f64,
+                    start: steady.start,
+                    span_tau: span,
+                    span_s: span_s(span),
+                    columns: columns(e, rows),
+                }
+            }
+        };
         Ok(SteadyAnswer {
             report: SteadyReport::from(&steady),
             about: About::new(e),
-            trace: Trace {
-                samples_per_period: per_period / stride,
-                periods: steady.recorded_periods as f64,
-                start: steady.start,
-                columns: columns(e, rows),
-            },
+            cycle_period_s: steady.self_excited.and_then(|c| c.period).and_then(span_s),
+            trace,
             events: event_rows(&steady.events),
         })
     }

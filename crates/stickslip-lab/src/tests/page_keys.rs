@@ -1,9 +1,9 @@
 //! The page writes no model key by hand: the keys each system sends, the fields a preset
 //! fills, what a fit may free and each key's symbol and unit come from `/api/keys`, so that a
 //! new key is a row of the library's table. A scan of the page's scripts for every flag of
-//! the table's system and diode groups (the circuit's, the diodes' and the mechanical
-//! oscillator's keys) finds each occurrence outside comments and regular expressions: an
-//! identifier (`{ inductance: … }`, `shockley.temperature`) or a word of a string (`'rd'`,
+//! the table's system, diode and friction groups (the circuit's, the diodes' and the
+//! mechanical oscillator's keys, the belt's and the friction laws') finds each occurrence
+//! outside comments and regular expressions: an identifier (`{ inductance: … }`, `shockley.temperature`) or a word of a string (`'rd'`,
 //! `[name="mu-s"]`; a string with a space in it is prose, and skipped). Only the occurrences
 //! below, each with its reason, are allowed.
 
@@ -12,7 +12,7 @@ use stickslip::experiment::{Key, KeyGroup};
 use stickslip_testkit::allowances::{Allowance, Scan};
 
 /// The occurrences of a key's flag the page may write, each on a line holding its fragment.
-const ALLOWED: [Allowance; 6] = [
+const ALLOWED: [Allowance; 7] = [
     Allowance {
         file: "lab/state.js",
         word: "preset",
@@ -43,6 +43,13 @@ const ALLOWED: [Allowance; 6] = [
         word: "model",
         fragment: "answer.model",
         reason: "a sweep's or map's answer field `model`: what it was computed for",
+    },
+    Allowance {
+        file: "lab/panels.js",
+        word: "vb",
+        fragment: "const speed = s.vb ?? 0;",
+        reason: "the steady state's answer field `vb` (the belt's speed it was computed for), \
+                 which the mechanical view moves the belt and the block by",
     },
     Allowance {
         file: "lab/panels.js",
@@ -195,13 +202,19 @@ fn words(source: &str) -> Vec<(usize, String)> {
     out
 }
 
-/// The flags of the keys the page's form and query are about: the table's system and diode
-/// groups (the circuit's parts, R_D, the Shockley diodes' parameters, the mechanical parts,
-/// μs, ζ, the diode law and the preset).
+/// The flags of the keys the page's form and query are about: the table's system, diode and
+/// friction groups (the circuit's parts, R_D, the Shockley diodes' parameters, the
+/// mechanical parts, μs, ζ, the diode law, the preset, the belt, the friction law and its
+/// parameters).
 fn model_flags() -> Vec<&'static str> {
     Key::ALL
         .into_iter()
-        .filter(|k| matches!(k.group(), KeyGroup::System | KeyGroup::Diode))
+        .filter(|k| {
+            matches!(
+                k.group(),
+                KeyGroup::System | KeyGroup::Diode | KeyGroup::Friction
+            )
+        })
         .map(Key::flag)
         .collect()
 }
@@ -237,7 +250,12 @@ fn scripts() -> Vec<(String, &'static str)> {
 
 #[test]
 fn the_page_writes_no_model_key_by_hand() {
-    assert!(model_flags().len() >= 17, "{:?}", model_flags());
+    assert!(model_flags().len() >= 29, "{:?}", model_flags());
+    assert!(
+        model_flags().contains(&"friction-law"),
+        "{:?}",
+        model_flags()
+    );
     let (found, stale) = hand_written(&scripts());
     assert!(
         found.is_empty(),

@@ -229,7 +229,7 @@ def _axes(kwargs: Dict[str, Any], count: Sequence[int], caller: str
         wanted = " or ".join(str(c) for c in count)
         got = ", ".join(axes) or "none"
         raise TypeError(
-            f"{caller} takes {wanted} parameter arrays as keywords (of zeta, w, beta, mu_s), "
+            f"{caller} takes {wanted} parameter arrays as keywords (of {', '.join(PARAMETERS)}), "
             f"e.g. w=np.linspace(0.1, 2.5, 400), beta=np.linspace(0.5, 4, 400); got {got}"
         )
     return axes, options
@@ -264,8 +264,12 @@ def phase_diagram(experiment: Experiment, *, model: Optional[str] = None,
     """Classify the steady motion on a grid of two parameters, every point started from the
     experiment's initial state (rest, as in the paper's Fig. 7), in parallel.
 
-    Give the two parameters as keyword arrays, any two of ``zeta``, ``w``, ``beta``,
-    ``mu_s``; the first keyword is the first axis (rows), the second the second (columns).
+    Give the two parameters as keyword arrays, any two of ``PARAMETERS`` (``zeta``, ``w``,
+    ``beta``, ``mu_s``, the belt speed ``vb``, the friction laws' ``vs``, ``delta``, ``eta``,
+    ``k1``, ``k3``); the first keyword is the first axis (rows), the second the second
+    (columns), and the xarray dimensions are named by them. Without a drive (``beta=0``) a
+    belt's map, e.g. ``vb=..., mu_s=...``, has the self-excited classes 'stick-slip-cycle',
+    'pure-slip-cycle' and 'steady-sliding'.
 
     Args:
         experiment: a ``stickslip.Experiment``; it needs no value of either parameter.

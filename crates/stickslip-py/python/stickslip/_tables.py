@@ -39,6 +39,12 @@ class SweepResult:
             where not measured) and the drive frequency in Hz (NaN for a dimensionless
             experiment).
         symmetric: bool array; periods_to_settle: int64 array.
+        amplitude, y_max, y_min: float64 arrays: (y_max − y_min)/2 and the extremes of y.
+        cycle_period_tau, cycle_period_s, stick_fraction: float64 arrays, a self-excited
+            belt's (no drive): the cycle's own period in τ = ω0·t and in seconds (NaN for
+            steady sliding, a forced step, or seconds of a dimensionless experiment) and the
+            fraction of it stuck to the belt (NaN for a forced step). Sweep ``vb`` up and
+            down for the classic amplitude against belt speed, with its hysteresis.
         experiment, options: what was run.
 
     ``result[name]`` gives a column by the report's name (the CSV's and the JSON's):
@@ -48,7 +54,8 @@ class SweepResult:
     ``to_dict()`` is the library's sweep report, the JSON shape every front end gives: the
     swept parameter ``over``, the ``direction`` asked for and one dict per step in ``points``
     (``SWEEP_COLUMNS``: value, w, beta, zeta, mu_s, direction, gain, gain1, peak, A1, A3,
-    class, stops_per_period, period, phase_lag, f_Hz), as ``stickslip sweep`` writes its CSV
+    class, stops_per_period, period, phase_lag, f_Hz, amplitude, y_max, y_min,
+    cycle_period_tau, cycle_period_s, stick_fraction), as ``stickslip sweep`` writes its CSV
     columns.
     """
 
@@ -90,6 +97,12 @@ class SweepResult:
         self.A1: np.ndarray = column("A1")
         self.A3: np.ndarray = column("A3")
         self.f_Hz: np.ndarray = column("f_Hz")
+        self.amplitude: np.ndarray = column("amplitude")
+        self.y_max: np.ndarray = column("y_max")
+        self.y_min: np.ndarray = column("y_min")
+        self.cycle_period_tau: np.ndarray = column("cycle_period_tau")
+        self.cycle_period_s: np.ndarray = column("cycle_period_s")
+        self.stick_fraction: np.ndarray = column("stick_fraction")
 
     def __getitem__(self, name: str) -> np.ndarray:
         """A column by the report's name (``class`` gives the labels), or by an attribute's."""
@@ -164,6 +177,18 @@ class SweepResult:
             "gain1": (dims, table(self.gain1),
                       {"long_name": "gain of the fundamental G1 = A1/beta", "units": "1"}),
             "peak": (dims, table(self.peak), {"long_name": "largest |y|", "units": "1"}),
+            "amplitude": (dims, table(self.amplitude),
+                          {"long_name": "amplitude (y_max - y_min)/2", "units": "1"}),
+            "y_max": (dims, table(self.y_max), {"long_name": "largest y", "units": "1"}),
+            "y_min": (dims, table(self.y_min), {"long_name": "smallest y", "units": "1"}),
+            "cycle_period_tau": (dims, table(self.cycle_period_tau),
+                                 {"long_name": "period of the self-excited cycle in "
+                                               "tau = omega0 t", "units": "1"}),
+            "cycle_period_s": (dims, table(self.cycle_period_s),
+                               {"long_name": "period of the self-excited cycle", "units": "s"}),
+            "stick_fraction": (dims, table(self.stick_fraction),
+                               {"long_name": "fraction of the self-excited cycle stuck to "
+                                             "the belt", "units": "1"}),
             "phase_lag": (dims, table(self.phase_lag),
                           {"long_name": "lag of the fundamental behind the drive",
                            "units": "rad"}),
@@ -238,7 +263,8 @@ class PhaseDiagram(Generic[_Exponents]):
     ``to_dict()`` is the library's map report, the shape of ``stickslip phase-diagram``'s
     CSV and of the lab's ``/api/map``: ``lyapunov`` (whether the exponents were measured) and
     ``points``, one dict per point in the order of the grid's rows, keyed by the library's
-    columns (``_core.MAP_COLUMNS``: w, beta, class, period, stops_per_period, gain; with
+    columns (``_core.MAP_COLUMNS``: w, beta (a map over two other keys: their names),
+    class, period, stops_per_period, gain; with
     exponents ``_core.MAP_EXPONENT_COLUMNS``: lambda1, lambda1_error). ``diagram[name]``
     gives a field by the report's name (``diagram["class"]``: the labels). The names before
     (``motion`` for the codes, ``stops_per_cycle``, ``lyapunov``, ``lyapunov_error``,
@@ -329,7 +355,7 @@ class PhaseDiagram(Generic[_Exponents]):
 
     def _column(self, name: str) -> List[Any]:
         """The library's column ``name`` as plain values, the grid's rows one after the other."""
-        if name in ("w", "beta"):
+        if name in ("w", "beta") or name in self.dims:
             return _plain(self._parameter(name).ravel())
         if name == "class":
             return self.motion_class.ravel().tolist()
@@ -343,6 +369,10 @@ class PhaseDiagram(Generic[_Exponents]):
         other (as ``stickslip phase-diagram`` writes its CSV)."""
         lyapunov = self.lambda1 is not None and self.lambda1_error is not None
         names = list(_core.MAP_COLUMNS)
+        if len(self.dims) == 2 and set(self.dims) != {"w", "beta"}:
+            # A map over two other keys names them first, as the CSV does
+            # (``MapRow::columns_over``): vb, mu_s, class, ...
+            names = list(self.dims) + names[2:]
         if lyapunov:
             names += list(_core.MAP_EXPONENT_COLUMNS)
         columns = [self._column(name) for name in names]

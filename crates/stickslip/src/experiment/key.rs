@@ -1524,11 +1524,13 @@ impl Key {
     }
 
     /// The key's unit as figures and pages write it: `Ω` for `ohm`, `N·s/m` for `N s/m`,
+    /// `N·s³/m³` for `N s^3/m^3`,
     /// the others as [`Key::unit`]; `None` for a dimensionless key.
     pub fn shown_unit(self) -> Option<&'static str> {
         self.unit().map(|unit| match unit {
             "ohm" => "Ω",
             "N s/m" => "N·s/m",
+            "N s^3/m^3" => "N·s³/m³",
             unit => unit,
         })
     }
@@ -1574,6 +1576,18 @@ impl Key {
             Key::Preset => Preset::ALL.iter().map(|p| p.label()).collect(),
             Key::FrictionLaw => FrictionLawKind::ALL.iter().map(|l| l.label()).collect(),
             _ => Vec::new(),
+        }
+    }
+
+    /// The friction law whose parameter the key gives (or whose parameter its physical value
+    /// converts to): `vs`, `delta`, `eta` and their physical twins the Stribeck law's, `k1`,
+    /// `k3` and theirs the cubic law's; `None` for every other key. A law's parameters are
+    /// refused with another law ([`SpecError::OtherLaw`](super::SpecError::OtherLaw)).
+    pub fn law(self) -> Option<FrictionLawKind> {
+        match self.image_key().unwrap_or(self) {
+            Key::Vs | Key::Delta | Key::Eta => Some(FrictionLawKind::Stribeck),
+            Key::K1 | Key::K3 => Some(FrictionLawKind::Cubic),
+            _ => None,
         }
     }
 

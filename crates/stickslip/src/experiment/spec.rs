@@ -541,8 +541,14 @@ impl ExperimentSpec {
         mu_s: f64,
     ) -> Result<FrictionLaw> {
         let kind = self.law.unwrap_or_default();
-        let stribeck = [Key::Vs, Key::Delta, Key::Eta];
-        let cubic = [Key::K1, Key::K3];
+        // Each law's dimensionless parameters, in the table's order ([`Key::law`]).
+        let of = |law: FrictionLawKind| -> Vec<Key> {
+            Key::ALL
+                .into_iter()
+                .filter(|k| k.law() == Some(law) && k.image_key().is_none())
+                .collect()
+        };
+        let (stribeck, cubic) = (of(FrictionLawKind::Stribeck), of(FrictionLawKind::Cubic));
         // A parameter of a law that is not the one chosen.
         for (keys, law) in [
             (&stribeck[..], FrictionLawKind::Stribeck),

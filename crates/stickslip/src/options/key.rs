@@ -156,6 +156,10 @@ pub enum OptionKey {
     MapWSteps,
     /// Amplitudes of a map.
     MapBetaSteps,
+    /// Values of a map's first key (`--x`).
+    MapXSteps,
+    /// Values of a map's second key (`--y`).
+    MapYSteps,
     /// Lowest frequency w of a map.
     MapWMin,
     /// Highest frequency w of a map.
@@ -368,6 +372,12 @@ rows! {
     MapBetaSteps, Map, "beta-steps", "beta_steps", Count, incl(1.0), incl(100000.0), Range,
         "must be from 1 to 100000", Some(100.0),
         "Number of amplitudes from --beta-min to --beta-max, both included.";
+    MapXSteps, Map, "x-steps", "x_steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", Some(100.0),
+        "Number of values of --x from --x-from to --x-to, both included.";
+    MapYSteps, Map, "y-steps", "y_steps", Count, incl(1.0), incl(100000.0), Range,
+        "must be from 1 to 100000", Some(100.0),
+        "Number of values of --y from --y-from to --y-to, both included.";
     MapWMin, Map, "w-min", "w_min", Number, incl(1e-5), incl(1e5), Range,
         "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(0.1),
         "Lowest drive frequency w.";

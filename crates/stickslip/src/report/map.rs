@@ -2,6 +2,7 @@
 //! grid of (w, β).
 
 use super::{cell, optional, Table};
+use crate::params::Parameter;
 use crate::scan::GridPoint;
 use crate::steady::MotionClass;
 use serde::Serialize;
@@ -80,6 +81,28 @@ impl MapRow {
             row.push(optional(self.lambda1_error));
         }
         row
+    }
+
+    /// The columns of a map over two keys `first` × `second` (any two [`Parameter`]s: the
+    /// belt speed and μs, say): the keys' names ([`Parameter::label`]), then the columns of
+    /// [`MapRow::columns`] after w and β. For (w, β) they are [`MapRow::columns`].
+    pub fn columns_over(first: Parameter, second: Parameter, lyapunov: bool) -> Vec<&'static str> {
+        let mut columns = vec![first.label(), second.label()];
+        columns.extend(Self::columns(lyapunov).into_iter().skip(2));
+        columns
+    }
+
+    /// The row as a CSV line of a map over two keys ([`MapRow::columns_over`]), with its
+    /// newline, appended to `out`: the values `at` of the two keys at the point, then the
+    /// cells of [`MapRow::cells`] after w and β.
+    pub fn write_row_over(&self, at: (f64, f64), lyapunov: bool, out: &mut String) {
+        let cells = self.cells(lyapunov);
+        let _ = write!(out, "{},{}", at.0, at.1);
+        for c in &cells[2..] {
+            out.push(',');
+            out.push_str(c);
+        }
+        out.push('\n');
     }
 
     /// Append the row as a CSV line, with its newline, to `out`.

@@ -1,6 +1,6 @@
 //! The report of a sweep: one row per step, in the order the steps were computed.
 
-use super::{cell, Table};
+use super::{cell, optional, Table};
 use crate::experiment::Experiment;
 use crate::params::Parameter;
 use crate::scan::{SweepDirection, SweepLeg, SweepPoint};
@@ -11,7 +11,9 @@ use serde::Serialize;
 ///
 /// The JSON fields are the CSV's columns (`w`, `beta`, `direction`, `gain`, `gain1`, `A1`,
 /// `A3`, `class`, `stops_per_period`; the swept value as `value`) and what the CSV leaves
-/// out (`zeta`, `mu_s`, `peak`, `period`, `phase_lag`, `f_Hz`).
+/// out (`zeta`, `mu_s`, `peak`, `period`, `phase_lag`, `f_Hz`), then what a self-excited
+/// belt's sweep writes ([`SweepRow::SELF_EXCITED_COLUMNS`]: `amplitude`, `y_max`, `y_min`,
+/// `cycle_period_tau`, `cycle_period_s`, `stick_fraction`; null where a step has none).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SweepRow {
     /// The swept parameter's value.
@@ -51,6 +53,21 @@ pub struct SweepRow {
     /// Drive frequency in Hz, for a physical description.
     #[serde(rename = "f_Hz")]
     pub f_hz: Option<f64>,
+    /// Amplitude (y_max − y_min)/2 of the steady motion (`None` for a step restored from a
+    /// file that did not keep it).
+    pub amplitude: Option<f64>,
+    /// Largest y of the steady motion (`None`: not kept).
+    pub y_max: Option<f64>,
+    /// Smallest y of the steady motion (`None`: not kept).
+    pub y_min: Option<f64>,
+    /// The period of a self-excited cycle in τ = ω0·t (`None`: a forced step, steady
+    /// sliding, or no cycle found).
+    pub cycle_period_tau: Option<f64>,
+    /// The same period in seconds, for a physical description.
+    pub cycle_period_s: Option<f64>,
+    /// The fraction of a self-excited cycle stuck to the belt (`None`: a forced step; 0 for
+    /// steady sliding).
+    pub stick_fraction: Option<f64>,
 }
 
 impl SweepRow {
@@ -77,7 +94,29 @@ impl SweepRow {
             f_hz: experiment
                 .scales()
                 .map(|sc| sc.drive_omega(point.params.w) / std::f64::consts::TAU),
+            amplitude: Some(s.amplitude()),
+            y_max: Some(s.y_max),
+            y_min: Some(s.y_min),
+            cycle_period_tau: s.self_excited.and_then(|c| c.period),
+            cycle_period_s: None,
+            stick_fraction: s.self_excited.map(|c| c.stick_fraction),
         }
+        .with_seconds(experiment)
+    }
+
+    /// The row with [`SweepRow::cycle_period_s`] from its period in τ, for a physical
+    /// `experiment` (seconds = τ/ω0).
+    pub fn with_seconds(mut self, experiment: &Experiment) -> Self {
+        self.cycle_period_s = experiment
+            .scales()
+            .zip(self.cycle_period_tau)
+            .map(|(sc, tau)| tau / sc.omega0);
+        self
+    }
+
+    /// Whether the step is a self-excited belt's (no drive; its period is its own).
+    pub fn is_self_excited(&self) -> bool {
+        self.stick_fraction.is_some()
     }
 }
 
@@ -116,15 +155,30 @@ impl SweepReport {
     }
 
     /// Whether the CSV puts the swept value in a column of its own, first (a sweep of ζ, μs
-    /// or the belt speed vb, whose value is not among the other columns).
+    /// or the belt speed vb, whose value is not among the other columns, and every sweep of a
+    /// self-excited belt).
     pub fn value_column(&self) -> bool {
-        !matches!(self.over, Parameter::W | Parameter::Beta)
+        self.self_excited() || !matches!(self.over, Parameter::W | Parameter::Beta)
+    }
+
+    /// Whether a step is a self-excited belt's (a belt without a drive): the CSV then has
+    /// the columns of the classic amplitude against belt speed
+    /// ([`SweepRow::SELF_EXCITED_COLUMNS`]) instead of the gains and harmonics, which a
+    /// motion without a drive does not have.
+    pub fn self_excited(&self) -> bool {
+        self.points.iter().any(SweepRow::is_self_excited)
+    }
+
+    /// Whether the description is physical (the CSV of a self-excited sweep then has the
+    /// period in seconds too).
+    fn physical(&self) -> bool {
+        self.points.iter().any(|p| p.f_hz.is_some())
     }
 }
 
 impl SweepRow {
     /// The JSON fields of a row, in order: the CSV's columns and what the CSV leaves out.
-    pub const FIELDS: [&'static str; 16] = [
+    pub const FIELDS: [&'static str; 22] = [
         "value",
         "w",
         "beta",
@@ -141,6 +195,25 @@ impl SweepRow {
         "period",
         "phase_lag",
         "f_Hz",
+        "amplitude",
+        "y_max",
+        "y_min",
+        "cycle_period_tau",
+        "cycle_period_s",
+        "stick_fraction",
+    ];
+
+    /// The columns of a self-excited belt's sweep after the swept value's (the classic
+    /// amplitude against belt speed); `cycle_period_s` only for a physical description.
+    pub const SELF_EXCITED_COLUMNS: [&'static str; 8] = [
+        "direction",
+        "amplitude",
+        "y_max",
+        "y_min",
+        "cycle_period_tau",
+        "cycle_period_s",
+        "stick_fraction",
+        "class",
     ];
 
     /// The columns of a sweep's CSV after the swept value's own column (which a sweep of ζ, μs
@@ -160,13 +233,27 @@ impl SweepRow {
 
 impl Table for SweepReport {
     /// `w,beta,direction,gain,gain1,A1,A3,class,stops_per_period` ([`SweepRow::COLUMNS`]),
-    /// after `zeta`, `mu_s` or `vb` for a sweep of that parameter.
+    /// after `zeta`, `mu_s` or `vb` for a sweep of that parameter; a self-excited belt's
+    /// sweep: the swept parameter, then
+    /// `direction,amplitude,y_max,y_min,cycle_period_tau,stick_fraction,class`
+    /// ([`SweepRow::SELF_EXCITED_COLUMNS`], `cycle_period_s` after `cycle_period_tau` for a
+    /// physical description).
     fn columns(&self) -> Vec<String> {
         let mut columns = Vec::new();
         if self.value_column() {
             columns.push(self.over.label().to_string());
         }
-        columns.extend(SweepRow::COLUMNS.map(String::from));
+        if self.self_excited() {
+            let physical = self.physical();
+            columns.extend(
+                SweepRow::SELF_EXCITED_COLUMNS
+                    .into_iter()
+                    .filter(|&c| physical || c != "cycle_period_s")
+                    .map(String::from),
+            );
+        } else {
+            columns.extend(SweepRow::COLUMNS.map(String::from));
+        }
         columns
     }
 
@@ -179,6 +266,21 @@ impl Table for SweepReport {
         let mut row = Vec::with_capacity(10);
         if self.value_column() {
             row.push(cell(p.value));
+        }
+        if self.self_excited() {
+            let number = |x: Option<f64>| cell(x.unwrap_or(f64::NAN));
+            row.extend([
+                p.direction.label().to_string(),
+                number(p.amplitude),
+                number(p.y_max),
+                number(p.y_min),
+                optional(p.cycle_period_tau),
+            ]);
+            if self.physical() {
+                row.push(optional(p.cycle_period_s));
+            }
+            row.extend([optional(p.stick_fraction), p.class.label().to_string()]);
+            return row;
         }
         row.extend([
             cell(p.w),

@@ -19,6 +19,7 @@
 
 mod classify;
 mod cycle;
+mod cycle_trace;
 mod exponent;
 mod extremes;
 mod newton;
@@ -32,6 +33,7 @@ mod state;
 pub use classify::{classify, Classification, MotionClass, STATIC_GAIN};
 pub(crate) use cycle::settle_from;
 pub use cycle::{check_horizon, steady_state, steady_state_from};
+pub use cycle_trace::self_excited_trace;
 pub(crate) use exponent::settle_with_exponent;
 pub use exponent::{
     periodic_orbit_from_steady, periodic_orbit_from_steady_of, steady_exponent, steady_exponent_of,

@@ -19,7 +19,9 @@
 //!   y = y_e = sgn(vb)·μ(|vb|), reached when the turning points' distance from y_e falls below
 //!   the tolerance, or decays geometrically (three ratios of successive distances agreeing to
 //!   10⁻³, all below 1, the distance below 10⁻² of the scale): the linearisation about y_e,
-//!   y'' + (2ζ + μ'(|vb|)) y' + y = 0, then takes it there.
+//!   y'' + (2ζ + μ'(|vb|)) y' + y = 0, then takes it there. A damped Coulomb belt is decided
+//!   at the first turning point nearer y_e than |vb|: from there its slide can never stick
+//!   again (its energy falls), so it is the linear one and decays onto y_e.
 //!
 //! Beside the class every answer carries the equilibrium y_e and its stability: small
 //! oscillations about steady sliding are damped by 2ζ + μ'(|vb|) (stable where positive,
@@ -296,7 +298,7 @@ pub fn self_excited_state<S: Solver + ?Sized>(
                     return finish(CycleSection::TurningPoint, &turning, p, &log);
                 }
             }
-            if distance <= limit || decays(&distances, scale) {
+            if distance <= limit || decays(&distances, scale) || never_sticks(&params, distance) {
                 return Ok(sliding(&params, point.tau, equilibrium, damping));
             }
         }
@@ -327,6 +329,18 @@ pub fn self_excited_state<S: Solver + ?Sized>(
         damping,
         cap - start,
     ))
+}
+
+/// Whether a damped Coulomb belt's slide from a turning point at `distance` from steady
+/// sliding ends there, exactly: while the slip keeps its sign the slide is the linear
+/// y'' + 2ζ y' + y = y_e, whose energy (y − y_e)² + y'² falls at the rate 4ζ y'², so from a
+/// turning point (y' = 0) on |y'| ≤ `distance`; below |vb| the slip s = y' − vb never
+/// reaches 0, the block never sticks again and the slide decays onto y_e (ζ > 0). (The
+/// geometric test of [`decays`] waits for the distance to fall below 10⁻² of the scale;
+/// this one decides a map's sliding points several natural periods sooner, with the same
+/// class.)
+fn never_sticks(params: &Params, distance: f64) -> bool {
+    params.law.is_coulomb() && params.zeta > 0.0 && distance < params.vb.abs()
 }
 
 /// Whether the last distances from steady sliding decay geometrically (see the module

@@ -11,8 +11,9 @@
 //!   they do not exist (the curves drawn over sweeps and maps).
 //! - [`report`]: both theories side by side at one point ([`TheoryReport`]).
 //! - [`belt`]: the block on a moving belt without a drive: the undamped Coulomb belt's
-//!   stick-slip cycle in closed form ([`CoulombBeltCycle`]), and the stability of steady
-//!   sliding.
+//!   stick-slip cycle in closed form ([`CoulombBeltCycle`]), the stability of steady
+//!   sliding ([`SteadySliding`]), and the cubic law's cycles to first order after Thomsen &
+//!   Fidlin ([`CubicBeltApproximation`]).
 //!
 //! ```
 //! use stickslip::theory::{paper_boundary, stick_slip_boundary, PaperSeries, PeriodicSolution};
@@ -38,7 +39,7 @@ pub mod paper;
 pub mod periodic;
 pub mod report;
 
-pub use belt::CoulombBeltCycle;
+pub use belt::{CoulombBeltCycle, CubicBeltApproximation, CubicBeltMotion, SteadySliding};
 pub use boundary::{stick_slip_boundary, StickSlipBoundary};
 pub use fourier::Harmonic;
 pub use paper::{paper_boundary, PaperHarmonic, PaperSeries, UndampedSeries};

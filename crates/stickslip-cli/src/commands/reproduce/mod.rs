@@ -2,6 +2,7 @@
 //! and SVG with the data behind each as CSV, an `index.html` and a `summary.json`; then the
 //! chapter "Beyond the paper".
 
+mod belt;
 mod beyond;
 mod figures;
 mod report;
@@ -9,6 +10,7 @@ mod report;
 /// The columns of the report's own CSV files, each written once beside its figure (the files
 /// that hold a library result take their columns from the library's table).
 pub mod columns {
+    pub use super::belt::{APPROXIMATION_COLUMNS, BELT_SWEEP_COLUMNS, CLOSED_FORM_COLUMNS};
     pub use super::beyond::SPECIAL_COLUMNS;
     pub use super::figures::{
         ACCURACY_COLUMNS, DIODE_COLUMNS, FIG5_LEADING, FRICTION_COLUMNS, SPECTRA_COLUMNS,
@@ -135,6 +137,8 @@ pub fn run(args: Args) -> Result<()> {
     ];
     // The chapter "Beyond the paper": its heading, then its figures.
     jobs.extend_from_slice(beyond::JOBS);
+    // The chapter "Friction-induced vibration": the block on a moving belt.
+    jobs.extend_from_slice(belt::JOBS);
     eprintln!(
         "reproduce: the paper's circuit (preset paper): L = 11.5 mH, C = 0.02 µF, R = 68 Ω, \
          U_t = 0.7 V, R_D = 3.0 Ω; writing {}",
