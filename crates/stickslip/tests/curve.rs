@@ -5,8 +5,9 @@
 //! derivatives against difference quotients.
 
 use stickslip::continuation::{
-    continue_orbit, curve, settled_orbit, BorderKind, Codim2Kind, ContinuationOptions, Curve,
-    CurveEnd, CurveReport, CurveSpec, Follow, SpecialKind, SpecialPoint,
+    continue_orbit, curve, curve_within, settled_orbit, BorderKind, Codim2Kind,
+    ContinuationOptions, Curve, CurveEnd, CurveReport, CurveSpec, Follow, SpecialKind,
+    SpecialPoint,
 };
 use stickslip::stability::{find_periodic_orbit, NewtonOptions};
 use stickslip::theory::stick_slip_boundary;
@@ -87,6 +88,65 @@ fn located_where(
         .iter()
         .find(|s| s.kind == kind && s.located && which(s))
         .map(|s| s.value)
+}
+
+#[test]
+fn a_range_of_the_varied_parameter_ends_the_curve_where_it_is_left() {
+    // The exact stick-slip boundary β_c(w) dips near resonance: kept below a β between its
+    // value at the start (w = 1.2) and at the ends of w's range, the curve ends on both sides
+    // where β reaches that value, inside w's range, every point still on β_c.
+    let e = experiment(PAPER_ZETA, 1.0, 1.2, 3.0, State { y: 0.0, v: 0.0 });
+    let spec = CurveSpec {
+        follow: Follow::Grazing,
+        vary: Parameter::Beta,
+        vary_to: 0.5,
+        over: Parameter::W,
+        from: 0.6,
+        to: 2.0,
+    };
+    let whole = traced(&e, &spec);
+    let at_start = whole.points[whole.start].vary;
+    let ends = whole.points[0].vary.min(whole.points.last().unwrap().vary);
+    assert!(
+        at_start < ends,
+        "β {at_start} at the start, {ends} at the ends"
+    );
+    let top = 0.5 * (at_start + ends);
+    let c = curve_within(
+        &e,
+        &spec,
+        Some((top, 0.0)),
+        &ContinuationOptions::default(),
+        &(),
+    )
+    .expect("no error")
+    .unwrap_or_else(|no| panic!("no start: {no}"));
+    assert_eq!(c.begin, CurveEnd::Boundary { value: top });
+    assert_eq!(c.end, CurveEnd::Boundary { value: top });
+    let (first, last) = (&c.points[0], c.points.last().unwrap());
+    assert!((first.vary - top).abs() <= 1e-12 * top, "{}", first.vary);
+    assert!((last.vary - top).abs() <= 1e-12 * top, "{}", last.vary);
+    assert!(0.6 < first.over && last.over < 2.0);
+    assert!(c.points.len() >= 10 && c.points.len() < whole.points.len());
+    for p in &c.points {
+        assert!(p.vary <= top * (1.0 + 1e-12), "β = {} above {top}", p.vary);
+        let exact = stick_slip_boundary(PAPER_ZETA, p.over, 1.0).unwrap().beta_c;
+        assert!(
+            (p.vary - exact).abs() < 1e-8,
+            "w = {}: β = {}",
+            p.over,
+            p.vary
+        );
+    }
+    // A range of β that does not hold the start's β is refused.
+    let outside = curve_within(
+        &e,
+        &spec,
+        Some((top + 1.0, top + 2.0)),
+        &ContinuationOptions::default(),
+        &(),
+    );
+    assert!(outside.is_err());
 }
 
 #[test]

@@ -76,6 +76,8 @@ fn every_csv_has_its_columns(report: &Path, html: &str) {
         ("fig6.csv", trace),
         ("fig7a.csv", names(&map)),
         ("fig7b.csv", names(&map)),
+        // Fig. 7's grazing curves: the same table in (β, w).
+        ("fig7-grazing.csv", curve.clone()),
         ("accuracy.csv", names(&columns::ACCURACY_COLUMNS)),
         ("chaos-sweep.csv", names(&exponents)),
         ("chaos-map.csv", names(&exponents)),
@@ -359,6 +361,7 @@ fn writes_every_figure_table_and_the_report() {
     assert!(map["chaotic"].as_u64().unwrap() > 0, "{map}");
     above_the_boundary_the_sliding_orbit_exists(&report, map, &html);
     curves_over_the_chaos_map(&report);
+    fig7s_grazing_curves(&report, &summary["fig7a_curves"], &html);
     assert_eq!(map["periodic_with_positive_exponent"], 0, "{map}");
     let paper = &summary["beyond_paper_exponents"];
     assert_eq!(paper["positive"], 0, "{paper}");
@@ -411,6 +414,43 @@ fn writes_every_figure_table_and_the_report() {
 /// The chaos map's curves: a legend entry per kind, and each kind's CSV holding curves of
 /// that kind (their followed multiplier at +1 or −1) inside the map's range of β, one start
 /// marked per curve.
+/// Fig. 7's grazing curves: in both panels' legends, one start per curve in
+/// fig7-grazing.csv, inside the map's range of β, and on the map's edges: nearly every
+/// change of the number of stops per period between neighbouring cells has a curve between
+/// them, and nearly every pair with a curve between them changes region (the counts the
+/// caption gives).
+fn fig7s_grazing_curves(report: &Path, counts: &serde_json::Value, html: &str) {
+    let svg = std::fs::read_to_string(report.join("fig7.svg")).unwrap();
+    let legend: Vec<&str> = svg.lines().map(str::trim).collect();
+    assert!(legend.contains(&"grazing curves") && legend.contains(&"PWL grazing curves"));
+    let csv = Csv::read(report, "fig7-grazing.csv");
+    let (beta, special) = (csv.at("beta"), csv.at("special"));
+    let starts = csv
+        .rows
+        .iter()
+        .filter(|r| r[special].split(';').any(|s| s == "start"))
+        .count();
+    let curves = counts["curves"].as_u64().unwrap() as usize;
+    assert!(curves >= 1, "{counts}");
+    assert_eq!(starts, curves, "fig7-grazing.csv: the curves' starts");
+    for r in &csv.rows {
+        let b: f64 = r[beta].parse().unwrap();
+        assert!((0.5..=4.0).contains(&b), "fig7-grazing.csv: β = {b}");
+    }
+    let n = |key: &str| counts[key].as_u64().unwrap() as usize;
+    let (edges, crossed) = (n("stop_edges"), n("stop_edges_crossed"));
+    assert!(edges > 0 && crossed * 10 >= edges * 9, "{counts}");
+    let (odd, changing) = (n("pairs_crossed_odd"), n("pairs_crossed_odd_changing"));
+    assert!(odd > 0 && changing * 10 >= odd * 9, "{counts}");
+    let (sliding, under) = (n("sliding_edges"), n("sliding_edges_crossed_by_beta_c"));
+    assert!(sliding > 0 && under * 10 >= sliding * 9, "{counts}");
+    let said = format!(
+        "of the {edges} pairs of neighbouring cells of (a) whose numbers of stops per period \
+         differ, {crossed} ("
+    );
+    assert!(html.contains(&said), "fig7 does not say: {said}");
+}
+
 fn curves_over_the_chaos_map(report: &Path) {
     let svg = std::fs::read_to_string(report.join("chaos-map.svg")).unwrap();
     for (label, file, starts, multiplier) in [

@@ -136,6 +136,6 @@ mod types;
 
 pub use kinds::{BorderKind, Codim2Kind, Follow};
 pub use report::{Codim2Report, CurveReport, CurveSideReport, CurveStartReport};
-pub use start::{check_spec, curve, find_start, CurveSpec, CurveStart, NoStart};
-pub use trace::follow_curve;
+pub use start::{check_spec, curve, curve_within, find_start, CurveSpec, CurveStart, NoStart};
+pub use trace::{follow_curve, follow_curve_within};
 pub use types::{Border, Codim2Point, Curve, CurveEnd, CurvePoint, CurveSide, StabilityChange};

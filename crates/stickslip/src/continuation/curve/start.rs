@@ -4,7 +4,7 @@
 
 use super::border::{candidates, nearest, Candidate};
 use super::system::{Plane, System};
-use super::{follow_curve, Border, BorderKind, Curve, Follow};
+use super::{follow_curve_within, Border, BorderKind, Curve, Follow};
 use crate::continuation::corrector::counts;
 use crate::continuation::{
     continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
@@ -389,16 +389,31 @@ pub fn check_spec(spec: &CurveSpec) -> Result<()> {
 }
 
 /// The curve of `spec` from the orbit the motion of `experiment` settles on (its value of Q
-/// must lie between `from` and `to`): [`settled_orbit`], [`find_start`], [`follow_curve`].
+/// must lie between `from` and `to`): [`settled_orbit`], [`find_start`], [`super::follow_curve`].
 /// `monitor` sees the search's points, then each way's.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for bad ends or parameters, or a motion that comes to rest;
-/// as [`settled_orbit`], [`find_start`] and [`follow_curve`]; `Ok(Err(NoStart))` when the
+/// as [`settled_orbit`], [`find_start`] and [`super::follow_curve`]; `Ok(Err(NoStart))` when the
 /// branch has no special point of the kind.
 pub fn curve(
     experiment: &Experiment,
     spec: &CurveSpec,
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<std::result::Result<Curve, NoStart>> {
+    curve_within(experiment, spec, None, options, monitor)
+}
+
+/// [`curve`] with P kept within `vary_range` along the curve when given (the search for the
+/// start is not bounded by it): see [`follow_curve_within`].
+///
+/// # Errors
+/// As [`curve`] and [`follow_curve_within`].
+pub fn curve_within(
+    experiment: &Experiment,
+    spec: &CurveSpec,
+    vary_range: Option<(f64, f64)>,
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
 ) -> Result<std::result::Result<Curve, NoStart>> {
@@ -449,9 +464,10 @@ pub fn curve(
         Ok(start) => start,
         Err(no) => return Ok(Err(no)),
     };
-    Ok(Ok(follow_curve(
+    Ok(Ok(follow_curve_within(
         &start,
         (spec.from, spec.to),
+        vary_range,
         &options,
         monitor,
     )?))

@@ -426,7 +426,7 @@ fn refined(
 }
 
 /// A curve followed one way from `start` (its tangent pointing the way), with Q within
-/// `range`.
+/// `range` and P within `vary_range` when given.
 struct OneWay {
     points: Vec<CurvePoint>,
     codim2: Vec<Codim2Point>,
@@ -437,6 +437,7 @@ fn one_way(
     system: &System,
     start: Node,
     (lo, hi): (f64, f64),
+    vary_range: Option<(f64, f64)>,
     monitor: &dyn Monitor,
 ) -> Result<OneWay> {
     let mut system = system.clone();
@@ -569,18 +570,29 @@ fn one_way(
                 break end;
             }
         }
-        // Past an end of Q's range: the point at the end itself.
+        // Past an end of Q's range, or of P's when it has one: the point at the end itself
+        // (of the range the step leaves first).
         let mut boundary = None;
         let mut sigma = ds;
-        if next.u[2] < lo || next.u[2] > hi {
-            let bound = if next.u[2] > hi { hi } else { lo };
-            let s = (bound - current.u[2]) / (next.u[2] - current.u[2]);
+        let mut exit: Option<(usize, f64, f64)> = None;
+        for (index, range) in [(2, Some((lo, hi))), (3, vary_range)] {
+            let Some((l, h)) = range else { continue };
+            let x = next.u[index];
+            if x < l || x > h {
+                let bound = if x > h { h } else { l };
+                let s = (bound - current.u[index]) / (x - current.u[index]);
+                if exit.is_none_or(|e| s < e.2) {
+                    exit = Some((index, bound, s));
+                }
+            }
+        }
+        if let Some((index, bound, s)) = exit {
             let guess: U = std::array::from_fn(|i| current.u[i] + s * (next.u[i] - current.u[i]));
             match system.correct(
                 &guess,
                 current.tau,
                 &Plane::Fixed {
-                    index: 2,
+                    index,
                     value: bound,
                 },
                 &current.tangent,
@@ -724,6 +736,24 @@ pub fn follow_curve(
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
 ) -> Result<Curve> {
+    follow_curve_within(start, (from, to), None, options, monitor)
+}
+
+/// [`follow_curve`] with P kept within `vary_range` (its ends in either order) when given: a
+/// way that leaves it ends at the point where P equals the end it passes
+/// ([`CurveEnd::Boundary`] with that end's value). The two ways are traced at once (each on
+/// its own thread when there are several); the curve is the same for any number of threads.
+///
+/// # Errors
+/// As [`follow_curve`]; [`Error::InvalidParameter`] for a range of P whose ends are not finite
+/// or are equal, or that does not hold the start's value of P.
+pub fn follow_curve_within(
+    start: &CurveStart,
+    (from, to): (f64, f64),
+    vary_range: Option<(f64, f64)>,
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<Curve> {
     let options = options.validate()?;
     crate::continuation::check_ends(from, to)?;
     let (lo, hi) = (from.min(to), from.max(to));
@@ -735,6 +765,30 @@ pub fn follow_curve(
             allowed: "the curve's start value must lie between from and to",
         });
     }
+    let vary_range = match vary_range {
+        Some((a, b)) => {
+            let p0 = start.vary.get(&start.params);
+            let (l, h) = (a.min(b), a.max(b));
+            if !(a.is_finite() && b.is_finite() && l < h) {
+                return Err(Error::InvalidParameter {
+                    name: start.vary.label(),
+                    value: if a.is_finite() { b } else { a },
+                    allowed: "the ends of the range of the varied parameter must be finite \
+                              numbers that differ",
+                });
+            }
+            if !(l <= p0 && p0 <= h) {
+                return Err(Error::InvalidParameter {
+                    name: start.vary.label(),
+                    value: p0,
+                    allowed: "the curve's start value of the varied parameter must lie within \
+                              its range",
+                });
+            }
+            Some((l, h))
+        }
+        None => None,
+    };
     let system = System {
         base: start.params,
         over: start.over,
@@ -746,18 +800,15 @@ pub fn follow_curve(
         phase: 0.0,
     };
     let towards = (to - a0).signum();
-    let forward = if a0 != to {
-        let (system, node) = oriented(&system, start, towards)?;
-        Some(one_way(&system, node, (lo, hi), monitor)?)
-    } else {
-        None
+    let way = |ahead: bool, direction: f64| -> Result<Option<OneWay>> {
+        if !ahead {
+            return Ok(None);
+        }
+        let (system, node) = oriented(&system, start, direction)?;
+        Ok(Some(one_way(&system, node, (lo, hi), vary_range, monitor)?))
     };
-    let backward = if a0 != from {
-        let (system, node) = oriented(&system, start, -towards)?;
-        Some(one_way(&system, node, (lo, hi), monitor)?)
-    } else {
-        None
-    };
+    let (forward, backward) = rayon::join(|| way(a0 != to, towards), || way(a0 != from, -towards));
+    let (forward, backward) = (forward?, backward?);
     let mut points = Vec::new();
     let mut codim2 = Vec::new();
     let mut begin = CurveEnd::Start;

@@ -117,7 +117,8 @@ pub struct StabilityChange {
 pub enum CurveEnd {
     /// The point the curve started from (the start of a one-way curve).
     Start,
-    /// Q reached an end of its range.
+    /// Q reached an end of its range (or P an end of its range, when the curve was asked to
+    /// keep P within one: [`follow_curve_within`](super::follow_curve_within)).
     Boundary {
         /// The end of the range.
         value: f64,

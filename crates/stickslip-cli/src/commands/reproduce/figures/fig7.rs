@@ -1,12 +1,14 @@
 //! Fig. 7: stick-slip phase diagrams over the paper's range, PWL and Shockley diodes.
 
 use super::super::beyond::paper_exponent_map;
-use super::super::report::{Report, Section};
+use super::super::report::{sig, Report, Section};
 use super::super::{Context, Later};
-use crate::plot::{class_color, Cell, Figure, Legend, Panel};
+use super::fig7_curves::{check_edges, stop_curves, MapGrid};
+use crate::plot::{class_color, Cell, Figure, Legend, Panel, Series, Style};
 use anyhow::Result;
+use plotters::style::RGBColor;
 use serde_json::{json, Value};
-use stickslip::report::MapReport;
+use stickslip::report::{CurveTable, MapReport};
 use stickslip::scan::{Axis, Grid, GridPoint, ParameterRange};
 use stickslip::stability::SEARCH_BEFORE_MEASURING;
 use stickslip::steady::MotionClass;
@@ -22,6 +24,9 @@ use stickslip::{DiodePair, Experiment, Parameter};
 /// Since Newton settles Shockley points too, those 2 points of the 24 × 24 settle on the
 /// period-1 orbit their strobes wander around (gain within 1.7·10⁻⁶ of the wandering one).
 const SHOCKLEY_MAX_PERIODS: usize = 500;
+
+/// The grazing curves' legend entry.
+const GRAZING_LABEL: &str = "grazing curves";
 
 /// A map from rest over the paper's range, with its grid.
 struct Map {
@@ -182,9 +187,55 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
     let pwl = Map::paper(ctx)?;
     let ShockleyMap(shockley) = ctx.shockley_map.take()?;
 
+    // The edges between numbers of stops per period, traced as grazing curves from the PWL
+    // map's own changes of region.
+    let grid = MapGrid {
+        points: &pwl.points,
+        w: &pwl.w,
+        beta: &pwl.beta,
+    };
+    let started = std::time::Instant::now();
+    let traced = stop_curves(&ctx.paper, &grid)?;
+    eprintln!(
+        "reproduce: Fig. 7's {} grazing curves ({} starts tried) in {:.1} s",
+        traced.curves.len(),
+        traced.tried,
+        started.elapsed().as_secs_f64()
+    );
+    let boundaries = super::theory_curves::boundary_curves(ctx, 0.1, 2.5)?;
+    let exact = boundaries
+        .iter()
+        .find(|s| s.label == super::theory_curves::EXACT_LABEL)
+        .map(|s| s.points.clone())
+        .unwrap_or_default();
+    let check = check_edges(&grid, &traced.curves, &exact);
+    // One line for all the curves (a non-finite point between two curves breaks it), cut
+    // where it leaves the map's range of w.
+    let (w_lo, w_hi) = (
+        pwl.w.from() - 0.5 * pwl.w.spacing(),
+        pwl.w.to() + 0.5 * pwl.w.spacing(),
+    );
+    let mut line = Vec::new();
+    for c in &traced.curves {
+        if !line.is_empty() {
+            line.push((f64::NAN, f64::NAN));
+        }
+        line.extend(c.points.iter().map(|p| {
+            if (w_lo..=w_hi).contains(&p.vary) {
+                (p.vary, p.over)
+            } else {
+                (f64::NAN, f64::NAN)
+            }
+        }));
+    }
+    let grazing =
+        |label: &str| Series::new(label, line.clone(), RGBColor(0, 150, 0), Style::Line(2));
+
     let mut a = pwl.panel("(a) PWL diodes (exact solver)");
-    a.series
-        .extend(super::theory_curves::boundary_curves(ctx, 0.1, 2.5)?);
+    a.series.extend(boundaries);
+    if !traced.curves.is_empty() {
+        a.series.push(grazing(GRAZING_LABEL));
+    }
     let mut b = shockley.panel("(b) Shockley diodes (stiff solver)");
     // The curves are the PWL model's in both panels (the Shockley law has no closed-form
     // boundary): (b)'s legend says so.
@@ -196,6 +247,9 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
                 s
             }),
     );
+    if !traced.curves.is_empty() {
+        b.series.push(grazing(&format!("PWL {GRAZING_LABEL}")));
+    }
     report.figure(
         "fig7",
         &Figure {
@@ -207,7 +261,135 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
     // The CSV of `stickslip phase-diagram --out`: the library's table of a map.
     report.table("fig7a.csv", &MapReport::new(&pwl.points, false))?;
     report.table("fig7b.csv", &MapReport::new(&shockley.points, false))?;
+    // The grazing curves one after another (each begins where its arclength is 0).
+    let tables: Vec<CurveTable> = traced
+        .curves
+        .iter()
+        .map(|curve| CurveTable { curve })
+        .collect();
+    report.tables(
+        "fig7-grazing.csv",
+        &[],
+        tables.iter().map(|t| (Vec::new(), t)),
+    )?;
     report.summary.insert("fig7a".into(), pwl.summary());
+    report.summary.insert(
+        "fig7a_curves".into(),
+        json!({
+            "curves": traced.curves.len(),
+            "points": traced.curves.iter().map(|c| c.points.len()).sum::<usize>(),
+            "starts_tried": traced.tried,
+            "starts_without_grazing": traced.no_start,
+            "stop_edges": check.stop_edges,
+            "stop_edges_crossed": check.stop_edges_crossed,
+            "pairs_crossed_odd": check.crossed,
+            "pairs_crossed_odd_changing": check.crossed_changing,
+            "pairs_crossed_even": check.crossed_even,
+            "pairs_crossed_even_same": check.crossed_even_same,
+            "sliding_edges": check.sliding_edges,
+            "sliding_edges_crossed_by_beta_c": check.sliding_edges_crossed,
+        }),
+    );
+    let mut stops: Vec<f64> = pwl
+        .points
+        .iter()
+        .filter(|p| p.class == MotionClass::PeriodicStick)
+        .map(|p| p.stops_per_period)
+        .collect();
+    stops.sort_by(f64::total_cmp);
+    stops.dedup();
+    let show = |s: &f64| {
+        if s.fract() == 0.0 {
+            format!("{s:.0}")
+        } else {
+            sig(*s, 3)
+        }
+    };
+    let stop_counts = match stops.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!(
+            "{} or {}",
+            rest.iter().map(show).collect::<Vec<_>>().join(", "),
+            show(last)
+        ),
+        _ => stops.iter().map(show).collect::<String>(),
+    };
+    let curve_list = traced
+        .curves
+        .iter()
+        .map(|c| {
+            let range = |f: &dyn Fn(&stickslip::continuation::CurvePoint) -> f64| {
+                c.points
+                    .iter()
+                    .map(f)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                        (lo.min(x), hi.max(x))
+                    })
+            };
+            let (b0, b1) = range(&|p| p.over);
+            let (w0, w1) = range(&|p| p.vary);
+            let start = &c.points[c.start];
+            format!(
+                "{} (the period-{} orbit with {} stops per period on its side; β from {} to \
+                 {}, w from {} to {})",
+                c.border.map_or("a grazing", |b| b.kind.words()),
+                c.period,
+                show(&start.stops_per_period()),
+                sig(b0, 3),
+                sig(b1, 3),
+                sig(w0, 3),
+                sig(w1, 3),
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    let percent = |part: usize, whole: usize| {
+        if whole == 0 {
+            "—".to_string()
+        } else {
+            format!("{:.0} %", 100.0 * part as f64 / whole as f64)
+        }
+    };
+    let curves_note = format!(
+        "The green lines are grazing curves traced exactly in (β, w) by `continuation::curve` \
+         (stickslip curve --follow grazing --vary w --over beta), each started from a pair of \
+         neighbouring cells of (a) along w whose numbers of stops per period differ and that \
+         no curve traced before crosses (the orbit of the first cell continued in w towards \
+         the second's up to its first grazing, then followed over β from 0.5 to 4): {} \
+         curves from {} starts ({} of them met no grazing: the two cells' motions are \
+         different attractors reached from rest): {}. Across each an event of the orbit \
+         appears or disappears, and with it the number of stops per period changes. They lie on the map's edges: of the {} pairs of \
+         neighbouring cells of (a) whose numbers of stops per period differ, {} ({}) have \
+         the curves between their centres (crossing the segment that joins them an odd \
+         number of times); of the {} pairs with the curves between them, {} ({}) change \
+         region, and of the {} pairs that the curves cross twice (a region thinner than a \
+         cell between them), {} do not; the exact β_c lies between {} of the {} pairs of \
+         a sliding and a stick-slip cell ({}). \
+         The edge between periodic stick and static is no bifurcation but the class's \
+         threshold (an amplitude at most β/100): no curve is drawn there. The map's colours \
+         give the class only: the stops per period of each cell ({} in the periodic \
+         stick-slip cells of (a)) are in fig7a.csv's column stops_per_period, and the CSV \
+         fig7-grazing.csv holds the curves, one after another.",
+        traced.curves.len(),
+        traced.tried,
+        traced.no_start,
+        if curve_list.is_empty() {
+            "none".to_string()
+        } else {
+            curve_list
+        },
+        check.stop_edges,
+        check.stop_edges_crossed,
+        percent(check.stop_edges_crossed, check.stop_edges),
+        check.crossed,
+        check.crossed_changing,
+        percent(check.crossed_changing, check.crossed),
+        check.crossed_even,
+        check.crossed_even_same,
+        check.sliding_edges_crossed,
+        check.sliding_edges,
+        percent(check.sliding_edges_crossed, check.sliding_edges),
+        stop_counts,
+    );
     report.summary.insert("fig7b".into(), shockley.summary());
     report.sections.push(Section {
         id: "fig7".into(),
@@ -223,7 +405,7 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
              since the current of a smooth diode law never stays exactly zero: a larger \
              threshold finds more stops and less sliding. The curves of (b) are the PWL \
              model's, as in (a), for comparison: the Shockley law has no closed-form boundary. \
-             {}",
+             {} {curves_note}",
             pwl.describe(),
             shockley.describe(),
             100.0 * shockley.sliding_fraction(),
@@ -231,7 +413,11 @@ pub fn fig7(report: &mut Report, ctx: &Context) -> Result<()> {
             super::theory_curves::BOUNDARY_NOTE
         ),
         figures: vec!["fig7".into()],
-        data: vec!["fig7a.csv".into(), "fig7b.csv".into()],
+        data: vec![
+            "fig7a.csv".into(),
+            "fig7b.csv".into(),
+            "fig7-grazing.csv".into(),
+        ],
         tables: vec![],
     });
     Ok(())

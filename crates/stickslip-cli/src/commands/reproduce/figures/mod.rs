@@ -8,6 +8,7 @@ mod fig4;
 mod fig5;
 mod fig6;
 mod fig7;
+mod fig7_curves;
 mod table1;
 mod theory_curves;
 

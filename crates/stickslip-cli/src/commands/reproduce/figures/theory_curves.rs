@@ -146,6 +146,9 @@ pub fn harmonic_curves(
     Ok(out)
 }
 
+/// The legend entry of the exact boundary of [`boundary_curves`].
+pub const EXACT_LABEL: &str = "exact β_c";
+
 /// The paper's and the exact stick-slip boundaries β_c(w) (NaN where they leave the map).
 pub fn boundary_curves(ctx: &Context, w_min: f64, w_max: f64) -> Result<Vec<Series>> {
     let ws = abscissae(w_min, w_max, POINTS);
@@ -164,6 +167,6 @@ pub fn boundary_curves(ctx: &Context, w_min: f64, w_max: f64) -> Result<Vec<Seri
     };
     Ok(vec![
         Quantity::PaperTheory.series("paper, eq. 13", curve(Theory::Paper)?),
-        Quantity::ExactTheory.series("exact β_c", curve(Theory::Exact)?),
+        Quantity::ExactTheory.series(EXACT_LABEL, curve(Theory::Exact)?),
     ])
 }
