@@ -83,21 +83,7 @@ impl Records<'_> {
                 Some(out)
             })
             .collect();
-        self.fill_drive_columns(x, &mut columns);
-        for j in 0..self.data.len() {
-            let (start, len) = spans[j];
-            let half = len / 2;
-            let slots = self.slots[j];
-            let dr = derivatives[j]
-                .as_ref()
-                .ok_or_else(|| no_value(&self.data[j].file, self.drive(x, j).frequency))?;
-            for (q, d) in dr.iter().enumerate() {
-                columns[slots.drive + q][start + half..start + len].copy_from_slice(d);
-            }
-            if let Some(i) = slots.shift {
-                columns[i][start + half..start + len].copy_from_slice(&dr[2]);
-            }
-        }
+        self.place_drive_derivatives(x, &derivatives, &mut columns)?;
         Ok(columns)
     }
 }

@@ -563,22 +563,35 @@ impl Records<'_> {
                 Some(out)
             })
             .collect();
-        self.fill_drive_columns(x, &mut columns);
-        for j in 0..self.data.len() {
-            let (start, len) = spans[j];
+        self.place_drive_derivatives(x, &derivatives, &mut columns)?;
+        Ok(columns)
+    }
+
+    /// The drive channels' exact columns, then each record's response derivatives by its drive
+    /// amplitude, frequency and phase (`derivatives`, over the record's second half) in their
+    /// columns; the time shift's column is the phase's. A record without them (`None`: its
+    /// model had no value) is the error.
+    pub(super) fn place_drive_derivatives(
+        &self,
+        x: &[f64],
+        derivatives: &[Option<[Vec<f64>; 3]>],
+        columns: &mut [Vec<f64>],
+    ) -> Result<(), FitError> {
+        self.fill_drive_columns(x, columns);
+        for (j, &(start, len)) in self.spans().iter().enumerate() {
             let half = len / 2;
             let slots = self.slots[j];
             let dr = derivatives[j]
                 .as_ref()
                 .ok_or_else(|| no_value(&self.data[j].file, self.drive(x, j).frequency))?;
-            for q in 0..3 {
-                columns[slots.drive + q][start + half..start + len].copy_from_slice(&dr[q]);
+            for (q, d) in dr.iter().enumerate() {
+                columns[slots.drive + q][start + half..start + len].copy_from_slice(d);
             }
             if let Some(i) = slots.shift {
                 columns[i][start + half..start + len].copy_from_slice(&dr[2]);
             }
         }
-        Ok(columns)
+        Ok(())
     }
 }
 
