@@ -202,7 +202,7 @@ pub struct PeriodicSolution {
 /// # Errors
 /// [`crate::Unsupported::TheoryNeedsCoulombAtRest`] for a belt speed or another law.
 pub(crate) fn check_coulomb_at_rest(params: &Params) -> Result<()> {
-    if params.vb == 0.0 && params.law.is_coulomb() {
+    if params.is_paper_friction() {
         Ok(())
     } else {
         Err(crate::Error::Unsupported(
