@@ -64,6 +64,7 @@
 
 pub mod dynamics;
 pub(crate) mod error;
+pub mod friction;
 pub mod lyapunov;
 mod matrix;
 pub mod nonperiodic;
@@ -80,6 +81,7 @@ pub(crate) mod verdict;
 
 pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
+pub use friction::{FrictionDynamics, FrictionTangent};
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
     SecondExponent,
