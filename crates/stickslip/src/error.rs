@@ -358,8 +358,9 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
-    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady` and `sweep`;
-    /// the stability tools follow Coulomb's law only.
+    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady`, `sweep`,
+    /// `orbit` and `lyapunov`; `continue`, `bifurcation`, `basins`, `curve` and the exponent
+    /// map follow Coulomb's law only.
     SmoothFrictionLaw,
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
@@ -392,9 +393,10 @@ impl std::fmt::Display for Unsupported {
                  Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
-                "the stability tools follow Coulomb's friction law so far: the Stribeck and \
-                 cubic laws are solved by simulate, steady and sweep (use --friction-law \
-                 coulomb here)"
+                "continue, bifurcation, basins, curve and the exponent map (phase-diagram \
+                 --color lambda1) follow Coulomb's friction law so far: the Stribeck and cubic \
+                 laws are solved by simulate, steady, sweep, orbit and lyapunov (use \
+                 --friction-law coulomb here)"
             }
             Unsupported::TheoryNeedsCoulombAtRest => {
                 "the theory (the paper's series, the exact periodic solution) is that of \

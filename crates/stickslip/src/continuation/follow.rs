@@ -416,6 +416,7 @@ fn join(
 /// [`crate::stability::StabilityError::NoPeriod`] when the motion finds no period;
 /// whatever the solver and Newton's method report.
 pub fn settled_orbit(experiment: &Experiment) -> Result<(Params, PeriodicOrbit)> {
+    experiment.check_coulomb_tool()?;
     let dynamics = experiment.dynamics()?;
     let options = experiment.steady_options().with_spectrum(false);
     let steady = experiment.steady_with(&options)?;
