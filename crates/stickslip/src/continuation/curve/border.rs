@@ -42,6 +42,22 @@ const SAMPLES: usize = 32;
 
 /// Every condition on the motion from `state` at `params` over `period` drive periods.
 pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result<Vec<Candidate>> {
+    Ok(candidates_of(params, state, period, None)?.0)
+}
+
+/// The conditions of `only`'s kind (every kind when `None`) on the motion from `state` at
+/// `params` over `period` drive periods, each computed as [`candidates`] computes it, with the
+/// motion's (turns, stops) over the period. A kind left out costs nothing: the minima of the
+/// slides' speeds (a search on every slide) are sought only for
+/// [`BorderKind::SlideTouchesRest`].
+pub(crate) fn candidates_of(
+    params: &Params,
+    state: State,
+    period: usize,
+    only: Option<BorderKind>,
+) -> Result<(Vec<Candidate>, (usize, usize))> {
+    let wanted = |kind: BorderKind| only.is_none_or(|k| k == kind);
+    let mut counts = (0usize, 0usize);
     let end = period as f64 * params.drive_period();
     let mut solver = ExactSolver::new(*params, state);
     let mut out = Vec::new();
@@ -57,7 +73,7 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
         if b > a {
             let middle = solver.dense(0.5 * (a + b));
             match middle.phase {
-                Phase::Stick => {
+                Phase::Stick if wanted(BorderKind::ReleaseTangential) => {
                     for tau in extrema(params, a, b) {
                         out.push(Candidate {
                             kind: BorderKind::ReleaseTangential,
@@ -68,11 +84,13 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
                         });
                     }
                 }
+                Phase::Stick => {}
                 phase => {
                     let sign = phase.sign();
                     last_sign = sign;
                     if let Some(y_s) = released.take() {
-                        for tau in extrema(params, a, b) {
+                        let extrema = extrema(params, a, b);
+                        for tau in extrema.filter(|_| wanted(BorderKind::ReleaseTangential)) {
                             out.push(Candidate {
                                 kind: BorderKind::ReleaseTangential,
                                 variant: false,
@@ -82,17 +100,30 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
                             });
                         }
                     }
-                    minima(params, &solver, a, b, sign, &mut out);
+                    if wanted(BorderKind::SlideTouchesRest) {
+                        minima(params, &solver, a, b, sign, &mut out);
+                    }
                 }
             }
         }
         match event {
             Some(e) if matches!(e.kind, EventKind::Turn | EventKind::Stick) => {
+                if e.kind == EventKind::Turn {
+                    counts.0 += 1;
+                } else {
+                    counts.1 += 1;
+                }
                 released = None;
-                if e.kind == EventKind::Stick && last_sign != 0.0 {
+                if e.kind == EventKind::Stick
+                    && last_sign != 0.0
+                    && wanted(BorderKind::SlideTouchesRest)
+                {
                     if let Some(c) = virtual_minimum(params, e.tau, e.y, last_sign) {
                         out.push(c);
                     }
+                }
+                if !wanted(BorderKind::TurnAtLimit) {
+                    continue;
                 }
                 if e.kind == EventKind::Stick {
                     stop_start = Some(out.len());
@@ -118,7 +149,7 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
             _ => {}
         }
     }
-    Ok(out)
+    Ok((out, counts))
 }
 
 /// The extrema of the drive, w·τ + φ ≡ 0 (mod π), in [a, b].
