@@ -302,7 +302,7 @@ impl System {
         // The followed event: of partners at the same border, the first in this chart.
         if let Some(border) = self.border {
             let chart = next.params_with(params)?;
-            let (list, _) = candidates_of(&chart, x, self.period, Some(border.kind))?;
+            let (list, _) = candidates_of(&chart, x, self.period, Some(border.kind), None)?;
             let within = 1e-6 * 1f64.max(params.beta).max(params.mu_s);
             if let Some(c) = earliest(&list, border.kind, border.variant, tau, span, within) {
                 tau = c.tau;
@@ -377,7 +377,9 @@ impl System {
             }
             (Follow::NeimarkSacker, _) => (m.det() - 1.0, f64::NAN),
             (Follow::Grazing, Some(_)) => {
-                let list = match self.followed_candidates(params, x) {
+                // (Loosely, the followed event alone is read: the conditions near it.)
+                let near = (!strict).then_some(tau);
+                let list = match self.followed_candidates(params, x, near) {
                     Ok((list, _)) => list,
                     Err(e) if absent(&e) => return Ok(None),
                     Err(e) => return Err(e),
@@ -392,13 +394,17 @@ impl System {
     }
 
     /// The conditions of the followed border's kind on the motion from `x` at `params`, with
-    /// its (turns, stops).
+    /// its (turns, stops); with `near` = τ, complete only where [`nearest`] looks for the
+    /// followed event near τ (a twentieth of the period either way).
     fn followed_candidates(
         &self,
         params: &Params,
         x: State,
+        near: Option<f64>,
     ) -> Result<(Vec<Candidate>, (usize, usize))> {
-        candidates_of(params, x, self.period, self.border.map(|b| b.kind))
+        let span = self.period as f64 * params.drive_period();
+        let near = near.map(|tau| (tau, 0.05 * span));
+        candidates_of(params, x, self.period, self.border.map(|b| b.kind), near)
     }
 
     /// The grazing condition g = σ·h − δ of the followed event nearest `tau` among `list`
@@ -476,7 +482,7 @@ impl System {
             let Ok(x) = State::new(u[0], u[1]) else {
                 return Ok(None);
             };
-            let (list, counts) = match self.followed_candidates(&params, x) {
+            let (list, counts) = match self.followed_candidates(&params, x, Some(tau)) {
                 Ok(found) => found,
                 Err(e) if absent(&e) => return Ok(None),
                 Err(e) => return Err(e),
@@ -861,7 +867,13 @@ impl System {
         // Rows of the conditions to move, and how far.
         let mut a = vec![rows[2]];
         let mut b = vec![-2.0 * self.offset(&params) - at.g];
-        let (list, _) = candidates_of(&params, node.orbit.state, self.period, Some(border.kind))?;
+        let (list, _) = candidates_of(
+            &params,
+            node.orbit.state,
+            self.period,
+            Some(border.kind),
+            None,
+        )?;
         for c in list {
             if c.kind == border.kind
                 && c.variant == border.variant
