@@ -59,7 +59,7 @@ fn sweep(from: f64, to: f64, steps: usize, phi: f64) -> Vec<SweepPoint> {
 
 #[test]
 fn continuation_in_vb_passes_through_the_sweeps_steady_states() {
-    let stuck = [0.0, 3.0].map(|phi| check_branch_against_sweep(phi));
+    let stuck = [0.0, 3.0].map(check_branch_against_sweep);
     assert_eq!(
         stuck,
         [true, false],
