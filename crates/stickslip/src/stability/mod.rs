@@ -95,8 +95,8 @@ pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stab
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
 pub use sensitivity::{
-    periodic_orbit_sensitivity, strobe_map_parameter_derivatives, OrbitSample,
-    SENSITIVITY_PARAMETERS,
+    periodic_orbit_sensitivity, strobe_map_parameter_derivative, strobe_map_parameter_derivatives,
+    OrbitSample, SENSITIVITY_PARAMETERS,
 };
 pub use smooth::{ShockleyDynamics, ShockleyTangent, SmoothImage, SmoothOrbitSample};
 pub use strobe::{strobe_map, StrobeImage};

@@ -21,7 +21,7 @@ mod classify;
 mod cycle;
 mod cycle_trace;
 mod exponent;
-mod extremes;
+pub(crate) mod extremes;
 mod newton;
 pub mod options;
 mod record;
