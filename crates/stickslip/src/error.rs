@@ -368,8 +368,8 @@ pub enum Unsupported {
     /// friction on a base at rest (vb = 0).
     TheoryNeedsCoulombAtRest,
     /// The Coulomb model has no Neimark–Sacker point: a complex pair of multipliers on the
-    /// unit circle needs det M = 1, and det M = e^(−2ζpT) Π (|s|−1)/(|s|+1) over the slip
-    /// reversals (|s| > μs ≥ 1 the net force there) is below 1 on every orbit that reverses,
+    /// unit circle needs det M = 1, and det M = e^(−2ζpT) Π (|F|−1)/(|F|+1) over the slip
+    /// reversals (|F| > μs ≥ 1 the net force there) is below 1 on every orbit that reverses,
     /// 0 on one that sticks (docs/bifurcation.md, "No Neimark–Sacker point").
     NoNeimarkSacker,
 }
@@ -408,8 +408,8 @@ impl std::fmt::Display for Unsupported {
             }
             Unsupported::NoNeimarkSacker => {
                 "the Coulomb model has no Neimark–Sacker point: a complex pair on the unit \
-                 circle needs det M = 1, but det M = e^(-2ζpT) × Π (|s|-1)/(|s|+1) over the \
-                 slip reversals (|s| > μs ≥ 1, the net force there) is below 1 on every orbit \
+                 circle needs det M = 1, but det M = e^(-2ζpT) × Π (|F|-1)/(|F|+1) over the \
+                 slip reversals (|F| > μs ≥ 1, the net force there) is below 1 on every orbit \
                  that reverses, and 0 on one that sticks (docs/bifurcation.md)"
             }
             Unsupported::CurveNeedsPwl => {
