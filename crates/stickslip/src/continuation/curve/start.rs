@@ -232,8 +232,8 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
 /// tangential), corrected onto the extended system at the value of `over` in `params`.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] when `over` and `vary` are the same parameter;
-/// [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
+/// [`Error::InvalidOption`] naming [`OptionKey::TwoParameterVary`] when `over` and `vary`
+/// are the same parameter (as [`check_spec`]); [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
 /// have; as [`continue_orbit`]; `Ok(Err(NoStart))` when the branch has no such point.
 pub fn find_start(
     params: &Params,
@@ -245,10 +245,12 @@ pub fn find_start(
     monitor: &dyn Monitor,
 ) -> Result<std::result::Result<CurveStart, NoStart>> {
     if over == vary {
-        return Err(Error::InvalidParameter {
-            name: "over",
+        return Err(Error::InvalidOption {
+            option: OptionKey::TwoParameterVary,
             value: f64::NAN,
-            allowed: "must be another parameter than vary",
+            allowed: Allowed::Differs {
+                other: OptionKey::TwoParameterOver,
+            },
         });
     }
     super::system::column(over)?;
