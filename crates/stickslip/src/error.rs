@@ -368,6 +368,11 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact periodic solution) are those of Coulomb
     /// friction on a base at rest (vb = 0).
     TheoryNeedsCoulombAtRest,
+    /// The Coulomb model has no Neimark–Sacker point: a complex pair of multipliers on the
+    /// unit circle needs det M = 1, and det M = e^(−2ζpT) Π (|F|−1)/(|F|+1) over the slip
+    /// reversals (|F| > μs ≥ 1 the net force there) is below 1 on every orbit that reverses,
+    /// 0 on one that sticks (docs/bifurcation.md, "No Neimark–Sacker point").
+    NoNeimarkSacker,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -402,6 +407,12 @@ impl std::fmt::Display for Unsupported {
                 "the theory (the paper's series, the exact periodic solution) is that of \
                  Coulomb friction on a base at rest: it takes neither a belt speed vb nor the \
                  Stribeck or cubic law (`stickslip steady` finds a belt's steady state)"
+            }
+            Unsupported::NoNeimarkSacker => {
+                "the Coulomb model has no Neimark–Sacker point: a complex pair on the unit \
+                 circle needs det M = 1, but det M = e^(-2ζpT) × Π (|F|-1)/(|F|+1) over the \
+                 slip reversals (|F| > μs ≥ 1, the net force there) is below 1 on every orbit \
+                 that reverses, and 0 on one that sticks (docs/bifurcation.md)"
             }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \

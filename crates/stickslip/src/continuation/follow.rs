@@ -1,6 +1,5 @@
-//! Following a branch: [`continue_orbit`](super::continue_orbit) one way,
-//! [`continue_both_ways`](super::continue_both_ways), and the orbit a motion settles on, where
-//! `stickslip continue` starts.
+//! Following a branch: [`continue_orbit`] one way, [`continue_both_ways`], and the orbit a
+//! motion settles on, where `stickslip continue` starts.
 
 use super::corrector::{self, counts, norm, Problem, Solution};
 use super::grazing::end_at;
@@ -311,7 +310,7 @@ pub fn continue_orbit_of(
 /// λ to the end reached going up, arclength from the first.
 ///
 /// # Errors
-/// As [`continue_orbit`](super::continue_orbit); [`Error::InvalidParameter`] when the range does
+/// As [`continue_orbit`]; [`Error::InvalidParameter`] when the range does
 /// not hold the start value or is empty.
 pub fn continue_both_ways(
     params: &Params,
