@@ -177,8 +177,8 @@ impl FrictionLaw {
             FrictionLaw::Coulomb => (1.0, 0.0),
             FrictionLaw::Stribeck { vs, delta, eta } => {
                 let x = s / vs;
-                // The default δ = 2 and δ = 1 without `powf` (the same values: x^2 and x^1
-                // are x·x and x to rounding; `powf` was a third of a Stribeck map's time).
+                // The default δ = 2 and δ = 1 without `powf` (x·x and x: the same values to
+                // an ulp; `powf` was a third of a Stribeck map's time).
                 let power = if delta == 2.0 {
                     x * x
                 } else if delta == 1.0 {
