@@ -5,6 +5,7 @@
 mod belt;
 mod connections;
 mod curve;
+mod orbit;
 mod page_keys;
 
 use super::router::{router, Lab, Settings};
