@@ -1052,11 +1052,11 @@ test('issue 38 (1): at 1280 × 720, 1366 × 768, 800 × 900 and 390 × 844, and 
       await p.selectOption('select[name="fft-source"]', 'ch2');
       await p.check('input[name="mode"][value="yt"]');
       // On a phone the panels stand in one column: the generator, the scope, the readouts,
-      // the circuit, the sweep and map.
+      // the circuit, the sweep and map, the periodic orbit.
       if (width < 700) {
         const boxes = await p.$$eval('.panel', (els) => els.map((e) => ({ id: e.id, left: e.getBoundingClientRect().left, top: e.getBoundingClientRect().top })));
         assert.ok(boxes.every((b) => Math.abs(b.left - boxes[0].left) < 0.5), JSON.stringify(boxes));
-        assert.deepEqual([...boxes].sort((a, b) => a.top - b.top).map((b) => b.id), ['generator', 'scope', 'measurements', 'circuit', 'sweep']);
+        assert.deepEqual([...boxes].sort((a, b) => a.top - b.top).map((b) => b.id), ['generator', 'scope', 'measurements', 'circuit', 'sweep', 'orbit']);
       }
     }
     // Every width from 360 px up, across each layout's edges.
@@ -1345,9 +1345,10 @@ test('issue 34: the orbit panel shows the Floquet multipliers of stickslip orbit
     await ready();
     assert.equal(await orbitShown(), 'ready', law);
     const query = await shownQuery();
-    assert.equal(new URLSearchParams(query).get('beta'), '2.14', query);
-    // The same point on the command line: every key of the query as its flag.
+    // The same point on the command line: every key of the query as its flag (the preset's
+    // generator setting, 9969.65 Hz and 1.498 V: w = 0.95, β = 2.14).
     const cli = JSON.parse(stickslip(['orbit', ...flagsOf(query), '--json']));
+    assert.ok(Math.abs(cli.w - 0.95) < 1e-9 && Math.abs(cli.beta - 2.14) < 1e-9, `${query}: w ${cli.w}, β ${cli.beta}`);
     const shown = await page.$$eval('#orbit [data-orbit]', (els) =>
       Object.fromEntries(els.map((e) => [e.dataset.orbit, { text: e.textContent.trim(), ...e.dataset }])),
     );
