@@ -564,7 +564,7 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
         assert!(!module.is_empty(), "{path}");
         modules += 1;
     }
-    assert_eq!(modules, 9);
+    assert_eq!(modules, 10);
     let (status, _, _) = get_with(&lab, "/lab/nothing.js").await;
     assert_eq!(status, StatusCode::NOT_FOUND);
     let (status, _, _) = get_with(&lab, "/lab.css").await;

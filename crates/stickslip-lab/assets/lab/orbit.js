@@ -149,7 +149,7 @@ function request(params, query) {
       if (answer.converged) {
         show(answer);
         p.dataset.state = 'ready';
-        $('[data-orbit="status"]').textContent = `${answer.model === 'shockley' ? 'Shockley diodes (stiff solver)' : 'exact'}: ${answer.orbit.stability}`;
+        $('[data-orbit="status"]').textContent = `${state.system === 'shockley' ? 'Shockley diodes (stiff solver)' : 'exact'}: ${answer.orbit.stability}`;
       } else {
         clear();
         p.dataset.state = 'none';
