@@ -76,7 +76,7 @@
 //! checked as the trajectory's steps are, right after the attempt: when it and the
 //! trajectory's step x_{k−1} → x_k both pass, the orbit is accepted without running the
 //! trajectory's next period (when it fails, the trajectory's own next step is checked as
-//! before; see [`NewtonSettling::check_first_image`]). Newton's iteration stops as for the
+//! before; see `NewtonSettling::check_first_image`). Newton's iteration stops as for the
 //! exact solver, at a residual of 10⁻⁶·max(1, |x|)·max(1, |M|) where ρ ≤ 0.9, and takes one
 //! more step without evaluating the map (`ShockleyDynamics::settling_orbit`; the recorded
 //! period checks x* as above). The acceptance asks the same two checks of two consecutive
