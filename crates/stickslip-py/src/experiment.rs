@@ -437,8 +437,8 @@ impl PyExperiment {
         from_layer(ExperimentSpec::new(), &named, keys)
     }
 
-    /// The experiment described by a TOML file (sections [circuit] or [mechanics], [drive],
-    /// [model], [shockley]; see the README), the same file ``stickslip --config`` reads.
+    /// The experiment described by a TOML file (sections `[circuit]` or `[mechanics]`, `[drive]`,
+    /// `[model]`, `[shockley]`; see the README), the same file ``stickslip --config`` reads.
     ///
     /// Raises:
     ///     FileNotFoundError: no such file; PermissionError, IsADirectoryError or another

@@ -110,8 +110,12 @@ def test_errors_name_the_value(cli):
     for kwargs, words in [
         (dict(follow="grazing", vary="beta", vary_to=0.5, over="w", start=1, to=1),
          "invalid to = 1"),
+        # The two parameters named by their keywords, not the command line's flags.
         (dict(follow="grazing", vary="w", vary_to=0.5, over="w", start=1, to=2),
-         "must differ"),
+         r"^invalid vary: must differ from over$"),
+        # The Coulomb model has no Neimark-Sacker point (docs/bifurcation.md).
+        (dict(follow="neimark-sacker", vary="beta", vary_to=0.5, over="w", start=1, to=2),
+         "has no Neimark–Sacker point"),
         (dict(follow="grazing", vary="beta", vary_to=3, over="w", start=1, to=2), "vary_to"),
         (dict(follow="grazing", vary="beta", vary_to=0.5, over="w", start=1.5, to=2),
          "between"),

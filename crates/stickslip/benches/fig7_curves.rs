@@ -6,13 +6,15 @@
 //! - `curves_5`: the five grazing curves that `reproduce` traces on the paper's map, from the
 //!   starts it finds there (the paper's circuit at w = 0.1 and the β below, continued in w
 //!   towards the next column's w = 0.1120603… up to its first grazing, followed over β from
-//!   0.5 to 4), each kept within the map's range of w (0.1–2.5);
+//!   0.5 to 4), each kept within the map's range of w (0.1–2.5), traced at once on the
+//!   threads there are (as `reproduce` traces them), taken in order;
 //! - `map_200`: the paper's 200 × 200 map.
 //!
 //! The number of curves and points is printed once; a start that finds no grazing stops the
 //! bench.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use rayon::prelude::*;
 use std::hint::black_box;
 use stickslip::continuation::{curve_within, ContinuationOptions, CurveSpec, Follow};
 use stickslip::scan::{Axis, Grid, ParameterRange};
@@ -45,8 +47,8 @@ fn curves(paper: &Experiment) -> usize {
         from: 0.5,
         to: 4.0,
     };
-    STARTS
-        .iter()
+    let points: Vec<usize> = STARTS
+        .par_iter()
         .map(|&beta| {
             let start = paper.clone().with_w(0.1).and_then(|e| e.with_beta(beta));
             curve_within(&start.unwrap(), &spec, Some((0.1, 2.5)), &options, &())
@@ -55,7 +57,8 @@ fn curves(paper: &Experiment) -> usize {
                 .points
                 .len()
         })
-        .sum()
+        .collect();
+    points.iter().sum()
 }
 
 /// The cells of the paper's map.

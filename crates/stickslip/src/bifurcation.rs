@@ -165,6 +165,7 @@ impl Bifurcation {
     /// # Errors
     /// A value out of range; a drive value missing that is not stepped.
     pub fn new(experiment: &Experiment, axis: Axis) -> Result<Self> {
+        experiment.check_coulomb_tool()?;
         for &v in axis.values() {
             experiment.params_with(&[(axis.parameter(), v)])?;
         }

@@ -358,8 +358,9 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
-    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady` and `sweep`;
-    /// the stability tools follow Coulomb's law only.
+    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady`, `sweep`,
+    /// `orbit` and `lyapunov`; `continue`, `bifurcation`, `basins`, `curve` and the exponent
+    /// map follow Coulomb's law only.
     SmoothFrictionLaw,
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
@@ -367,6 +368,11 @@ pub enum Unsupported {
     /// The theories (the paper's series, the exact periodic solution) are those of Coulomb
     /// friction on a base at rest (vb = 0).
     TheoryNeedsCoulombAtRest,
+    /// The Coulomb model has no Neimark–Sacker point: a complex pair of multipliers on the
+    /// unit circle needs det M = 1, and det M = e^(−2ζpT) Π (|F|−1)/(|F|+1) over the slip
+    /// reversals (|F| > μs ≥ 1 the net force there) is below 1 on every orbit that reverses,
+    /// 0 on one that sticks (docs/bifurcation.md, "No Neimark–Sacker point").
+    NoNeimarkSacker,
 }
 
 impl std::fmt::Display for Unsupported {
@@ -392,14 +398,21 @@ impl std::fmt::Display for Unsupported {
                  Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
-                "the stability tools follow Coulomb's friction law so far: the Stribeck and \
-                 cubic laws are solved by simulate, steady and sweep (use --friction-law \
-                 coulomb here)"
+                "continue, bifurcation, basins, curve and the exponent map (phase-diagram \
+                 --color lambda1) follow Coulomb's friction law so far: the Stribeck and cubic \
+                 laws are solved by simulate, steady, sweep, orbit and lyapunov (use \
+                 --friction-law coulomb here)"
             }
             Unsupported::TheoryNeedsCoulombAtRest => {
                 "the theory (the paper's series, the exact periodic solution) is that of \
                  Coulomb friction on a base at rest: it takes neither a belt speed vb nor the \
                  Stribeck or cubic law (`stickslip steady` finds a belt's steady state)"
+            }
+            Unsupported::NoNeimarkSacker => {
+                "the Coulomb model has no Neimark–Sacker point: a complex pair on the unit \
+                 circle needs det M = 1, but det M = e^(-2ζpT) × Π (|F|-1)/(|F|+1) over the \
+                 slip reversals (|F| > μs ≥ 1, the net force there) is below 1 on every orbit \
+                 that reverses, and 0 on one that sticks (docs/bifurcation.md)"
             }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \

@@ -49,6 +49,17 @@ pub struct SlipLaw {
 }
 
 impl SlipLaw {
+    /// The law of a slip in direction `sign` (±1) with the friction law, μs and vb of
+    /// `params`.
+    pub(crate) fn new(params: &Params, sign: f64) -> Self {
+        Self {
+            law: params.law,
+            mu_s: params.mu_s,
+            vb: params.vb,
+            sign,
+        }
+    }
+
     /// μ and μ' at slip speed s ≥ 0, the slope kept finite (a Stribeck law with δ < 1 is
     /// infinitely steep at s = 0: its slope is taken a hair away).
     fn mu(&self, s: f64) -> (f64, f64) {
@@ -208,14 +219,18 @@ impl FrictionSolver {
         self.params.drive(tau) - y - self.params.belt_force()
     }
 
+    /// The integrator's step that the last advance covered (part of), when it covered a slip
+    /// phase: the tangent dynamics differentiate it ([`crate::stability::FrictionDynamics`]).
+    pub(crate) fn slip_step(&self) -> Option<&Step> {
+        match self.interval_phase {
+            Phase::SlipPositive | Phase::SlipNegative => self.last_step.as_ref(),
+            Phase::Stick => None,
+        }
+    }
+
     fn start_slip(&mut self, tau: f64, y: f64, v: f64, sign: f64, from_zero: bool) {
         let p = &self.params;
-        let law = SlipLaw {
-            law: p.law,
-            mu_s: p.mu_s,
-            vb: p.vb,
-            sign,
-        };
+        let law = SlipLaw::new(p, sign);
         let settings = Settings {
             rtol: FRICTION_TOLERANCE,
             atol: FRICTION_TOLERANCE,

@@ -222,3 +222,131 @@ fn steady_sliding_is_an_equilibrium_where_stable_and_stick_slip_where_not() {
     assert_eq!(cycle.sliding_stability, SlidingStability::Unstable);
     assert!(cycle.stick_fraction > 0.0);
 }
+
+/// Where the steady-state search decides that a Stribeck or cubic belt slides steadily
+/// (sooner, by the energy argument of `steady/self_excited.rs`: a turning point nearer
+/// steady sliding than vb where the law's chord stays below 2ζ), the motion from rest indeed
+/// never sticks or reverses again: the friction solver run on for 300 natural periods has
+/// no event after that point, the distances of its turning points from y_e never rise, and
+/// its energy about steady sliding falls to a hundredth of the decided one or below.
+#[test]
+fn where_a_smooth_law_belt_is_decided_sliding_it_never_sticks_again() {
+    let zeta = 0.0468;
+    let mut sliding = 0;
+    for law in [STRIBECK, STRIBECK_LINEAR, CUBIC] {
+        for vb in [0.3, 0.6, 1.0, 1.5, 2.0] {
+            for mu_s in [1.0, 1.05, 1.2, 1.5, 2.5] {
+                let p = params(zeta, mu_s, vb, 1.0, 0.0, law);
+                let s = steady::steady_state(
+                    &mut FrictionSolver::new(p, State::default()).unwrap(),
+                    &SteadyOptions::default(),
+                )
+                .unwrap();
+                if s.class != MotionClass::SteadySliding {
+                    continue;
+                }
+                sliding += 1;
+                let cycle = s.self_excited.unwrap();
+                let (settled, y_e) = (cycle.time_to_settle, cycle.equilibrium);
+                let mut solver = FrictionSolver::new(p, State::default()).unwrap();
+                stickslip::solver::run_until(&mut solver, settled, |_| {}).unwrap();
+                let energy = |s: State| 0.5 * (s.v * s.v + (s.y - y_e) * (s.y - y_e));
+                let decided = energy(solver.state());
+                let end = settled + 300.0 * std::f64::consts::TAU;
+                let mut last = solver.state();
+                let mut distance = f64::INFINITY;
+                for k in 1..=((end - settled) / 0.05) as usize {
+                    let tau = settled + 0.05 * k as f64;
+                    stickslip::solver::run_until(&mut solver, tau, |e| {
+                        panic!("{law:?}, vb = {vb}, μs = {mu_s}: {e:?} after τ = {settled}")
+                    })
+                    .unwrap();
+                    let now = solver.state();
+                    if last.v > 0.0 && now.v <= 0.0 {
+                        // A maximum of y between the samples: its distance from y_e, to
+                        // the sampling's error (the samples are 0.05 apart).
+                        let d = last.y.max(now.y) - y_e;
+                        assert!(
+                            d <= distance + 1e-3 * distance.min(1.0) + 1e-12,
+                            "{law:?}, vb = {vb}, μs = {mu_s}: {d} after {distance}"
+                        );
+                        distance = d;
+                    }
+                    last = now;
+                }
+                let final_energy = energy(solver.state());
+                assert!(
+                    final_energy <= 1e-2 * decided,
+                    "{law:?}, vb = {vb}, μs = {mu_s}: energy {final_energy} from {decided}"
+                );
+            }
+        }
+    }
+    assert!(sliding >= 15, "{sliding}");
+}
+
+/// Newton's method on the turning-point map of a slow pure-slip cycle
+/// (`steady/self_excited.rs`) changes no class: a 12 × 12 map of the belt bench's Stribeck
+/// belt (the paper's ζ, vs = 0.5, δ = 2, η = 0.05) over vb 0.05–1.2, μs 1–1.4, where the
+/// pure-slip cycles are, each point from rest with and without it: the same class and
+/// section, and y_min, y_max within 1e-8; and Newton settles the pure-slip cycles sooner.
+#[test]
+fn newton_on_the_turning_point_map_changes_no_class_of_a_stribeck_map() {
+    use stickslip::friction::FrictionLaw;
+    use stickslip::{Circuit, Experiment};
+    let experiment = Experiment::dimensionless(Circuit::paper().scales().zeta(), 1.0, 0.0)
+        .and_then(|e| {
+            e.with_law(FrictionLaw::Stribeck {
+                vs: 0.5,
+                delta: 2.0,
+                eta: 0.05,
+            })
+        })
+        .unwrap();
+    let factory = experiment.factory();
+    let base = experiment.params().unwrap();
+    let options = experiment.steady_options();
+    assert!(options.newton);
+    let (mut pure, mut sooner) = (0, 0);
+    for i in 0..12 {
+        for j in 0..12 {
+            let vb = 0.05 + 1.15 * i as f64 / 11.0;
+            let mu_s = 1.0 + 0.4 * j as f64 / 11.0;
+            let p = base.with_vb(vb).and_then(|p| p.with_mu_s(mu_s)).unwrap();
+            let run = |newton: bool| {
+                steady::steady_state_from(
+                    &factory,
+                    &p,
+                    State::default(),
+                    &options.with_newton(newton),
+                )
+                .unwrap()
+            };
+            let (fast, plain) = (run(true), run(false));
+            let at = format!("vb = {vb}, μs = {mu_s}");
+            assert_eq!(fast.class, plain.class, "{at}");
+            let (a, b) = (fast.self_excited.unwrap(), plain.self_excited.unwrap());
+            assert_eq!(a.section, b.section, "{at}");
+            assert!(
+                (fast.y_min - plain.y_min).abs() <= 1e-8
+                    && (fast.y_max - plain.y_max).abs() <= 1e-8,
+                "{at}: [{}, {}] against [{}, {}]",
+                fast.y_min,
+                fast.y_max,
+                plain.y_min,
+                plain.y_max
+            );
+            if let (Some(pa), Some(pb)) = (a.period, b.period) {
+                assert!((pa - pb).abs() <= 1e-8, "{at}: period {pa} against {pb}");
+            }
+            if fast.class == MotionClass::PureSlipCycle {
+                pure += 1;
+                sooner += usize::from(a.time_to_settle < 0.5 * b.time_to_settle);
+            }
+        }
+    }
+    assert!(
+        pure >= 2 && sooner >= 2,
+        "{pure} pure-slip cycles, {sooner} settled sooner"
+    );
+}

@@ -15,8 +15,8 @@ use stickslip::report::BifurcationReport;
 use stickslip::scan::{Axis, SweepDirection, SweepLeg};
 use stickslip::{OptionKey, Parameter};
 
-/// Bifurcation diagram: at each value of one parameter (w, β, ζ or μs), after a transient,
-/// the strobe points (y, y') once per drive period at drive phase φ, with the largest
+/// Bifurcation diagram: at each value of one parameter (w, β, ζ, μs, or vb on a belt), after a
+/// transient, the strobe points (y, y') once per drive period at drive phase φ, with the largest
 /// Lyapunov exponent over them and what the motion settled on. Each value starts from the
 /// state the one before ended in, as when turning a knob, so the two directions show
 /// coexisting branches. A period-p orbit gives p points; chaos a cloud and λ1 > 0.

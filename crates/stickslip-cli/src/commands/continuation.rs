@@ -13,8 +13,8 @@ use stickslip::continuation::{
 use stickslip::report::BranchTable;
 use stickslip::{OptionKey, Parameter};
 
-/// Follow a branch of periodic orbits as one parameter (w, β, ζ or μs) goes from --from to
-/// --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
+/// Follow a branch of periodic orbits as one parameter (w, β, ζ, μs, or vb on a belt) goes
+/// from --from to --to, stable and unstable alike. It starts from the periodic orbit the motion settles on
 /// at --from (from the initial state), refined by Newton's method, and continues the fixed
 /// point of the p-fold strobe map in (y, y', parameter) by pseudo-arclength steps, so it goes
 /// round folds. The exact solver finds the events of every orbit afresh, so the branch goes

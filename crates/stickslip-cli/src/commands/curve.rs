@@ -29,7 +29,8 @@ use stickslip::{OptionKey, Parameter};
 /// Along the curve: where the other multiplier's stability changes, the codimension-two
 /// points where it meets another curve (a cusp of folds, a fold or period doubling meeting a
 /// grazing, 1:1 and 1:2 resonances, fold-flip), each located, and why it ends. The
-/// piecewise-linear (Coulomb) model only.
+/// piecewise-linear (Coulomb) model only, which has no Neimark–Sacker point (det M < 1 on
+/// every orbit): --follow neimark-sacker says why in one line, exit status 2.
 ///
 /// Output CSV columns: <over>,<vary>,y,v,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,
 /// mu2_im,largest_multiplier,stability,arclength,special
@@ -54,13 +55,11 @@ pub struct Args {
     /// The special point followed.
     #[arg(long, value_parser = choice::<Follow>())]
     follow: Follow,
-    /// The parameter continued to find the start, which then follows the curve (P).
-    #[arg(long, value_parser = choice::<Parameter>())]
+    #[arg(long = OptionKey::TwoParameterVary.flag(), help = help(OptionKey::TwoParameterVary), value_parser = choice::<Parameter>())]
     vary: Parameter,
     #[arg(long = OptionKey::TwoParameterVaryTo.flag(), help = help(OptionKey::TwoParameterVaryTo), value_parser = finite, allow_hyphen_values = true)]
     vary_to: f64,
-    /// The parameter the curve is followed over (Q).
-    #[arg(long, value_parser = choice::<Parameter>())]
+    #[arg(long = OptionKey::TwoParameterOver.flag(), help = help(OptionKey::TwoParameterOver), value_parser = choice::<Parameter>())]
     over: Parameter,
     #[arg(long, help = help(OptionKey::TwoParameterFrom), value_parser = finite, allow_hyphen_values = true)]
     from: f64,

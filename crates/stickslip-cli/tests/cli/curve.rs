@@ -97,6 +97,21 @@ fn no_special_point_of_the_kind_is_one_line_and_status_2() {
 }
 
 #[test]
+fn a_neimark_sacker_curve_is_one_line_naming_why_and_status_2() {
+    // The Coulomb model has none (det M < 1 on every orbit: docs/bifurcation.md).
+    let mut args = FOLD.to_vec();
+    args[14] = "neimark-sacker";
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_in(dir.path(), &[&args[..], &["--out", "ns.csv"]].concat());
+    assert_usage_error(dir.path(), &out, "has no Neimark–Sacker point");
+    let err = stderr(&out);
+    assert!(
+        err.contains("det M = 1") && err.contains("below 1"),
+        "{err}"
+    );
+}
+
+#[test]
 fn bad_input_is_refused_naming_the_flag() {
     let model = [
         "curve", "--preset", "paper", "--w", "1.2", "--beta", "3", "--follow", "grazing",
@@ -132,7 +147,7 @@ fn bad_input_is_refused_naming_the_flag() {
                     "--to",
                     "2",
                 ],
-                "must differ",
+                "invalid --vary: must differ from --over",
             ),
             (
                 &[

@@ -4,6 +4,7 @@
 mod common;
 
 mod belt;
+mod belt_continue;
 mod belt_tools;
 mod checkpoint;
 mod convert;

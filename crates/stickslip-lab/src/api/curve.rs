@@ -17,8 +17,10 @@ use stickslip::report::{Columns, CurveTable};
 use stickslip::{Error, OptionKey, Parameter};
 
 /// The options of a curve, in the order of the query keys' documentation.
-const CURVE_OPTIONS: [OptionKey; 5] = [
+const CURVE_OPTIONS: [OptionKey; 7] = [
+    OptionKey::TwoParameterVary,
     OptionKey::TwoParameterVaryTo,
+    OptionKey::TwoParameterOver,
     OptionKey::TwoParameterFrom,
     OptionKey::TwoParameterTo,
     OptionKey::TwoParameterMaxPoints,
@@ -64,8 +66,8 @@ impl CurveRequest {
     pub fn parse(raw: Option<&str>) -> Result<Self, ApiError> {
         let mut q = Query::parse(raw)?;
         let follow = q.name("follow", Follow::Grazing)?;
-        let vary = q.name("vary", Parameter::Beta)?;
-        let over = q.name("over", Parameter::W)?;
+        let vary = q.name(option_key(OptionKey::TwoParameterVary), Parameter::Beta)?;
+        let over = q.name(option_key(OptionKey::TwoParameterOver), Parameter::W)?;
         let experiment = q.experiment()?;
         let mut number = |option: OptionKey| -> Result<f64, ApiError> {
             let key = option_key(option);
@@ -88,13 +90,17 @@ impl CurveRequest {
             OptionKey::TwoParameterMaxPoints,
             table_default(OptionKey::TwoParameterMaxPoints) as usize,
         )?;
-        q.finish(&known(&CURVE_OPTIONS, &["follow", "vary", "over"]))?;
+        q.finish(&known(&CURVE_OPTIONS, &["follow"]))?;
         // The ends and the option table's ranges; two parameters that are one is `vary`'s
         // fault.
         check_spec(&spec).map_err(|e| match e {
-            Error::InvalidParameter { .. } if spec.vary == spec.over => {
-                ApiError::field("vary", e.render(Spelling::Query))
-            }
+            Error::InvalidOption {
+                option: OptionKey::TwoParameterVary,
+                ..
+            } => ApiError::field(
+                option_key(OptionKey::TwoParameterVary),
+                e.render(Spelling::Query),
+            ),
             other => ApiError::library(&other),
         })?;
         OptionKey::TwoParameterMaxPoints

@@ -110,7 +110,12 @@ async fn bad_input_is_a_400_naming_the_key() {
             "invalid follow 'touch'",
         ),
         (("vary=beta", "vary=gamma"), "vary", "invalid vary 'gamma'"),
-        (("vary=beta", "vary=w"), "vary", "must differ"),
+        // The two parameters named by their query keys, not the command line's flags.
+        (
+            ("vary=beta", "vary=w"),
+            "vary",
+            "invalid vary: must differ from over",
+        ),
         (("to=1.5", "to=0.3"), "to", "must differ from from"),
         (("from=0.3", "from=x"), "from", "invalid from"),
         (("vary-to=0.5", "vary-to=4"), "vary-to", "invalid vary-to 4"),
@@ -147,6 +152,13 @@ async fn bad_input_is_a_400_naming_the_key() {
         &GRAZING.replace("preset=paper", "preset=paper&model=shockley"),
         bad,
         "piecewise-linear",
+    )
+    .await;
+    // The Coulomb model has no Neimark–Sacker point (docs/bifurcation.md): why, in one line.
+    refused(
+        &GRAZING.replace("follow=grazing", "follow=neimark-sacker"),
+        bad,
+        "has no Neimark–Sacker point",
     )
     .await;
 }

@@ -193,7 +193,9 @@ def curve(experiment: Experiment, follow: str, vary: str, vary_to: float, over: 
     lies between them. Along the curve: where the orbits' stability apart from the followed
     multiplier changes, the codimension-two points (a cusp of folds, a fold or period
     doubling meeting a grazing, 1:1 and 1:2 resonances, fold-flip), each located, and why it
-    ends. The piecewise-linear (Coulomb) law only. Everything is dimensionless.
+    ends. The piecewise-linear (Coulomb) law only, which has no Neimark–Sacker point (det M
+    < 1 on every orbit: 'neimark-sacker' raises ValueError saying why; see
+    docs/bifurcation.md). Everything is dimensionless.
 
     Args:
         experiment: a ``stickslip.Experiment`` with values of both parameters (its point is
@@ -218,9 +220,11 @@ def curve(experiment: Experiment, follow: str, vary: str, vary_to: float, over: 
         ``to_xarray()``.
 
     Raises:
-        ValueError: bad input, a model other than the PWL law, no special point of the kind
-            between the experiment's point and ``vary_to`` (the message names the kind and
-            the range searched); with the library's message. KeyboardInterrupt: Ctrl-C.
+        ValueError: bad input (``vary`` equal to ``over``: ``invalid vary: must differ from
+            over``), a model other than the PWL law, a Neimark–Sacker point (the model has
+            none), no special point of the kind between the experiment's point and
+            ``vary_to`` (the message names the kind and the range searched); with the
+            library's message. KeyboardInterrupt: Ctrl-C.
 
     Example:
         >>> exp = stickslip.Experiment.paper(w=1.2, beta=3.0)

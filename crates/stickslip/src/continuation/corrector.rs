@@ -109,6 +109,21 @@ impl Problem<'_> {
         self.parameter.set(self.base, lambda)
     }
 
+    /// The velocity of a state stuck to the belt at the parameter value `lambda`: the belt's
+    /// speed vb (0 without a belt, or with an invalid `lambda`).
+    fn stuck_velocity(&self, lambda: f64) -> f64 {
+        self.params(lambda).map_or(0.0, |p| p.vb)
+    }
+
+    /// d(stuck velocity)/dλ: 1 when λ is vb, else 0.
+    fn stuck_moves(&self) -> f64 {
+        if self.parameter == Parameter::Vb {
+            1.0
+        } else {
+            0.0
+        }
+    }
+
     /// The residual tolerance: the options' for the exact model, at least the accuracy of a
     /// stiff solver's map for a smooth law ([`Dynamics::map_tolerance`]).
     pub fn tolerance(&self) -> f64 {
@@ -206,9 +221,13 @@ impl Problem<'_> {
         // Where a stop begins or ends at the strobe, Newton's method can land a rounding error
         // off y' = 0, on an orbit that sticks right after the strobe and again right before
         // the next: the orbit stuck at the strobe, with a spurious extra stop. Prefer the
-        // stuck one when it is a fixed point to the tolerance.
-        if self.dynamics.is_exact() && u[1] != 0.0 && u[1].abs() <= 1e-6 * 1f64.max(u[0].abs()) {
-            let snapped = [u[0], 0.0, u[2]];
+        // stuck one when it is a fixed point to the tolerance. (Stuck is y' = vb on a belt.)
+        let stuck = self.stuck_velocity(u[2]);
+        if self.dynamics.is_exact()
+            && u[1] != stuck
+            && (u[1] - stuck).abs() <= 1e-6 * 1f64.max(u[0].abs())
+        {
+            let snapped = [u[0], stuck, u[2]];
             if let Ok(orbit) = self.orbit_at(&snapped) {
                 if orbit.iterations == 0 && orbit.stuck_at_strobe {
                     u = snapped;
@@ -317,14 +336,17 @@ impl Problem<'_> {
             last = norm_r;
             if image.stuck_at_start && image.stuck_at_end {
                 // The strobe falls inside a stop: the map is differentiable in y only; keep
-                // y' = 0 and solve for (y, λ).
+                // y' at the belt's speed vb (0 without a belt; λ itself when λ is vb, then
+                // dp is the derivative along the stuck states) and solve for (y, λ).
+                let (stuck, moves) = (self.stuck_velocity(u[2]), self.stuck_moves());
                 let Some(d) = solve2(
-                    [[m[0][0] - 1.0, dp[0]], [t[0], t[2]]],
-                    [-r[0], -(on_plane + t[1] * (0.0 - u[1]))],
+                    [[m[0][0] - 1.0, dp[0]], [t[0], t[2] + t[1] * moves]],
+                    [-r[0], -(on_plane + t[1] * (stuck - u[1]))],
                 ) else {
                     return Ok(None);
                 };
                 u = [u[0] + d[0], 0.0, u[2] + d[1]];
+                u[1] = self.stuck_velocity(u[2]);
             } else {
                 let Some(d) = solve3(
                     [

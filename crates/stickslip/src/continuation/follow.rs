@@ -1,6 +1,5 @@
-//! Following a branch: [`continue_orbit`](super::continue_orbit) one way,
-//! [`continue_both_ways`](super::continue_both_ways), and the orbit a motion settles on, where
-//! `stickslip continue` starts.
+//! Following a branch: [`continue_orbit`] one way, [`continue_both_ways`], and the orbit a
+//! motion settles on, where `stickslip continue` starts.
 
 use super::corrector::{self, counts, norm, Problem, Solution};
 use super::grazing::end_at;
@@ -14,7 +13,8 @@ use crate::stability::{Dynamics, ExactDynamics, NewtonOptions, PeriodicOrbit};
 use crate::steady::periodic_orbit_from_steady_of;
 use std::ops::ControlFlow;
 
-/// The p strobe points of an orbit and its extremes in y.
+/// The p strobe points of an orbit and its extremes in y (on a belt, also those inside its
+/// slides).
 fn strobes_and_extremes(
     dynamics: &dyn Dynamics,
     params: &Params,
@@ -31,9 +31,22 @@ fn strobes_and_extremes(
         .iter()
         .map(|e| e.y)
         .chain(strobes.iter().map(|s| s.y));
-    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+    let (mut lo, mut hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
         (lo.min(y), hi.max(y))
     });
+    if params.vb != 0.0 {
+        // On a belt the events are the slip's zeros (y' = vb): y has its extremes inside the
+        // slides as well, where y' = 0, found in the dense output over the orbit's period.
+        let mut scan = dynamics.solver(params, orbit.state)?;
+        let end = orbit.period as f64 * orbit.drive_period;
+        while scan.time() < end {
+            scan.advance(end)?;
+            crate::steady::extremes::velocity_zeros(scan.as_ref(), 0.2, |s, _| {
+                lo = lo.min(s.y);
+                hi = hi.max(s.y);
+            });
+        }
+    }
     Ok((strobes, lo, hi))
 }
 
@@ -297,7 +310,7 @@ pub fn continue_orbit_of(
 /// λ to the end reached going up, arclength from the first.
 ///
 /// # Errors
-/// As [`continue_orbit`](super::continue_orbit); [`Error::InvalidParameter`] when the range does
+/// As [`continue_orbit`]; [`Error::InvalidParameter`] when the range does
 /// not hold the start value or is empty.
 pub fn continue_both_ways(
     params: &Params,
@@ -416,6 +429,7 @@ fn join(
 /// [`crate::stability::StabilityError::NoPeriod`] when the motion finds no period;
 /// whatever the solver and Newton's method report.
 pub fn settled_orbit(experiment: &Experiment) -> Result<(Params, PeriodicOrbit)> {
+    experiment.check_coulomb_tool()?;
     let dynamics = experiment.dynamics()?;
     let options = experiment.steady_options().with_spectrum(false);
     let steady = experiment.steady_with(&options)?;

@@ -4,7 +4,7 @@
 //! A periodic orbit of period p (drive periods) is a zero of
 //!
 //! ```text
-//! F(x, λ) = P^p(x; λ) − x,       x = (y, y') at the strobe, λ one of ζ, w, β, μs,
+//! F(x, λ) = P^p(x; λ) − x,       x = (y, y') at the strobe, λ one of ζ, w, β, μs, vb,
 //! ```
 //!
 //! with P^p the p-fold strobe map of the exact solver ([`crate::stability::strobe_map`]). Its
@@ -16,7 +16,10 @@
 //! where M − I alone is singular, so the branch goes round folds and on along their unstable
 //! side. M is the exact monodromy matrix ([`crate::stability`]); ∂P^p/∂λ is a central
 //! difference (step [`ContinuationOptions::derivative_step`] relative), which only slows the
-//! corrector's convergence, not the accuracy of the points (the residual is exact). Every
+//! corrector's convergence, not the accuracy of the points (the residual is exact); for the
+//! belt speed vb it is exact ([`crate::stability::strobe_map_parameter_derivative`]). Where
+//! the strobe falls inside a stop the state is stuck to the belt, y' = vb, and stays so along
+//! the branch (moving with λ when λ is vb): the corrector solves for (y, λ) alone. Every
 //! accepted point is confirmed as an orbit by [`crate::stability::find_periodic_orbit`] to
 //! its tolerance, which also gives its events, stops and Floquet multipliers.
 //!

@@ -183,7 +183,7 @@ impl std::fmt::Display for Obstacle {
     }
 }
 
-/// The [`Obstacle`](super::Obstacle) of `orbit` at `params`: the closest of a turning point at the
+/// The [`Obstacle`] of `orbit` at `params`: the closest of a turning point at the
 /// static limit, a tangential release and a slide grazing rest with the net force within the static
 /// limit (μs > 1), each measured relatively, when one is below 1e-2.
 pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacle> {

@@ -446,13 +446,34 @@ impl Experiment {
     }
 
     /// The stability tools of this experiment's model ([`Dynamics`]: the exact PWL model's,
-    /// or the Shockley model's with the experiment's stiff-solver options), checking the
+    /// the Shockley model's with the experiment's stiff-solver options, or a Stribeck or
+    /// cubic friction law's, [`crate::stability::FrictionDynamics`]), checking the
     /// experiment's cancel token.
     ///
     /// # Errors
     /// As [`Experiment::law`].
     pub fn dynamics(&self) -> Result<Box<dyn Dynamics>> {
-        self.law()?.dynamics(self.shockley, self.cancel.0.clone())
+        let law = self.law()?;
+        if matches!(law, Law::Pwl) && !self.friction_law().is_coulomb() {
+            return Ok(Box::new(
+                crate::stability::FrictionDynamics::new().with_cancel(self.cancel.0.clone()),
+            ));
+        }
+        law.dynamics(self.shockley, self.cancel.0.clone())
+    }
+
+    /// `Ok` for a tool that takes Coulomb's friction law alone (`continue`, `bifurcation`,
+    /// `basins`, `curve`, the exponent map: the stability tools other than
+    /// [`Experiment::periodic_orbit`] and [`Experiment::lyapunov`]).
+    ///
+    /// # Errors
+    /// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law.
+    pub fn check_coulomb_tool(&self) -> Result<()> {
+        if self.friction_law().is_coulomb() {
+            Ok(())
+        } else {
+            Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw))
+        }
     }
 
     /// The scales to physical units, for a physical system.

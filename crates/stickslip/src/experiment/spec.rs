@@ -192,7 +192,7 @@ fn reference(key: Key, system: &System) -> Option<f64> {
 /// The value to blame for the dimensionless `target`, whose value `image` is out of its
 /// range: of the values the user gave (`given`) that enter it ([`factors`]), the one that
 /// moves it furthest the wrong way (too large or too small) from the reference description
-/// ([`reference`]), measured as |power·ln(value/reference)|; `fallback` (the key the image
+/// ([`reference()`]), measured as |power·ln(value/reference)|; `fallback` (the key the image
 /// was computed from) when none moves it that way. So C = 1e308 is blamed for ζ, not R,
 /// and C = 1e-308 for w, not the drive frequency; a drive frequency far from f0 is blamed
 /// for w.

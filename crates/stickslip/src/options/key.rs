@@ -218,6 +218,10 @@ pub enum OptionKey {
     TwoParameterMaxPoints,
     /// Largest step of arclength of a curve of special points.
     TwoParameterMaxStep,
+    /// The parameter a curve of special points is followed over (Q).
+    TwoParameterOver,
+    /// The parameter continued to find a curve's start, which then follows the curve (P).
+    TwoParameterVary,
     /// Smallest frequency w of a theory curve.
     CurveWMin,
     /// Largest frequency w of a theory curve.
@@ -462,6 +466,12 @@ rows! {
     TwoParameterMaxStep, TwoParameter, "max-step", "max_step", Number, excl(0.0), incl(10.0),
         Range, "must be > 0 and <= 10", Some(0.1),
         "Largest step of arclength in (y, y', --over, --vary).";
+    TwoParameterOver, TwoParameter, "over", "over", Text, None, None, Range,
+        "must be a parameter other than the varied one", None,
+        "The parameter the curve is followed over (Q).";
+    TwoParameterVary, TwoParameter, "vary", "vary", Text, None, None, Range,
+        "must be a parameter other than the one the curve is followed over", None,
+        "The parameter continued to find the start, which then follows the curve (P).";
     CurveWMin, Curve, "w-min", "w_min", Number, incl(1e-5), incl(1e5), Range,
         "must be finite and from 1e-5 to 1e5 (docs/limits.md)", Some(0.2),
         "Smallest w of the curve (> 0) [default: 0.2].";

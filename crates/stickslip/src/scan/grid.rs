@@ -197,8 +197,10 @@ impl Grid {
     ///
     /// # Errors
     /// Invalid options; [`Error::HorizonTooLong`] when the measurement reaches beyond the
-    /// time range the solvers resolve at some w of the grid.
+    /// time range the solvers resolve at some w of the grid;
+    /// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law.
     pub fn lyapunov(mut self, options: LyapunovOptions) -> Result<Self> {
+        self.experiment.check_coulomb_tool()?;
         let options = options.validate()?;
         // The measurement starts again at τ = 0 from the end of the steady-state search; the
         // axes' edges hold every value of w.

@@ -183,6 +183,21 @@ impl Dynamics for ExactDynamics {
     fn repeat_tolerance(&self, tolerance: f64) -> f64 {
         tolerance
     }
+
+    /// Exact for the belt speed vb, from the pieces ([`super::strobe_map_parameter_derivative`]:
+    /// a difference would start a state stuck to the belt sliding at vb ± h); `None`, a
+    /// central difference of the exact map, for the others.
+    fn parameter_derivative(
+        &self,
+        params: &Params,
+        state: State,
+        periods: usize,
+        parameter: Parameter,
+    ) -> Option<Result<[f64; 2]>> {
+        (parameter == Parameter::Vb).then(|| {
+            super::sensitivity::strobe_map_parameter_derivative(params, state, periods, parameter)
+        })
+    }
 }
 
 impl Dynamics for ShockleyDynamics {

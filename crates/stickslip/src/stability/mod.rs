@@ -64,6 +64,7 @@
 
 pub mod dynamics;
 pub(crate) mod error;
+pub mod friction;
 pub mod lyapunov;
 mod matrix;
 pub mod nonperiodic;
@@ -80,6 +81,7 @@ pub(crate) mod verdict;
 
 pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
+pub use friction::{FrictionDynamics, FrictionTangent};
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
     SecondExponent,
@@ -93,8 +95,8 @@ pub use periodic_orbit::{find_periodic_orbit, NewtonOptions, PeriodicOrbit, Stab
 pub use report::{ExponentValue, LyapunovReport, OrbitReport};
 pub use segment::{sliding_transition, stuck_transition};
 pub use sensitivity::{
-    periodic_orbit_sensitivity, strobe_map_parameter_derivatives, OrbitSample,
-    SENSITIVITY_PARAMETERS,
+    periodic_orbit_sensitivity, strobe_map_parameter_derivative, strobe_map_parameter_derivatives,
+    OrbitSample, SENSITIVITY_PARAMETERS,
 };
 pub use smooth::{ShockleyDynamics, ShockleyTangent, SmoothImage, SmoothOrbitSample};
 pub use strobe::{strobe_map, StrobeImage};

@@ -18,17 +18,23 @@
 //!   functions of q = ζ² − 1: ∂EC/∂ζ = −t EC + ζ t ES, ∂ES/∂ζ = −t ES + ζ(t EC − ES)/q (a
 //!   power series in q where |q|t² ≤ 1, so that ζ near 1 loses nothing). μs does not enter a
 //!   slide.
-//! - *Stuck*, the state is constant and the velocity row is zero (the stick's saltation).
+//! - *Stuck*, the block moves with the belt, y = y_s + vb (τ − τ_s), y' = vb: the position
+//!   row is carried, the velocity row is zero (the stick's saltation); ∂y/∂vb grows by the
+//!   time stuck and ∂y'/∂vb = 1.
 //! - *At events* every column jumps by the saltation of [`super::saltation`]; the event
 //!   surfaces of a turn and a stop (y' = 0) do not depend on p, so that is all. A release
-//!   happens where h = s(F(τ) − y) − μs = 0, which does: its time moves by
-//!   δτ_r = (s δy − s ∂F/∂p δp + [p = μs] δp)/(sF'), and with the acceleration a⁺ = s(μs − 1)
-//!   after it the velocity row gains
+//!   happens where h = s N − μs = 0, N = F(τ) − y − 2ζ vb the net force on the stuck block,
+//!   which does: its time moves by δτ_r = (s δy − s ∂N/∂p δp + [p = μs] δp)/(s(F' − vb)), and
+//!   with the acceleration a⁺ = s(μs − 1) after it the velocity row gains
 //!   ```text
-//!   δy'⁺ = −(μs − 1)/(sF') · (δy − ∂F/∂p + s [p = μs]),
+//!   δy'⁺ = −(μs − 1)/(s(F' − vb)) · (δy − ∂N/∂p + s [p = μs]),
 //!   ```
-//!   the state part of which is the release's saltation; ∂F/∂β = cos θ, ∂F/∂w = −βτ sin θ,
-//!   ∂F/∂φ = −β sin θ at θ = wτ_r + φ.
+//!   the state part of which is the release's saltation; ∂N/∂ζ = −2vb, ∂N/∂β = cos θ,
+//!   ∂N/∂w = −βτ sin θ, ∂N/∂φ = −β sin θ, ∂N/∂vb = −2ζ at θ = wτ_r + φ.
+//! - *On a belt* the velocity zeros are zeros of the slip, h = y' − vb, so that vb moves them:
+//!   a stop sets ∂y'/∂vb = 1 (the block takes the belt's speed), a turn from a⁻ to a⁺ sets
+//!   ∂y'/∂vb to (a⁺/a⁻) ∂y'/∂vb + 1 − a⁺/a⁻. vb enters no slide: its column is carried by Φ
+//!   ([`strobe_map_parameter_derivative`] gives it).
 //!
 //! **The periodic orbit.** A fixed point x* of the p-fold strobe map, x* = x(kT; x*, p) with
 //! kT = 2πk/w, moves with the parameters by
@@ -37,7 +43,7 @@
 //! dx*/dp = (I − M)⁻¹ (S_p(kT) + ẋ(kT) d(kT)/dp),     d(kT)/dw = −2πk/w²,
 //! ```
 //!
-//! M = J(kT) the monodromy matrix, and a sample at τ by dy/dp = J_y(τ) dx*/dp + S_{p,y}(τ).
+//! M = J(kT) the monodromy matrix, ẋ(kT) = (vb, 0) when stuck there, and a sample at τ by dy/dp = J_y(τ) dx*/dp + S_{p,y}(τ).
 //! This needs I − M invertible (no multiplier 1: not a motion that stays stuck, whose stuck
 //! position is neutral), a release that is not tangential, and a periodic particular solution
 //! (not ζ = 0 at w = 1).
@@ -45,7 +51,7 @@
 use super::error::StabilityError;
 use crate::error::{Error, Result};
 use crate::exact::ExactSolver;
-use crate::params::{Params, State};
+use crate::params::{Parameter, Params, State};
 use crate::solver::{EventKind, Phase, Solver};
 use crate::trig::sin_cos;
 use std::f64::consts::TAU;
@@ -67,8 +73,11 @@ pub struct OrbitSample {
     pub dy: [f64; 5],
 }
 
-/// Columns of the propagated matrix: δy0, δv0, then the five parameters.
-const COLUMNS: usize = 7;
+/// Columns of the propagated matrix: δy0, δv0, then the five parameters and vb.
+const COLUMNS: usize = 8;
+
+/// The column of vb in the propagated matrix.
+const VB: usize = 7;
 
 /// EC, ES and their derivatives by ζ at local time `t` ≥ 0 (see the module documentation).
 fn basis(zeta: f64, t: f64) -> (f64, f64, f64, f64) {
@@ -211,7 +220,10 @@ impl Propagation {
         let event = self.solver.advance(t_end)?;
         let to = self.solver.time();
         if sign == 0.0 {
+            // Stuck: y = y_s + vb (τ − τ_s), y' = vb.
             self.s[1] = [0.0; COLUMNS];
+            self.s[1][VB] = 1.0;
+            self.s[0][VB] += to - from;
         } else if to > from {
             let (pa, dpa) = self.particular.at(from, sign);
             let (_, dpb) = self.particular.at(to, sign);
@@ -242,13 +254,17 @@ impl Propagation {
 
     fn jump(&mut self, kind: EventKind, tau: f64) -> Result<()> {
         match kind {
-            EventKind::Stick => self.s[1] = [0.0; COLUMNS],
+            EventKind::Stick => {
+                self.s[1] = [0.0; COLUMNS];
+                self.s[1][VB] = 1.0;
+            }
             EventKind::Turn => {
                 let (sign, d) = self.solver.slide_start().expect("a turn starts a slide");
                 let ratio = d[2] / (d[2] + 2.0 * sign);
                 for v in &mut self.s[1] {
                     *v *= ratio;
                 }
+                self.s[1][VB] += 1.0 - ratio;
             }
             EventKind::Slip => {
                 let mu_s = self.params.mu_s;
@@ -256,15 +272,24 @@ impl Propagation {
                     return Ok(());
                 }
                 let (sign, d) = self.solver.slide_start().expect("a release starts a slide");
+                // s(F' − vb), from y''' = F' − y' − 2ζy'' at the start, where y' = vb.
                 let rate = sign * (d[3] + 2.0 * self.params.zeta * d[2]);
                 if !(rate > 0.0) {
                     return Err(StabilityError::NonFiniteJacobian { tau }.into());
                 }
                 let shear = -(mu_s - 1.0) / rate;
                 let (sn, cs) = sin_cos(self.params.w * tau + self.params.phi);
-                let beta = self.params.beta;
-                // ∂F/∂(ζ, β, w, φ, μs) at the release, and the μs term of the event surface.
-                let df = [0.0, cs, -beta * tau * sn, -beta * sn, -sign];
+                let (beta, vb) = (self.params.beta, self.params.vb);
+                // ∂N/∂(ζ, β, w, φ, μs, vb) of the net force N = F − y − 2ζ vb at the release,
+                // and the μs term of the event surface.
+                let df = [
+                    -2.0 * vb,
+                    cs,
+                    -beta * tau * sn,
+                    -beta * sn,
+                    -sign,
+                    -2.0 * self.params.zeta,
+                ];
                 for c in 0..COLUMNS {
                     let mut change = self.s[0][c];
                     if c >= 2 {
@@ -277,11 +302,11 @@ impl Propagation {
         Ok(())
     }
 
-    /// ẋ at the current time (zero while stuck).
+    /// ẋ at the current time ((vb, 0) while stuck).
     fn velocity_field(&self) -> [f64; 2] {
         let x = self.solver.state();
         match self.solver.phase() {
-            Phase::Stick => [0.0, 0.0],
+            Phase::Stick => [self.params.vb, 0.0],
             phase => [
                 x.v,
                 self.params.drive(self.solver.time())
@@ -432,6 +457,49 @@ pub fn strobe_map_parameter_derivatives(
     state: State,
     period: usize,
 ) -> Result<[[f64; 5]; 2]> {
+    let all = strobe_columns(params, state, period)?;
+    Ok(all.map(|row| std::array::from_fn(|p| row[p])))
+}
+
+/// ∂P^p/∂λ of the p-fold strobe map at `state` by one parameter λ: ζ, β, w, μs (the columns
+/// of [`strobe_map_parameter_derivatives`]) or the belt speed vb, rows (y, y').
+///
+/// vb enters no slide; it moves the stops (y = y_s + vb (τ − τ_s)), the slip zeros that end
+/// the slides (y' = vb) and the releases (through the viscous force 2ζ vb): see the module
+/// documentation. From a state stuck to the belt (y' = vb, the net force within μs) the
+/// derivative is that of the map along the stuck states, y' = vb moving with vb: a strobe
+/// inside a stop of a periodic orbit, as the continuation in vb follows it.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for a parameter other than those five (a smooth law's);
+/// otherwise as [`strobe_map_parameter_derivatives`].
+pub fn strobe_map_parameter_derivative(
+    params: &Params,
+    state: State,
+    period: usize,
+    parameter: Parameter,
+) -> Result<[f64; 2]> {
+    let column = match parameter {
+        Parameter::Zeta => 0,
+        Parameter::Beta => 1,
+        Parameter::W => 2,
+        Parameter::MuS => 4,
+        Parameter::Vb => 5,
+        _ => {
+            return Err(Error::InvalidParameter {
+                name: parameter.label(),
+                value: parameter.get(params),
+                allowed: "not a parameter of the exact model's sensitivities (zeta, beta, w, \
+                          mu_s and vb are)",
+            })
+        }
+    };
+    let all = strobe_columns(params, state, period)?;
+    Ok([all[0][column], all[1][column]])
+}
+
+/// ∂P^p/∂(ζ, β, w, φ, μs, vb) at `state` (see [`strobe_map_parameter_derivatives`]).
+fn strobe_columns(params: &Params, state: State, period: usize) -> Result<[[f64; 6]; 2]> {
     let params = params.validate()?;
     crate::exact::check_coulomb(&params)?;
     let state = State::new(state.y, state.v)?;
@@ -449,7 +517,7 @@ pub fn strobe_map_parameter_derivatives(
     }
     let field = run.velocity_field();
     let period_by_w = -TAU * period as f64 / (params.w * params.w);
-    let mut out = [[0.0; 5]; 2];
+    let mut out = [[0.0; 6]; 2];
     for (r, row) in out.iter_mut().enumerate() {
         for (p, d) in row.iter_mut().enumerate() {
             *d = run.s[r][2 + p] + if p == 2 { field[r] * period_by_w } else { 0.0 };

@@ -8,7 +8,7 @@
 //!   records p whole periods: the exact event log, the extremes of y, and (optionally) samples
 //!   of the dense output for the [`Spectrum`].
 //! - [`MotionClass`]: sliding, periodic stick, non-periodic stick or static (the paper's
-//!   Fig. 6), decided from the event log of the recorded cycle ([`classify`]).
+//!   Fig. 6), decided from the event log of the recorded cycle ([`classify()`]).
 //! - [`Spectrum`]: amplitudes and phases of the drive harmonics of y by a real FFT over whole
 //!   periods (no window, no leakage).
 //!
@@ -21,7 +21,7 @@ mod classify;
 mod cycle;
 mod cycle_trace;
 mod exponent;
-mod extremes;
+pub(crate) mod extremes;
 mod newton;
 pub mod options;
 mod record;

@@ -18,7 +18,7 @@ pub struct SteadyOptions {
     /// Longest period p (in drive periods) looked for. Default 16.
     pub max_period: usize,
     /// Shortest stop that counts, as a fraction of the drive period. Default 1e-8 (see
-    /// [`super::classify`]).
+    /// [`super::classify()`]).
     pub min_stop_fraction: f64,
     /// Whether to sample the recorded cycle and compute its [`Spectrum`](super::Spectrum). Default true.
     pub spectrum: bool,

@@ -19,9 +19,13 @@
 //!   y = y_e = sgn(vb)·μ(|vb|), reached when the turning points' distance from y_e falls below
 //!   the tolerance, or decays geometrically (three ratios of successive distances agreeing to
 //!   10⁻³, all below 1, the distance below 10⁻² of the scale): the linearisation about y_e,
-//!   y'' + (2ζ + μ'(|vb|)) y' + y = 0, then takes it there. A damped Coulomb belt is decided
-//!   at the first turning point nearer y_e than |vb|: from there its slide can never stick
-//!   again (its energy falls), so it is the linear one and decays onto y_e.
+//!   y'' + (2ζ + μ'(|vb|)) y' + y = 0, then takes it there. Sooner, by energy: with
+//!   E = ½ y'² + ½ (y − y_e)², dE/dτ = y'²·(c(y') − 2ζ) while the slip keeps the sign of
+//!   steady sliding's, c(v) = (μ(|vb| − v) − μ(|vb|))/v the chord of the law; so a turning
+//!   point at a distance r < |vb| from y_e such that c < 2ζ for all 0 < |v| ≤ r decides
+//!   steady sliding: from there |y'| ≤ r, the block never sticks again, and E falls onto
+//!   y_e (a damped Coulomb belt, c = 0, at the first turning point nearer y_e than |vb|; the
+//!   bound of the chord for the smooth laws is computed in closed form, see `chord_bound`).
 //!
 //! Beside the class every answer carries the equilibrium y_e and its stability: small
 //! oscillations about steady sliding are damped by 2ζ + μ'(|vb|) (stable where positive,
@@ -41,6 +45,7 @@ use super::options::SteadyOptions;
 use super::state::SteadyState;
 use super::SolverFactory;
 use crate::error::Result;
+use crate::friction::FrictionLaw;
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind, Phase, Solver};
 use serde::{Deserialize, Serialize};
@@ -202,9 +207,16 @@ pub(crate) fn settle_self_excited<F: SolverFactory + ?Sized>(
     initial: State,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
+    let options = options.validate()?;
     let mut solver = factory.make(*params, initial)?;
-    self_excited_state(solver.as_mut(), options)
+    let make = |state: State| factory.make(*params, state);
+    let restart: Option<&Restart> = if options.newton { Some(&make) } else { None };
+    search(solver.as_mut(), &options, restart)
 }
+
+/// A new solver of the same parameters from a state (at τ = 0), for Newton's method on the
+/// section map.
+type Restart<'a> = dyn Fn(State) -> Result<Box<dyn Solver + Send>> + 'a;
 
 /// The steady state of the self-excited motion of `solver` (its parameters have β = 0 and
 /// vb ≠ 0), from where it stands: see the module documentation.
@@ -216,7 +228,17 @@ pub fn self_excited_state<S: Solver + ?Sized>(
     solver: &mut S,
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
-    let options = options.validate()?;
+    search(solver, &options.validate()?, None)
+}
+
+/// [`self_excited_state`] with validated `options`; with `restart`, settling a pure-slip
+/// cycle by Newton's method on its turning-point map ([`settle_by_newton`]).
+fn search<S: Solver + ?Sized>(
+    solver: &mut S,
+    options: &SteadyOptions,
+    restart: Option<&Restart>,
+) -> Result<SteadyState> {
+    let options = *options;
     let params = *solver.params();
     let start = solver.time();
     let cap = start + options.max_periods as f64 * TAU;
@@ -237,6 +259,8 @@ pub fn self_excited_state<S: Solver + ?Sized>(
     let mut log: VecDeque<Mark> = VecDeque::new();
     // |y − y_e| at the last turning points, for the decay towards steady sliding.
     let mut distances: VecDeque<f64> = VecDeque::with_capacity(4);
+    // Newton's tries on the turning-point map, and the turning points since the last.
+    let (mut tries, mut since_try) = (0, 0);
 
     let finish = |kind: CycleSection, sections: &Sections, p: usize, log: &VecDeque<Mark>| {
         let n = sections.points.len();
@@ -301,6 +325,20 @@ pub fn self_excited_state<S: Solver + ?Sized>(
             if distance <= limit || decays(&distances, scale) || never_sticks(&params, distance) {
                 return Ok(sliding(&params, point.tau, equilibrium, damping));
             }
+            since_try += 1;
+            if let Some(restart) = restart.filter(|_| tries < NEWTON_TRIES && since_try >= 4) {
+                if let Some(guess) = geometric_limit(&turning, equilibrium, limit, scale) {
+                    tries += 1;
+                    since_try = 0;
+                    let last = turning.points[turning.points.len() - 1].state.y;
+                    let remaining = ((cap - point.tau) / TAU).floor() as usize;
+                    if let Some(found) =
+                        settle_by_newton(restart, &options, guess, last, limit, remaining)?
+                    {
+                        return Ok(shifted(found, point.tau));
+                    }
+                }
+            }
         }
         // A motion that creeps onto steady sliding without turning (overdamped).
         let now = solver.state();
@@ -331,16 +369,218 @@ pub fn self_excited_state<S: Solver + ?Sized>(
     ))
 }
 
-/// Whether a damped Coulomb belt's slide from a turning point at `distance` from steady
-/// sliding ends there, exactly: while the slip keeps its sign the slide is the linear
-/// y'' + 2ζ y' + y = y_e, whose energy (y − y_e)² + y'² falls at the rate 4ζ y'², so from a
-/// turning point (y' = 0) on |y'| ≤ `distance`; below |vb| the slip s = y' − vb never
-/// reaches 0, the block never sticks again and the slide decays onto y_e (ζ > 0). (The
-/// geometric test of [`decays`] waits for the distance to fall below 10⁻² of the scale;
-/// this one decides a map's sliding points several natural periods sooner, with the same
-/// class.)
+/// Whether the slide from a turning point (y' = 0) at `distance` from steady sliding never
+/// sticks again and decays onto steady sliding: the energy argument of the module
+/// documentation. With E = ½ y'² + ½ (y − y_e)², y_e = μ(vb) (vb > 0; a negative belt speed
+/// is its mirror image y → −y), the equation of the slide with s = y' − vb < 0,
+/// y'' + 2ζ y' + y − μ(vb − y') = 0, gives
+///
+/// ```text
+/// dE/dτ = y'·(μ(vb − y') − μ(vb) − 2ζ y') = y'²·(c(y') − 2ζ),   c(v) = (μ(vb − v) − μ(vb))/v
+/// ```
+///
+/// (with s > 0, y' > vb > 0, the slide's y'' + 2ζ y' + y + μ(y' − vb) = 0 gives
+/// dE/dτ = −y'·(2ζ y' + μ(y' − vb) + μ(vb)) < 0: energy falls there too). Let r = `distance`
+/// < vb, the energy at the turning point ½ r². If the chord c(v) < 2ζ for every v ≠ 0 with
+/// |v| ≤ r, then E cannot rise while |y'| ≤ r, and |y'| ≤ √(2E) ≤ r: so |y'| stays below vb,
+/// the slip keeps its sign, the block never sticks or reverses again, and E falls strictly
+/// except where y' = 0, whose only invariant point is the equilibrium (LaSalle): the slide
+/// decays onto y_e. Coulomb's law has c = 0 (the linear slide with ζ > 0 of before); the
+/// bound of the chord for the smooth laws is [`chord_bound`]. (The geometric test of
+/// [`decays`] waits for the distance to fall below 10⁻² of the scale; this one decides a
+/// map's sliding points several natural periods sooner, with the same class.)
 fn never_sticks(params: &Params, distance: f64) -> bool {
-    params.law.is_coulomb() && params.zeta > 0.0 && distance < params.vb.abs()
+    let vb = params.vb.abs();
+    distance < vb && chord_bound(&params.law, params.mu_s, vb, distance) < 2.0 * params.zeta
+}
+
+/// An upper bound of the chord c(v) = (μ(vb − v) − μ(vb))/v of the friction law over
+/// 0 < |v| ≤ r, for 0 ≤ r < vb (see [`never_sticks`]); computed in closed form, not sampled:
+///
+/// - Coulomb: c = 0.
+/// - cubic, μ(s) = μs − k1 s + k3 s³: c(v) = k1 − 3 k3 vb² + 3 k3 vb v − k3 v², a concave
+///   parabola whose vertex v = 3vb/2 lies beyond r, so its maximum on [−r, r] is at v = r:
+///   k1 − k3 (3 vb² − 3 vb r + r²), exactly.
+/// - Stribeck, μ(s) = 1 + (μs − 1) e^{−x^δ} + η s with x = s/vs: by the mean value theorem
+///   c(v) = −μ'(ξ) with ξ between vb − v and vb, so c ≤ −min μ' on [vb − r, vb + r] (inside
+///   s > 0). μ'(s) = η − (μs − 1) g(s) with g(s) = δ x^{δ−1} e^{−x^δ} / vs, which falls for
+///   δ ≤ 1 and for δ > 1 rises to its one peak at x* = ((δ − 1)/δ)^{1/δ} and then falls; so
+///   its maximum on an interval is g(x*) when the interval holds x*, else the larger of its
+///   ends, and its minimum is the smaller of its ends. min μ' is η − (μs − 1)·max g for
+///   μs ≥ 1 and η − (μs − 1)·min g otherwise.
+///
+/// The smooth laws' bounds are raised by 10⁻¹² (1 + |terms|) against rounding.
+fn chord_bound(law: &FrictionLaw, mu_s: f64, vb: f64, r: f64) -> f64 {
+    match *law {
+        FrictionLaw::Coulomb => 0.0,
+        FrictionLaw::Cubic { k1, k3 } => {
+            let lower = 3.0 * vb * vb - 3.0 * vb * r + r * r;
+            k1 - k3 * lower + 1e-12 * (1.0 + k1.abs() + k3 * lower)
+        }
+        FrictionLaw::Stribeck { vs, delta, eta } => {
+            let g = |s: f64| {
+                let x = s / vs;
+                delta * x.powf(delta - 1.0) * (-x.powf(delta)).exp() / vs
+            };
+            let (a, b) = (vb - r, vb + r);
+            let (ga, gb) = (g(a), g(b));
+            let fall = mu_s - 1.0;
+            let g_extreme = if fall >= 0.0 {
+                let peak = (delta > 1.0)
+                    .then(|| vs * ((delta - 1.0) / delta).powf(1.0 / delta))
+                    .filter(|&s| a <= s && s <= b);
+                peak.map_or(ga.max(gb), g)
+            } else {
+                ga.min(gb)
+            };
+            let bound = fall * g_extreme - eta;
+            bound + 1e-12 * (1.0 + eta + (fall * g_extreme).abs())
+        }
+    }
+}
+
+/// Newton's tries on the turning-point map of one motion.
+const NEWTON_TRIES: usize = 3;
+/// Most iterations of one try.
+const NEWTON_ITERATIONS: usize = 12;
+/// Natural periods the turning-point map may take to return.
+const MAP_PERIODS: usize = 20;
+/// Natural periods the plain search from Newton's fixed point has to confirm it.
+const CONFIRM_PERIODS: usize = 10;
+
+/// The limit of the last turning points' maxima y_k when they approach it geometrically, by
+/// Aitken's extrapolation: the last three ratios of successive differences in (0, 1),
+/// agreeing to 2 %, the last difference above `limit` (below it the plain test is about to
+/// decide), and the limit away from steady sliding (by 10⁻³ of `scale`: a motion that decays
+/// onto steady sliding is left to the tests of steady sliding).
+fn geometric_limit(turning: &Sections, equilibrium: f64, limit: f64, scale: f64) -> Option<f64> {
+    let n = turning.points.len();
+    if n < 4 {
+        return None;
+    }
+    let y = |k: usize| turning.points[n - 4 + k].state.y;
+    let d = [y(1) - y(0), y(2) - y(1), y(3) - y(2)];
+    let (r1, r2) = (d[1] / d[0], d[2] / d[1]);
+    let geometric = [r1, r2].iter().all(|r| *r > 0.0 && *r < 1.0)
+        && (r2 - r1).abs() <= 0.02 * r2
+        && d[2].abs() > limit;
+    let guess = y(3) + d[2] * r2 / (1.0 - r2);
+    (geometric && (guess - equilibrium).abs() > 1e-3 * scale).then_some(guess)
+}
+
+/// The maximum of y after the next turning point of the slide from (y, 0), a maximum of y:
+/// the turning-point map of a pure-slip cycle about steady sliding; `None` when the slide
+/// sticks or reverses first, or does not turn within [`MAP_PERIODS`] natural periods.
+fn turning_map(restart: &Restart, y: f64) -> Result<Option<f64>> {
+    let mut solver = restart(State { y, v: 0.0 })?;
+    let end = MAP_PERIODS as f64 * TAU;
+    while solver.time() < end {
+        let event = solver.advance((solver.time() + TAU).min(end))?;
+        let mut next = None;
+        velocity_zeros(&*solver, SPACING, |s, maximum| {
+            if maximum && next.is_none() {
+                next = Some(s.y);
+            }
+        });
+        if next.is_some() {
+            return Ok(next);
+        }
+        if event.is_some_and(|e| e.kind != EventKind::Slip) {
+            return Ok(None);
+        }
+    }
+    Ok(None)
+}
+
+/// A pure-slip cycle about steady sliding settled by Newton's method on the turning-point
+/// map P (the maximum y of the next turning point from a maximum y, [`turning_map`]), from
+/// `guess` (Aitken's limit of the maxima, [`geometric_limit`], the last of which is `last`):
+/// x ← x + (P(x) − x)/(1 − P'), with P' by central differences of the solver at its own
+/// tolerance (1e-12) a step 10⁻⁵ of the scale apart, computed again where the steps do not
+/// shrink threefold, until a step is below 10⁻² of `limit`. The fixed point is accepted
+/// where it is stable (0 ≤ P' < 1: the map of a planar flow does not fall), lies beyond the
+/// last maximum in the direction the maxima move, and within half the remaining distance of
+/// Aitken's limit; and then only as the plain search confirms it: the search from (x, 0),
+/// without Newton and within [`CONFIRM_PERIODS`] natural periods (or the `remaining` ones of
+/// the search, if fewer), must repeat at the
+/// turning point within 10³ `limit` of x, and its record is the answer (its times from its
+/// own start). `None` otherwise: the search goes on as without Newton.
+fn settle_by_newton(
+    restart: &Restart,
+    options: &SteadyOptions,
+    guess: f64,
+    last: f64,
+    limit: f64,
+    remaining: usize,
+) -> Result<Option<SteadyState>> {
+    let scale = limit / options.tolerance;
+    let h = 1e-5 * scale;
+    let (mut x, mut slope, mut previous) = (guess, None, f64::INFINITY);
+    let mut converged = false;
+    for _ in 0..NEWTON_ITERATIONS {
+        let d = match slope {
+            Some(d) => d,
+            None => {
+                let (Some(up), Some(down)) =
+                    (turning_map(restart, x + h)?, turning_map(restart, x - h)?)
+                else {
+                    return Ok(None);
+                };
+                let d = (up - down) / (2.0 * h);
+                if !(-1e-6..1.0).contains(&d) {
+                    return Ok(None);
+                }
+                slope = Some(d);
+                d
+            }
+        };
+        let Some(image) = turning_map(restart, x)? else {
+            return Ok(None);
+        };
+        let step = (image - x) / (1.0 - d);
+        x += step;
+        if !x.is_finite() {
+            return Ok(None);
+        }
+        if step.abs() <= 1e-2 * limit {
+            converged = true;
+            break;
+        }
+        if step.abs() > previous / 3.0 {
+            slope = None;
+        }
+        previous = step.abs();
+    }
+    let toward = (x - last) * (guess - last) > 0.0;
+    if !converged || !toward || (x - guess).abs() > 0.5 * (guess - last).abs() + limit {
+        return Ok(None);
+    }
+    if remaining < 2 {
+        return Ok(None);
+    }
+    let mut plain = *options;
+    plain.max_periods = remaining.min(CONFIRM_PERIODS);
+    let mut solver = restart(State { y: x, v: 0.0 })?;
+    let found = search(solver.as_mut(), &plain, None)?;
+    let confirmed = found.self_excited.is_some_and(|c| {
+        c.section == Some(CycleSection::TurningPoint)
+            && (found.strobes[0].y - x).abs() <= 1e3 * limit
+    });
+    Ok(confirmed.then_some(found))
+}
+
+/// `steady`, found by a search started at τ = 0, with its times moved on by `offset`.
+fn shifted(mut steady: SteadyState, offset: f64) -> SteadyState {
+    steady.start += offset;
+    for e in &mut steady.events {
+        e.tau += offset;
+    }
+    if let Some(cycle) = steady.self_excited.as_mut() {
+        cycle.time_to_settle += offset;
+        steady.periods_to_settle =
+            (cycle.time_to_settle / steady.params.drive_period()).ceil() as usize;
+    }
+    steady
 }
 
 /// Whether the last distances from steady sliding decay geometrically (see the module

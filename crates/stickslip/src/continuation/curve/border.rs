@@ -42,7 +42,37 @@ const SAMPLES: usize = 32;
 
 /// Every condition on the motion from `state` at `params` over `period` drive periods.
 pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result<Vec<Candidate>> {
+    Ok(candidates_of(params, state, period, None, None)?.0)
+}
+
+/// Whether some time of [lo, hi] lies within `reach` of `tau` cyclically over `span` (a little
+/// more, never less: what lies outside cannot be [`nearest`] to `tau`).
+fn reaches(lo: f64, hi: f64, (tau, reach): (f64, f64), span: f64) -> bool {
+    let reach = reach * (1.0 + 1e-6) + 1e-9 * span;
+    (-2..=2).any(|k| {
+        let centre = tau + f64::from(k) * span;
+        lo <= centre + reach && hi >= centre - reach
+    })
+}
+
+/// The conditions of `only`'s kind (every kind when `None`) on the motion from `state` at
+/// `params` over `period` drive periods, each computed as [`candidates`] computes it, with the
+/// motion's (turns, stops) over the period. A kind left out costs nothing: the minima of the
+/// slides' speeds (a search on every slide) are sought only for
+/// [`BorderKind::SlideTouchesRest`], and with `near` = (τ, r) only on the slides that come
+/// within r of τ (cyclically over the period): the others' cannot be [`nearest`] to τ within
+/// r, and the list is complete within r of τ alone.
+pub(crate) fn candidates_of(
+    params: &Params,
+    state: State,
+    period: usize,
+    only: Option<BorderKind>,
+    near: Option<(f64, f64)>,
+) -> Result<(Vec<Candidate>, (usize, usize))> {
+    let wanted = |kind: BorderKind| only.is_none_or(|k| k == kind);
+    let mut counts = (0usize, 0usize);
     let end = period as f64 * params.drive_period();
+    let within = |lo: f64, hi: f64| near.is_none_or(|n| reaches(lo, hi, n, end));
     let mut solver = ExactSolver::new(*params, state);
     let mut out = Vec::new();
     // The position of the stop just released, until the slide after it has an event.
@@ -57,7 +87,7 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
         if b > a {
             let middle = solver.dense(0.5 * (a + b));
             match middle.phase {
-                Phase::Stick => {
+                Phase::Stick if wanted(BorderKind::ReleaseTangential) => {
                     for tau in extrema(params, a, b) {
                         out.push(Candidate {
                             kind: BorderKind::ReleaseTangential,
@@ -68,11 +98,13 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
                         });
                     }
                 }
+                Phase::Stick => {}
                 phase => {
                     let sign = phase.sign();
                     last_sign = sign;
                     if let Some(y_s) = released.take() {
-                        for tau in extrema(params, a, b) {
+                        let extrema = extrema(params, a, b);
+                        for tau in extrema.filter(|_| wanted(BorderKind::ReleaseTangential)) {
                             out.push(Candidate {
                                 kind: BorderKind::ReleaseTangential,
                                 variant: false,
@@ -82,17 +114,32 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
                             });
                         }
                     }
-                    minima(params, &solver, a, b, sign, &mut out);
+                    if wanted(BorderKind::SlideTouchesRest) && within(a, b) {
+                        minima(params, &solver, a, b, sign, &mut out);
+                    }
                 }
             }
         }
         match event {
             Some(e) if matches!(e.kind, EventKind::Turn | EventKind::Stick) => {
+                if e.kind == EventKind::Turn {
+                    counts.0 += 1;
+                } else {
+                    counts.1 += 1;
+                }
                 released = None;
-                if e.kind == EventKind::Stick && last_sign != 0.0 {
+                // (A virtual minimum lies within half a drive period after the stop.)
+                if e.kind == EventKind::Stick
+                    && last_sign != 0.0
+                    && wanted(BorderKind::SlideTouchesRest)
+                    && within(e.tau, e.tau + 0.5 * params.drive_period())
+                {
                     if let Some(c) = virtual_minimum(params, e.tau, e.y, last_sign) {
                         out.push(c);
                     }
+                }
+                if !wanted(BorderKind::TurnAtLimit) {
+                    continue;
                 }
                 if e.kind == EventKind::Stick {
                     stop_start = Some(out.len());
@@ -118,7 +165,7 @@ pub(crate) fn candidates(params: &Params, state: State, period: usize) -> Result
             _ => {}
         }
     }
-    Ok(out)
+    Ok((out, counts))
 }
 
 /// The extrema of the drive, w·τ + φ ≡ 0 (mod π), in [a, b].

@@ -14,7 +14,9 @@
 //! - fold: det(M − I) = 0, a real multiplier at +1 (M the monodromy matrix, exact: the
 //!   product of the segments' and the saltation matrices of [`crate::stability`]);
 //! - period doubling: det(M + I) = 0;
-//! - Neimark–Sacker: det M − 1 = 0 with a complex pair, both multipliers on the unit circle;
+//! - Neimark–Sacker: det M − 1 = 0 with a complex pair, both multipliers on the unit circle
+//!   (the Coulomb model has none: det M < 1 on every orbit, docs/bifurcation.md, so
+//!   [`curve`] and [`find_start`] refuse it with [`crate::Unsupported::NoNeimarkSacker`]);
 //! - grazing: the condition of the event that appears ([`BorderKind`]): the net force
 //!   |F − y| at a velocity zero equal to μs (a turning point becomes a stop), a slide's lowest
 //!   speed zero (it touches rest mid-swing), or the net force at an extremum of the drive near

@@ -91,6 +91,19 @@ impl std::fmt::Display for NoStart {
     }
 }
 
+/// Whether the model (the exact piecewise-linear Coulomb model, the only one followed) can
+/// have a special point of the kind `follow`: it has no Neimark–Sacker point (det M < 1 on
+/// every orbit that reverses or sticks; docs/bifurcation.md).
+///
+/// # Errors
+/// [`crate::Unsupported::NoNeimarkSacker`] for [`Follow::NeimarkSacker`].
+fn possible(follow: Follow) -> Result<()> {
+    match follow {
+        Follow::NeimarkSacker => Err(Error::Unsupported(crate::Unsupported::NoNeimarkSacker)),
+        _ => Ok(()),
+    }
+}
+
 /// The orbit at `value` of `vary` near `state`, by Newton's method.
 fn orbit_at(
     params: &Params,
@@ -219,8 +232,9 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
 /// tangential), corrected onto the extended system at the value of `over` in `params`.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] when `over` and `vary` are the same parameter, and as
-/// [`continue_orbit`]; `Ok(Err(NoStart))` when the branch has no such point.
+/// [`Error::InvalidOption`] naming [`OptionKey::TwoParameterVary`] when `over` and `vary`
+/// are the same parameter (as [`check_spec`]); [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
+/// have; as [`continue_orbit`]; `Ok(Err(NoStart))` when the branch has no such point.
 pub fn find_start(
     params: &Params,
     orbit: &PeriodicOrbit,
@@ -231,14 +245,17 @@ pub fn find_start(
     monitor: &dyn Monitor,
 ) -> Result<std::result::Result<CurveStart, NoStart>> {
     if over == vary {
-        return Err(Error::InvalidParameter {
-            name: "over",
+        return Err(Error::InvalidOption {
+            option: OptionKey::TwoParameterVary,
             value: f64::NAN,
-            allowed: "must be another parameter than vary",
+            allowed: Allowed::Differs {
+                other: OptionKey::TwoParameterOver,
+            },
         });
     }
     super::system::column(over)?;
     super::system::column(vary)?;
+    possible(follow)?;
     let options = options.validate()?;
     let branch = continue_orbit(params, vary, orbit, vary_to, &options, monitor)?;
     let from = vary.get(params);
@@ -362,8 +379,10 @@ pub struct CurveSpec {
 ///
 /// # Errors
 /// [`Error::InvalidOption`] naming [`OptionKey::TwoParameterFrom`],
-/// [`OptionKey::TwoParameterTo`] or [`OptionKey::TwoParameterVaryTo`];
-/// [`Error::InvalidParameter`] when P is Q.
+/// [`OptionKey::TwoParameterTo`] or [`OptionKey::TwoParameterVaryTo`], or
+/// [`OptionKey::TwoParameterVary`] when P is Q ([`Allowed::Differs`] from
+/// [`OptionKey::TwoParameterOver`]: each front end names the two its own way, `invalid
+/// --vary: must differ from --over` on the command line).
 pub fn check_spec(spec: &CurveSpec) -> Result<()> {
     OptionKey::TwoParameterFrom.check(spec.from)?;
     OptionKey::TwoParameterTo.check(spec.to)?;
@@ -378,11 +397,12 @@ pub fn check_spec(spec: &CurveSpec) -> Result<()> {
         });
     }
     if spec.vary == spec.over {
-        return Err(Error::InvalidParameter {
-            name: spec.over.label(),
-            value: spec.from,
-            allowed: "the curve is followed over one parameter (--over) and varies another \
-                      (--vary): they must differ",
+        return Err(Error::InvalidOption {
+            option: OptionKey::TwoParameterVary,
+            value: f64::NAN,
+            allowed: Allowed::Differs {
+                other: OptionKey::TwoParameterOver,
+            },
         });
     }
     Ok(())
@@ -394,8 +414,9 @@ pub fn check_spec(spec: &CurveSpec) -> Result<()> {
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for bad ends or parameters, or a motion that comes to rest;
-/// as [`settled_orbit`], [`find_start`] and [`super::follow_curve`]; `Ok(Err(NoStart))` when the
-/// branch has no special point of the kind.
+/// [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
+/// have (before any work); as [`settled_orbit`], [`find_start`] and [`super::follow_curve`];
+/// `Ok(Err(NoStart))` when the branch has no special point of the kind.
 pub fn curve(
     experiment: &Experiment,
     spec: &CurveSpec,
@@ -424,6 +445,7 @@ pub fn curve_within(
     if !experiment.friction_law().is_coulomb() {
         return Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw));
     }
+    possible(spec.follow)?;
     let options = options.validate()?;
     let (params, orbit) = settled_orbit(experiment)?;
     if orbit.events.is_empty() {

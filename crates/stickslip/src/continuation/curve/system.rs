@@ -4,7 +4,7 @@
 //! followed condition, with one more equation that places the point (a hyperplane across the
 //! curve's tangent, or a fixed value of one unknown).
 
-use super::border::{candidates, earliest, nearest};
+use super::border::{candidates, candidates_of, earliest, nearest, Candidate};
 use super::{Border, BorderKind, Follow};
 use crate::continuation::corrector::counts;
 use crate::continuation::ContinuationOptions;
@@ -159,6 +159,12 @@ pub(crate) struct Node {
     pub tangent: U,
     /// (turns, stops) per orbit period.
     pub counts: (usize, usize),
+    /// The 3×4 Jacobian of the extended system at u (the one the tangent is the null vector
+    /// of), when the node was corrected by this system: [`System::across`] starts from it.
+    pub rows: Option<[[f64; 4]; 3]>,
+    /// The monodromy matrix just across the border ([`System::across`]), once asked for: the
+    /// codimension-two tests of a step read it at both its ends.
+    pub across: std::sync::OnceLock<Option<crate::stability::Matrix2>>,
 }
 
 /// The map and the condition at one u.
@@ -296,7 +302,7 @@ impl System {
         // The followed event: of partners at the same border, the first in this chart.
         if let Some(border) = self.border {
             let chart = next.params_with(params)?;
-            let list = candidates(&chart, x, self.period)?;
+            let (list, _) = candidates_of(&chart, x, self.period, Some(border.kind), None)?;
             let within = 1e-6 * 1f64.max(params.beta).max(params.mu_s);
             if let Some(c) = earliest(&list, border.kind, border.variant, tau, span, within) {
                 tau = c.tau;
@@ -370,41 +376,72 @@ impl System {
                 )
             }
             (Follow::NeimarkSacker, _) => (m.det() - 1.0, f64::NAN),
-            (Follow::Grazing, Some(border)) => {
-                let span = self.period as f64 * params.drive_period();
-                let list = match candidates(params, x, self.period) {
-                    Ok(list) => list,
+            (Follow::Grazing, Some(_)) => {
+                // (Loosely, the followed event alone is read: the conditions near it.)
+                let near = (!strict).then_some(tau);
+                let list = match self.followed_candidates(params, x, near) {
+                    Ok((list, _)) => list,
                     Err(e) if absent(&e) => return Ok(None),
                     Err(e) => return Err(e),
                 };
-                // Strictly, the followed event as it is on the followed side, with no partner
-                // of it (the other turning point of a symmetric orbit, at the same border)
-                // across; loosely, the same function across the border too (a stop's start
-                // for a turning point, a drive's extremum after a release for one inside a
-                // stop), where the corrector's differences and moves read it.
-                let Some(c) = nearest(&list, border.kind, None, tau, span) else {
-                    return Ok(None);
-                };
-                if strict && c.variant != border.variant {
-                    return Ok(None);
+                match self.grazing_condition(params, &list, tau, strict) {
+                    Some(g) => g,
+                    None => return Ok(None),
                 }
-                let within = 1e-6 * 1f64.max(params.beta).max(params.mu_s);
-                // (A stop of some length is an event of its own, not a turning point across.)
-                if strict
-                    && list.iter().any(|o| {
-                        o.kind == border.kind
-                            && o.variant != border.variant
-                            && (o.tau - c.tau).abs() > 1e-9 * span
-                            && o.value.abs() <= within
-                            && o.extent <= 1e-6 * span
-                    })
-                {
-                    return Ok(None);
-                }
-                (border.sign * c.value - self.offset(params), c.tau)
             }
             (Follow::Grazing, None) => return Ok(None),
         }))
+    }
+
+    /// The conditions of the followed border's kind on the motion from `x` at `params`, with
+    /// its (turns, stops); with `near` = τ, complete only where [`nearest`] looks for the
+    /// followed event near τ (a twentieth of the period either way).
+    fn followed_candidates(
+        &self,
+        params: &Params,
+        x: State,
+        near: Option<f64>,
+    ) -> Result<(Vec<Candidate>, (usize, usize))> {
+        let span = self.period as f64 * params.drive_period();
+        let near = near.map(|tau| (tau, 0.05 * span));
+        candidates_of(params, x, self.period, self.border.map(|b| b.kind), near)
+    }
+
+    /// The grazing condition g = σ·h − δ of the followed event nearest `tau` among `list`
+    /// (the motion's conditions at `params`) and its time; `None` when the followed event is
+    /// not there (`strict`: not of its own variant, or with a partner across its border).
+    fn grazing_condition(
+        &self,
+        params: &Params,
+        list: &[Candidate],
+        tau: f64,
+        strict: bool,
+    ) -> Option<(f64, f64)> {
+        let border = self.border?;
+        let span = self.period as f64 * params.drive_period();
+        // Strictly, the followed event as it is on the followed side, with no partner
+        // of it (the other turning point of a symmetric orbit, at the same border)
+        // across; loosely, the same function across the border too (a stop's start
+        // for a turning point, a drive's extremum after a release for one inside a
+        // stop), where the corrector's differences and moves read it.
+        let c = nearest(list, border.kind, None, tau, span)?;
+        if strict && c.variant != border.variant {
+            return None;
+        }
+        let within = 1e-6 * 1f64.max(params.beta).max(params.mu_s);
+        // (A stop of some length is an event of its own, not a turning point across.)
+        if strict
+            && list.iter().any(|o| {
+                o.kind == border.kind
+                    && o.variant != border.variant
+                    && (o.tau - c.tau).abs() > 1e-9 * span
+                    && o.value.abs() <= within
+                    && o.extent <= 1e-6 * span
+            })
+        {
+            return None;
+        }
+        Some((border.sign * c.value - self.offset(params), c.tau))
     }
 
     fn evaluate(&self, u: &U, tau: f64) -> Result<Option<Evaluation>> {
@@ -434,6 +471,27 @@ impl System {
     /// g alone at u.
     /// g at u, when the motion there has the event counts `here`.
     fn g_at(&self, u: &U, tau: f64, here: (usize, usize)) -> Result<Option<f64>> {
+        if self.follow == Follow::Grazing && self.border.is_some() {
+            // The condition needs the motion's events alone, not the strobe map's Jacobian:
+            // one run of the solver (the events and counts are those of the strobe map's run).
+            let params = match self.params(u) {
+                Ok(p) => p,
+                Err(e) if absent(&e) => return Ok(None),
+                Err(e) => return Err(e),
+            };
+            let Ok(x) = State::new(u[0], u[1]) else {
+                return Ok(None);
+            };
+            let (list, counts) = match self.followed_candidates(&params, x, Some(tau)) {
+                Ok(found) => found,
+                Err(e) if absent(&e) => return Ok(None),
+                Err(e) => return Err(e),
+            };
+            return Ok((counts == here)
+                .then(|| self.grazing_condition(&params, &list, tau, false))
+                .flatten()
+                .map(|(g, _)| g));
+        }
         Ok(self
             .evaluate(u, tau)?
             .filter(|e| sequence(&e.image) == here)
@@ -664,7 +722,7 @@ impl System {
         if orbit.iterations > 0 || orbit.events.is_empty() {
             return Ok(None);
         }
-        let Some(tangent) = self.tangent(&u, &at, along)? else {
+        let Some((tangent, rows)) = self.tangent(&u, &at, along)? else {
             return Ok(None);
         };
         Ok(Some(Node {
@@ -673,6 +731,8 @@ impl System {
             counts: counts(&orbit),
             orbit,
             tangent,
+            rows: Some(rows),
+            across: std::sync::OnceLock::new(),
         }))
     }
 
@@ -739,6 +799,8 @@ impl System {
                     counts: counts(&orbit),
                     orbit,
                     tangent: [0.0; 4],
+                    rows: None,
+                    across: std::sync::OnceLock::new(),
                 }));
             }
             let Some(rows) = graze.jacobian(&u, &at)? else {
@@ -792,8 +854,12 @@ impl System {
         let Some(at) = self.evaluate(&node.u, node.tau)? else {
             return Ok(None);
         };
-        let Some(rows) = self.jacobian(&node.u, &at)? else {
-            return Ok(None);
+        let rows = match node.rows {
+            Some(rows) => rows,
+            None => match self.jacobian(&node.u, &at)? {
+                Some(rows) => rows,
+                None => return Ok(None),
+            },
         };
         let params = self.params(&node.u)?;
         let span = self.period as f64 * params.drive_period();
@@ -801,7 +867,14 @@ impl System {
         // Rows of the conditions to move, and how far.
         let mut a = vec![rows[2]];
         let mut b = vec![-2.0 * self.offset(&params) - at.g];
-        for c in candidates(&params, node.orbit.state, self.period)? {
+        let (list, _) = candidates_of(
+            &params,
+            node.orbit.state,
+            self.period,
+            Some(border.kind),
+            None,
+        )?;
+        for c in list {
             if c.kind == border.kind
                 && c.variant == border.variant
                 && (c.tau - at.tau).abs() > 1e-9 * span
@@ -937,8 +1010,9 @@ impl System {
         Ok(None)
     }
 
-    /// The unit null vector of the 3×4 Jacobian at u, oriented along `along`.
-    fn tangent(&self, u: &U, at: &Evaluation, along: &U) -> Result<Option<U>> {
+    /// The unit null vector of the 3×4 Jacobian at u, oriented along `along`, with the
+    /// Jacobian.
+    fn tangent(&self, u: &U, at: &Evaluation, along: &U) -> Result<Option<(U, [[f64; 4]; 3])>> {
         let Some(rows) = self.jacobian(u, at)? else {
             return Ok(None);
         };
@@ -951,7 +1025,7 @@ impl System {
             return Ok(None);
         };
         let n = norm(&z);
-        Ok((n > 0.0 && n.is_finite()).then(|| z.map(|c| c / n)))
+        Ok((n > 0.0 && n.is_finite()).then(|| (z.map(|c| c / n), rows)))
     }
 }
 

@@ -213,8 +213,8 @@ fn tests(system: &System, current: &Node) -> Vec<(Codim2Kind, Test)> {
             if system.border.is_some_and(|b| b.continuous) {
                 let across = |system: System, f: fn(&crate::stability::Matrix2) -> f64| {
                     Box::new(move |n: &Node| {
-                        let r = system.across(n);
-                        r.ok().flatten().map_or(f64::NAN, |m| f(&m))
+                        let m = n.across.get_or_init(|| system.across(n).ok().flatten());
+                        m.as_ref().map_or(f64::NAN, f)
                     }) as Test
                 };
                 tests.push((

@@ -3,7 +3,11 @@
 //! check that they lie on the map's edges.
 
 use anyhow::Result;
-use stickslip::continuation::{curve_within, ContinuationOptions, Curve, CurveSpec, Follow};
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use stickslip::continuation::{
+    curve_within, ContinuationOptions, Curve, CurveSpec, Follow, NoStart,
+};
 use stickslip::scan::{GridPoint, ParameterRange};
 use stickslip::steady::MotionClass;
 use stickslip::{Experiment, Parameter};
@@ -165,6 +169,11 @@ pub struct StopCurves {
 /// whose numbers of stops per period differ, the orbit the motion settles on in the first
 /// cell is continued in w towards the second's w up to its first grazing, which is followed
 /// over β; then from the next such pair that no curve crosses, up to [`MAX_STARTS`] starts.
+///
+/// The curves are traced several at once (as many as there are threads): the next pairs that
+/// no curve crosses yet are started together, and their curves taken in the map's order, a
+/// pair that an earlier curve of the batch crosses dropped as if never started. The result is
+/// that of tracing them one after the other, for any number of threads.
 pub fn stop_curves(experiment: &Experiment, grid: &MapGrid) -> Result<StopCurves> {
     let (nw, nb) = (grid.nw(), grid.nb());
     let options = ContinuationOptions {
@@ -177,42 +186,56 @@ pub fn stop_curves(experiment: &Experiment, grid: &MapGrid) -> Result<StopCurves
         no_start: 0,
     };
     let mut crossed = grid.crossed(&[]);
-    let mut tried = vec![false; nw * nb];
-    for iw in 0..nw.saturating_sub(1) {
-        for ib in 0..nb {
-            let k = iw * nb + ib;
-            let (a, b) = (grid.at(iw, ib), grid.at(iw + 1, ib));
-            if !stops_change(a, b) || crossed.right[k] > 0 || tried[k] {
-                continue;
+    // The pairs along w whose numbers of stops differ, in the map's order.
+    let pairs: Vec<usize> = (0..nw.saturating_sub(1) * nb)
+        .filter(|&k| stops_change(grid.at(k / nb, k % nb), grid.at(k / nb + 1, k % nb)))
+        .collect();
+    let trace = |k: usize| -> Result<std::result::Result<Curve, NoStart>> {
+        let (a, b) = (grid.at(k / nb, k % nb), grid.at(k / nb + 1, k % nb));
+        let spec = CurveSpec {
+            follow: Follow::Grazing,
+            vary: Parameter::W,
+            vary_to: b.params.w,
+            over: Parameter::Beta,
+            from: grid.beta.from(),
+            to: grid.beta.to(),
+        };
+        let start = experiment
+            .clone()
+            .with_w(a.params.w)?
+            .with_beta(a.params.beta)?;
+        let monitor = |_: usize, _: usize| !crate::output::interrupted();
+        // Within the map's range of w: the curve ends where it leaves the map.
+        let within = Some((grid.w.from(), grid.w.to()));
+        Ok(curve_within(&start, &spec, within, &options, &monitor)?)
+    };
+    let batch = rayon::current_num_threads().max(1);
+    let mut traced: BTreeMap<usize, Result<std::result::Result<Curve, NoStart>>> = BTreeMap::new();
+    for (i, &k) in pairs.iter().enumerate() {
+        if crossed.right[k] > 0 {
+            continue;
+        }
+        if out.tried == MAX_STARTS {
+            return Ok(out);
+        }
+        out.tried += 1;
+        if !traced.contains_key(&k) {
+            let next: Vec<usize> = pairs[i..]
+                .iter()
+                .copied()
+                .filter(|q| crossed.right[*q] == 0 && !traced.contains_key(q))
+                .take(batch.min(MAX_STARTS + 1 - out.tried))
+                .collect();
+            let done: Vec<_> = next.par_iter().map(|&q| (q, trace(q))).collect();
+            traced.extend(done);
+        }
+        match traced.remove(&k).expect("traced above")? {
+            Ok(c) => {
+                let line: Vec<(f64, f64)> = c.points.iter().map(|p| (p.vary, p.over)).collect();
+                grid.mark(&mut crossed, &line);
+                out.curves.push(c);
             }
-            if out.tried == MAX_STARTS {
-                return Ok(out);
-            }
-            out.tried += 1;
-            tried[k] = true;
-            let spec = CurveSpec {
-                follow: Follow::Grazing,
-                vary: Parameter::W,
-                vary_to: b.params.w,
-                over: Parameter::Beta,
-                from: grid.beta.from(),
-                to: grid.beta.to(),
-            };
-            let start = experiment
-                .clone()
-                .with_w(a.params.w)?
-                .with_beta(a.params.beta)?;
-            let monitor = |_: usize, _: usize| !crate::output::interrupted();
-            // Within the map's range of w: the curve ends where it leaves the map.
-            let within = Some((grid.w.from(), grid.w.to()));
-            match curve_within(&start, &spec, within, &options, &monitor)? {
-                Ok(c) => {
-                    let line: Vec<(f64, f64)> = c.points.iter().map(|p| (p.vary, p.over)).collect();
-                    grid.mark(&mut crossed, &line);
-                    out.curves.push(c);
-                }
-                Err(_) => out.no_start += 1,
-            }
+            Err(_) => out.no_start += 1,
         }
     }
     Ok(out)

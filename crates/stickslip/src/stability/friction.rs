@@ -1,0 +1,570 @@
+//! Stability for the smooth friction laws (Stribeck, cubic) of a forced belt: the tangent
+//! dynamics of [`crate::friction_solver::FrictionSolver`], its strobe map with the monodromy
+//! matrix, periodic orbits by Newton's method and Lyapunov exponents ([`FrictionDynamics`]).
+//!
+//! **Slip phases** are differentiated on the stiff integrator's own steps, as for the
+//! Shockley model ([`crate::stiff::sensitivity`]: each accepted step's stage equations
+//! differentiated at their converged stages), so the state-transition matrix is the exact
+//! derivative of the computed slip phase. **Stick phases** are exact: a stuck block moves as
+//! y = y_s + vb (τ − τ_s), y' = vb, so a stop maps every perturbation onto the stuck
+//! manifold, δy(τ) = δy(τ_s), δy' = 0: its transition is diag(1, 0).
+//!
+//! **Saltation matrices.** At an event the vector field switches from f⁻ to f⁺ on a surface
+//! h(x, τ) = 0, and a perturbation jumps by S = I + (f⁺ − f⁻) ∇hᵀ / (∇h·f⁻ + ∂h/∂τ)
+//! ([`super::saltation`]). With x = (y, y'), F(τ) = β cos(wτ + φ), the net force on a block
+//! at the belt's speed f = F − y − 2ζ vb, the slip field of direction σ is
+//! (y', F − y − 2ζ y' − D_σ(y')) with D_σ(vb) = σ μ(0), and the stuck field is (vb, 0):
+//!
+//! - **Stick onset** (slip σ ends at s = y' − vb = 0 with |f| ≤ μs): h = y' − vb,
+//!   ∇h = (0, 1), f⁻ = (vb, a⁻) with a⁻ = f − σ μ(0), f⁺ = (vb, 0):
+//!   S = I − (0, a⁻)ᵀ(0, 1)/a⁻ = diag(1, 0) (applied without dividing by a⁻).
+//! - **Reversal of s** (slip σ ends at s = 0 with σ f < −μs, and slips on in direction −σ):
+//!   h = y' − vb, f⁺ − f⁻ = (0, a⁺ − a⁻) with a∓ = f − D_{±σ}(vb) = f ∓ σ μ(0):
+//!   S = diag(1, a⁺/a⁻) = diag(1, (f + σμ(0))/(f − σμ(0))).
+//! - **Slip onset** (the net force reaches σ μs, leaving in direction σ): the event function
+//!   is h = σ f(τ, y) − μs, ∇h = (−σ, 0), ∂h/∂τ = σ F'(τ); f⁻ = (vb, 0), so
+//!   ∇h·f⁻ + ∂h/∂τ = σ (F' − vb), and f⁺ − f⁻ = (0, a⁺) with a⁺ = f − σμ(0) = σ(μs − μ(0)):
+//!   S = [[1, 0], [−σ(μs − μ(0))/(F' − vb), 1]].
+//!   Both smooth laws start from the static level, μ(0) = μs, so a⁺ = 0 and S = I: the
+//!   friction force is continuous at the release, and the shift of the release time has no
+//!   first-order effect (as for the PWL model at μs = 1). The identity is taken without
+//!   forming the quotient, which would read 0/0 at a tangential release (F' = vb).
+//!
+//! A stick onset and a release at one instant (a zero-duration stop) give diag(1, 0), which
+//! is the reversal's matrix at |f| = μs too: the flow is differentiable there.
+//!
+//! **Floquet multipliers** are the eigenvalues of the monodromy matrix; an orbit that sticks
+//! has det M = 0 (the stop erases δy'), so its multipliers are tr M and exactly 0, as for the
+//! PWL model.
+//! For an orbit that slides throughout, det M is carried as a logarithm (steps and reversals)
+//! and the smaller multiplier taken from it ([`ShockleyDynamics::multipliers`]).
+//!
+//! The test `friction_stability.rs` checks the multipliers against Richardson-extrapolated
+//! central differences of the strobe map, and λ1 = ln|μ1|/T against the measured exponent.
+
+use super::error::StabilityError;
+use super::lyapunov::{measure_exponents, LyapunovExponents, LyapunovOptions};
+use super::matrix::{Matrix2, Multiplier};
+use super::periodic_orbit::{NewtonOptions, PeriodicOrbit, Stability};
+use super::smooth::ShockleyDynamics;
+use super::strobe::StrobeImage;
+use super::tangent::TangentRun;
+use super::Dynamics;
+use crate::cancel::Cancel;
+use crate::error::{Error, Result};
+use crate::friction_solver::{FrictionSolver, SlipLaw};
+use crate::params::{Params, State};
+use crate::scan::Monitor;
+use crate::solver::{Event, EventKind, Phase, Solver};
+use crate::stiff::{SmoothLaw, StepDerivative};
+
+/// The relative accuracy of the friction solver's strobe map: its slip phases are integrated
+/// to [`crate::friction_solver::FRICTION_TOLERANCE`] (10⁻¹²) and its events located to 10⁻¹², and over a drive period
+/// the errors of its steps add up to some 10⁻¹¹. States that repeat to this are taken as
+/// repeating, and Newton's method stops when a step no longer helps within it.
+pub const FRICTION_MAP_ACCURACY: f64 = 1e-10;
+
+/// The stability tools of a smooth friction law (Stribeck or cubic, on a belt or not) with a
+/// harmonic drive: the friction solver, its strobe map with the monodromy matrix (see the
+/// module documentation), Newton's method for periodic orbits and Lyapunov exponents.
+#[derive(Debug, Clone, Default)]
+pub struct FrictionDynamics {
+    cancel: Cancel,
+}
+
+impl FrictionDynamics {
+    /// The tools, never cancelled.
+    pub fn new() -> Self {
+        Self {
+            cancel: Cancel::never(),
+        }
+    }
+
+    /// The same, its solvers checking `cancel`.
+    pub fn with_cancel(mut self, cancel: Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
+    /// A solver of `params` (a smooth friction law) from `initial` at τ = 0.
+    ///
+    /// # Errors
+    /// Invalid parameters or state; [`crate::Unsupported::SmoothFrictionLaw`] is not
+    /// returned: Coulomb's law is refused with [`Error::InvalidParameter`] (its tools are
+    /// [`super::ExactDynamics`]').
+    pub fn plain_solver(&self, params: &Params, initial: State) -> Result<FrictionSolver> {
+        let params = params.validate()?;
+        if params.law.is_coulomb() {
+            return Err(Error::InvalidParameter {
+                name: "friction_law",
+                value: 0.0,
+                allowed: "must be stribeck or cubic here: Coulomb's law has the exact tools",
+            });
+        }
+        FrictionSolver::with_cancel(params, initial, self.cancel.clone())
+    }
+
+    /// The tangent dynamics of the motion from `initial` at τ = 0 ([`FrictionTangent`]).
+    ///
+    /// # Errors
+    /// As [`FrictionDynamics::plain_solver`].
+    pub fn tangent(&self, params: &Params, initial: State) -> Result<FrictionTangent> {
+        Ok(FrictionTangent::new(self.plain_solver(params, initial)?))
+    }
+
+    /// The p-fold strobe map from `state` at a strobe with its Jacobian (the monodromy
+    /// matrix at a fixed point), the events on the way and ln|det J| (`None` when the motion
+    /// sticks on the way or at the start: J is then singular).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for invalid parameters, state or p = 0; what the solver
+    /// reports.
+    pub fn strobe_map(&self, params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
+        if periods == 0 {
+            return Err(Error::InvalidParameter {
+                name: "periods",
+                value: 0.0,
+                allowed: "must be at least 1",
+            });
+        }
+        let mut tangent = self.tangent(params, state)?;
+        let stuck_at_start = tangent.phase() == Phase::Stick;
+        let end = periods as f64 * params.drive_period();
+        let mut events = Vec::with_capacity(8);
+        tangent.run_until(end, &mut |e| events.push(*e))?;
+        Ok(StrobeImage {
+            state: tangent.state(),
+            jacobian: tangent.jacobian(),
+            log_det: tangent.log_det(),
+            events,
+            stuck_at_start,
+            stuck_at_end: tangent.phase() == Phase::Stick,
+        })
+    }
+
+    /// The periodic orbit of period `period` near `guess` by Newton's method on the p-fold
+    /// strobe map with its Jacobian, as [`ShockleyDynamics::find_periodic_orbit`]: steps
+    /// (M − I)δ = −(P^p(x) − x), halved while the residual grows, until
+    /// max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|); where a full step no
+    /// longer reduces a residual within [`FRICTION_MAP_ACCURACY`] (times the same scale), the
+    /// iterate is at the computed map's own accuracy and is taken as the orbit.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for invalid parameters, guess, options or p = 0;
+    /// [`StabilityError::NoConvergence`], [`StabilityError::SingularJacobian`]; what the
+    /// solver reports.
+    pub fn find_periodic_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        period: usize,
+        options: &NewtonOptions,
+    ) -> Result<PeriodicOrbit> {
+        let options = options.validate()?;
+        let params = params.validate()?;
+        if period == 0 {
+            return Err(Error::InvalidParameter {
+                name: "period",
+                value: 0.0,
+                allowed: "must be at least 1",
+            });
+        }
+        let mut x = State::new(guess.y, guess.v)?;
+        let mut image = self.strobe_map(&params, x, period)?;
+        let residual = |image: &StrobeImage, x: State| {
+            let r = [image.state.y - x.y, image.state.v - x.v];
+            (r[0].abs().max(r[1].abs()), r)
+        };
+        let limit = |x: State, image: &StrobeImage| {
+            options.tolerance
+                * 1f64.max(x.y.abs()).max(x.v.abs())
+                * image.jacobian.max_abs().max(1.0)
+        };
+        let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
+            norm <= FRICTION_MAP_ACCURACY / options.tolerance * limit(x, image)
+        };
+        let (mut norm, mut r) = residual(&image, x);
+        let mut residuals = vec![norm];
+        let mut iterations = 0;
+        while norm > limit(x, &image) {
+            if iterations == options.max_iterations {
+                if at_accuracy(norm, x, &image) {
+                    break;
+                }
+                return Err(StabilityError::NoConvergence {
+                    iterations,
+                    residual: norm,
+                    tolerance: limit(x, &image),
+                }
+                .into());
+            }
+            let m = image.jacobian.minus_identity();
+            let step = m
+                .solve([-r[0], -r[1]])
+                .ok_or(StabilityError::SingularJacobian {
+                    y: x.y,
+                    v: x.v,
+                    determinant: m.det(),
+                })?;
+            let mut fraction = 1.0;
+            let mut halvings = 0;
+            let mut stalled = false;
+            loop {
+                let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
+                let trial_image = self.strobe_map(&params, trial, period)?;
+                let (trial_norm, trial_r) = residual(&trial_image, trial);
+                if trial_norm >= norm && halvings == 0 && at_accuracy(norm, x, &image) {
+                    stalled = true;
+                    break;
+                }
+                if trial_norm < norm || halvings == options.max_halvings {
+                    (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
+                    break;
+                }
+                fraction *= 0.5;
+                halvings += 1;
+            }
+            if stalled {
+                break;
+            }
+            iterations += 1;
+            residuals.push(norm);
+        }
+        let multipliers = if image.log_det.is_none() {
+            // The motion stuck on the way: M = A·diag(1, 0)·B has rank one, so its
+            // multipliers are tr M and exactly 0 (rounding would leave ~1e-16).
+            [
+                Multiplier::real(image.jacobian.trace()),
+                Multiplier::real(0.0),
+            ]
+        } else {
+            ShockleyDynamics::multipliers(&image)
+        };
+        let modulus = multipliers[0].modulus();
+        let stability = if (1.0 - modulus).abs() <= options.neutral_band {
+            Stability::Neutral
+        } else if modulus < 1.0 {
+            Stability::Stable
+        } else {
+            Stability::Unstable
+        };
+        Ok(PeriodicOrbit::from_image(
+            &params,
+            period,
+            x,
+            image,
+            (multipliers, stability),
+            iterations,
+            residuals,
+        ))
+    }
+
+    /// The Lyapunov exponents of the motion from `initial` (at a strobe), measured as for the
+    /// PWL model ([`crate::stability::lyapunov`]) on the tangent dynamics of the computed
+    /// solution ([`FrictionTangent`]). `monitor` is told the drive periods run.
+    ///
+    /// # Errors
+    /// Invalid parameters, state or options; [`Error::HorizonTooLong`]; [`Error::Cancelled`];
+    /// what the solver reports.
+    pub fn lyapunov_exponents(
+        &self,
+        params: &Params,
+        initial: State,
+        options: &LyapunovOptions,
+        monitor: &dyn Monitor,
+    ) -> Result<LyapunovExponents> {
+        let options = options.validate()?;
+        let params = params.validate()?;
+        let initial = State::new(initial.y, initial.v)?;
+        options.check_horizon(&params)?;
+        let mut tangent = self.tangent(&params, initial)?;
+        measure_exponents(&mut tangent, &params, &options, monitor)
+    }
+}
+
+impl Dynamics for FrictionDynamics {
+    fn is_exact(&self) -> bool {
+        false
+    }
+
+    fn solver(&self, params: &Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        Ok(Box::new(self.plain_solver(params, initial)?))
+    }
+
+    fn strobe_map(&self, params: &Params, state: State, periods: usize) -> Result<StrobeImage> {
+        FrictionDynamics::strobe_map(self, params, state, periods)
+    }
+
+    fn find_periodic_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        period: usize,
+        options: &NewtonOptions,
+    ) -> Result<PeriodicOrbit> {
+        FrictionDynamics::find_periodic_orbit(self, params, guess, period, options)
+    }
+
+    fn lyapunov_exponents(
+        &self,
+        params: &Params,
+        initial: State,
+        options: &LyapunovOptions,
+        monitor: &dyn Monitor,
+    ) -> Result<LyapunovExponents> {
+        FrictionDynamics::lyapunov_exponents(self, params, initial, options, monitor)
+    }
+
+    fn tangent(&self, params: &Params, initial: State) -> Result<Box<dyn TangentRun + Send>> {
+        Ok(Box::new(FrictionDynamics::tangent(self, params, initial)?))
+    }
+
+    /// [`FRICTION_MAP_ACCURACY`], or `tolerance` when that is larger.
+    fn repeat_tolerance(&self, tolerance: f64) -> f64 {
+        tolerance.max(FRICTION_MAP_ACCURACY)
+    }
+
+    /// [`FRICTION_MAP_ACCURACY`], or `tolerance` when that is larger.
+    fn map_tolerance(&self, tolerance: f64) -> f64 {
+        tolerance.max(FRICTION_MAP_ACCURACY)
+    }
+}
+
+/// The saltation matrix of a reversal of the slip from direction `sign_before` with the net
+/// force `net_force` = F − y − 2ζ vb and the law's level `mu0` = μ(0) at zero slip:
+/// diag(1, (f + σμ(0))/(f − σμ(0))) (see the module documentation).
+pub fn reversal(net_force: f64, sign_before: f64, mu0: f64) -> Matrix2 {
+    let before = net_force - sign_before * mu0;
+    let after = net_force + sign_before * mu0;
+    Matrix2::diagonal(1.0, after / before)
+}
+
+/// The saltation matrix of a release (stick → slip in direction `sign_after`) where the
+/// drive changes at `drive_rate` = F'(τ_r), on a belt of speed `vb`, with the jump
+/// μs − μ(0) of the friction force: [[1, 0], [−σ(μs − μ(0))/(F' − vb), 1]], exactly the
+/// identity when the law starts from the static level (see the module documentation).
+pub fn release(sign_after: f64, drive_rate: f64, vb: f64, jump: f64) -> Matrix2 {
+    if jump == 0.0 {
+        return Matrix2::IDENTITY;
+    }
+    Matrix2([[1.0, 0.0], [-sign_after * jump / (drive_rate - vb), 1.0]])
+}
+
+/// The tangent dynamics of a smooth friction law along a motion: the friction solver with
+/// J = ∂x(τ)/∂x(τ0) carried over its slip steps (their own derivatives), its stops
+/// (diag(1, 0)) and its events (the saltation matrices of the module documentation). Its
+/// clock is not restarted: [`TangentRun::restart_clock`] only moves the origin the times
+/// are counted from.
+#[derive(Debug)]
+pub struct FrictionTangent {
+    solver: FrictionSolver,
+    /// J at `base_time`: the start of the slip step in progress, or the solver's time.
+    base: Matrix2,
+    base_time: f64,
+    /// J at the solver's time.
+    current: Matrix2,
+    /// ln|det J| since the last reset at `base_time` and at the solver's time (`None` once
+    /// the motion stuck: J is singular).
+    log_det_base: Option<f64>,
+    log_det: Option<f64>,
+    /// ln|det| of the part of the slip step in progress run so far (0 at `base_time`).
+    partial_log_det: f64,
+    origin: f64,
+    stops: u64,
+}
+
+/// The projection onto the stuck manifold, diag(1, 0): a stop's transition and saltation.
+const STUCK: Matrix2 = Matrix2::diagonal(1.0, 0.0);
+
+impl FrictionTangent {
+    fn new(solver: FrictionSolver) -> Self {
+        let stuck = solver.phase() == Phase::Stick;
+        let j = if stuck { STUCK } else { Matrix2::IDENTITY };
+        let log_det = (!stuck).then_some(0.0);
+        Self {
+            base_time: solver.time(),
+            solver,
+            base: j,
+            current: j,
+            log_det_base: log_det,
+            log_det,
+            partial_log_det: 0.0,
+            origin: 0.0,
+            stops: u64::from(stuck),
+        }
+    }
+
+    /// The solver underneath.
+    pub fn solver(&self) -> &FrictionSolver {
+        &self.solver
+    }
+
+    /// J since the start (or the last [`TangentRun::reset`]), divided by the factors
+    /// renormalisations took out.
+    pub fn jacobian(&self) -> Matrix2 {
+        self.current
+    }
+
+    /// Apply the saltation matrix `s` at the solver's time (an event).
+    fn jump(&mut self, s: Matrix2, log_det: Option<f64>) {
+        self.current = s * self.current;
+        self.base = self.current;
+        self.base_time = self.solver.time();
+        self.log_det = match (self.log_det, log_det) {
+            (Some(a), Some(b)) => Some(a + b),
+            _ => None,
+        };
+        self.log_det_base = self.log_det;
+        self.partial_log_det = 0.0;
+    }
+
+    /// One advance of the solver to at most `t_end` (absolute), J carried along.
+    fn advance(&mut self, t_end: f64) -> Result<Option<Event>> {
+        let before = self.solver.time();
+        let phase = self.solver.phase();
+        let event = self.solver.advance(t_end)?;
+        let now = self.solver.time();
+        let params = *self.solver.params();
+        match phase {
+            Phase::Stick => {
+                self.current = STUCK * self.current;
+                self.base = self.current;
+                self.base_time = now;
+                self.partial_log_det = 0.0;
+                if let Some(e) = &event {
+                    // A release (the only event that ends a stop).
+                    let sign = match self.solver.phase() {
+                        Phase::SlipNegative => -1.0,
+                        _ => 1.0,
+                    };
+                    let rate = -params.beta * params.w * (params.w * e.tau + params.phi).sin();
+                    let law = SlipLaw::new(&params, sign);
+                    let mu0 = sign * law.value_and_slope(params.vb).0;
+                    let mut jump = params.mu_s - mu0;
+                    // Both smooth laws start from μs: their μ(0) differs from it by rounding.
+                    if jump.abs() <= 8.0 * f64::EPSILON * params.mu_s {
+                        jump = 0.0;
+                    }
+                    self.jump(release(sign, rate, params.vb, jump), None);
+                }
+            }
+            Phase::SlipPositive | Phase::SlipNegative => {
+                let sign = if phase == Phase::SlipPositive {
+                    1.0
+                } else {
+                    -1.0
+                };
+                if now > before {
+                    let step = *self
+                        .solver
+                        .slip_step()
+                        .expect("a slip advance has its step");
+                    debug_assert_eq!(step.t0, self.base_time, "the tangent follows every step");
+                    let law = SlipLaw::new(&params, sign);
+                    let d = StepDerivative::new(&step, &params, &law, 2).ok_or(
+                        Error::StepSizeTooSmall {
+                            tau: step.t0,
+                            step: step.h,
+                        },
+                    )?;
+                    let whole = now == step.t1();
+                    let theta = if whole { 1.0 } else { (now - step.t0) / step.h };
+                    let g = Matrix2(d.state_jacobian(theta));
+                    self.current = g * self.base;
+                    self.partial_log_det = g.det().abs().ln();
+                    self.log_det = self.log_det_base.map(|l| l + self.partial_log_det);
+                    if whole {
+                        self.base = self.current;
+                        self.base_time = now;
+                        self.log_det_base = self.log_det;
+                        self.partial_log_det = 0.0;
+                    }
+                }
+                if let Some(e) = &event {
+                    match e.kind {
+                        EventKind::Stick => {
+                            self.stops += 1;
+                            self.jump(STUCK, None);
+                        }
+                        _ => {
+                            let f = params.drive(e.tau) - e.y - params.belt_force();
+                            let mu0 =
+                                sign * SlipLaw::new(&params, sign).value_and_slope(params.vb).0;
+                            let s = reversal(f, sign, mu0);
+                            let l = s.det().abs().ln();
+                            self.jump(s, Some(l));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(event)
+    }
+}
+
+impl TangentRun for FrictionTangent {
+    fn run_until(&mut self, t_end: f64, on_event: &mut dyn FnMut(&Event)) -> Result<()> {
+        let end = self.origin + t_end;
+        if end < self.solver.time() {
+            return Err(Error::TimeBeforeCurrent {
+                requested: t_end,
+                current: self.solver.time() - self.origin,
+            });
+        }
+        while self.solver.time() < end {
+            if let Some(e) = self.advance(end)? {
+                on_event(&Event {
+                    tau: e.tau - self.origin,
+                    ..e
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn restart_clock(&mut self) {
+        self.origin = self.solver.time();
+    }
+
+    fn renormalize(&mut self) -> f64 {
+        let norm = self.current.norm();
+        if norm > 0.0 && norm.is_finite() {
+            self.current = self.current.scaled(1.0 / norm);
+            self.base = self.base.scaled(1.0 / norm);
+        }
+        norm.ln()
+    }
+
+    fn grazing(&self) -> Option<f64> {
+        None
+    }
+
+    /// Not needed: the flow of a smooth law is differentiable at its events
+    /// ([`TangentRun::grazing`] is `None`).
+    fn reset(&mut self) {}
+
+    fn reset_log_det(&mut self) {
+        let stuck = self.solver.phase() == Phase::Stick;
+        self.stops = u64::from(stuck);
+        let fresh = (!stuck).then_some(0.0);
+        self.log_det = fresh;
+        // (`base` lies before the reset by the part of the step run so far.)
+        self.log_det_base = fresh.map(|l| l - self.partial_log_det);
+    }
+
+    fn log_det(&self) -> Option<f64> {
+        self.log_det
+    }
+
+    fn stops(&self) -> u64 {
+        self.stops
+    }
+
+    fn phase(&self) -> Phase {
+        self.solver.phase()
+    }
+
+    fn state(&self) -> State {
+        self.solver.state()
+    }
+}
