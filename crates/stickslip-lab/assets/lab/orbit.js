@@ -112,16 +112,13 @@ function draw(answer) {
  * (computing, ready, none: no orbit found, error) and `data-query`. */
 export function refreshOrbit(params, query) {
   const p = panel();
-  // Not asked for where the library refuses or has no strobe map: a law the stability tools
-  // do not follow yet (its 400 would be noise on every input), a belt without a drive.
+  // Not asked for where there is no strobe map: a belt without a drive.
   const steady = state.steady;
   const skip = !steady
     ? 'no steady state'
-    : steady.friction_law !== undefined
-      ? `not computed with the ${steady.friction_law} friction law: the stability tools follow Coulomb's law so far`
-      : steady.cycle_period_tau !== undefined
-        ? 'a motion without a drive has no strobe map: its own cycle is in the measurements'
-        : null;
+    : steady.cycle_period_tau !== undefined
+      ? 'a motion without a drive has no strobe map: its own cycle is in the measurements'
+      : null;
   if (skip !== null) {
     clearTimeout(timer);
     clear();
