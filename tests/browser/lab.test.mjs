@@ -1052,11 +1052,11 @@ test('issue 38 (1): at 1280 × 720, 1366 × 768, 800 × 900 and 390 × 844, and 
       await p.selectOption('select[name="fft-source"]', 'ch2');
       await p.check('input[name="mode"][value="yt"]');
       // On a phone the panels stand in one column: the generator, the scope, the readouts,
-      // the circuit, the sweep and map.
+      // the circuit, the sweep and map, the periodic orbit.
       if (width < 700) {
         const boxes = await p.$$eval('.panel', (els) => els.map((e) => ({ id: e.id, left: e.getBoundingClientRect().left, top: e.getBoundingClientRect().top })));
         assert.ok(boxes.every((b) => Math.abs(b.left - boxes[0].left) < 0.5), JSON.stringify(boxes));
-        assert.deepEqual([...boxes].sort((a, b) => a.top - b.top).map((b) => b.id), ['generator', 'scope', 'measurements', 'circuit', 'sweep']);
+        assert.deepEqual([...boxes].sort((a, b) => a.top - b.top).map((b) => b.id), ['generator', 'scope', 'measurements', 'circuit', 'sweep', 'orbit']);
       }
     }
     // Every width from 360 px up, across each layout's edges.
@@ -1317,6 +1317,69 @@ test('issue 38 (3, 4): Fit ticks the default free set of the diode law, absurd v
   await readoutsMatch(['--preset', 'paper', '--freq', '9.97k', '--amplitude', '0.749']);
   await type('freq', '9.97k');
   await type('amplitude', '0.749');
+});
+
+/** The command line's flags for a query of the page (its keys are the flags without dashes). */
+function flagsOf(query) {
+  return [...new URLSearchParams(query)].flatMap(([key, value]) => [`--${key}`, value]);
+}
+
+/** Wait until the orbit panel shows the answer for the shown query; its state. */
+async function orbitShown() {
+  await page.waitForFunction(
+    () => {
+      const panel = document.querySelector('#orbit');
+      return ['ready', 'none', 'error'].includes(panel.dataset.state) && panel.dataset.query === document.querySelector('#status').dataset.query;
+    },
+    null,
+    { timeout: PATIENCE },
+  );
+  return page.$eval('#orbit', (e) => e.dataset.state);
+}
+
+test('issue 34: the orbit panel shows the Floquet multipliers of stickslip orbit at the Fig. 3 point, for both diode laws', async () => {
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  for (const law of ['pwl', 'shockley']) {
+    await page.selectOption('select[name="system"]', law);
+    await ready();
+    assert.equal(await orbitShown(), 'ready', law);
+    const query = await shownQuery();
+    // The same point on the command line: every key of the query as its flag (the preset's
+    // generator setting, 9969.65 Hz and 1.498 V: w = 0.95, β = 2.14).
+    const cli = JSON.parse(stickslip(['orbit', ...flagsOf(query), '--json']));
+    assert.ok(Math.abs(cli.w - 0.95) < 1e-9 && Math.abs(cli.beta - 2.14) < 1e-9, `${query}: w ${cli.w}, β ${cli.beta}`);
+    const shown = await page.$$eval('#orbit [data-orbit]', (els) =>
+      Object.fromEntries(els.map((e) => [e.dataset.orbit, { text: e.textContent.trim(), ...e.dataset }])),
+    );
+    for (const k of [0, 1]) {
+      const mu = cli.multipliers[k];
+      const cell = shown[`mu${k + 1}`];
+      // In full, as the CLI prints them, and as a person reads them (6 digits).
+      assert.equal(Number(cell.re), mu.re, `${law} μ${k + 1} re`);
+      assert.equal(Number(cell.im), mu.im, `${law} μ${k + 1} im`);
+      assert.equal(Number(shown[`mu${k + 1}-modulus`].value), cli.moduli[k], `${law} |μ${k + 1}|`);
+      assert.equal(Number(shown[`mu${k + 1}-argument`].value), Math.atan2(mu.im, mu.re), `${law} arg μ${k + 1}`);
+      sameTo4Digits(shown[`mu${k + 1}-modulus`].text, cli.moduli[k], `${law} |μ${k + 1}| shown`);
+      assert.match(cell.text, /^0\.\d+ [+−] 0\.\d+i$/, `${law} μ${k + 1} shown`);
+      sameTo4Digits(cell.text.split(' ')[0], mu.re, `${law} Re μ${k + 1} shown`);
+    }
+    // The Fig. 3 (2b) orbit slides: a stable complex pair inside the unit circle.
+    assert.ok(cli.multipliers[0].im > 0 && cli.moduli[0] < 1, JSON.stringify(cli.multipliers));
+    assert.equal(Number(shown.lambda1.value), cli.lambda1, `${law} λ1`);
+    assert.equal(Number(shown.y.value), cli.y, `${law} y`);
+    assert.equal(Number(shown.v.value), cli.v, `${law} y'`);
+    assert.equal(shown.stability.text, cli.stability);
+    assert.equal(shown.stops.text, String(cli.stops_per_period));
+    assert.equal(shown.period.text, `${cli.period} T`);
+    assert.match(shown.converged.text, new RegExp(`^yes, in ${cli.iterations} Newton step`));
+    assert.match(await page.$eval('[data-orbit="status"]', (e) => e.textContent), law === 'shockley' ? /Shockley/ : /exact/);
+    // Both multipliers drawn in the complex plane.
+    assert.equal(await page.$eval('#orbit-plot', (e) => e.dataset.multipliers), '2');
+  }
+  await page.selectOption('select[name="system"]', 'pwl');
+  await ready();
+  await orbitShown();
 });
 
 test('no console errors', () => {

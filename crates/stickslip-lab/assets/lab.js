@@ -10,6 +10,7 @@ import { tdiv, hpos, fillScaleSelect, autoscale, redraw } from './lab/scope.js';
 import { markSweepAndMapStale, drawSweep, drawMap, runSweep, runMap, runCurves } from './lab/sweepmap.js';
 import { download, csv, fileStem, exportPng, copyMeasurements } from './lab/export.js';
 import { wireRecord } from './lab/record.js';
+import { refreshOrbit } from './lab/orbit.js';
 import { buildForm, fieldsOf, isPart, fieldText, showLawFields, lawChooserFlag } from './lab/form.js';
 
 // ---------------------------------------------------------------- computing
@@ -96,8 +97,10 @@ export async function compute() {
   if (seq === state.seq) {
     setStatus('ready', `${steady.class}, ${steady.model === 'shockley' ? 'Shockley diodes' : 'exact solution'}`);
   }
-  // The theory beside the measurements follows on its own (it does not hold the screen up).
+  // The theory beside the measurements follows on its own (it does not hold the screen up),
+  // and so does the periodic orbit with its multipliers.
   refreshTheory(params, query);
+  refreshOrbit(params, query);
   if (!state.started) {
     // The first answer: compute the sweep and the map of this circuit once.
     state.started = true;

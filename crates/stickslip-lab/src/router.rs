@@ -30,10 +30,11 @@ const INDEX_HTML: &str = include_str!("../assets/index.html");
 /// Its script: the entry module, which imports the modules of [`MODULES`].
 pub(crate) const LAB_JS: &str = include_str!("../assets/lab.js");
 /// The page's ES modules, served at `/lab/<name>` (loaded as they are: no build step).
-pub(crate) const MODULES: [(&str, &str); 9] = [
+pub(crate) const MODULES: [(&str, &str); 10] = [
     ("api.js", include_str!("../assets/lab/api.js")),
     ("export.js", include_str!("../assets/lab/export.js")),
     ("form.js", include_str!("../assets/lab/form.js")),
+    ("orbit.js", include_str!("../assets/lab/orbit.js")),
     ("panels.js", include_str!("../assets/lab/panels.js")),
     ("record.js", include_str!("../assets/lab/record.js")),
     ("scope.js", include_str!("../assets/lab/scope.js")),
@@ -269,6 +270,7 @@ pub fn router(lab: Lab) -> Router {
         .route("/api/sweep", get(sweep))
         .route("/api/map", get(map))
         .route("/api/curve", get(curve))
+        .route("/api/orbit", get(orbit))
         .route("/api/theory", get(theory))
         .route("/api/presets", get(presets))
         .route("/api/keys", get(keys))
@@ -435,7 +437,7 @@ async fn not_found(request: Request) -> Response {
         StatusCode::NOT_FOUND,
         format!(
             "no such page: {} (the lab serves / and /api/steady, /api/simulate, /api/sweep, \
-             /api/map, /api/curve, /api/theory, /api/presets, /api/keys; POST /api/record, /api/fit)",
+             /api/map, /api/curve, /api/orbit, /api/theory, /api/presets, /api/keys; POST /api/record, /api/fit)",
             clip(request.uri().path(), 80)
         ),
     )
@@ -484,6 +486,13 @@ async fn map(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) ->
 
 async fn curve(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
     match api::CurveRequest::parse(raw.as_deref()) {
+        Ok(request) => lab.compute(client, move |b| request.run(b)).await,
+        Err(err) => err.into_response(),
+    }
+}
+
+async fn orbit(State(lab): State<Lab>, client: Client, RawQuery(raw): RawQuery) -> Response {
+    match api::OrbitRequest::parse(raw.as_deref()) {
         Ok(request) => lab.compute(client, move |b| request.run(b)).await,
         Err(err) => err.into_response(),
     }

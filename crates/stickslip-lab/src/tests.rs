@@ -5,6 +5,7 @@
 mod belt;
 mod connections;
 mod curve;
+mod orbit;
 mod page_keys;
 
 use super::router::{router, Lab, Settings};
@@ -563,7 +564,7 @@ async fn unknown_paths_are_404_and_the_page_is_served() {
         assert!(!module.is_empty(), "{path}");
         modules += 1;
     }
-    assert_eq!(modules, 9);
+    assert_eq!(modules, 10);
     let (status, _, _) = get_with(&lab, "/lab/nothing.js").await;
     assert_eq!(status, StatusCode::NOT_FOUND);
     let (status, _, _) = get_with(&lab, "/lab.css").await;

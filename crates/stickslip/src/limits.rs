@@ -23,7 +23,7 @@
 //! length.
 
 use crate::error::{Error, Result};
-use crate::options::{Allowed, OptionKey, SimulateOptions};
+use crate::options::{Allowed, OptionKey, OrbitOptions, SimulateOptions};
 use serde::Serialize;
 
 /// Largest damping ratio ζ.
@@ -199,6 +199,43 @@ impl Caps {
             self.steady_samples as f64,
         )?;
         OptionKey::TraceSamples.check_count(samples)
+    }
+
+    /// Check a periodic orbit's search (`orbit`) against the caps: the drive periods run to
+    /// its steady state or its transient at most [`Caps::max_periods`], the period looked for
+    /// at most [`Caps::max_period`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] with [`Allowed::Cap`] naming the first field over its cap.
+    pub fn check_orbit(&self, options: &OrbitOptions) -> Result<()> {
+        let periods = self.max_periods as f64;
+        Self::over(
+            OptionKey::OrbitTransient,
+            options.transient as f64,
+            0.0,
+            periods,
+        )?;
+        Self::over(
+            OptionKey::OrbitMaxPeriods,
+            options.max_periods as f64,
+            1.0,
+            periods,
+        )?;
+        Self::over(
+            OptionKey::OrbitMaxPeriod,
+            options.max_period as f64,
+            1.0,
+            self.max_period as f64,
+        )?;
+        if let Some(p) = options.period {
+            Self::over(
+                OptionKey::OrbitPeriod,
+                p as f64,
+                1.0,
+                self.max_period as f64,
+            )?;
+        }
+        Ok(())
     }
 
     /// Check a run from the initial state against the caps.

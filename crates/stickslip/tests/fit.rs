@@ -10,8 +10,8 @@ use stickslip::physical::Circuit;
 use stickslip::report::TrajectoryRecord;
 
 use stickslip_testkit::{
-    amplitude_table, keysight, plain, rigol, siglent, synthesise, tektronix, truth, Rng, Synthetic,
-    TRUE_R, TRUE_UT,
+    amplitude_table, driven, keysight, plain, rigol, sample_steady, siglent, synthesise, tektronix,
+    truth, Rng, Synthetic, TRUE_R, TRUE_UT,
 };
 
 const DRIVES: [(f64, f64, f64); 3] = [(0.29, 2.6, 0.4), (0.95, 2.14, -1.1), (1.43, 3.0, 2.5)];
@@ -516,6 +516,90 @@ fn standard_errors_stop_at_the_quantisation_floor() {
             _ => TRUE_UT,
         };
         assert!((a.value - truth).abs() < 5.0 * a.stderr, "{p:?}: {a:?}");
+    }
+}
+
+/// Records whose residual falls below the floor: an averaging scope's records (the 8-bit
+/// step q of its codes declared with the record, its values the mean of many acquisitions,
+/// here the exact steady state rounded to q/1000), the drive written with every digit. The
+/// residuals of R and U_t are then the rounding to q/1000, far below q/√12: the weighted
+/// residuals' variance (the fit's χ²/dof: each channel's residuals over its noise) is ~10⁻⁷,
+/// against the floor of 1 (each channel's precision over its noise: the response's q/√12,
+/// the drive's 10⁻⁹ of its scale, each its noise's floor here). Without the floor the
+/// standard errors would be √(χ²/dof) times the reported ones, a few 10⁻⁴ of them; with it
+/// they are those of the rounding to q: beside the same records with a step of Gaussian
+/// noise on u_C (the response's σ² = q², the floored s² ≈ (1 + 1/12)/2 with the exact
+/// drive), the ratio is about √((1/12)/(13/24)) = 0.39.
+#[test]
+fn standard_errors_of_records_finer_than_their_step_stop_at_the_floor() {
+    let made = |noise: f64| -> (Vec<Measurement>, Vec<f64>) {
+        let mut rng = Rng(78);
+        DRIVES
+            .iter()
+            .map(|&(w, beta, phi)| {
+                let e = driven(truth(), w, beta, phi);
+                let n = 1200;
+                let increment = 3.4 * TAU / (w * e.scales().unwrap().omega0) / n as f64;
+                let s = sample_steady(&e, n, increment);
+                let (lo, hi) = s
+                    .response
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                        (a.min(x), b.max(x))
+                    });
+                // A scope's 8-bit step over 1.25 times the peak-to-peak, and the mean's finer one.
+                let q = 1.25 * (hi - lo) / 256.0;
+                let fine = q / 1000.0;
+                let mut text = String::from("time_s,u_V,uc_V\n");
+                for k in 0..n {
+                    let u = ((s.response[k] + noise * q * rng.gauss()) / fine).round() * fine;
+                    text += &format!("{},{},{u}\n", k as f64 * increment, s.drive[k]);
+                }
+                let mut record = read_scope(&text, "mean.csv").unwrap();
+                // What the values alone say: a step of q/1000 (or a few).
+                let seen = record.channels[1].resolution.unwrap();
+                assert!(seen < 0.01 * q, "{seen} against {q}");
+                record.channels[1].resolution = Some(q);
+                (Measurement::new(&record, None, None).unwrap(), q)
+            })
+            .unzip()
+    };
+    let ((quiet_data, steps), (noisy_data, _)) = (made(0.0), made(1.0));
+    let (quiet, noisy) = (fit(&quiet_data), fit(&noisy_data));
+    assert!(quiet.converged, "{:?}", quiet.warnings);
+    assert!(noisy.converged, "{:?}", noisy.warnings);
+    // Every record's residual is far below its floor q/√12.
+    for (r, q) in quiet.records.iter().zip(&steps) {
+        assert!(
+            r.rms_residual_v < 0.01 * q / 12f64.sqrt(),
+            "{}: {} V against q/√12 = {} V",
+            r.file,
+            r.rms_residual_v,
+            q / 12f64.sqrt()
+        );
+    }
+    let chi2 = quiet.chi2_dof.unwrap();
+    for p in FREE {
+        let (a, b) = (quiet.value(p).unwrap(), noisy.value(p).unwrap());
+        // The floor's s² is 1 (see above): without it the errors scale by √(χ²/dof).
+        let unfloored = a.stderr * chi2.sqrt();
+        let ratio = a.stderr / b.stderr;
+        eprintln!(
+            "{p:?}: ± {} at the floor, ± {unfloored} without it (χ²/dof {chi2:e}), ± {} with a \
+             step of noise: ratio {ratio:.3}",
+            a.stderr, b.stderr
+        );
+        assert!(
+            unfloored < 1e-2 * a.stderr,
+            "{p:?}: {unfloored} of {}",
+            a.stderr
+        );
+        assert!((0.3..0.5).contains(&ratio), "{p:?}: ratio {ratio}");
+        let truth = match p {
+            FitParameter::Resistance => TRUE_R,
+            _ => TRUE_UT,
+        };
+        assert!((a.value - truth).abs() < a.stderr, "{p:?}: {a:?}");
     }
 }
 

@@ -109,6 +109,25 @@ pub trait Dynamics: Send + Sync + std::fmt::Debug {
     fn settling(&self) -> Option<Box<dyn Dynamics>> {
         None
     }
+
+    /// The period-1 orbit near `guess` for Newton settling, finished by a Newton step
+    /// without evaluating the map where the residual is below `loose.0` (relative) and the
+    /// orbit contracts by `loose.1` or faster, with the map's image of `guess` (see
+    /// `ShockleyDynamics::settling_orbit`); `None` (the default) when the model has no such
+    /// search.
+    ///
+    /// # Errors
+    /// As [`Dynamics::find_periodic_orbit`].
+    fn settling_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        options: &NewtonOptions,
+        loose: (f64, f64),
+    ) -> Option<Result<(PeriodicOrbit, StrobeImage)>> {
+        let _ = (params, guess, options, loose);
+        None
+    }
 }
 
 /// The exact PWL model (Coulomb friction): [`crate::ExactSolver`] and the tools of
@@ -247,5 +266,17 @@ impl Dynamics for ShockleyDynamics {
     fn settling(&self) -> Option<Box<dyn Dynamics>> {
         let options = *self.options();
         Some(Box::new(self.clone().with_map_options(options).ok()?))
+    }
+
+    fn settling_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        options: &NewtonOptions,
+        loose: (f64, f64),
+    ) -> Option<Result<(PeriodicOrbit, StrobeImage)>> {
+        Some(ShockleyDynamics::settling_orbit(
+            self, params, guess, options, loose,
+        ))
     }
 }

@@ -180,6 +180,12 @@ impl Multiplier {
     pub fn is_real(&self) -> bool {
         self.im == 0.0
     }
+
+    /// The argument arg μ in radians, from −π to π (0 for a positive real multiplier, π for
+    /// a negative one): the turn of a perturbation per orbit.
+    pub fn argument(&self) -> f64 {
+        self.im.atan2(self.re)
+    }
 }
 
 #[cfg(test)]

@@ -352,6 +352,44 @@ impl ShockleyDynamics {
         period: usize,
         options: &NewtonOptions,
     ) -> Result<PeriodicOrbit> {
+        Ok(self.find_orbit(params, guess, period, options, None)?.0)
+    }
+
+    /// The period-1 orbit near `guess` for Newton settling of a steady state
+    /// ([`crate::SteadyOptions::newton`]), with the image of `guess` (the map's first
+    /// evaluation, a strobe step the settling checks as it checks the trajectory's): as
+    /// [`ShockleyDynamics::find_periodic_orbit`], but the iteration stops at the looser
+    /// residual `loose.0`·max(1, |y|, |y'|)·max(1, max|M_ij|) where the largest multiplier's
+    /// modulus is at most `loose.1`, and then takes one more Newton step from the last iterate
+    /// without evaluating the map there: the orbit's state is that step's end, its monodromy,
+    /// events and multipliers those of the last image (one step before). Near the orbit the
+    /// step's error is quadratic in the last residual (as for the exact model's settling,
+    /// `find_periodic_orbit_finished`); the caller checks the state it gets by the repetition
+    /// of the cycle recorded from it.
+    ///
+    /// # Errors
+    /// As [`ShockleyDynamics::find_periodic_orbit`].
+    pub(crate) fn settling_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        options: &NewtonOptions,
+        loose: (f64, f64),
+    ) -> Result<(PeriodicOrbit, StrobeImage)> {
+        self.find_orbit(params, guess, 1, options, Some(loose))
+    }
+
+    /// [`ShockleyDynamics::find_periodic_orbit`], finished as
+    /// [`ShockleyDynamics::settling_orbit`] describes when `loose` is given; with the image
+    /// of the guess.
+    fn find_orbit(
+        &self,
+        params: &Params,
+        guess: State,
+        period: usize,
+        options: &NewtonOptions,
+        loose: Option<(f64, f64)>,
+    ) -> Result<(PeriodicOrbit, StrobeImage)> {
         let options = options.validate()?;
         let params = params.validate()?;
         if period == 0 {
@@ -363,6 +401,7 @@ impl ShockleyDynamics {
         }
         let mut x = State::new(guess.y, guess.v)?;
         let mut image = self.strobe_map(&params, x, period)?;
+        let first = image.clone();
         let residual = |image: &StrobeImage, x: State| {
             let r = [image.state.y - x.y, image.state.v - x.v];
             (r[0].abs().max(r[1].abs()), r)
@@ -377,12 +416,21 @@ impl ShockleyDynamics {
         let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
             norm <= rtol / options.tolerance * limit(x, image)
         };
+        // Where the settling's iteration may stop (see `settling_orbit`).
+        let finished = |norm: f64, x: State, image: &StrobeImage| {
+            loose.is_some_and(|(tolerance, modulus)| {
+                norm <= tolerance / options.tolerance * limit(x, image)
+                    && Self::multipliers(image)[0].modulus() <= modulus
+            })
+        };
         let (mut norm, mut r) = residual(&image, x);
         let mut residuals = vec![norm];
         let mut iterations = 0;
-        while norm > limit(x, &image) {
+        let mut stalled = false;
+        while norm > limit(x, &image) && !finished(norm, x, &image) {
             if iterations == options.max_iterations {
                 if at_accuracy(norm, x, &image) {
+                    stalled = true;
                     break;
                 }
                 return Err(StabilityError::NoConvergence {
@@ -402,7 +450,6 @@ impl ShockleyDynamics {
                 })?;
             let mut fraction = 1.0;
             let mut halvings = 0;
-            let mut stalled = false;
             loop {
                 let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
                 let trial_image = self.strobe_map(&params, trial, period)?;
@@ -427,6 +474,14 @@ impl ShockleyDynamics {
         }
         let multipliers = Self::multipliers(&image);
         let modulus = multipliers[0].modulus();
+        if loose.is_some() && !stalled {
+            // The finishing step, from the last image (a step that stalled is not taken).
+            if let Some(step) = image.jacobian.minus_identity().solve([-r[0], -r[1]]) {
+                if let Ok(next) = State::new(x.y + step[0], x.v + step[1]) {
+                    x = next;
+                }
+            }
+        }
         let stability = if (1.0 - modulus).abs() <= options.neutral_band {
             Stability::Neutral
         } else if modulus < 1.0 {
@@ -434,7 +489,7 @@ impl ShockleyDynamics {
         } else {
             Stability::Unstable
         };
-        Ok(PeriodicOrbit::from_image(
+        let orbit = PeriodicOrbit::from_image(
             &params,
             period,
             x,
@@ -442,7 +497,8 @@ impl ShockleyDynamics {
             (multipliers, stability),
             iterations,
             residuals,
-        ))
+        );
+        Ok((orbit, first))
     }
 
     /// The periodic orbit through `fixed_point` (the state at a strobe that the

@@ -401,6 +401,11 @@ fn run_to_cycle<H: Holder>(
                 Some(step) => {
                     n.attempt(params, x, step, hints, None);
                     accepted = n.check(params, history[len - 2], x, last_period);
+                    // (A smooth law's: the map's step from x, in place of the trajectory's
+                    // next period.)
+                    if accepted.is_none() {
+                        accepted = n.check_first_image();
+                    }
                 }
                 None => accepted = n.check(params, history[len - 2], x, last_period),
             }

@@ -69,8 +69,18 @@
 //! image of a state is where a solver of the factory started there lands, to the bit (test
 //! `the_smooth_settling_map_is_the_solvers_own`), so the cycle recorded from the fixed point
 //! is that map's cycle and its repetition check (below) holds it to the search's tolerance.
-//! The map is evaluated at x_k itself (the trajectory's solver carries no tangent). The
-//! acceptance asks the same two checks of two consecutive strobe steps; the flow is smooth,
+//! The map is evaluated at x_k itself (the trajectory's solver carries no tangent), and that
+//! first image P(x_k) is a strobe step in its own right: the period a solver of the factory
+//! started afresh at x_k runs, which differs from the trajectory's next period only by the
+//! solver's tolerance (its steps do not restart at a strobe). So the step x_k → P(x_k) is
+//! checked as the trajectory's steps are, right after the attempt: when it and the
+//! trajectory's step x_{k−1} → x_k both pass, the orbit is accepted without running the
+//! trajectory's next period (when it fails, the trajectory's own next step is checked as
+//! before; see `NewtonSettling::check_first_image`). Newton's iteration stops as for the
+//! exact solver, at a residual of 10⁻⁶·max(1, |x|)·max(1, |M|) where ρ ≤ 0.9, and takes one
+//! more step without evaluating the map (`ShockleyDynamics::settling_orbit`; the recorded
+//! period checks x* as above). The acceptance asks the same two checks of two consecutive
+//! strobe steps; the flow is smooth,
 //! so the map has no pieces and the remainder is quadratic everywhere, but its constant K
 //! grows where the motion changes its character: where a near-stop (the velocity held within
 //! the solver's stop threshold, the diode barely conducting) forms or vanishes. So the
@@ -106,6 +116,9 @@ pub(super) struct NewtonSettling {
     /// The hints of the last evaluation of the map near the orbit, for the solver that
     /// records the cycle from it.
     pub(super) hints: Option<Hints>,
+    /// The guess of the last attempt on a smooth law's map and its image there (the map's
+    /// first evaluation), until [`NewtonSettling::check_first_image`] reads them.
+    first: Option<(State, StrobeImage)>,
     /// Attempts made.
     attempts: usize,
     /// Tangent periods run by the attempts (counted in `periods_to_settle`).
@@ -155,6 +168,7 @@ impl NewtonSettling {
             orbit: None,
             orbit_events: Vec::new(),
             hints: None,
+            first: None,
             attempts: 0,
             periods: 0,
             passes: 0,
@@ -206,6 +220,7 @@ impl NewtonSettling {
     ) {
         self.attempts += 1;
         self.last_step = step;
+        self.first = None;
         // The period of the trajectory that gave the first image is counted as a strobe.
         let along = usize::from(first.is_some());
         let first = match first {
@@ -216,12 +231,21 @@ impl NewtonSettling {
             }
             None => None,
         };
+        let mut first_image = None;
         let found = match &self.smooth {
             // (A smooth law's map is evaluated at x: its solvers carry no tangent along the
-            // trajectory, and Newton's last iterate is its orbit.)
-            Some(dynamics) => dynamics
-                .find_periodic_orbit(params, x, 1, &SETTLING_NEWTON)
-                .map(|orbit| (orbit, None)),
+            // trajectory. Its image there is kept for `check_first_image`.)
+            Some(dynamics) => {
+                match dynamics.settling_orbit(params, x, &SETTLING_NEWTON, SETTLING_LOOSE) {
+                    Some(found) => found.map(|(orbit, image)| {
+                        first_image = Some((x, image));
+                        (orbit, None)
+                    }),
+                    None => dynamics
+                        .find_periodic_orbit(params, x, 1, &SETTLING_NEWTON)
+                        .map(|orbit| (orbit, None)),
+                }
+            }
             None => {
                 let finish = Finish {
                     hints,
@@ -242,6 +266,7 @@ impl NewtonSettling {
                         .collect();
                     self.orbit = Some(orbit);
                     self.hints = hints;
+                    self.first = first_image;
                 }
             }
             // A failed attempt costs at most its steps and halvings.
@@ -269,6 +294,30 @@ impl NewtonSettling {
         self.passes = if passed { self.passes + 1 } else { 0 };
         // (Accepted, the orbit is handed on: the search ends with it.)
         if self.passes >= BASIN_PASSES {
+            self.orbit.take()
+        } else {
+            None
+        }
+    }
+}
+
+impl NewtonSettling {
+    /// After an attempt from x_k on a smooth law's map that found a stable orbit, and the
+    /// check of the trajectory's step x_{k−1} → x_k (see [`NewtonSettling::check`]): the
+    /// map's first image P(x_k) is the strobe step x_k → P(x_k) that a trajectory started
+    /// afresh at x_k takes (the map is the solvers' own); the orbit, when that step passes
+    /// the same checks ([`within_basin`] and [`same_kinds`]) after a step that passed, so
+    /// that two consecutive strobe steps followed the orbit's linearisation. A step that
+    /// fails leaves the count of the trajectory's steps as it was (the trajectory's own next
+    /// step may still pass).
+    pub(super) fn check_first_image(&mut self) -> Option<PeriodicOrbit> {
+        let (x, image) = self.first.take()?;
+        let orbit = self.orbit.as_ref()?;
+        let passed = self.passes + 1 >= BASIN_PASSES
+            && within_basin(orbit, x, image.state)
+            && same_kinds(&self.orbit_events, image.events.iter().copied());
+        if passed {
+            self.passes += 1;
             self.orbit.take()
         } else {
             None
