@@ -90,7 +90,10 @@ fn measure(
     record.kind = match c.verdict {
         NonperiodicVerdict::Chaotic => AttractorKind::Chaotic,
         NonperiodicVerdict::QuasiPeriodic => AttractorKind::QuasiPeriodic,
-        NonperiodicVerdict::Contracting | NonperiodicVerdict::Undecided => AttractorKind::Undecided,
+        NonperiodicVerdict::Contracting
+        | NonperiodicVerdict::LimitCycle
+        | NonperiodicVerdict::Equilibrium
+        | NonperiodicVerdict::Undecided => AttractorKind::Undecided,
     };
     Ok(())
 }

@@ -29,7 +29,9 @@ use stickslip::OptionKey;
 /// periodic orbit or rest (its strobe at the end comes back within 1e-9 after at most 16
 /// drive periods); else chaotic (λ1 > kσ, k = --significance), contracting (λ1 < −kσ:
 /// settling onto a periodic attractor not reached yet), quasi-periodic (|λ1| ≤ kσ), or
-/// undecided (the two halves of the measurement disagree: a transient). λ2 is −∞ once the
+/// undecided (the two halves of the measurement disagree: a transient). Without a drive
+/// on a belt (β = 0, --vb ≠ 0) the motion is self-excited: limit-cycle (|λ1| ≤ kσ, λ2 < −kσ
+/// or −∞) or equilibrium (λ1 < −kσ: steady sliding). λ2 is −∞ once the
 /// motion stops: a stop erases the velocity perturbation (PWL law; with Shockley diodes λ2
 /// stays finite, and very negative where the current stops).
 ///
@@ -131,6 +133,15 @@ fn print_text(
             "chaotic: λ1 > {k}σ, two motions that start δ apart are e^(λ1 τ)·δ apart later \
              (a factor e every {:.4} drive periods)",
             1.0 / l.per_period
+        ),
+        (NonperiodicVerdict::LimitCycle, _) => format!(
+            "limit cycle: |λ1| ≤ {k}σ along it and λ2 < 0 across it; β = 0, the motion is \
+             self-excited (autonomous), so λ1 = 0 is the shift along the cycle, not a torus \
+             (`stickslip orbit` gives its period)"
+        ),
+        (NonperiodicVerdict::Equilibrium, _) => format!(
+            "equilibrium: λ1 < −{k}σ, both exponents negative; β = 0, the motion settles on \
+             steady sliding"
         ),
         (NonperiodicVerdict::Contracting, Some(p)) => format!(
             "periodic with period {p} drive period{}: the motion has reached a periodic orbit \

@@ -8,6 +8,7 @@ use stickslip::options::OrbitOptions;
 use stickslip::stability::{
     Multiplier, NewtonOptions, OrbitReport, PeriodicOrbit, Stability, StabilityError,
 };
+use stickslip::steady::{MotionClass, SelfExcitedOrbit};
 use stickslip::{Error, EventKind, OptionKey};
 
 /// Find a periodic orbit by Newton's method on the p-fold strobe map (the state once every p
@@ -29,6 +30,15 @@ use stickslip::{Error, EventKind, OptionKey};
 /// monodromy [[a, b], [c, d]], iterations, residuals, stops_per_period, events
 /// [{"tau", "y", "kind"}] and stops [{"start", "duration"}] over one orbit period (times
 /// from the strobe), w, beta, zeta, mu_s, phi.
+///
+/// Without a drive on a belt (--beta 0, --vb ≠ 0) the motion is self-excited: the orbit is
+/// the cycle `stickslip steady` finds, with its own period (cycle_period_tau, and
+/// cycle_period_s for the mechanical oscillator), not a drive period; one multiplier is 1
+/// (the motion is autonomous) and, for a stick-slip cycle, the other is exactly 0 (every stop
+/// ends in the same state); steady sliding is reported with the eigenvalues of its
+/// linearisation. JSON keys then: summary, class, cycle_period_tau, cycle_period_s, section,
+/// release_y, multipliers, stability, y_max, y_min, stick_fraction, sliding,
+/// sliding_eigenvalues, sliding_stability.
 ///
 /// Examples: stickslip orbit --preset paper --w 0.7 --beta 1.2
 ///           stickslip orbit --zeta 0 --mu-s 3 --w 0.33 --beta 9 --period 1 --transient 2000 --json
@@ -83,6 +93,21 @@ pub fn run(args: Args) -> Result<()> {
         .with_max_period(orbit.max_period)?;
     let newton = orbit.newton;
     eprintln!("orbit: {experiment}");
+    if experiment.is_self_excited() {
+        if orbit.period.is_some() {
+            anyhow::bail!(
+                "--period counts drive periods, and with --beta 0 on a belt there is no drive: \
+                 the self-excited cycle's period is found (leave --period out)"
+            );
+        }
+        let cycle = experiment.self_excited_orbit(&steady)?;
+        if args.json {
+            println!("{}", serde_json::to_string_pretty(&cycle)?);
+        } else {
+            print_self_excited(&cycle);
+        }
+        return Ok(());
+    }
     let transient = orbit.transient;
     let bar = progress(transient as u64, "transient");
     let result = experiment.periodic_orbit(
@@ -268,6 +293,50 @@ fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport, exact: bool) {
                  value of μ2 is the solver's (it depends on its steps), not the circuit's."
             );
         }
+    }
+}
+
+/// The orbit of a self-excited motion (β = 0 on a belt) in words.
+fn print_self_excited(c: &SelfExcitedOrbit) {
+    println!("{}", c.summary);
+    if let Some(s) = c.cycle_period_s {
+        println!("period            {s:.12e} s");
+    }
+    println!("y range           {:.12} … {:.12}", c.y_min, c.y_max);
+    println!("stick fraction    {:.12}", c.stick_fraction);
+    if let Some(y) = c.release_y {
+        println!("every stop ends   at y = {y:.12}, y' = vb (the static limit)");
+    }
+    match c.multipliers {
+        Some([trivial, other]) => println!(
+            "multipliers       μ1 = {} (trivial: the motion is autonomous), μ2 = {}",
+            multiplier(&trivial),
+            multiplier(&other)
+        ),
+        None if c.class == MotionClass::SteadySliding => {}
+        None => println!(
+            "multipliers       not computed for a pure-slip cycle with β = 0 (no drive: the \
+             strobe map of `orbit --period` does not apply)"
+        ),
+    }
+    if c.release_y.is_some() {
+        println!(
+            "                  μ2 = 0 exactly: every stop ends in the same state, so sticking \
+             collapses every perturbation; the cycle attracts all motions that stick"
+        );
+    }
+    let [a, b] = c.sliding_eigenvalues;
+    println!(
+        "steady sliding    y = {:.12}, y' = 0: damping 2ζ + μ'(|vb|) = {:+.6}, eigenvalues \
+         {} and {} ({})",
+        c.sliding.equilibrium,
+        c.sliding.damping,
+        multiplier(&a),
+        multiplier(&b),
+        c.sliding_stability.label()
+    );
+    if let Some(stability) = c.stability {
+        println!("stability         {}", stability_label(stability));
     }
 }
 

@@ -248,6 +248,12 @@ fn verdict_text(c: &NonperiodicClassification) -> String {
         NonperiodicVerdict::QuasiPeriodic => format!(
             "quasi-periodic (|λ1| ≤ {k}σ): neither growth nor decay of perturbations; not chaos"
         ),
+        NonperiodicVerdict::LimitCycle => format!(
+            "a limit cycle (|λ1| ≤ {k}σ along it, λ2 < 0 across it): an undriven motion; not chaos"
+        ),
+        NonperiodicVerdict::Equilibrium => {
+            format!("an equilibrium (λ1 < −{k}σ): every perturbation decays; not chaos")
+        }
         NonperiodicVerdict::Undecided => {
             "undecided: the two halves of the measurement disagree (a transient, or chaos \
              that ends); try more --lyapunov-periods or --max-periods"

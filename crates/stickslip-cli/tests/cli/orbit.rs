@@ -245,3 +245,106 @@ fn orbit_at_the_edge_of_the_neutral_family_at_zeta_0_w_half_is_neutral_not_stabl
         "{text}"
     );
 }
+
+/// The JSON of any command (`--json` added).
+fn command_json(args: &[&str]) -> serde_json::Value {
+    let mut full = args.to_vec();
+    full.push("--json");
+    let (_dir, out) = run(&full);
+    assert!(out.status.success(), "{full:?}: {}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).expect("valid JSON")
+}
+
+/// Without a drive on a belt (β = 0) the orbit is `steady`'s self-excited cycle: its own
+/// period (in seconds too for the mechanical oscillator), the multipliers 1 and exactly 0;
+/// steady sliding with its eigenvalues; `lyapunov` names a limit cycle, not a torus; --period
+/// (drive periods) refused.
+#[test]
+fn a_self_excited_belts_orbit_is_steadys_cycle() {
+    let belt = [
+        "--vb", "0.3", "--mu-s", "1.5", "--zeta", "0.05", "--beta", "0",
+    ];
+    let orbit = command_json(&[&["orbit"], &belt[..]].concat());
+    let steady = command_json(&[&["steady"], &belt[..]].concat());
+    let tau = orbit["cycle_period_tau"].as_f64().unwrap();
+    let want = steady["cycle_period_tau"].as_f64().unwrap();
+    assert!((tau - want).abs() < 1e-8, "{tau} against {want}");
+    for key in ["y_max", "y_min", "stick_fraction"] {
+        let (a, b) = (orbit[key].as_f64().unwrap(), steady[key].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-8, "{key}: {a} against {b}");
+    }
+    assert_eq!(orbit["class"], "stick-slip-cycle");
+    let summary = orbit["summary"].as_str().unwrap();
+    assert!(
+        summary.starts_with("self-excited cycle, period 7.18283"),
+        "{summary}"
+    );
+    let mu = &orbit["multipliers"];
+    assert_eq!(
+        (mu[0]["re"].as_f64(), mu[1]["re"].as_f64()),
+        (Some(1.0), Some(0.0))
+    );
+    assert_eq!(orbit["release_y"].as_f64(), Some(1.5 - 2.0 * 0.05 * 0.3));
+    let (_dir, out) = run(&[&["orbit"], &belt[..]].concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.starts_with("self-excited cycle, period 7.18283"),
+        "{text}"
+    );
+    assert!(text.contains("μ2 = 0 exactly"), "{text}");
+    // No drive: no drive periods to count.
+    let (_dir, out) = run(&[&["orbit"], &belt[..], &["--period", "1"]].concat());
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("--beta 0"), "{}", stderr(&out));
+    // lyapunov: a limit cycle (λ1 = 0 within its error, λ2 = −∞ from the stops).
+    let l = command_json(&[&["lyapunov"], &belt[..]].concat());
+    assert_eq!(
+        (&l["class"], &l["verdict"]),
+        (&"limit-cycle".into(), &"limit-cycle".into())
+    );
+    assert!(l["lambda2"].is_null() && l["period"].is_null(), "{l}");
+    // Faster than the static friction falls off (vb = 2): steady sliding, both exponents
+    // negative, and its eigenvalues −ζ ± i√(1 − ζ²) in orbit.
+    let sliding = [
+        "--vb", "2", "--mu-s", "1.5", "--zeta", "0.05", "--beta", "0",
+    ];
+    let l = command_json(&[&["lyapunov"], &sliding[..]].concat());
+    assert_eq!(l["class"], "equilibrium");
+    for key in ["lambda1", "lambda2"] {
+        let x = l[key].as_f64().unwrap();
+        assert!((x + 0.05).abs() < 1e-4, "{key}: {x}");
+    }
+    let o = command_json(&[&["orbit"], &sliding[..]].concat());
+    assert_eq!(
+        (&o["class"], &o["stability"]),
+        (&"steady-sliding".into(), &"stable".into())
+    );
+    let e = &o["sliding_eigenvalues"][0];
+    assert_eq!(e["re"].as_f64(), Some(-0.05));
+    assert!((e["im"].as_f64().unwrap() - (1.0f64 - 0.0025).sqrt()).abs() < 1e-15);
+}
+
+/// The mechanical oscillator's self-excited cycle has its period in seconds, T/ω0.
+#[test]
+fn a_mechanical_belts_cycle_period_is_in_seconds_too() {
+    // m = 0.1 kg, k = 1000 N/m: ω0 = 100 rad/s.
+    let v = command_json(&[
+        "orbit",
+        "--mass",
+        "0.1",
+        "--stiffness",
+        "1000",
+        "--damping",
+        "0.5",
+        "--friction",
+        "2",
+        "--mu-s",
+        "1.4",
+        "--belt-speed",
+        "0.02",
+    ]);
+    let tau = v["cycle_period_tau"].as_f64().unwrap();
+    let seconds = v["cycle_period_s"].as_f64().unwrap();
+    assert!((seconds - tau / 100.0).abs() < 1e-12 * seconds, "{v}");
+}

@@ -103,9 +103,11 @@ class LyapunovResult:
             strobe repeats within 16 periods; ``period`` gives the period), else
             'chaotic' (λ1 > kσ), 'quasi-periodic' (|λ1| ≤ kσ), 'contracting'
             (λ1 < −kσ: settling onto a periodic attractor) or 'undecided' (the two halves of
-            the measurement disagree), with k = ``significance`` (the JSON's ``class``).
+            the measurement disagree), with k = ``significance`` (the JSON's ``class``);
+            without a drive on a belt (beta = 0, vb != 0) 'limit-cycle' (|λ1| ≤ kσ, λ2 < −kσ)
+            or 'equilibrium' (λ1 < −kσ: steady sliding).
         verdict: what λ1 alone says ('chaotic', 'quasi-periodic', 'contracting',
-            'undecided'); period: the period reached, or None.
+            'limit-cycle', 'equilibrium', 'undecided'); period: the period reached, or None.
         converged: whether the two halves agree.
         lambda2, lambda2_per_period: the second exponent (-inf once the motion stops: a stop
             erases the velocity perturbation; ``lambda2_reason`` says so; the JSON of

@@ -9,7 +9,7 @@ use crate::scan::Monitor;
 use crate::stability::{
     Dynamics, LyapunovOptions, NewtonOptions, NonperiodicClassification, PeriodicOrbit,
 };
-use crate::steady::{periodic_orbit_from_steady_of, SteadyOptions};
+use crate::steady::{periodic_orbit_from_steady_of, SelfExcitedOrbit, SteadyOptions};
 use crate::Unsupported;
 use std::ops::ControlFlow;
 
@@ -101,6 +101,29 @@ impl Experiment {
         }
     }
 
+    /// The orbit of a self-excited motion (β = 0 on a belt, [`Experiment::is_self_excited`]):
+    /// the cycle `steady` settles on from the initial state, its period in τ (and seconds for
+    /// a physical model) and its multipliers (1 and exactly 0 for a stick-slip cycle), or
+    /// steady sliding with the eigenvalues of its linearisation ([`SelfExcitedOrbit`]).
+    ///
+    /// ```
+    /// use stickslip::experiment::Experiment;
+    /// use stickslip::SteadyOptions;
+    /// let e = Experiment::dimensionless(0.05, 1.0, 0.0).unwrap()
+    ///     .with_mu_s(1.5).unwrap().with_vb(0.3).unwrap();
+    /// let orbit = e.self_excited_orbit(&e.steady_options()).unwrap();
+    /// let [trivial, other] = orbit.multipliers.unwrap();
+    /// assert_eq!((trivial.re, other.re), (1.0, 0.0));
+    /// assert!(orbit.cycle_period_tau.unwrap() > 0.0);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`SelfExcitedOrbit::from_steady`]; as [`Experiment::steady_with`].
+    pub fn self_excited_orbit(&self, steady: &SteadyOptions) -> Result<SelfExcitedOrbit> {
+        let settled = self.steady_with(&steady.with_spectrum(false))?;
+        SelfExcitedOrbit::from_steady(&settled, self.scales().map(|s| s.omega0))
+    }
+
     /// The state `periods` drive periods after the initial state, by the model's solver.
     fn after_transient(
         &self,
@@ -160,9 +183,11 @@ impl Experiment {
         let exponents =
             self.dynamics()?
                 .lyapunov_exponents(&params, self.initial(), options, monitor)?;
-        Ok(NonperiodicClassification::new(
-            exponents,
-            options.significance,
-        ))
+        let c = NonperiodicClassification::new(exponents, options.significance);
+        Ok(if self.is_self_excited() {
+            c.autonomous(options.significance)
+        } else {
+            c
+        })
     }
 }

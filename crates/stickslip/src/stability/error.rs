@@ -18,6 +18,10 @@ fn said(exponent: &Option<(f64, f64)>, verdict: &Option<NonperiodicVerdict>) -> 
         NonperiodicVerdict::QuasiPeriodic => {
             "neither growing nor contracting within its error: a torus, or a neutral family"
         }
+        NonperiodicVerdict::LimitCycle => {
+            "a limit cycle of an autonomous motion: zero along it, perturbations across it decay"
+        }
+        NonperiodicVerdict::Equilibrium => "an equilibrium: every perturbation decays",
         NonperiodicVerdict::Undecided => {
             "undecided: the halves of the measurement disagree (a transient)"
         }

@@ -4,7 +4,7 @@
 pub use super::verdict::NonperiodicVerdict;
 
 use super::dynamics::{Dynamics, ExactDynamics};
-use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions};
+use super::lyapunov::{lyapunov_exponents, LyapunovExponents, LyapunovOptions, SecondExponent};
 use crate::error::Result;
 use crate::params::{Params, State};
 use crate::solver::run_until;
@@ -63,15 +63,36 @@ impl NonperiodicClassification {
         };
         Self { verdict, exponents }
     }
+
+    /// The verdict for an autonomous motion (a self-excited belt, β = 0), with `significance`
+    /// = k standard errors: a flow's λ₁ along a cycle is 0, so |λ₁| ≤ kσ with λ₂ < −kσ (or
+    /// −∞) is a limit cycle ([`NonperiodicVerdict::LimitCycle`]), not a torus; λ₁ < −kσ is
+    /// an equilibrium ([`NonperiodicVerdict::Equilibrium`]). Other verdicts stay.
+    pub fn autonomous(mut self, significance: f64) -> Self {
+        let k = significance;
+        let second_negative = match self.exponents.second {
+            SecondExponent::MinusInfinity { .. } => true,
+            SecondExponent::Finite(s) => s.per_tau < -k * s.error_per_tau,
+        };
+        self.verdict = match self.verdict {
+            NonperiodicVerdict::QuasiPeriodic if second_negative => NonperiodicVerdict::LimitCycle,
+            NonperiodicVerdict::Contracting => NonperiodicVerdict::Equilibrium,
+            verdict => verdict,
+        };
+        self
+    }
 }
 
 impl NonperiodicVerdict {
-    /// The label used in JSON: `chaotic`, `quasi-periodic`, `contracting`, `undecided`.
+    /// The label used in JSON: `chaotic`, `quasi-periodic`, `contracting`, `limit-cycle`,
+    /// `equilibrium`, `undecided`.
     pub fn label(self) -> &'static str {
         match self {
             NonperiodicVerdict::Chaotic => "chaotic",
             NonperiodicVerdict::QuasiPeriodic => "quasi-periodic",
             NonperiodicVerdict::Contracting => "contracting",
+            NonperiodicVerdict::LimitCycle => "limit-cycle",
+            NonperiodicVerdict::Equilibrium => "equilibrium",
             NonperiodicVerdict::Undecided => "undecided",
         }
     }

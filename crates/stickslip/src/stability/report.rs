@@ -190,10 +190,12 @@ pub struct LyapunovReport {
     /// period 1); else what λ₁ says: `chaotic` (λ₁ > kσ), `quasi-periodic` (|λ₁| ≤ kσ),
     /// `contracting` (λ₁ < −kσ: settling onto a periodic attractor not reached by the end of
     /// the measurement, or of a longer period) or `undecided` (the halves of the measurement
-    /// disagree), with σ the error and k the significance.
+    /// disagree), with σ the error and k the significance. A self-excited motion (β = 0 on a
+    /// belt) is `limit-cycle` (|λ₁| ≤ kσ, λ₂ < −kσ) or `equilibrium` (λ₁ < −kσ: steady
+    /// sliding), never `periodic` in drive periods.
     pub class: &'static str,
     /// The verdict of the exponent alone (`chaotic`, `quasi-periodic`, `contracting`,
-    /// `undecided`), also when `class` is `periodic`.
+    /// `limit-cycle`, `equilibrium`, `undecided`), also when `class` is `periodic`.
     pub verdict: &'static str,
     /// The period of the motion reached, in drive periods ([`super::strobe_period`]); `None` when
     /// the strobe does not repeat (or the motion is chaotic).
@@ -272,7 +274,10 @@ impl LyapunovReport {
     ) -> Result<Self> {
         let e = &c.exponents;
         let period = match c.verdict {
-            NonperiodicVerdict::Chaotic => None,
+            // A self-excited motion has no drive period: its own is the cycle's.
+            NonperiodicVerdict::Chaotic
+            | NonperiodicVerdict::LimitCycle
+            | NonperiodicVerdict::Equilibrium => None,
             _ => strobe_period_of(dynamics, params, e.final_state)?,
         };
         let (lambda2, error2, reason) = match e.second {

@@ -16,6 +16,12 @@ pub enum NonperiodicVerdict {
     /// λ₁ < −kσ and the measurement converged: the motion contracts onto an attractor that
     /// is periodic, either not yet reached or of a longer period than was looked for.
     Contracting,
+    /// A self-excited motion (β = 0 on a belt: autonomous) with |λ₁| ≤ kσ and λ₂ < −kσ
+    /// (or −∞, from stops): a limit cycle, λ₁ = 0 along it, perturbations across it decay.
+    LimitCycle,
+    /// A self-excited motion with λ₁ < −kσ: both exponents negative, the motion settles on
+    /// an equilibrium (steady sliding on the belt).
+    Equilibrium,
     /// The two halves of the measurement disagree (a transient, or chaos that ends): no
     /// verdict at this length.
     Undecided,

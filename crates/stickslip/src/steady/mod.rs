@@ -27,6 +27,7 @@ pub mod options;
 mod record;
 mod report;
 pub mod self_excited;
+mod self_excited_orbit;
 mod spectrum;
 mod state;
 
@@ -42,6 +43,7 @@ pub use exponent::{
 pub use options::SteadyOptions;
 pub use report::SteadyReport;
 pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
+pub use self_excited_orbit::SelfExcitedOrbit;
 pub use spectrum::{Harmonic, Spectrum};
 pub use state::SteadyState;
 
