@@ -26,6 +26,15 @@ pub trait Dynamics: Send + Sync + std::fmt::Debug {
     /// branches can end at a grazing (the tools that follow those ask for it).
     fn is_exact(&self) -> bool;
 
+    /// Whether orbits of this model can stick (rest with y' = vb on a stop of the friction
+    /// law for a while, their strobe map's Jacobian singular there): the exact Coulomb model
+    /// and the Stribeck and cubic laws of [`super::FrictionDynamics`]; not a smooth diode law.
+    /// The tools that treat stuck strobes and the stops' edges ask for this, not for
+    /// [`Dynamics::is_exact`] (which says the map is exact to rounding).
+    fn sticks(&self) -> bool {
+        self.is_exact()
+    }
+
     /// A solver of the model from `initial` at τ = 0.
     ///
     /// # Errors

@@ -287,6 +287,10 @@ impl Dynamics for FrictionDynamics {
         false
     }
 
+    fn sticks(&self) -> bool {
+        true
+    }
+
     fn solver(&self, params: &Params, initial: State) -> Result<Box<dyn Solver + Send>> {
         Ok(Box::new(self.plain_solver(params, initial)?))
     }
