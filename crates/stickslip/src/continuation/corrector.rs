@@ -306,7 +306,11 @@ impl Problem<'_> {
             from.u[2] + sigma * t[2],
         ];
         let mut u = pred;
-        let dp = from.dp;
+        let mut dp = from.dp;
+        // Whether the motion of `dp` is stuck at the strobe: where the branch crosses a stop's
+        // edge at the strobe, the iterates' images end stuck (or sliding) unlike `from`'s, and
+        // ∂P/∂λ changes at once (stuck, P's y' is the belt's speed): taken afresh there.
+        let mut dp_stuck = from.orbit.stuck_at_strobe;
         let mut converged = false;
         let mut last = f64::INFINITY;
         for iteration in 0..self.options.corrector_iterations {
@@ -318,6 +322,10 @@ impl Problem<'_> {
                 Err(crate::Error::Stability(_)) => return Ok(None),
                 Err(e) => return Err(e),
             };
+            if image.stuck_at_end != dp_stuck {
+                dp_stuck = image.stuck_at_end;
+                dp = self.dparam(&u)?;
+            }
             let r = [image.state.y - u[0], image.state.v - u[1]];
             let m = image.jacobian.0;
             let scale = 1f64.max(u[0].abs()).max(u[1].abs());

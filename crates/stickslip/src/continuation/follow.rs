@@ -184,7 +184,9 @@ pub fn continue_orbit_of(
         ds = ds.min(cap).max(options.min_step);
         let trial = problem.correct(&current, ds)?;
         let accepted = trial.filter(|s| {
-            let smooth = problem.pieces(&s.orbit) == problem.pieces(&current.orbit);
+            // (A stop's edge crossing the strobe keeps the counts but turns the tangent.)
+            let smooth = problem.pieces(&s.orbit) == problem.pieces(&current.orbit)
+                && s.orbit.stuck_at_strobe == current.orbit.stuck_at_strobe;
             !smooth
                 || angle(&s.tangent, &current.tangent) <= options.max_angle
                 || ds <= options.crawl_step()

@@ -1,5 +1,5 @@
 //! What the last orbit of a branch that cannot go on is closest to: a turning point at the
-//! static limit, a tangential release, or a slide grazing rest.
+//! static limit, a tangential release, a slide grazing rest, or a stop reached tangentially.
 
 use crate::error::Result;
 use crate::exact::ExactSolver;
@@ -16,11 +16,13 @@ use serde::{Deserialize, Serialize};
 pub enum Obstacle {
     /// A turning point whose net force |F − y| is within `margin` (relative to μs) of the
     /// static limit: beyond it the motion would stop there. For μs > 1 with the force falling
-    /// back the stop would last long, so the strobe map jumps and the orbit ends.
+    /// back the stop would last long, so the strobe map jumps and the orbit ends. Or, with
+    /// `margin` < 0, the start of a stop that close to the limit: beyond it the motion would
+    /// turn there instead (on a belt: its slip reverses), and the stop that followed vanishes.
     TurnAtStaticLimit {
-        /// Time of the turning point from the strobe.
+        /// Time of the turning point (or the stop's start) from the strobe.
         tau: f64,
-        /// (|F − y| − μs)/μs at the turning point.
+        /// (|F − y − 2ζ·vb| − μs)/μs there.
         margin: f64,
     },
     /// A release (μs > 1) where the drive's force hardly changes any more, |F'|/(βw) =
@@ -37,6 +39,17 @@ pub enum Obstacle {
     /// at the grazing the motion stops mid-swing for a finite time, so for μs > 1 the strobe
     /// map jumps (the orbit gains a stop of finite length at once).
     Grazing(SlideMinimum),
+    /// A stop that begins where the slide reaches the belt's speed (rest without a belt)
+    /// almost tangentially: the relative acceleration on arrival, |y''| = |F − y − 2ζ·vb ∓ 1|,
+    /// is `acceleration` (relative to μs). At the tangency the slide only touches the belt's
+    /// speed; past it the slide misses it and goes on, so for μs > 1 the stop that followed
+    /// vanishes at once and the strobe map jumps (the other side of [`Obstacle::Grazing`]).
+    TangentialStick {
+        /// Time of the stop's start from the strobe.
+        tau: f64,
+        /// The relative acceleration on arrival over μs.
+        acceleration: f64,
+    },
     /// No event of the orbit is close to a switch.
     None,
 }
@@ -162,6 +175,12 @@ impl std::fmt::Display for Obstacle {
     /// nothing when no event is close to a switch.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            Obstacle::TurnAtStaticLimit { margin, .. } if *margin < 0.0 => write!(
+                f,
+                "; a stop begins {:.1e} (relative) inside the static friction limit, where \
+                 it would become a turning point",
+                -margin
+            ),
             Obstacle::TurnAtStaticLimit { margin, .. } => write!(
                 f,
                 "; a turning point is {margin:.1e} (relative) from the static friction limit, \
@@ -178,14 +197,21 @@ impl std::fmt::Display for Obstacle {
                  appears mid-swing and the strobe map jumps",
                 slide.describe()
             ),
+            Obstacle::TangentialStick { tau, acceleration } => write!(
+                f,
+                "; the stop at τ = {tau:.6} begins where the slide reaches the belt's speed \
+                 (rest without a belt) almost tangentially (|y''|/μs = {acceleration:.1e} on \
+                 arrival): past it the slide misses the stop and the strobe map jumps"
+            ),
             Obstacle::None => Ok(()),
         }
     }
 }
 
 /// The [`Obstacle`] of `orbit` at `params`: the closest of a turning point at the
-/// static limit, a tangential release and a slide grazing rest with the net force within the static
-/// limit (μs > 1), each measured relatively, when one is below 1e-2.
+/// static limit, a tangential release, a slide grazing rest with the net force within the static
+/// limit and a stop reached tangentially (the last three for μs > 1), each measured relatively,
+/// when one is below 1e-2.
 pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacle> {
     let mut best = (1e-2, Obstacle::None);
     if params.mu_s > 1.0 {
@@ -204,6 +230,30 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
                     best = (
                         margin.abs(),
                         Obstacle::TurnAtStaticLimit { tau: e.tau, margin },
+                    );
+                }
+            }
+            crate::solver::EventKind::Stick => {
+                // A stop that begins at the static limit: beyond it the motion would turn
+                // there (a margin below zero).
+                let net = params.net_force(e.tau, e.y);
+                let margin = (net.abs() - params.mu_s) / params.mu_s;
+                if margin.abs() < best.0 {
+                    best = (
+                        margin.abs(),
+                        Obstacle::TurnAtStaticLimit { tau: e.tau, margin },
+                    );
+                }
+                // Arriving at the belt's speed from either side, y'' = net − sgn(s): the
+                // smaller of |net ∓ 1| (|net| ≤ μs at a stick).
+                let acceleration = (net - 1.0).abs().min((net + 1.0).abs()) / params.mu_s;
+                if params.mu_s > 1.0 && acceleration < best.0 {
+                    best = (
+                        acceleration,
+                        Obstacle::TangentialStick {
+                            tau: e.tau,
+                            acceleration,
+                        },
                     );
                 }
             }

@@ -202,7 +202,9 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
         Obstacle::TurnAtStaticLimit { tau, .. } => (BorderKind::TurnAtLimit, true, tau),
         Obstacle::Grazing(slide) => (BorderKind::SlideTouchesRest, false, slide.tau),
         Obstacle::TangentialRelease { tau, .. } => (BorderKind::ReleaseTangential, false, tau),
-        Obstacle::None => return Ok(None),
+        // The stop side of a slide touching rest: its slide has no minimum inside to start
+        // the border's search from.
+        Obstacle::TangentialStick { .. } | Obstacle::None => return Ok(None),
     };
     let Some(last) = branch.points.last() else {
         return Ok(None);
