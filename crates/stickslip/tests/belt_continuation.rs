@@ -339,3 +339,71 @@ fn a_period_doubling_in_vb_lies_where_steady_doubles_its_period() {
         "branch {x:?}, steady {s:?}"
     );
 }
+
+/// The undamped belt ζ = 0, w = 0.5, β = 1, μs = 1.5 at φ = 3: its period-1 orbit with a stop
+/// folds back at vb ≈ 0.44739 and again at 0.42441 (three orbits coexist between). A sweep up
+/// in vb follows the branch up to the first fold and jumps there; the branch reports the fold
+/// where the sweep leaves it, and no Neimark–Sacker point (its orbits stop: det M = 0). Past
+/// the second fold it ends at vb ≈ 0.4251, named: a stop reached tangentially.
+#[test]
+fn a_fold_in_vb_lies_where_the_sweep_jumps() {
+    let belt = |vb: f64| {
+        Experiment::dimensionless(0.0, 0.5, 1.0)
+            .and_then(|e| e.with_phi(3.0))
+            .and_then(|e| e.with_mu_s(1.5))
+            .and_then(|e| e.with_vb(vb))
+            .unwrap()
+    };
+    let (params, orbit) = settled_orbit(&belt(0.3)).unwrap();
+    let options = ContinuationOptions::default().with_max_step(0.02);
+    let branch = continue_orbit(&params, Parameter::Vb, &orbit, 1.5, &options, &()).unwrap();
+    let folds: Vec<f64> = branch
+        .special
+        .iter()
+        .filter(|s| s.kind == SpecialKind::Fold)
+        .map(|s| s.value)
+        .collect();
+    assert_eq!(folds.len(), 2, "{:?}", branch.special);
+    assert!(
+        (0.447..0.448).contains(&folds[0]) && (0.424..0.425).contains(&folds[1]),
+        "{folds:?}"
+    );
+    assert!(branch
+        .special
+        .iter()
+        .all(|s| s.kind != SpecialKind::NeimarkSacker));
+    assert!(
+        matches!(
+            branch.end,
+            BranchEnd::Failed {
+                value,
+                obstacle: Obstacle::TangentialStick { .. }
+            } if (0.4245..0.4255).contains(&value)
+        ),
+        "{:?}",
+        branch.end
+    );
+
+    let range = ParameterRange::new("vb", 0.40, 0.47, 15).unwrap();
+    let steps = Sweep::new(&belt(0.40), Axis::range(Parameter::Vb, &range).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Up)
+        .run(&())
+        .unwrap();
+    for step in &steps {
+        // The branch's lower piece, up to the first fold, comes first along it.
+        let on = step.steady.period == Some(1)
+            && on_branch(&branch, step.value).is_some_and(|(x, _)| {
+                let s = step.steady.strobes[0];
+                (x[0] - s.y).abs() < 2e-3 && (x[1] - s.v).abs() < 2e-3
+            });
+        assert_eq!(
+            on,
+            step.value < folds[0],
+            "vb = {}: steady {:?} (fold at {})",
+            step.value,
+            step.steady.strobes.first(),
+            folds[0]
+        );
+    }
+}

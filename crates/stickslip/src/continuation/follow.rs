@@ -184,6 +184,16 @@ pub fn continue_orbit_of(
         ds = ds.min(cap).max(options.min_step);
         let trial = problem.correct(&current, ds)?;
         let accepted = trial.filter(|s| {
+            // Newton's method within the hyperplane can land on a far piece of the solution
+            // set (another branch): a step is at most 4·Δs long, as a natural step.
+            let d = [
+                s.u[0] - current.u[0],
+                s.u[1] - current.u[1],
+                s.u[2] - current.u[2],
+            ];
+            if norm(&d) > 4.0 * ds {
+                return false;
+            }
             // (A stop's edge crossing the strobe keeps the counts but turns the tangent.)
             let smooth = problem.pieces(&s.orbit) == problem.pieces(&current.orbit)
                 && s.orbit.stuck_at_strobe == current.orbit.stuck_at_strobe;
