@@ -115,6 +115,14 @@ impl Problem<'_> {
         self.params(lambda).map_or(0.0, |p| p.vb)
     }
 
+    /// Whether the branch runs on a moving belt (vb ≠ 0, or vb continued): the steps across a
+    /// stop's edge at the strobe and the length check of a corrected step are taken there
+    /// (on a base at rest they would move the branches of the paper's figures, which are
+    /// kept to the bit).
+    pub fn on_belt(&self) -> bool {
+        self.base.vb != 0.0 || self.parameter == Parameter::Vb
+    }
+
     /// d(stuck velocity)/dλ: 1 when λ is vb, else 0.
     fn stuck_moves(&self) -> f64 {
         if self.parameter == Parameter::Vb {
@@ -322,7 +330,7 @@ impl Problem<'_> {
                 Err(crate::Error::Stability(_)) => return Ok(None),
                 Err(e) => return Err(e),
             };
-            if image.stuck_at_end != dp_stuck {
+            if self.on_belt() && image.stuck_at_end != dp_stuck {
                 dp_stuck = image.stuck_at_end;
                 dp = self.dparam(&u)?;
             }

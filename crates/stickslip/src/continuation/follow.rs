@@ -191,12 +191,12 @@ pub fn continue_orbit_of(
                 s.u[1] - current.u[1],
                 s.u[2] - current.u[2],
             ];
-            if norm(&d) > 4.0 * ds {
+            if problem.on_belt() && norm(&d) > 4.0 * ds {
                 return false;
             }
             // (A stop's edge crossing the strobe keeps the counts but turns the tangent.)
             let smooth = problem.pieces(&s.orbit) == problem.pieces(&current.orbit)
-                && s.orbit.stuck_at_strobe == current.orbit.stuck_at_strobe;
+                && (!problem.on_belt() || s.orbit.stuck_at_strobe == current.orbit.stuck_at_strobe);
             !smooth
                 || angle(&s.tangent, &current.tangent) <= options.max_angle
                 || ds <= options.crawl_step()

@@ -16,9 +16,9 @@ use serde::{Deserialize, Serialize};
 pub enum Obstacle {
     /// A turning point whose net force |F − y| is within `margin` (relative to μs) of the
     /// static limit: beyond it the motion would stop there. For μs > 1 with the force falling
-    /// back the stop would last long, so the strobe map jumps and the orbit ends. Or, with
-    /// `margin` < 0, the start of a stop that close to the limit: beyond it the motion would
-    /// turn there instead (on a belt: its slip reverses), and the stop that followed vanishes.
+    /// back the stop would last long, so the strobe map jumps and the orbit ends. Or, on a
+    /// belt, with `margin` < 0, the start of a stop that close to the limit: beyond it the
+    /// slip would reverse there instead, and the stop that followed vanishes.
     TurnAtStaticLimit {
         /// Time of the turning point (or the stop's start) from the strobe.
         tau: f64,
@@ -39,8 +39,8 @@ pub enum Obstacle {
     /// at the grazing the motion stops mid-swing for a finite time, so for μs > 1 the strobe
     /// map jumps (the orbit gains a stop of finite length at once).
     Grazing(SlideMinimum),
-    /// A stop that begins where the slide reaches the belt's speed (rest without a belt)
-    /// almost tangentially: the relative acceleration on arrival, |y''| = |F − y − 2ζ·vb ∓ 1|,
+    /// On a belt, a stop that begins where the slide reaches the belt's speed almost
+    /// tangentially: the relative acceleration on arrival, |y''| = |F − y − 2ζ·vb ∓ 1|,
     /// is `acceleration` (relative to μs). At the tangency the slide only touches the belt's
     /// speed; past it the slide misses it and goes on, so for μs > 1 the stop that followed
     /// vanishes at once and the strobe map jumps (the other side of [`Obstacle::Grazing`]).
@@ -200,8 +200,8 @@ impl std::fmt::Display for Obstacle {
             Obstacle::TangentialStick { tau, acceleration } => write!(
                 f,
                 "; the stop at τ = {tau:.6} begins where the slide reaches the belt's speed \
-                 (rest without a belt) almost tangentially (|y''|/μs = {acceleration:.1e} on \
-                 arrival): past it the slide misses the stop and the strobe map jumps"
+                 almost tangentially (|y''|/μs = {acceleration:.1e} on arrival): past it the \
+                 slide misses the stop and the strobe map jumps"
             ),
             Obstacle::None => Ok(()),
         }
@@ -209,9 +209,9 @@ impl std::fmt::Display for Obstacle {
 }
 
 /// The [`Obstacle`] of `orbit` at `params`: the closest of a turning point at the
-/// static limit, a tangential release, a slide grazing rest with the net force within the static
-/// limit and a stop reached tangentially (the last three for μs > 1), each measured relatively,
-/// when one is below 1e-2.
+/// static limit (on a belt also a stop beginning there), a tangential release, a slide grazing
+/// rest with the net force within the static limit and, on a belt, a stop reached tangentially
+/// (the last three for μs > 1), each measured relatively, when one is below 1e-2.
 pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacle> {
     let mut best = (1e-2, Obstacle::None);
     if params.mu_s > 1.0 {
@@ -233,7 +233,8 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
                     );
                 }
             }
-            crate::solver::EventKind::Stick => {
+            // (On a belt: on a base at rest the ends of the paper's branches are kept.)
+            crate::solver::EventKind::Stick if params.vb != 0.0 => {
                 // A stop that begins at the static limit: beyond it the motion would turn
                 // there (a margin below zero).
                 let net = params.net_force(e.tau, e.y);

@@ -36,7 +36,7 @@ pub(super) fn natural_step(
         next.u[2] - current.u[2],
     ];
     let kink = problem.pieces(&next.orbit) != problem.pieces(&current.orbit)
-        || next.orbit.stuck_at_strobe != current.orbit.stuck_at_strobe;
+        || (problem.on_belt() && next.orbit.stuck_at_strobe != current.orbit.stuck_at_strobe);
     let mut next = next;
     if !kink && corrector::dot(&next.tangent, &t) < 0.0 {
         next.tangent.iter_mut().for_each(|c| *c = -*c);
