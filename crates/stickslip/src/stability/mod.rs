@@ -81,7 +81,7 @@ pub(crate) mod verdict;
 
 pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
-pub use friction::{FrictionDynamics, FrictionTangent};
+pub use friction::{FrictionDynamics, FrictionTangent, FRICTION_COLUMNS};
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
     SecondExponent,
