@@ -66,7 +66,7 @@ fn tools() -> Vec<(Vec<&'static str>, [Outcome; 3])> {
             vec![
                 "continue", "--beta", "2", "--over", "w", "--from", "1", "--to", "1.1",
             ],
-            [COULOMB_ONLY, COULOMB_ONLY, Works],
+            [Works, Works, Works],
         ),
         (
             vec![
