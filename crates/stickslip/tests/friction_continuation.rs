@@ -10,6 +10,7 @@ use stickslip::continuation::{
     continue_orbit_of, settled_orbit, Branch, BranchEnd, ContinuationOptions, SpecialKind,
 };
 use stickslip::friction::FrictionLaw;
+use stickslip::scan::{Axis, ParameterRange, Sweep, SweepDirection, SweepLeg, SweepPoint};
 use stickslip::solver::run_until;
 use stickslip::stability::{FrictionDynamics, NewtonOptions, Stability};
 use stickslip::{Experiment, Parameter, Solver, State};
@@ -189,4 +190,62 @@ fn a_falling_stribeck_law_gives_a_neimark_sacker_point_on_a_sliding_branch() {
     integral *= period / n as f64;
     println!("NS at vb = {}: ∫(2ζ + μ') dτ = {integral:.2e}", ns.value);
     assert!(integral.abs() <= 1e-6, "{integral}");
+}
+
+/// The largest change of the amplitude between neighbouring steps of a sweep leg (its
+/// values in the leg's order): the interval and the change, and the median change.
+fn largest_jump(leg: &[&SweepPoint]) -> ((f64, f64), f64, f64) {
+    let mut changes: Vec<((f64, f64), f64)> = leg
+        .windows(2)
+        .map(|p| {
+            let d = (p[1].steady.amplitude() - p[0].steady.amplitude()).abs();
+            ((p[0].value, p[1].value), d)
+        })
+        .collect();
+    changes.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let median = changes[changes.len() / 2].1;
+    (changes[0].0, changes[0].1, median)
+}
+
+/// A Stribeck belt's stick-slip branch over w folds back (the stable and an unstable orbit
+/// meet): the fold `continue` reports lies in the interval where a sweep up in w jumps, and
+/// the sweep down passes it without a jump there (hysteresis).
+#[test]
+fn a_fold_of_a_stribeck_branch_is_where_the_sweep_up_jumps() {
+    let (from, to) = (0.7, 1.2);
+    let e = belt(STRIBECK, (0.05, from, 1.45, 1.5, 0.05));
+    let b = branch(&e, Parameter::W, to, 0.05);
+    let folds: Vec<f64> = b
+        .special
+        .iter()
+        .filter(|s| s.kind == SpecialKind::Fold)
+        .map(|s| s.value)
+        .collect();
+    println!("{} points, end {:?}, folds {folds:?}", b.points.len(), b.end);
+    assert_eq!(folds.len(), 1, "{:?}", b.special);
+    let fold = folds[0];
+    let range = ParameterRange::new("w", from, to, 51).unwrap();
+    let steps = Sweep::new(&e, Axis::range(Parameter::W, &range).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Both)
+        .run(&())
+        .unwrap();
+    let up: Vec<&SweepPoint> = steps.iter().filter(|p| p.leg == SweepLeg::Up).collect();
+    let mut down: Vec<&SweepPoint> = steps.iter().filter(|p| p.leg == SweepLeg::Down).collect();
+    let ((a, c), jump, median) = largest_jump(&up);
+    println!("up: largest jump {jump} in ({a}, {c}), median change {median}");
+    assert!(a < fold && fold < c, "fold at w = {fold}, the sweep up jumps in ({a}, {c})");
+    assert!(jump > 20.0 * median, "{jump} against {median}");
+    down.reverse();
+    let below = |leg: &[&SweepPoint]| {
+        leg.iter()
+            .filter(|p| p.value < fold)
+            .max_by(|x, y| x.value.total_cmp(&y.value))
+            .map(|p| (p.value, p.steady.amplitude()))
+            .unwrap()
+    };
+    let (w_up, a_up) = below(&up);
+    let (w_down, a_down) = below(&down);
+    println!("just below the fold, w = {w_up}: amplitude {a_up} up, {a_down} down ({w_down})");
+    assert!((a_up - a_down).abs() > 0.1 * a_up, "no hysteresis at w = {w_up}");
 }
