@@ -141,7 +141,10 @@ fn a_falling_stribeck_law_gives_a_neimark_sacker_point_on_a_sliding_branch() {
         b.points.len(),
         b.end
     );
-    assert!(b.points.iter().all(|p| p.orbit.events.is_empty()), "slides throughout");
+    assert!(
+        b.points.iter().all(|p| p.orbit.events.is_empty()),
+        "slides throughout"
+    );
     let specials: Vec<_> = b.special.iter().map(|s| (s.kind, s.value)).collect();
     println!("{} points; special points {specials:?}", b.points.len());
     assert_eq!(specials.len(), 1, "{specials:?}");
@@ -167,7 +170,11 @@ fn a_falling_stribeck_law_gives_a_neimark_sacker_point_on_a_sliding_branch() {
             .find_periodic_orbit(&p, near.orbit.state, 1, &NewtonOptions::default())
             .unwrap();
         let mu = orbit.multipliers[0];
-        println!("vb = {vb}: multipliers {:?}, |mu| {}", orbit.multipliers, mu.modulus());
+        println!(
+            "vb = {vb}: multipliers {:?}, |mu| {}",
+            orbit.multipliers,
+            mu.modulus()
+        );
         assert!(mu.im != 0.0 && orbit.events.is_empty(), "{orbit:?}");
         assert_eq!(mu.modulus() < 1.0, inside, "vb = {vb}: {mu:?}");
     }
@@ -221,7 +228,11 @@ fn a_fold_of_a_stribeck_branch_is_where_the_sweep_up_jumps() {
         .filter(|s| s.kind == SpecialKind::Fold)
         .map(|s| s.value)
         .collect();
-    println!("{} points, end {:?}, folds {folds:?}", b.points.len(), b.end);
+    println!(
+        "{} points, end {:?}, folds {folds:?}",
+        b.points.len(),
+        b.end
+    );
     assert_eq!(folds.len(), 1, "{:?}", b.special);
     let fold = folds[0];
     let range = ParameterRange::new("w", from, to, 51).unwrap();
@@ -234,7 +245,10 @@ fn a_fold_of_a_stribeck_branch_is_where_the_sweep_up_jumps() {
     let mut down: Vec<&SweepPoint> = steps.iter().filter(|p| p.leg == SweepLeg::Down).collect();
     let ((a, c), jump, median) = largest_jump(&up);
     println!("up: largest jump {jump} in ({a}, {c}), median change {median}");
-    assert!(a < fold && fold < c, "fold at w = {fold}, the sweep up jumps in ({a}, {c})");
+    assert!(
+        a < fold && fold < c,
+        "fold at w = {fold}, the sweep up jumps in ({a}, {c})"
+    );
     assert!(jump > 20.0 * median, "{jump} against {median}");
     down.reverse();
     let below = |leg: &[&SweepPoint]| {
@@ -247,5 +261,8 @@ fn a_fold_of_a_stribeck_branch_is_where_the_sweep_up_jumps() {
     let (w_up, a_up) = below(&up);
     let (w_down, a_down) = below(&down);
     println!("just below the fold, w = {w_up}: amplitude {a_up} up, {a_down} down ({w_down})");
-    assert!((a_up - a_down).abs() > 0.1 * a_up, "no hysteresis at w = {w_up}");
+    assert!(
+        (a_up - a_down).abs() > 0.1 * a_up,
+        "no hysteresis at w = {w_up}"
+    );
 }

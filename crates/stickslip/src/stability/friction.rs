@@ -312,8 +312,8 @@ impl FrictionDynamics {
 }
 
 /// The columns of [`FrictionDynamics::strobe_sensitivity`]: y0, v0, then ζ, β, w, φ
-/// ([`crate::stiff::EQUATION_PARAMETERS`]), then μs, vb and the law's own parameters (vs, δ,
-/// η of the Stribeck law; k1, k3 of the cubic law), as [`SlipLaw`]'s.
+/// ([`crate::stiff::sensitivity::EQUATION_PARAMETERS`]), then μs, vb and the law's own
+/// parameters (vs, δ, η of the Stribeck law; k1, k3 of the cubic law), as [`SlipLaw`]'s.
 pub const FRICTION_COLUMNS: usize = 11;
 /// The column of vb in [`FRICTION_COLUMNS`].
 const VB_COLUMN: usize = 7;
