@@ -10,6 +10,7 @@ use stickslip::stability::{
     FrictionDynamics, LyapunovOptions, Matrix2, NewtonOptions, PeriodicOrbit,
 };
 use stickslip::{EventKind, Parameter, Params, State};
+use stickslip_testkit::differences::{richardson, state_jacobian};
 
 const STRIBECK: FrictionLaw = FrictionLaw::Stribeck {
     vs: 0.3,
@@ -35,31 +36,6 @@ fn image(params: &Params, x: State) -> [f64; 2] {
         .unwrap()
         .state;
     [s.y, s.v]
-}
-
-/// ∂P/∂x by central differences with steps h and h/2, extrapolated (error O(h⁴)).
-fn richardson(params: &Params, x: State, h: f64) -> Matrix2 {
-    let central = |h: f64, j: usize| {
-        let shift = |d: f64| {
-            let mut s = x;
-            if j == 0 {
-                s.y += d;
-            } else {
-                s.v += d;
-            }
-            image(params, s)
-        };
-        let (p, m) = (shift(h), shift(-h));
-        [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
-    };
-    let mut d = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (a, b) = (central(h, j), central(h / 2.0, j));
-        for i in 0..2 {
-            d[i][j] = (4.0 * b[i] - a[i]) / 3.0;
-        }
-    }
-    Matrix2(d)
 }
 
 /// The period-1 orbit the motion from rest settles on.
@@ -115,7 +91,7 @@ fn the_monodromy_matches_richardson_differences_of_the_strobe_map() {
                 "{law:?} {case:?}: {kinds:?}"
             );
         }
-        let fd = richardson(&params, orbit.state, 1e-5);
+        let fd = Matrix2(state_jacobian(|x| image(&params, x), orbit.state, 1e-5));
         let m = orbit.monodromy;
         let mut worst = 0.0f64;
         for i in 0..2 {
@@ -179,16 +155,8 @@ fn the_measured_exponent_at_a_periodic_point_is_ln_mu1_over_t() {
 
 /// ∂P/∂λ by central differences of the strobe map with steps h and h/2, extrapolated.
 fn richardson_parameter(params: &Params, x: State, parameter: Parameter, h: f64) -> [f64; 2] {
-    let at = |d: f64| {
-        let value = parameter.get(params) + d;
-        image(&parameter.set(*params, value).unwrap(), x)
-    };
-    let central = |h: f64| {
-        let (p, m) = (at(h), at(-h));
-        [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
-    };
-    let (a, b) = (central(h), central(h / 2.0));
-    [(4.0 * b[0] - a[0]) / 3.0, (4.0 * b[1] - a[1]) / 3.0]
+    let at = |value: f64| image(&parameter.set(*params, value).unwrap(), x);
+    richardson(at, parameter.get(params), h)
 }
 
 #[test]
