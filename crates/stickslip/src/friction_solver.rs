@@ -105,7 +105,7 @@ pub enum SlipIntegrator {
     Radau,
     /// The explicit Dormand–Prince pair of order 8 ([`Dop853`]) at the same tolerance: several
     /// times cheaper on the slips of these laws, which are not stiff; no tangent dynamics
-    /// ([`FrictionSolver::slip_step`] is `None`). The steady-state search of a self-excited
+    /// (its steps are not differentiated). The steady-state search of a self-excited
     /// belt uses it.
     Explicit,
 }
