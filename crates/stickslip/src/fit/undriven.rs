@@ -40,7 +40,7 @@
 
 use super::*;
 use crate::friction::FrictionLaw;
-use crate::measure::{noise, MeasureError, Record};
+use crate::measure::{noise, MeasureError, Record, MIN_SAMPLES};
 use crate::params::{Params, State};
 use crate::solver::sample_at;
 use crate::steady::{MotionClass, SolverFactory};
@@ -129,10 +129,17 @@ impl UndrivenRecord {
                 ),
             ));
         }
-        if channel.resolution.is_none()
-            || channel.clipped_count() * 10 > channel.values.len()
-            || channel.values.len() < 8
-        {
+        if channel.values.len() < MIN_SAMPLES {
+            return Err(MeasureError::file(
+                file,
+                format!(
+                    "channel {} has {} samples: too few to fit (at least {MIN_SAMPLES})",
+                    channel.name,
+                    channel.values.len()
+                ),
+            ));
+        }
+        if channel.resolution.is_none() || channel.clipped_count() * 10 > channel.values.len() {
             return Err(MeasureError::file(
                 file,
                 format!(
@@ -506,37 +513,26 @@ fn friction_levels(experiment: &Experiment, free: &[FitParameter]) -> Vec<FitWar
     }]
 }
 
-/// Fit the free parameters of `experiment` (a mechanical oscillator on a moving belt) to
-/// records of its undriven, self-excited motion (see the module documentation). The
-/// experiment's values are the starting point; its drive is not used (β = 0).
-///
-/// # Errors
-/// No record; not a mechanical oscillator, or one without a belt; a free parameter named
-/// twice, of another system or law, or none; starting values whose motion is steady sliding
-/// (no cycle to align a record with); a record shorter than one cycle at the starting
-/// values; fewer samples than values.
-pub fn fit_undriven(
-    experiment: &Experiment,
-    data: &[UndrivenRecord],
-    free: &[FitParameter],
-    options: &FitOptions,
-) -> Result<FitReport, FitError> {
-    fit_undriven_monitored(experiment, data, free, options, &())
+/// What a fit of undriven records starts from: the free parameters the records can show
+/// (and the warnings of those held), the setup, the starting values (free, then each
+/// record's offset and section time), and each record's used times, displacements and
+/// weights.
+struct Start {
+    plan: identify::Plan,
+    setup: Setup,
+    x: Vec<f64>,
+    time: Vec<Vec<f64>>,
+    response: Vec<Vec<f64>>,
+    weights: Vec<f64>,
 }
 
-/// [`fit_undriven`], telling `monitor` of every iteration (of both passes, a restart and the
-/// intervals' profiles: at most [`RECORD_PASSES`]·[`FitOptions::max_iterations`]), which can
-/// stop the fit.
-///
-/// # Errors
-/// As [`fit_undriven`]; [`FitError::Stopped`] when the monitor stops the fit.
-pub fn fit_undriven_monitored(
+/// The start of a fit of `data` (see [`fit_undriven`]), or the fault that refuses it.
+fn start(
     experiment: &Experiment,
     data: &[UndrivenRecord],
     free: &[FitParameter],
     options: &FitOptions,
-    monitor: &dyn FitMonitor,
-) -> Result<FitReport, FitError> {
+) -> Result<Start, FitError> {
     if data.is_empty() {
         return Err(FitError::NoData);
     }
@@ -575,11 +571,6 @@ pub fn fit_undriven_monitored(
         }
     }
     let setup = Setup::new(experiment, &plan.fitted)?;
-    let watch = Watch {
-        monitor,
-        before: 0,
-        total: RECORD_PASSES * options.max_iterations,
-    };
     let pick = |values: &[f64], used: &[bool]| -> Vec<f64> {
         values
             .iter()
@@ -645,6 +636,76 @@ pub fn fit_undriven_monitored(
             values: x.len(),
         });
     }
+    Ok(Start {
+        plan,
+        setup,
+        x,
+        time,
+        response,
+        weights,
+    })
+}
+
+/// Whether [`fit_undriven`] takes `experiment`, `data` and `free`: every fault it refuses
+/// before it fits (no belt, starting values that slide steadily, a record shorter than one
+/// cycle, …), at the cost of one cycle at the starting values; a front end says so before it
+/// announces a long fit.
+///
+/// # Errors
+/// As [`fit_undriven`], but for the fit's own failures.
+pub fn check_undriven(
+    experiment: &Experiment,
+    data: &[UndrivenRecord],
+    free: &[FitParameter],
+    options: &FitOptions,
+) -> Result<(), FitError> {
+    start(experiment, data, free, options).map(|_| ())
+}
+
+/// Fit the free parameters of `experiment` (a mechanical oscillator on a moving belt) to
+/// records of its undriven, self-excited motion (see the module documentation). The
+/// experiment's values are the starting point; its drive is not used (β = 0).
+///
+/// # Errors
+/// No record; not a mechanical oscillator, or one without a belt; a free parameter named
+/// twice, of another system or law, or none; starting values whose motion is steady sliding
+/// (no cycle to align a record with); a record shorter than one cycle at the starting
+/// values; fewer samples than values.
+pub fn fit_undriven(
+    experiment: &Experiment,
+    data: &[UndrivenRecord],
+    free: &[FitParameter],
+    options: &FitOptions,
+) -> Result<FitReport, FitError> {
+    fit_undriven_monitored(experiment, data, free, options, &())
+}
+
+/// [`fit_undriven`], telling `monitor` of every iteration (of both passes, a restart and the
+/// intervals' profiles: at most [`RECORD_PASSES`]·[`FitOptions::max_iterations`]), which can
+/// stop the fit.
+///
+/// # Errors
+/// As [`fit_undriven`]; [`FitError::Stopped`] when the monitor stops the fit.
+pub fn fit_undriven_monitored(
+    experiment: &Experiment,
+    data: &[UndrivenRecord],
+    free: &[FitParameter],
+    options: &FitOptions,
+    monitor: &dyn FitMonitor,
+) -> Result<FitReport, FitError> {
+    let Start {
+        plan,
+        setup,
+        x,
+        time,
+        response,
+        weights,
+    } = start(experiment, data, free, options)?;
+    let watch = Watch {
+        monitor,
+        before: 0,
+        total: RECORD_PASSES * options.max_iterations,
+    };
     let mut problem = Problem {
         setup: &setup,
         data,
