@@ -168,7 +168,14 @@ pub fn run(args: Args) -> Result<()> {
             });
             bar.finish_and_clear();
             crate::output::check_interrupt()?;
-            let branches = result?;
+            let branches = match result {
+                // A Stribeck or cubic law: the continuation does not follow it yet.
+                Err(stickslip::Error::Unsupported(why)) => {
+                    eprintln!("bifurcation: no branches drawn: {why}");
+                    Vec::new()
+                }
+                other => other?,
+            };
             let special: usize = branches.iter().map(|b| b.special.len()).sum();
             eprintln!(
                 "bifurcation: {} branches of periodic orbits continued in {:.2} s, {special} special points{}",
