@@ -6,7 +6,7 @@
 //! map's values against `lyapunov` at each point; two coexisting attractors of a Stribeck
 //! belt told apart; the same maps for 1 and 4 threads.
 
-use stickslip::attractor::{AttractorKind, RecordOptions};
+use stickslip::attractor::{strobe_sets_overlap, AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::friction::FrictionLaw;
@@ -240,4 +240,82 @@ fn an_exponent_map_has_the_exponents_lyapunov_measures() {
             );
         }
     }
+}
+
+/// A Stribeck belt where two attractors coexist (the base of the paper's map of rest beside
+/// a stick-slip orbit, ζ = 0.046816, μs = 1.5, (w, β) = (0.9, 1.4), set moving at vb = 0.05:
+/// rest becomes a slow chaotic creep of stops and slips beside the period-1 orbit): a basin
+/// map of two colours, the orbit the one Newton's method finds from its state, the chaotic
+/// attractor's exponent positive as `lyapunov` measures it, and each cell's attractor the
+/// one `steady` reaches from the cell's start; the same map by recurrence and cell by cell
+/// on 4 threads.
+#[test]
+fn a_stribeck_belts_coexisting_attractors_have_a_map_of_two_colours() {
+    let experiment = belt(
+        FrictionLaw::Stribeck {
+            vs: 0.3,
+            delta: 2.0,
+            eta: 0.0,
+        },
+        (0.046816, 0.9, 1.4, 1.5, 0.05),
+    );
+    let r = ParameterRange::new("y0", -3.0, 3.0, 5).unwrap();
+    let basins = Basins::new(&experiment, &r, &r).unwrap();
+    let map = basins.clone().run(&()).unwrap();
+    let kinds: Vec<_> = map.attractors.iter().map(|a| (a.kind, a.period)).collect();
+    assert_eq!(
+        kinds,
+        [
+            (AttractorKind::Chaotic, None),
+            (AttractorKind::Periodic, Some(1))
+        ]
+    );
+    assert_eq!(map.undecided, 0);
+    for a in &map.attractors {
+        assert!(a.cells >= 3, "{kinds:?}: {} cells of #{}", a.cells, a.id);
+        let from = experiment.clone().with_initial(a.state).unwrap();
+        if a.kind == AttractorKind::Periodic {
+            let o = orbit(&experiment, a.state, 1);
+            assert!(distance(o.state, a.state) <= 1e-9 * scale(a.state), "{a:?}");
+        } else {
+            let (lambda, error) = measured(&from);
+            assert!(lambda > 4.0 * error, "λ1 {lambda} ± {error}");
+        }
+    }
+    for (i, &y0) in map.y0.iter().enumerate() {
+        for (j, &v0) in map.v0.iter().enumerate() {
+            let a = map.at(i, j).unwrap();
+            let s = steady(
+                &experiment
+                    .clone()
+                    .with_initial(State { y: y0, v: v0 })
+                    .unwrap(),
+            );
+            match a.kind {
+                AttractorKind::Periodic => {
+                    assert_eq!(s.period, Some(1), "({y0}, {v0})");
+                    assert!(
+                        covered(&s.strobes[..1], &a.strobes, 1e-8),
+                        "({y0}, {v0}): steady {:?}, map {:?}",
+                        s.strobes[0],
+                        a.strobes
+                    );
+                }
+                _ => {
+                    // (Not repeating; `steady` does not measure the friction laws' exponents.)
+                    assert_eq!(s.period, None, "({y0}, {v0})");
+                    assert!(
+                        strobe_sets_overlap(&a.strobes, &s.strobes),
+                        "({y0}, {v0}): steady's strobes on the chaotic attractor"
+                    );
+                }
+            }
+        }
+    }
+    let exhaustive = BasinOptions {
+        method: BasinMethod::Exhaustive,
+        ..BasinOptions::default()
+    };
+    let four = basins.options(exhaustive).unwrap().threads(4).unwrap();
+    assert_eq!(four.run(&()).unwrap().cells, map.cells);
 }
