@@ -10,6 +10,7 @@ use stickslip::stability::{
     FrictionDynamics, LyapunovOptions, Matrix2, NewtonOptions, PeriodicOrbit,
 };
 use stickslip::{EventKind, Params, State};
+use stickslip_testkit::differences::state_jacobian;
 
 const STRIBECK: FrictionLaw = FrictionLaw::Stribeck {
     vs: 0.3,
@@ -35,31 +36,6 @@ fn image(params: &Params, x: State) -> [f64; 2] {
         .unwrap()
         .state;
     [s.y, s.v]
-}
-
-/// ∂P/∂x by central differences with steps h and h/2, extrapolated (error O(h⁴)).
-fn richardson(params: &Params, x: State, h: f64) -> Matrix2 {
-    let central = |h: f64, j: usize| {
-        let shift = |d: f64| {
-            let mut s = x;
-            if j == 0 {
-                s.y += d;
-            } else {
-                s.v += d;
-            }
-            image(params, s)
-        };
-        let (p, m) = (shift(h), shift(-h));
-        [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
-    };
-    let mut d = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (a, b) = (central(h, j), central(h / 2.0, j));
-        for i in 0..2 {
-            d[i][j] = (4.0 * b[i] - a[i]) / 3.0;
-        }
-    }
-    Matrix2(d)
 }
 
 /// The period-1 orbit the motion from rest settles on.
@@ -115,7 +91,7 @@ fn the_monodromy_matches_richardson_differences_of_the_strobe_map() {
                 "{law:?} {case:?}: {kinds:?}"
             );
         }
-        let fd = richardson(&params, orbit.state, 1e-5);
+        let fd = Matrix2(state_jacobian(|x| image(&params, x), orbit.state, 1e-5));
         let m = orbit.monodromy;
         let mut worst = 0.0f64;
         for i in 0..2 {

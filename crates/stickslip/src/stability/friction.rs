@@ -37,16 +37,15 @@
 //! has det M = 0 (the stop erases δy'), so its multipliers are tr M and exactly 0, as for the
 //! PWL model.
 //! For an orbit that slides throughout, det M is carried as a logarithm (steps and reversals)
-//! and the smaller multiplier taken from it ([`ShockleyDynamics::multipliers`]).
+//! and the smaller multiplier taken from it
+//! ([`ShockleyDynamics::multipliers`](super::ShockleyDynamics::multipliers)).
 //!
 //! The test `friction_stability.rs` checks the multipliers against Richardson-extrapolated
 //! central differences of the strobe map, and λ1 = ln|μ1|/T against the measured exponent.
 
-use super::error::StabilityError;
 use super::lyapunov::{measure_exponents, LyapunovExponents, LyapunovOptions};
-use super::matrix::{Matrix2, Multiplier};
-use super::periodic_orbit::{NewtonOptions, PeriodicOrbit, Stability};
-use super::smooth::ShockleyDynamics;
+use super::matrix::Matrix2;
+use super::periodic_orbit::{NewtonOptions, PeriodicOrbit};
 use super::strobe::StrobeImage;
 use super::tangent::TangentRun;
 use super::Dynamics;
@@ -144,15 +143,17 @@ impl FrictionDynamics {
     }
 
     /// The periodic orbit of period `period` near `guess` by Newton's method on the p-fold
-    /// strobe map with its Jacobian, as [`ShockleyDynamics::find_periodic_orbit`]: steps
-    /// (M − I)δ = −(P^p(x) − x), halved while the residual grows, until
-    /// max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|); where a full step no
-    /// longer reduces a residual within [`FRICTION_MAP_ACCURACY`] (times the same scale), the
-    /// iterate is at the computed map's own accuracy and is taken as the orbit.
+    /// strobe map with its Jacobian, as
+    /// [`ShockleyDynamics::find_periodic_orbit`](super::ShockleyDynamics::find_periodic_orbit)
+    /// (one Newton for both): steps (M − I)δ = −(P^p(x) − x), halved while the residual
+    /// grows, until max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|); where a
+    /// full step no longer reduces a residual within [`FRICTION_MAP_ACCURACY`] (times the same
+    /// scale), the iterate is at the computed map's own accuracy and is taken as the orbit.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for invalid parameters, guess, options or p = 0;
-    /// [`StabilityError::NoConvergence`], [`StabilityError::SingularJacobian`]; what the
+    /// [`StabilityError::NoConvergence`](super::StabilityError::NoConvergence),
+    /// [`StabilityError::SingularJacobian`](super::StabilityError::SingularJacobian); what the
     /// solver reports.
     pub fn find_periodic_orbit(
         &self,
@@ -161,103 +162,16 @@ impl FrictionDynamics {
         period: usize,
         options: &NewtonOptions,
     ) -> Result<PeriodicOrbit> {
-        let options = options.validate()?;
-        let params = params.validate()?;
-        if period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "period",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
-        let mut x = State::new(guess.y, guess.v)?;
-        let mut image = self.strobe_map(&params, x, period)?;
-        let residual = |image: &StrobeImage, x: State| {
-            let r = [image.state.y - x.y, image.state.v - x.v];
-            (r[0].abs().max(r[1].abs()), r)
-        };
-        let limit = |x: State, image: &StrobeImage| {
-            options.tolerance
-                * 1f64.max(x.y.abs()).max(x.v.abs())
-                * image.jacobian.max_abs().max(1.0)
-        };
-        let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
-            norm <= FRICTION_MAP_ACCURACY / options.tolerance * limit(x, image)
-        };
-        let (mut norm, mut r) = residual(&image, x);
-        let mut residuals = vec![norm];
-        let mut iterations = 0;
-        while norm > limit(x, &image) {
-            if iterations == options.max_iterations {
-                if at_accuracy(norm, x, &image) {
-                    break;
-                }
-                return Err(StabilityError::NoConvergence {
-                    iterations,
-                    residual: norm,
-                    tolerance: limit(x, &image),
-                }
-                .into());
-            }
-            let m = image.jacobian.minus_identity();
-            let step = m
-                .solve([-r[0], -r[1]])
-                .ok_or(StabilityError::SingularJacobian {
-                    y: x.y,
-                    v: x.v,
-                    determinant: m.det(),
-                })?;
-            let mut fraction = 1.0;
-            let mut halvings = 0;
-            let mut stalled = false;
-            loop {
-                let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
-                let trial_image = self.strobe_map(&params, trial, period)?;
-                let (trial_norm, trial_r) = residual(&trial_image, trial);
-                if trial_norm >= norm && halvings == 0 && at_accuracy(norm, x, &image) {
-                    stalled = true;
-                    break;
-                }
-                if trial_norm < norm || halvings == options.max_halvings {
-                    (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
-                    break;
-                }
-                fraction *= 0.5;
-                halvings += 1;
-            }
-            if stalled {
-                break;
-            }
-            iterations += 1;
-            residuals.push(norm);
-        }
-        let multipliers = if image.log_det.is_none() {
-            // The motion stuck on the way: M = A·diag(1, 0)·B has rank one, so its
-            // multipliers are tr M and exactly 0 (rounding would leave ~1e-16).
-            [
-                Multiplier::real(image.jacobian.trace()),
-                Multiplier::real(0.0),
-            ]
-        } else {
-            ShockleyDynamics::multipliers(&image)
-        };
-        let modulus = multipliers[0].modulus();
-        let stability = if (1.0 - modulus).abs() <= options.neutral_band {
-            Stability::Neutral
-        } else if modulus < 1.0 {
-            Stability::Stable
-        } else {
-            Stability::Unstable
-        };
-        Ok(PeriodicOrbit::from_image(
-            &params,
+        super::map_newton::find_orbit(
+            |params, x| self.strobe_map(params, x, period),
+            params,
+            guess,
             period,
-            x,
-            image,
-            (multipliers, stability),
-            iterations,
-            residuals,
-        ))
+            options,
+            FRICTION_MAP_ACCURACY,
+            None,
+        )
+        .map(|(orbit, _)| orbit)
     }
 
     /// The Lyapunov exponents of the motion from `initial` (at a strobe), measured as for the

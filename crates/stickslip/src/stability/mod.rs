@@ -66,6 +66,7 @@ pub mod dynamics;
 pub(crate) mod error;
 pub mod friction;
 pub mod lyapunov;
+mod map_newton;
 mod matrix;
 pub mod nonperiodic;
 pub mod periodic_orbit;
