@@ -162,7 +162,8 @@ impl FrictionDynamics {
         tangent.run_until(end, &mut |e| events.push(*e))?;
         Ok(StrobeImage {
             state: tangent.state(),
-            jacobian: tangent.jacobian(),
+            // (e^s: whatever was taken out to keep the entries in range.)
+            jacobian: tangent.jacobian().scaled(tangent.log_scale().exp()),
             log_det: tangent.log_det(),
             events,
             stuck_at_start,
@@ -498,7 +499,16 @@ pub struct FrictionTangent {
     partial_log_det: f64,
     origin: f64,
     stops: u64,
+    /// The logarithm of the factor taken out of `current` (and `base`) whenever its largest
+    /// entry left [10⁻¹⁰⁰, 10¹⁰⁰], so that a long run (a transient on a strongly contracting
+    /// orbit that sticks) neither underflows to 0 nor overflows; 0 until then.
+    log_scale: f64,
 }
+
+/// Outside [SCALE_BELOW, SCALE_ABOVE] the entries of J are rescaled into `log_scale` (as the
+/// exact model's [`super::TangentSolver`] does).
+const SCALE_BELOW: f64 = 1e-100;
+const SCALE_ABOVE: f64 = 1e100;
 
 /// The projection onto the stuck manifold, diag(1, 0): a stop's transition and saltation.
 const STUCK: Matrix2 = Matrix2::diagonal(1.0, 0.0);
@@ -517,6 +527,7 @@ impl FrictionTangent {
             log_det,
             partial_log_det: 0.0,
             origin: 0.0,
+            log_scale: 0.0,
             stops: u64::from(stuck),
         }
     }
@@ -527,9 +538,26 @@ impl FrictionTangent {
     }
 
     /// J since the start (or the last [`TangentRun::reset`]), divided by the factors
-    /// renormalisations took out.
+    /// renormalisations took out, and by e^s with s = [`FrictionTangent::log_scale`].
     pub fn jacobian(&self) -> Matrix2 {
         self.current
+    }
+
+    /// The logarithm s of the factor e^s taken out of [`FrictionTangent::jacobian`] whenever
+    /// its largest entry left [10⁻¹⁰⁰, 10¹⁰⁰] (checked after every advance); 0 until then.
+    /// [`TangentRun::renormalize`] includes it and sets it back to 0.
+    pub fn log_scale(&self) -> f64 {
+        self.log_scale
+    }
+
+    /// Take a factor out of J when its entries left [10⁻¹⁰⁰, 10¹⁰⁰] (see `log_scale`).
+    fn rescale(&mut self) {
+        let size = self.current.max_abs();
+        if !(SCALE_BELOW..=SCALE_ABOVE).contains(&size) && size > 0.0 && size.is_finite() {
+            self.current = self.current.scaled(1.0 / size);
+            self.base = self.base.scaled(1.0 / size);
+            self.log_scale += size.ln();
+        }
     }
 
     /// Apply the saltation matrix `s` at the solver's time (an event).
@@ -625,6 +653,7 @@ impl FrictionTangent {
                 }
             }
         }
+        self.rescale();
         Ok(event)
     }
 }
@@ -659,7 +688,9 @@ impl TangentRun for FrictionTangent {
             self.current = self.current.scaled(1.0 / norm);
             self.base = self.base.scaled(1.0 / norm);
         }
-        norm.ln()
+        let growth = norm.ln() + self.log_scale;
+        self.log_scale = 0.0;
+        growth
     }
 
     fn grazing(&self) -> Option<f64> {
