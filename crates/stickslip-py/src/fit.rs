@@ -12,8 +12,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::Path;
 use stickslip::fit::{
-    fit_per_record_monitored, fit_records_monitored, fit_table_monitored, FitMonitor, FitOptions,
-    FitParameter, FitProgress, FitReport,
+    fit_per_record_monitored, fit_records_monitored, fit_table_monitored, fit_undriven_monitored,
+    FitMonitor, FitOptions, FitParameter, FitProgress, FitReport, UndrivenRecord,
 };
 use stickslip::measure::{self, AmplitudeTable, MeasureError, Measurement, Record};
 use stickslip::scan::Monitor;
@@ -223,10 +223,30 @@ pub fn fit<'py>(
         None => FitParameter::defaults_of(experiment.experiment()).map_err(fit_error)?,
     };
     let table = table.as_deref().map(read_table).transpose()?;
-    let data = records
-        .iter()
-        .map(|(paths, d, r)| measurement_of(paths, d.as_deref(), r.as_deref()).map(|(_, m)| m))
-        .collect::<PyResult<Vec<_>>>()?;
+    // A mechanical record without a drive (the displacement alone, or beside a constant
+    // channel) is the record of an undriven belt.
+    let mechanics = matches!(
+        experiment.experiment().system(),
+        Some(stickslip::physical::System::Mechanics(_))
+    );
+    let mut data = Vec::new();
+    let mut undriven = Vec::new();
+    for (paths, d, r) in &records {
+        let record = record_of(paths)?;
+        if mechanics && d.is_none() && UndrivenRecord::is_undriven(&record) {
+            undriven.push(UndrivenRecord::new(&record, r.as_deref()).map_err(measure_error)?);
+        } else {
+            data.push(
+                Measurement::new(&record, d.as_deref(), r.as_deref()).map_err(measure_error)?,
+            );
+        }
+    }
+    if let (Some(u), Some(d)) = (undriven.first(), data.first()) {
+        return Err(PyValueError::new_err(format!(
+            "{} has no drive and {} has one: undriven and driven records are fitted apart",
+            u.file, d.file
+        )));
+    }
     let e = experiment.experiment().clone();
     let options = FitOptions::default();
     // `progress(done, total)`: Levenberg–Marquardt iterations done, of the most allowed.
@@ -235,6 +255,22 @@ pub fn fit<'py>(
         let monitor = &Iterations(monitor);
         Ok(match &table {
             Some(t) => fit_table_monitored(&e, t, &parameters, &options, monitor).map(|r| vec![r]),
+            None if !undriven.is_empty() && per_record => undriven
+                .iter()
+                .map(|u| {
+                    fit_undriven_monitored(
+                        &e,
+                        std::slice::from_ref(u),
+                        &parameters,
+                        &options,
+                        monitor,
+                    )
+                })
+                .collect(),
+            None if !undriven.is_empty() => {
+                fit_undriven_monitored(&e, &undriven, &parameters, &options, monitor)
+                    .map(|r| vec![r])
+            }
             None if per_record => {
                 fit_per_record_monitored(&e, &data, &parameters, &options, monitor)
             }

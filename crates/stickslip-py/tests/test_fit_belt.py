@@ -40,3 +40,37 @@ def test_a_stribeck_parameter_without_the_stribeck_law_raises_value_error():
     with pytest.raises(ValueError, match="stribeck-speed is a parameter of the stribeck "
                                          "friction law, and this oscillator's law is coulomb"):
         stickslip.fit(start, data=RECORDS, free="mu-s,stribeck-speed")
+
+
+UNDRIVEN = ROOT / "examples" / "fit" / "undriven" / "stribeck.csv"
+
+
+def test_an_undriven_belt_fit_recovers_the_law_and_matches_the_cli(cli):
+    """The displacement alone of a self-excited Stribeck belt (docs/fit.md, "An undriven
+    belt": the oracle's record at μs = 1.5, vs = 15 mm/s, η = 0.5 N·s/m)."""
+    start = stickslip.Experiment.mechanics(
+        **OSCILLATOR, friction_law="stribeck", stribeck_speed=0.012,
+        viscous_friction=0.3, mu_s=1.4)
+    result = stickslip.fit(start, data=[UNDRIVEN], free=FREE)
+    expected = cli.json(
+        "fit", "--mass", 0.5, "--stiffness", 200, "--damping", 0.8, "--friction", 0.3,
+        "--belt-speed", 0.009, "--friction-law", "stribeck", "--mu-s", 1.4,
+        "--stribeck-speed", 0.012, "--viscous-friction", 0.3,
+        "--free", ",".join(FREE), "--data", UNDRIVEN)
+    assert result.to_dict() == expected
+    assert result.converged
+    record = result.records[0]
+    assert record.beta == 0 and record.amplitude_V == 0
+    assert record.motion_class == "stick-slip-cycle" and record.periods == 3
+    for name, truth in TRUTH.items():
+        lo, hi = result.ci95[name]
+        assert lo <= truth <= hi, (name, lo, hi)
+
+
+def test_an_undriven_record_without_a_belt_raises_value_error():
+    start = stickslip.Experiment.mechanics(m=0.5, k=200.0, gamma=0.8, F0=0.3, mu_s=1.4)
+    with pytest.raises(ValueError, match=r"needs a moving belt \(--belt-speed\)"):
+        stickslip.fit(start, data=[UNDRIVEN], free="mu-s")
+    with pytest.raises(ValueError, match="has no drive and .* has one"):
+        stickslip.fit(stickslip.Experiment.mechanics(**OSCILLATOR, mu_s=1.4),
+                      data=[UNDRIVEN, RECORDS[0]], free="mu-s")

@@ -385,7 +385,6 @@ impl Basins {
     /// A missing drive value; [`Error::InvalidParameter`] for more than
     /// [`crate::limits::MAX_BASIN_STEPS`] values along an axis.
     pub fn new(experiment: &Experiment, y0: &ParameterRange, v0: &ParameterRange) -> Result<Self> {
-        experiment.check_coulomb_tool()?;
         for range in [y0, v0] {
             if range.steps() > crate::limits::MAX_BASIN_STEPS {
                 return Err(Error::InvalidParameter {

@@ -168,7 +168,6 @@ impl Bifurcation {
     /// # Errors
     /// A value out of range; a drive value missing that is not stepped.
     pub fn new(experiment: &Experiment, axis: Axis) -> Result<Self> {
-        experiment.check_coulomb_tool()?;
         for &v in axis.values() {
             experiment.params_with(&[(axis.parameter(), v)])?;
         }
@@ -347,13 +346,16 @@ impl Bifurcation {
     /// not depend on the number of threads.
     ///
     /// # Errors
-    /// [`Error::Cancelled`]; invalid options; whatever the solver reports.
+    /// [`Error::Cancelled`]; invalid options; [`crate::Unsupported::SmoothFrictionLaw`] for
+    /// a Stribeck or cubic law, which the continuation does not follow yet
+    /// ([`Experiment::check_coulomb_tool`]); whatever the solver reports.
     pub fn branches(
         &self,
         steps: &[BifurcationStep],
         options: &ContinuationOptions,
         monitor: &dyn Monitor,
     ) -> Result<Vec<Branch>> {
+        self.experiment.check_coulomb_tool()?;
         let options = options.validate()?;
         let (lo, hi) = self
             .axis

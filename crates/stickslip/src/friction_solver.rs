@@ -26,7 +26,8 @@ use crate::error::{Error, Result};
 use crate::friction::FrictionLaw;
 use crate::params::{Params, State};
 use crate::solver::{Event, EventKind, Phase, Sample, Solver, Stats};
-use crate::stiff::{Radau5, Settings, SmoothLaw, Step};
+use crate::stiff::dop853::Attempt;
+use crate::stiff::{Dop853, DopStep, Radau5, Settings, SmoothLaw, Step};
 use std::f64::consts::TAU;
 
 /// Relative and absolute tolerance of the slip phases' integration.
@@ -74,7 +75,9 @@ impl SlipLaw {
 }
 
 impl SmoothLaw for SlipLaw {
-    const PARAMETERS: &'static [&'static str] = &[];
+    /// μs, vb, then the friction law's own: vs, δ, η (Stribeck) or k1, k3 (cubic; the
+    /// fifth column is then zero).
+    const PARAMETERS: &'static [&'static str] = &["mu_s", "vb", "vs|k1", "delta|k3", "eta"];
 
     fn validate(&self) -> Result<Self> {
         self.law.validate(self.mu_s)?;
@@ -92,14 +95,97 @@ impl SmoothLaw for SlipLaw {
         }
     }
 
-    fn parameter_derivatives(&self, _v: f64, _out: &mut [f64]) {}
+    /// ∂D/∂(μs, vb, θ) of D(v) = σ μ(s), s = σ(v − vb): ∂D/∂vb = −μ'(s), and σ ∂μ/∂θ at
+    /// fixed s for the others. Beyond s = 0 (only Newton's iterates go there) the values at
+    /// s = 0 with the tangent's slope for vb.
+    fn parameter_derivatives(&self, v: f64, out: &mut [f64]) {
+        let s = (self.sign * (v - self.vb)).max(0.0);
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let slope = self.mu(s).1;
+        let mut d = [0.0, -slope / self.sign, 0.0, 0.0, 0.0];
+        match self.law {
+            FrictionLaw::Coulomb => d[0] = 1.0,
+            FrictionLaw::Stribeck { vs, delta, eta: _ } => {
+                let x = s / vs;
+                let power = x.powf(delta);
+                let fall = (-power).exp();
+                d[0] = fall;
+                d[2] = (self.mu_s - 1.0) * fall * delta * power / vs;
+                d[3] = if x > 0.0 {
+                    -(self.mu_s - 1.0) * fall * power * x.ln()
+                } else {
+                    0.0
+                };
+                d[4] = s;
+            }
+            FrictionLaw::Cubic { .. } => {
+                d[0] = 1.0;
+                d[2] = -s;
+                d[3] = s * s * s;
+            }
+        }
+        for (o, x) in out.iter_mut().zip(d) {
+            *o = self.sign * x;
+        }
+    }
+}
+
+/// The integrator of the slip phases ([`FrictionSolver::with_integrator`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SlipIntegrator {
+    /// Radau IIA of order 5 ([`Radau5`]): the steps the stability tools differentiate
+    /// ([`crate::stability::FrictionDynamics`]).
+    #[default]
+    Radau,
+    /// The explicit Dormand–Prince pair of order 8 ([`Dop853`]) at the same tolerance: several
+    /// times cheaper on the slips of these laws, which are not stiff; no tangent dynamics
+    /// (its steps are not differentiated). The steady-state search of a self-excited
+    /// belt uses it.
+    Explicit,
+}
+
+/// A slip phase's integrator.
+#[derive(Debug, Clone)]
+enum Integrator {
+    Radau(Box<Radau5<SlipLaw>>),
+    Explicit(Box<Dop853<SlipLaw>>),
+}
+
+/// A step of either integrator.
+#[derive(Debug, Clone, Copy)]
+enum SlipStep {
+    Radau(Step),
+    Explicit(DopStep),
+}
+
+impl SlipStep {
+    fn t1(&self) -> f64 {
+        match self {
+            SlipStep::Radau(s) => s.t1(),
+            SlipStep::Explicit(s) => s.t1(),
+        }
+    }
+
+    fn x1(&self) -> [f64; 2] {
+        match self {
+            SlipStep::Radau(s) => s.x1,
+            SlipStep::Explicit(s) => s.x1,
+        }
+    }
+
+    fn eval(&self, t: f64) -> [f64; 2] {
+        match self {
+            SlipStep::Radau(s) => s.eval(t),
+            SlipStep::Explicit(s) => s.eval(t),
+        }
+    }
 }
 
 /// A slip phase's step not yet reported to its end: the step (ending at an event when
 /// `event` is set) and what the event leads to.
 #[derive(Debug, Clone, Copy)]
 struct Pending {
-    step: Step,
+    step: SlipStep,
     event: Option<EventKind>,
 }
 
@@ -109,7 +195,7 @@ enum Mode {
     /// Slipping in direction `sign` (s = y' − vb of that sign), on the integrator.
     Slip {
         sign: f64,
-        radau: Box<Radau5<SlipLaw>>,
+        integrator: Integrator,
         pending: Option<Pending>,
         /// Whether the phase began at s = 0 and has not yet left it (its first step).
         from_zero: bool,
@@ -148,11 +234,12 @@ pub struct FrictionSolver {
     /// The interval of the last advance, its phase, and the step or stop it covered.
     interval: (f64, f64),
     interval_phase: Phase,
-    last_step: Option<Step>,
+    last_step: Option<SlipStep>,
     last_stick: (f64, f64),
     repeats: u32,
     stats: Stats,
     cancel: Cancel,
+    integrator: SlipIntegrator,
 }
 
 impl Drop for FrictionSolver {
@@ -179,6 +266,19 @@ impl FrictionSolver {
     /// # Errors
     /// As [`FrictionSolver::new`].
     pub fn with_cancel(params: Params, initial: State, cancel: Cancel) -> Result<Self> {
+        Self::with_integrator(params, initial, SlipIntegrator::Radau, cancel)
+    }
+
+    /// As [`FrictionSolver::with_cancel`], the slips on `integrator`.
+    ///
+    /// # Errors
+    /// As [`FrictionSolver::new`].
+    pub fn with_integrator(
+        params: Params,
+        initial: State,
+        integrator: SlipIntegrator,
+        cancel: Cancel,
+    ) -> Result<Self> {
         let params = params.validate()?;
         let initial = State::new(initial.y, initial.v)?;
         let mut solver = Self {
@@ -198,6 +298,7 @@ impl FrictionSolver {
             repeats: 0,
             stats: Stats::default(),
             cancel,
+            integrator,
         };
         let s = initial.v - params.vb;
         if s != 0.0 {
@@ -220,11 +321,12 @@ impl FrictionSolver {
     }
 
     /// The integrator's step that the last advance covered (part of), when it covered a slip
-    /// phase: the tangent dynamics differentiate it ([`crate::stability::FrictionDynamics`]).
+    /// phase on Radau IIA: the tangent dynamics differentiate it
+    /// ([`crate::stability::FrictionDynamics`]). `None` on the explicit integrator.
     pub(crate) fn slip_step(&self) -> Option<&Step> {
-        match self.interval_phase {
-            Phase::SlipPositive | Phase::SlipNegative => self.last_step.as_ref(),
-            Phase::Stick => None,
+        match (self.interval_phase, &self.last_step) {
+            (Phase::SlipPositive | Phase::SlipNegative, Some(SlipStep::Radau(step))) => Some(step),
+            _ => None,
         }
     }
 
@@ -237,9 +339,17 @@ impl FrictionSolver {
             max_step: MAX_STEP,
             initial_step: 1e-3,
         };
+        let integrator = match self.integrator {
+            SlipIntegrator::Radau => {
+                Integrator::Radau(Box::new(Radau5::new(*p, law, tau, [y, v], settings)))
+            }
+            SlipIntegrator::Explicit => {
+                Integrator::Explicit(Box::new(Dop853::new(*p, law, tau, [y, v], settings)))
+            }
+        };
         self.mode = Mode::Slip {
             sign,
-            radau: Box::new(Radau5::new(*p, law, tau, [y, v], settings)),
+            integrator,
             pending: None,
             from_zero,
         };
@@ -262,7 +372,7 @@ impl FrictionSolver {
         let vb = self.params.vb;
         let Mode::Slip {
             sign,
-            radau,
+            integrator,
             from_zero,
             ..
         } = &mut self.mode
@@ -270,6 +380,15 @@ impl FrictionSolver {
             unreachable!("integrate is called while slipping");
         };
         let sign = *sign;
+        let radau = match integrator {
+            Integrator::Radau(radau) => radau,
+            Integrator::Explicit(dop) => {
+                let from_zero_now = *from_zero;
+                *from_zero = false;
+                let pending = explicit_step(dop, sign, vb, from_zero_now, &mut self.stats)?;
+                return Ok(pending);
+            }
+        };
         let before = radau.clone();
         let step = radau.step()?;
         let (was, now) = (before.counters, radau.counters);
@@ -296,11 +415,14 @@ impl FrictionSolver {
         }
         *from_zero = false;
         let pending = if first.is_nan() {
-            Pending { step, event: None }
+            Pending {
+                step: SlipStep::Radau(step),
+                event: None,
+            }
         } else {
             let polished = polish(&before, &step, first, sign, vb)?;
             Pending {
-                step: polished,
+                step: SlipStep::Radau(polished),
                 event: Some(EventKind::Stick),
             }
         };
@@ -366,6 +488,153 @@ fn polish(before: &Radau5<SlipLaw>, step: &Step, guess: f64, sign: f64, vb: f64)
     // At the event the block moves with the belt.
     found.x1[1] = vb;
     Ok(found)
+}
+
+/// Samples of s per explicit step in the search for its first zero.
+const ZERO_SAMPLES: usize = 16;
+
+/// The first θ in (`floor`, 1] of an explicit step where s = sign·(v − vb) reaches 0: the
+/// first of [`ZERO_SAMPLES`] samples of the dense output at or below 0 (or the end), the
+/// zero placed between it and the sample before by bisection on the dense output to 10⁻¹³
+/// in θ; `None` where s stays positive. (A pair of zeros closer than 1/16 of a step, s
+/// touching zero, can be missed, as on the stiff integrator's cubics it cannot.)
+fn first_zero(step: &DopStep, sign: f64, vb: f64, floor: f64, from_zero: bool) -> Option<f64> {
+    let s = |theta: f64| sign * (step.component(1, theta) - vb);
+    let mut previous = floor;
+    for i in 1..=ZERO_SAMPLES {
+        let theta = i as f64 / ZERO_SAMPLES as f64;
+        if theta <= floor {
+            continue;
+        }
+        let value = s(theta);
+        // (The first step of a phase that starts at s = 0 leaves it: its rounding at the
+        // start is no crossing; nor is an end exactly at s = 0 of such a step.)
+        if value < 0.0 || (value == 0.0 && !(from_zero && i == ZERO_SAMPLES)) {
+            let (mut lo, mut hi) = (previous, theta);
+            while hi - lo > 1e-13 {
+                let mid = 0.5 * (lo + hi);
+                if s(mid) > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(hi);
+        }
+        previous = theta;
+    }
+    None
+}
+
+/// One step of a slip phase on the explicit integrator `dop` in direction `sign`, ending at
+/// s = sign·(v − vb) = 0 where the slip ends in it. An accepted step whose dense output
+/// reaches s = 0 ([`first_zero`]) is cut there ([`polish_explicit`]); an attempt rejected
+/// past s = 0 (the law's kink there spoils its error estimate) is replaced by the step that
+/// ends at s = 0, when the error estimate accepts that one (else the step control goes on
+/// with a smaller step). `from_zero`: the phase starts at s = 0 and this is its first step.
+fn explicit_step(
+    dop: &mut Dop853<SlipLaw>,
+    sign: f64,
+    vb: f64,
+    from_zero: bool,
+    stats: &mut Stats,
+) -> Result<Pending> {
+    let s = |x: &[f64; 2]| sign * (x[1] - vb);
+    loop {
+        let before = dop.clone();
+        let attempt = dop.step_until(|x| !from_zero && s(x) <= 0.0)?;
+        let (was, now) = (before.counters, dop.counters);
+        stats.evaluations += now.rhs - was.rhs;
+        stats.steps += now.accepted - was.accepted;
+        stats.rejected += now.rejected - was.rejected;
+        let mut work = 0;
+        let found = match attempt {
+            Attempt::Accepted(step) => {
+                let floor = if from_zero { 1e-3 } else { 0.0 };
+                let Some(theta) = first_zero(&step, sign, vb, floor, from_zero) else {
+                    return Ok(Pending {
+                        step: SlipStep::Explicit(step),
+                        event: None,
+                    });
+                };
+                polish_explicit(&before, step.h, theta * step.h, sign, vb, false, &mut work)?
+            }
+            Attempt::Crossed { h, end } => {
+                let (s0, s1) = (s(&before.state()), s(&end));
+                let guess = h * s0 / (s0 - s1);
+                polish_explicit(&before, h, guess, sign, vb, true, &mut work)?
+            }
+        };
+        stats.evaluations += work;
+        // (The phase ends at the event: the integrator is not moved on to it.)
+        if let Some(step) = found {
+            return Ok(Pending {
+                step: SlipStep::Explicit(step),
+                event: Some(EventKind::Stick),
+            });
+        }
+    }
+}
+
+/// [`polish`] on the explicit integrator: the step from `before`'s state whose end has
+/// s = 0, by Newton's method on the step size (ds/dh = sign·y'' at the end) from `guess`,
+/// each iterate the integrator's own step of that size, kept inside the bracket (0, `size`)
+/// of a step whose end is past s = 0; with `checked`, only a step its error estimate accepts
+/// (`None` otherwise). `work` counts the right-hand sides it evaluated.
+fn polish_explicit(
+    before: &Dop853<SlipLaw>,
+    size: f64,
+    guess: f64,
+    sign: f64,
+    vb: f64,
+    checked: bool,
+    work: &mut u64,
+) -> Result<Option<DopStep>> {
+    let params = *before.params();
+    let law = *before.law();
+    let t0 = before.time();
+    let (mut lo, mut hi) = (0.0, size);
+    let mut h = guess;
+    let mut best_h = None;
+    let mut trial = before.clone();
+    for _ in 0..60 {
+        let [y, v] = trial.end_of(h);
+        *work += 11;
+        let s = sign * (v - vb);
+        let t = t0 + h;
+        let (d, _) = law.value_and_slope(v);
+        let accel = params.drive(t) - y - 2.0 * params.zeta * v - d;
+        if s > 0.0 {
+            lo = h;
+        } else {
+            hi = h;
+        }
+        best_h = Some(h);
+        if s.abs() <= 1e-13 * 1f64.max(vb.abs()) || hi - lo <= 1e-14 * 1f64.max(t.abs()) {
+            break;
+        }
+        let newton = h - s / (sign * accel);
+        h = if accel != 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+    }
+    let h = best_h.ok_or(Error::StepSizeTooSmall {
+        tau: t0,
+        step: size,
+    })?;
+    let found = if checked {
+        trial.checked_step(h)
+    } else {
+        Some(trial.fixed_step(h))
+    };
+    *work += 15;
+    // At the event the block moves with the belt.
+    Ok(found.map(|mut step| {
+        step.x1[1] = vb;
+        step
+    }))
 }
 
 /// The local time after `tau` and the direction at which a stop at `y` ends (infinite
@@ -494,7 +763,7 @@ impl Solver for FrictionSolver {
                 let end = step.t1();
                 let target = t_end.min(end);
                 let x = if target == end {
-                    step.x1
+                    step.x1()
                 } else {
                     step.eval(target)
                 };

@@ -8,8 +8,9 @@ use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stickslip::fit::{
-    compare_models_monitored, fit_per_record_monitored, fit_records_monitored, fit_table_monitored,
-    FitError, FitMonitor, FitOptions, FitParameter, FitProgress, FitReport, Interval, RecordFit,
+    check_undriven, compare_models_monitored, fit_per_record_monitored, fit_records_monitored,
+    fit_table_monitored, fit_undriven_monitored, FitError, FitMonitor, FitOptions, FitParameter,
+    FitProgress, FitReport, Interval, RecordFit, UndrivenRecord,
 };
 use stickslip::measure::{
     read_amplitudes, read_scope, AmplitudeTable, MeasureError, Measurement, Record,
@@ -49,6 +50,14 @@ use stickslip::{DiodeModel, SystemKind};
 /// is by central differences of the solver. The keys and columns named in V then hold N (the
 /// drive) and m (the displacement), and the JSON says so: units {drive: N, response: m}.
 /// Tables and --compare are for circuits.
+///
+/// An undriven belt (no drive force: the block's self-excited stick-slip or pure-slip cycle
+/// on a belt at --belt-speed) is fitted to records of its displacement alone (a plain CSV
+/// time_s,r (m), or beside a constant force channel): the model is the settled self-excited
+/// cycle, its period found at the parameters' values, aligned to each record by the time of
+/// a section fitted with the rest (and an offset of r). Each record must hold at least one
+/// whole cycle. With the offset free the kinetic level F0 only shifts r: give F0 and fit
+/// mu-s, stribeck-speed, viscous-friction, damping.
 ///
 /// What to trust. A fit is converged when the step and gradient criteria hold at its solution
 /// and a restart from elsewhere finds no lower χ². The 95 % intervals are value ± t·stderr
@@ -334,42 +343,95 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
         fitted_table = Some(table);
     } else {
         let mut data = Vec::new();
+        let mut undriven = Vec::new();
         for spec in &args.data {
             let record = read_record(spec)?;
+            // A mechanical record without a drive: the displacement of an undriven belt.
+            if mechanics && args.drive.is_none() && UndrivenRecord::is_undriven(&record) {
+                undriven
+                    .push(UndrivenRecord::new(&record, args.response.as_deref()).map_err(measure)?);
+                continue;
+            }
             data.push(
                 Measurement::new(&record, args.drive.as_deref(), args.response.as_deref())
                     .map_err(measure)?,
             );
         }
-        eprintln!("fit: {} records; {experiment}", data.len());
-        if args.compare {
-            let shockley_free = match &args.free_shockley {
-                Some(text) => parse_free(text, "--free-shockley")?,
-                None => FitParameter::defaults(SystemKind::Circuit, DiodeModel::Shockley),
-            };
-            let c = compare_models_monitored(
-                &experiment,
-                DiodePair::one_n4148(),
-                &data,
-                &free,
-                &shockley_free,
-                &options,
-                line,
-            )
+        if let (Some(u), Some(d)) = (undriven.first(), data.first()) {
+            usage!(
+                "{} has no drive and {} has one: undriven and driven records are fitted apart",
+                u.file,
+                d.file
+            );
+        }
+        if !undriven.is_empty() {
+            if args.compare {
+                usage!("--compare compares diode laws: it takes a circuit's records");
+            }
+            // Refused in one line, before the fit is announced.
+            for u in if args.per_record {
+                undriven.chunks(1).collect::<Vec<_>>()
+            } else {
+                vec![&undriven[..]]
+            } {
+                check_undriven(&experiment, u, &free, &options).map_err(refused)?;
+            }
+            eprintln!("fit: {} undriven records; {experiment}", undriven.len());
+            let reports = if args.per_record {
+                undriven
+                    .iter()
+                    .map(|u| {
+                        fit_undriven_monitored(
+                            &experiment,
+                            std::slice::from_ref(u),
+                            &free,
+                            &options,
+                            line,
+                        )
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+            } else {
+                fit_undriven_monitored(&experiment, &undriven, &free, &options, line)
+                    .map(|r| vec![r])
+            }
             .map_err(refused)?;
-            report_json = serde_json::to_value(c.to_json())?;
-            residual_reports.push(c.pwl);
-            residual_reports.push(c.shockley);
-        } else if args.per_record {
-            let reports = fit_per_record_monitored(&experiment, &data, &free, &options, line)
-                .map_err(refused)?;
-            report_json = Value::Array(reports.iter().map(to_json).collect::<Result<_>>()?);
+            report_json = if args.per_record {
+                Value::Array(reports.iter().map(to_json).collect::<Result<_>>()?)
+            } else {
+                to_json(&reports[0])?
+            };
             residual_reports = reports;
         } else {
-            let report = fit_records_monitored(&experiment, &data, &free, &options, line)
+            eprintln!("fit: {} records; {experiment}", data.len());
+            if args.compare {
+                let shockley_free = match &args.free_shockley {
+                    Some(text) => parse_free(text, "--free-shockley")?,
+                    None => FitParameter::defaults(SystemKind::Circuit, DiodeModel::Shockley),
+                };
+                let c = compare_models_monitored(
+                    &experiment,
+                    DiodePair::one_n4148(),
+                    &data,
+                    &free,
+                    &shockley_free,
+                    &options,
+                    line,
+                )
                 .map_err(refused)?;
-            report_json = to_json(&report)?;
-            residual_reports.push(report);
+                report_json = serde_json::to_value(c.to_json())?;
+                residual_reports.push(c.pwl);
+                residual_reports.push(c.shockley);
+            } else if args.per_record {
+                let reports = fit_per_record_monitored(&experiment, &data, &free, &options, line)
+                    .map_err(refused)?;
+                report_json = Value::Array(reports.iter().map(to_json).collect::<Result<_>>()?);
+                residual_reports = reports;
+            } else {
+                let report = fit_records_monitored(&experiment, &data, &free, &options, line)
+                    .map_err(refused)?;
+                report_json = to_json(&report)?;
+                residual_reports.push(report);
+            }
         }
     }
     crate::output::check_interrupt()?;
@@ -542,6 +604,24 @@ fn describe(text: &mut String, r: &FitReport) {
     }
     let (du, ru) = r.units();
     for rec in &r.records {
+        // An undriven record: its self-excited cycle's frequency and section time.
+        if rec.beta == 0.0 && rec.amplitude_v == 0.0 {
+            outln!(
+                text,
+                "record {}: self-excited cycle of {:.6} Hz (w = {:.5}), {}, section at \
+                 t = {:.6e} s, {} cycles, {} clipped, RMS residual {:.3e} {ru} (noise {:.3e} {ru})",
+                rec.file,
+                rec.freq_hz,
+                rec.w,
+                rec.class.label(),
+                rec.time_shift_s,
+                rec.periods,
+                rec.clipped,
+                rec.rms_residual_v,
+                rec.noise_v
+            );
+            continue;
+        }
         outln!(
             text,
             "record {}: {:.6} Hz, {:.6} {du} (w = {:.5}, β = {:.5}), {}, {} periods, {} clipped, \

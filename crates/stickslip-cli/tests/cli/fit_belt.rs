@@ -51,3 +51,50 @@ fn a_friction_laws_parameter_without_that_law_is_refused_in_one_line() {
         ],
     );
 }
+
+/// Undriven records (the displacement alone): refused in one line, exit status 2, beside a
+/// driven record, on an oscillator without a belt, and with starting values whose motion
+/// is steady sliding (the fit itself: the library's tests/fit_belt_free.rs and docs/fit.md's
+/// worked example).
+#[test]
+fn undriven_records_the_fit_cannot_take_are_refused_in_one_line() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let free = root.join("examples/fit/undriven/stribeck.csv");
+    let driven = root.join("examples/fit/belt/stick.csv");
+    let (free, driven) = (free.to_str().unwrap(), driven.to_str().unwrap());
+    let belt = [&OSCILLATOR[..], &["--free", "mu-s", "--data", free]].concat();
+    let mixed = [&belt[..], &["--data", driven]].concat();
+    let still = [&OSCILLATOR[..8], &["--free", "mu-s", "--data", free]].concat();
+    let sliding = [
+        &OSCILLATOR[..8],
+        &[
+            "--belt-speed",
+            "0.09",
+            "--friction-law",
+            "stribeck",
+            "--stribeck-speed",
+            "0.015",
+            "--mu-s",
+            "1.5",
+            "--free",
+            "mu-s",
+            "--data",
+            free,
+        ],
+    ]
+    .concat();
+    assert_usage_errors(
+        &["fit"],
+        &[
+            (&mixed, "has no drive and"),
+            (
+                &still,
+                "an undriven record needs a moving belt (--belt-speed)",
+            ),
+            (
+                &sliding,
+                "at the starting values the block slides steadily on the belt",
+            ),
+        ],
+    );
+}

@@ -176,7 +176,10 @@ class FitRecord:
         motion_class: the motion class of the fitted steady state (``motion``, its name
             before, still works with a ``DeprecationWarning``); periods: whole drive periods;
         clipped: clipped samples; rms_residual_V: RMS of the residuals (V); offset_V: the
-        fitted DC offset of u_C (V); time_shift_s: the fitted time shift (s).
+        fitted DC offset of u_C (V); time_shift_s: the fitted time shift (s). Of an
+        undriven belt's record: freq_Hz, w and periods are its self-excited cycle's
+        (frequency, angular frequency over ω0, whole cycles), amplitude_V and beta are 0,
+        and time_shift_s is the time of the cycle's section (s since the first sample).
     """
 
     motion = Renamed("motion_class")
@@ -402,6 +405,16 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
     values named in V (``rms_residual_V``, a record's ``amplitude_V``, ``measured_V`` …) then
     hold newtons (the drive) and metres (the response), as ``units`` says. Tables are for
     circuits.
+
+    An undriven belt (no drive force: the block's self-excited cycle on a belt moving at
+    ``belt_speed``) is fitted to records of the displacement alone (a plain CSV
+    ``time_s,r (m)``, or beside a constant force channel): the model is the settled
+    self-excited cycle at the parameters' values, aligned to each record by the time of a
+    section (a record's ``time_shift_s``) fitted with the rest; a record's ``freq_Hz`` is
+    then the cycle's frequency, ``w`` its angular frequency over ω0, ``periods`` its whole
+    cycles, and its ``amplitude_V`` and ``beta`` are 0. Each record must hold
+    a whole cycle; with the offset of r free, F0 only shifts r (give it, and fit 'mu-s',
+    'stribeck-speed', 'viscous-friction', 'damping'). See docs/fit.md, "An undriven belt".
 
     Args:
         exp: the circuit or the mechanical oscillator, with the starting values.

@@ -18,8 +18,8 @@
 //!   exhaustive method classifies a cell (steady state with Newton's method on a period,
 //!   rest, or the exponent), then the attractor's cells are labelled by running on until
 //!   [`BasinOptions::found_revisits`] steps in a row land on cells already labelled;
-//! - a motion at rest (stuck through a whole drive period) is rest, at its own position,
-//!   without further work;
+//! - a motion at rest (stuck through a whole drive period on a base at rest, vb = 0) is
+//!   rest, at its own position, without further work;
 //! - after [`BasinOptions::max_steps`] drive periods without a verdict it is undecided.
 //!
 //! Every initial condition sees the labels that the ones before it left, in the same order
@@ -327,8 +327,9 @@ impl<'a> Recurrence<'a> {
             crate::solver::run_until(solver.as_mut(), steps as f64 * period, |_| events += 1)?;
             x = solver.state();
             // Stuck through a whole drive period with the same drive to come: stuck for
-            // ever.
-            if events == 0 && solver.phase() == Phase::Stick {
+            // ever, on a base at rest (on a moving belt the spring stretches while the
+            // block rides along, so the stop ends).
+            if events == 0 && solver.phase() == Phase::Stick && self.basins.params.vb == 0.0 {
                 return Ok((Outcome::Rest(x), steps));
             }
         }

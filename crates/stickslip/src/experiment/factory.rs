@@ -4,6 +4,7 @@
 use super::Law;
 use crate::cancel::Cancel;
 use crate::error::Result;
+use crate::friction_solver::{FrictionSolver, SlipIntegrator};
 use crate::params::{Params, State};
 use crate::physical::{Circuit, Diode};
 use crate::shockley::ShockleyOptions;
@@ -53,6 +54,20 @@ impl SolverFactory for ExperimentFactory {
         let params = params.validate()?;
         self.law()?
             .solver(params, initial, self.options, self.cancel.clone())
+    }
+
+    /// A smooth friction law's slips on the explicit integrator; else [`SolverFactory::make`].
+    fn make_searching(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        let params = params.validate()?;
+        match self.law()? {
+            Law::Pwl if !params.law.is_coulomb() => Ok(Box::new(FrictionSolver::with_integrator(
+                params,
+                initial,
+                SlipIntegrator::Explicit,
+                self.cancel.clone(),
+            )?)),
+            _ => self.make(params, initial),
+        }
     }
 
     fn cancel(&self) -> Cancel {

@@ -462,9 +462,8 @@ impl Experiment {
         law.dynamics(self.shockley, self.cancel.0.clone())
     }
 
-    /// `Ok` for a tool that takes Coulomb's friction law alone (`continue`, `bifurcation`,
-    /// `basins`, `curve`, the exponent map: the stability tools other than
-    /// [`Experiment::periodic_orbit`] and [`Experiment::lyapunov`]).
+    /// `Ok` for a tool that takes Coulomb's friction law alone (`continue`, `curve` and the
+    /// branches of a bifurcation diagram: the continuation).
     ///
     /// # Errors
     /// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law.

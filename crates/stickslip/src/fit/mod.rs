@@ -99,6 +99,7 @@ mod report;
 mod setup;
 mod starts;
 mod table;
+mod undriven;
 mod warning;
 
 pub use json::{
@@ -111,6 +112,7 @@ pub use report::{
     RowFit,
 };
 pub use table::{fit_table, fit_table_monitored};
+pub use undriven::{check_undriven, fit_undriven, fit_undriven_monitored, UndrivenRecord};
 pub use warning::{FitWarning, NotConverged};
 
 use crate::experiment::{DiodeModel, Experiment};

@@ -80,6 +80,9 @@ pub enum FitError {
     /// No free parameter, or one given twice.
     #[error("{0}")]
     FreeParameters(&'static str),
+    /// An undriven record (or its oscillator) that cannot be fitted: what is missing.
+    #[error("{0}")]
+    Undriven(String),
     /// No record or row to fit.
     #[error("nothing to fit: no record or row was given")]
     NoData,

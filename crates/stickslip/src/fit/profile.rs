@@ -29,6 +29,19 @@ pub(super) enum Outcome {
     Lower(Vec<f64>),
 }
 
+/// A least-squares problem whose coordinate can be held at a value (a profile's): its
+/// bounds then pin it.
+pub(super) trait Pin: lm::Problem<Error = FitError> {
+    /// Hold coordinate k at a value, or (`None`) free it again.
+    fn pin(&mut self, pinned: Option<(usize, f64)>);
+}
+
+impl Pin for Records<'_> {
+    fn pin(&mut self, pinned: Option<(usize, f64)>) {
+        self.pinned = pinned;
+    }
+}
+
 /// The relative difference from t² beyond which a linear end is replaced by the profile's.
 const LINEARITY: f64 = 0.1;
 
@@ -36,8 +49,8 @@ const LINEARITY: f64 = 0.1;
 /// Gauss–Newton steps with the Jacobian of the solution (no new Jacobian: the check of a
 /// linear end costs three evaluations of the model), and the point reached; `None` where the
 /// model has no value.
-fn settle(
-    problem: &mut Records<'_>,
+fn settle<P: Pin>(
+    problem: &mut P,
     solution: &lm::Solution,
     bounds: &[(f64, f64)],
     k: usize,
@@ -83,8 +96,8 @@ fn settle(
 
 /// The intervals of the first `free` values of `solution` (see the module documentation);
 /// `t` the quantile, `settings` those of the profile's minimisations.
-pub(super) fn intervals(
-    problem: &mut Records<'_>,
+pub(super) fn intervals<P: Pin>(
+    problem: &mut P,
     solution: &lm::Solution,
     inverse: &[f64],
     free: usize,
@@ -142,10 +155,10 @@ pub(super) fn intervals(
             // The profile's minimisations start from the last one's point (x_k moved).
             let mut from = along(if inside { wald } else { x[k] });
             let mut profile = |p: f64| -> Result<Option<(f64, Vec<f64>)>, FitError> {
-                problem.pinned = Some((k, p));
+                problem.pin(Some((k, p)));
                 from[k] = p;
                 let result = lm::minimise(problem, from.clone(), settings);
-                problem.pinned = None;
+                problem.pin(None);
                 Ok(result?.map(|s| {
                     from.clone_from(&s.x);
                     (rise(s.sum_squares), s.x)

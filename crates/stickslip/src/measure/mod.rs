@@ -310,7 +310,7 @@ impl Measurement {
 
 /// The noise of a channel from the second differences of its used samples (see
 /// [`Measurement::noise`]).
-fn noise(values: &[f64], used: &[bool]) -> f64 {
+pub(crate) fn noise(values: &[f64], used: &[bool]) -> f64 {
     let (sum, count) = (1..values.len() - 1)
         .filter(|&i| used[i - 1] && used[i] && used[i + 1])
         .fold((0.0, 0usize), |(s, n), i| {

@@ -191,16 +191,15 @@ impl Grid {
     /// with [`SteadyOptions::lyapunov`]). A motion decided chaotic or contracting early in its
     /// search stops there ([`crate::steady::steady_state_with_exponent`]). With Shockley
     /// diodes the multipliers and the tangent dynamics are those of the stiff solver's
-    /// computed solution ([`crate::stability::ShockleyDynamics`]), exact to its tolerance.
-    /// Points still differ only by what they compute, so the map stays the same for any
+    /// computed solution ([`crate::stability::ShockleyDynamics`]), exact to its tolerance;
+    /// with a Stribeck or cubic law those of the friction solver
+    /// ([`crate::stability::FrictionDynamics`]). Points still differ only by what they compute, so the map stays the same for any
     /// number of threads.
     ///
     /// # Errors
     /// Invalid options; [`Error::HorizonTooLong`] when the measurement reaches beyond the
-    /// time range the solvers resolve at some w of the grid;
-    /// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law.
+    /// time range the solvers resolve at some w of the grid.
     pub fn lyapunov(mut self, options: LyapunovOptions) -> Result<Self> {
-        self.experiment.check_coulomb_tool()?;
         let options = options.validate()?;
         // The measurement starts again at τ = 0 from the end of the steady-state search; the
         // axes' edges hold every value of w.

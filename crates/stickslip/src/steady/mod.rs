@@ -67,6 +67,17 @@ pub trait SolverFactory: Sync {
     /// Whatever building the solver can report (invalid parameters).
     fn make(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>>;
 
+    /// A solver for the steady-state search of a self-excited belt: [`SolverFactory::make`]'s
+    /// unless the factory has a cheaper one of the same model and tolerance (an experiment's:
+    /// the slips of a smooth friction law on the explicit integrator,
+    /// [`crate::friction_solver::SlipIntegrator::Explicit`]).
+    ///
+    /// # Errors
+    /// As [`SolverFactory::make`].
+    fn make_searching(&self, params: Params, initial: State) -> Result<Box<dyn Solver + Send>> {
+        self.make(params, initial)
+    }
+
     /// The token the solvers it makes check, which the computations on them check too
     /// between their own steps (the Lyapunov measurement of a motion that does not repeat,
     /// say). [`Cancel::never`] unless the factory carries one ([`crate::Experiment::factory`]).

@@ -208,8 +208,8 @@ pub(crate) fn settle_self_excited<F: SolverFactory + ?Sized>(
     options: &SteadyOptions,
 ) -> Result<SteadyState> {
     let options = options.validate()?;
-    let mut solver = factory.make(*params, initial)?;
-    let make = |state: State| factory.make(*params, state);
+    let mut solver = factory.make_searching(*params, initial)?;
+    let make = |state: State| factory.make_searching(*params, state);
     let restart: Option<&Restart> = if options.newton { Some(&make) } else { None };
     search(solver.as_mut(), &options, restart)
 }

@@ -13,12 +13,16 @@
 //! - [`sensitivity`]: forward sensitivities on the integrator's own steps, by the initial
 //!   state (the tangent dynamics) and by the parameters.
 //! - [`cubic`]: the dense output's cubics: range and level crossings.
+//! - [`dop853`]: an explicit integrator of order 8 for laws that are not stiff (the slips of
+//!   a friction law on a belt), with a dense output of order 7.
 
 pub mod cubic;
+pub mod dop853;
 pub mod law;
 pub mod radau;
 pub mod sensitivity;
 
+pub use dop853::{Dop853, DopStep};
 pub use law::{SmoothLaw, MAX_LAW_PARAMETERS};
 pub use radau::{Counters, Radau5, Settings, Step};
 pub use sensitivity::{Columns, Sensitivity, StepDerivative, Track};
