@@ -122,10 +122,10 @@ function drawCycle(answer) {
   g.fillStyle = '#ffffff';
   g.fillRect(0, 0, w, h);
   const ys = answer.cycle ? answer.cycle.y : [];
-  const vs = answer.cycle ? answer.cycle.v : [];
+  const speeds = answer.cycle ? answer.cycle.v : [];
   const eq = c.sliding.equilibrium;
   const [y0, y1] = [Math.min(eq, ...ys), Math.max(eq, ...ys)];
-  const [v0, v1] = [Math.min(0, ...vs), Math.max(0, ...vs)];
+  const [v0, v1] = [Math.min(0, ...speeds), Math.max(0, ...speeds)];
   const pad = 22;
   const sy = (w - 2 * pad) / Math.max(y1 - y0, 1e-9);
   const sv = (h - 2 * pad) / Math.max(v1 - v0, 1e-9);
@@ -143,7 +143,7 @@ function drawCycle(answer) {
   g.strokeStyle = '#1f6f5c';
   g.lineWidth = 1.5;
   g.beginPath();
-  ys.forEach((y, k) => (k === 0 ? g.moveTo(...at(y, vs[k])) : g.lineTo(...at(y, vs[k]))));
+  ys.forEach((y, k) => (k === 0 ? g.moveTo(...at(y, speeds[k])) : g.lineTo(...at(y, speeds[k]))));
   if (ys.length > 0) g.closePath();
   g.stroke();
   // Steady sliding: the equilibrium (y_e, 0), filled when stable.
