@@ -40,6 +40,19 @@ fn spec(preset: Option<Preset>, diode: Option<DiodeModel>, values: &[(Key, f64)]
     spec.build().unwrap()
 }
 
+/// The experiment of a query's model keys, as the library builds it from the same texts.
+fn experiment(query: &str) -> Experiment {
+    let mut spec = ExperimentSpec::new();
+    for (name, text) in form_urlencoded::parse(query.as_bytes()) {
+        let key = Key::ALL
+            .into_iter()
+            .find(|k| k.flag() == name)
+            .unwrap_or_else(|| panic!("{name} is a model key"));
+        spec.set_text(key, &text).unwrap();
+    }
+    spec.build().unwrap()
+}
+
 fn lab(time_limit: Duration) -> Lab {
     Lab::new(Settings {
         time_limit,
@@ -202,23 +215,10 @@ async fn shockley_and_mechanics_answer_as_the_library() {
         assert_eq!(answer[key], report[key], "{key}");
     }
 
-    let (status, answer) =
-        get("/api/steady?mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4")
-            .await;
+    let query = "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&w=0.7&beta=1.4";
+    let (status, answer) = get(&format!("/api/steady?{query}")).await;
     assert_eq!(status, StatusCode::OK, "{answer}");
-    let e = spec(
-        None,
-        None,
-        &[
-            (Key::Mass, 0.5),
-            (Key::Stiffness, 200.0),
-            (Key::Damping, 0.94),
-            (Key::Friction, 1.0),
-            (Key::MuS, 1.5),
-            (Key::W, 0.7),
-            (Key::Beta, 1.4),
-        ],
-    );
+    let e = experiment(query);
     let steady = e.steady().unwrap();
     same_keys(
         &answer,

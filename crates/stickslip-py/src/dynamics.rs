@@ -241,7 +241,7 @@ pub fn continuation<'py>(
     stickslip::continuation::check_parameter(&e, parameter).map_err(error)?;
     let computed = run(py, progress.as_ref(), |monitor| {
         let (params, orbit) = settled_orbit(&e)?;
-        if orbit.events.is_empty() {
+        if orbit.is_rest() {
             return Ok(None);
         }
         let dynamics = e.dynamics()?;

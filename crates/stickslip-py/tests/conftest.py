@@ -4,12 +4,16 @@ package, is the reference for every function."""
 from __future__ import annotations
 
 import csv
+import inspect
 import json
 import os
 import pathlib
 import signal
 import subprocess
-from typing import Dict, List
+import sys
+import threading
+import time
+from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 import pytest
@@ -82,3 +86,74 @@ def assert_same(actual, expected, what: str = "") -> None:
     assert actual.shape == expected.shape, f"{what}: shape {actual.shape} != {expected.shape}"
     np.testing.assert_allclose(actual, expected, rtol=1e-12, atol=1e-12, err_msg=what)
     np.testing.assert_array_equal(actual, expected, err_msg=what)
+
+
+
+class Interrupt:
+    """SIGINT (Ctrl-C) to this process after ``seconds``, sent from a timer thread, with the
+    process's CPU time (all its threads, ``time.process_time``) at the moment it is sent."""
+
+    def __init__(self, seconds: float) -> None:
+        self.cpu_at_signal: Optional[float] = None
+        self.timer = threading.Timer(seconds, self._send)
+        self.timer.start()
+
+    def _send(self) -> None:
+        self.cpu_at_signal = time.process_time()
+        os.kill(os.getpid(), signal.SIGINT)
+
+    def cancel(self) -> None:
+        self.timer.cancel()
+
+    def cpu_since_signal(self) -> float:
+        """The CPU time this process has spent since the signal: the work done after it, which
+        a loaded machine does not stretch (it stretches the wall time)."""
+        assert self.cpu_at_signal is not None, "the signal was not sent"
+        return time.process_time() - self.cpu_at_signal
+
+
+def interrupt_after(seconds: float) -> Interrupt:
+    """Send SIGINT (Ctrl-C) to this process after ``seconds`` (see ``Interrupt``)."""
+    return Interrupt(seconds)
+
+
+def assert_runs_beside(function: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    """While ``function(*args, progress=..., **kwargs)`` computes in another thread, this
+    thread runs Python code: polling, it finds that thread inside ``function``'s call into the
+    library (its innermost frame ``function``'s own, not a progress callback) between the
+    first and the last progress call, with no progress call while it looks. A library that
+    kept the GIL while it computes would let this thread run only in the progress callbacks or
+    before and after the call. The order of events is read, not the clock: this thread polls
+    until it has seen that or the computation has ended, however slowly a loaded machine runs
+    either (up to five computations). Returns the computation's result."""
+    code = inspect.unwrap(function).__code__
+    for _ in range(5):
+        last = [(0, 0, None)]  # (progress calls, done, total) at the latest call
+        result = {}
+
+        def progress(done, total):
+            last[0] = (last[0][0] + 1, done, total)
+
+        def work():
+            result["value"] = function(*args, progress=progress, **kwargs)
+
+        worker = threading.Thread(target=work)
+        worker.start()
+        seen = False
+        while not seen and worker.is_alive():
+            before = last[0]
+            frame = sys._current_frames().get(worker.ident)
+            after = last[0]
+            _, done, total = after
+            seen = (before == after and frame is not None and frame.f_code is code
+                    and total is not None and 0 < done < total)
+            time.sleep(0.0005)
+        worker.join()
+        assert "value" in result, f"{function.__name__} ended without a result"
+        calls, done, total = last[0]
+        assert done == total, f"the last progress call reported {done} of {total}"
+        if seen:
+            return result["value"]
+    pytest.fail(f"in five runs of {function.__name__} this thread never ran while the other "
+                f"was inside the library between two progress calls (the last run made {calls} "
+                "progress calls: a run of a few polls, 50 ms each, would show too little)")

@@ -106,13 +106,21 @@ def test_orbit_and_lyapunov_take_the_smooth_laws(law):
 
 
 @pytest.mark.parametrize("law", SMOOTH_LAWS, ids=["stribeck", "cubic"])
+def test_continuation_takes_the_smooth_laws(law):
+    over_w = Experiment(zeta=0.05, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
+    branch = stickslip.continuation(over_w, "w", 1.0, 1.1)
+    assert len(branch) > 2
+    assert branch.value[0] == pytest.approx(1.0)
+    assert branch.value[-1] == pytest.approx(1.1)
+
+
+@pytest.mark.parametrize("law", SMOOTH_LAWS, ids=["stribeck", "cubic"])
 def test_the_other_stability_tools_refuse_the_smooth_laws_with_a_value_error(law):
     e = Experiment(zeta=0.05, w=1.0, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
     over_w = Experiment(zeta=0.05, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
     unset = Experiment(zeta=0.05, mu_s=1.5, vb=0.3).replace(**law)
     coulomb_only = "follow Coulomb's friction law so far"
     calls = [
-        lambda: stickslip.continuation(over_w, "w", 1.0, 1.1),
         lambda: stickslip.bifurcation(over_w, "w", [1.0, 1.05], points=10, transient=10,
                                       first_transient=10),
         lambda: stickslip.basins(e, (-1.0, 1.0), (-1.0, 1.0), 3),

@@ -5,7 +5,6 @@ Ctrl-C and the GIL."""
 from __future__ import annotations
 
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -13,8 +12,7 @@ import pytest
 import stickslip
 from stickslip import Experiment
 
-from conftest import assert_same, numbers, read_csv
-from test_maps import interrupt_after
+from conftest import assert_runs_beside, assert_same, interrupt_after, numbers, read_csv
 
 # ζ = 0, μs = 3, β = 9: periodic and chaotic motions as w varies (the stability analysis).
 CHAOS = ["--zeta", 0, "--mu-s", 3, "--beta", 9]
@@ -251,7 +249,6 @@ def test_continuation_errors():
 @pytest.mark.parametrize("what", ["bifurcation", "basins", "continuation"])
 def test_ctrl_c_stops_a_long_computation(what):
     assert threading.current_thread() is threading.main_thread()
-    started = time.perf_counter()
     timer = interrupt_after(0.5)
     try:
         with pytest.raises(KeyboardInterrupt):
@@ -267,9 +264,10 @@ def test_ctrl_c_stops_a_long_computation(what):
                                        max_points=5_000_000)
     finally:
         timer.cancel()
-    elapsed = time.perf_counter() - started
-    # Stopped soon after the signal (each computation alone would take minutes).
-    assert elapsed < 5.0, f"took {elapsed:.1f} s to stop"
+    # Stopped within a little work after the signal (each computation alone would take minutes of
+    # CPU), counted in CPU time: not the wall time, which a loaded machine stretches.
+    cpu = timer.cpu_since_signal()
+    assert cpu < 5.0, f"{cpu:.1f} s of CPU after the signal"
 
 
 def test_progress_and_other_threads_run_meanwhile():
@@ -284,25 +282,8 @@ def test_progress_and_other_threads_run_meanwhile():
 
     with pytest.raises(RuntimeError, match="enough"):
         stickslip.basins(e, y0=(-8, 8), v0=(-8, 8), steps=2000, progress=stop)
-    # While a diagram of about a second runs in one thread, the main thread keeps running
-    # Python code (the computation waits without the GIL).
-    result = {}
-
-    def work():
-        started = time.perf_counter()
-        result["d"] = stickslip.bifurcation(Experiment(zeta=0.0, beta=9.0, mu_s=3.0), "w",
-                                            np.linspace(0.2, 0.55, 300), points=200)
-        result["seconds"] = time.perf_counter() - started
-
-    worker = threading.Thread(target=work)
-    ticks = [time.perf_counter()]
-    worker.start()
-    while worker.is_alive():
-        time.sleep(0.001)
-        ticks.append(time.perf_counter())
-    worker.join()
-    gap = float(np.max(np.diff(ticks)))
-    assert result["seconds"] > 0.2, "the diagram is too short to show anything"
-    assert gap < 0.25 * result["seconds"], (
-        f"the main thread stalled {gap:.3f} s of a {result['seconds']:.3f} s diagram"
-    )
+    # While a diagram runs in one thread, the main thread keeps running Python code (the
+    # computation waits without the GIL): read from the order of events, not the clock.
+    diagram = assert_runs_beside(stickslip.bifurcation, Experiment(zeta=0.0, beta=9.0, mu_s=3.0),
+                                 "w", np.linspace(0.2, 0.55, 300), points=200)
+    assert diagram.value.shape[0] >= 300

@@ -398,9 +398,9 @@ impl std::fmt::Display for Unsupported {
                  Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
-                "continue, bifurcation, basins, curve and the exponent map (phase-diagram \
+                "bifurcation, basins, curve and the exponent map (phase-diagram \
                  --color lambda1) follow Coulomb's friction law so far: the Stribeck and cubic \
-                 laws are solved by simulate, steady, sweep, orbit and lyapunov (use \
+                 laws are solved by simulate, steady, sweep, orbit, lyapunov and continue (use \
                  --friction-law coulomb here)"
             }
             Unsupported::TheoryNeedsCoulombAtRest => {

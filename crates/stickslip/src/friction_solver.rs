@@ -74,7 +74,9 @@ impl SlipLaw {
 }
 
 impl SmoothLaw for SlipLaw {
-    const PARAMETERS: &'static [&'static str] = &[];
+    /// μs, vb, then the friction law's own: vs, δ, η (Stribeck) or k1, k3 (cubic; the
+    /// fifth column is then zero).
+    const PARAMETERS: &'static [&'static str] = &["mu_s", "vb", "vs|k1", "delta|k3", "eta"];
 
     fn validate(&self) -> Result<Self> {
         self.law.validate(self.mu_s)?;
@@ -92,7 +94,39 @@ impl SmoothLaw for SlipLaw {
         }
     }
 
-    fn parameter_derivatives(&self, _v: f64, _out: &mut [f64]) {}
+    /// ∂D/∂(μs, vb, θ) of D(v) = σ μ(s), s = σ(v − vb): ∂D/∂vb = −μ'(s), and σ ∂μ/∂θ at
+    /// fixed s for the others. Beyond s = 0 (only Newton's iterates go there) the values at
+    /// s = 0 with the tangent's slope for vb.
+    fn parameter_derivatives(&self, v: f64, out: &mut [f64]) {
+        let s = (self.sign * (v - self.vb)).max(0.0);
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let slope = self.mu(s).1;
+        let mut d = [0.0, -slope / self.sign, 0.0, 0.0, 0.0];
+        match self.law {
+            FrictionLaw::Coulomb => d[0] = 1.0,
+            FrictionLaw::Stribeck { vs, delta, eta: _ } => {
+                let x = s / vs;
+                let power = x.powf(delta);
+                let fall = (-power).exp();
+                d[0] = fall;
+                d[2] = (self.mu_s - 1.0) * fall * delta * power / vs;
+                d[3] = if x > 0.0 {
+                    -(self.mu_s - 1.0) * fall * power * x.ln()
+                } else {
+                    0.0
+                };
+                d[4] = s;
+            }
+            FrictionLaw::Cubic { .. } => {
+                d[0] = 1.0;
+                d[2] = -s;
+                d[3] = s * s * s;
+            }
+        }
+        for (o, x) in out.iter_mut().zip(d) {
+            *o = self.sign * x;
+        }
+    }
 }
 
 /// A slip phase's step not yet reported to its end: the step (ending at an event when

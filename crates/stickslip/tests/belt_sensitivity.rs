@@ -11,6 +11,7 @@ use stickslip::stability::{
     strobe_map_parameter_derivatives, NewtonOptions, PeriodicOrbit,
 };
 use stickslip::{ExactSolver, Parameter, Params, Solver, State};
+use stickslip_testkit::differences::richardson;
 
 fn belt(zeta: f64, w: f64, beta: f64, mu_s: f64, vb: f64, phi: f64) -> Params {
     let mut p = Params::new(zeta, w, beta)
@@ -39,22 +40,14 @@ fn shifted(params: &Params, index: usize, d: f64) -> Params {
 
 const NAMES: [&str; 6] = ["zeta", "beta", "w", "phi", "mu_s", "vb"];
 
-/// d f(p)/dp_index by central differences with steps h and h/2, extrapolated (error O(h⁴)).
-fn richardson<const N: usize>(
+/// d f(p)/dp_index by [`richardson`] differences in the parameter.
+fn differences<const N: usize>(
     params: &Params,
     index: usize,
     h: f64,
     f: impl Fn(&Params) -> [f64; N],
 ) -> [f64; N] {
-    let central = |h: f64| {
-        let (p, m) = (
-            f(&shifted(params, index, h)),
-            f(&shifted(params, index, -h)),
-        );
-        std::array::from_fn::<f64, N, _>(|i| (p[i] - m[i]) / (2.0 * h))
-    };
-    let (a, b) = (central(h), central(h / 2.0));
-    std::array::from_fn(|i| (4.0 * b[i] - a[i]) / 3.0)
+    richardson(|d| f(&shifted(params, index, d)), 0.0, h)
 }
 
 /// The settled state 400 drive periods after rest.
@@ -116,7 +109,7 @@ fn the_strobe_maps_parameter_derivatives_on_a_belt_match_differences() {
             // From a state stuck to the belt, vb moves the state too (y' = vb): the derivative
             // along the stuck states, as the continuation in vb follows a stuck strobe.
             let along = orbit.stuck_at_strobe && index == 5;
-            let fd = richardson(&params, index, 1e-5, |p| {
+            let fd = differences(&params, index, 1e-5, |p| {
                 image(p, if along { State { y: x.y, v: p.vb } } else { x })
             });
             let d = if index < 5 {
@@ -174,7 +167,7 @@ fn the_periodic_orbits_sensitivities_on_a_belt_match_differences() {
                 .flat_map(|s| s.dy)
                 .fold(0.0f64, |a, b| a.max(b.abs()));
         for index in 0..5 {
-            let fd = richardson(&params, index, 1e-5, |p| {
+            let fd = differences(&params, index, 1e-5, |p| {
                 orbit_samples(p, orbit.state, &taus)
             });
             for (s, fd) in samples.iter().zip(fd) {

@@ -8,6 +8,7 @@ use stickslip::stability::{
     find_periodic_orbit, lyapunov_exponents, strobe_map, LyapunovOptions, NewtonOptions,
 };
 use stickslip::{Error, Params, Solver, State, Unsupported};
+use stickslip_testkit::differences::state_jacobian;
 
 fn belt(zeta: f64, w: f64, beta: f64, mu_s: f64, vb: f64) -> Params {
     let mut p = Params::new(zeta, w, beta).unwrap().with_mu_s(mu_s).unwrap();
@@ -19,31 +20,6 @@ fn belt(zeta: f64, w: f64, beta: f64, mu_s: f64, vb: f64) -> Params {
 fn image(params: &Params, x: State) -> [f64; 2] {
     let s = strobe_map(params, x, 1).unwrap().state;
     [s.y, s.v]
-}
-
-/// ∂P/∂x by central differences with steps h and h/2, extrapolated (error O(h⁴)).
-fn richardson(params: &Params, x: State, h: f64) -> [[f64; 2]; 2] {
-    let central = |h: f64, j: usize| {
-        let shift = |d: f64| {
-            let mut s = x;
-            if j == 0 {
-                s.y += d;
-            } else {
-                s.v += d;
-            }
-            image(params, s)
-        };
-        let (p, m) = (shift(h), shift(-h));
-        [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
-    };
-    let mut d = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (a, b) = (central(h, j), central(h / 2.0, j));
-        for i in 0..2 {
-            d[i][j] = (4.0 * b[i] - a[i]) / 3.0;
-        }
-    }
-    d
 }
 
 /// The settled state 400 drive periods after rest.
@@ -75,7 +51,7 @@ fn the_coulomb_belts_monodromy_matches_differences_of_the_strobe_map() {
         if orbit.stuck_at_strobe {
             continue;
         }
-        let fd = richardson(&params, orbit.state, 1e-5);
+        let fd = state_jacobian(|x| image(&params, x), orbit.state, 1e-5);
         let m = orbit.monodromy.0;
         let scale = m.iter().flatten().fold(1.0f64, |a, b| a.max(b.abs()));
         for i in 0..2 {

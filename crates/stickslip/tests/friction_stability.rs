@@ -9,7 +9,8 @@ use stickslip::friction::FrictionLaw;
 use stickslip::stability::{
     FrictionDynamics, LyapunovOptions, Matrix2, NewtonOptions, PeriodicOrbit,
 };
-use stickslip::{EventKind, Params, State};
+use stickslip::{EventKind, Parameter, Params, State};
+use stickslip_testkit::differences::{richardson, state_jacobian};
 
 const STRIBECK: FrictionLaw = FrictionLaw::Stribeck {
     vs: 0.3,
@@ -35,31 +36,6 @@ fn image(params: &Params, x: State) -> [f64; 2] {
         .unwrap()
         .state;
     [s.y, s.v]
-}
-
-/// ∂P/∂x by central differences with steps h and h/2, extrapolated (error O(h⁴)).
-fn richardson(params: &Params, x: State, h: f64) -> Matrix2 {
-    let central = |h: f64, j: usize| {
-        let shift = |d: f64| {
-            let mut s = x;
-            if j == 0 {
-                s.y += d;
-            } else {
-                s.v += d;
-            }
-            image(params, s)
-        };
-        let (p, m) = (shift(h), shift(-h));
-        [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
-    };
-    let mut d = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (a, b) = (central(h, j), central(h / 2.0, j));
-        for i in 0..2 {
-            d[i][j] = (4.0 * b[i] - a[i]) / 3.0;
-        }
-    }
-    Matrix2(d)
 }
 
 /// The period-1 orbit the motion from rest settles on.
@@ -115,7 +91,7 @@ fn the_monodromy_matches_richardson_differences_of_the_strobe_map() {
                 "{law:?} {case:?}: {kinds:?}"
             );
         }
-        let fd = richardson(&params, orbit.state, 1e-5);
+        let fd = Matrix2(state_jacobian(|x| image(&params, x), orbit.state, 1e-5));
         let m = orbit.monodromy;
         let mut worst = 0.0f64;
         for i in 0..2 {
@@ -174,5 +150,58 @@ fn the_measured_exponent_at_a_periodic_point_is_ln_mu1_over_t() {
             "{law:?} {case:?}: measured {}, ln|μ1|/T = {expected}",
             measured.largest.per_tau
         );
+    }
+}
+
+/// ∂P/∂λ by central differences of the strobe map with steps h and h/2, extrapolated.
+fn richardson_parameter(params: &Params, x: State, parameter: Parameter, h: f64) -> [f64; 2] {
+    let at = |value: f64| image(&parameter.set(*params, value).unwrap(), x);
+    richardson(at, parameter.get(params), h)
+}
+
+#[test]
+fn the_parameter_derivatives_match_richardson_differences_of_the_strobe_map() {
+    let dynamics = FrictionDynamics::new();
+    for (law, case, _) in cases() {
+        let params = belt(law, case);
+        let orbit = settled_orbit(&params);
+        let own: &[Parameter] = match law {
+            FrictionLaw::Stribeck { .. } => &[Parameter::Vs, Parameter::Delta, Parameter::Eta],
+            _ => &[Parameter::K1, Parameter::K3],
+        };
+        let common = [
+            Parameter::Zeta,
+            Parameter::W,
+            Parameter::Beta,
+            Parameter::MuS,
+            Parameter::Vb,
+        ];
+        for &parameter in common.iter().chain(own) {
+            let d = dynamics
+                .strobe_parameter_derivative(&params, orbit.state, 1, parameter)
+                .unwrap();
+            let fd = richardson_parameter(&params, orbit.state, parameter, 1e-5);
+            let error = (d[0] - fd[0]).abs().max((d[1] - fd[1]).abs());
+            let scale = 1f64.max(fd[0].abs()).max(fd[1].abs());
+            println!(
+                "{law:?} {case:?} {}: {d:?}, differences {fd:?}, off by {error:.1e}",
+                parameter.label()
+            );
+            assert!(
+                error <= 1e-6 * scale,
+                "{law:?} {case:?} {}: {d:?}, differences {fd:?}",
+                parameter.label()
+            );
+        }
+        // The state columns are the monodromy matrix.
+        let (_, s) = dynamics
+            .strobe_sensitivity(&params, orbit.state, 1)
+            .unwrap();
+        let m = orbit.monodromy.0;
+        for (i, row) in s.state().iter().enumerate() {
+            for (j, x) in row.iter().enumerate() {
+                assert!((x - m[i][j]).abs() <= 1e-12 * 1f64.max(m[i][j].abs()));
+            }
+        }
     }
 }

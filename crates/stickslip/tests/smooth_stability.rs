@@ -11,6 +11,7 @@ use stickslip::stability::{
 };
 use stickslip::stiff::Columns;
 use stickslip::{Cancel, Circuit, Params, Solver, State};
+use stickslip_testkit::differences::{richardson, state_jacobian};
 
 /// The paper's circuit with 1N4148 diodes: (w, β) from a drive in Hz and V, and the law.
 fn paper_drive(hertz: f64, volts: f64) -> (Params, DiodeLaw) {
@@ -29,20 +30,6 @@ fn options(tolerance: f64) -> ShockleyOptions {
         .unwrap()
         .with_atol(tolerance)
         .unwrap()
-}
-
-/// Richardson-extrapolated central difference of `f` at `x` with step `h`:
-/// (4 D(h/2) − D(h))/3, D(h) = (f(x + h) − f(x − h))/2h.
-fn richardson(f: impl Fn(f64) -> [f64; 2], x: f64, h: f64) -> [f64; 2] {
-    let d = |h: f64| {
-        let (a, b) = (f(x + h), f(x - h));
-        [(a[0] - b[0]) / (2.0 * h), (a[1] - b[1]) / (2.0 * h)]
-    };
-    let (coarse, fine) = (d(h), d(h / 2.0));
-    [
-        (4.0 * fine[0] - coarse[0]) / 3.0,
-        (4.0 * fine[1] - coarse[1]) / 3.0,
-    ]
 }
 
 #[test]
@@ -295,9 +282,7 @@ fn difference_monodromy(params: &Params, law: &DiodeLaw, x: State, h: f64) -> Ma
         let s = dynamics.strobe_map(params, x, 1).unwrap().state;
         [s.y, s.v]
     };
-    let dy = richardson(|y| map(State { y, ..x }), x.y, h);
-    let dv = richardson(|v| map(State { v, ..x }), x.v, h);
-    Matrix2([[dy[0], dv[0]], [dy[1], dv[1]]])
+    Matrix2(state_jacobian(map, x, h))
 }
 
 /// The Floquet multipliers of the Shockley orbit (variational equations on the solver's steps,

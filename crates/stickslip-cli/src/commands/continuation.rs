@@ -95,7 +95,7 @@ pub fn run(args: Args) -> Result<()> {
         args.to
     );
     let (params, orbit) = settled_orbit(&experiment)?;
-    if orbit.events.is_empty() {
+    if orbit.is_rest() {
         let start = experiment.initial();
         anyhow::bail!(
             "from y0 = {}, v0 = {} the motion comes to rest at {} = {}: nothing to continue; \

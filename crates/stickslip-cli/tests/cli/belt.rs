@@ -11,6 +11,20 @@ fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_str(&stdout(&out)).unwrap()
 }
 
+/// The CSV that a run of `args` prints, the run checked to succeed and the CSV to begin with
+/// `header`: its text (for messages) and the cells of its rows.
+fn csv_rows(args: &[&str], header: &str) -> (String, Vec<Vec<String>>) {
+    let (_dir, out) = run(args);
+    assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    let text = stdout(&out);
+    let mut lines = text.lines();
+    assert_eq!(lines.next().unwrap(), header, "{args:?}");
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (text, rows)
+}
+
 /// ζ = 0, μs = 1.5, vb = 0.5: a circle of radius R = √((μs − 1)² + vb²) about y = 1 and a
 /// stop of 2(μs − 1)/vb (`stickslip::theory::belt`).
 #[test]
@@ -333,7 +347,7 @@ fn a_sweep_of_the_belt_speed_shows_its_hysteresis() {
 #[test]
 fn a_mechanical_belt_sweep_has_the_period_in_seconds() {
     // m = 0.1 kg, k = 1000 N/m: ω0 = 100 rad/s.
-    let (_dir, out) = run(&[
+    let args = [
         "sweep",
         "--mass",
         "0.1",
@@ -355,16 +369,12 @@ fn a_mechanical_belt_sweep_has_the_period_in_seconds() {
         "2",
         "--direction",
         "up",
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let text = stdout(&out);
-    let mut lines = text.lines();
-    assert_eq!(
-        lines.next().unwrap(),
-        "vb,direction,amplitude,y_max,y_min,cycle_period_tau,cycle_period_s,stick_fraction,class"
+    ];
+    let (text, rows) = csv_rows(
+        &args,
+        "vb,direction,amplitude,y_max,y_min,cycle_period_tau,cycle_period_s,stick_fraction,class",
     );
-    for line in lines {
-        let cells: Vec<&str> = line.split(',').collect();
+    for cells in rows {
         assert_eq!(cells[8], "stick-slip-cycle", "{text}");
         let tau: f64 = cells[5].parse().unwrap();
         let seconds: f64 = cells[6].parse().unwrap();
@@ -376,7 +386,7 @@ fn a_mechanical_belt_sweep_has_the_period_in_seconds() {
 /// and each class is what `steady` finds at that point from rest.
 #[test]
 fn a_map_of_belt_speed_and_static_friction_has_the_steady_states_classes() {
-    let (_dir, out) = run(&[
+    let args = [
         "phase-diagram",
         "--zeta",
         "0.05",
@@ -398,22 +408,15 @@ fn a_map_of_belt_speed_and_static_friction_has_the_steady_states_classes() {
         "3",
         "--y-steps",
         "3",
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let text = stdout(&out);
-    let mut lines = text.lines();
-    assert_eq!(
-        lines.next().unwrap(),
-        "vb,mu_s,class,period,stops_per_period,gain"
-    );
+    ];
+    let (text, rows) = csv_rows(&args, "vb,mu_s,class,period,stops_per_period,gain");
     let mut classes = Vec::new();
-    for line in lines {
-        let cells: Vec<&str> = line.split(',').collect();
+    for cells in rows {
         let v = json(&[
-            "steady", "--zeta", "0.05", "--vb", cells[0], "--mu-s", cells[1], "--json",
+            "steady", "--zeta", "0.05", "--vb", &cells[0], "--mu-s", &cells[1], "--json",
         ]);
-        assert_eq!(v["class"], cells[2], "{line}");
-        classes.push(cells[2].to_string());
+        assert_eq!(v["class"], cells[2], "{cells:?}");
+        classes.push(cells[2].clone());
     }
     assert_eq!(classes.len(), 9);
     // Both motions are on the map: stick-slip at a slow belt with μs > 1, steady sliding at

@@ -66,7 +66,7 @@ fn tools() -> Vec<(Vec<&'static str>, [Outcome; 3])> {
             vec![
                 "continue", "--beta", "2", "--over", "w", "--from", "1", "--to", "1.1",
             ],
-            [COULOMB_ONLY, COULOMB_ONLY, Works],
+            [Works, Works, Works],
         ),
         (
             vec![
@@ -94,25 +94,7 @@ fn tools() -> Vec<(Vec<&'static str>, [Outcome; 3])> {
             [COULOMB_ONLY, COULOMB_ONLY, Works],
         ),
         (
-            vec![
-                "curve",
-                "--w",
-                "0.9",
-                "--beta",
-                "1.45",
-                "--follow",
-                "fold",
-                "--vary",
-                "beta",
-                "--vary-to",
-                "1.2",
-                "--over",
-                "w",
-                "--from",
-                "0.8",
-                "--to",
-                "1",
-            ],
+            [&["curve"][..], &FOLD_CURVE].concat(),
             [COULOMB_ONLY, COULOMB_ONLY, Works],
         ),
         (

@@ -7,35 +7,17 @@ use stickslip::report::{CurveTable, Table};
 use stickslip::{Experiment, Parameter, State};
 
 /// The fold of the orbit with two stops at the paper's ζ, μs = 1.5, from the sliding orbit at
-/// w = 0.9, β = 1.45, followed in β over w from 0.8 to 1.
-const FOLD: [&str; 26] = [
-    "curve",
-    "--preset",
-    "paper",
-    "--mu-s",
-    "1.5",
-    "--w",
-    "0.9",
-    "--beta",
-    "1.45",
-    "--y0",
-    "0.25",
-    "--v0",
-    "2.1",
-    "--follow",
-    "fold",
-    "--vary",
-    "beta",
-    "--vary-to",
-    "1.2",
-    "--over",
-    "w",
-    "--from",
-    "0.8",
-    "--to",
-    "1",
-    "--json",
-];
+/// w = 0.9, β = 1.45 ([`FOLD_CURVE`]), with its initial state, as JSON.
+fn fold() -> Vec<&'static str> {
+    [
+        &[
+            "curve", "--preset", "paper", "--mu-s", "1.5", "--y0", "0.25", "--v0", "2.1",
+        ][..],
+        &FOLD_CURVE,
+        &["--json"],
+    ]
+    .concat()
+}
 
 fn library_fold() -> stickslip::continuation::Curve {
     let e = Experiment::paper()
@@ -59,7 +41,7 @@ fn library_fold() -> stickslip::continuation::Curve {
 
 #[test]
 fn the_csv_and_json_are_the_library_curve() {
-    let (dir, out) = run(&[&FOLD[..], &["--out", "fold.csv", "--plot", "fold.png"]].concat());
+    let (dir, out) = run(&[&fold()[..], &["--out", "fold.csv", "--plot", "fold.png"]].concat());
     assert!(out.status.success(), "{}", stderr(&out));
     let c = library_fold();
     let csv = std::fs::read_to_string(dir.path().join("fold.csv")).unwrap();
@@ -79,14 +61,16 @@ fn the_csv_and_json_are_the_library_curve() {
     let png = std::fs::read(dir.path().join("fold.png")).unwrap();
     assert!(png.starts_with(b"\x89PNG") && png.len() > 10_000);
     // Without --out and --json, the CSV goes to standard output.
-    let (_dir, out) = run(&FOLD[..FOLD.len() - 1]);
+    let fold = fold();
+    let (_dir, out) = run(&fold[..fold.len() - 1]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(stdout(&out), csv);
 }
 
 #[test]
 fn no_special_point_of_the_kind_is_one_line_and_status_2() {
-    let mut args = FOLD.to_vec();
+    let mut args = fold();
+    assert_eq!((args[13], args[17]), ("--follow", "--vary-to"));
     args[14] = "period-doubling";
     args[18] = "1.44";
     let dir = tempfile::tempdir().unwrap();
@@ -99,7 +83,8 @@ fn no_special_point_of_the_kind_is_one_line_and_status_2() {
 #[test]
 fn a_neimark_sacker_curve_is_one_line_naming_why_and_status_2() {
     // The Coulomb model has none (det M < 1 on every orbit: docs/bifurcation.md).
-    let mut args = FOLD.to_vec();
+    let mut args = fold();
+    assert_eq!(args[13], "--follow");
     args[14] = "neimark-sacker";
     let dir = tempfile::tempdir().unwrap();
     let out = run_in(dir.path(), &[&args[..], &["--out", "ns.csv"]].concat());

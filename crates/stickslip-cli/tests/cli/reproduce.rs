@@ -609,9 +609,10 @@ fn ctrl_c_leaves_no_report() {
         "{err}"
     );
     assert!(!err.contains("cancelled after"), "{err}");
+    // Counted in CPU time after the signal (`interrupt_in`), which load does not stretch.
     assert!(
         stopping < std::time::Duration::from_secs(20),
-        "took {stopping:?} to stop"
+        "{stopping:?} of CPU after the signal"
     );
 }
 

@@ -2,29 +2,15 @@
 //! belt and law fields come from the key table; a self-excited belt's steady state is the
 //! library's, with its one cycle as the trace; its bad laws are 400s naming their field.
 
-use super::{get, refused, same_keys, spec};
+use super::{experiment, get, refused, same_keys};
 use axum::http::StatusCode;
 use serde_json::Value;
-use stickslip::experiment::{Experiment, ExperimentSpec, Key};
 use stickslip::steady::{self_excited_trace, steady_state_from, SteadyReport};
 
 /// The example's oscillator (m = 0.5 kg, k = 200 N/m, γ = 0.94 N·s/m, F0 = 1 N: 0.1 m/s per
 /// unit of y') on a belt at 3 cm/s (vb = 0.3), μs = 1.5, without a drive.
 const BELT: &str =
     "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&belt-speed=0.03&freq=3&amplitude=0";
-
-/// The experiment of the query's model keys, as the library builds it from the same texts.
-fn experiment(query: &str) -> Experiment {
-    let mut spec = ExperimentSpec::new();
-    for (name, text) in form_urlencoded::parse(query.as_bytes()) {
-        let key = Key::ALL
-            .into_iter()
-            .find(|k| k.flag() == name)
-            .unwrap_or_else(|| panic!("{name} is a model key"));
-        spec.set_text(key, &text).unwrap();
-    }
-    spec.build().unwrap()
-}
 
 fn numbers(value: &Value) -> Vec<f64> {
     value
@@ -226,20 +212,7 @@ async fn coulomb_at_rest_sent_in_full_is_todays_answer() {
     .await;
     assert_eq!(status, StatusCode::OK, "{full}");
     assert_eq!(plain, full);
-    let e = spec(
-        None,
-        None,
-        &[
-            (Key::Mass, 0.5),
-            (Key::Stiffness, 200.0),
-            (Key::Damping, 0.94),
-            (Key::Friction, 1.0),
-            (Key::MuS, 1.5),
-            (Key::W, 0.95),
-            (Key::Beta, 2.14),
-        ],
-    );
-    assert_eq!(full["experiment"], e.to_string());
+    assert_eq!(full["experiment"], experiment(base).to_string());
 }
 
 /// Issue 36, item 3: a bad law from the mechanical form is a 400 naming the field the page

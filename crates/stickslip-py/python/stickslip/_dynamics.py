@@ -579,7 +579,8 @@ def continuation(experiment: Experiment, over: str, start: float, to: float, *,
     Args:
         experiment: a ``stickslip.Experiment`` (either diode law); the other parameters and
             the initial state come from it.
-        over: the continued parameter: 'w', 'beta', 'zeta' or 'mu_s' (not 'mu_s' with
+        over: the continued parameter: 'w', 'beta', 'zeta', 'mu_s', 'vb' or a friction
+            law's own ('vs', 'delta', 'eta'; 'k1', 'k3') (not 'mu_s' with
             Shockley diodes, whose law has no static threshold).
         start: the start value (dimensionless).
         to: the value to continue towards; the branch stays between the two.

@@ -130,11 +130,12 @@ impl Problem<'_> {
         self.dynamics.map_tolerance(self.options.tolerance)
     }
 
-    /// The event counts that split a branch into smooth pieces (turning points, stops) for the
-    /// exact model; none for a smooth law, whose map has no seams (its stops are a threshold
-    /// of the current, not a switch of the equation).
+    /// The event counts that split a branch into smooth pieces (turning points, stops) for a
+    /// model whose orbits stick (the exact model, the Stribeck and cubic belts: a new stop or
+    /// reversal is a seam of the map); none for a smooth diode law, whose map has no seams
+    /// (its stops are a threshold of the current, not a switch of the equation).
     pub fn pieces(&self, orbit: &PeriodicOrbit) -> (usize, usize) {
-        if self.dynamics.is_exact() {
+        if self.dynamics.sticks() {
             counts(orbit)
         } else {
             (0, 0)
@@ -223,7 +224,7 @@ impl Problem<'_> {
         // the next: the orbit stuck at the strobe, with a spurious extra stop. Prefer the
         // stuck one when it is a fixed point to the tolerance. (Stuck is y' = vb on a belt.)
         let stuck = self.stuck_velocity(u[2]);
-        if self.dynamics.is_exact()
+        if self.dynamics.sticks()
             && u[1] != stuck
             && (u[1] - stuck).abs() <= 1e-6 * 1f64.max(u[0].abs())
         {

@@ -116,7 +116,7 @@ pub fn continue_orbit_of(
     options: &ContinuationOptions,
     monitor: &dyn Monitor,
 ) -> Result<Branch> {
-    if !dynamics.is_exact() && parameter == Parameter::MuS {
+    if !dynamics.sticks() && parameter == Parameter::MuS {
         return Err(Error::Unsupported(crate::Unsupported::MuSNeedsPwl));
     }
     let options = options.validate()?;
@@ -130,7 +130,7 @@ pub fn continue_orbit_of(
             allowed: "must differ from the start value",
         });
     }
-    if start.events.is_empty() {
+    if start.is_rest() {
         return Err(Error::InvalidParameter {
             name: "start",
             value: start.state.y,
@@ -268,7 +268,7 @@ pub fn continue_orbit_of(
         let _ = natural;
         arclength += sigma;
         points.push(branch_point(&problem, &next, arclength)?);
-        if next.orbit.events.is_empty() {
+        if next.orbit.is_rest() {
             break BranchEnd::Rest { value: next.u[2] };
         }
         if let Some(value) = boundary {
@@ -429,7 +429,6 @@ fn join(
 /// [`crate::stability::StabilityError::NoPeriod`] when the motion finds no period;
 /// whatever the solver and Newton's method report.
 pub fn settled_orbit(experiment: &Experiment) -> Result<(Params, PeriodicOrbit)> {
-    experiment.check_coulomb_tool()?;
     let dynamics = experiment.dynamics()?;
     let options = experiment.steady_options().with_spectrum(false);
     let steady = experiment.steady_with(&options)?;

@@ -45,8 +45,9 @@
 //! - [`SpecialKind::PeriodDoubling`]: a real multiplier passes −1 (det(M + I) changes sign): a
 //!   branch of period 2p is born;
 //! - [`SpecialKind::NeimarkSacker`]: a complex pair passes the unit circle (det M − 1 changes
-//!   sign). It cannot happen on orbits that stop (det M = 0) nor, since turns contract phase
-//!   area, on sliding orbits with ζ ≥ 0; it is tested for completeness.
+//!   sign). With Coulomb's law it cannot happen on orbits that stop (det M = 0) nor, since
+//!   turns contract phase area, on sliding orbits with ζ ≥ 0; a falling Stribeck law's
+//!   sliding orbit on a belt has one (`tests/friction_continuation.rs`).
 //!
 //! A change of stability shows as [`Side::stability`] before and after each special point.
 //!

@@ -33,30 +33,58 @@
 //! A stick onset and a release at one instant (a zero-duration stop) give diag(1, 0), which
 //! is the reversal's matrix at |f| = μs too: the flow is differentiable there.
 //!
+//! **Parameter derivatives** ([`FrictionDynamics::strobe_sensitivity`]): ∂P^p/∂λ for λ in
+//! ζ, β, w, φ, μs, vb and the law's own parameters (vs, δ, η; k1, k3), carried as columns
+//! beside the state's. On slip steps they are the stiff integrator's parameter columns
+//! ([`crate::stiff::sensitivity`]; the law D(v) = σ μ(σ(v − vb)) gives ∂D/∂vb = −μ'(s) and
+//! σ ∂μ/∂θ at fixed s for μs and θ). On a stop y = y_s + vb (τ − τ_s), y' = vb, so a column
+//! keeps δy, gains ∂vb/∂λ·(τ − τ_s) in it, and has δy' = ∂vb/∂λ. At an event on h(x, τ, λ) = 0
+//! a perturbation δx⁻ (at fixed time) of a parameter that moves the surface jumps by
+//!
+//! ```text
+//! δx⁺ = δx⁻ + (f⁻ − f⁺) δτ_e,   δτ_e = −(∇h·δx⁻ + ∂h/∂λ)/(∇h·f⁻ + ∂h/∂τ)
+//! ```
+//!
+//! (the perturbed motion reaches the surface δτ_e later: the first-order expansion of
+//! h(x⁻ + δx⁻ + f⁻δτ_e, τ_e + δτ_e, λ + δλ) = 0; with ∂h/∂λ = 0 this is the saltation
+//! matrix above), so the parameter adds (f⁻ − f⁺)·∂τ_e/∂λ with ∂τ_e/∂λ = −(∂h/∂λ)/ḣ:
+//!
+//! - **Stick onset**: h = y' − vb, ∂h/∂λ = −∂vb/∂λ, ḣ = a⁻, f⁻ − f⁺ = (0, a⁻):
+//!   δy'⁺ = δy'⁻ − (δy'⁻ − ∂vb/∂λ) = ∂vb/∂λ, δy⁺ = δy⁻: the stuck manifold of the new vb.
+//! - **Reversal**: the same h, f⁻ − f⁺ = (0, a⁻ − a⁺): δy'⁺ = r δy'⁻ + (1 − r) ∂vb/∂λ with
+//!   r = a⁺/a⁻ the saltation matrix's entry.
+//! - **Release**: h = σ f(τ, y; λ) − μs moves with every parameter but f⁻ = f⁺ (the friction
+//!   force is continuous, μ(0) = μs for any parameters), so no jump, whatever ∂τ_r/∂λ.
+//!
+//! At the end the strobe time pT = 2πp/w moves with w: ẋ(pT)·d(pT)/dw, d(pT)/dw = −2πp/w²,
+//! is added to the w column. A state stuck at the strobe (y' = vb) stays stuck as vb moves,
+//! as on the Coulomb belt ([`super::strobe_map_parameter_derivative`]): its columns start
+//! with δy' = ∂vb/∂λ. The test `friction_stability.rs` checks every column against
+//! Richardson-extrapolated central differences of the strobe map.
+//!
 //! **Floquet multipliers** are the eigenvalues of the monodromy matrix; an orbit that sticks
 //! has det M = 0 (the stop erases δy'), so its multipliers are tr M and exactly 0, as for the
 //! PWL model.
 //! For an orbit that slides throughout, det M is carried as a logarithm (steps and reversals)
-//! and the smaller multiplier taken from it ([`ShockleyDynamics::multipliers`]).
+//! and the smaller multiplier taken from it
+//! ([`ShockleyDynamics::multipliers`](super::ShockleyDynamics::multipliers)).
 //!
 //! The test `friction_stability.rs` checks the multipliers against Richardson-extrapolated
 //! central differences of the strobe map, and λ1 = ln|μ1|/T against the measured exponent.
 
-use super::error::StabilityError;
 use super::lyapunov::{measure_exponents, LyapunovExponents, LyapunovOptions};
-use super::matrix::{Matrix2, Multiplier};
-use super::periodic_orbit::{NewtonOptions, PeriodicOrbit, Stability};
-use super::smooth::ShockleyDynamics;
+use super::matrix::Matrix2;
+use super::periodic_orbit::{NewtonOptions, PeriodicOrbit};
 use super::strobe::StrobeImage;
 use super::tangent::TangentRun;
 use super::Dynamics;
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::friction_solver::{FrictionSolver, SlipLaw};
-use crate::params::{Params, State};
+use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
 use crate::solver::{Event, EventKind, Phase, Solver};
-use crate::stiff::{SmoothLaw, StepDerivative};
+use crate::stiff::{Sensitivity, SmoothLaw, StepDerivative};
 
 /// The relative accuracy of the friction solver's strobe map: its slip phases are integrated
 /// to [`crate::friction_solver::FRICTION_TOLERANCE`] (10⁻¹²) and its events located to 10⁻¹², and over a drive period
@@ -143,15 +171,17 @@ impl FrictionDynamics {
     }
 
     /// The periodic orbit of period `period` near `guess` by Newton's method on the p-fold
-    /// strobe map with its Jacobian, as [`ShockleyDynamics::find_periodic_orbit`]: steps
-    /// (M − I)δ = −(P^p(x) − x), halved while the residual grows, until
-    /// max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|); where a full step no
-    /// longer reduces a residual within [`FRICTION_MAP_ACCURACY`] (times the same scale), the
-    /// iterate is at the computed map's own accuracy and is taken as the orbit.
+    /// strobe map with its Jacobian, as
+    /// [`ShockleyDynamics::find_periodic_orbit`](super::ShockleyDynamics::find_periodic_orbit)
+    /// (one Newton for both): steps (M − I)δ = −(P^p(x) − x), halved while the residual
+    /// grows, until max(|Δy|, |Δy'|) ≤ tolerance·max(1, |y|, |y'|)·max(1, max|M_ij|); where a
+    /// full step no longer reduces a residual within [`FRICTION_MAP_ACCURACY`] (times the same
+    /// scale), the iterate is at the computed map's own accuracy and is taken as the orbit.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for invalid parameters, guess, options or p = 0;
-    /// [`StabilityError::NoConvergence`], [`StabilityError::SingularJacobian`]; what the
+    /// [`StabilityError::NoConvergence`](super::StabilityError::NoConvergence),
+    /// [`StabilityError::SingularJacobian`](super::StabilityError::SingularJacobian); what the
     /// solver reports.
     pub fn find_periodic_orbit(
         &self,
@@ -160,103 +190,16 @@ impl FrictionDynamics {
         period: usize,
         options: &NewtonOptions,
     ) -> Result<PeriodicOrbit> {
-        let options = options.validate()?;
-        let params = params.validate()?;
-        if period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "period",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
-        let mut x = State::new(guess.y, guess.v)?;
-        let mut image = self.strobe_map(&params, x, period)?;
-        let residual = |image: &StrobeImage, x: State| {
-            let r = [image.state.y - x.y, image.state.v - x.v];
-            (r[0].abs().max(r[1].abs()), r)
-        };
-        let limit = |x: State, image: &StrobeImage| {
-            options.tolerance
-                * 1f64.max(x.y.abs()).max(x.v.abs())
-                * image.jacobian.max_abs().max(1.0)
-        };
-        let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
-            norm <= FRICTION_MAP_ACCURACY / options.tolerance * limit(x, image)
-        };
-        let (mut norm, mut r) = residual(&image, x);
-        let mut residuals = vec![norm];
-        let mut iterations = 0;
-        while norm > limit(x, &image) {
-            if iterations == options.max_iterations {
-                if at_accuracy(norm, x, &image) {
-                    break;
-                }
-                return Err(StabilityError::NoConvergence {
-                    iterations,
-                    residual: norm,
-                    tolerance: limit(x, &image),
-                }
-                .into());
-            }
-            let m = image.jacobian.minus_identity();
-            let step = m
-                .solve([-r[0], -r[1]])
-                .ok_or(StabilityError::SingularJacobian {
-                    y: x.y,
-                    v: x.v,
-                    determinant: m.det(),
-                })?;
-            let mut fraction = 1.0;
-            let mut halvings = 0;
-            let mut stalled = false;
-            loop {
-                let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
-                let trial_image = self.strobe_map(&params, trial, period)?;
-                let (trial_norm, trial_r) = residual(&trial_image, trial);
-                if trial_norm >= norm && halvings == 0 && at_accuracy(norm, x, &image) {
-                    stalled = true;
-                    break;
-                }
-                if trial_norm < norm || halvings == options.max_halvings {
-                    (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
-                    break;
-                }
-                fraction *= 0.5;
-                halvings += 1;
-            }
-            if stalled {
-                break;
-            }
-            iterations += 1;
-            residuals.push(norm);
-        }
-        let multipliers = if image.log_det.is_none() {
-            // The motion stuck on the way: M = A·diag(1, 0)·B has rank one, so its
-            // multipliers are tr M and exactly 0 (rounding would leave ~1e-16).
-            [
-                Multiplier::real(image.jacobian.trace()),
-                Multiplier::real(0.0),
-            ]
-        } else {
-            ShockleyDynamics::multipliers(&image)
-        };
-        let modulus = multipliers[0].modulus();
-        let stability = if (1.0 - modulus).abs() <= options.neutral_band {
-            Stability::Neutral
-        } else if modulus < 1.0 {
-            Stability::Stable
-        } else {
-            Stability::Unstable
-        };
-        Ok(PeriodicOrbit::from_image(
-            &params,
+        super::map_newton::find_orbit(
+            |params, x| self.strobe_map(params, x, period),
+            params,
+            guess,
             period,
-            x,
-            image,
-            (multipliers, stability),
-            iterations,
-            residuals,
-        ))
+            options,
+            FRICTION_MAP_ACCURACY,
+            None,
+        )
+        .map(|(orbit, _)| orbit)
     }
 
     /// The Lyapunov exponents of the motion from `initial` (at a strobe), measured as for the
@@ -279,6 +222,175 @@ impl FrictionDynamics {
         options.check_horizon(&params)?;
         let mut tangent = self.tangent(&params, initial)?;
         measure_exponents(&mut tangent, &params, &options, monitor)
+    }
+}
+
+/// The columns of [`FrictionDynamics::strobe_sensitivity`]: y0, v0, then ζ, β, w, φ
+/// ([`crate::stiff::sensitivity::EQUATION_PARAMETERS`]), then μs, vb and the law's own
+/// parameters (vs, δ, η of the Stribeck law; k1, k3 of the cubic law), as [`SlipLaw`]'s.
+pub const FRICTION_COLUMNS: usize = 11;
+/// The column of vb in [`FRICTION_COLUMNS`].
+const VB_COLUMN: usize = 7;
+
+impl FrictionDynamics {
+    /// The column of `parameter` in [`FrictionDynamics::strobe_sensitivity`] for the law of
+    /// `params`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a parameter of the other law.
+    pub fn sensitivity_column(params: &Params, parameter: Parameter) -> Result<usize> {
+        use crate::friction::FrictionLaw;
+        let stribeck = matches!(params.law, FrictionLaw::Stribeck { .. });
+        Ok(match parameter {
+            Parameter::Zeta => 2,
+            Parameter::Beta => 3,
+            Parameter::W => 4,
+            Parameter::MuS => 6,
+            Parameter::Vb => VB_COLUMN,
+            Parameter::Vs if stribeck => 8,
+            Parameter::Delta if stribeck => 9,
+            Parameter::Eta if stribeck => 10,
+            Parameter::K1 if !stribeck => 8,
+            Parameter::K3 if !stribeck => 9,
+            other => {
+                return Err(Error::InvalidParameter {
+                    name: other.label(),
+                    value: f64::NAN,
+                    allowed: "is no parameter of this friction law (vs, delta, eta are the \
+                              Stribeck law's; k1, k3 the cubic law's)",
+                })
+            }
+        })
+    }
+
+    /// The p-fold strobe map from `state` with its derivatives by the initial state and the
+    /// parameters ([`FRICTION_COLUMNS`]; see the module documentation): the image and
+    /// ∂P^p/∂(y0, v0, ζ, β, w, φ, μs, vb, θ), the w column with the strobe time pT = 2πp/w
+    /// moving (ẋ(pT)·d(pT)/dw added). A state stuck to the belt at the start stays stuck to
+    /// it as vb moves (as the Coulomb belt's [`super::strobe_map_parameter_derivative`]).
+    ///
+    /// # Errors
+    /// As [`FrictionDynamics::strobe_map`].
+    pub fn strobe_sensitivity(
+        &self,
+        params: &Params,
+        state: State,
+        periods: usize,
+    ) -> Result<(State, Sensitivity)> {
+        if periods == 0 {
+            return Err(Error::InvalidParameter {
+                name: "periods",
+                value: 0.0,
+                allowed: "must be at least 1",
+            });
+        }
+        let mut solver = self.plain_solver(params, state)?;
+        let params = *solver.params();
+        let end = periods as f64 * params.drive_period();
+        // A stop (its onset, or a start on it) maps every column onto the stuck manifold:
+        // δy kept, δy' = ∂vb/∂λ.
+        let stick = |s: &mut Sensitivity| {
+            for c in 0..FRICTION_COLUMNS {
+                let [dy, _] = s.column(c);
+                s.set_column(c, [dy, if c == VB_COLUMN { 1.0 } else { 0.0 }]);
+            }
+        };
+        let mut base = Sensitivity::identity(FRICTION_COLUMNS);
+        if solver.phase() == Phase::Stick {
+            stick(&mut base);
+        }
+        let mut current = base;
+        while solver.time() < end {
+            let before = solver.time();
+            let phase = solver.phase();
+            let event = solver.advance(end)?;
+            let now = solver.time();
+            match phase {
+                Phase::Stick => {
+                    // y = y_s + vb (τ − τ_s): δy grows by ∂vb/∂λ·(τ − τ_s). A release adds
+                    // no jump (the friction force is continuous there).
+                    let [dy, dv] = current.column(VB_COLUMN);
+                    current.set_column(VB_COLUMN, [dy + (now - before), dv]);
+                    base = current;
+                }
+                Phase::SlipPositive | Phase::SlipNegative => {
+                    let sign = if phase == Phase::SlipPositive {
+                        1.0
+                    } else {
+                        -1.0
+                    };
+                    if now > before {
+                        let step = *solver.slip_step().expect("a slip advance has its step");
+                        let law = SlipLaw::new(&params, sign);
+                        let d = StepDerivative::new(&step, &params, &law, FRICTION_COLUMNS).ok_or(
+                            Error::StepSizeTooSmall {
+                                tau: step.t0,
+                                step: step.h,
+                            },
+                        )?;
+                        let whole = now == step.t1();
+                        let theta = if whole { 1.0 } else { (now - step.t0) / step.h };
+                        current = d.apply(&base, theta);
+                        if whole {
+                            base = current;
+                        }
+                    }
+                    if let Some(e) = &event {
+                        if e.kind == EventKind::Stick {
+                            stick(&mut current);
+                        } else {
+                            // A reversal: δy'⁺ = r δy'⁻ + (1 − r) ∂vb/∂λ, r = a⁺/a⁻.
+                            let f = params.drive(e.tau) - e.y - params.belt_force();
+                            let mu0 =
+                                sign * SlipLaw::new(&params, sign).value_and_slope(params.vb).0;
+                            let r = reversal(f, sign, mu0).0[1][1];
+                            for c in 0..FRICTION_COLUMNS {
+                                let [dy, dv] = current.column(c);
+                                let moves = if c == VB_COLUMN { 1.0 } else { 0.0 };
+                                current.set_column(c, [dy, r * dv + (1.0 - r) * moves]);
+                            }
+                        }
+                        base = current;
+                    }
+                }
+            }
+        }
+        let x = solver.state();
+        let field = if solver.phase() == Phase::Stick {
+            [params.vb, 0.0]
+        } else {
+            let sign = if solver.phase() == Phase::SlipPositive {
+                1.0
+            } else {
+                -1.0
+            };
+            let (d, _) = SlipLaw::new(&params, sign).value_and_slope(x.v);
+            [x.v, params.drive(end) - x.y - 2.0 * params.zeta * x.v - d]
+        };
+        let moving = -std::f64::consts::TAU * periods as f64 / (params.w * params.w);
+        let [dy, dv] = current.column(4);
+        current.set_column(4, [dy + field[0] * moving, dv + field[1] * moving]);
+        Ok((x, current))
+    }
+
+    /// ∂P^p/∂λ at `state` for the parameter λ (ζ, w, β, μs, vb or the law's own), from
+    /// [`FrictionDynamics::strobe_sensitivity`].
+    ///
+    /// # Errors
+    /// As [`FrictionDynamics::sensitivity_column`] and
+    /// [`FrictionDynamics::strobe_sensitivity`].
+    pub fn strobe_parameter_derivative(
+        &self,
+        params: &Params,
+        state: State,
+        periods: usize,
+        parameter: Parameter,
+    ) -> Result<[f64; 2]> {
+        let column = Self::sensitivity_column(params, parameter)?;
+        Ok(self
+            .strobe_sensitivity(params, state, periods)?
+            .1
+            .column(column))
     }
 }
 
@@ -331,6 +443,17 @@ impl Dynamics for FrictionDynamics {
     /// [`FRICTION_MAP_ACCURACY`], or `tolerance` when that is larger.
     fn map_tolerance(&self, tolerance: f64) -> f64 {
         tolerance.max(FRICTION_MAP_ACCURACY)
+    }
+
+    /// From the forward sensitivities ([`FrictionDynamics::strobe_parameter_derivative`]).
+    fn parameter_derivative(
+        &self,
+        params: &Params,
+        state: State,
+        periods: usize,
+        parameter: Parameter,
+    ) -> Option<Result<[f64; 2]>> {
+        Some(self.strobe_parameter_derivative(params, state, periods, parameter))
     }
 }
 

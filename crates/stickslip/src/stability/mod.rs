@@ -66,6 +66,7 @@ pub mod dynamics;
 pub(crate) mod error;
 pub mod friction;
 pub mod lyapunov;
+mod map_newton;
 mod matrix;
 pub mod nonperiodic;
 pub mod periodic_orbit;
@@ -81,7 +82,7 @@ pub(crate) mod verdict;
 
 pub use dynamics::{Dynamics, ExactDynamics};
 pub use error::StabilityError;
-pub use friction::{FrictionDynamics, FrictionTangent};
+pub use friction::{FrictionDynamics, FrictionTangent, FRICTION_COLUMNS};
 pub use lyapunov::{
     lyapunov_exponents, lyapunov_exponents_monitored, Estimate, LyapunovExponents, LyapunovOptions,
     SecondExponent,

@@ -148,6 +148,12 @@ impl PeriodicOrbit {
         }
     }
 
+    /// Whether the orbit is rest: no events, stuck (or still) at its strobe. An orbit without
+    /// events that slides throughout against a belt (its slip never changes sign) is no rest.
+    pub fn is_rest(&self) -> bool {
+        self.events.is_empty() && (self.stuck_at_strobe || self.state.v == 0.0)
+    }
+
     /// The largest Lyapunov exponent of the orbit per unit τ, ln|μ_max|/(pT) (−∞ when both
     /// multipliers vanish).
     pub fn exponent(&self) -> f64 {

@@ -34,7 +34,7 @@
 use super::error::StabilityError;
 use super::lyapunov::{measure_exponents, LyapunovExponents, LyapunovOptions};
 use super::matrix::{Matrix2, Multiplier};
-use super::periodic_orbit::{NewtonOptions, PeriodicOrbit, Stability};
+use super::periodic_orbit::{NewtonOptions, PeriodicOrbit};
 use super::sensitivity::SENSITIVITY_PARAMETERS;
 use super::strobe::StrobeImage;
 use super::tangent::TangentRun;
@@ -381,7 +381,7 @@ impl ShockleyDynamics {
 
     /// [`ShockleyDynamics::find_periodic_orbit`], finished as
     /// [`ShockleyDynamics::settling_orbit`] describes when `loose` is given; with the image
-    /// of the guess.
+    /// of the guess. The map's accuracy is the solver's relative tolerance rtol.
     fn find_orbit(
         &self,
         params: &Params,
@@ -390,115 +390,15 @@ impl ShockleyDynamics {
         options: &NewtonOptions,
         loose: Option<(f64, f64)>,
     ) -> Result<(PeriodicOrbit, StrobeImage)> {
-        let options = options.validate()?;
-        let params = params.validate()?;
-        if period == 0 {
-            return Err(Error::InvalidParameter {
-                name: "period",
-                value: 0.0,
-                allowed: "must be at least 1",
-            });
-        }
-        let mut x = State::new(guess.y, guess.v)?;
-        let mut image = self.strobe_map(&params, x, period)?;
-        let first = image.clone();
-        let residual = |image: &StrobeImage, x: State| {
-            let r = [image.state.y - x.y, image.state.v - x.v];
-            (r[0].abs().max(r[1].abs()), r)
-        };
-        let limit = |x: State, image: &StrobeImage| {
-            options.tolerance
-                * 1f64.max(x.y.abs()).max(x.v.abs())
-                * image.jacobian.max_abs().max(1.0)
-        };
-        // The map's own accuracy: its jumps where the solver's decisions change.
-        let rtol = self.map.rtol;
-        let at_accuracy = |norm: f64, x: State, image: &StrobeImage| {
-            norm <= rtol / options.tolerance * limit(x, image)
-        };
-        // Where the settling's iteration may stop (see `settling_orbit`).
-        let finished = |norm: f64, x: State, image: &StrobeImage| {
-            loose.is_some_and(|(tolerance, modulus)| {
-                norm <= tolerance / options.tolerance * limit(x, image)
-                    && Self::multipliers(image)[0].modulus() <= modulus
-            })
-        };
-        let (mut norm, mut r) = residual(&image, x);
-        let mut residuals = vec![norm];
-        let mut iterations = 0;
-        let mut stalled = false;
-        while norm > limit(x, &image) && !finished(norm, x, &image) {
-            if iterations == options.max_iterations {
-                if at_accuracy(norm, x, &image) {
-                    stalled = true;
-                    break;
-                }
-                return Err(StabilityError::NoConvergence {
-                    iterations,
-                    residual: norm,
-                    tolerance: limit(x, &image),
-                }
-                .into());
-            }
-            let m = image.jacobian.minus_identity();
-            let step = m
-                .solve([-r[0], -r[1]])
-                .ok_or(StabilityError::SingularJacobian {
-                    y: x.y,
-                    v: x.v,
-                    determinant: m.det(),
-                })?;
-            let mut fraction = 1.0;
-            let mut halvings = 0;
-            loop {
-                let trial = State::new(x.y + fraction * step[0], x.v + fraction * step[1])?;
-                let trial_image = self.strobe_map(&params, trial, period)?;
-                let (trial_norm, trial_r) = residual(&trial_image, trial);
-                if trial_norm >= norm && halvings == 0 && at_accuracy(norm, x, &image) {
-                    // A full step that does not help within the map's accuracy: its jumps.
-                    stalled = true;
-                    break;
-                }
-                if trial_norm < norm || halvings == options.max_halvings {
-                    (x, image, norm, r) = (trial, trial_image, trial_norm, trial_r);
-                    break;
-                }
-                fraction *= 0.5;
-                halvings += 1;
-            }
-            if stalled {
-                break;
-            }
-            iterations += 1;
-            residuals.push(norm);
-        }
-        let multipliers = Self::multipliers(&image);
-        let modulus = multipliers[0].modulus();
-        if loose.is_some() && !stalled {
-            // The finishing step, from the last image (a step that stalled is not taken).
-            if let Some(step) = image.jacobian.minus_identity().solve([-r[0], -r[1]]) {
-                if let Ok(next) = State::new(x.y + step[0], x.v + step[1]) {
-                    x = next;
-                }
-            }
-        }
-        let stability = if (1.0 - modulus).abs() <= options.neutral_band {
-            Stability::Neutral
-        } else if modulus < 1.0 {
-            Stability::Stable
-        } else {
-            Stability::Unstable
-        };
-        let orbit = PeriodicOrbit::from_image(
-            &params,
+        super::map_newton::find_orbit(
+            |params, x| self.strobe_map(params, x, period),
+            params,
+            guess,
             period,
-            x,
-            image,
-            (multipliers, stability),
-            iterations,
-            residuals,
-        );
-        Ok((orbit, first))
+            options,
+            self.map.rtol,
+            loose,
+        )
     }
 
     /// The periodic orbit through `fixed_point` (the state at a strobe that the

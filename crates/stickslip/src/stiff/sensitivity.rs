@@ -104,6 +104,12 @@ impl Sensitivity {
         [self.rows[0][c], self.rows[1][c]]
     }
 
+    /// Set column `c` to `value` (a jump of the perturbations at an event).
+    pub fn set_column(&mut self, c: usize, value: [f64; 2]) {
+        self.rows[0][c] = value[0];
+        self.rows[1][c] = value[1];
+    }
+
     /// The state block ∂(y, y')/∂(y0, v0).
     pub fn state(&self) -> [[f64; 2]; 2] {
         [
