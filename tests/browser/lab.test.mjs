@@ -1382,6 +1382,39 @@ test('issue 34: the orbit panel shows the Floquet multipliers of stickslip orbit
   await orbitShown();
 });
 
+test('issue 36: the orbit panel shows a belt without a drive: its self-excited cycle, its multipliers and the cycle in the phase plane', async () => {
+  await page.selectOption('select[name="preset-choice"]', 'belt-stribeck');
+  await ready();
+  assert.equal(await orbitShown(), 'ready');
+  const query = await shownQuery();
+  const cli = JSON.parse(stickslip(['orbit', ...flagsOf(query), '--json']));
+  assert.equal(cli.class, 'stick-slip-cycle');
+  const shown = await page.$$eval('#orbit [data-orbit]', (els) =>
+    Object.fromEntries(els.map((e) => [e.dataset.orbit, { text: e.textContent.trim(), ...e.dataset }])),
+  );
+  // The period in full as the CLI prints it, its own (no drive).
+  assert.equal(Number(shown.period.value), cli.cycle_period_tau);
+  assert.match(shown.period.text, /τ = .* s \(its own: no drive\)$/);
+  for (const k of [0, 1]) {
+    assert.equal(Number(shown[`mu${k + 1}`].re), cli.multipliers[k].re, `μ${k + 1} re`);
+    assert.equal(Number(shown[`mu${k + 1}`].im), cli.multipliers[k].im, `μ${k + 1} im`);
+  }
+  assert.deepEqual([shown.mu1.text, shown.mu2.text], ['1', '0']);
+  assert.equal(shown.stability.text, cli.stability);
+  assert.equal(Number(shown.y.value), cli.y_max);
+  assert.match(await page.$eval('[data-orbit="status"]', (e) => e.textContent), /^self-excited cycle, period /);
+  // Both multipliers in the complex plane, and the cycle in the phase plane.
+  assert.equal(await page.$eval('#orbit-plot', (e) => e.dataset.multipliers), '2');
+  const cycle = page.locator('#orbit-cycle');
+  assert.equal(await cycle.isVisible(), true);
+  assert.equal(await cycle.getAttribute('data-samples'), '256');
+  // Back to the paper's circuit: the phase plane goes away.
+  await page.selectOption('select[name="preset-choice"]', 'fig3-2b');
+  await ready();
+  assert.equal(await orbitShown(), 'ready');
+  assert.equal(await cycle.isVisible(), false);
+});
+
 test('no console errors', () => {
   assert.deepEqual(consoleErrors, []);
 });

@@ -429,7 +429,8 @@ pub fn grid<'py>(
 }
 
 /// A periodic orbit by Newton's method; see `stickslip.orbit`. Returns the dict that
-/// `stickslip orbit --json` prints.
+/// `stickslip orbit --json` prints: without a drive on a belt (β = 0, vb ≠ 0) the
+/// self-excited cycle or steady sliding (`SelfExcitedOrbit`).
 #[pyfunction]
 #[pyo3(signature = (experiment, period=None, transient=0, options=None, tolerance=1e-12, max_iterations=30, progress=None))]
 pub fn orbit<'py>(
@@ -455,6 +456,21 @@ pub fn orbit<'py>(
     }
     .validate()
     .map_err(error)?;
+    if e.is_self_excited() {
+        // No drive: the cycle's period is found, not counted in drive periods.
+        if period.is_some() {
+            return Err(PyValueError::new_err(
+                "period counts drive periods, and with beta=0 on a belt there is no drive: the \
+                 self-excited cycle's period is found (leave period out)",
+            ));
+        }
+        let cycle = run_with(py, progress.as_ref(), |_, cancel| {
+            e.clone()
+                .with_cancel(cancel.clone())
+                .self_excited_orbit(&steady)
+        })?;
+        return json_value(py, &cycle);
+    }
     let report = run(py, progress.as_ref(), |monitor| {
         let params = e.params()?;
         let dynamics = e.dynamics()?;

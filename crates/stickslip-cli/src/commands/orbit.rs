@@ -307,17 +307,18 @@ fn print_self_excited(c: &SelfExcitedOrbit) {
     if let Some(y) = c.release_y {
         println!("every stop ends   at y = {y:.12}, y' = vb (the static limit)");
     }
-    match c.multipliers {
-        Some([trivial, other]) => println!(
+    if let Some([trivial, other]) = c.multipliers {
+        println!(
             "multipliers       μ1 = {} (trivial: the motion is autonomous), μ2 = {}",
             multiplier(&trivial),
             multiplier(&other)
-        ),
-        None if c.class == MotionClass::SteadySliding => {}
-        None => println!(
-            "multipliers       not computed for a pure-slip cycle with β = 0 (no drive: the \
-             strobe map of `orbit --period` does not apply)"
-        ),
+        );
+    }
+    if c.class == MotionClass::PureSlipCycle && c.multipliers.is_some() {
+        println!(
+            "                  μ2 is the derivative of the return map on the turning point \
+             y' = 0 at y_max, from the solver's tangent dynamics over one period"
+        );
     }
     if c.release_y.is_some() {
         println!(

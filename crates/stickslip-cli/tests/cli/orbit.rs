@@ -348,3 +348,48 @@ fn a_mechanical_belts_cycle_period_is_in_seconds_too() {
     let seconds = v["cycle_period_s"].as_f64().unwrap();
     assert!((seconds - tau / 100.0).abs() < 1e-12 * seconds, "{v}");
 }
+
+/// A pure-slip cycle (the cubic law about unstable steady sliding, started near it) has its
+/// nontrivial multiplier: the library's (tested against its return map's differences in
+/// `tests/self_excited_orbit.rs`), in the JSON and in words, between 0 and 1 (attracting).
+#[test]
+fn a_pure_slip_cycles_orbit_has_its_multiplier() {
+    let belt = [
+        "orbit",
+        "--vb",
+        "0.65",
+        "--mu-s",
+        "1.5",
+        "--zeta",
+        "0.05",
+        "--beta",
+        "0",
+        "--friction-law",
+        "cubic",
+        "--k1",
+        "0.5",
+        "--k3",
+        "0.3",
+        "--y0",
+        "1.25",
+        "--v0",
+        "0.05",
+    ];
+    let orbit = command_json(&belt);
+    assert_eq!(
+        (&orbit["class"], &orbit["stability"]),
+        (&"pure-slip-cycle".into(), &"stable".into())
+    );
+    let mu = &orbit["multipliers"];
+    assert_eq!(mu[0]["re"].as_f64(), Some(1.0));
+    let mu2 = mu[1]["re"].as_f64().unwrap();
+    assert!(0.0 < mu2 && mu2 < 1.0, "{orbit}");
+    let (_dir, out) = run(&belt);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("μ2 is the derivative of the return map"),
+        "{text}"
+    );
+    assert!(!text.contains("not computed"), "{text}");
+}

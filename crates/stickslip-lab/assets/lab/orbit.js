@@ -1,6 +1,9 @@
 // The periodic orbit of the shown circuit and its Floquet multipliers (GET /api/orbit, the
 // library's OrbitReport and its row of the orbits' table): a table, and the multipliers in
-// the complex plane with the unit circle (inside it every perturbation decays).
+// the complex plane with the unit circle (inside it every perturbation decays). A belt
+// without a drive answers its self-excited cycle (the library's SelfExcitedOrbit): its own
+// period, its multipliers (1, the trivial one of an autonomous motion, and μ2), and the
+// cycle in the phase plane (y, y'); or steady sliding with its eigenvalues.
 
 import { $, num } from './util.js';
 import { latest, isAbort } from './api.js';
@@ -62,6 +65,99 @@ function show(answer) {
   $('[data-orbit="note"]').textContent = stuck ? 'The orbit is stuck at its strobe (τ = 0 mod T).' : '';
 }
 
+/** Fill the table from an answer of /api/orbit for a belt without a drive: the
+ * self-excited cycle (or steady sliding) as `stickslip orbit --json` prints it. */
+function showSelfExcited(answer) {
+  const c = answer.self_excited;
+  const seconds = c.cycle_period_s === null ? '' : ` = ${num(c.cycle_period_s, 6)} s`;
+  if (c.cycle_period_tau === null) {
+    set('period', 'none: steady sliding');
+  } else {
+    set('period', `${num(c.cycle_period_tau, 8)} τ${seconds} (its own: no drive)`, { value: c.cycle_period_tau });
+  }
+  // The cycle's point on the section y' = 0 at its largest y (steady sliding: its state).
+  set('y', num(c.y_max, 10), { value: c.y_max });
+  set('v', '0', { value: 0 });
+  const mu = c.multipliers ?? [];
+  for (const k of [1, 2]) {
+    const m = mu[k - 1];
+    if (m === undefined) {
+      for (const name of [`mu${k}`, `mu${k}-modulus`, `mu${k}-argument`]) set(name, '—');
+      continue;
+    }
+    set(`mu${k}`, complex(m.re, m.im), { re: m.re, im: m.im });
+    set(`mu${k}-modulus`, num(Math.hypot(m.re, m.im), 6), { value: Math.hypot(m.re, m.im) });
+    set(`mu${k}-argument`, num(Math.atan2(m.im, m.re), 6), { value: Math.atan2(m.im, m.re) });
+  }
+  // A limit cycle's largest exponent is that of its trivial multiplier, 0; steady
+  // sliding's is the growth rate of its linearisation.
+  const lambda = c.cycle_period_tau === null ? c.sliding.growth_rate : 0;
+  set('lambda1', num(lambda, 6), { value: lambda });
+  set('stability', c.stability ?? '—');
+  set('stops', c.release_y === null ? '0' : `1 per cycle, stuck ${num(100 * c.stick_fraction, 4)} % of it`);
+  set('converged', 'yes (the steady state settled on it)');
+  const [a, b] = c.sliding_eigenvalues;
+  const sliding = `Steady sliding at y = ${num(c.sliding.equilibrium, 8)}: damping 2ζ + μ′ = ${num(c.sliding.damping, 6)}, eigenvalues ${complex(a.re, a.im)} and ${complex(b.re, b.im)} (${c.sliding_stability}).`;
+  const about = {
+    'stick-slip-cycle': 'No drive: a cycle of its own period. μ1 = 1 is the trivial multiplier of an autonomous motion; μ2 = 0 exactly, for every stop ends in the same state.',
+    'pure-slip-cycle': 'No drive: a cycle of its own period that never sticks. μ1 = 1 is the trivial multiplier of an autonomous motion; μ2 is the derivative of its return map on y′ = 0.',
+    'steady-sliding': 'No drive: the motion settles on steady sliding.',
+  }[c.class] ?? '';
+  $('[data-orbit="note"]').textContent = `${about} ${sliding}`;
+}
+
+/** The self-excited cycle in the phase plane (y, y'), with steady sliding's point; the
+ * canvas is shown for a belt without a drive only. */
+function drawCycle(answer) {
+  const canvas = $('#orbit-cycle');
+  const c = answer && answer.self_excited;
+  canvas.hidden = !c;
+  if (!c) {
+    canvas.dataset.samples = '0';
+    return;
+  }
+  const g = canvas.getContext('2d');
+  const w = canvas.width;
+  const h = canvas.height;
+  g.fillStyle = '#ffffff';
+  g.fillRect(0, 0, w, h);
+  const ys = answer.cycle ? answer.cycle.y : [];
+  const speeds = answer.cycle ? answer.cycle.v : [];
+  const eq = c.sliding.equilibrium;
+  const [y0, y1] = [Math.min(eq, ...ys), Math.max(eq, ...ys)];
+  const [v0, v1] = [Math.min(0, ...speeds), Math.max(0, ...speeds)];
+  const pad = 22;
+  const sy = (w - 2 * pad) / Math.max(y1 - y0, 1e-9);
+  const sv = (h - 2 * pad) / Math.max(v1 - v0, 1e-9);
+  const at = (y, v) => [pad + (y - y0) * sy, h - pad - (v - v0) * sv];
+  g.strokeStyle = '#d6dbd7';
+  g.lineWidth = 1;
+  g.beginPath();
+  g.moveTo(...at(y0, 0));
+  g.lineTo(...at(y1, 0));
+  g.stroke();
+  g.fillStyle = '#5d6763';
+  g.font = '11px system-ui, sans-serif';
+  g.fillText('y', w - 12, at(y1, 0)[1] - 4);
+  g.fillText('y′', 4, 11);
+  g.strokeStyle = '#1f6f5c';
+  g.lineWidth = 1.5;
+  g.beginPath();
+  ys.forEach((y, k) => (k === 0 ? g.moveTo(...at(y, speeds[k])) : g.lineTo(...at(y, speeds[k]))));
+  if (ys.length > 0) g.closePath();
+  g.stroke();
+  // Steady sliding: the equilibrium (y_e, 0), filled when stable.
+  const [x, y] = at(eq, 0);
+  g.strokeStyle = '#c0399b';
+  g.fillStyle = '#c0399b';
+  g.beginPath();
+  g.arc(x, y, 4, 0, 2 * Math.PI);
+  if (c.sliding_stability === 'stable') g.fill();
+  else g.stroke();
+  g.fillText('steady sliding', Math.min(x + 6, w - 84), y - 6);
+  canvas.dataset.samples = String(ys.length);
+}
+
 /** The multipliers in the complex plane, with the unit circle. */
 function draw(answer) {
   const canvas = $('#orbit-plot');
@@ -70,7 +166,7 @@ function draw(answer) {
   const h = canvas.height;
   g.fillStyle = '#ffffff';
   g.fillRect(0, 0, w, h);
-  const mu = answer && answer.orbit ? answer.orbit.multipliers : [];
+  const mu = (answer && (answer.orbit ? answer.orbit.multipliers : answer.self_excited && answer.self_excited.multipliers)) || [];
   // The plane from −R to R, R at least 1.25 (the circle whole) and past every multiplier.
   const reach = Math.max(1.25, ...mu.map((m) => 1.15 * Math.hypot(m.re, m.im)).filter(Number.isFinite));
   const scale = (Math.min(w, h) / 2 - 14) / reach;
@@ -112,17 +208,12 @@ function draw(answer) {
  * (computing, ready, none: no orbit found, error) and `data-query`. */
 export function refreshOrbit(params, query) {
   const p = panel();
-  // Not asked for where there is no strobe map: a belt without a drive.
-  const steady = state.steady;
-  const skip = !steady
-    ? 'no steady state'
-    : steady.cycle_period_tau !== undefined
-      ? 'a motion without a drive has no strobe map: its own cycle is in the measurements'
-      : null;
+  const skip = !state.steady ? 'no steady state' : null;
   if (skip !== null) {
     clearTimeout(timer);
     clear();
     draw(null);
+    drawCycle(null);
     p.dataset.state = 'none';
     p.dataset.query = query;
     $('[data-orbit="status"]').textContent = skip;
@@ -143,7 +234,11 @@ function request(params, query) {
   latest('orbit', 'orbit', params).then(
     (answer) => {
       p.dataset.query = query;
-      if (answer.converged) {
+      if (answer.converged && answer.self_excited) {
+        showSelfExcited(answer);
+        p.dataset.state = 'ready';
+        $('[data-orbit="status"]').textContent = answer.self_excited.summary;
+      } else if (answer.converged) {
         show(answer);
         p.dataset.state = 'ready';
         $('[data-orbit="status"]').textContent = `${state.system === 'shockley' ? 'Shockley diodes (stiff solver)' : 'exact'}: ${answer.orbit.stability}`;
@@ -155,6 +250,7 @@ function request(params, query) {
         $('[data-orbit="note"]').textContent = '';
       }
       draw(answer);
+      drawCycle(answer);
     },
     (e) => {
       if (isAbort(e)) return;
@@ -164,6 +260,7 @@ function request(params, query) {
       $('[data-orbit="status"]').textContent = e.message;
       $('[data-orbit="note"]').textContent = '';
       draw(null);
+      drawCycle(null);
     },
   );
 }

@@ -1,6 +1,8 @@
 //! `GET /api/orbit`: the periodic orbit at one point by Newton's method on the strobe map,
 //! with its Floquet multipliers (`stickslip orbit --json`), for either diode law and the
-//! mechanical oscillator.
+//! mechanical oscillator; without a drive on a belt (β = 0) the self-excited cycle or steady
+//! sliding (`stickslip orbit --json` prints the same), with the cycle run again for the
+//! phase plane.
 
 use super::answer::*;
 use super::caps::CAPS;
@@ -13,6 +15,7 @@ use stickslip::experiment::Experiment;
 use stickslip::options::{OptionKey, OrbitOptions};
 use stickslip::report::{Columns, OrbitTable};
 use stickslip::stability::{NewtonOptions, OrbitReport};
+use stickslip::steady::{self_excited_trace, SelfExcitedOrbit};
 use stickslip::Error;
 
 /// The options `/api/orbit` takes, rows of the option table's `orbit` group (the flags of
@@ -54,6 +57,31 @@ pub struct OrbitAnswer {
     pub arguments: Option<[f64; 2]>,
     /// Why there is no orbit (the library's one line), when `converged` is false.
     pub reason: Option<String>,
+    /// Without a drive on a belt (β = 0): the self-excited cycle or steady sliding, as
+    /// `stickslip orbit --json` prints it ([`SelfExcitedOrbit`]); `orbit`, `table` and
+    /// `arguments` are then null. Left out for a driven motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub self_excited: Option<SelfExcitedOrbit>,
+    /// The self-excited cycle run again from its section, [`CYCLE_SAMPLES`] samples over one
+    /// period (the library's `self_excited_trace`), for the phase plane; left out for a
+    /// driven motion and for steady sliding.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<CycleSamples>,
+}
+
+/// Samples of a self-excited cycle over one period.
+pub const CYCLE_SAMPLES: usize = 256;
+
+/// One period of a self-excited cycle: τ from the start of the steady state's record, y and
+/// y' (dimensionless).
+#[derive(Debug, Serialize)]
+pub struct CycleSamples {
+    /// Dimensionless time τ.
+    pub tau: Vec<f64>,
+    /// Position y.
+    pub y: Vec<f64>,
+    /// Velocity y'.
+    pub v: Vec<f64>,
 }
 
 /// A whole number of `option` from the query, if given.
@@ -112,6 +140,13 @@ impl OrbitRequest {
             .map_err(|e| option_error(&e))?;
         q.finish(&known(&ORBIT_OPTIONS, &[]))?;
         needs_drive(&experiment)?;
+        if experiment.is_self_excited() && period.is_some() {
+            return Err(ApiError::field(
+                option_key(OptionKey::OrbitPeriod),
+                "period counts drive periods, and a belt without a drive (amplitude 0) has \
+                 none: the self-excited cycle's period is found (leave period out)",
+            ));
+        }
         // The law's stability tools (a stiff solver's options checked) before any work.
         experiment.dynamics().map_err(|e| ApiError::library(&e))?;
         Ok(Self {
@@ -135,6 +170,9 @@ impl OrbitRequest {
             .and_then(|s| s.with_max_period(o.max_period))
             .map_err(|err| option_error(&err))?;
         let about = About::new(e);
+        if e.is_self_excited() {
+            return self_excited(e, &steady, about, budget);
+        }
         let found = e.periodic_orbit(o.period, o.transient, &steady, &o.newton, &());
         let orbit = match found {
             Ok(orbit) => orbit,
@@ -148,6 +186,8 @@ impl OrbitRequest {
                     table: None,
                     arguments: None,
                     reason: Some(err.to_string()),
+                    self_excited: None,
+                    cycle: None,
                 })
             }
             Err(err) => return Err(failed(err, budget, "periodic orbit")),
@@ -164,6 +204,58 @@ impl OrbitRequest {
             table: Some(table),
             orbit: Some(report),
             reason: None,
+            self_excited: None,
+            cycle: None,
         })
     }
+}
+
+/// The answer for a belt without a drive: the self-excited cycle `stickslip orbit` finds
+/// (or steady sliding), its one period run again for the phase plane; `converged: false`
+/// with the library's line where no cycle was found.
+fn self_excited(
+    e: &Experiment,
+    steady: &stickslip::SteadyOptions,
+    about: About,
+    budget: &Arc<Budget>,
+) -> Result<OrbitAnswer, ApiError> {
+    let found = e
+        .steady_with(&steady.with_spectrum(false))
+        .and_then(|settled| Ok((e.self_excited_orbit_of(&settled)?, settled)));
+    let (orbit, settled) = match found {
+        Ok(found) => found,
+        Err(err @ Error::Stability(_)) => {
+            return Ok(OrbitAnswer {
+                about,
+                converged: false,
+                orbit: None,
+                table: None,
+                arguments: None,
+                reason: Some(err.to_string()),
+                self_excited: None,
+                cycle: None,
+            })
+        }
+        Err(err) => return Err(failed(err, budget, "self-excited cycle")),
+    };
+    let cycle = match orbit.cycle_period_tau {
+        Some(_) => self_excited_trace(&e.factory(), &settled, CYCLE_SAMPLES)
+            .map_err(|err| failed(err, budget, "self-excited cycle"))?
+            .map(|samples| CycleSamples {
+                tau: samples.iter().map(|s| s.tau).collect(),
+                y: samples.iter().map(|s| s.y).collect(),
+                v: samples.iter().map(|s| s.v).collect(),
+            }),
+        None => None,
+    };
+    Ok(OrbitAnswer {
+        about,
+        converged: true,
+        orbit: None,
+        table: None,
+        arguments: None,
+        reason: None,
+        self_excited: Some(orbit),
+        cycle,
+    })
 }

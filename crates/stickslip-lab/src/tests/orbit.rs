@@ -2,9 +2,12 @@
 //! diodes and the mechanical oscillator, equal to the last bit to what `stickslip orbit
 //! --json` computes (the same library calls), with the row of the orbits' table; an orbit
 //! not found is `converged: false` with the library's line; bad options are a 400 naming the
-//! key, a law the stability tools do not follow a 400 with the library's line.
+//! key, a law the stability tools do not follow a 400 with the library's line; a belt
+//! without a drive answers its self-excited cycle (with one period of it for the phase
+//! plane) or steady sliding.
 
 use super::{get, refused, spec};
+use crate::api::CYCLE_SAMPLES;
 use crate::query::{api_name, option_key, Query};
 use axum::http::StatusCode;
 use serde_json::Value;
@@ -13,6 +16,7 @@ use stickslip::options::OptionKey;
 use stickslip::physical::Mechanics;
 use stickslip::report::{Columns, OrbitTable, Table};
 use stickslip::stability::{NewtonOptions, OrbitReport};
+use stickslip::steady::self_excited_trace;
 use stickslip::Error;
 
 /// The report of `stickslip orbit --json` with its default options for `e`: the same calls
@@ -256,4 +260,88 @@ async fn bad_options_name_their_key_and_a_refused_law_says_the_library_s_line() 
         "beta",
     )
     .await;
+}
+
+/// The mechanical example on a belt at 3 cm/s (vb = 0.3), μs = 1.5, without a drive.
+const BELT: &str =
+    "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&belt-speed=0.03&freq=3&amplitude=0";
+
+/// Without a drive on a belt the answer is the self-excited cycle of `stickslip orbit`
+/// (the library's, to the last bit) with its period run again for the phase plane, or
+/// steady sliding; a period (drive periods) is a 400 naming it.
+#[tokio::test]
+async fn a_belt_without_a_drive_answers_its_self_excited_cycle_or_steady_sliding() {
+    let default = |o: OptionKey| o.default_value().unwrap() as usize;
+    for (q, class) in [
+        (BELT.to_string(), "stick-slip-cycle"),
+        (
+            format!("{BELT}&friction-law=stribeck&stribeck-speed=0.05"),
+            "stick-slip-cycle",
+        ),
+        // Ten times faster (vb = 3): the block never sticks again after its release.
+        (
+            BELT.replace("belt-speed=0.03", "belt-speed=0.3"),
+            "steady-sliding",
+        ),
+    ] {
+        let e = Query::parse(Some(&q)).unwrap().experiment().unwrap();
+        assert!(e.is_self_excited(), "{q}");
+        let steady = e
+            .steady_options()
+            .with_max_periods(default(OptionKey::OrbitMaxPeriods))
+            .unwrap()
+            .with_max_period(default(OptionKey::OrbitMaxPeriod))
+            .unwrap();
+        let (status, answer) = get(&format!("/api/orbit?{q}")).await;
+        assert_eq!(status, StatusCode::OK, "{q}: {answer}");
+        assert_eq!(answer["converged"], true, "{q}");
+        assert_eq!(answer["orbit"], Value::Null, "{q}");
+        let settled = e.steady_with(&steady.with_spectrum(false)).unwrap();
+        let library = e.self_excited_orbit(&steady).unwrap();
+        assert_eq!(
+            answer["self_excited"],
+            serde_json::to_value(&library).unwrap(),
+            "{q}"
+        );
+        assert_eq!(answer["self_excited"]["class"], class, "{q}");
+        let Some(period) = library.cycle_period_tau else {
+            // Steady sliding: no cycle to draw, its eigenvalues in the answer.
+            assert_eq!(answer.get("cycle"), None, "{q}");
+            assert_eq!(answer["self_excited"]["stability"], "stable");
+            continue;
+        };
+        // The period in seconds for the mechanical oscillator, T/ω0.
+        let omega0 = e.scales().unwrap().omega0;
+        assert_eq!(library.cycle_period_s, Some(period / omega0));
+        let multipliers = &answer["self_excited"]["multipliers"];
+        assert_eq!(
+            (multipliers[0]["re"].as_f64(), multipliers[1]["re"].as_f64()),
+            (Some(1.0), Some(0.0))
+        );
+        // The phase plane: the cycle run again by the library, within its extremes.
+        let samples = self_excited_trace(&e.factory(), &settled, CYCLE_SAMPLES)
+            .unwrap()
+            .unwrap();
+        let column = |name: &str| -> Vec<f64> {
+            answer["cycle"][name]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        };
+        assert_eq!(column("y"), samples.iter().map(|s| s.y).collect::<Vec<_>>());
+        assert_eq!(column("v"), samples.iter().map(|s| s.v).collect::<Vec<_>>());
+        assert_eq!(column("tau").len(), CYCLE_SAMPLES);
+        assert!(column("y")
+            .iter()
+            .all(|&y| y >= library.y_min - 1e-9 && y <= library.y_max + 1e-9));
+    }
+    let body = refused(
+        &format!("/api/orbit?{BELT}&{}=1", option_key(OptionKey::OrbitPeriod)),
+        StatusCode::BAD_REQUEST,
+        "a belt without a drive",
+    )
+    .await;
+    assert_eq!(body["field"], option_key(OptionKey::OrbitPeriod));
 }

@@ -47,7 +47,14 @@ Example::
 
 from ._api import boundary, phase_diagram, simulate, steady, sweep, theory
 from ._common import EVENT_DTYPE, EVENT_KINDS, MOTION_CLASSES, PARAMETERS, PHASE_LABELS
-from ._stability import STOP_DTYPE, LyapunovResult, PeriodicOrbit, lyapunov, orbit
+from ._stability import (
+    STOP_DTYPE,
+    LyapunovResult,
+    PeriodicOrbit,
+    SelfExcitedOrbit,
+    lyapunov,
+    orbit,
+)
 from ._tables import PhaseDiagram, SweepResult
 from ._trajectory import SteadyState, Trajectory
 from ._core import Experiment, __version__
@@ -100,6 +107,7 @@ __all__ = [
     "LyapunovResult",
     "PeriodicOrbit",
     "PhaseDiagram",
+    "SelfExcitedOrbit",
     "SteadyState",
     "SweepResult",
     "Trajectory",

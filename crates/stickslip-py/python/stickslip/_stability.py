@@ -1,10 +1,10 @@
-"""A periodic orbit and its Floquet multipliers (:func:`orbit`), the largest Lyapunov exponent
-(:func:`lyapunov`)."""
+"""A periodic orbit and its Floquet multipliers (:func:`orbit`; without a drive on a belt the
+self-excited cycle or steady sliding), the largest Lyapunov exponent (:func:`lyapunov`)."""
 
 from __future__ import annotations
 
 import copy
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
@@ -90,6 +90,78 @@ class PeriodicOrbit:
                 f"multipliers {mu}, {self.iterations} Newton steps>")
 
 
+class SelfExcitedOrbit:
+    """The orbit of a self-excited motion: a block on a moving belt without a drive
+    (``beta=0``, ``vb != 0``), which settles on a cycle of its own period or on steady
+    sliding (``stickslip.orbit``).
+
+    ``to_dict()`` is exactly the JSON of ``stickslip orbit --json`` for the same input.
+    Dimensionless: times in τ = ω0·t, rates per unit τ.
+
+    Attributes:
+        summary: the result in a few words (``self-excited cycle, period T τ (class)`` or
+            ``self-excited: steady sliding at y = y_e (stability)``).
+        motion_class: 'stick-slip-cycle', 'pure-slip-cycle' or 'steady-sliding' (the JSON's
+            ``class``).
+        cycle_period_tau: the cycle's period T in τ, found (not given); None for steady
+            sliding. cycle_period_s: T/ω0 in seconds for a physical model, else None.
+        section: where the cycle was recognised ('stick-onset', 'reversal',
+            'turning-point'), None for steady sliding.
+        release_y: the position where every stop of a stick-slip cycle ends,
+            sgn(vb)·μs − 2ζ vb (with y' = vb); None without stops.
+        multipliers: complex128 array of the cycle's two Floquet multipliers, the trivial one
+            (1: the motion is autonomous) first; [1, 0] for a stick-slip cycle (every stop
+            ends in the same state), [1, μ2] for a pure-slip cycle (μ2 the derivative of its
+            Poincaré return map, from the solver's tangent dynamics); None for steady sliding.
+        stability: 'stable', 'unstable' or 'neutral' (the cycle's from its nontrivial
+            multiplier, or the equilibrium's), None when not known; stable: whether it is
+            'stable'.
+        y_max, y_min: the extremes of y over the cycle (the equilibrium for steady sliding).
+        stick_fraction: the fraction of the period stuck to the belt.
+        sliding_equilibrium: y_e = sgn(vb)·μ(|vb|), steady sliding's position (y' = 0);
+            sliding_damping: 2ζ + μ'(|vb|), the damping of small oscillations about it;
+            sliding_growth_rate, sliding_frequency: their rate and angular frequency per
+            unit τ; sliding_eigenvalues: complex128 array of its linearisation's
+            eigenvalues, the larger real part first; sliding_stability: 'stable',
+            'unstable' or 'neutral' (whether or not the motion settled there).
+        experiment: the experiment.
+    """
+
+    def __init__(self, experiment: Experiment, report: Dict[str, Any]) -> None:
+        self.experiment = experiment
+        self._report = report
+        r = report
+        self.summary: str = r["summary"]
+        self.motion_class: str = r["class"]
+        self.cycle_period_tau: Optional[float] = r["cycle_period_tau"]
+        self.cycle_period_s: Optional[float] = r["cycle_period_s"]
+        self.section: Optional[str] = r["section"]
+        self.release_y: Optional[float] = r["release_y"]
+        self.multipliers: Optional[np.ndarray] = (
+            None if r["multipliers"] is None
+            else np.array([complex(m["re"], m["im"]) for m in r["multipliers"]]))
+        self.stability: Optional[str] = r["stability"]
+        self.stable: bool = r["stability"] == "stable"
+        self.y_max: float = r["y_max"]
+        self.y_min: float = r["y_min"]
+        self.stick_fraction: float = r["stick_fraction"]
+        sliding = r["sliding"]
+        self.sliding_equilibrium: float = sliding["equilibrium"]
+        self.sliding_damping: float = sliding["damping"]
+        self.sliding_growth_rate: float = sliding["growth_rate"]
+        self.sliding_frequency: float = sliding["frequency"]
+        self.sliding_eigenvalues = np.array(
+            [complex(m["re"], m["im"]) for m in r["sliding_eigenvalues"]])
+        self.sliding_stability: str = r["sliding_stability"]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The report as ``stickslip orbit --json`` prints it (a new dict of plain values)."""
+        return copy.deepcopy(self._report)
+
+    def __repr__(self) -> str:
+        return f"<stickslip.SelfExcitedOrbit {self.summary}>"
+
+
 class LyapunovResult:
     """The Lyapunov exponents of a motion and what they say (``stickslip.lyapunov``).
 
@@ -172,12 +244,18 @@ class LyapunovResult:
 
 def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: int = 0,
           tolerance: float = 1e-12, max_iterations: int = 30, progress: Progress = None,
-          **options: Any) -> PeriodicOrbit:
+          **options: Any) -> Union[PeriodicOrbit, SelfExcitedOrbit]:
     """A periodic orbit by Newton's method on the p-fold strobe map (the state once every p
     drive periods), with its Jacobian: its Floquet multipliers say whether it is stable and
     how fast perturbations grow or decay (as ``stickslip orbit``). With the PWL law the
     Jacobian is exact; with Shockley diodes it is the derivative of the stiff solver's
     computed map (the variational equations on the solver's own steps).
+
+    Without a drive on a belt (``beta=0``, ``vb != 0``) the motion is self-excited: the
+    result is a ``SelfExcitedOrbit``, the cycle the motion from the initial state settles on
+    (its own period in τ and seconds, class, multipliers, extremes, stick fraction) or
+    steady sliding with the eigenvalues of its linearisation. ``period`` and ``transient``
+    count drive periods and do not apply there (a period is refused).
 
     Args:
         experiment: a ``stickslip.Experiment`` with its drive given (PWL or Shockley diodes,
@@ -195,7 +273,8 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
             max_period (16), tolerance is Newton's (above).
 
     Returns:
-        A ``PeriodicOrbit``; ``to_dict()`` equals ``stickslip orbit --json``.
+        A ``PeriodicOrbit`` (a ``SelfExcitedOrbit`` without a drive on a belt);
+        ``to_dict()`` equals ``stickslip orbit --json``.
 
     Raises:
         ValueError: bad input, no period found, Newton's method failing,
@@ -209,6 +288,9 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
         ...                     period=1, transient=2000)
         >>> u.stability, round(u.lambda1, 5)
         ('unstable', 0.01747)
+        >>> c = stickslip.orbit(stickslip.Experiment(zeta=0.05, mu_s=1.5, vb=0.3))
+        >>> c.motion_class, round(c.cycle_period_tau, 9), c.multipliers.real.tolist()
+        ('stick-slip-cycle', 7.182830239, [1.0, 0.0])
     """
     experiment = _with_model(experiment, None)
     unknown = set(options) - {"max_periods", "max_period"}
@@ -224,6 +306,8 @@ def orbit(experiment: Experiment, period: Optional[int] = None, *, transient: in
     with _progress.reporter(progress, "orbit", "periods") as callback:
         report = _core.orbit(experiment, period, transient, options, tolerance, max_iterations,
                              callback)
+    if "cycle_period_tau" in report:
+        return SelfExcitedOrbit(experiment, report)
     return PeriodicOrbit(experiment, report)
 
 

@@ -9,7 +9,7 @@ use crate::scan::Monitor;
 use crate::stability::{
     Dynamics, LyapunovOptions, NewtonOptions, NonperiodicClassification, PeriodicOrbit,
 };
-use crate::steady::{periodic_orbit_from_steady_of, SelfExcitedOrbit, SteadyOptions};
+use crate::steady::{periodic_orbit_from_steady_of, SelfExcitedOrbit, SteadyOptions, SteadyState};
 use crate::Unsupported;
 use std::ops::ControlFlow;
 
@@ -103,7 +103,8 @@ impl Experiment {
 
     /// The orbit of a self-excited motion (β = 0 on a belt, [`Experiment::is_self_excited`]):
     /// the cycle `steady` settles on from the initial state, its period in τ (and seconds for
-    /// a physical model) and its multipliers (1 and exactly 0 for a stick-slip cycle), or
+    /// a physical model) and its multipliers (1 and exactly 0 for a stick-slip cycle, 1 and
+    /// the return map's derivative from the tangent dynamics for a pure-slip cycle), or
     /// steady sliding with the eigenvalues of its linearisation ([`SelfExcitedOrbit`]).
     ///
     /// ```
@@ -121,7 +122,18 @@ impl Experiment {
     /// As [`SelfExcitedOrbit::from_steady`]; as [`Experiment::steady_with`].
     pub fn self_excited_orbit(&self, steady: &SteadyOptions) -> Result<SelfExcitedOrbit> {
         let settled = self.steady_with(&steady.with_spectrum(false))?;
-        SelfExcitedOrbit::from_steady(&settled, self.scales().map(|s| s.omega0))
+        self.self_excited_orbit_of(&settled)
+    }
+
+    /// [`Experiment::self_excited_orbit`] of a steady state this experiment settled on
+    /// ([`Experiment::steady_with`]), for a caller that keeps the steady state too (to run
+    /// its cycle again, [`crate::steady::self_excited_trace`]).
+    ///
+    /// # Errors
+    /// As [`SelfExcitedOrbit::from_steady`] and [`SelfExcitedOrbit::with_tangent`].
+    pub fn self_excited_orbit_of(&self, settled: &SteadyState) -> Result<SelfExcitedOrbit> {
+        SelfExcitedOrbit::from_steady(settled, self.scales().map(|s| s.omega0))?
+            .with_tangent(self.dynamics()?.as_ref(), &settled.params)
     }
 
     /// The state `periods` drive periods after the initial state, by the model's solver.

@@ -43,7 +43,7 @@ pub use exponent::{
 pub use options::SteadyOptions;
 pub use report::SteadyReport;
 pub use self_excited::{self_excited_state, CycleSection, SelfExcited, SlidingStability};
-pub use self_excited_orbit::SelfExcitedOrbit;
+pub use self_excited_orbit::{pure_slip_multiplier, SelfExcitedOrbit};
 pub use spectrum::{Harmonic, Spectrum};
 pub use state::SteadyState;
 

@@ -6,14 +6,28 @@
 //! along the cycle stays a shift). The other is exactly 0 for a stick-slip cycle, for every
 //! law: every stop ends at the same state, y = sgn(vb)·μs − 2ζ vb with y' = vb (where the
 //! spring and damper's force reaches the static limit), so sticking collapses every
-//! perturbation across the cycle onto that point. A pure-slip cycle's nontrivial multiplier
-//! is not computed here ([`SelfExcitedOrbit::multipliers`] is `None`).
+//! perturbation across the cycle onto that point.
+//!
+//! **A pure-slip cycle's multiplier.** The block never sticks, so the flow is differentiable
+//! along the cycle and its nontrivial multiplier μ2 is the derivative of the Poincaré return
+//! map on any section the cycle crosses transversally; on the turning point of y's maximum
+//! (y' = 0, where the slip s = −vb ≠ 0) it is P'(y_max) for P(y) = the next maximum of y from
+//! (y, 0). It is computed from the solver's tangent dynamics ([`Dynamics::tangent`]: the
+//! friction solver's step derivatives and the saltation matrices of its reversals for a
+//! smooth law, the exact segments for Coulomb's) over one period T from (y_max, 0): the
+//! monodromy matrix M = ∂x(T)/∂x(0) has the eigenvalue 1 along the flow, f(x0) = (0, y'')
+//! (so M = [[m11, 0], [m21, 1]] on the cycle), and its determinant is the other,
+//! μ2 = det M = m11 = P'(y_max). The tangent carries ln|det M| itself (a product of its steps'
+//! and events' determinants), which keeps a small μ2 to its relative accuracy. The test
+//! `self_excited_orbit.rs` checks μ2 against Richardson differences of P (steps 10⁻⁵ and
+//! half), and a stick-slip cycle's P' = 0 by the same differences.
 
 use super::classify::MotionClass;
 use super::self_excited::{CycleSection, SlidingStability};
 use super::state::SteadyState;
 use crate::error::Result;
-use crate::stability::{Multiplier, Stability};
+use crate::params::{Params, State};
+use crate::stability::{Dynamics, Multiplier, Stability, StabilityError};
 use crate::theory::SteadySliding;
 use serde::{Deserialize, Serialize};
 
@@ -35,8 +49,10 @@ pub struct SelfExcitedOrbit {
     /// The position at which every stop of a stick-slip cycle ends, sgn(vb)·μs − 2ζ vb (with
     /// y' = vb); `None` without stops.
     pub release_y: Option<f64>,
-    /// The Floquet multipliers of the cycle, [1, 0] for a stick-slip cycle (see the module
-    /// documentation); `None` for steady sliding and for a pure-slip cycle.
+    /// The Floquet multipliers of the cycle, the trivial one (1) first: [1, 0] for a
+    /// stick-slip cycle, [1, μ2] for a pure-slip cycle (μ2 from the tangent dynamics, see the
+    /// module documentation); `None` for steady sliding, and for a pure-slip cycle from
+    /// [`SelfExcitedOrbit::from_steady`] alone (without [`SelfExcitedOrbit::with_tangent`]).
     pub multipliers: Option<[Multiplier; 2]>,
     /// The cycle's orbital stability from its nontrivial multiplier (stable for a stick-slip
     /// cycle); for steady sliding, the equilibrium's.
@@ -140,5 +156,55 @@ impl SelfExcitedOrbit {
             )),
             _ => Ok(settled(None, None, None)),
         }
+    }
+
+    /// A pure-slip cycle's nontrivial multiplier μ2 from the tangent dynamics of `dynamics`
+    /// (the model's, [`crate::experiment::Experiment::dynamics`]) with the parameters
+    /// `params` of the steady state (see the module documentation), and its stability
+    /// (stable for μ2 < 1); any other orbit is returned as it is.
+    ///
+    /// # Errors
+    /// [`StabilityError::NoPeriod`] when the motion from the cycle's turning point sticks
+    /// within a period (it is then not a pure-slip cycle); what the solver reports.
+    pub fn with_tangent(mut self, dynamics: &dyn Dynamics, params: &Params) -> Result<Self> {
+        let (MotionClass::PureSlipCycle, Some(period)) = (self.class, self.cycle_period_tau) else {
+            return Ok(self);
+        };
+        let mu2 = pure_slip_multiplier(dynamics, params, self.y_max, period)?;
+        self.multipliers = Some([Multiplier::real(1.0), Multiplier::real(mu2)]);
+        self.stability = Some(if mu2 < 1.0 {
+            Stability::Stable
+        } else if mu2 > 1.0 {
+            Stability::Unstable
+        } else {
+            Stability::Neutral
+        });
+        Ok(self)
+    }
+}
+
+/// The nontrivial multiplier μ2 = det M of a pure-slip cycle of period `period` (in τ) whose
+/// largest y is `y_max` (a turning point, y' = 0): ln|det M| of the tangent dynamics of
+/// `dynamics` over one period from (y_max, 0) (see the module documentation).
+///
+/// # Errors
+/// [`StabilityError::NoPeriod`] when the motion sticks on the way (M is then singular and the
+/// cycle not a pure-slip one); what the solver reports.
+pub fn pure_slip_multiplier(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    y_max: f64,
+    period: f64,
+) -> Result<f64> {
+    let mut tangent = dynamics.tangent(params, State { y: y_max, v: 0.0 })?;
+    tangent.run_until(period, &mut |_| {})?;
+    match tangent.log_det() {
+        Some(log_det) if tangent.stops() == 0 => Ok(log_det.exp()),
+        _ => Err(StabilityError::NoPeriod {
+            periods_run: 1,
+            exponent: None,
+            verdict: None,
+        }
+        .into()),
     }
 }
