@@ -346,16 +346,13 @@ impl Bifurcation {
     /// not depend on the number of threads.
     ///
     /// # Errors
-    /// [`Error::Cancelled`]; invalid options; [`crate::Unsupported::SmoothFrictionLaw`] for
-    /// a Stribeck or cubic law, which the continuation does not follow yet
-    /// ([`Experiment::check_coulomb_tool`]); whatever the solver reports.
+    /// [`Error::Cancelled`]; invalid options; whatever the solver reports.
     pub fn branches(
         &self,
         steps: &[BifurcationStep],
         options: &ContinuationOptions,
         monitor: &dyn Monitor,
     ) -> Result<Vec<Branch>> {
-        self.experiment.check_coulomb_tool()?;
         let options = options.validate()?;
         let (lo, hi) = self
             .axis

@@ -359,9 +359,8 @@ pub enum Unsupported {
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
     /// The Stribeck and cubic friction laws are solved by `simulate`, `steady`, `sweep`,
-    /// `phase-diagram` (the exponent map too), `orbit`, `lyapunov`, `bifurcation` and
-    /// `basins`; `continue`, `curve` and a bifurcation diagram's branches follow Coulomb's
-    /// law only.
+    /// `phase-diagram` (the exponent map too), `orbit`, `lyapunov`, `continue`,
+    /// `bifurcation` and `basins`; `curve` follows Coulomb's law only.
     SmoothFrictionLaw,
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
@@ -399,10 +398,10 @@ impl std::fmt::Display for Unsupported {
                  Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
-                "curve (and the branches of a bifurcation plot) follow Coulomb's friction law \
-                 so far: the Stribeck and cubic laws are solved by simulate, steady, sweep, \
-                 phase-diagram, orbit, lyapunov, continue, bifurcation and basins (use \
-                 --friction-law coulomb here)"
+                "the two-parameter curves (curve) follow Coulomb's friction law so far: the \
+                 Stribeck and cubic laws are solved by simulate, steady, sweep, phase-diagram, \
+                 orbit, lyapunov, continue, bifurcation and basins (use --friction-law coulomb \
+                 here)"
             }
             Unsupported::TheoryNeedsCoulombAtRest => {
                 "the theory (the paper's series, the exact periodic solution) is that of \

@@ -9,6 +9,7 @@
 use stickslip::attractor::{strobe_sets_overlap, AttractorKind, RecordOptions};
 use stickslip::basins::{BasinMap, BasinMethod, BasinOptions, Basins};
 use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
+use stickslip::continuation::ContinuationOptions;
 use stickslip::friction::FrictionLaw;
 use stickslip::scan::{Axis, Grid, ParameterRange, SweepDirection};
 use stickslip::stability::{LyapunovOptions, NewtonOptions, PeriodicOrbit};
@@ -142,6 +143,58 @@ fn a_bifurcation_diagram_has_steadys_orbits_and_their_exponents() {
                 step.value
             );
         }
+    }
+}
+
+/// A diagram's branches (the plot's lines) are `continue`'s: with a Stribeck belt they pass
+/// through the diagram's orbits, as Newton's method finds them at the branch's own values.
+#[test]
+fn a_bifurcation_diagrams_branches_pass_through_its_orbits() {
+    let experiment = belt(STRIBECK, (0.05, 1.0, 2.0, 1.5, 0.3));
+    let values = vec![0.9, 1.0, 1.1];
+    let diagram = Bifurcation::new(&experiment, Axis::new(Parameter::W, values).unwrap())
+        .unwrap()
+        .direction(SweepDirection::Up)
+        .options(BifurcationOptions {
+            record: RecordOptions {
+                transient_periods: 100,
+                points: 10,
+                ..RecordOptions::default()
+            },
+            first_transient_periods: 300,
+        })
+        .unwrap();
+    let steps = diagram.run(&()).unwrap();
+    let branches = diagram
+        .branches(&steps, &ContinuationOptions::default(), &())
+        .expect("the continuation follows the Stribeck law");
+    assert!(!branches.is_empty());
+    for step in &steps {
+        assert_eq!(step.record.period, Some(1), "w = {}", step.value);
+        let nearest = branches
+            .iter()
+            .flat_map(|b| &b.points)
+            .min_by(|a, b| {
+                (a.value - step.value)
+                    .abs()
+                    .total_cmp(&(b.value - step.value).abs())
+            })
+            .unwrap();
+        assert!(
+            (nearest.value - step.value).abs() <= 0.05,
+            "w = {}: nearest branch point at {}",
+            step.value,
+            nearest.value
+        );
+        let at = experiment.clone().with_w(nearest.value).unwrap();
+        let newton = orbit(&at, step.record.strobes[0], 1);
+        assert!(
+            distance(newton.state, nearest.orbit.state) <= 1e-8 * scale(newton.state),
+            "w = {}: {:?} against {:?}",
+            nearest.value,
+            newton.state,
+            nearest.orbit.state
+        );
     }
 }
 

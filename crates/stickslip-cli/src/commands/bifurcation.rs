@@ -168,27 +168,15 @@ pub fn run(args: Args) -> Result<()> {
             });
             bar.finish_and_clear();
             crate::output::check_interrupt()?;
-            match result {
-                // A Stribeck or cubic law: the continuation does not follow it yet.
-                Err(stickslip::Error::Unsupported(stickslip::Unsupported::SmoothFrictionLaw)) => {
-                    eprintln!(
-                        "bifurcation: the plot draws the points alone: its branches come from \
-                         the continuation, which follows Coulomb's friction law so far"
-                    );
-                    Vec::new()
-                }
-                result => {
-                    let branches = result?;
-                    let special: usize = branches.iter().map(|b| b.special.len()).sum();
-                    eprintln!(
-                        "bifurcation: {} branches of periodic orbits continued in {:.2} s, {special} special points{}",
-                        branches.len(),
-                        started.elapsed().as_secs_f64(),
-                        special_list(&branches)
-                    );
-                    branches
-                }
-            }
+            let branches = result?;
+            let special: usize = branches.iter().map(|b| b.special.len()).sum();
+            eprintln!(
+                "bifurcation: {} branches of periodic orbits continued in {:.2} s, {special} special points{}",
+                branches.len(),
+                started.elapsed().as_secs_f64(),
+                special_list(&branches)
+            );
+            branches
         };
         let title = format!("bifurcation diagram: {}", fixed(&steps, parameter));
         crate::diagrams::diagram_figure(&steps, &branches, parameter, &title).render(path)?;

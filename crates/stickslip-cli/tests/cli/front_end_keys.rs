@@ -25,6 +25,13 @@ const SIGNATURE: &str = "a keyword of a Python constructor's static signature (p
 /// The occurrences a front end may write, each on a line holding its fragment.
 const ALLOWED: &[Allowance] = &[
     Allowance {
+        file: "stickslip-py/python/stickslip/_stability.py",
+        word: "damping",
+        fragment: "self.sliding_damping: float = sliding[\"damping\"]",
+        reason: "the self-excited orbit's answer field `sliding.damping` (steady sliding's \
+                 2ζ + μ'(|vb|)), not the oscillator's γ",
+    },
+    Allowance {
         file: "stickslip-cli/src/commands/reproduce/figures/fig1.rs",
         word: "friction",
         fragment: "&[\"velocity\", \"friction\"]",

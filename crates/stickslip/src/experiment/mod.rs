@@ -462,8 +462,7 @@ impl Experiment {
         law.dynamics(self.shockley, self.cancel.0.clone())
     }
 
-    /// `Ok` for a tool that takes Coulomb's friction law alone (`continue`, `curve` and the
-    /// branches of a bifurcation diagram: the continuation).
+    /// `Ok` for a tool that takes Coulomb's friction law alone (`curve`).
     ///
     /// # Errors
     /// [`crate::Unsupported::SmoothFrictionLaw`] for a Stribeck or cubic law.
