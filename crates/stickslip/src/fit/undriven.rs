@@ -417,14 +417,28 @@ impl lm::Problem for Problem<'_> {
     }
 
     fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
-        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
-        for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
-            *bound = self.setup.bounds(k);
-        }
-        if let Some((k, v)) = self.pinned {
-            bounds[k] = (v, v);
-        }
-        bounds
+        self.setup.all_bounds(n, self.pinned)
+    }
+}
+
+impl passes::Passes for Problem<'_> {
+    /// Each record by its RMS residual.
+    fn reweight(&mut self, first: &lm::Solution) {
+        let mut start_row = 0;
+        let weights: Vec<f64> = (0..self.data.len())
+            .map(|j| {
+                let len = self.time[j].len();
+                let w = self.weights[j];
+                let s = rms(&first.residuals[start_row..start_row + len]) / w;
+                start_row += len;
+                1.0 / noise_floor(s, &self.response[j], self.data[j].resolution)
+            })
+            .collect();
+        self.weights = weights;
+    }
+
+    fn advance(&mut self, iterations: usize) {
+        self.watch.before += iterations;
     }
 }
 
@@ -730,172 +744,25 @@ pub fn fit_undriven_monitored(
             allowed: "a model that can be computed at the starting values",
         },
     };
-    let first = lm::minimise(&mut problem, x, settings)?.ok_or_else(failed)?;
-    // Second pass: each record weighted by its RMS residual of the first.
-    let mut start_row = 0;
-    let weights: Vec<f64> = (0..data.len())
-        .map(|j| {
-            let len = problem.time[j].len();
-            let w = problem.weights[j];
-            let s = rms(&first.residuals[start_row..start_row + len]) / w;
-            start_row += len;
-            1.0 / noise_floor(s, &problem.response[j], data[j].resolution)
-        })
-        .collect();
-    problem.weights = weights;
-    problem.watch.before += first.iterations;
-    let mut solution = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
-    let mut iterations = first.iterations + solution.iterations;
     let n_free = setup.free.len();
+    let passed = passes::run(
+        &mut problem,
+        x,
+        n_free,
+        settings,
+        passes::Reach::Full,
+        failed,
+    )?;
+    let summary = passed.summarise(
+        &problem,
+        (experiment, &setup),
+        (free, &plan.warnings),
+        options,
+        data.iter()
+            .map(|m| (m.file.clone(), m.clipped, m.time.len())),
+    );
+    let (solution, iterations, dof) = (&passed.solution, passed.iterations, passed.dof);
     let n_values = solution.x.len();
-    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
-    let t = t_quantile_975(dof);
-    // A restart from elsewhere, and the intervals' checks (linear where the model is linear
-    // enough, else the profile's; see `profile`): a point lower than the minimum is a
-    // minimum elsewhere, from which the fit goes on (three times at most), as for driven
-    // records.
-    let quick = lm::Settings {
-        max_iterations: QUICK_ITERATIONS.min(settings.max_iterations),
-        tolerance: 1e-6,
-        ..settings
-    };
-    let mut lower_by = None;
-    let mut intervals = None;
-    for _ in 0..3 {
-        problem.watch.before += solution.iterations;
-        let s2 = (solution.sum_squares / dof as f64).max(lm::Problem::floor(&problem));
-        let covariance = Covariance::of(&solution, n_free);
-        let mut lower = None;
-        if let Some(point) =
-            covariance.restart(&solution.x, &lm::Problem::bounds(&problem, n_values))
-        {
-            if let Some(restart) = lm::minimise(&mut problem, point, quick)? {
-                if restart.sum_squares < solution.sum_squares - RESTART_LOWER * s2 {
-                    lower = Some(restart);
-                }
-            }
-        }
-        if lower.is_none() {
-            match profile::intervals(
-                &mut problem,
-                &solution,
-                &covariance.inverse,
-                n_free,
-                t,
-                quick,
-            )? {
-                profile::Outcome::Intervals(found) => {
-                    lower_by = None;
-                    intervals = Some((found, covariance));
-                    break;
-                }
-                profile::Outcome::Lower(point) => {
-                    lower = lm::minimise(&mut problem, point, settings)?
-                        .filter(|s| s.sum_squares < solution.sum_squares);
-                }
-            }
-        }
-        match lower {
-            Some(better) => {
-                lower_by = Some((solution.sum_squares - better.sum_squares) / s2);
-                iterations += better.iterations;
-                solution = better;
-            }
-            None => {
-                intervals = None;
-                break;
-            }
-        }
-    }
-    let covariance = match intervals.as_ref() {
-        Some((_, c)) => c.clone(),
-        None => Covariance::of(&solution, n_free),
-    };
-    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(&problem));
-    let linear: Vec<([f64; 2], Interval)> = (0..n_free)
-        .map(|k| {
-            let sigma = covariance.sigma(k, s2);
-            (
-                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
-                if sigma.is_finite() {
-                    Interval::Linear
-                } else {
-                    Interval::None
-                },
-            )
-        })
-        .collect();
-    let found = intervals.map_or(linear, |(found, _)| found);
-    let (fitted_parameters, correlation) =
-        uncertainties(&setup, &solution, &covariance, &found, s2);
-    let parameters: Vec<FittedParameter> = free
-        .iter()
-        .map(
-            |&p| match fitted_parameters.iter().find(|f| f.parameter == p) {
-                Some(f) => *f,
-                None => {
-                    let start = p.get(experiment).unwrap_or(f64::NAN);
-                    FittedParameter {
-                        parameter: p,
-                        value: start,
-                        stderr: f64::NAN,
-                        ci95: [f64::NAN; 2],
-                        initial: start,
-                        interval: Interval::Held,
-                    }
-                }
-            },
-        )
-        .collect();
-    let index = |p: FitParameter| setup.free.iter().position(|&q| q == p);
-    let named_correlation: Vec<Vec<f64>> = free
-        .iter()
-        .map(|&a| {
-            free.iter()
-                .map(|&b| match (index(a), index(b)) {
-                    (Some(i), Some(k)) => correlation[i][k],
-                    _ => f64::NAN,
-                })
-                .collect()
-        })
-        .collect();
-    let mut warnings = plan.warnings.clone();
-    let converged = solution.converged && lower_by.is_none();
-    if !converged {
-        let why = match lower_by {
-            Some(lower_by) => warning::NotConverged::Restart { lower_by },
-            None if solution.iterations >= options.max_iterations => {
-                warning::NotConverged::Iterations {
-                    limit: options.max_iterations,
-                }
-            }
-            None => warning::NotConverged::Stalled {
-                predicted: solution.decrement,
-            },
-        };
-        warnings.insert(0, FitWarning::NotConverged { why });
-    }
-    for (k, &p) in setup.free.iter().enumerate() {
-        if covariance.unseen[k] {
-            warnings.push(FitWarning::Unseen { parameter: p });
-        }
-        if solution.at_bound[k] {
-            warnings.push(FitWarning::AtBound {
-                parameter: p,
-                bound: setup.value(k, solution.x[k]),
-            });
-        }
-    }
-    warnings.extend(identify::correlations(&setup.free, &correlation));
-    for m in data {
-        if m.clipped > 0 {
-            warnings.push(FitWarning::Clipped {
-                file: m.file.clone(),
-                samples: m.clipped,
-                of: m.time.len(),
-            });
-        }
-    }
     let (models, cycle) = problem.models(&solution.x).ok_or_else(failed)?;
     let fitted = setup.at(&solution.x[..n_free]).ok_or_else(failed)?;
     let scales = fitted.scales().expect("a mechanical oscillator has scales");
@@ -945,8 +812,8 @@ pub fn fit_undriven_monitored(
     let (aic, bic) = criteria(&groups, n_values);
     Ok(FitReport {
         model: experiment.diode_model(),
-        parameters,
-        correlation: named_correlation,
+        parameters: summary.parameters,
+        correlation: summary.correlation,
         records,
         rows: vec![],
         rms_residual_v: rms(&all),
@@ -958,9 +825,9 @@ pub fn fit_undriven_monitored(
         aic,
         bic,
         iterations,
-        converged,
+        converged: summary.converged,
         jacobian: Jacobian::CentralDifferences,
         experiment: fitted,
-        warnings,
+        warnings: summary.warnings,
     })
 }
