@@ -113,7 +113,9 @@ pub use report::{
     RowFit,
 };
 pub use table::{fit_table, fit_table_monitored};
-pub use undriven::{check_undriven, fit_undriven, fit_undriven_monitored, UndrivenRecord};
+pub use undriven::{
+    check_undriven, fit_undriven, fit_undriven_monitored, UndrivenRecord, UndrivenStart,
+};
 pub use warning::{FitWarning, NotConverged};
 
 use crate::experiment::{DiodeModel, Experiment};

@@ -25,6 +25,9 @@ pub(super) enum Reach {
     Quick,
 }
 
+/// A 95 % interval's ends in a value's coordinate, and how they were found.
+type Ends = ([f64; 2], Interval);
+
 /// Where [`run`] ended: the solution, the iterations of every minimisation that moved it,
 /// by how much a lower minimum lay below the one before it (`None` when none did, or the
 /// last search found none), the intervals with the covariance they were checked against
@@ -33,7 +36,7 @@ pub(super) struct Passed {
     pub(super) solution: lm::Solution,
     pub(super) iterations: usize,
     lower_by: Option<f64>,
-    intervals: Option<(Vec<([f64; 2], Interval)>, Covariance)>,
+    intervals: Option<(Vec<Ends>, Covariance)>,
     pub(super) dof: usize,
     t: f64,
 }
@@ -160,7 +163,7 @@ impl Passed {
             None => Covariance::of(solution, n_free),
         };
         let s2 = variance(solution.sum_squares, self.dof, floor);
-        let found: Vec<([f64; 2], Interval)> = match self.intervals.as_ref() {
+        let found: Vec<Ends> = match self.intervals.as_ref() {
             Some((found, _)) => found.clone(),
             None => (0..n_free)
                 .map(|k| {
