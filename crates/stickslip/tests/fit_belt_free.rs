@@ -390,26 +390,51 @@ fn records_and_oscillators_an_undriven_fit_cannot_take_are_refused() {
     );
 }
 
-/// The record of the worked example in docs/fit.md (`examples/fit/undriven/stribeck.csv`):
-/// that of the Stribeck belt's recovery test above (seed 311), committed so that the page's
-/// command runs as written. This test makes it again and requires the committed file byte
-/// for byte; with `STICKSLIP_BLESS=1` it writes it.
+/// The records of the worked examples in docs/fit.md (`examples/fit/undriven/`): that of the
+/// Stribeck belt's recovery test above (`stribeck.csv`, seed 311), the same belt at twice the
+/// speed (`fast.csv`, seed 312, of the two-speed test) and the Coulomb belt from rest 0.3 mm
+/// behind the spring's rest length (`rest.csv`, the first draw of the test from rest),
+/// committed so that the page's commands run as written. This test makes them again and
+/// requires the committed files byte for byte; with `STICKSLIP_BLESS=1` it writes them.
 #[test]
-fn the_committed_undriven_record_is_what_the_oracle_makes() {
+fn the_committed_undriven_records_are_what_the_oracle_makes() {
     let dir =
         std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/fit/undriven");
-    let path = dir.join("stribeck.csv");
-    let text = record(&experiment(STRIBECK), 3.4, 2400, &mut Rng(311));
-    if std::env::var("STICKSLIP_BLESS").is_ok_and(|v| v != "0") {
-        std::fs::create_dir_all(&dir).unwrap();
-        std::fs::write(&path, &text).unwrap();
+    let fast = experiment(Belt {
+        belt_speed: 2.0 * STRIBECK.belt_speed,
+        ..STRIBECK
+    });
+    let coulomb = experiment(COULOMB);
+    let files = [
+        (
+            "stribeck.csv",
+            record(&experiment(STRIBECK), 3.4, 2400, &mut Rng(311)),
+        ),
+        ("fast.csv", record(&fast, 3.4, 2400, &mut Rng(312))),
+        (
+            "rest.csv",
+            from_rest(
+                &coulomb,
+                START,
+                3.5 * period(&coulomb),
+                1600,
+                &mut Rng(2000),
+            ),
+        ),
+    ];
+    for (name, text) in files {
+        let path = dir.join(name);
+        if std::env::var("STICKSLIP_BLESS").is_ok_and(|v| v != "0") {
+            std::fs::create_dir_all(&dir).unwrap();
+            std::fs::write(&path, &text).unwrap();
+        }
+        assert!(
+            std::fs::read_to_string(&path).ok().as_deref() == Some(text.as_str()),
+            "examples/fit/undriven/{name} differs from what this test makes; \
+             STICKSLIP_BLESS=1 cargo test --release -p stickslip --test fit_belt_free -- \
+             committed writes it"
+        );
     }
-    assert!(
-        std::fs::read_to_string(&path).ok().as_deref() == Some(text.as_str()),
-        "examples/fit/undriven/stribeck.csv differs from what this test makes; \
-         STICKSLIP_BLESS=1 cargo test --release -p stickslip --test fit_belt_free -- committed \
-         writes it"
-    );
 }
 
 /// A record from rest (`time_s,r (m)`, as [`record`] makes them): the block at rest on the
