@@ -163,6 +163,30 @@ fn show(report: &FitReport) {
     );
 }
 
+/// The Stribeck belt's law as the fits free it: (parameter, truth).
+fn stribeck_law() -> [(FitParameter, f64); 3] {
+    let (vs, eta) = STRIBECK.stribeck.unwrap();
+    [
+        (FitParameter::MuS, STRIBECK.mu_s),
+        (FitParameter::StribeckSpeed, vs),
+        (FitParameter::ViscousFriction, eta),
+    ]
+}
+
+/// The Stribeck belt's fits' start, F0 (N) given: μs = 1.4, vs and η at 0.8 and 0.6 of theirs.
+fn stribeck_start(f0: f64) -> Experiment {
+    let (vs, eta) = STRIBECK.stribeck.unwrap();
+    experiment_with(
+        Belt {
+            mu_s: 1.4,
+            stribeck: Some((0.8 * vs, 0.6 * eta)),
+            ..STRIBECK
+        },
+        STIFFNESS,
+        f0,
+    )
+}
+
 /// Whether each (parameter, truth) is inside its 95 % interval, and the first that is not.
 fn covers(report: &FitReport, truths: &[(FitParameter, f64)]) -> Result<(), String> {
     for &(p, truth) in truths {
@@ -181,31 +205,14 @@ fn covers(report: &FitReport, truths: &[(FitParameter, f64)]) -> Result<(), Stri
 fn an_undriven_stribeck_belt_fit_recovers_mu_s_the_stribeck_speed_and_the_viscous_friction() {
     let truth = experiment(STRIBECK);
     let data = [read(&record(&truth, 3.4, 2400, &mut Rng(311)), "free.csv")];
-    let (vs, eta) = STRIBECK.stribeck.unwrap();
-    let start = experiment(Belt {
-        mu_s: 1.4,
-        stribeck: Some((0.8 * vs, 0.6 * eta)),
-        ..STRIBECK
-    });
-    let free = [
-        FitParameter::MuS,
-        FitParameter::StribeckSpeed,
-        FitParameter::ViscousFriction,
-    ];
+    let start = stribeck_start(F0);
+    let free = stribeck_law().map(|(p, _)| p);
     let report = fit_undriven(&start, &data, &free, &FitOptions::default()).unwrap();
     show(&report);
     assert!(report.converged, "{report:?}");
     assert_eq!(report.jacobian, Jacobian::CentralDifferences);
     assert_eq!(report.records[0].class, MotionClass::StickSlipCycle);
-    covers(
-        &report,
-        &[
-            (FitParameter::MuS, STRIBECK.mu_s),
-            (FitParameter::StribeckSpeed, vs),
-            (FitParameter::ViscousFriction, eta),
-        ],
-    )
-    .unwrap();
+    covers(&report, &stribeck_law()).unwrap();
     // μs and the Stribeck speed to a few per cent. One stick-slip cycle shows the viscous
     // slope mostly through its combination with μs (both raise the friction of the fast
     // part of the slip): the two are correlated beyond 0.99 and named so, and η's interval
@@ -542,16 +549,7 @@ fn a_coulomb_belt_from_rest_shows_the_kinetic_level_apart_from_mu_s() {
 #[test]
 fn a_stribeck_belt_from_rest_recovers_the_levels_and_the_law() {
     let truth = experiment(STRIBECK);
-    let (vs, eta) = STRIBECK.stribeck.unwrap();
-    let start = experiment_with(
-        Belt {
-            mu_s: 1.4,
-            stribeck: Some((0.8 * vs, 0.6 * eta)),
-            ..STRIBECK
-        },
-        STIFFNESS,
-        0.27,
-    );
+    let start = stribeck_start(0.27);
     let free = [
         FitParameter::Friction,
         FitParameter::MuS,
@@ -563,16 +561,8 @@ fn a_stribeck_belt_from_rest_recovers_the_levels_and_the_law() {
     let report = fit_undriven(&start, &data, &free, &FitOptions::default()).unwrap();
     show(&report);
     assert!(report.converged, "{:?}", report.warnings);
-    covers(
-        &report,
-        &[
-            (FitParameter::Friction, F0),
-            (FitParameter::MuS, STRIBECK.mu_s),
-            (FitParameter::StribeckSpeed, vs),
-            (FitParameter::ViscousFriction, eta),
-        ],
-    )
-    .unwrap();
+    covers(&report, &[(FitParameter::Friction, F0)]).unwrap();
+    covers(&report, &stribeck_law()).unwrap();
     for p in [FitParameter::Friction, FitParameter::MuS] {
         let v = report.value(p).unwrap();
         assert!(v.stderr < 0.05 * v.value, "{p}: {v:?}");
@@ -599,22 +589,13 @@ fn a_stribeck_belt_from_rest_recovers_the_levels_and_the_law() {
 #[test]
 fn two_belt_speeds_fix_the_stribeck_law_better_than_one() {
     let truth = experiment(STRIBECK);
-    let (vs, eta) = STRIBECK.stribeck.unwrap();
     let fast_speed = 2.0 * STRIBECK.belt_speed;
     let fast = experiment(Belt {
         belt_speed: fast_speed,
         ..STRIBECK
     });
-    let start = experiment(Belt {
-        mu_s: 1.4,
-        stribeck: Some((0.8 * vs, 0.6 * eta)),
-        ..STRIBECK
-    });
-    let free = [
-        FitParameter::MuS,
-        FitParameter::StribeckSpeed,
-        FitParameter::ViscousFriction,
-    ];
+    let start = stribeck_start(F0);
+    let free = stribeck_law().map(|(p, _)| p);
     let slow = read(&record(&truth, 3.4, 2400, &mut Rng(311)), "slow.csv");
     let quick = read(&record(&fast, 3.4, 2400, &mut Rng(312)), "fast.csv")
         .on_belt(fast_speed)
@@ -630,15 +611,7 @@ fn two_belt_speeds_fix_the_stribeck_law_better_than_one() {
     let joint = fit_undriven(&start, &[slow, quick], &free, &FitOptions::default()).unwrap();
     show(&joint);
     assert!(joint.converged, "{:?}", joint.warnings);
-    covers(
-        &joint,
-        &[
-            (FitParameter::MuS, STRIBECK.mu_s),
-            (FitParameter::StribeckSpeed, vs),
-            (FitParameter::ViscousFriction, eta),
-        ],
-    )
-    .unwrap();
+    covers(&joint, &stribeck_law()).unwrap();
     let chi2 = joint.chi2_dof.unwrap();
     assert!((0.7..1.5).contains(&chi2), "chi2/dof = {chi2}");
     // Each record's own cycle: the faster belt's is another.
