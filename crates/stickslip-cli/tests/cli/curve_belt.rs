@@ -5,6 +5,10 @@
 
 use crate::common::*;
 
+/// A case: the model's flags, what is followed, `[vary, from, to]` of the search (and of
+/// `continue --over`), `[over, from, to]` of the curve.
+type Case<'a> = (&'a [&'a str], &'a str, [&'a str; 3], [&'a str; 3]);
+
 /// Run `args` with `--json`; the parsed standard output.
 fn json(args: &[&str]) -> serde_json::Value {
     let (_dir, out) = run(&[args, &["--json"]].concat());
@@ -16,7 +20,7 @@ fn json(args: &[&str]) -> serde_json::Value {
 fn a_belts_curve_starts_at_continues_special_point() {
     // (model, follow, vary from → to, over from → to): a period doubling in vb over β on the
     // damped belt, a fold in vb over w on the undamped one.
-    let cases: [(&[&str], &str, [&str; 3], [&str; 3]); 2] = [
+    let cases: [Case; 2] = [
         (
             &[
                 "--zeta", "0.05", "--w", "0.5", "--beta", "1", "--mu-s", "1.5",
