@@ -414,3 +414,57 @@ fn virtual_minimum(params: &Params, tau: f64, y: f64, sign: f64) -> Option<Candi
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a belt a stuck block rides along, y = y_s + vb·(τ − τ_s), so a stop's net force
+    /// β cos(wτ + φ) − y − 2ζ·vb is extremal where F'(τ) = vb, not where F'(τ) = 0. Each
+    /// release condition inside a stop sits at such a point, with the value |net| − μs that
+    /// the solver's own motion gives there, and the net force 10⁻³ either side lies on one
+    /// side of it (an extremum).
+    #[test]
+    fn a_stops_release_conditions_on_a_belt_sit_at_its_net_forces_extrema() {
+        let params = Params::new(0.05, 0.5, 1.0)
+            .and_then(|p| p.with_mu_s(3.0))
+            .and_then(|p| p.with_vb(0.1))
+            .unwrap();
+        // Stuck at the start (|net| = 0.99 < μs) for about 30 time units, two drive periods
+        // and more: the net force β cos − vb·τ swings through several extrema meanwhile.
+        let state = State::new(0.0, 0.1).unwrap();
+        let (list, _) =
+            candidates_of(&params, state, 3, Some(BorderKind::ReleaseTangential), None).unwrap();
+        let inside: Vec<&Candidate> = list.iter().filter(|c| c.variant).collect();
+        assert!(inside.len() >= 3, "{list:?}");
+        let net = |tau: f64| {
+            let mut solver = ExactSolver::new(params, state);
+            crate::solver::run_until(&mut solver, tau, |_| {}).unwrap();
+            let s = solver.state();
+            assert_eq!(s.v, params.vb, "stuck at τ = {tau}");
+            params.beta * (params.w * tau + params.phi).cos() - s.y - 2.0 * params.zeta * params.vb
+        };
+        for c in inside {
+            let (w, beta) = (params.w, params.beta);
+            let rate = -beta * w * (w * c.tau + params.phi).sin() - params.vb;
+            assert!(
+                rate.abs() < 1e-12,
+                "τ = {}: net force's rate {rate:e}",
+                c.tau
+            );
+            let at = net(c.tau);
+            assert!(
+                (at.abs() - params.mu_s - c.value).abs() < 1e-12,
+                "τ = {}: {} against |{at}| − μs",
+                c.tau,
+                c.value
+            );
+            let (before, after) = (net(c.tau - 1e-3), net(c.tau + 1e-3));
+            assert!(
+                (before - at) * (after - at) > 0.0,
+                "τ = {}: {before}, {at}, {after}",
+                c.tau
+            );
+        }
+    }
+}
