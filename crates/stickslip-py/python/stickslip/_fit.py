@@ -498,8 +498,7 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
     with _progress.reporter(progress, "fit", "iterations") as callback:
         results = [FitResult(experiment, d) for d in
                    _core.fit(experiment, records, table, names, per_record, callback,
-                             from_rest=from_rest,
-                             belt_speeds=None if belt_speeds is None else list(belt_speeds))]
+                             from_rest, None if belt_speeds is None else list(belt_speeds))]
     result = results if per_record else results[0]
     if strict:
         for r in results:
