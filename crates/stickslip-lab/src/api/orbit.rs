@@ -69,6 +69,23 @@ pub struct OrbitAnswer {
     pub cycle: Option<CycleSamples>,
 }
 
+impl OrbitAnswer {
+    /// The answer where no orbit (or self-excited cycle) was found: `converged: false` and
+    /// the library's line `err` saying why.
+    fn not_found(about: About, err: &Error) -> Self {
+        Self {
+            about,
+            converged: false,
+            orbit: None,
+            table: None,
+            arguments: None,
+            reason: Some(err.to_string()),
+            self_excited: None,
+            cycle: None,
+        }
+    }
+}
+
 /// Samples of a self-excited cycle over one period.
 pub const CYCLE_SAMPLES: usize = 256;
 
@@ -178,18 +195,7 @@ impl OrbitRequest {
             Ok(orbit) => orbit,
             // No orbit to report: Newton's method did not converge, or the steady state
             // that starts it found no period (the library's line says which).
-            Err(err @ Error::Stability(_)) => {
-                return Ok(OrbitAnswer {
-                    about,
-                    converged: false,
-                    orbit: None,
-                    table: None,
-                    arguments: None,
-                    reason: Some(err.to_string()),
-                    self_excited: None,
-                    cycle: None,
-                })
-            }
+            Err(err @ Error::Stability(_)) => return Ok(OrbitAnswer::not_found(about, &err)),
             Err(err) => return Err(failed(err, budget, "periodic orbit")),
         };
         let report = OrbitReport::of(&orbit, &params, dynamics.as_ref())
@@ -224,18 +230,7 @@ fn self_excited(
         .and_then(|settled| Ok((e.self_excited_orbit_of(&settled)?, settled)));
     let (orbit, settled) = match found {
         Ok(found) => found,
-        Err(err @ Error::Stability(_)) => {
-            return Ok(OrbitAnswer {
-                about,
-                converged: false,
-                orbit: None,
-                table: None,
-                arguments: None,
-                reason: Some(err.to_string()),
-                self_excited: None,
-                cycle: None,
-            })
-        }
+        Err(err @ Error::Stability(_)) => return Ok(OrbitAnswer::not_found(about, &err)),
         Err(err) => return Err(failed(err, budget, "self-excited cycle")),
     };
     let cycle = match orbit.cycle_period_tau {
