@@ -93,13 +93,9 @@ pub fn run(args: Args) -> Result<()> {
         .with_max_period(orbit.max_period)?;
     let newton = orbit.newton;
     eprintln!("orbit: {experiment}");
-    if experiment.is_self_excited() {
-        if orbit.period.is_some() {
-            anyhow::bail!(
-                "--period counts drive periods, and with --beta 0 on a belt there is no drive: \
-                 the self-excited cycle's period is found (leave --period out)"
-            );
-        }
+    // Without a drive the cycle's own period is found; a period asked for is the library's
+    // to refuse (`periodic_orbit`).
+    if experiment.is_self_excited() && orbit.period.is_none() {
         let cycle = experiment.self_excited_orbit(&steady)?;
         if args.json {
             println!("{}", serde_json::to_string_pretty(&cycle)?);

@@ -293,10 +293,14 @@ fn a_self_excited_belts_orbit_is_steadys_cycle() {
         "{text}"
     );
     assert!(text.contains("μ2 = 0 exactly"), "{text}");
-    // No drive: no drive periods to count.
+    // No drive: no drive periods to count (the library's refusal, a usage error).
     let (_dir, out) = run(&[&["orbit"], &belt[..], &["--period", "1"]].concat());
-    assert_eq!(out.status.code(), Some(1));
-    assert!(stderr(&out).contains("--beta 0"), "{}", stderr(&out));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("invalid --period 1: must be left out on a belt without a drive"),
+        "{}",
+        stderr(&out)
+    );
     // lyapunov: a limit cycle (λ1 = 0 within its error, λ2 = −∞ from the stops).
     let l = command_json(&[&["lyapunov"], &belt[..]].concat());
     assert_eq!(

@@ -157,13 +157,6 @@ impl OrbitRequest {
             .map_err(|e| option_error(&e))?;
         q.finish(&known(&ORBIT_OPTIONS, &[]))?;
         needs_drive(&experiment)?;
-        if experiment.is_self_excited() && period.is_some() {
-            return Err(ApiError::field(
-                option_key(OptionKey::OrbitPeriod),
-                "period counts drive periods, and a belt without a drive (amplitude 0) has \
-                 none: the self-excited cycle's period is found (leave period out)",
-            ));
-        }
         // The law's stability tools (a stiff solver's options checked) before any work.
         experiment.dynamics().map_err(|e| ApiError::library(&e))?;
         Ok(Self {
@@ -187,7 +180,9 @@ impl OrbitRequest {
             .and_then(|s| s.with_max_period(o.max_period))
             .map_err(|err| option_error(&err))?;
         let about = About::new(e);
-        if e.is_self_excited() {
+        // Without a drive the cycle's own period is found; a period asked for is the
+        // library's to refuse (`periodic_orbit`: a 400 naming it, before any work).
+        if e.is_self_excited() && o.period.is_none() {
             return self_excited(e, &steady, about, budget);
         }
         let found = e.periodic_orbit(o.period, o.transient, &steady, &o.newton, &());
