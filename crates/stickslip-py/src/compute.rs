@@ -456,14 +456,9 @@ pub fn orbit<'py>(
     }
     .validate()
     .map_err(error)?;
-    if e.is_self_excited() {
-        // No drive: the cycle's period is found, not counted in drive periods.
-        if period.is_some() {
-            return Err(PyValueError::new_err(
-                "period counts drive periods, and with beta=0 on a belt there is no drive: the \
-                 self-excited cycle's period is found (leave period out)",
-            ));
-        }
+    // No drive: the cycle's own period is found; a period asked for is the library's to
+    // refuse (`periodic_orbit`).
+    if e.is_self_excited() && period.is_none() {
         let cycle = run_with(py, progress.as_ref(), |_, cancel| {
             e.clone()
                 .with_cancel(cancel.clone())

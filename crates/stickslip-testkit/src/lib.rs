@@ -13,6 +13,7 @@ use stickslip::steady::SolverFactory;
 use stickslip::DiodePair;
 
 pub mod allowances;
+pub mod belts;
 pub mod differences;
 pub mod ngspice;
 pub mod oracle;

@@ -445,23 +445,57 @@ impl FrictionSolver {
 }
 
 /// The step from `before`'s state whose end has s = sign·(v − vb) = 0, near θ = `guess` of
-/// `step`: Newton's method on the step size, each iterate the integrator's own step of that
-/// size, kept inside the bracket that the accepted step gives.
+/// `step`: Newton's method on the step size ([`newton_on_step_size`]), each iterate the
+/// integrator's own step of that size (a size it cannot take halves the bracket).
 fn polish(before: &Radau5<SlipLaw>, step: &Step, guess: f64, sign: f64, vb: f64) -> Result<Step> {
-    let params = *before.params();
-    let law = *before.law();
-    let (mut lo, mut hi) = (0.0, step.h);
-    let mut h = guess * step.h;
-    let mut best: Option<Step> = None;
+    let found = newton_on_step_size(
+        before.params(),
+        before.law(),
+        step.h,
+        guess * step.h,
+        sign,
+        vb,
+        |h| {
+            let mut trial = before.clone();
+            let candidate = trial.fixed_step(h)?;
+            let (end, t) = (candidate.x1, candidate.t1());
+            Some((candidate, end, t))
+        },
+    );
+    let mut found = found.ok_or(Error::StepSizeTooSmall {
+        tau: step.t0,
+        step: step.h,
+    })?;
+    // At the event the block moves with the belt.
+    found.x1[1] = vb;
+    Ok(found)
+}
+
+/// Newton's method on the size h of a step from a slip's state for the end at
+/// s = sign·(v − vb) = 0 (ds/dh = sign·y'' there), from h = `guess`, each iterate kept inside
+/// the bracket (0, `size`) that the signs of s at the ends taken so far narrow (bisection
+/// where Newton's iterate leaves it); at most 60 iterates, to |s| ≤ 1e-13·max(1, |vb|) or a
+/// bracket of 1e-14·max(1, |τ|). `end(h)` takes the integrator's own step of size h: what it
+/// found, the end state (y, y') and time, or `None` where no step of that size is taken (the
+/// bracket is then halved). The last step taken, `None` if none was.
+fn newton_on_step_size<T>(
+    params: &Params,
+    law: &SlipLaw,
+    size: f64,
+    guess: f64,
+    sign: f64,
+    vb: f64,
+    mut end: impl FnMut(f64) -> Option<(T, [f64; 2], f64)>,
+) -> Option<T> {
+    let (mut lo, mut hi) = (0.0, size);
+    let mut h = guess;
+    let mut best = None;
     for _ in 0..60 {
-        let mut trial = before.clone();
-        let Some(candidate) = trial.fixed_step(h) else {
+        let Some((found, [y, v], t)) = end(h) else {
             h = 0.5 * (lo + hi);
             continue;
         };
-        let [y, v] = candidate.x1;
         let s = sign * (v - vb);
-        let t = candidate.t1();
         // ds/dh = sign·y''.
         let (d, _) = law.value_and_slope(v);
         let accel = params.drive(t) - y - 2.0 * params.zeta * v - d;
@@ -470,7 +504,7 @@ fn polish(before: &Radau5<SlipLaw>, step: &Step, guess: f64, sign: f64, vb: f64)
         } else {
             hi = h;
         }
-        best = Some(candidate);
+        best = Some(found);
         if s.abs() <= 1e-13 * 1f64.max(vb.abs()) || hi - lo <= 1e-14 * 1f64.max(t.abs()) {
             break;
         }
@@ -481,13 +515,7 @@ fn polish(before: &Radau5<SlipLaw>, step: &Step, guess: f64, sign: f64, vb: f64)
             0.5 * (lo + hi)
         };
     }
-    let mut found = best.ok_or(Error::StepSizeTooSmall {
-        tau: step.t0,
-        step: step.h,
-    })?;
-    // At the event the block moves with the belt.
-    found.x1[1] = vb;
-    Ok(found)
+    best
 }
 
 /// Samples of s per explicit step in the search for its first zero.
@@ -577,9 +605,9 @@ fn explicit_step(
 }
 
 /// [`polish`] on the explicit integrator: the step from `before`'s state whose end has
-/// s = 0, by Newton's method on the step size (ds/dh = sign·y'' at the end) from `guess`,
-/// each iterate the integrator's own step of that size, kept inside the bracket (0, `size`)
-/// of a step whose end is past s = 0; with `checked`, only a step its error estimate accepts
+/// s = 0, by Newton's method on the step size ([`newton_on_step_size`]) from `guess`, each
+/// iterate the integrator's own step of that size, inside the bracket (0, `size`) of a step
+/// whose end is past s = 0; with `checked`, only a step its error estimate accepts
 /// (`None` otherwise). `work` counts the right-hand sides it evaluated.
 fn polish_explicit(
     before: &Dop853<SlipLaw>,
@@ -590,37 +618,14 @@ fn polish_explicit(
     checked: bool,
     work: &mut u64,
 ) -> Result<Option<DopStep>> {
-    let params = *before.params();
-    let law = *before.law();
     let t0 = before.time();
-    let (mut lo, mut hi) = (0.0, size);
-    let mut h = guess;
-    let mut best_h = None;
     let mut trial = before.clone();
-    for _ in 0..60 {
-        let [y, v] = trial.end_of(h);
+    let h = newton_on_step_size(before.params(), before.law(), size, guess, sign, vb, |h| {
+        let end = trial.end_of(h);
         *work += 11;
-        let s = sign * (v - vb);
-        let t = t0 + h;
-        let (d, _) = law.value_and_slope(v);
-        let accel = params.drive(t) - y - 2.0 * params.zeta * v - d;
-        if s > 0.0 {
-            lo = h;
-        } else {
-            hi = h;
-        }
-        best_h = Some(h);
-        if s.abs() <= 1e-13 * 1f64.max(vb.abs()) || hi - lo <= 1e-14 * 1f64.max(t.abs()) {
-            break;
-        }
-        let newton = h - s / (sign * accel);
-        h = if accel != 0.0 && newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-    }
-    let h = best_h.ok_or(Error::StepSizeTooSmall {
+        Some((h, end, t0 + h))
+    });
+    let h = h.ok_or(Error::StepSizeTooSmall {
         tau: t0,
         step: size,
     })?;

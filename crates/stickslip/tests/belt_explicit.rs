@@ -11,10 +11,10 @@
 //! - trajectories of damped and forced belts against the oracle, events to 1e-12.
 
 use stickslip::cancel::Cancel;
-use stickslip::friction::FrictionLaw;
 use stickslip::friction_solver::{FrictionSolver, SlipIntegrator};
 use stickslip::steady::{self, MotionClass, SteadyOptions};
-use stickslip::{Circuit, EventKind, Experiment, Params, Solver, State};
+use stickslip::{EventKind, Params, Solver, State};
+use stickslip_testkit::belts::benchmark_stribeck_belt;
 use stickslip_testkit::oracle::{Oracle, OracleLaw as TestLaw};
 
 /// The oracle's step on the slips.
@@ -46,15 +46,7 @@ fn explicit(p: Params, initial: State) -> FrictionSolver {
 
 #[test]
 fn a_stribeck_map_is_the_same_on_both_integrators_to_1e_9() {
-    let experiment = Experiment::dimensionless(Circuit::paper().scales().zeta(), 1.0, 0.0)
-        .and_then(|e| {
-            e.with_law(FrictionLaw::Stribeck {
-                vs: 0.5,
-                delta: 2.0,
-                eta: 0.05,
-            })
-        })
-        .unwrap();
+    let experiment = benchmark_stribeck_belt();
     // The experiment's factory searches on the explicit integrator; this one on Radau.
     let fast = experiment.factory();
     let radau = |p: Params, s: State| -> stickslip::Result<Box<dyn Solver + Send>> {

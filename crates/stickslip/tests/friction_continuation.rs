@@ -15,21 +15,7 @@ use stickslip::solver::run_until;
 use stickslip::stability::{FrictionDynamics, NewtonOptions, Stability};
 use stickslip::{Experiment, Parameter, Solver, State};
 
-const STRIBECK: FrictionLaw = FrictionLaw::Stribeck {
-    vs: 0.3,
-    delta: 2.0,
-    eta: 0.05,
-};
-const CUBIC: FrictionLaw = FrictionLaw::Cubic { k1: 0.5, k3: 0.5 };
-
-/// A forced belt: (ζ, w, β, μs, vb) and the law.
-fn belt(law: FrictionLaw, (zeta, w, beta, mu_s, vb): (f64, f64, f64, f64, f64)) -> Experiment {
-    Experiment::dimensionless(zeta, w, beta)
-        .and_then(|e| e.with_mu_s(mu_s))
-        .and_then(|e| e.with_vb(vb))
-        .and_then(|e| e.with_law(law))
-        .unwrap()
-}
+use stickslip_testkit::belts::{belt, CUBIC, STRIBECK};
 
 /// The branch from the orbit `experiment` settles on, over `parameter` to `to`.
 fn branch(experiment: &Experiment, parameter: Parameter, to: f64, max_step: f64) -> Branch {

@@ -292,17 +292,8 @@ fn where_a_smooth_law_belt_is_decided_sliding_it_never_sticks_again() {
 /// section, and y_min, y_max within 1e-8; and Newton settles the pure-slip cycles sooner.
 #[test]
 fn newton_on_the_turning_point_map_changes_no_class_of_a_stribeck_map() {
-    use stickslip::friction::FrictionLaw;
-    use stickslip::{Circuit, Experiment};
-    let experiment = Experiment::dimensionless(Circuit::paper().scales().zeta(), 1.0, 0.0)
-        .and_then(|e| {
-            e.with_law(FrictionLaw::Stribeck {
-                vs: 0.5,
-                delta: 2.0,
-                eta: 0.05,
-            })
-        })
-        .unwrap();
+    use stickslip_testkit::belts::benchmark_stribeck_belt;
+    let experiment = benchmark_stribeck_belt();
     let factory = experiment.factory();
     let base = experiment.params().unwrap();
     let options = experiment.steady_options();

@@ -15,22 +15,7 @@ use stickslip::scan::{Axis, Grid, ParameterRange, SweepDirection};
 use stickslip::stability::{LyapunovOptions, NewtonOptions, PeriodicOrbit};
 use stickslip::steady::{SteadyOptions, SteadyState};
 use stickslip::{Experiment, Parameter, State};
-
-const STRIBECK: FrictionLaw = FrictionLaw::Stribeck {
-    vs: 0.3,
-    delta: 2.0,
-    eta: 0.05,
-};
-const CUBIC: FrictionLaw = FrictionLaw::Cubic { k1: 0.5, k3: 0.5 };
-
-/// A forced belt: (ζ, w, β, μs, vb) with `law`.
-fn belt(law: FrictionLaw, (zeta, w, beta, mu_s, vb): (f64, f64, f64, f64, f64)) -> Experiment {
-    Experiment::dimensionless(zeta, w, beta)
-        .and_then(|e| e.with_mu_s(mu_s))
-        .and_then(|e| e.with_vb(vb))
-        .and_then(|e| e.with_law(law))
-        .expect("a valid belt")
-}
+use stickslip_testkit::belts::{belt, CUBIC, STRIBECK};
 
 fn distance(a: State, b: State) -> f64 {
     (a.y - b.y).abs().max((a.v - b.v).abs())

@@ -6,7 +6,7 @@ use crate::output::{check_interrupt, interrupted, progress};
 use anyhow::Result;
 use stickslip::options::OrbitOptions;
 use stickslip::stability::{
-    Multiplier, NewtonOptions, OrbitReport, PeriodicOrbit, Stability, StabilityError,
+    Dynamics, Multiplier, NewtonOptions, OrbitReport, PeriodicOrbit, Stability, StabilityError,
 };
 use stickslip::steady::{MotionClass, SelfExcitedOrbit};
 use stickslip::{Error, EventKind, OptionKey};
@@ -93,13 +93,9 @@ pub fn run(args: Args) -> Result<()> {
         .with_max_period(orbit.max_period)?;
     let newton = orbit.newton;
     eprintln!("orbit: {experiment}");
-    if experiment.is_self_excited() {
-        if orbit.period.is_some() {
-            anyhow::bail!(
-                "--period counts drive periods, and with --beta 0 on a belt there is no drive: \
-                 the self-excited cycle's period is found (leave --period out)"
-            );
-        }
+    // Without a drive the cycle's own period is found; a period asked for is the library's
+    // to refuse (`periodic_orbit`).
+    if experiment.is_self_excited() && orbit.period.is_none() {
         let cycle = experiment.self_excited_orbit(&steady)?;
         if args.json {
             println!("{}", serde_json::to_string_pretty(&cycle)?);
@@ -135,7 +131,7 @@ pub fn run(args: Args) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_text(&orbit, &report, dynamics.is_exact());
+        print_text(&orbit, &report, dynamics.as_ref());
     }
     Ok(())
 }
@@ -161,7 +157,7 @@ fn multiplier(m: &Multiplier) -> String {
     }
 }
 
-fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport, exact: bool) {
+fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport, dynamics: &dyn Dynamics) {
     let p = orbit.period;
     let plural =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
@@ -280,10 +276,19 @@ fn print_text(orbit: &PeriodicOrbit, r: &OrbitReport, exact: bool) {
         println!("μ1 < 0: a perturbation changes sign from one orbit to the next.");
     }
     if mu2.modulus() < 1e-12 * modulus.max(1.0) && !orbit.stops.is_empty() {
-        if exact {
+        // Why μ2 vanishes is the model's: the exact Coulomb model's stops, a smooth friction
+        // law's stops on a belt, or the Shockley diodes' steep slope near zero current.
+        if dynamics.is_exact() {
             println!(
                 "μ2 = 0 because the orbit stops: a stop erases the velocity perturbation, so \
                  the strobe map is one-dimensional there (M has rank one)."
+            );
+        } else if dynamics.sticks() {
+            println!(
+                "μ2 = 0 because the orbit stops: while it sticks the block moves with the belt \
+                 (y' = vb) until the net force reaches ±μs, whatever its velocity was, so a \
+                 stop of the friction law erases the velocity perturbation and the strobe map \
+                 is one-dimensional there (M has rank one)."
             );
         } else {
             println!(

@@ -14,7 +14,7 @@ const STRIBECK: &[&str] = &[
     "--vb",
     "0.5",
 ];
-const CUBIC: &[&str] = &[
+pub(crate) const CUBIC: &[&str] = &[
     "--friction-law",
     "cubic",
     "--mu-s",

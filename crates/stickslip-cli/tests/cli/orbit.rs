@@ -140,21 +140,25 @@ fn bad_input_gives_one_line_and_exit_code_2() {
     assert_usage_errors(&[&["orbit"][..], &point].concat(), cases);
 }
 
+/// The paper's circuit with Shockley diodes at 3 kHz, 1.5 V: a period-1 orbit with two stops
+/// per period.
+const SHOCKLEY_STOPS: [&str; 8] = [
+    "--preset",
+    "paper",
+    "--model",
+    "shockley",
+    "--freq",
+    "3k",
+    "--amplitude",
+    "1.5",
+];
+
 /// Shockley diodes: the orbit of the stiff solver's map, with its multipliers, and the
 /// Lyapunov measurement of the same motion: λ1 is ln|μ1|/T of the orbit it reached.
 #[test]
 fn shockley_orbits_and_exponents_are_the_stiff_solvers() {
     let dir = tempfile::tempdir().unwrap();
-    let model = [
-        "--preset",
-        "paper",
-        "--model",
-        "shockley",
-        "--freq",
-        "3k",
-        "--amplitude",
-        "1.5",
-    ];
+    let model = SHOCKLEY_STOPS;
     let out = run_in(dir.path(), &[&["orbit", "--json"][..], &model].concat());
     assert!(
         out.status.success(),
@@ -293,10 +297,14 @@ fn a_self_excited_belts_orbit_is_steadys_cycle() {
         "{text}"
     );
     assert!(text.contains("μ2 = 0 exactly"), "{text}");
-    // No drive: no drive periods to count.
+    // No drive: no drive periods to count (the library's refusal, a usage error).
     let (_dir, out) = run(&[&["orbit"], &belt[..], &["--period", "1"]].concat());
-    assert_eq!(out.status.code(), Some(1));
-    assert!(stderr(&out).contains("--beta 0"), "{}", stderr(&out));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("invalid --period 1: must be left out on a belt without a drive"),
+        "{}",
+        stderr(&out)
+    );
     // lyapunov: a limit cycle (λ1 = 0 within its error, λ2 = −∞ from the stops).
     let l = command_json(&[&["lyapunov"], &belt[..]].concat());
     assert_eq!(
@@ -392,4 +400,35 @@ fn a_pure_slip_cycles_orbit_has_its_multiplier() {
         "{text}"
     );
     assert!(!text.contains("not computed"), "{text}");
+}
+
+/// Why μ2 vanishes on an orbit that stops is told in the words of the model at hand: a cubic
+/// law's orbit on a belt (the tools' cubic belt at w = 1, β = 2: two stops per period,
+/// μ2 = 0) by its stops, with no word of diodes; the Shockley pair's orbit (two stops, μ2
+/// below the map's resolution) by the diodes' slope.
+#[test]
+fn mu2_is_explained_by_the_model_at_hand() {
+    use crate::belt_tools::CUBIC;
+    let cubic = [&["orbit", "--w", "1", "--beta", "2"][..], CUBIC].concat();
+    let json = command_json(&cubic);
+    assert_eq!(json["stops_per_period"], 2.0, "{json}");
+    assert_eq!(json["moduli"][1].as_f64(), Some(0.0), "{json}");
+    let (_dir, out) = run(&cubic);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("μ2 = 0 because the orbit stops")
+            && text.contains("a stop of the friction law erases the velocity perturbation"),
+        "{text}"
+    );
+    assert!(!text.to_lowercase().contains("diode"), "{text}");
+    let (_dir, out) = run(&[&["orbit"][..], &SHOCKLEY_STOPS].concat());
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(
+        text.contains("μ2 ≈ 0 because the orbit stops")
+            && text.contains("the diodes' slope (about n V_T/(2 I_s), megohms)"),
+        "{text}"
+    );
+    assert!(!text.contains("friction law"), "{text}");
 }

@@ -69,6 +69,23 @@ pub struct OrbitAnswer {
     pub cycle: Option<CycleSamples>,
 }
 
+impl OrbitAnswer {
+    /// The answer where no orbit (or self-excited cycle) was found: `converged: false` and
+    /// the library's line `err` saying why.
+    fn not_found(about: About, err: &Error) -> Self {
+        Self {
+            about,
+            converged: false,
+            orbit: None,
+            table: None,
+            arguments: None,
+            reason: Some(err.to_string()),
+            self_excited: None,
+            cycle: None,
+        }
+    }
+}
+
 /// Samples of a self-excited cycle over one period.
 pub const CYCLE_SAMPLES: usize = 256;
 
@@ -140,13 +157,6 @@ impl OrbitRequest {
             .map_err(|e| option_error(&e))?;
         q.finish(&known(&ORBIT_OPTIONS, &[]))?;
         needs_drive(&experiment)?;
-        if experiment.is_self_excited() && period.is_some() {
-            return Err(ApiError::field(
-                option_key(OptionKey::OrbitPeriod),
-                "period counts drive periods, and a belt without a drive (amplitude 0) has \
-                 none: the self-excited cycle's period is found (leave period out)",
-            ));
-        }
         // The law's stability tools (a stiff solver's options checked) before any work.
         experiment.dynamics().map_err(|e| ApiError::library(&e))?;
         Ok(Self {
@@ -170,7 +180,9 @@ impl OrbitRequest {
             .and_then(|s| s.with_max_period(o.max_period))
             .map_err(|err| option_error(&err))?;
         let about = About::new(e);
-        if e.is_self_excited() {
+        // Without a drive the cycle's own period is found; a period asked for is the
+        // library's to refuse (`periodic_orbit`: a 400 naming it, before any work).
+        if e.is_self_excited() && o.period.is_none() {
             return self_excited(e, &steady, about, budget);
         }
         let found = e.periodic_orbit(o.period, o.transient, &steady, &o.newton, &());
@@ -178,18 +190,7 @@ impl OrbitRequest {
             Ok(orbit) => orbit,
             // No orbit to report: Newton's method did not converge, or the steady state
             // that starts it found no period (the library's line says which).
-            Err(err @ Error::Stability(_)) => {
-                return Ok(OrbitAnswer {
-                    about,
-                    converged: false,
-                    orbit: None,
-                    table: None,
-                    arguments: None,
-                    reason: Some(err.to_string()),
-                    self_excited: None,
-                    cycle: None,
-                })
-            }
+            Err(err @ Error::Stability(_)) => return Ok(OrbitAnswer::not_found(about, &err)),
             Err(err) => return Err(failed(err, budget, "periodic orbit")),
         };
         let report = OrbitReport::of(&orbit, &params, dynamics.as_ref())
@@ -224,18 +225,7 @@ fn self_excited(
         .and_then(|settled| Ok((e.self_excited_orbit_of(&settled)?, settled)));
     let (orbit, settled) = match found {
         Ok(found) => found,
-        Err(err @ Error::Stability(_)) => {
-            return Ok(OrbitAnswer {
-                about,
-                converged: false,
-                orbit: None,
-                table: None,
-                arguments: None,
-                reason: Some(err.to_string()),
-                self_excited: None,
-                cycle: None,
-            })
-        }
+        Err(err @ Error::Stability(_)) => return Ok(OrbitAnswer::not_found(about, &err)),
         Err(err) => return Err(failed(err, budget, "self-excited cycle")),
     };
     let cycle = match orbit.cycle_period_tau {

@@ -340,7 +340,7 @@ async fn a_belt_without_a_drive_answers_its_self_excited_cycle_or_steady_sliding
     let body = refused(
         &format!("/api/orbit?{BELT}&{}=1", option_key(OptionKey::OrbitPeriod)),
         StatusCode::BAD_REQUEST,
-        "a belt without a drive",
+        "invalid period 1: must be left out on a belt without a drive",
     )
     .await;
     assert_eq!(body["field"], option_key(OptionKey::OrbitPeriod));

@@ -4,6 +4,7 @@
 
 use super::{DiodeModel, Experiment};
 use crate::error::{Error, Result};
+use crate::options::key::{Allowed, OptionKey};
 use crate::params::{Params, State};
 use crate::scan::Monitor;
 use crate::stability::{
@@ -59,7 +60,9 @@ impl Experiment {
     /// ```
     ///
     /// # Errors
-    /// A missing drive;
+    /// A missing drive; [`Error::InvalidOption`] naming the period for a belt without a drive
+    /// ([`Experiment::is_self_excited`]: its cycle has a period of its own, not a number of
+    /// drive periods, [`Experiment::self_excited_orbit`]);
     /// [`crate::stability::StabilityError::NoPeriod`] when the steady state does not repeat;
     /// [`Error::InvalidParameter`] for p = 0; [`Error::Cancelled`]; the failures of
     /// [`crate::stability::find_periodic_orbit`].
@@ -71,6 +74,16 @@ impl Experiment {
         newton: &NewtonOptions,
         monitor: &dyn Monitor,
     ) -> Result<PeriodicOrbit> {
+        if let (Some(p), true) = (period, self.is_self_excited()) {
+            return Err(Error::InvalidOption {
+                option: OptionKey::OrbitPeriod,
+                value: p as f64,
+                allowed: Allowed::Text(
+                    "must be left out on a belt without a drive (beta = 0): the self-excited \
+                     cycle has a period of its own, not a number of drive periods",
+                ),
+            });
+        }
         let params = self.params()?;
         let dynamics = self.dynamics()?;
         let newton = newton.validate()?;
@@ -201,5 +214,39 @@ impl Experiment {
         } else {
             c
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::Spelling;
+
+    /// A period counts drive periods: on a belt without a drive the orbit's entry point
+    /// refuses one, naming it, before any work; each front end spells it its way.
+    #[test]
+    fn a_belt_without_a_drive_refuses_a_period() {
+        let e = Experiment::dimensionless(0.05, 1.0, 0.0)
+            .and_then(|e| e.with_mu_s(1.5))
+            .and_then(|e| e.with_vb(0.3))
+            .unwrap();
+        assert!(e.is_self_excited());
+        let err = e
+            .periodic_orbit(
+                Some(2),
+                0,
+                &SteadyOptions::default(),
+                &NewtonOptions::default(),
+                &(),
+            )
+            .unwrap_err();
+        assert_eq!(err.option(), Some(OptionKey::OrbitPeriod));
+        let rest = ": must be left out on a belt without a drive (beta = 0): the self-excited \
+                    cycle has a period of its own, not a number of drive periods";
+        assert_eq!(
+            err.render(Spelling::Flag),
+            format!("invalid --period 2{rest}")
+        );
+        assert_eq!(err.to_string(), format!("invalid period = 2{rest}"));
     }
 }

@@ -213,25 +213,7 @@ impl<L: SmoothLaw> Dop853<L> {
         me
     }
 
-    /// Current time (end of the last accepted step).
-    pub fn time(&self) -> f64 {
-        self.t
-    }
-
-    /// The state at [`Dop853::time`].
-    pub fn state(&self) -> Vector {
-        self.x
-    }
-
-    /// The parameters ζ, w, β, φ of the equation.
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
-    /// The law.
-    pub fn law(&self) -> &L {
-        &self.law
-    }
+    integrator_accessors!(Dop853);
 
     /// f(t, x) = (v, β cos(w t + φ) − y − 2ζ v − D(v)) (no cosine without a drive).
     fn rhs(&self, t: f64, x: &Vector) -> Vector {

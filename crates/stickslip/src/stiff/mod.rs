@@ -16,6 +16,33 @@
 //! - [`dop853`]: an explicit integrator of order 8 for laws that are not stiff (the slips of
 //!   a friction law on a belt), with a dense output of order 7.
 
+/// The accessors of an integrator's place between steps, the same for [`Radau5`] and
+/// [`Dop853`] (each keeps the fields `t`, `x`, `params` and `law`): written once here, and
+/// expanded in each one's `impl`.
+macro_rules! integrator_accessors {
+    ($integrator:ident) => {
+        /// Current time (end of the last accepted step).
+        pub fn time(&self) -> f64 {
+            self.t
+        }
+
+        #[doc = concat!("The state at [`", stringify!($integrator), "::time`].")]
+        pub fn state(&self) -> Vector {
+            self.x
+        }
+
+        /// The parameters ζ, w, β, φ of the equation.
+        pub fn params(&self) -> &Params {
+            &self.params
+        }
+
+        /// The law.
+        pub fn law(&self) -> &L {
+            &self.law
+        }
+    };
+}
+
 pub mod cubic;
 pub mod dop853;
 pub mod law;

@@ -294,25 +294,7 @@ impl<L: SmoothLaw> Radau5<L> {
         }
     }
 
-    /// Current time (end of the last accepted step).
-    pub fn time(&self) -> f64 {
-        self.t
-    }
-
-    /// The state at [`Radau5::time`].
-    pub fn state(&self) -> Vector {
-        self.x
-    }
-
-    /// The parameters ζ, w, β, φ of the equation.
-    pub fn params(&self) -> &Params {
-        &self.params
-    }
-
-    /// The law.
-    pub fn law(&self) -> &L {
-        &self.law
-    }
+    integrator_accessors!(Radau5);
 
     /// Weights atol + rtol·max(|a|, |b|).
     fn scale(&self, a: &Vector, b: &Vector) -> Vector {
