@@ -214,13 +214,14 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
         BranchEnd::Stalled { obstacle, .. } | BranchEnd::Failed { obstacle, .. } => *obstacle,
         _ => return Ok(None),
     };
-    let (kind, variant, tau) = match obstacle {
-        Obstacle::TurnAtStaticLimit { tau, .. } => (BorderKind::TurnAtLimit, true, tau),
-        Obstacle::Grazing(slide) => (BorderKind::SlideTouchesRest, false, slide.tau),
-        Obstacle::TangentialRelease { tau, .. } => (BorderKind::ReleaseTangential, false, tau),
-        // The stop side of a slide touching rest: its slide has no minimum inside to start
-        // the border's search from.
-        Obstacle::TangentialStick { .. } | Obstacle::None => return Ok(None),
+    let (kind, variant, tau, sign) = match obstacle {
+        Obstacle::TurnAtStaticLimit { tau, .. } => (BorderKind::TurnAtLimit, true, tau, 1.0),
+        Obstacle::Grazing(slide) => (BorderKind::SlideTouchesRest, false, slide.tau, 1.0),
+        Obstacle::TangentialRelease { tau, .. } => (BorderKind::ReleaseTangential, false, tau, 1.0),
+        // On a belt, the stop side of a slide touching rest: the slide continued past the
+        // stop as if it went on, whose lowest slip (below zero) rises to zero there.
+        Obstacle::TangentialStick { tau, .. } => (BorderKind::SlideTouchesRest, true, tau, -1.0),
+        Obstacle::None => return Ok(None),
     };
     let Some(last) = branch.points.last() else {
         return Ok(None);
@@ -233,7 +234,7 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
             Border {
                 kind,
                 variant,
-                sign: 1.0,
+                sign,
                 continuous: false,
             },
             last.value,
@@ -280,7 +281,7 @@ pub fn find_start(
 /// on it ([`continue_orbit_of`]) and its special point corrected onto the extended system of
 /// its strobe map. A smooth friction law ([`crate::stability::FrictionDynamics`]) takes
 /// folds, period doublings and Neimark–Sacker points, over and in any of its parameters
-/// (the belt's speed vb and the law's own too); the exact model the paper's four.
+/// (the belt's speed vb and the law's own too); the exact model the paper's four and vb.
 ///
 /// # Errors
 /// As [`find_start`]; [`crate::Unsupported::GrazingCurveNeedsCoulomb`] for a grazing with a
