@@ -134,16 +134,40 @@ def test_bifurcation_basins_and_the_exponent_map_take_the_smooth_laws(law):
     assert abs(p.lambda1[1, 1] - o.lambda1) <= 1e-8 * abs(o.lambda1)
 
 
-@pytest.mark.parametrize("law", SMOOTH_LAWS, ids=["stribeck", "cubic"])
-def test_curve_refuses_the_smooth_laws_with_a_value_error(law):
-    e = Experiment(zeta=0.05, w=1.0, beta=2.0, mu_s=1.5, vb=0.3).replace(**law)
-    coulomb_only = "follow Coulomb's friction law so far"
-    calls = [
-        lambda: stickslip.curve(e, "fold", "beta", 1.2, "w", 0.8, 1.0),
-    ]
-    for call in calls:
-        with pytest.raises(ValueError, match=coulomb_only):
-            call()
+#: A Stribeck belt whose stick-slip branch over w folds near w = 0.9014 (at β = 1.45), and a
+#: weakly forced cubic belt whose sliding orbit has a Neimark–Sacker point in vb near 0.509,
+#: started from steady sliding (y = μ(vb), y' = 0).
+STRIBECK_FOLD = (Experiment(zeta=0.05, w=0.7, beta=1.45, mu_s=1.5, vb=0.05)
+                 .replace(friction_law="stribeck", vs=0.3, delta=2.0, eta=0.05),
+                 ("fold", "w", 1.2, "beta", 1.44, 1.46), "w", (0.7, 1.2), "stribeck")
+CUBIC_NS = (Experiment(zeta=0.05, w=0.7, beta=0.1, mu_s=1.5, vb=0.8, y0=1.5 - 0.4 + 0.5 * 0.8**3,
+                       v0=0.0).replace(friction_law="cubic", k1=0.5, k3=0.5),
+            ("neimark-sacker", "vb", 0.3, "w", 0.69, 0.71), "vb", (0.8, 0.3), "cubic")
+
+
+@pytest.mark.parametrize("case", [STRIBECK_FOLD, CUBIC_NS], ids=["stribeck-fold", "cubic-ns"])
+def test_curve_takes_the_smooth_laws_and_its_points_are_continuations_special_points(case):
+    e, spec, vary, (start, to), law = case
+    follow, _, _, over, lo, hi = spec
+    c = stickslip.curve(e, *spec[:4], start=lo, to=hi)
+    assert c.over == over and c.vary == vary and len(c) > 4
+    assert c.end["reason"] == "boundary"
+    mu = c.multipliers
+    if follow == "fold":
+        assert np.min(np.abs(mu - 1.0), axis=1).max() < 1e-8
+    else:
+        assert (np.abs(np.abs(mu) - 1.0).max() < 1e-8) and (mu[:, 0].imag != 0).all()
+    # Each end against `continuation`'s special point at that value of `over`, found on its
+    # own from the orbit settled on at the start of the search.
+    for k in (0, len(c) - 1):
+        b = stickslip.continuation(e.replace(**{over: float(c[over][k])}), vary, start, to,
+                                   max_step=0.02)
+        found = [s["value"] for s in b.special if s["kind"] == follow and s["located"]]
+        assert found, b.special
+        assert abs(found[0] - c[vary][k]) < 1e-8, (found[0], c[vary][k])
+    # Grazing curves need the exact solver's events: refused in one line naming the law.
+    with pytest.raises(ValueError, match=f"with the {law} law a curve follows"):
+        stickslip.curve(e, "grazing", *spec[1:4], start=lo, to=hi)
     with pytest.raises(ValueError, match="the theory"):
         stickslip.theory(e)
 

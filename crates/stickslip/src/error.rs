@@ -358,10 +358,17 @@ pub enum Unsupported {
     /// μs, the static friction ratio, is a parameter of the piecewise-linear law only (a
     /// continuation in it with Shockley diodes).
     MuSNeedsPwl,
-    /// The Stribeck and cubic friction laws are solved by `simulate`, `steady`, `sweep`,
-    /// `phase-diagram` (the exponent map too), `orbit`, `lyapunov`, `continue`,
-    /// `bifurcation` and `basins`; `curve` follows Coulomb's law only.
+    /// A tool of the exact Coulomb model alone (its exact solver, tangent dynamics and
+    /// sensitivities) was asked for a Stribeck or cubic law; the commands take both
+    /// (`simulate`, `steady`, `sweep`, `phase-diagram`, `orbit`, `lyapunov`, `continue`,
+    /// `bifurcation`, `basins`, `curve`).
     SmoothFrictionLaw,
+    /// Grazing curves follow events of the exact solver, with Coulomb's law: a Stribeck or
+    /// cubic law (`law`) has curves of folds, period doublings and Neimark–Sacker points.
+    GrazingCurveNeedsCoulomb {
+        /// The law asked for.
+        law: crate::friction::FrictionLawKind,
+    },
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
     CurveNeedsPwl,
@@ -377,7 +384,7 @@ pub enum Unsupported {
 
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
+        let text = match self {
             Unsupported::ShockleyNeedsCircuit => {
                 "the Shockley diode model needs a circuit description (e.g. the paper preset)"
             }
@@ -398,10 +405,9 @@ impl std::fmt::Display for Unsupported {
                  Shockley diode has no static threshold; continue in w, beta or zeta"
             }
             Unsupported::SmoothFrictionLaw => {
-                "the two-parameter curves (curve) follow Coulomb's friction law so far: the \
-                 Stribeck and cubic laws are solved by simulate, steady, sweep, phase-diagram, \
-                 orbit, lyapunov, continue, bifurcation and basins (use --friction-law coulomb \
-                 here)"
+                "this takes Coulomb's friction law alone (the exact model's solver and its \
+                 derivatives): the Stribeck and cubic laws are solved by simulate, steady, \
+                 sweep, phase-diagram, orbit, lyapunov, continue, bifurcation, basins and curve"
             }
             Unsupported::TheoryNeedsCoulombAtRest => {
                 "the theory (the paper's series, the exact periodic solution) is that of \
@@ -414,12 +420,23 @@ impl std::fmt::Display for Unsupported {
                  slip reversals (|F| > μs ≥ 1, the net force there) is below 1 on every orbit \
                  that reverses, and 0 on one that sticks (docs/bifurcation.md)"
             }
+            Unsupported::GrazingCurveNeedsCoulomb { law } => {
+                return write!(
+                    f,
+                    "grazing curves follow the exact solver's events, with Coulomb's friction \
+                     law: with the {} law a curve follows a fold, a period doubling or a \
+                     Neimark–Sacker point (follow fold, period-doubling or neimark-sacker; or \
+                     grazing with the coulomb law)",
+                    law.label()
+                )
+            }
             Unsupported::CurveNeedsPwl => {
                 "curves of special points in two parameters are followed with the exact \
                  piecewise-linear diode (Coulomb friction) model, not Shockley diodes \
                  (`stickslip continue` follows a branch of either)"
             }
-        })
+        };
+        f.write_str(text)
     }
 }
 

@@ -28,9 +28,12 @@ use stickslip::{OptionKey, Parameter};
 /// value towards --to, and towards --from too when the model's value lies between them.
 /// Along the curve: where the other multiplier's stability changes, the codimension-two
 /// points where it meets another curve (a cusp of folds, a fold or period doubling meeting a
-/// grazing, 1:1 and 1:2 resonances, fold-flip), each located, and why it ends. The
-/// piecewise-linear (Coulomb) model only, which has no Neimark–Sacker point (det M < 1 on
-/// every orbit): --follow neimark-sacker says why in one line, exit status 2.
+/// grazing, 1:1 and 1:2 resonances, fold-flip), each located, and why it ends. PWL diodes
+/// with any friction law: Coulomb's (the exact model) has no Neimark–Sacker point (det M < 1
+/// on every orbit: --follow neimark-sacker says why in one line, exit status 2); the
+/// Stribeck and cubic laws on a belt (the stiff solver's strobe map and sensitivities) have
+/// fold, period-doubling and Neimark–Sacker curves, over and in vb and the law's own
+/// parameters too (--follow grazing says in one line that it needs Coulomb's law).
 ///
 /// Output CSV columns: <over>,<vary>,y,v,period,stops_per_period,turns,mu1_re,mu1_im,mu2_re,
 /// mu2_im,largest_multiplier,stability,arclength,special

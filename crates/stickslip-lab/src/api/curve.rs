@@ -123,8 +123,8 @@ impl CurveRequest {
     /// Follow the curve, as `stickslip curve` does.
     ///
     /// # Errors
-    /// The time limit; the library's errors (a model other than the PWL law, a model value
-    /// of `over` outside `from`..`to`).
+    /// The time limit; the library's errors (Shockley diodes, a grazing with a smooth friction
+    /// law, a model value of `over` outside `from`..`to`).
     pub fn run(self, budget: &Arc<Budget>) -> Result<CurveAnswer, ApiError> {
         let e = &budget.limit_experiment(&self.experiment);
         budget.start(self.options.max_points);

@@ -162,3 +162,45 @@ async fn bad_input_is_a_400_naming_the_key() {
     )
     .await;
 }
+
+/// A mechanical oscillator on a belt with the Stribeck law (ζ = 0.047, μs = 1.5, vb = 0.05,
+/// vs = 0.3, η = 0.05 in the model's units): its stick-slip branch over w folds near w = 0.9.
+const STRIBECK_BELT: &str = "mass=0.5&stiffness=200&damping=0.94&friction=1&mu-s=1.5&\
+                             belt-speed=0.005&friction-law=stribeck&stribeck-speed=0.03&\
+                             viscous-friction=0.5&w=0.7&beta=1.45";
+
+/// A smooth law's fold curve is the library's; its grazing curve a 400 naming the law.
+#[tokio::test]
+async fn a_stribeck_belts_fold_curve_is_the_librarys_and_its_grazing_is_refused() {
+    let uri = format!(
+        "/api/curve?{STRIBECK_BELT}&follow=fold&vary=w&vary-to=1.2&over=beta&from=1.44&to=1.46"
+    );
+    let (status, answer) = get(&uri).await;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let experiment = super::experiment(STRIBECK_BELT);
+    let spec = CurveSpec {
+        follow: Follow::Fold,
+        vary: Parameter::W,
+        vary_to: 1.2,
+        over: Parameter::Beta,
+        from: 1.44,
+        to: 1.46,
+    };
+    let c = curve(&experiment, &spec, &ContinuationOptions::default(), &())
+        .unwrap()
+        .unwrap();
+    assert!(c.points.len() > 4, "{} points", c.points.len());
+    assert_eq!(answer["none"], Value::Null);
+    assert_eq!(
+        answer["report"],
+        serde_json::to_value(CurveReport::from(&c)).unwrap()
+    );
+    let w = answer["points"]["w"].as_array().unwrap();
+    assert_eq!(w.len(), c.points.len());
+    refused(
+        &uri.replace("follow=fold", "follow=grazing"),
+        StatusCode::BAD_REQUEST,
+        "with the stribeck law a curve follows a fold",
+    )
+    .await;
+}

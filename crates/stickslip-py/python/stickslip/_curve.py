@@ -193,16 +193,20 @@ def curve(experiment: Experiment, follow: str, vary: str, vary_to: float, over: 
     lies between them. Along the curve: where the orbits' stability apart from the followed
     multiplier changes, the codimension-two points (a cusp of folds, a fold or period
     doubling meeting a grazing, 1:1 and 1:2 resonances, fold-flip), each located, and why it
-    ends. The piecewise-linear (Coulomb) law only, which has no Neimark–Sacker point (det M
-    < 1 on every orbit: 'neimark-sacker' raises ValueError saying why; see
-    docs/bifurcation.md). Everything is dimensionless.
+    ends. The piecewise-linear diode model (PWL) with any friction law: Coulomb's (the exact
+    model), which has no Neimark–Sacker point (det M < 1 on every orbit: 'neimark-sacker'
+    raises ValueError saying why; see docs/bifurcation.md), or the Stribeck or cubic law on
+    a belt (the stiff solver's strobe map with its sensitivities), whose folds, period
+    doublings and Neimark–Sacker points are followed ('grazing' raises ValueError naming the
+    law). Everything is dimensionless.
 
     Args:
         experiment: a ``stickslip.Experiment`` with values of both parameters (its point is
             where the search starts; its initial state picks the orbit settled on).
         follow: 'grazing', 'fold', 'period-doubling' or 'neimark-sacker'.
         vary: the parameter continued to find the start, which then follows the curve (P):
-            'w', 'beta', 'zeta' or 'mu_s'.
+            'w', 'beta', 'zeta' or 'mu_s'; with the Stribeck or cubic law also 'vb' and the
+            law's own ('vs', 'delta', 'eta'; 'k1', 'k3').
         vary_to: the value of ``vary`` the search for the start heads for.
         over: the parameter the curve is followed over (Q), another of the four.
         start: one end of the range of ``over`` (the experiment's value must lie between
@@ -221,8 +225,8 @@ def curve(experiment: Experiment, follow: str, vary: str, vary_to: float, over: 
 
     Raises:
         ValueError: bad input (``vary`` equal to ``over``: ``invalid vary: must differ from
-            over``), a model other than the PWL law, a Neimark–Sacker point (the model has
-            none), no special point of the kind between the experiment's point and
+            over``), Shockley diodes, a Neimark–Sacker point with Coulomb's law (the model
+            has none), a grazing with the Stribeck or cubic law, no special point of the kind between the experiment's point and
             ``vary_to`` (the message names the kind and the range searched); with the
             library's message. KeyboardInterrupt: Ctrl-C.
 

@@ -86,10 +86,10 @@ mod step;
 
 pub use branch::{Branch, BranchEnd, BranchPoint};
 pub use curve::{
-    check_spec, curve, curve_within, find_start, follow_curve, follow_curve_within, Border,
-    BorderKind, Codim2Kind, Codim2Point, Codim2Report, Curve, CurveEnd, CurvePoint, CurveReport,
-    CurveSide, CurveSideReport, CurveSpec, CurveStart, CurveStartReport, Follow, NoStart,
-    StabilityChange,
+    check_spec, curve, curve_within, find_start, find_start_of, follow_curve, follow_curve_of,
+    follow_curve_within, follow_curve_within_of, Border, BorderKind, Codim2Kind, Codim2Point,
+    Codim2Report, Curve, CurveEnd, CurvePoint, CurveReport, CurveSide, CurveSideReport, CurveSpec,
+    CurveStart, CurveStartReport, Follow, NoStart, StabilityChange,
 };
 pub use follow::{
     continue_both_ways, continue_both_ways_of, continue_orbit, continue_orbit_of, settled_orbit,

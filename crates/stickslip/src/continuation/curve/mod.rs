@@ -51,6 +51,17 @@
 //! strobe falls inside a stop the map is differentiable in y only, and the velocity's column is
 //! left out (y' = 0 there).
 //!
+//! **The smooth friction laws.** The system is written against [`crate::stability::Dynamics`],
+//! as the branches of [`super::continue_orbit_of`] are: with the Stribeck or cubic law on a
+//! belt ([`crate::stability::FrictionDynamics`]) M is the stiff solver's tangent dynamics,
+//! ∂P^p/∂(Q, P) come from its sensitivities ([`crate::stability::Dynamics::parameter_derivative`]),
+//! and the residuals are taken to its map's accuracy
+//! ([`crate::stability::Dynamics::map_tolerance`]); Q and P may be any of its parameters (vb and
+//! the law's own too). Folds, period doublings and Neimark–Sacker points are followed
+//! ([`find_start_of`], [`follow_curve_of`]); grazings are not (their conditions are events of
+//! the exact solver: [`crate::Unsupported::GrazingCurveNeedsCoulomb`]), and such a curve ends
+//! where its event counts change, located by bisection.
+//!
 //! **Pseudo-arclength.** From a point u_k with unit tangent t_k (the null vector of the 3×4
 //! Jacobian, oriented along the curve), the predictor u_k + Δs·t_k is corrected by Newton's
 //! method in the hyperplane t_k·(u − u_k) = Δs, steps halved where the residual does not
@@ -138,6 +149,8 @@ mod types;
 
 pub use kinds::{BorderKind, Codim2Kind, Follow};
 pub use report::{Codim2Report, CurveReport, CurveSideReport, CurveStartReport};
-pub use start::{check_spec, curve, curve_within, find_start, CurveSpec, CurveStart, NoStart};
-pub use trace::{follow_curve, follow_curve_within};
+pub use start::{
+    check_spec, curve, curve_within, find_start, find_start_of, CurveSpec, CurveStart, NoStart,
+};
+pub use trace::{follow_curve, follow_curve_of, follow_curve_within, follow_curve_within_of};
 pub use types::{Border, Codim2Point, Curve, CurveEnd, CurvePoint, CurveSide, StabilityChange};

@@ -4,18 +4,20 @@
 
 use super::border::{candidates, nearest, Candidate};
 use super::system::{Plane, System};
-use super::{follow_curve_within, Border, BorderKind, Curve, Follow};
+use super::trace::follow_curve_within_of;
+use super::{Border, BorderKind, Curve, Follow};
 use crate::continuation::corrector::counts;
 use crate::continuation::{
-    continue_orbit, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
+    continue_orbit_of, settled_orbit, Branch, BranchEnd, ContinuationOptions, Obstacle,
 };
 use crate::error::{Error, Result};
 use crate::experiment::Experiment;
 use crate::options::{Allowed, OptionKey};
 use crate::params::{Parameter, Params, State};
 use crate::scan::Monitor;
-use crate::stability::{find_periodic_orbit, NewtonOptions, PeriodicOrbit};
+use crate::stability::{Dynamics, ExactDynamics, NewtonOptions, PeriodicOrbit};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// The start point of a curve: an orbit at the followed special point, at the model's value
 /// of Q. Found by [`find_start`].
@@ -91,21 +93,35 @@ impl std::fmt::Display for NoStart {
     }
 }
 
-/// Whether the model (the exact piecewise-linear Coulomb model, the only one followed) can
-/// have a special point of the kind `follow`: it has no Neimark–Sacker point (det M < 1 on
-/// every orbit that reverses or sticks; docs/bifurcation.md).
+/// Whether a curve of the kind `follow` can be followed on the model `dynamics` with the
+/// friction law `law`:
+/// the exact Coulomb model has no Neimark–Sacker point (det M < 1 on every orbit that
+/// reverses or sticks; docs/bifurcation.md); a smooth friction law's grazings are not
+/// followed (their conditions are events of the exact solver).
 ///
 /// # Errors
-/// [`crate::Unsupported::NoNeimarkSacker`] for [`Follow::NeimarkSacker`].
-fn possible(follow: Follow) -> Result<()> {
+/// [`crate::Unsupported::NoNeimarkSacker`] for [`Follow::NeimarkSacker`] with the exact
+/// model; [`crate::Unsupported::GrazingCurveNeedsCoulomb`] for [`Follow::Grazing`] with a
+/// smooth law.
+fn possible(
+    dynamics: &dyn Dynamics,
+    law: crate::friction::FrictionLawKind,
+    follow: Follow,
+) -> Result<()> {
     match follow {
-        Follow::NeimarkSacker => Err(Error::Unsupported(crate::Unsupported::NoNeimarkSacker)),
+        Follow::NeimarkSacker if dynamics.is_exact() => {
+            Err(Error::Unsupported(crate::Unsupported::NoNeimarkSacker))
+        }
+        Follow::Grazing if !dynamics.is_exact() => Err(Error::Unsupported(
+            crate::Unsupported::GrazingCurveNeedsCoulomb { law },
+        )),
         _ => Ok(()),
     }
 }
 
 /// The orbit at `value` of `vary` near `state`, by Newton's method.
 fn orbit_at(
+    dynamics: &dyn Dynamics,
     params: &Params,
     vary: Parameter,
     value: f64,
@@ -114,12 +130,12 @@ fn orbit_at(
     options: &ContinuationOptions,
 ) -> Result<Option<PeriodicOrbit>> {
     let params = vary.set(*params, value)?;
-    match find_periodic_orbit(
+    match dynamics.find_periodic_orbit(
         &params,
         state,
         period,
         &NewtonOptions {
-            tolerance: options.tolerance,
+            tolerance: dynamics.map_tolerance(options.tolerance),
             ..NewtonOptions::default()
         },
     ) {
@@ -228,8 +244,8 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
     }))
 }
 
-/// The start of a curve of `follow` over `over`: the orbit `orbit` at `params` continued in
-/// `vary` towards `vary_to` ([`continue_orbit`]) until its first special point of the
+/// The start of a curve of `follow` over `over` on the exact Coulomb model: the orbit `orbit`
+/// at `params` continued in `vary` towards `vary_to` ([`continue_orbit`]) until its first special point of the
 /// followed kind (for a grazing, also the end of the branch at a jump of the strobe map:
 /// a turning point reaching the static limit, a slide touching rest, a release becoming
 /// tangential), corrected onto the extended system at the value of `over` in `params`.
@@ -238,7 +254,41 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
 /// [`Error::InvalidOption`] naming [`OptionKey::TwoParameterVary`] when `over` and `vary`
 /// are the same parameter (as [`check_spec`]); [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
 /// have; as [`continue_orbit`]; `Ok(Err(NoStart))` when the branch has no such point.
+///
+/// [`continue_orbit`]: crate::continuation::continue_orbit
 pub fn find_start(
+    params: &Params,
+    orbit: &PeriodicOrbit,
+    follow: Follow,
+    (vary, vary_to): (Parameter, f64),
+    over: Parameter,
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<std::result::Result<CurveStart, NoStart>> {
+    find_start_of(
+        Arc::new(ExactDynamics),
+        params,
+        orbit,
+        follow,
+        (vary, vary_to),
+        over,
+        options,
+        monitor,
+    )
+}
+
+/// [`find_start`] on the model `dynamics` (`orbit` an orbit of it): the branch is continued
+/// on it ([`continue_orbit_of`]) and its special point corrected onto the extended system of
+/// its strobe map. A smooth friction law ([`crate::stability::FrictionDynamics`]) takes
+/// folds, period doublings and Neimark–Sacker points, over and in any of its parameters
+/// (the belt's speed vb and the law's own too); the exact model the paper's four and vb.
+///
+/// # Errors
+/// As [`find_start`]; [`crate::Unsupported::GrazingCurveNeedsCoulomb`] for a grazing with a
+/// smooth law.
+#[allow(clippy::too_many_arguments)]
+pub fn find_start_of(
+    dynamics: Arc<dyn Dynamics>,
     params: &Params,
     orbit: &PeriodicOrbit,
     follow: Follow,
@@ -256,11 +306,19 @@ pub fn find_start(
             },
         });
     }
-    super::system::column(over)?;
-    super::system::column(vary)?;
-    possible(follow)?;
+    super::system::check_parameter(dynamics.as_ref(), params, over)?;
+    super::system::check_parameter(dynamics.as_ref(), params, vary)?;
+    possible(dynamics.as_ref(), params.law.kind(), follow)?;
     let options = options.validate()?;
-    let branch = continue_orbit(params, vary, orbit, vary_to, &options, monitor)?;
+    let branch = continue_orbit_of(
+        dynamics.as_ref(),
+        params,
+        vary,
+        orbit,
+        vary_to,
+        &options,
+        monitor,
+    )?;
     let from = vary.get(params);
     let values = branch.points.iter().map(|p| p.value);
     let reached = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -286,7 +344,15 @@ pub fn find_start(
         (Follow::Grazing, Some(s)) => {
             let mut sides = Vec::new();
             for side in [&s.before, &s.after] {
-                if let Some(o) = orbit_at(params, vary, side.value, side.state, period, &options)? {
+                if let Some(o) = orbit_at(
+                    dynamics.as_ref(),
+                    params,
+                    vary,
+                    side.value,
+                    side.state,
+                    period,
+                    &options,
+                )? {
                     sides.push((side.value, o));
                 }
             }
@@ -315,10 +381,20 @@ pub fn find_start(
             border,
             options,
             phase: 0.0,
+            dynamics: dynamics.clone(),
         };
         let a0 = over.get(&base);
         // In a chart whose section lies in the middle of a slide (see `System::section`).
-        let Some(orbit) = orbit_at(&base, vary, value, state, period, &options)? else {
+        let Some(orbit) = orbit_at(
+            dynamics.as_ref(),
+            &base,
+            vary,
+            value,
+            state,
+            period,
+            &options,
+        )?
+        else {
             continue;
         };
         let (system, x, tau) = model.recharted(&base, &orbit, tau)?;
@@ -412,13 +488,17 @@ pub fn check_spec(spec: &CurveSpec) -> Result<()> {
 }
 
 /// The curve of `spec` from the orbit the motion of `experiment` settles on (its value of Q
-/// must lie between `from` and `to`): [`settled_orbit`], [`find_start`], [`super::follow_curve`].
+/// must lie between `from` and `to`): [`settled_orbit`], [`find_start_of`],
+/// [`super::follow_curve_of`] on the experiment's model ([`Experiment::dynamics`]: the exact
+/// Coulomb model, or a Stribeck or cubic law's [`crate::stability::FrictionDynamics`]).
 /// `monitor` sees the search's points, then each way's.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for bad ends or parameters, or a motion that comes to rest;
-/// [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point, which the model cannot
-/// have (before any work); as [`settled_orbit`], [`find_start`] and [`super::follow_curve`];
+/// [`crate::Unsupported::CurveNeedsPwl`] with Shockley diodes;
+/// [`crate::Unsupported::NoNeimarkSacker`] for a Neimark–Sacker point with Coulomb's law,
+/// which cannot have one, and [`crate::Unsupported::GrazingCurveNeedsCoulomb`] for a grazing
+/// with a smooth law (both before any work); as [`settled_orbit`], [`find_start`] and [`super::follow_curve`];
 /// `Ok(Err(NoStart))` when the branch has no special point of the kind.
 pub fn curve(
     experiment: &Experiment,
@@ -430,10 +510,10 @@ pub fn curve(
 }
 
 /// [`curve`] with P kept within `vary_range` along the curve when given (the search for the
-/// start is not bounded by it): see [`follow_curve_within`].
+/// start is not bounded by it): see [`super::follow_curve_within`].
 ///
 /// # Errors
-/// As [`curve`] and [`follow_curve_within`].
+/// As [`curve`] and [`super::follow_curve_within`].
 pub fn curve_within(
     experiment: &Experiment,
     spec: &CurveSpec,
@@ -445,13 +525,20 @@ pub fn curve_within(
     if experiment.diode_model() != crate::experiment::DiodeModel::Pwl {
         return Err(Error::Unsupported(crate::Unsupported::CurveNeedsPwl));
     }
-    if !experiment.friction_law().is_coulomb() {
-        return Err(Error::Unsupported(crate::Unsupported::SmoothFrictionLaw));
-    }
-    possible(spec.follow)?;
+    let dynamics: Arc<dyn Dynamics> = Arc::from(experiment.dynamics()?);
+    possible(
+        dynamics.as_ref(),
+        experiment.friction_law().kind(),
+        spec.follow,
+    )?;
     let options = options.validate()?;
     let (params, orbit) = settled_orbit(experiment)?;
-    if orbit.events.is_empty() {
+    let rest = if dynamics.is_exact() {
+        orbit.events.is_empty()
+    } else {
+        orbit.is_rest()
+    };
+    if rest {
         return Err(Error::InvalidParameter {
             name: "y0",
             value: experiment.initial().y,
@@ -477,7 +564,8 @@ pub fn curve_within(
                       between from and to",
         });
     }
-    let start = match find_start(
+    let start = match find_start_of(
+        dynamics.clone(),
         &params,
         &orbit,
         spec.follow,
@@ -489,7 +577,8 @@ pub fn curve_within(
         Ok(start) => start,
         Err(no) => return Ok(Err(no)),
     };
-    Ok(Ok(follow_curve_within(
+    Ok(Ok(follow_curve_within_of(
+        dynamics,
         &start,
         (spec.from, spec.to),
         vary_range,

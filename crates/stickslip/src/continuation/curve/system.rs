@@ -11,9 +11,10 @@ use crate::continuation::ContinuationOptions;
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
 use crate::stability::{
-    find_periodic_orbit, strobe_map, strobe_map_parameter_derivative,
-    strobe_map_parameter_derivatives, NewtonOptions, PeriodicOrbit, StrobeImage,
+    strobe_map_parameter_derivative, strobe_map_parameter_derivatives, Dynamics, NewtonOptions,
+    PeriodicOrbit, StrobeImage,
 };
+use std::sync::Arc;
 
 /// A point (y, y', Q, P).
 pub(crate) type U = [f64; 4];
@@ -84,6 +85,26 @@ pub(crate) fn column(parameter: Parameter) -> Result<usize> {
             value: f64::NAN,
             allowed: "is no parameter a curve follows yet: take w, beta, zeta, mu_s or vb",
         }),
+    }
+}
+
+/// `Ok` when a curve of `dynamics` at `params` can be followed in or over `parameter`: with
+/// the exact model one of the paper's four or vb ([`column`]); with a smooth friction law any
+/// parameter of the model at `params` (ζ, w, β, μs, the belt's speed vb, the law's own), whose
+/// derivatives the model's sensitivities give ([`Dynamics::parameter_derivative`]).
+///
+/// # Errors
+/// As [`column`] for the exact model; [`Error::InvalidParameter`] for a parameter of another
+/// friction law.
+pub(crate) fn check_parameter(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    parameter: Parameter,
+) -> Result<()> {
+    if dynamics.is_exact() {
+        column(parameter).map(drop)
+    } else {
+        parameter.set(*params, parameter.get(params)).map(drop)
     }
 }
 
@@ -190,6 +211,10 @@ pub(crate) struct System {
     /// The drive phase of the chart's section from the model's strobe, in [0, 2πp): the
     /// unknowns (y, y') are the state at drive phase φ + `phase` (see [`System::section`]).
     pub phase: f64,
+    /// The model: its strobe map with the monodromy matrix, Newton's method for its orbits,
+    /// its solver and parameter derivatives (the exact model's exact ones, or a smooth
+    /// friction law's from the stiff solver's sensitivities).
+    pub dynamics: Arc<dyn Dynamics>,
 }
 
 /// Whether an error of the map or of the parameters means "no point here" rather than a
@@ -202,6 +227,32 @@ fn absent(e: &Error) -> bool {
 }
 
 impl System {
+    /// The residual tolerance of the extended system: the options' for the exact model, at
+    /// least the relative accuracy of a stiff solver's map ([`Dynamics::map_tolerance`]).
+    pub(crate) fn tolerance(&self) -> f64 {
+        self.dynamics.map_tolerance(self.options.tolerance)
+    }
+
+    /// The Newton options that confirm a corrected point as an orbit without a step.
+    fn confirming(&self) -> NewtonOptions {
+        NewtonOptions {
+            tolerance: self.tolerance(),
+            max_iterations: 2,
+            ..NewtonOptions::default()
+        }
+    }
+
+    /// Whether `orbit` is rest, not an orbit to follow: no events (the exact model's
+    /// criterion, kept to the bit), or for a smooth law no events and stuck at its strobe
+    /// (an orbit that slides throughout against a belt has no events and is no rest).
+    fn rest(&self, orbit: &PeriodicOrbit) -> bool {
+        if self.dynamics.is_exact() {
+            orbit.events.is_empty()
+        } else {
+            orbit.is_rest()
+        }
+    }
+
     /// `params` (of any chart) with this chart's drive phase.
     fn params_with(&self, params: &Params) -> Result<Params> {
         params.with_phi(self.base.phi + self.phase)
@@ -280,10 +331,15 @@ impl System {
 
     /// The state at the section `s` drive-period time after the strobe of the motion from `x`
     /// at `params`.
-    pub(crate) fn advance(params: &Params, x: State, s: f64) -> Result<State> {
-        let mut solver = crate::exact::ExactSolver::new(*params, x);
-        crate::solver::run_until(&mut solver, s, |_| {})?;
-        Ok(crate::solver::Solver::state(&solver))
+    pub(crate) fn advance(&self, params: &Params, x: State, s: f64) -> Result<State> {
+        if self.dynamics.is_exact() {
+            let mut solver = crate::exact::ExactSolver::new(*params, x);
+            crate::solver::run_until(&mut solver, s, |_| {})?;
+            return Ok(crate::solver::Solver::state(&solver));
+        }
+        let mut solver = self.dynamics.solver(params, x)?;
+        crate::solver::run_until(solver.as_mut(), s, |_| {})?;
+        Ok(solver.state())
     }
 
     /// This system in the chart whose section lies in the middle of the longest slide of
@@ -297,7 +353,7 @@ impl System {
     ) -> Result<(System, State, f64)> {
         let s = Self::section(params, orbit);
         let span = orbit.period as f64 * params.drive_period();
-        let x = Self::advance(params, orbit.state, s)?;
+        let x = self.advance(params, orbit.state, s)?;
         let mut next = self.clone();
         let turns = std::f64::consts::TAU * self.period as f64;
         next.phase = (self.phase + params.w * s).rem_euclid(turns);
@@ -322,14 +378,14 @@ impl System {
         }
         let params = self.params(&node.u)?;
         let back = (std::f64::consts::TAU * self.period as f64 - self.phase) / params.w;
-        let x = Self::advance(&params, node.orbit.state, back)?;
+        let x = self.advance(&params, node.orbit.state, back)?;
         let model = self.model_params(&node.u)?;
-        find_periodic_orbit(
+        self.dynamics.find_periodic_orbit(
             &model,
             x,
             self.period,
             &NewtonOptions {
-                tolerance: self.options.tolerance,
+                tolerance: self.tolerance(),
                 ..NewtonOptions::default()
             },
         )
@@ -461,7 +517,7 @@ impl System {
         let Ok(x) = State::new(u[0], u[1]) else {
             return Ok(None);
         };
-        let image = match strobe_map(&params, x, self.period) {
+        let image = match self.dynamics.strobe_map(&params, x, self.period) {
             Ok(image) => image,
             Err(e) if absent(&e) => return Ok(None),
             Err(e) => return Err(e),
@@ -554,32 +610,79 @@ impl System {
         })
     }
 
-    /// The 3×4 Jacobian of (P^p − x, g) at u: [M − I | ∂P^p/∂Q, ∂P^p/∂P] exactly, and the
-    /// gradient of g by central differences of the exact g (one-sided where one side has no
-    /// value; the velocity's column left out where the strobe falls inside a stop).
-    fn jacobian(&self, u: &U, at: &Evaluation) -> Result<Option<[[f64; 4]; 3]>> {
+    /// ∂P^p/∂(Q, P) at u, rows (y, y'): the exact model's exact columns
+    /// ([`strobe_map_parameter_derivatives`]); a smooth law's from its sensitivities
+    /// ([`Dynamics::parameter_derivative`]), or central differences of its map where it has
+    /// none. `None` where the map cannot be had.
+    fn parameter_columns(&self, u: &U) -> Result<Option<[[f64; 2]; 2]>> {
         let params = self.params(u)?;
         let x = State { y: u[0], v: u[1] };
-        let derivatives = || -> Result<[[f64; 6]; 2]> {
-            let dp = strobe_map_parameter_derivatives(&params, x, self.period)?;
-            // ∂P^p/∂vb, when the curve moves the belt's speed.
-            let vb = if [self.over, self.vary].contains(&Parameter::Vb) {
-                strobe_map_parameter_derivative(&params, x, self.period, Parameter::Vb)?
-            } else {
-                [0.0; 2]
+        if self.dynamics.is_exact() {
+            let derivatives = || -> Result<[[f64; 6]; 2]> {
+                let dp = strobe_map_parameter_derivatives(&params, x, self.period)?;
+                // ∂P^p/∂vb, when the curve moves the belt's speed.
+                let vb = if [self.over, self.vary].contains(&Parameter::Vb) {
+                    strobe_map_parameter_derivative(&params, x, self.period, Parameter::Vb)?
+                } else {
+                    [0.0; 2]
+                };
+                Ok([0, 1].map(|i| std::array::from_fn(|k| if k == 5 { vb[i] } else { dp[i][k] })))
             };
-            Ok([0, 1].map(|i| std::array::from_fn(|k| if k == 5 { vb[i] } else { dp[i][k] })))
-        };
-        let dp = match derivatives() {
-            Ok(dp) => dp,
-            Err(e) if absent(&e) => return Ok(None),
-            Err(e) => return Err(e),
+            let dp = match derivatives() {
+                Ok(dp) => dp,
+                Err(e) if absent(&e) => return Ok(None),
+                Err(e) => return Err(e),
+            };
+            let (a, b) = (column(self.over)?, column(self.vary)?);
+            return Ok(Some([[dp[0][a], dp[0][b]], [dp[1][a], dp[1][b]]]));
+        }
+        let mut columns = [[0.0; 2]; 2];
+        for (k, (index, parameter)) in [(2, self.over), (3, self.vary)].into_iter().enumerate() {
+            let d = match self
+                .dynamics
+                .parameter_derivative(&params, x, self.period, parameter)
+            {
+                Some(d) => d,
+                None => {
+                    let h = self.options.derivative_step * u[index].abs().max(0.1);
+                    let at = |k: f64| -> Result<State> {
+                        let mut v = *u;
+                        v[index] += k;
+                        Ok(self
+                            .dynamics
+                            .strobe_map(&self.params(&v)?, x, self.period)?
+                            .state)
+                    };
+                    at(h).and_then(|p| {
+                        let q = at(-h)?;
+                        Ok([(p.y - q.y) / (2.0 * h), (p.v - q.v) / (2.0 * h)])
+                    })
+                }
+            };
+            match d {
+                Ok(d) => {
+                    columns[0][k] = d[0];
+                    columns[1][k] = d[1];
+                }
+                Err(e) if absent(&e) => return Ok(None),
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(Some(columns))
+    }
+
+    /// The 3×4 Jacobian of (P^p − x, g) at u: [M − I | ∂P^p/∂Q, ∂P^p/∂P] exactly (a smooth
+    /// law's from its sensitivities, see [`System::parameter_columns`]), and the gradient of
+    /// g by central differences of g (one-sided where one side has no value; the velocity's
+    /// column left out where the strobe falls inside a stop).
+    fn jacobian(&self, u: &U, at: &Evaluation) -> Result<Option<[[f64; 4]; 3]>> {
+        let Some(dp) = self.parameter_columns(u)? else {
+            return Ok(None);
         };
         let m = at.image.jacobian.0;
-        let (a, b) = (column(self.over)?, column(self.vary)?);
         let mut rows = [
-            [m[0][0] - 1.0, m[0][1], dp[0][a], dp[0][b]],
-            [m[1][0], m[1][1] - 1.0, dp[1][a], dp[1][b]],
+            [m[0][0] - 1.0, m[0][1], dp[0][0], dp[0][1]],
+            [m[1][0], m[1][1] - 1.0, dp[1][0], dp[1][1]],
             [0.0; 4],
         ];
         let stuck = at.image.stuck_at_start && at.image.stuck_at_end;
@@ -663,7 +766,7 @@ impl System {
         along: &U,
         strict: bool,
     ) -> Result<Option<Node>> {
-        let tolerance = self.options.tolerance;
+        let tolerance = self.tolerance();
         let Some((mut u, mut at)) = self.on_side(plane.prediction(guess), tau, None, strict)?
         else {
             return Ok(None);
@@ -718,21 +821,17 @@ impl System {
             return Ok(None);
         }
         let params = self.params(&u)?;
-        let orbit = match find_periodic_orbit(
+        let orbit = match self.dynamics.find_periodic_orbit(
             &params,
             State { y: u[0], v: u[1] },
             self.period,
-            &NewtonOptions {
-                tolerance,
-                max_iterations: 2,
-                ..NewtonOptions::default()
-            },
+            &self.confirming(),
         ) {
             Ok(orbit) => orbit,
             Err(e) if absent(&e) => return Ok(None),
             Err(e) => return Err(e),
         };
-        if orbit.iterations > 0 || orbit.events.is_empty() {
+        if orbit.iterations > 0 || self.rest(&orbit) {
             return Ok(None);
         }
         let Some((tangent, rows)) = self.tangent(&u, &at, along)? else {
@@ -764,7 +863,7 @@ impl System {
             border: Some(border),
             ..self.clone()
         };
-        let tolerance = self.options.tolerance;
+        let tolerance = self.tolerance();
         let Some((mut u, mut at)) = graze.on_side(*guess, tau, None, true)? else {
             return Ok(None);
         };
@@ -789,15 +888,11 @@ impl System {
             }
             if merit <= tolerance {
                 let params = self.params(&u)?;
-                let orbit = match find_periodic_orbit(
+                let orbit = match self.dynamics.find_periodic_orbit(
                     &params,
                     State { y: u[0], v: u[1] },
                     self.period,
-                    &NewtonOptions {
-                        tolerance,
-                        max_iterations: 2,
-                        ..NewtonOptions::default()
-                    },
+                    &self.confirming(),
                 ) {
                     Ok(orbit) => orbit,
                     Err(e) if absent(&e) => return Ok(None),
@@ -956,7 +1051,13 @@ impl System {
 
     /// The grazing condition nearest zero on the motion of `node`, followed on the node's
     /// side: the event whose border a curve through `node` meets.
+    ///
+    /// `None` with a smooth law: the conditions are those of the exact solver's events (a
+    /// curve of such a law ends at a change of its event counts, located by bisection).
     pub(crate) fn border_at(&self, node: &Node) -> Result<Option<(Border, f64, f64)>> {
+        if !self.dynamics.is_exact() {
+            return Ok(None);
+        }
         let params = self.params(&node.u)?;
         let list = candidates(&params, node.orbit.state, self.period)?;
         Ok(list

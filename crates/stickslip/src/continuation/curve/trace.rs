@@ -6,13 +6,28 @@ use super::{
     Codim2Kind, Codim2Point, Curve, CurveEnd, CurvePoint, CurveSide, CurveStart, Follow,
     StabilityChange,
 };
-use crate::continuation::obstacle::obstacle;
+use crate::continuation::obstacle;
 use crate::continuation::ContinuationOptions;
 use crate::continuation::Obstacle;
 use crate::error::{Error, Result};
 use crate::scan::Monitor;
-use crate::stability::{PeriodicOrbit, Stability};
+use crate::stability::{Dynamics, ExactDynamics, PeriodicOrbit, Stability};
 use std::ops::ControlFlow;
+use std::sync::Arc;
+
+/// What the orbit at `params` is closest to ([`obstacle::obstacle`]): switches of the exact
+/// model's law; a smooth law has none ([`Obstacle::None`]), as on its branches.
+fn obstacle(
+    system: &System,
+    params: &crate::params::Params,
+    orbit: &PeriodicOrbit,
+) -> Result<Obstacle> {
+    if system.dynamics.is_exact() {
+        obstacle::obstacle(params, orbit)
+    } else {
+        Ok(Obstacle::None)
+    }
+}
 
 /// The angle between two unit vectors.
 fn angle(a: &U, b: &U) -> f64 {
@@ -489,7 +504,7 @@ fn one_way(
                     break CurveEnd::ParameterLimit { over, vary };
                 }
                 let params = system.params(&current.u)?;
-                let obstacle = obstacle(&params, &current.orbit)?;
+                let obstacle = obstacle(&system, &params, &current.orbit)?;
                 // Against a jump of the strobe map: a fold, period doubling or Neimark–Sacker
                 // curve meeting the grazing where it is.
                 if obstacle != Obstacle::None {
@@ -555,6 +570,7 @@ fn one_way(
         let ahead =
             |n: &Node| n.tangent[2] * current.tangent[2] + n.tangent[3] * current.tangent[3] > 0.0;
         if follow != Follow::Grazing
+            && system.dynamics.is_exact()
             && angle(&next.tangent, &current.tangent) > options.max_angle
             && !ahead(&next)
         {
@@ -670,7 +686,7 @@ fn one_way(
                 over: next.u[2],
                 vary: next.u[3],
                 multiplier: next.orbit.multipliers[0].modulus(),
-                obstacle: obstacle(&params, &next.orbit)?,
+                obstacle: obstacle(&system, &params, &next.orbit)?,
             };
         }
         if System::margin(&next) < MARGIN {
@@ -739,6 +755,23 @@ pub fn follow_curve(
     follow_curve_within(start, (from, to), None, options, monitor)
 }
 
+/// [`follow_curve`] on the model `dynamics` (`start` found on it by [`super::find_start_of`]):
+/// with a smooth friction law ([`crate::stability::FrictionDynamics`]) the residuals are taken
+/// to the accuracy of its stiff solver's map ([`Dynamics::map_tolerance`]) and ∂P^p/∂(Q, P)
+/// come from its sensitivities ([`Dynamics::parameter_derivative`]).
+///
+/// # Errors
+/// As [`follow_curve`].
+pub fn follow_curve_of(
+    dynamics: Arc<dyn Dynamics>,
+    start: &CurveStart,
+    (from, to): (f64, f64),
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<Curve> {
+    follow_curve_within_of(dynamics, start, (from, to), None, options, monitor)
+}
+
 /// [`follow_curve`] with P kept within `vary_range` (its ends in either order) when given: a
 /// way that leaves it ends at the point where P equals the end it passes
 /// ([`CurveEnd::Boundary`] with that end's value). The two ways are traced at once (each on
@@ -748,6 +781,28 @@ pub fn follow_curve(
 /// As [`follow_curve`]; [`Error::InvalidParameter`] for a range of P whose ends are not finite
 /// or are equal, or that does not hold the start's value of P.
 pub fn follow_curve_within(
+    start: &CurveStart,
+    (from, to): (f64, f64),
+    vary_range: Option<(f64, f64)>,
+    options: &ContinuationOptions,
+    monitor: &dyn Monitor,
+) -> Result<Curve> {
+    follow_curve_within_of(
+        Arc::new(ExactDynamics),
+        start,
+        (from, to),
+        vary_range,
+        options,
+        monitor,
+    )
+}
+
+/// [`follow_curve_within`] on the model `dynamics` (see [`follow_curve_of`]).
+///
+/// # Errors
+/// As [`follow_curve_within`].
+pub fn follow_curve_within_of(
+    dynamics: Arc<dyn Dynamics>,
     start: &CurveStart,
     (from, to): (f64, f64),
     vary_range: Option<(f64, f64)>,
@@ -798,6 +853,7 @@ pub fn follow_curve_within(
         border: start.border,
         options,
         phase: 0.0,
+        dynamics,
     };
     let towards = (to - a0).signum();
     let way = |ahead: bool, direction: f64| -> Result<Option<OneWay>> {
