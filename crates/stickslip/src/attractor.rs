@@ -37,7 +37,7 @@ use crate::error::{invalid, Result};
 use crate::options::OptionKey;
 use crate::params::{Params, State};
 use crate::solver::{EventKind, Phase};
-use crate::stability::{Dynamics, ExactDynamics, TangentRun};
+use crate::stability::{Dynamics, ExactDynamics, NonperiodicVerdict, TangentRun};
 use serde::{Deserialize, Serialize};
 
 /// What a motion settles on (see the module documentation).
@@ -371,14 +371,20 @@ pub fn record_strobes_of(
         dynamics.repeat_tolerance(options.tolerance),
     );
     let stuck = tangent.phase() == Phase::Stick;
-    let k = options.significance;
-    let kind = match found {
-        Some(_) if events == 0 && stuck => AttractorKind::Static,
-        Some(_) => AttractorKind::Periodic,
-        None if !(exponent_error.is_finite()) => AttractorKind::Undecided,
-        None if exponent > k * exponent_error => AttractorKind::Chaotic,
-        None if exponent >= -k * exponent_error => AttractorKind::QuasiPeriodic,
-        None => AttractorKind::Undecided,
+    // (The verdict of every tool on a motion that does not repeat; a contracting one has
+    // not reached its attractor, which is then not known.)
+    let verdict = NonperiodicVerdict::of(
+        exponent,
+        exponent_error,
+        exponent_error.is_finite(),
+        options.significance,
+    );
+    let kind = match (found, verdict) {
+        (Some(_), _) if events == 0 && stuck => AttractorKind::Static,
+        (Some(_), _) => AttractorKind::Periodic,
+        (None, NonperiodicVerdict::Chaotic) => AttractorKind::Chaotic,
+        (None, NonperiodicVerdict::QuasiPeriodic) => AttractorKind::QuasiPeriodic,
+        (None, _) => AttractorKind::Undecided,
     };
     Ok(StrobeRecord {
         strobes,

@@ -527,6 +527,13 @@ const ZERO_SAMPLES: usize = 16;
 /// in θ; `None` where s stays positive. (A pair of zeros closer than 1/16 of a step, s
 /// touching zero, can be missed, as on the stiff integrator's cubics it cannot.)
 fn first_zero(step: &DopStep, sign: f64, vb: f64, floor: f64, from_zero: bool) -> Option<f64> {
+    // Where s starts further from 0 than the dense output can move in the step
+    // ([`DopStep::reach`], with the rounding of x0 + Δ and of the difference with vb), every
+    // sample below is positive: no zero, and no need to sample (most steps of a slip).
+    let (v0, reach) = (step.x0[1], step.reach(1));
+    if sign * (v0 - vb) > reach + 4.0 * f64::EPSILON * (v0.abs() + vb.abs() + reach) {
+        return None;
+    }
     let s = |theta: f64| sign * (step.component(1, theta) - vb);
     let mut previous = floor;
     for i in 1..=ZERO_SAMPLES {

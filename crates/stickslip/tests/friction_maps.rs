@@ -12,8 +12,8 @@ use stickslip::bifurcation::{Bifurcation, BifurcationOptions};
 use stickslip::continuation::ContinuationOptions;
 use stickslip::friction::FrictionLaw;
 use stickslip::scan::{Axis, Grid, ParameterRange, SweepDirection};
-use stickslip::stability::{LyapunovOptions, NewtonOptions, PeriodicOrbit};
-use stickslip::steady::{SteadyOptions, SteadyState};
+use stickslip::stability::{LyapunovOptions, NewtonOptions, NonperiodicVerdict, PeriodicOrbit};
+use stickslip::steady::{MotionClass, SteadyOptions, SteadyState};
 use stickslip::{Experiment, Parameter, State};
 use stickslip_testkit::belts::{belt, CUBIC, STRIBECK};
 
@@ -340,8 +340,9 @@ fn a_stribeck_belts_coexisting_attractors_have_a_map_of_two_colours() {
                     );
                 }
                 _ => {
-                    // (Not repeating; `steady` does not measure the friction laws' exponents.)
+                    // Not repeating, and chaotic by `steady`'s measurement too.
                     assert_eq!(s.period, None, "({y0}, {v0})");
+                    assert_eq!(s.class, MotionClass::Chaotic, "({y0}, {v0})");
                     assert!(
                         strobe_sets_overlap(&a.strobes, &s.strobes),
                         "({y0}, {v0}): steady's strobes on the chaotic attractor"
@@ -356,4 +357,47 @@ fn a_stribeck_belts_coexisting_attractors_have_a_map_of_two_colours() {
     };
     let four = basins.options(exhaustive).unwrap().threads(4).unwrap();
     assert_eq!(four.run(&()).unwrap().cells, map.cells);
+}
+
+/// One motion of a smooth law that does not repeat, classed alike by `steady` and `basins`:
+/// the Stribeck belt's chaotic creep above, from rest. `steady` measures its exponents by the
+/// friction law's tangent dynamics (`FrictionDynamics`, the ones `basins` and `lyapunov` use)
+/// and calls it chaotic; the basin map's cell at rest (the exhaustive method's verdict on
+/// that start) is chaotic too, by the same rule (`NonperiodicVerdict::of`), and so is what
+/// `lyapunov` says from the state `steady` ended at.
+#[test]
+fn steady_and_basins_class_a_stribeck_belts_chaotic_creep_alike() {
+    let experiment = belt(
+        FrictionLaw::Stribeck {
+            vs: 0.3,
+            delta: 2.0,
+            eta: 0.0,
+        },
+        (0.046816, 0.9, 1.4, 1.5, 0.05),
+    );
+    let s = steady(&experiment);
+    assert_eq!(s.period, None);
+    let measured = s.lyapunov.as_ref().expect("steady measured the exponents");
+    assert_eq!(
+        measured.verdict,
+        NonperiodicVerdict::Chaotic,
+        "{measured:?}"
+    );
+    assert_eq!(s.class, MotionClass::Chaotic);
+    let largest = measured.exponents.largest;
+    assert!(largest.per_tau > 4.0 * largest.error_per_tau, "{largest:?}");
+
+    let r = ParameterRange::new("y0", -1.0, 1.0, 3).unwrap();
+    let basins = Basins::new(&experiment, &r, &r).unwrap();
+    let cell = basins.cell(1, 1).unwrap();
+    assert_eq!(cell.kind, AttractorKind::Chaotic, "{:?}", cell.exponent);
+    assert!(cell.exponent > 0.0);
+
+    let (lambda, error) = measured_from(&experiment, s.final_state());
+    assert!(lambda > 4.0 * error, "lyapunov: λ1 {lambda} ± {error}");
+}
+
+/// The exponent `lyapunov` measures from `at` (fixed length).
+fn measured_from(experiment: &Experiment, at: State) -> (f64, f64) {
+    measured(&experiment.clone().with_initial(at).unwrap())
 }

@@ -230,7 +230,7 @@ fn self_excited_text(
         "steady sliding    y = {:.10}, damping 2ζ + μ'(|vb|) = {:+.6e}: {}",
         cycle.equilibrium,
         cycle.sliding_damping,
-        cycle.sliding_stability.label()
+        cycle.sliding_stability.description(&steady.params)
     );
 }
 

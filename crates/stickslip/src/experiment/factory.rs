@@ -9,7 +9,7 @@ use crate::params::{Params, State};
 use crate::physical::{Circuit, Diode};
 use crate::shockley::ShockleyOptions;
 use crate::solver::Solver;
-use crate::stability::Dynamics;
+use crate::stability::{Dynamics, FrictionDynamics};
 use crate::steady::SolverFactory;
 
 /// The solver factory of an [`Experiment`](super::Experiment): the exact solver, or the stiff solver of the
@@ -74,10 +74,20 @@ impl SolverFactory for ExperimentFactory {
         self.cancel.clone()
     }
 
-    /// A smooth law's [`Dynamics`] (its solvers are not exact); `None` for the PWL law.
+    /// A smooth law's [`Dynamics`] (its solvers are not exact): a Shockley circuit's, and
+    /// with the PWL law those of the friction solver ([`FrictionDynamics`]), whose solvers
+    /// `make` for a Stribeck or cubic law, the only ones of the PWL law that are not exact
+    /// (the steady-state search asks only then). So `steady` measures the Lyapunov exponents
+    /// of such a motion that does not repeat by the tangent dynamics that `lyapunov`,
+    /// `bifurcation` and `basins` use, and classes it as they do. (The friction tools have no
+    /// strobe map for Newton settling, [`Dynamics::settling`]: their steady states settle by
+    /// repetition, as before.)
     fn smooth_dynamics(&self) -> Option<Box<dyn Dynamics>> {
         match self.law() {
-            Ok(Law::Pwl) | Err(_) => None,
+            Ok(Law::Pwl) => Some(Box::new(
+                FrictionDynamics::new().with_cancel(self.cancel.clone()),
+            )),
+            Err(_) => None,
             Ok(_) => self.dynamics().ok(),
         }
     }

@@ -50,17 +50,12 @@ impl NonperiodicClassification {
     /// The verdict on measured `exponents`, with `significance` = k standard errors (see
     /// [`NonperiodicVerdict`]).
     pub fn new(exponents: LyapunovExponents, significance: f64) -> Self {
-        let k = significance;
-        let (lambda, sigma) = (exponents.largest.per_tau, exponents.largest.error_per_tau);
-        let verdict = if !exponents.converged {
-            NonperiodicVerdict::Undecided
-        } else if lambda > k * sigma {
-            NonperiodicVerdict::Chaotic
-        } else if lambda < -k * sigma {
-            NonperiodicVerdict::Contracting
-        } else {
-            NonperiodicVerdict::QuasiPeriodic
-        };
+        let verdict = NonperiodicVerdict::of(
+            exponents.largest.per_tau,
+            exponents.largest.error_per_tau,
+            exponents.converged,
+            significance,
+        );
         Self { verdict, exponents }
     }
 

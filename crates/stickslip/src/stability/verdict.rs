@@ -26,3 +26,27 @@ pub enum NonperiodicVerdict {
     /// verdict at this length.
     Undecided,
 }
+
+impl NonperiodicVerdict {
+    /// The one rule by which every tool judges a motion that does not repeat from its largest
+    /// exponent λ₁ ± σ (`lambda`, `sigma`, per unit τ) with k = `significance` standard errors:
+    /// [`NonperiodicVerdict::Undecided`] unless the measurement `converged` (its halves agree,
+    /// its error is finite), then chaotic where λ₁ > kσ, contracting where λ₁ < −kσ,
+    /// quasi-periodic between. `steady` (through
+    /// [`NonperiodicClassification`](super::NonperiodicClassification)), the Lyapunov maps,
+    /// `bifurcation` and `basins` (through
+    /// [`crate::attractor::record_strobes_of`]) all take their verdicts from it, so that one
+    /// motion measured alike gets one verdict from each.
+    pub fn of(lambda: f64, sigma: f64, converged: bool, significance: f64) -> Self {
+        let k = significance;
+        if !converged {
+            NonperiodicVerdict::Undecided
+        } else if lambda > k * sigma {
+            NonperiodicVerdict::Chaotic
+        } else if lambda < -k * sigma {
+            NonperiodicVerdict::Contracting
+        } else {
+            NonperiodicVerdict::QuasiPeriodic
+        }
+    }
+}

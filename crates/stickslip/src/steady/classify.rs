@@ -21,7 +21,7 @@ pub const STATIC_GAIN: f64 = 0.01;
 /// within the budget.
 ///
 /// [`classify`] decides from the event log. A motion that does not repeat is then measured by
-/// its largest Lyapunov exponent λ₁ (with the exact model, see
+/// its largest Lyapunov exponent λ₁ (with the exact model or a smooth law's tangent, see
 /// [`super::SteadyOptions::lyapunov`]): it is [`MotionClass::Chaotic`] when λ₁ is positive
 /// beyond its error, and otherwise stays [`MotionClass::Undecided`] (with stops) or
 /// [`MotionClass::Sliding`] (without), with λ₁ and its verdict reported beside it.

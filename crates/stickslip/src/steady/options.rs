@@ -44,8 +44,10 @@ pub struct SteadyOptions {
     /// are equal whichever way the motion settles.
     #[serde(default = "default_newton")]
     pub newton: bool,
-    /// How a motion that does not repeat within the cap is measured (exact model only, see
-    /// the documentation of `steady/cycle.rs`): its Lyapunov exponents from the final state of the record.
+    /// How a motion that does not repeat within the cap is measured (by the exact model's
+    /// tangent dynamics, or a smooth law's where the factory has them,
+    /// [`super::SolverFactory::smooth_dynamics`]; see the documentation of `steady/cycle.rs`):
+    /// its Lyapunov exponents from the final state of the record.
     /// `None`: not measured. Default [`SteadyOptions::DEFAULT_LYAPUNOV`]: 100 periods to
     /// align the tangent, 5000 measured in 20 blocks, chaos beyond 4 standard errors.
     pub lyapunov: Option<LyapunovOptions>,

@@ -8,7 +8,11 @@
 //!   Without a drive every stop ends at the same state, y = sgn(vb)·μs − 2ζ vb with y' = vb
 //!   (where the net force −y − 2ζ vb reaches ∓μs), so the motion from there is one and the
 //!   same: after its second stop the block is on the cycle. The section is the onset of
-//!   sticking (y at the stick event, y' = vb).
+//!   sticking (y at the stick event, y' = vb). A "stop" that ends within
+//!   [`SteadyOptions::min_stop_fraction`] of 2π is a touch of the belt's speed, not a stop
+//!   (the undamped Coulomb belt with μs = 1 touches it once a period, tangentially, where
+//!   only rounding places the stick event): it opens no cycle, and the slide's sections go on
+//!   through it (`is_touch`).
 //! - a **pure-slip cycle** ([`MotionClass::PureSlipCycle`]): the block never sticks. Where the
 //!   slip s = y' − vb changes sign (a reversal without a stop) the section is there, s = 0 with
 //!   s rising; where it never does (an oscillation about steady sliding with s of one sign, as
@@ -87,6 +91,24 @@ impl SlidingStability {
             SlidingStability::Stable => "stable",
             SlidingStability::Unstable => "unstable",
             SlidingStability::Neutral => "neutral",
+        }
+    }
+
+    /// The label, and for a neutral equilibrium what it means for the belt of `params`: a
+    /// centre, with Coulomb's law (ζ = 0) the centre of a family of pure-slip cycles, the
+    /// circles about it of radius up to |vb| (period 2π), of which a pure-slip cycle found
+    /// there is one, not an attracting cycle (`crate::theory::belt`).
+    pub fn description(self, params: &Params) -> &'static str {
+        match self {
+            SlidingStability::Neutral if params.law.is_coulomb() => {
+                "neutral (a centre: every circle about it of radius up to |vb| is a pure-slip \
+                 cycle of period 2π, neither attracting nor repelling; the largest touches \
+                 the belt's speed)"
+            }
+            SlidingStability::Neutral => {
+                "neutral (small oscillations about it neither grow nor decay to first order)"
+            }
+            other => other.label(),
         }
     }
 }
@@ -252,6 +274,7 @@ fn search<S: Solver + ?Sized>(
         .max(params.mu_s);
     let limit = options.tolerance * scale;
     let keep = 2 * options.max_period + 2;
+    let min_stop = options.min_stop_fraction * TAU;
 
     let mut sticks = Sections::default();
     let mut reversals = Sections::default();
@@ -289,6 +312,9 @@ fn search<S: Solver + ?Sized>(
                 state: solver.state(),
             };
             match e.kind {
+                // A touch of the belt's speed is no stop: the slide goes on, and so do its
+                // sections (see `is_touch`).
+                EventKind::Stick if is_touch(&params, e.y, min_stop) => {}
                 EventKind::Stick => {
                     sticks.push(here, keep);
                     reversals.clear();
@@ -363,10 +389,51 @@ fn search<S: Solver + ?Sized>(
         &params,
         solver,
         &log,
-        equilibrium,
-        damping,
+        (equilibrium, damping),
         cap - start,
+        min_stop,
     ))
+}
+
+/// Whether a stop that starts at `y` (a stick event) ends within `min_stop`
+/// ([`SteadyOptions::min_stop_fraction`] of 2π), so that it is no stop but a touch of the
+/// belt's speed. Without a drive a stop ends where the net force −y − 2ζ vb reaches the
+/// static limit, at y_r = sgn(vb)·μs − 2ζ vb, after (y_r − y)/vb. A slide that reaches the
+/// belt's speed tangentially (y'' = 0 there) does so at y_r itself: at ζ = 0 and μs = 1 every
+/// stick-slip cycle is the circle of radius |vb| about steady sliding, which leaves the belt's
+/// speed at its top and comes back to it there (`crate::theory::CoulombBeltCycle`: the stop
+/// shrinks to an instant). Its stick event is then placed by rounding only, up to √ε from the
+/// tangency (a few 10⁻⁸ in τ and in y), and so is the "stop" that follows; the motion after
+/// it is the same circle. Such touches neither open a cycle nor end the sections of the
+/// slide, whose turning points then find the cycle (the period 2π to rounding, where the
+/// stick events would repeat only to some 10⁻⁸), and they count neither as stops nor as time
+/// stuck, as in the record of the driven oscillator ([`super::classify()`]).
+fn is_touch(params: &Params, y: f64, min_stop: f64) -> bool {
+    let release = params.mu_s.copysign(params.vb) - params.belt_force();
+    (release - y) / params.vb <= min_stop
+}
+
+/// The durations of the stops among `events` (a stick event followed by a slip event, or by
+/// the `end` of the record) that last longer than `min_stop`.
+fn stops_of<'a>(events: impl Iterator<Item = &'a Event>, min_stop: f64, end: f64) -> Vec<f64> {
+    let mut stops = Vec::new();
+    let mut since = None;
+    for e in events {
+        match e.kind {
+            EventKind::Stick => since = Some(e.tau),
+            EventKind::Slip => {
+                if let Some(s) = since.take() {
+                    stops.push(e.tau - s);
+                }
+            }
+            EventKind::Turn => {}
+        }
+    }
+    if let Some(s) = since {
+        stops.push(end - s);
+    }
+    stops.retain(|&d| d > min_stop);
+    stops
 }
 
 /// Whether the slide from a turning point (y' = 0) at `distance` from steady sliding never
@@ -611,7 +678,6 @@ fn record_cycle(
     let period = b.tau - a.tau;
     let mut events = Vec::new();
     let (mut y_min, mut y_max) = (a.state.y.min(b.state.y), a.state.y.max(b.state.y));
-    let mut stuck = 0.0;
     let mut stuck_since = (section == CycleSection::StickOnset).then_some(a.tau);
     let mut stops = Vec::new();
     for mark in log.iter().filter(|m| m.tau() > a.tau && m.tau() <= b.tau) {
@@ -623,7 +689,6 @@ fn record_cycle(
                     EventKind::Stick => stuck_since = Some(e.tau),
                     EventKind::Slip => {
                         if let Some(s) = stuck_since.take() {
-                            stuck += e.tau - s;
                             stops.push(e.tau - s);
                         }
                     }
@@ -650,8 +715,11 @@ fn record_cycle(
             },
         );
     }
+    // (Touches of the belt's speed, `is_touch`, are neither stops nor time stuck.)
     let min_stop = options.min_stop_fraction * TAU;
-    let counted = stops.iter().filter(|&&d| d > min_stop).count();
+    stops.retain(|&d| d > min_stop);
+    let counted = stops.len();
+    let stuck = stops.iter().fold(0.0, |sum, d| sum + d);
     let class = if counted > 0 {
         MotionClass::StickSlipCycle
     } else {
@@ -710,9 +778,9 @@ fn unsettled<S: Solver + ?Sized>(
     params: &Params,
     solver: &S,
     log: &VecDeque<Mark>,
-    equilibrium: f64,
-    damping: f64,
+    (equilibrium, damping): (f64, f64),
     length: f64,
+    min_stop: f64,
 ) -> SteadyState {
     let end = solver.state();
     let (mut y_min, mut y_max) = (end.y, end.y);
@@ -728,7 +796,7 @@ fn unsettled<S: Solver + ?Sized>(
         y_min = y_min.min(y);
         y_max = y_max.max(y);
     }
-    let stops = events.iter().filter(|e| e.kind == EventKind::Stick).count();
+    let stops = stops_of(events.iter(), min_stop, solver.time()).len();
     let class = if stops > 0 {
         MotionClass::Undecided
     } else {

@@ -163,14 +163,29 @@ impl SelfExcitedOrbit {
     /// `params` of the steady state (see the module documentation), and its stability
     /// (stable for μ2 < 1); any other orbit is returned as it is.
     ///
+    /// A pure-slip cycle that touches the belt's speed (a stop of no duration, as the
+    /// undamped Coulomb belt's with μs = 1: `crate::theory::belt`) has no multiplier: the
+    /// return map has no derivative there; it is returned without one, its summary saying
+    /// so.
+    ///
     /// # Errors
-    /// [`StabilityError::NoPeriod`] when the motion from the cycle's turning point sticks
-    /// within a period (it is then not a pure-slip cycle); what the solver reports.
+    /// What the solver reports.
     pub fn with_tangent(mut self, dynamics: &dyn Dynamics, params: &Params) -> Result<Self> {
         let (MotionClass::PureSlipCycle, Some(period)) = (self.class, self.cycle_period_tau) else {
             return Ok(self);
         };
-        let mu2 = pure_slip_multiplier(dynamics, params, self.y_max, period)?;
+        let mu2 = match pure_slip_multiplier(dynamics, params, self.y_max, period) {
+            // The cycle touches the belt's speed (a stop of no duration, which the class does
+            // not count): perturbations outwards stick there and inwards do not, so the
+            // return map has no derivative on the cycle (at ζ = 0, μs = 1: slope 0 outside,
+            // 1 inside), and there is no multiplier to report.
+            Err(crate::Error::Stability(StabilityError::NoPeriod { .. })) => {
+                self.summary
+                    .push_str(", touching the belt's speed: its return map has no derivative");
+                return Ok(self);
+            }
+            other => other?,
+        };
         self.multipliers = Some([Multiplier::real(1.0), Multiplier::real(mu2)]);
         self.stability = Some(if mu2 < 1.0 {
             Stability::Stable

@@ -325,11 +325,16 @@ impl<L: SmoothLaw> Radau5<L> {
         let [y0, v0] = self.x;
         let damping = 2.0 * p.zeta;
         let w = &self.w;
-        let drive = [
-            p.drive(self.t + C[0] * h),
-            p.drive(self.t + C[1] * h),
-            p.drive(self.t + h),
-        ];
+        // (No cosines without a drive: a self-excited belt's slips, β = 0.)
+        let drive = if p.beta == 0.0 {
+            [0.0; 3]
+        } else {
+            [
+                p.drive(self.t + C[0] * h),
+                p.drive(self.t + C[1] * h),
+                p.drive(self.t + h),
+            ]
+        };
         let mut l = [[0.0; 3]; 3];
         let mut b = [0.0; 3];
         for i in 0..3 {
