@@ -258,12 +258,16 @@ fn a_stop_that_splits_mid_swing_is_a_grazing_point_where_the_force_touches_the_l
         let (params, b) = branch(&e, parameter, to);
         println!("{law:?} over {}: end {:?}", parameter.label(), b.end);
         assert!(matches!(b.end, BranchEnd::Boundary { .. }), "{:?}", b.end);
-        let point = b
+        // Either order along the branch.
+        let point = if b
             .special
             .iter()
             .any(|s| (s.before.turns, s.before.stops) == split)
-            .then(|| grazing(&b, split, whole))
-            .unwrap_or_else(|| grazing(&b, whole, split));
+        {
+            grazing(&b, split, whole)
+        } else {
+            grazing(&b, whole, split)
+        };
         let (one, two) = if (point.before.turns, point.before.stops) == whole {
             (&point.before, &point.after)
         } else {
@@ -345,12 +349,16 @@ fn a_turning_point_at_the_static_limit_is_a_grazing_point_where_its_margin_vanis
         let (params, b) = branch(&e, parameter, to);
         println!("{law:?} over {}: end {:?}", parameter.label(), b.end);
         assert!(matches!(b.end, BranchEnd::Boundary { .. }), "{:?}", b.end);
-        let point = b
+        // Either order along the branch.
+        let point = if b
             .special
             .iter()
             .any(|s| (s.before.turns, s.before.stops) == stuck)
-            .then(|| grazing(&b, stuck, turning))
-            .unwrap_or_else(|| grazing(&b, turning, stuck));
+        {
+            grazing(&b, stuck, turning)
+        } else {
+            grazing(&b, turning, stuck)
+        };
         let (turns, held) = if (point.before.turns, point.before.stops) == turning {
             (&point.before, &point.after)
         } else {
