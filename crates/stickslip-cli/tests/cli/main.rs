@@ -9,6 +9,7 @@ mod belt_tools;
 mod checkpoint;
 mod convert;
 mod curve;
+mod curve_belt;
 mod determinism;
 mod dynamics;
 mod fit;

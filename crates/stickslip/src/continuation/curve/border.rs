@@ -3,17 +3,27 @@
 //! [`BorderKind`]).
 //!
 //! - [`BorderKind::TurnAtLimit`] at every velocity zero (a turning point or the start of a
-//!   stop) at τ_e: h = |F(τ_e) − y(τ_e)| − μs, positive at a turning point, at most 0 at a
-//!   stop.
+//!   stop) at τ_e: h = |F(τ_e) − y(τ_e) − 2ζ·vb| − μs, positive at a turning point, at most 0
+//!   at a stop.
 //! - [`BorderKind::SlideTouchesRest`] at every minimum of the speed inside a slide (y'' = 0,
 //!   found on 32 samples and refined by Newton's method on y'' with its closed-form
-//!   derivative): h = s·y'(τ_m), the lowest speed, s the slide's direction.
-//! - [`BorderKind::ReleaseTangential`] at every extremum τ* of the drive (F'(τ*) = 0) inside a
-//!   stop at y_s, or in the slide right after its release (before its next event):
-//!   h = |F(τ*) − y_s| − μs, at most 0 inside (no release there), positive after a release.
+//!   derivative): h = s·(y'(τ_m) − vb), the lowest slip, s the slide's direction. Past a stop
+//!   the slide is continued in closed form as if it went on (its slip overshoots and comes
+//!   back): h < 0 there, and h = 0 where the slide reaches the stop tangentially (y'' = 0 on
+//!   arrival; on a belt the continuation's [`Obstacle::TangentialStick`]).
+//! - [`BorderKind::ReleaseTangential`] at every extremum τ* of the net force of a stop, inside
+//!   it, or in the slide right after its release (before its next event), as if the block were
+//!   still stuck: h = |F(τ*) − y_s(τ*) − 2ζ·vb| − μs, at most 0 inside (no release there),
+//!   positive after a release. On a base at rest y_s is the stop's position and τ* an extremum
+//!   of the drive (F'(τ*) = 0); on a belt the stuck block moves with it, y_s(τ) = y_s +
+//!   vb·(τ − τ_s), and τ* is where the drive's rate matches the belt's, F'(τ*) = vb (none when
+//!   βw ≤ |vb|: the net force of a stop is monotone, its release never tangential).
 //!
 //! Each h is a function of the strobe state and the parameters through the motion up to its
-//! event, exact to rounding (the exact solver's events and dense output).
+//! event, exact to rounding (the exact solver's events and dense output). Without a belt every
+//! term in vb is an exact 0, and each h is computed as on a base at rest, bit for bit.
+//!
+//! [`Obstacle::TangentialStick`]: crate::continuation::Obstacle::TangentialStick
 
 use super::BorderKind;
 use crate::error::Result;
@@ -75,8 +85,8 @@ pub(crate) fn candidates_of(
     let within = |lo: f64, hi: f64| near.is_none_or(|n| reaches(lo, hi, n, end));
     let mut solver = ExactSolver::new(*params, state);
     let mut out = Vec::new();
-    // The position of the stop just released, until the slide after it has an event.
-    let mut released: Option<f64> = None;
+    // The position and time of the stop just released, until the slide after it has an event.
+    let mut released: Option<(f64, f64)> = None;
     // The direction of the last slide.
     let mut last_sign = 0.0;
     // The candidate of the stop under way.
@@ -88,12 +98,15 @@ pub(crate) fn candidates_of(
             let middle = solver.dense(0.5 * (a + b));
             match middle.phase {
                 Phase::Stick if wanted(BorderKind::ReleaseTangential) => {
+                    // (On a belt the stuck block moves with it.)
+                    let mid = 0.5 * (a + b);
+                    let stuck = |tau: f64| stuck_position(params, middle.y, mid, tau);
                     for tau in extrema(params, a, b) {
                         out.push(Candidate {
                             kind: BorderKind::ReleaseTangential,
                             variant: true,
                             tau,
-                            value: (params.drive(tau) - middle.y).abs() - params.mu_s,
+                            value: params.net_force(tau, stuck(tau)).abs() - params.mu_s,
                             extent: 0.0,
                         });
                     }
@@ -102,14 +115,15 @@ pub(crate) fn candidates_of(
                 phase => {
                     let sign = phase.sign();
                     last_sign = sign;
-                    if let Some(y_s) = released.take() {
+                    if let Some((y_s, tau_s)) = released.take() {
                         let extrema = extrema(params, a, b);
                         for tau in extrema.filter(|_| wanted(BorderKind::ReleaseTangential)) {
+                            let stuck = stuck_position(params, y_s, tau_s, tau);
                             out.push(Candidate {
                                 kind: BorderKind::ReleaseTangential,
                                 variant: false,
                                 tau,
-                                value: (params.drive(tau) - y_s).abs() - params.mu_s,
+                                value: params.net_force(tau, stuck).abs() - params.mu_s,
                                 extent: 0.0,
                             });
                         }
@@ -148,7 +162,7 @@ pub(crate) fn candidates_of(
                     kind: BorderKind::TurnAtLimit,
                     variant: e.kind == EventKind::Turn,
                     tau: e.tau,
-                    value: (params.drive(e.tau) - e.y).abs() - params.mu_s,
+                    value: params.net_force(e.tau, e.y).abs() - params.mu_s,
                     extent: if e.kind == EventKind::Stick {
                         end - e.tau
                     } else {
@@ -157,7 +171,7 @@ pub(crate) fn candidates_of(
                 });
             }
             Some(e) if e.kind == EventKind::Slip => {
-                released = Some(e.y);
+                released = Some((e.y, e.tau));
                 if let Some(k) = stop_start.take() {
                     out[k].extent = e.tau - out[k].tau;
                 }
@@ -168,14 +182,45 @@ pub(crate) fn candidates_of(
     Ok((out, counts))
 }
 
-/// The extrema of the drive, w·τ + φ ≡ 0 (mod π), in [a, b].
+/// Where a block stuck since τ_s at y_s is at τ: it moves with the belt, y_s + vb·(τ − τ_s)
+/// (y_s itself, bit for bit, without one).
+fn stuck_position(params: &Params, y_s: f64, tau_s: f64, tau: f64) -> f64 {
+    if params.vb == 0.0 {
+        y_s
+    } else {
+        y_s + params.vb * (tau - tau_s)
+    }
+}
+
+/// The extrema in [a, b] of the net force on a stuck block, F(τ) − vb·τ up to a constant:
+/// without a belt those of the drive, w·τ + φ ≡ 0 (mod π); on one, where F'(τ) = vb,
+/// sin(wτ + φ) = −vb/(βw) (none when βw ≤ |vb|), in order.
 fn extrema(params: &Params, a: f64, b: f64) -> impl Iterator<Item = f64> {
     let (w, phi) = (params.w, params.phi);
-    let first = ((w * a + phi) / PI).ceil() as i64;
-    let last = ((w * b + phi) / PI).floor() as i64;
-    (first..=last)
-        .map(move |k| (k as f64 * PI - phi) / w)
-        .filter(move |&t| t >= a && t <= b)
+    // The phases θ₀ + kπ·(step) of the extrema: 0 + kπ without a belt; on one the two roots
+    // −asin(r) and π + asin(r) of sin θ = −r in each turn.
+    let roots: Vec<f64> = if params.vb == 0.0 {
+        let first = ((w * a + phi) / PI).ceil() as i64;
+        let last = ((w * b + phi) / PI).floor() as i64;
+        (first..=last).map(|k| (k as f64 * PI - phi) / w).collect()
+    } else {
+        let r = params.vb / (params.beta * w);
+        if !(r.abs() < 1.0) {
+            Vec::new()
+        } else {
+            let s = r.asin();
+            let tau = std::f64::consts::TAU;
+            let mut out = Vec::new();
+            for base in [-s, PI + s] {
+                let first = ((w * a + phi - base) / tau).floor() as i64;
+                let last = ((w * b + phi - base) / tau).ceil() as i64;
+                out.extend((first..=last).map(|k| (base + k as f64 * tau - phi) / w));
+            }
+            out.sort_by(f64::total_cmp);
+            out
+        }
+    };
+    roots.into_iter().filter(move |&t| t >= a && t <= b)
 }
 
 /// The interior minima of the speed of the slide in direction `sign` over [a, b].
@@ -188,8 +233,16 @@ fn minima(
     out: &mut Vec<Candidate>,
 ) {
     let h = (b - a) / SAMPLES as f64;
+    // (The slip s·(y' − vb); without a belt s·y', bit for bit.)
+    let slip = |v: f64| {
+        if params.vb == 0.0 {
+            sign * v
+        } else {
+            sign * (v - params.vb)
+        }
+    };
     let speeds: Vec<f64> = (0..=SAMPLES)
-        .map(|k| sign * solver.dense(a + k as f64 * h).v)
+        .map(|k| slip(solver.dense(a + k as f64 * h).v))
         .collect();
     // y'' on the slide, and its derivative y''' = F' − y' − 2ζ y''.
     let acceleration = |t: f64| {
@@ -236,7 +289,7 @@ fn minima(
             t = next;
         }
         // A minimum the slide reaches (not one past its end, where it has stopped).
-        let value = sign * solver.dense(t).v;
+        let value = slip(solver.dense(t).v);
         if t > a && t < b && value > 0.0 {
             out.push(Candidate {
                 kind: BorderKind::SlideTouchesRest,
@@ -295,10 +348,10 @@ pub(crate) fn earliest(
         .copied()
 }
 
-/// The lowest speed of the slide in direction `sign` that stops at `tau` at `y`, continued in
-/// closed form past the stop as if it went on (its speed s·y' falls below zero and comes
-/// back): the condition [`BorderKind::SlideTouchesRest`] across its border. `None` when it
-/// does not come back within half a drive period (the slide would turn, not touch rest).
+/// The lowest slip of the slide in direction `sign` that stops at `tau` at `y`, continued in
+/// closed form past the stop as if it went on (its slip s·(y' − vb) falls below zero and
+/// comes back): the condition [`BorderKind::SlideTouchesRest`] across its border. `None` when
+/// it does not come back within half a drive period (the slide would turn, not touch rest).
 fn virtual_minimum(params: &Params, tau: f64, y: f64, sign: f64) -> Option<Candidate> {
     let theta = (params.w * tau + params.phi).rem_euclid(std::f64::consts::TAU);
     let segment = crate::linear::LinearSegment::new(
@@ -308,7 +361,7 @@ fn virtual_minimum(params: &Params, tau: f64, y: f64, sign: f64) -> Option<Candi
         theta,
         sign,
         y,
-        0.0,
+        params.vb,
     );
     let horizon = 0.5 * params.drive_period();
     let n = 64;
@@ -349,11 +402,69 @@ fn virtual_minimum(params: &Params, tau: f64, y: f64, sign: f64) -> Option<Candi
                 kind: BorderKind::SlideTouchesRest,
                 variant: true,
                 tau: tau + m,
-                value: sign * segment.eval(m).d[1],
+                value: if params.vb == 0.0 {
+                    sign * segment.eval(m).d[1]
+                } else {
+                    sign * (segment.eval(m).d[1] - params.vb)
+                },
                 extent: 0.0,
             });
         }
         previous = a;
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a belt a stuck block rides along, y = y_s + vb·(τ − τ_s), so a stop's net force
+    /// β cos(wτ + φ) − y − 2ζ·vb is extremal where F'(τ) = vb, not where F'(τ) = 0. Each
+    /// release condition inside a stop sits at such a point, with the value |net| − μs that
+    /// the solver's own motion gives there, and the net force 10⁻³ either side lies on one
+    /// side of it (an extremum).
+    #[test]
+    fn a_stops_release_conditions_on_a_belt_sit_at_its_net_forces_extrema() {
+        let params = Params::new(0.05, 0.5, 1.0)
+            .and_then(|p| p.with_mu_s(3.0))
+            .and_then(|p| p.with_vb(0.1))
+            .unwrap();
+        // Stuck at the start (|net| = 0.99 < μs) for about 30 time units, two drive periods
+        // and more: the net force β cos − vb·τ swings through several extrema meanwhile.
+        let state = State::new(0.0, 0.1).unwrap();
+        let (list, _) =
+            candidates_of(&params, state, 3, Some(BorderKind::ReleaseTangential), None).unwrap();
+        let inside: Vec<&Candidate> = list.iter().filter(|c| c.variant).collect();
+        assert!(inside.len() >= 3, "{list:?}");
+        let net = |tau: f64| {
+            let mut solver = ExactSolver::new(params, state);
+            crate::solver::run_until(&mut solver, tau, |_| {}).unwrap();
+            let s = solver.state();
+            assert_eq!(s.v, params.vb, "stuck at τ = {tau}");
+            params.beta * (params.w * tau + params.phi).cos() - s.y - 2.0 * params.zeta * params.vb
+        };
+        for c in inside {
+            let (w, beta) = (params.w, params.beta);
+            let rate = -beta * w * (w * c.tau + params.phi).sin() - params.vb;
+            assert!(
+                rate.abs() < 1e-12,
+                "τ = {}: net force's rate {rate:e}",
+                c.tau
+            );
+            let at = net(c.tau);
+            assert!(
+                (at.abs() - params.mu_s - c.value).abs() < 1e-12,
+                "τ = {}: {} against |{at}| − μs",
+                c.tau,
+                c.value
+            );
+            let (before, after) = (net(c.tau - 1e-3), net(c.tau + 1e-3));
+            assert!(
+                (before - at) * (after - at) > 0.0,
+                "τ = {}: {before}, {at}, {after}",
+                c.tau
+            );
+        }
+    }
 }

@@ -13,7 +13,7 @@ pub struct CurveReport {
     /// For a grazing curve, the event that appears (`turn-at-limit`, `slide-touches-rest`,
     /// `release-tangential`); null otherwise.
     pub border: Option<&'static str>,
-    /// The parameter the curve is followed over (Q: `w`, `beta`, `zeta` or `mu_s`).
+    /// The parameter the curve is followed over (Q: `w`, `beta`, `zeta`, `mu_s` or `vb`).
     pub over: &'static str,
     /// The parameter that follows it (P).
     pub vary: &'static str,

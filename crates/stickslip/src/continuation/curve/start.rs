@@ -198,13 +198,14 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
         BranchEnd::Stalled { obstacle, .. } | BranchEnd::Failed { obstacle, .. } => *obstacle,
         _ => return Ok(None),
     };
-    let (kind, variant, tau) = match obstacle {
-        Obstacle::TurnAtStaticLimit { tau, .. } => (BorderKind::TurnAtLimit, true, tau),
-        Obstacle::Grazing(slide) => (BorderKind::SlideTouchesRest, false, slide.tau),
-        Obstacle::TangentialRelease { tau, .. } => (BorderKind::ReleaseTangential, false, tau),
-        // The stop side of a slide touching rest: its slide has no minimum inside to start
-        // the border's search from.
-        Obstacle::TangentialStick { .. } | Obstacle::None => return Ok(None),
+    let (kind, variant, tau, sign) = match obstacle {
+        Obstacle::TurnAtStaticLimit { tau, .. } => (BorderKind::TurnAtLimit, true, tau, 1.0),
+        Obstacle::Grazing(slide) => (BorderKind::SlideTouchesRest, false, slide.tau, 1.0),
+        Obstacle::TangentialRelease { tau, .. } => (BorderKind::ReleaseTangential, false, tau, 1.0),
+        // On a belt, the stop side of a slide touching rest: the slide continued past the
+        // stop as if it went on, whose lowest slip (below zero) rises to zero there.
+        Obstacle::TangentialStick { tau, .. } => (BorderKind::SlideTouchesRest, true, tau, -1.0),
+        Obstacle::None => return Ok(None),
     };
     let Some(last) = branch.points.last() else {
         return Ok(None);
@@ -217,7 +218,7 @@ fn end_border(branch: &Branch) -> Result<Option<(Border, f64, PeriodicOrbit, Can
             Border {
                 kind,
                 variant,
-                sign: 1.0,
+                sign,
                 continuous: false,
             },
             last.value,

@@ -11,8 +11,8 @@ use crate::continuation::ContinuationOptions;
 use crate::error::{Error, Result};
 use crate::params::{Parameter, Params, State};
 use crate::stability::{
-    find_periodic_orbit, strobe_map, strobe_map_parameter_derivatives, NewtonOptions,
-    PeriodicOrbit, StrobeImage,
+    find_periodic_orbit, strobe_map, strobe_map_parameter_derivative,
+    strobe_map_parameter_derivatives, NewtonOptions, PeriodicOrbit, StrobeImage,
 };
 
 /// A point (y, y', Q, P).
@@ -66,20 +66,23 @@ pub(crate) fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> 
 }
 
 /// The column of [`strobe_map_parameter_derivatives`] for `parameter` (one of the paper's
-/// four: a curve in the belt's speed or a friction law's parameters is refused).
+/// four), or 5 for the belt speed vb (its own derivative,
+/// [`crate::stability::strobe_map_parameter_derivative`]); a friction law's parameters are
+/// refused.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming a parameter of the belt or of a friction law.
+/// [`Error::InvalidParameter`] naming a parameter of a friction law.
 pub(crate) fn column(parameter: Parameter) -> Result<usize> {
     match parameter {
         Parameter::Zeta => Ok(0),
         Parameter::Beta => Ok(1),
         Parameter::W => Ok(2),
         Parameter::MuS => Ok(4),
+        Parameter::Vb => Ok(5),
         other => Err(Error::InvalidParameter {
             name: other.label(),
             value: f64::NAN,
-            allowed: "is no parameter a curve follows yet: take w, beta, zeta or mu_s",
+            allowed: "is no parameter a curve follows yet: take w, beta, zeta, mu_s or vb",
         }),
     }
 }
@@ -557,7 +560,17 @@ impl System {
     fn jacobian(&self, u: &U, at: &Evaluation) -> Result<Option<[[f64; 4]; 3]>> {
         let params = self.params(u)?;
         let x = State { y: u[0], v: u[1] };
-        let dp = match strobe_map_parameter_derivatives(&params, x, self.period) {
+        let derivatives = || -> Result<[[f64; 6]; 2]> {
+            let dp = strobe_map_parameter_derivatives(&params, x, self.period)?;
+            // ∂P^p/∂vb, when the curve moves the belt's speed.
+            let vb = if [self.over, self.vary].contains(&Parameter::Vb) {
+                strobe_map_parameter_derivative(&params, x, self.period, Parameter::Vb)?
+            } else {
+                [0.0; 2]
+            };
+            Ok([0, 1].map(|i| std::array::from_fn(|k| if k == 5 { vb[i] } else { dp[i][k] })))
+        };
+        let dp = match derivatives() {
             Ok(dp) => dp,
             Err(e) if absent(&e) => return Ok(None),
             Err(e) => return Err(e),
