@@ -203,7 +203,8 @@ impl FitMonitor for Iterations<'_> {
 /// The fit of `experiment` to records (each `(paths, drive, response)`) or to the table
 /// `table`; see `stickslip.fit`.
 #[pyfunction]
-#[pyo3(signature = (experiment, records, table, free, per_record, progress=None))]
+#[pyo3(signature = (experiment, records, table, free, per_record, progress=None, from_rest=None, belt_speeds=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn fit<'py>(
     py: Python<'py>,
     experiment: PyRef<'py, PyExperiment>,
@@ -212,6 +213,8 @@ pub fn fit<'py>(
     free: Option<Vec<String>>,
     per_record: bool,
     progress: Option<Bound<'py, PyAny>>,
+    from_rest: Option<f64>,
+    belt_speeds: Option<Vec<Option<f64>>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let fit_error = |e: stickslip::fit::FitError| PyValueError::new_err(e.to_string());
     // The default: the library's free set of the system and diode law.
@@ -231,10 +234,34 @@ pub fn fit<'py>(
     );
     let mut data = Vec::new();
     let mut undriven = Vec::new();
-    for (paths, d, r) in &records {
+    if let Some(b) = &belt_speeds {
+        if b.len() != records.len() {
+            return Err(PyValueError::new_err(format!(
+                "belt_speeds has {} values for {} records: give one per record (None for the \
+                 experiment's belt speed)",
+                b.len(),
+                records.len()
+            )));
+        }
+    }
+    for (j, (paths, d, r)) in records.iter().enumerate() {
         let record = record_of(paths)?;
+        let belt_speed = belt_speeds.as_ref().and_then(|b| b[j]);
         if mechanics && d.is_none() && UndrivenRecord::is_undriven(&record) {
-            undriven.push(UndrivenRecord::new(&record, r.as_deref()).map_err(measure_error)?);
+            let mut u = UndrivenRecord::new(&record, r.as_deref()).map_err(measure_error)?;
+            if let Some(position) = from_rest {
+                u = u.from_rest(position).map_err(measure_error)?;
+            }
+            if let Some(v) = belt_speed {
+                u = u.on_belt(v).map_err(measure_error)?;
+            }
+            undriven.push(u);
+        } else if belt_speed.is_some() {
+            return Err(PyValueError::new_err(format!(
+                "{}: a belt speed of its own is for a record of an undriven belt (a \
+                 displacement without a drive)",
+                paths.join("+")
+            )));
         } else {
             data.push(
                 Measurement::new(&record, d.as_deref(), r.as_deref()).map_err(measure_error)?,
@@ -246,6 +273,11 @@ pub fn fit<'py>(
             "{} has no drive and {} has one: undriven and driven records are fitted apart",
             u.file, d.file
         )));
+    }
+    if from_rest.is_some() && undriven.is_empty() {
+        return Err(PyValueError::new_err(
+            "from_rest is for records of an undriven belt (a displacement without a drive)",
+        ));
     }
     let e = experiment.experiment().clone();
     let options = FitOptions::default();

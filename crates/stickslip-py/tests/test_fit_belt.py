@@ -74,3 +74,48 @@ def test_an_undriven_record_without_a_belt_raises_value_error():
     with pytest.raises(ValueError, match="has no drive and .* has one"):
         stickslip.fit(stickslip.Experiment.mechanics(**OSCILLATOR, mu_s=1.4),
                       data=[UNDRIVEN, RECORDS[0]], free="mu-s")
+
+
+REST = ROOT / "examples" / "fit" / "undriven" / "rest.csv"
+FAST = ROOT / "examples" / "fit" / "undriven" / "fast.csv"
+
+
+def test_an_undriven_record_from_rest_shows_the_kinetic_level_and_matches_the_cli(cli):
+    """The oracle's Coulomb belt started under the block at rest 0.3 mm behind the spring's
+    rest length (docs/fit.md, "A record from rest": γ = 0.8 N·s/m, μs = 1.5, F0 = 0.3 N):
+    F0 and μs fitted apart, as ``stickslip fit --from-rest`` does."""
+    start = stickslip.Experiment.mechanics(m=0.5, k=200.0, gamma=0.6, F0=0.27,
+                                           belt_speed=0.009, mu_s=1.35)
+    free = ["friction", "mu-s", "damping"]
+    result = stickslip.fit(start, data=[REST], free=free, from_rest=-3e-4)
+    expected = cli.json(
+        "fit", "--mass", 0.5, "--stiffness", 200, "--damping", 0.6, "--friction", 0.27,
+        "--belt-speed", 0.009, "--mu-s", 1.35, "--free", ",".join(free),
+        "--from-rest", -3e-4, "--data", REST)
+    assert result.to_dict() == expected
+    assert result.converged
+    for name, truth in {"friction": 0.3, "mu-s": 1.5, "damping": 0.8}.items():
+        lo, hi = result.ci95[name]
+        assert lo <= truth <= hi, (name, lo, hi)
+    assert not any(w["kind"] == "not-identified" for w in result.warnings)
+    with pytest.raises(ValueError, match="from_rest is for records of an undriven belt"):
+        stickslip.fit(start, data=RECORDS, free=free, from_rest=0.0)
+
+
+def test_undriven_records_at_two_belt_speeds_match_the_cli(cli):
+    start = stickslip.Experiment.mechanics(
+        **OSCILLATOR, friction_law="stribeck", stribeck_speed=0.012,
+        viscous_friction=0.3, mu_s=1.4)
+    result = stickslip.fit(start, data=[UNDRIVEN, FAST], free=FREE,
+                           belt_speeds=[None, 0.018])
+    expected = cli.json(
+        "fit", "--mass", 0.5, "--stiffness", 200, "--damping", 0.8, "--friction", 0.3,
+        "--belt-speed", 0.009, "--friction-law", "stribeck", "--mu-s", 1.4,
+        "--stribeck-speed", 0.012, "--viscous-friction", 0.3,
+        "--free", ",".join(FREE), "--data", UNDRIVEN, "--data", f"{FAST}@0.018")
+    assert result.to_dict() == expected
+    for name, truth in TRUTH.items():
+        lo, hi = result.ci95[name]
+        assert lo <= truth <= hi, (name, lo, hi)
+    with pytest.raises(ValueError, match="belt_speeds has 1 values for 2 records"):
+        stickslip.fit(start, data=[UNDRIVEN, FAST], free=FREE, belt_speeds=[0.018])

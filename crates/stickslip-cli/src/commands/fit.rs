@@ -57,7 +57,12 @@ use stickslip::{DiodeModel, SystemKind};
 /// cycle, its period found at the parameters' values, aligned to each record by the time of
 /// a section fitted with the rest (and an offset of r). Each record must hold at least one
 /// whole cycle. With the offset free the kinetic level F0 only shifts r: give F0 and fit
-/// mu-s, stribeck-speed, viscous-friction, damping.
+/// mu-s, stribeck-speed, viscous-friction, damping. A record that starts as the belt starts
+/// under the block at rest is fitted with --from-rest [M] (the block at rest on the ground, M
+/// metres from the spring's rest length, 0 by default, at each record's first sample): the
+/// model is the motion from there, and F0 is seen apart from mu-s. A record taken at a belt
+/// speed of its own is given as FILE@SPEED (m/s; the others at --belt-speed): one fit over
+/// several belt speeds.
 ///
 /// What to trust. A fit is converged when the step and gradient criteria hold at its solution
 /// and a restart from elsewhere finds no lower χ². The 95 % intervals are value ± t·stderr
@@ -109,6 +114,17 @@ pub struct Args {
     response: Option<String>,
     #[arg(long, value_name = "KEYS", help_heading = "Fit", help = free_help())]
     free: Option<String>,
+    /// Undriven records from rest: the block at rest on the ground, M (m) from the spring's
+    /// rest length, when the belt starts at each record's first sample [default M: 0].
+    #[arg(
+        long,
+        value_name = "M",
+        help_heading = "Measurements",
+        num_args = 0..=1,
+        default_missing_value = "0",
+        allow_negative_numbers = true
+    )]
+    from_rest: Option<f64>,
     /// Fit each record alone (how a parameter drifts with the drive).
     #[arg(long, help_heading = "Fit", conflicts_with = "compare")]
     per_record: bool,
@@ -201,6 +217,18 @@ fn read_text(path: &Path) -> Result<String> {
 
 /// Read the record of `spec`: one file, or single-channel files joined by `+` (merged on
 /// their common times).
+/// A `--data` spec and its belt speed: `FILE@SPEED` (m/s) where what follows the last `@`
+/// is a number, else the spec as it is.
+fn belt_of(spec: &str) -> (&str, Option<f64>) {
+    match spec.rsplit_once('@') {
+        Some((file, speed)) => match speed.parse::<f64>() {
+            Ok(v) => (file, Some(v)),
+            Err(_) => (spec, None),
+        },
+        None => (spec, None),
+    }
+}
+
 pub(crate) fn read_record(spec: &str) -> Result<Record> {
     let parts = spec
         .split('+')
@@ -345,12 +373,26 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
         let mut data = Vec::new();
         let mut undriven = Vec::new();
         for spec in &args.data {
+            let (spec, belt_speed) = belt_of(spec);
             let record = read_record(spec)?;
             // A mechanical record without a drive: the displacement of an undriven belt.
             if mechanics && args.drive.is_none() && UndrivenRecord::is_undriven(&record) {
-                undriven
-                    .push(UndrivenRecord::new(&record, args.response.as_deref()).map_err(measure)?);
+                let mut u =
+                    UndrivenRecord::new(&record, args.response.as_deref()).map_err(measure)?;
+                if let Some(position) = args.from_rest {
+                    u = u.from_rest(position).map_err(measure)?;
+                }
+                if let Some(v) = belt_speed {
+                    u = u.on_belt(v).map_err(measure)?;
+                }
+                undriven.push(u);
                 continue;
+            }
+            if belt_speed.is_some() {
+                usage!(
+                    "{spec}: a belt speed of its own (FILE@SPEED) is for a record of an \
+                     undriven belt (a displacement without a drive)"
+                );
             }
             data.push(
                 Measurement::new(&record, args.drive.as_deref(), args.response.as_deref())
@@ -362,6 +404,11 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
                 "{} has no drive and {} has one: undriven and driven records are fitted apart",
                 u.file,
                 d.file
+            );
+        }
+        if args.from_rest.is_some() && undriven.is_empty() {
+            usage!(
+                "--from-rest is for records of an undriven belt (a displacement without a drive)"
             );
         }
         if !undriven.is_empty() {
@@ -443,7 +490,7 @@ fn run_with(args: Args, line: &Line) -> Result<()> {
     } else {
         let mut text = String::new();
         for r in &residual_reports {
-            describe(&mut text, r);
+            describe(&mut text, r, args.from_rest);
         }
         if let Some(obj) = report_json.as_object_mut() {
             if let (Some(p), Some(d)) = (obj.get("preferred"), obj.get("delta_aic")) {
@@ -569,7 +616,9 @@ fn write_residuals(file: &mut impl Write, reports: &[FitReport]) -> Result<()> {
     Ok(())
 }
 
-fn describe(text: &mut String, r: &FitReport) {
+/// The report `r` as text; `from_rest`: its undriven records are from rest at that position
+/// (m).
+fn describe(text: &mut String, r: &FitReport, from_rest: Option<f64>) {
     outln!(text, "model             {}", r.model.label());
     for p in &r.parameters {
         let name = p.parameter.label();
@@ -604,6 +653,24 @@ fn describe(text: &mut String, r: &FitReport) {
     }
     let (du, ru) = r.units();
     for rec in &r.records {
+        // An undriven record from rest: its start, and the motion it settles on.
+        if let (Some(position), 0.0, 0.0) = (from_rest, rec.beta, rec.amplitude_v) {
+            outln!(
+                text,
+                "record {}: from rest at r = {position:.6e} m (the belt started at its first \
+                 sample, offset {:.6e} m), settling on {} of {:.6} Hz (w = {:.5}), {} clipped, \
+                 RMS residual {:.3e} {ru} (noise {:.3e} {ru})",
+                rec.file,
+                rec.offset_v,
+                rec.class.label(),
+                rec.freq_hz,
+                rec.w,
+                rec.clipped,
+                rec.rms_residual_v,
+                rec.noise_v
+            );
+            continue;
+        }
         // An undriven record: its self-excited cycle's frequency and section time.
         if rec.beta == 0.0 && rec.amplitude_v == 0.0 {
             outln!(

@@ -54,7 +54,8 @@ fn a_friction_laws_parameter_without_that_law_is_refused_in_one_line() {
 
 /// Undriven records (the displacement alone): refused in one line, exit status 2, beside a
 /// driven record, on an oscillator without a belt, and with starting values whose motion
-/// is steady sliding (the fit itself: the library's tests/fit_belt_free.rs and docs/fit.md's
+/// is steady sliding; --from-rest and a record's own belt speed (FILE@SPEED) given with a
+/// driven record (the fit itself: the library's tests/fit_belt_free.rs and docs/fit.md's
 /// worked example).
 #[test]
 fn undriven_records_the_fit_cannot_take_are_refused_in_one_line() {
@@ -94,6 +95,24 @@ fn undriven_records_the_fit_cannot_take_are_refused_in_one_line() {
             (
                 &sliding,
                 "at the starting values the block slides steadily on the belt",
+            ),
+        ],
+    );
+    // --from-rest and a record's own belt speed (FILE@SPEED) are for undriven records.
+    let from_rest = [
+        &OSCILLATOR[..],
+        &["--free", "mu-s", "--from-rest", "--data", driven],
+    ]
+    .concat();
+    let own_speed = format!("{driven}@0.018");
+    let driven_speed = [&OSCILLATOR[..], &["--free", "mu-s", "--data", &own_speed]].concat();
+    assert_usage_errors(
+        &["fit"],
+        &[
+            (&from_rest, "--from-rest is for records of an undriven belt"),
+            (
+                &driven_speed,
+                "a belt speed of its own (FILE@SPEED) is for a record of an undriven belt",
             ),
         ],
     );

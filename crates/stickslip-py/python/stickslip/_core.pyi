@@ -468,4 +468,6 @@ def fit(
     free: Optional[List[str]],
     per_record: bool,
     progress: _Progress = None,
+    from_rest: Optional[float] = None,
+    belt_speeds: Optional[List[Optional[float]]] = None,
 ) -> List[Dict[str, Any]]: ...

@@ -369,26 +369,32 @@ Measurements = Union[ScopeRecord, AmplitudeTable, PathLike]
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
         per_record: Literal[False] = ..., *, progress: Progress = ...,
-        strict: bool = ...) -> FitResult: ...
+        strict: bool = ..., from_rest: Optional[float] = ...,
+        belt_speeds: Optional[Sequence[Optional[float]]] = ...) -> FitResult: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
         *, per_record: Literal[True], progress: Progress = ...,
-        strict: bool = ...) -> List[FitResult]: ...
+        strict: bool = ..., from_rest: Optional[float] = ...,
+        belt_speeds: Optional[Sequence[Optional[float]]] = ...) -> List[FitResult]: ...
 
 
 @overload
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = ...,
         free: Union[str, Sequence[str], None] = ..., model: Optional[str] = ...,
-        per_record: bool = ..., *, progress: Progress = ..., strict: bool = ...
+        per_record: bool = ..., *, progress: Progress = ..., strict: bool = ...,
+        from_rest: Optional[float] = ...,
+        belt_speeds: Optional[Sequence[Optional[float]]] = ...
         ) -> Union[FitResult, List[FitResult]]: ...
 
 
 def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         free: Union[str, Sequence[str], None] = None, model: Optional[str] = None,
-        per_record: bool = False, *, progress: Progress = None, strict: bool = False
+        per_record: bool = False, *, progress: Progress = None, strict: bool = False,
+        from_rest: Optional[float] = None,
+        belt_speeds: Optional[Sequence[Optional[float]]] = None
         ) -> Union[FitResult, List[FitResult]]:
     """Fit the circuit's (or the mechanical oscillator's) parameters to measurements: least
     squares of the model's steady u_C (or displacement) against every scope record at once
@@ -414,7 +420,10 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
     then the cycle's frequency, ``w`` its angular frequency over ω0, ``periods`` its whole
     cycles, and its ``amplitude_V`` and ``beta`` are 0. Each record must hold
     a whole cycle; with the offset of r free, F0 only shifts r (give it, and fit 'mu-s',
-    'stribeck-speed', 'viscous-friction', 'damping'). See docs/fit.md, "An undriven belt".
+    'stribeck-speed', 'viscous-friction', 'damping'). A record that starts as the belt starts
+    under the block at rest is fitted with ``from_rest`` (the model is then the motion from
+    rest, and F0 is seen apart from 'mu-s'); records at several belt speeds with
+    ``belt_speeds``. See docs/fit.md, "An undriven belt".
 
     Args:
         exp: the circuit or the mechanical oscillator, with the starting values.
@@ -438,6 +447,11 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
             a restart and the intervals' profiles, usually far fewer; 50 for a table; summed
             over the records with ``per_record``). An exception it raises stops the fit and
             propagates.
+        from_rest: undriven records from rest: the block at rest on the ground this far (m)
+            from the spring's rest length when the belt starts, at each record's first sample
+            (``stickslip fit --from-rest``).
+        belt_speeds: one per record of ``data``: the belt speed (m/s) of an undriven record
+            taken at a speed of its own, None for the experiment's (``--data FILE@SPEED``).
         strict: raise ``FitNotConverged`` when a fit did not converge (what ``stickslip
             fit``'s exit status 3 says) instead of returning it with ``converged`` False.
 
@@ -483,7 +497,8 @@ def fit(exp: Experiment, data: Union[Measurements, Sequence[Measurements]] = (),
         raise ValueError("fit: no data: give scope records or an amplitude table (data=[...])")
     with _progress.reporter(progress, "fit", "iterations") as callback:
         results = [FitResult(experiment, d) for d in
-                   _core.fit(experiment, records, table, names, per_record, callback)]
+                   _core.fit(experiment, records, table, names, per_record, callback,
+                             from_rest, None if belt_speeds is None else list(belt_speeds))]
     result = results if per_record else results[0]
     if strict:
         for r in results:

@@ -93,6 +93,7 @@ pub(crate) mod linalg;
 mod lm;
 mod options;
 mod parameter;
+mod passes;
 mod profile;
 mod records;
 mod report;
@@ -112,7 +113,9 @@ pub use report::{
     RowFit,
 };
 pub use table::{fit_table, fit_table_monitored};
-pub use undriven::{check_undriven, fit_undriven, fit_undriven_monitored, UndrivenRecord};
+pub use undriven::{
+    check_undriven, fit_undriven, fit_undriven_monitored, UndrivenRecord, UndrivenStart,
+};
 pub use warning::{FitWarning, NotConverged};
 
 use crate::experiment::{DiodeModel, Experiment};
@@ -314,187 +317,21 @@ fn records_with(
             }
         }
     }
-    let quick = lm::Settings {
-        max_iterations: QUICK_ITERATIONS.min(settings.max_iterations),
-        tolerance: 1e-6,
-        ..settings
+    let reach = match depth {
+        Depth::Full(_) => passes::Reach::Full,
+        Depth::Quick => passes::Reach::Quick,
     };
-    let first = match depth {
-        Depth::Full(_) => lm::minimise(&mut problem, x, settings)?,
-        Depth::Quick => lm::minimise(&mut problem, x, quick)?,
-    }
-    .ok_or_else(failed)?;
-    // Second pass: each channel weighted by its RMS residual of the first.
     let spans = problem.spans();
-    let weights = spans
-        .iter()
-        .zip(&problem.weights)
-        .zip(data.iter().zip(problem.drive.iter().zip(&problem.response)))
-        .map(|((&(start, len), &(wd, wr)), (m, (d, r)))| {
-            let half = len / 2;
-            let sd = rms(&first.residuals[start..start + half]) / wd;
-            let sr = rms(&first.residuals[start + half..start + len]) / wr;
-            (
-                1.0 / noise_floor(sd, d, None),
-                1.0 / noise_floor(sr, r, m.resolution),
-            )
-        })
-        .collect();
-    problem.weights = weights;
-    problem.watch.before += first.iterations;
-    let mut solution = match depth {
-        Depth::Full(_) => lm::minimise(&mut problem, first.x.clone(), settings)?,
-        Depth::Quick => lm::minimise(&mut problem, first.x.clone(), quick)?,
-    }
-    .ok_or_else(failed)?;
-    let mut iterations = first.iterations + solution.iterations;
-    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
-    let t = t_quantile_975(dof);
-    // A restart from elsewhere, and the intervals' checks: a point lower than the minimum
-    // is a minimum elsewhere, from which the fit goes on (three times at most).
-    let mut lower_by = None;
-    let mut intervals = None;
-    if let Depth::Full(_) = depth {
-        for _ in 0..3 {
-            problem.watch.before += solution.iterations;
-            // Lower by more than the residuals' precision can account for.
-            let s2 = (solution.sum_squares / dof as f64).max(lm::Problem::floor(&problem));
-            let covariance = Covariance::of(&solution, n_free);
-            let mut lower = None;
-            if let Some(point) =
-                covariance.restart(&solution.x, &lm::Problem::bounds(&problem, n_values))
-            {
-                let restart = lm::minimise(&mut problem, point, quick)?;
-                if let Some(restart) = restart {
-                    if restart.sum_squares < solution.sum_squares - RESTART_LOWER * s2 {
-                        lower = Some(restart);
-                    }
-                }
-            }
-            if lower.is_none() {
-                match profile::intervals(
-                    &mut problem,
-                    &solution,
-                    &covariance.inverse,
-                    n_free,
-                    t,
-                    quick,
-                )? {
-                    profile::Outcome::Intervals(found) => {
-                        lower_by = None;
-                        intervals = Some((found, covariance));
-                        break;
-                    }
-                    profile::Outcome::Lower(point) => {
-                        lower = lm::minimise(&mut problem, point, settings)?
-                            .filter(|s| s.sum_squares < solution.sum_squares);
-                    }
-                }
-            }
-            match lower {
-                Some(better) => {
-                    lower_by = Some((solution.sum_squares - better.sum_squares) / s2);
-                    iterations += better.iterations;
-                    solution = better;
-                }
-                None => {
-                    intervals = None;
-                    break;
-                }
-            }
-        }
-    }
-    let covariance = match intervals.as_ref() {
-        Some((_, c)) => c.clone(),
-        None => Covariance::of(&solution, n_free),
-    };
-    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(&problem));
-    let linear: Vec<([f64; 2], Interval)> = (0..n_free)
-        .map(|k| {
-            let sigma = covariance.sigma(k, s2);
-            (
-                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
-                if sigma.is_finite() {
-                    Interval::Linear
-                } else {
-                    Interval::None
-                },
-            )
-        })
-        .collect();
-    let found = intervals.map_or(linear, |(found, _)| found);
-    let (fitted_parameters, correlation) =
-        uncertainties(&setup, &solution, &covariance, &found, s2);
-    // Every parameter named, in the order named: the held ones at their starting values.
-    let parameters: Vec<FittedParameter> = free
-        .iter()
-        .map(
-            |&p| match fitted_parameters.iter().find(|f| f.parameter == p) {
-                Some(f) => *f,
-                None => {
-                    let start = p.get(experiment).unwrap_or(f64::NAN);
-                    FittedParameter {
-                        parameter: p,
-                        value: start,
-                        stderr: f64::NAN,
-                        ci95: [f64::NAN; 2],
-                        initial: start,
-                        interval: Interval::Held,
-                    }
-                }
-            },
-        )
-        .collect();
-    // The correlation over every parameter named (NaN beside a held one).
-    let index = |p: FitParameter| setup.free.iter().position(|&q| q == p);
-    let named_correlation: Vec<Vec<f64>> = free
-        .iter()
-        .map(|&a| {
-            free.iter()
-                .map(|&b| match (index(a), index(b)) {
-                    (Some(i), Some(k)) => correlation[i][k],
-                    _ => f64::NAN,
-                })
-                .collect()
-        })
-        .collect();
-    let mut warnings = plan.warnings.clone();
-    let converged = solution.converged && lower_by.is_none();
-    if !converged {
-        let why = match lower_by {
-            Some(lower_by) => warning::NotConverged::Restart { lower_by },
-            None if solution.iterations >= options.max_iterations => {
-                warning::NotConverged::Iterations {
-                    limit: options.max_iterations,
-                }
-            }
-            None => warning::NotConverged::Stalled {
-                predicted: solution.decrement,
-            },
-        };
-        warnings.insert(0, FitWarning::NotConverged { why });
-    }
-    for (k, &p) in setup.free.iter().enumerate() {
-        if covariance.unseen[k] {
-            warnings.push(FitWarning::Unseen { parameter: p });
-        }
-        if solution.at_bound[k] {
-            warnings.push(FitWarning::AtBound {
-                parameter: p,
-                bound: setup.value(k, solution.x[k]),
-            });
-        }
-    }
-    warnings.extend(identify::correlations(&setup.free, &correlation));
-    for m in data {
-        if m.clipped > 0 {
-            warnings.push(FitWarning::Clipped {
-                file: m.file.clone(),
-                samples: m.clipped,
-                of: m.time.len(),
-            });
-        }
-    }
+    let passed = passes::run(&mut problem, x, n_free, settings, reach, failed)?;
+    let summary = passed.summarise(
+        &problem,
+        (experiment, &setup),
+        (free, &plan.warnings),
+        options,
+        data.iter()
+            .map(|m| (m.file.clone(), m.clipped, m.time.len())),
+    );
+    let (solution, iterations, dof) = (&passed.solution, passed.iterations, passed.dof);
     let fitted = setup.at(&solution.x[..n_free]).ok_or_else(failed)?;
     let mut records = Vec::with_capacity(data.len());
     let mut chi2 = 0.0;
@@ -556,8 +393,8 @@ fn records_with(
     let (aic, bic) = criteria(&groups, n_values);
     Ok(FitReport {
         model: experiment.diode_model(),
-        parameters,
-        correlation: named_correlation,
+        parameters: summary.parameters,
+        correlation: summary.correlation,
         records,
         rows: vec![],
         rms_residual_v: rms(&all_response),
@@ -569,10 +406,10 @@ fn records_with(
         aic,
         bic,
         iterations,
-        converged,
+        converged: summary.converged,
         jacobian: problem.jacobian,
         experiment: fitted,
-        warnings,
+        warnings: summary.warnings,
     })
 }
 

@@ -497,14 +497,33 @@ impl lm::Problem for Records<'_> {
     }
 
     fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
-        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
-        for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
-            *bound = self.setup.bounds(k);
-        }
-        if let Some((k, v)) = self.pinned {
-            bounds[k] = (v, v);
-        }
-        bounds
+        self.setup.all_bounds(n, self.pinned)
+    }
+}
+
+impl passes::Passes for Records<'_> {
+    /// The drive's and the response's channel of each record by its RMS residual.
+    fn reweight(&mut self, first: &lm::Solution) {
+        let weights = self
+            .spans()
+            .iter()
+            .zip(&self.weights)
+            .zip(self.data.iter().zip(self.drive.iter().zip(&self.response)))
+            .map(|((&(start, len), &(wd, wr)), (m, (d, r)))| {
+                let half = len / 2;
+                let sd = rms(&first.residuals[start..start + half]) / wd;
+                let sr = rms(&first.residuals[start + half..start + len]) / wr;
+                (
+                    1.0 / noise_floor(sd, d, None),
+                    1.0 / noise_floor(sr, r, m.resolution),
+                )
+            })
+            .collect();
+        self.weights = weights;
+    }
+
+    fn advance(&mut self, iterations: usize) {
+        self.watch.before += iterations;
     }
 }
 

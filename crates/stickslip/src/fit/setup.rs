@@ -250,6 +250,20 @@ impl Setup {
         }
     }
 
+    /// The bounds of all `n` coordinates of a fit (the free parameters' first, then the
+    /// nuisance values', unbounded), coordinate k held at v where `pinned` is (k, v) (a
+    /// profile's).
+    pub(super) fn all_bounds(&self, n: usize, pinned: Option<(usize, f64)>) -> Vec<(f64, f64)> {
+        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
+        for (k, bound) in bounds.iter_mut().enumerate().take(self.free.len()) {
+            *bound = self.bounds(k);
+        }
+        if let Some((k, v)) = pinned {
+            bounds[k] = (v, v);
+        }
+        bounds
+    }
+
     /// The coordinate of free parameter `k` at `value` (the inverse of [`Setup::value`]).
     pub(super) fn coordinate(&self, k: usize, value: f64) -> f64 {
         if self.log[k] {

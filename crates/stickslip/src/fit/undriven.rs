@@ -7,8 +7,27 @@
 //! channel that reads no drive). A record with a varying force channel is a driven record
 //! ([`super::fit_records`]); a record too short for one cycle, an oscillator without a belt,
 //! starting values whose motion is steady sliding (nothing to align a record with) are refused
-//! in one line naming what is missing. A transient (the belt started during the record) is
-//! not this model: its residuals then stay far above the noise.
+//! in one line naming what is missing. A record of the settled cycle whose belt started
+//! during the record is not this model (its residuals then stay far above the noise): a
+//! record that starts with the belt is a record from rest, below.
+//!
+//! **A record from rest** ([`UndrivenRecord::from_rest`], [`UndrivenStart::FromRest`]): the
+//! block is at rest on the ground (r' = 0) at the record's first sample, a known distance
+//! r_0 from the spring's rest length, and the belt runs from that sample on (it slips the
+//! block up to the belt's speed, carries it to the release and the motion settles). The
+//! model is that motion, y(ω0·t) from y = r_0·k/F0, y' = 0 at t = 0, times F0/k plus the
+//! record's offset: aligned by the first sample, no section time fitted; the offset starts
+//! at the first sample's reading less r_0. It need not hold a whole cycle, and the starting
+//! values may slide steadily. Since r_0 is known in the spring's frame, the stick from r_0 to
+//! the release fixes μs·F0 − γ·vb and the slips about the kinetic level fix F0: such a
+//! record shows F0 apart from μs (no level is held).
+//!
+//! **Belt speeds** ([`UndrivenRecord::on_belt`]): a record may have a belt speed of its own
+//! (m/s), the experiment's being that of the others. Each belt speed's cycle is computed
+//! once per evaluation (the belt's speed in m/s held, as the law's values are, while the
+//! scales move), and each record's model is its own belt's. The law's fall is seen from two
+//! sides at two speeds: one oscillator's records at two belt speeds fix it far better than
+//! one.
 //!
 //! **The model of a record.** The oscillator at the free parameters' values, β = 0, settles
 //! on its self-excited cycle ([`Experiment::steady_with`]: its period T is found, not given).
@@ -67,6 +86,27 @@ pub struct UndrivenRecord {
     /// The displacement's noise (m, standard deviation), from its second differences (as
     /// [`Measurement::noise`]).
     pub noise: f64,
+    /// Where the record's motion starts: the settled cycle (the default of
+    /// [`UndrivenRecord::new`]) or rest ([`UndrivenRecord::from_rest`]).
+    pub start: UndrivenStart,
+    /// The belt's speed under this record (m/s), when it is not the experiment's
+    /// ([`UndrivenRecord::on_belt`]).
+    pub belt_speed: Option<f64>,
+}
+
+/// Where the motion of an undriven record starts (the model of the record).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum UndrivenStart {
+    /// The record holds the settled self-excited cycle: the model is that cycle, aligned by
+    /// a section time fitted with the rest.
+    Settled,
+    /// The block is at rest on the ground (r' = 0) at the record's first sample, `position`
+    /// (m) from the spring's rest length, and the belt runs from then on: the model is the
+    /// motion from that state, aligned by the record's first sample (no time fitted).
+    FromRest {
+        /// The block's displacement from the spring's rest length at the start (m).
+        position: f64,
+    },
 }
 
 impl UndrivenRecord {
@@ -161,7 +201,41 @@ impl UndrivenRecord {
             resolution: channel.resolution,
             noise: noise(&channel.values, &used),
             used,
+            start: UndrivenStart::Settled,
+            belt_speed: None,
         })
+    }
+
+    /// The record of a motion from rest: the block at rest on the ground at the record's
+    /// first sample, `position` (m) from the spring's rest length, the belt started then
+    /// ([`UndrivenStart::FromRest`]).
+    ///
+    /// # Errors
+    /// A position that is not finite.
+    pub fn from_rest(mut self, position: f64) -> Result<Self, MeasureError> {
+        if !position.is_finite() {
+            return Err(MeasureError::file(
+                &self.file,
+                format!("the start position of a record from rest is {position}: a finite displacement in m"),
+            ));
+        }
+        self.start = UndrivenStart::FromRest { position };
+        Ok(self)
+    }
+
+    /// The record taken on a belt at `belt_speed` (m/s), whatever the experiment's.
+    ///
+    /// # Errors
+    /// A belt speed that is not finite or is 0.
+    pub fn on_belt(mut self, belt_speed: f64) -> Result<Self, MeasureError> {
+        if !belt_speed.is_finite() || belt_speed == 0.0 {
+            return Err(MeasureError::file(
+                &self.file,
+                format!("the belt speed of an undriven record is {belt_speed}: a finite speed in m/s other than 0"),
+            ));
+        }
+        self.belt_speed = Some(belt_speed);
+        Ok(self)
     }
 
     /// Whether `record` has no drive: one channel in m, every other channel constant (see
@@ -254,6 +328,31 @@ fn sample_cycle(
     Ok(out)
 }
 
+/// y and y' of the motion of `experiment` without a drive from rest on the ground (y = y0,
+/// y' = 0) at τ = 0, at the times `time` (s, increasing), ω0 in rad/s.
+fn sample_from_rest(
+    experiment: &Experiment,
+    y0: f64,
+    omega0: f64,
+    time: &[f64],
+) -> Result<Vec<(f64, f64)>, crate::Error> {
+    let e = experiment.clone().with_beta(0.0)?;
+    let taus: Vec<f64> = time.iter().map(|&t| omega0 * t).collect();
+    let mut solver = e.factory().make(e.params()?, State::new(y0, 0.0)?)?;
+    let samples = sample_at(solver.as_mut(), &taus, |_| {})?;
+    Ok(samples.iter().map(|s| (s.y, s.v)).collect())
+}
+
+/// Where a record's values are among the fit's: its offset's slot (with the offset free), its
+/// section time's (a record of the settled cycle), and which of the fit's belts it was taken
+/// on.
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    offset: Option<usize>,
+    section: Option<usize>,
+    belt: usize,
+}
+
 /// The least-squares problem of undriven records.
 struct Problem<'a> {
     setup: &'a Setup,
@@ -263,10 +362,13 @@ struct Problem<'a> {
     response: Vec<Vec<f64>>,
     /// 1/σ of each record.
     weights: Vec<f64>,
-    /// Whether each record has an offset (its slot before the section time's).
-    offsets: bool,
-    /// The last evaluation's values and cycle (the warm start of the next).
-    last: Option<(Vec<f64>, Cycle)>,
+    /// Each record's values.
+    slots: Vec<Slot>,
+    /// The belts the records were taken on: each record's own belt speed (m/s), `None` for
+    /// the experiment's; and whether a record of the settled cycle was taken on it.
+    belts: Vec<(Option<f64>, bool)>,
+    /// The last evaluation's cycle on each belt (the warm start of the next).
+    last: Option<Vec<Option<Cycle>>>,
     watch: Watch<'a>,
     /// A coordinate held at a value (a profile likelihood's).
     pinned: Option<(usize, f64)>,
@@ -282,41 +384,65 @@ impl profile::Pin for Problem<'_> {
 struct Model {
     /// r at the used times (m), offset included.
     r: Vec<f64>,
-    /// dr/dt_s at those times (m/s).
+    /// dr/dt_s at those times (m/s); 0 for a record from rest.
     dr_dts: Vec<f64>,
 }
 
-impl Problem<'_> {
-    fn stride(&self) -> usize {
-        1 + usize::from(self.offsets)
-    }
-
-    /// (offset, section time) of record j.
-    fn nuisance(&self, x: &[f64], j: usize) -> (f64, f64) {
-        let k = self.setup.free.len() + j * self.stride();
-        if self.offsets {
-            (x[k], x[k + 1])
-        } else {
-            (0.0, x[k])
+/// The experiment of a belt at `speed` (m/s; `None`: `e`'s own).
+fn on_belt(e: &Experiment, speed: Option<f64>) -> Option<Experiment> {
+    match speed {
+        None => Some(e.clone()),
+        Some(v) => {
+            let vb =
+                super::parameter::dimensionless(crate::experiment::Key::BeltSpeed, v, &e.scales()?);
+            e.clone().with_vb(vb).ok()
         }
     }
+}
 
-    fn t_s_slot(&self, j: usize) -> usize {
-        self.setup.free.len() + j * self.stride() + usize::from(self.offsets)
+impl Problem<'_> {
+    /// (offset, section time) of record j (0 for those not fitted).
+    fn nuisance(&self, x: &[f64], j: usize) -> (f64, f64) {
+        let slot = self.slots[j];
+        (
+            slot.offset.map_or(0.0, |k| x[k]),
+            slot.section.map_or(0.0, |k| x[k]),
+        )
     }
 
-    /// The cycle at x, settling from the last evaluation's section.
-    fn cycle(&self, x: &[f64]) -> Option<(Experiment, Cycle)> {
+    /// The experiment on each belt at x, and its cycle where a record of the settled cycle
+    /// needs it (settling from the last evaluation's section).
+    fn cycles(&self, x: &[f64]) -> Option<Vec<(Experiment, Option<Cycle>)>> {
         let e = self.setup.at(&x[..self.setup.free.len()])?;
-        let warm = self.last.as_ref().map(|(_, c)| c.section);
-        let cycle = cycle_of(&e, &self.setup.steady, warm).ok()?;
-        Some((e, cycle))
+        (0..self.belts.len())
+            .into_par_iter()
+            .map(|b| {
+                let (speed, settled) = self.belts[b];
+                let e = on_belt(&e, speed)?;
+                if !settled {
+                    return Some((e, None));
+                }
+                let warm = self.last.as_ref().and_then(|l| l[b]).map(|c| c.section);
+                let cycle = cycle_of(&e, &self.setup.steady, warm).ok()?;
+                Some((e, Some(cycle)))
+            })
+            .collect()
     }
 
-    fn model(&self, e: &Experiment, cycle: &Cycle, x: &[f64], j: usize) -> Option<Model> {
+    fn model(&self, e: &Experiment, cycle: Option<&Cycle>, x: &[f64], j: usize) -> Option<Model> {
         let scales = e.scales()?;
         let (offset, t_s) = self.nuisance(x, j);
-        let samples = sample_cycle(e, cycle, scales.omega0, t_s, &self.time[j]).ok()?;
+        let samples = match (self.data[j].start, cycle) {
+            (UndrivenStart::FromRest { position }, _) => {
+                sample_from_rest(e, position / scales.position, scales.omega0, &self.time[j])
+            }
+            (UndrivenStart::Settled, Some(cycle)) => {
+                sample_cycle(e, cycle, scales.omega0, t_s, &self.time[j])
+            }
+            (UndrivenStart::Settled, None) => return None,
+        }
+        .ok()?;
+        let settled = self.slots[j].section.is_some();
         Some(Model {
             r: samples
                 .iter()
@@ -324,19 +450,28 @@ impl Problem<'_> {
                 .collect(),
             dr_dts: samples
                 .iter()
-                .map(|(_, v)| -scales.position * scales.omega0 * v)
+                .map(|(_, v)| {
+                    if settled {
+                        -scales.position * scales.omega0 * v
+                    } else {
+                        0.0
+                    }
+                })
                 .collect(),
         })
     }
 
-    /// Every record's model at x, and the cycle.
-    fn models(&self, x: &[f64]) -> Option<(Vec<Model>, Cycle)> {
-        let (e, cycle) = self.cycle(x)?;
+    /// Every record's model at x, and the cycle on each belt.
+    fn models(&self, x: &[f64]) -> Option<(Vec<Model>, Vec<Option<Cycle>>)> {
+        let belts = self.cycles(x)?;
         let models = (0..self.data.len())
             .into_par_iter()
-            .map(|j| self.model(&e, &cycle, x, j))
+            .map(|j| {
+                let (e, cycle) = &belts[self.slots[j].belt];
+                self.model(e, cycle.as_ref(), x, j)
+            })
             .collect::<Option<Vec<_>>>()?;
-        Some((models, cycle))
+        Some((models, belts.into_iter().map(|(_, c)| c).collect()))
     }
 
     fn weighted(&self, models: &[Model]) -> Vec<f64> {
@@ -358,10 +493,10 @@ impl lm::Problem for Problem<'_> {
 
     fn residuals(&mut self, x: &[f64]) -> Result<Option<Vec<f64>>, FitError> {
         self.setup.check_stop()?;
-        let Some((models, cycle)) = self.models(x) else {
+        let Some((models, cycles)) = self.models(x) else {
             return Ok(None);
         };
-        self.last = Some((x.to_vec(), cycle));
+        self.last = Some(cycles);
         Ok(Some(self.weighted(&models)))
     }
 
@@ -390,11 +525,13 @@ impl lm::Problem for Problem<'_> {
         for (j, m) in models.iter().enumerate() {
             let w = self.weights[j];
             let len = m.r.len();
-            if self.offsets {
-                columns[self.t_s_slot(j) - 1][start..start + len].fill(w);
+            if let Some(k) = self.slots[j].offset {
+                columns[k][start..start + len].fill(w);
             }
-            for (i, d) in m.dr_dts.iter().enumerate() {
-                columns[self.t_s_slot(j)][start + i] = w * d;
+            if let Some(k) = self.slots[j].section {
+                for (i, d) in m.dr_dts.iter().enumerate() {
+                    columns[k][start + i] = w * d;
+                }
             }
             start += len;
         }
@@ -417,14 +554,28 @@ impl lm::Problem for Problem<'_> {
     }
 
     fn bounds(&self, n: usize) -> Vec<(f64, f64)> {
-        let mut bounds = vec![(f64::NEG_INFINITY, f64::INFINITY); n];
-        for (k, bound) in bounds.iter_mut().enumerate().take(self.setup.free.len()) {
-            *bound = self.setup.bounds(k);
-        }
-        if let Some((k, v)) = self.pinned {
-            bounds[k] = (v, v);
-        }
-        bounds
+        self.setup.all_bounds(n, self.pinned)
+    }
+}
+
+impl passes::Passes for Problem<'_> {
+    /// Each record by its RMS residual.
+    fn reweight(&mut self, first: &lm::Solution) {
+        let mut start_row = 0;
+        let weights: Vec<f64> = (0..self.data.len())
+            .map(|j| {
+                let len = self.time[j].len();
+                let w = self.weights[j];
+                let s = rms(&first.residuals[start_row..start_row + len]) / w;
+                start_row += len;
+                1.0 / noise_floor(s, &self.response[j], self.data[j].resolution)
+            })
+            .collect();
+        self.weights = weights;
+    }
+
+    fn advance(&mut self, iterations: usize) {
+        self.watch.before += iterations;
     }
 }
 
@@ -521,6 +672,8 @@ struct Start {
     plan: identify::Plan,
     setup: Setup,
     x: Vec<f64>,
+    slots: Vec<Slot>,
+    belts: Vec<(Option<f64>, bool)>,
     time: Vec<Vec<f64>>,
     response: Vec<Vec<f64>>,
     weights: Vec<f64>,
@@ -547,7 +700,7 @@ fn start(
         }
         None => return Err(FitError::NeedsCircuit),
     }
-    if experiment.vb() == 0.0 {
+    if experiment.vb() == 0.0 && data.iter().any(|m| m.belt_speed.is_none()) {
         return Err(FitError::Undriven(
             "an undriven record needs a moving belt (--belt-speed): without a drive or a \
              belt the block comes to rest"
@@ -556,7 +709,9 @@ fn start(
     }
     Setup::new(experiment, free)?;
     let mut plan = identify::plan(experiment, free);
-    if options.offset {
+    // A record from rest at a known position shows the levels apart.
+    let from_rest = data.iter().any(|m| m.start != UndrivenStart::Settled);
+    if options.offset && !from_rest {
         for w in friction_levels(experiment, &plan.fitted) {
             if let FitWarning::NotIdentified { held, .. } = &w {
                 plan.fitted.retain(|p| p != held);
@@ -590,44 +745,98 @@ fn start(
         file: file.to_string(),
         error,
     };
-    // The cycle at the starting values, and each record's section time and offset.
+    // The belts, the cycle at the starting values on each belt a record of the settled
+    // cycle was taken on, and each record's offset and section time.
     let start = setup
         .at(&vec![1.0; setup.free.len()])
         .ok_or(FitError::FreeParameters(
             "the starting values are outside the parameters' ranges",
         ))?;
-    let cycle = cycle_of(&start, &setup.steady, None).map_err(|e| model_error(&data[0].file, e))?;
     let scales = start.scales().expect("a mechanical oscillator has scales");
-    let Some(period) = cycle.period else {
-        return Err(FitError::Undriven(format!(
-            "at the starting values the block slides steadily on the belt (no cycle: \
-             2ζ + μ'(vb) = {:.4}): an undriven record is fitted from values whose motion is a \
-             self-excited cycle",
-            start.friction_law().sliding_damping(
-                start.params().map_or(0.0, |p| p.zeta),
-                start.mu_s(),
-                start.vb()
-            )
-        )));
-    };
-    let seconds = period / scales.omega0;
+    let mut belts: Vec<(Option<f64>, bool)> = Vec::new();
+    let mut slots = Vec::with_capacity(data.len());
     let mut x: Vec<f64> = vec![1.0; setup.free.len()];
-    for (m, (t, r)) in data.iter().zip(time.iter().zip(&response)) {
-        let span = t.last().copied().unwrap_or(0.0) - t.first().copied().unwrap_or(0.0);
-        if span < seconds {
+    for m in data {
+        let settled = m.start == UndrivenStart::Settled;
+        let belt = match belts.iter().position(|b| b.0 == m.belt_speed) {
+            Some(b) => b,
+            None => {
+                belts.push((m.belt_speed, false));
+                belts.len() - 1
+            }
+        };
+        belts[belt].1 |= settled;
+        let offset = options.offset.then(|| {
+            x.push(0.0);
+            x.len() - 1
+        });
+        let section = settled.then(|| {
+            x.push(0.0);
+            x.len() - 1
+        });
+        slots.push(Slot {
+            offset,
+            section,
+            belt,
+        });
+    }
+    let mut cycles = Vec::with_capacity(belts.len());
+    for &(speed, settled) in &belts {
+        let e = on_belt(&start, speed).ok_or(FitError::FreeParameters(
+            "a record's belt speed is outside the belt speeds allowed",
+        ))?;
+        if !settled {
+            cycles.push(None);
+            continue;
+        }
+        let cycle = cycle_of(&e, &setup.steady, None).map_err(|e| model_error(&data[0].file, e))?;
+        let Some(period) = cycle.period else {
             return Err(FitError::Undriven(format!(
-                "{}: the record spans {span:.4e} s, less than one self-excited cycle at the \
-                 starting values ({seconds:.4e} s): an undriven record must hold a whole cycle \
-                 of the settled motion",
-                m.file
+                "at the starting values the block slides steadily on the belt (no cycle: \
+                 2ζ + μ'(vb) = {:.4}{}): a record of the settled motion is fitted from values \
+                 whose motion is a self-excited cycle (a record from rest: --from-rest)",
+                e.friction_law().sliding_damping(
+                    e.params().map_or(0.0, |p| p.zeta),
+                    e.mu_s(),
+                    e.vb()
+                ),
+                speed.map_or(String::new(), |v| format!(" at a belt speed of {v} m/s"))
             )));
+        };
+        cycles.push(Some((e, cycle, period / scales.omega0)));
+    }
+    for (j, (m, (t, r))) in data.iter().zip(time.iter().zip(&response)).enumerate() {
+        let slot = slots[j];
+        match (m.start, &cycles[slot.belt]) {
+            (UndrivenStart::Settled, Some((e, cycle, seconds))) => {
+                let seconds = *seconds;
+                let span = t.last().copied().unwrap_or(0.0) - t.first().copied().unwrap_or(0.0);
+                if span < seconds {
+                    return Err(FitError::Undriven(format!(
+                        "{}: the record spans {span:.4e} s, less than one self-excited cycle at \
+                         the starting values ({seconds:.4e} s): an undriven record must hold a \
+                         whole cycle of the settled motion (a record from rest: --from-rest)",
+                        m.file
+                    )));
+                }
+                let (t_s, offset) =
+                    start_nuisance(e, cycle, t, r).map_err(|e| model_error(&m.file, e))?;
+                if let Some(k) = slot.offset {
+                    x[k] = offset;
+                }
+                if let Some(k) = slot.section {
+                    x[k] = t_s;
+                }
+            }
+            // From rest at a known position: the offset is the first sample's reading there.
+            (UndrivenStart::FromRest { position }, _) => {
+                if let Some(k) = slot.offset {
+                    x[k] = r[0] - position;
+                }
+            }
+            // (None: a settled record's belt has its cycle.)
+            (UndrivenStart::Settled, None) => {}
         }
-        let (t_s, offset) =
-            start_nuisance(&start, &cycle, t, r).map_err(|e| model_error(&m.file, e))?;
-        if options.offset {
-            x.push(offset);
-        }
-        x.push(t_s);
     }
     let n_res: usize = time.iter().map(Vec::len).sum();
     if n_res <= x.len() {
@@ -640,6 +849,8 @@ fn start(
         plan,
         setup,
         x,
+        slots,
+        belts,
         time,
         response,
         weights,
@@ -697,6 +908,8 @@ pub fn fit_undriven_monitored(
         plan,
         setup,
         x,
+        slots,
+        belts,
         time,
         response,
         weights,
@@ -712,7 +925,8 @@ pub fn fit_undriven_monitored(
         time,
         response,
         weights,
-        offsets: options.offset,
+        slots,
+        belts,
         last: None,
         watch,
         pinned: None,
@@ -730,182 +944,49 @@ pub fn fit_undriven_monitored(
             allowed: "a model that can be computed at the starting values",
         },
     };
-    let first = lm::minimise(&mut problem, x, settings)?.ok_or_else(failed)?;
-    // Second pass: each record weighted by its RMS residual of the first.
-    let mut start_row = 0;
-    let weights: Vec<f64> = (0..data.len())
-        .map(|j| {
-            let len = problem.time[j].len();
-            let w = problem.weights[j];
-            let s = rms(&first.residuals[start_row..start_row + len]) / w;
-            start_row += len;
-            1.0 / noise_floor(s, &problem.response[j], data[j].resolution)
-        })
-        .collect();
-    problem.weights = weights;
-    problem.watch.before += first.iterations;
-    let mut solution = lm::minimise(&mut problem, first.x.clone(), settings)?.ok_or_else(failed)?;
-    let mut iterations = first.iterations + solution.iterations;
     let n_free = setup.free.len();
+    let passed = passes::run(
+        &mut problem,
+        x,
+        n_free,
+        settings,
+        passes::Reach::Full,
+        failed,
+    )?;
+    let summary = passed.summarise(
+        &problem,
+        (experiment, &setup),
+        (free, &plan.warnings),
+        options,
+        data.iter()
+            .map(|m| (m.file.clone(), m.clipped, m.time.len())),
+    );
+    let (solution, iterations, dof) = (&passed.solution, passed.iterations, passed.dof);
     let n_values = solution.x.len();
-    let dof = solution.residuals.len().saturating_sub(n_values).max(1);
-    let t = t_quantile_975(dof);
-    // A restart from elsewhere, and the intervals' checks (linear where the model is linear
-    // enough, else the profile's; see `profile`): a point lower than the minimum is a
-    // minimum elsewhere, from which the fit goes on (three times at most), as for driven
-    // records.
-    let quick = lm::Settings {
-        max_iterations: QUICK_ITERATIONS.min(settings.max_iterations),
-        tolerance: 1e-6,
-        ..settings
-    };
-    let mut lower_by = None;
-    let mut intervals = None;
-    for _ in 0..3 {
-        problem.watch.before += solution.iterations;
-        let s2 = (solution.sum_squares / dof as f64).max(lm::Problem::floor(&problem));
-        let covariance = Covariance::of(&solution, n_free);
-        let mut lower = None;
-        if let Some(point) =
-            covariance.restart(&solution.x, &lm::Problem::bounds(&problem, n_values))
-        {
-            if let Some(restart) = lm::minimise(&mut problem, point, quick)? {
-                if restart.sum_squares < solution.sum_squares - RESTART_LOWER * s2 {
-                    lower = Some(restart);
-                }
-            }
-        }
-        if lower.is_none() {
-            match profile::intervals(
-                &mut problem,
-                &solution,
-                &covariance.inverse,
-                n_free,
-                t,
-                quick,
-            )? {
-                profile::Outcome::Intervals(found) => {
-                    lower_by = None;
-                    intervals = Some((found, covariance));
-                    break;
-                }
-                profile::Outcome::Lower(point) => {
-                    lower = lm::minimise(&mut problem, point, settings)?
-                        .filter(|s| s.sum_squares < solution.sum_squares);
-                }
-            }
-        }
-        match lower {
-            Some(better) => {
-                lower_by = Some((solution.sum_squares - better.sum_squares) / s2);
-                iterations += better.iterations;
-                solution = better;
-            }
-            None => {
-                intervals = None;
-                break;
-            }
-        }
-    }
-    let covariance = match intervals.as_ref() {
-        Some((_, c)) => c.clone(),
-        None => Covariance::of(&solution, n_free),
-    };
-    let s2 = variance(solution.sum_squares, dof, lm::Problem::floor(&problem));
-    let linear: Vec<([f64; 2], Interval)> = (0..n_free)
-        .map(|k| {
-            let sigma = covariance.sigma(k, s2);
-            (
-                [solution.x[k] - t * sigma, solution.x[k] + t * sigma],
-                if sigma.is_finite() {
-                    Interval::Linear
-                } else {
-                    Interval::None
-                },
-            )
-        })
-        .collect();
-    let found = intervals.map_or(linear, |(found, _)| found);
-    let (fitted_parameters, correlation) =
-        uncertainties(&setup, &solution, &covariance, &found, s2);
-    let parameters: Vec<FittedParameter> = free
-        .iter()
-        .map(
-            |&p| match fitted_parameters.iter().find(|f| f.parameter == p) {
-                Some(f) => *f,
-                None => {
-                    let start = p.get(experiment).unwrap_or(f64::NAN);
-                    FittedParameter {
-                        parameter: p,
-                        value: start,
-                        stderr: f64::NAN,
-                        ci95: [f64::NAN; 2],
-                        initial: start,
-                        interval: Interval::Held,
-                    }
-                }
-            },
-        )
-        .collect();
-    let index = |p: FitParameter| setup.free.iter().position(|&q| q == p);
-    let named_correlation: Vec<Vec<f64>> = free
-        .iter()
-        .map(|&a| {
-            free.iter()
-                .map(|&b| match (index(a), index(b)) {
-                    (Some(i), Some(k)) => correlation[i][k],
-                    _ => f64::NAN,
-                })
-                .collect()
-        })
-        .collect();
-    let mut warnings = plan.warnings.clone();
-    let converged = solution.converged && lower_by.is_none();
-    if !converged {
-        let why = match lower_by {
-            Some(lower_by) => warning::NotConverged::Restart { lower_by },
-            None if solution.iterations >= options.max_iterations => {
-                warning::NotConverged::Iterations {
-                    limit: options.max_iterations,
-                }
-            }
-            None => warning::NotConverged::Stalled {
-                predicted: solution.decrement,
-            },
-        };
-        warnings.insert(0, FitWarning::NotConverged { why });
-    }
-    for (k, &p) in setup.free.iter().enumerate() {
-        if covariance.unseen[k] {
-            warnings.push(FitWarning::Unseen { parameter: p });
-        }
-        if solution.at_bound[k] {
-            warnings.push(FitWarning::AtBound {
-                parameter: p,
-                bound: setup.value(k, solution.x[k]),
-            });
-        }
-    }
-    warnings.extend(identify::correlations(&setup.free, &correlation));
-    for m in data {
-        if m.clipped > 0 {
-            warnings.push(FitWarning::Clipped {
-                file: m.file.clone(),
-                samples: m.clipped,
-                of: m.time.len(),
-            });
-        }
-    }
-    let (models, cycle) = problem.models(&solution.x).ok_or_else(failed)?;
+    let (models, cycles) = problem.models(&solution.x).ok_or_else(failed)?;
     let fitted = setup.at(&solution.x[..n_free]).ok_or_else(failed)?;
     let scales = fitted.scales().expect("a mechanical oscillator has scales");
-    let cycle_seconds = cycle.period.map(|p| p / scales.omega0);
+    // The cycle each record's motion settles on at the fitted values (that of a record from
+    // rest computed here, for the report).
+    let cycles: Vec<Option<Cycle>> = cycles
+        .into_iter()
+        .zip(&problem.belts)
+        .map(|(cycle, &(speed, _))| {
+            cycle.or_else(|| {
+                let e = on_belt(&fitted, speed)?;
+                cycle_of(&e, &setup.steady, None).ok()
+            })
+        })
+        .collect();
     let mut records = Vec::with_capacity(data.len());
     let mut chi2 = 0.0;
     let mut groups = Vec::new();
     let mut all = Vec::new();
     for (j, (m, model)) in data.iter().zip(&models).enumerate() {
         let (offset, t_s) = problem.nuisance(&solution.x, j);
+        let cycle = cycles[problem.slots[j].belt];
+        let period = cycle.and_then(|c| c.period);
+        let cycle_seconds = period.map(|p| p / scales.omega0);
         let residuals: Vec<f64> = model
             .r
             .iter()
@@ -921,9 +1002,9 @@ pub fn fit_undriven_monitored(
             file: m.file.clone(),
             freq_hz: cycle_seconds.map_or(0.0, |s| 1.0 / s),
             amplitude_v: 0.0,
-            w: cycle.period.map_or(0.0, |p| TAU / p),
+            w: period.map_or(0.0, |p| TAU / p),
             beta: 0.0,
-            class: cycle.class,
+            class: cycle.map_or(MotionClass::Undecided, |c| c.class),
             periods: cycle_seconds.map_or(0, |s| (span / s).floor() as usize),
             clipped: m.clipped,
             rms_residual_v: rms(&residuals),
@@ -945,8 +1026,8 @@ pub fn fit_undriven_monitored(
     let (aic, bic) = criteria(&groups, n_values);
     Ok(FitReport {
         model: experiment.diode_model(),
-        parameters,
-        correlation: named_correlation,
+        parameters: summary.parameters,
+        correlation: summary.correlation,
         records,
         rows: vec![],
         rms_residual_v: rms(&all),
@@ -958,9 +1039,9 @@ pub fn fit_undriven_monitored(
         aic,
         bic,
         iterations,
-        converged,
+        converged: summary.converged,
         jacobian: Jacobian::CentralDifferences,
         experiment: fitted,
-        warnings,
+        warnings: summary.warnings,
     })
 }
