@@ -14,6 +14,7 @@ mod determinism;
 mod dynamics;
 mod fit;
 mod fit_belt;
+mod friction_continue;
 mod front_end_keys;
 mod fuzz_props;
 mod keys;

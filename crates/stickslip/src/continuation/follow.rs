@@ -102,7 +102,11 @@ pub fn continue_orbit(
 /// no grazing points and are not reported, and it ends where the steps fail or stall
 /// without an [`super::Obstacle`] (those are switches of the PWL law); its residuals are
 /// taken to the accuracy to which the stiff solver's map repeats
-/// ([`Dynamics::repeat_tolerance`]), and ∂P/∂λ comes from its sensitivities.
+/// ([`Dynamics::repeat_tolerance`]), and ∂P/∂λ comes from its sensitivities. With a smooth
+/// friction law ([`crate::stability::FrictionDynamics`]) the stops are switches again: the
+/// changes of the event counts are grazing points, and an end is named by the obstacle search
+/// on the law's own solver ([`super::obstacle_of`]); its grazings keep the map continuous (the
+/// law starts from μs), so none ends the branch as [`BranchEnd::Grazing`].
 ///
 /// # Errors
 /// As [`continue_orbit`]; [`crate::Unsupported::MuSNeedsPwl`] for μs with a smooth law,

@@ -6,10 +6,15 @@
 //! (the jump), on a branch of its own that does not end at the grazing (it exists on both
 //! sides of it, as at w = 0.2004 for ζ = 0, μs = 3, β = 9), and joining the two would draw one
 //! branch through a jump.
+//!
+//! A smooth friction law (Stribeck, cubic) starts from its static level, μ(0) = μs: there
+//! the stop that appears begins with zero length and the map stays continuous, so such a
+//! grazing ends no branch; where a branch of such a law does stop, it ends as stalled or
+//! failed with the obstacle its last orbit is closest to, found on the law's own solver.
 
 use super::corrector::{counts, Problem, Solution};
 use super::detect::side;
-use super::obstacle::{obstacle, slide_minimum};
+use super::obstacle::{obstacle_of, slide_minimum};
 use super::{BranchEnd, Obstacle};
 use crate::error::Result;
 use crate::solver::EventKind;
@@ -29,31 +34,32 @@ pub(super) fn end_at(
     let lambda = last.u[2];
     let params = problem.params(lambda)?;
     let multiplier = last.orbit.multipliers[0].modulus();
-    // The obstacles are switches of the PWL law; a smooth law has none.
-    let obstacle = if problem.dynamics.is_exact() {
-        obstacle(&params, &last.orbit)?
-    } else {
-        Obstacle::None
-    };
-    let Obstacle::Grazing(slide) = obstacle else {
-        return Ok(if stalled {
-            BranchEnd::Stalled {
-                value: lambda,
-                multiplier,
-                obstacle,
-            }
-        } else {
-            BranchEnd::Failed {
-                value: lambda,
-                obstacle,
-            }
-        });
+    // On the model's own solver with its own forces (a smooth diode law has no switches).
+    let obstacle = obstacle_of(problem.dynamics, &params, &last.orbit)?;
+    // A smooth friction law's grazing is no jump (the stop appears with zero length): the
+    // branch ends where the steps did, naming it.
+    let slide = match obstacle {
+        Obstacle::Grazing(slide) if !slide.continuous => slide,
+        _ => {
+            return Ok(if stalled {
+                BranchEnd::Stalled {
+                    value: lambda,
+                    multiplier,
+                    obstacle,
+                }
+            } else {
+                BranchEnd::Failed {
+                    value: lambda,
+                    obstacle,
+                }
+            })
+        }
     };
     // The speed at the minimum falls linearly in λ towards the grazing: its secant through the
     // last two points says where it reaches zero (the last point when that is not ahead).
     let mut value = lambda;
     if let Some(p) = previous {
-        let prev = slide_minimum(&problem.params(p.u[2])?, &p.orbit)?;
+        let prev = slide_minimum(problem.dynamics, &problem.params(p.u[2])?, &p.orbit)?;
         if let Some(prev) = prev {
             let dl = lambda - p.u[2];
             let dv = prev.velocity - slide.velocity;

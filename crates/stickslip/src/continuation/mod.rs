@@ -94,7 +94,7 @@ pub use curve::{
 pub use follow::{
     continue_both_ways, continue_both_ways_of, continue_orbit, continue_orbit_of, settled_orbit,
 };
-pub use obstacle::{Obstacle, SlideMinimum};
+pub use obstacle::{obstacle_of, Obstacle, SlideMinimum};
 pub use options::{check_ends, check_parameter, ContinuationOptions};
 pub use report::{BranchReport, SideReport, SpecialReport};
 pub use special::{Side, SpecialKind, SpecialPoint};

@@ -1,11 +1,21 @@
 //! What the last orbit of a branch that cannot go on is closest to: a turning point at the
 //! static limit, a tangential release, a slide grazing rest, or a stop reached tangentially.
+//!
+//! The orbit is run on its model's own solver ([`Dynamics::solver`], its dense output) with
+//! the model's forces: Coulomb's law ([`crate::ExactSolver`]) slides against the kinetic level
+//! 1 and holds up to μs; a smooth law (Stribeck, cubic: [`crate::stability::FrictionDynamics`])
+//! slides against μ(|s|), s = y' − vb, and holds up to μs = μ(0). With Coulomb's law and
+//! μs > 1 a stop that appears mid-swing has a finite length at once and the strobe map jumps.
+//! A smooth law's friction at zero slip is its static limit, so there the net force at a
+//! slide's lowest speed tends to ±μs, the stop that appears starts with zero length, and the
+//! map stays continuous while its derivative jumps (a border collision, which `continue`
+//! passes as a [`super::SpecialKind::Grazing`] point); its obstacles say so
+//! ([`SlideMinimum::continuous`]).
 
 use crate::error::Result;
-use crate::exact::ExactSolver;
 use crate::params::Params;
-use crate::solver::{EventKind, Phase, Solver};
-use crate::stability::PeriodicOrbit;
+use crate::solver::{EventKind, Phase, Sample};
+use crate::stability::{Dynamics, ExactDynamics, PeriodicOrbit};
 use serde::{Deserialize, Serialize};
 
 /// Where the strobe map of an orbit is about to jump or lose its derivative: the event of the
@@ -49,6 +59,12 @@ pub enum Obstacle {
         tau: f64,
         /// The relative acceleration on arrival over μs.
         acceleration: f64,
+        /// Whether the strobe map stays continuous there (a smooth law, which starts from
+        /// μs: past it the slide misses the belt's speed, or the slip before the stop
+        /// shrinks to nothing, without a jump; only the map's derivative jumps). False, and
+        /// left out of JSON, for Coulomb's law.
+        #[serde(default, skip_serializing_if = "is_false")]
+        continuous: bool,
     },
     /// No event of the orbit is close to a switch.
     None,
@@ -71,6 +87,18 @@ pub struct SlideMinimum {
     /// Time of that event from the strobe (negative when it happens in the previous period,
     /// before the strobe).
     pub after_tau: f64,
+    /// Whether the strobe map stays continuous where the slide reaches the belt's speed: a
+    /// smooth law, whose friction at zero slip is the static limit μs, so the stop that
+    /// appears begins with zero length and only the map's derivative jumps; `net_force` is
+    /// then F − y − 2ζ·vb, which tends to μs there. False, and left out of JSON, for
+    /// Coulomb's law (the stop has a finite length at once: the map jumps).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub continuous: bool,
+}
+
+/// For `skip_serializing_if`: Coulomb's obstacles keep their JSON as it was.
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl SlideMinimum {
@@ -82,6 +110,13 @@ impl SlideMinimum {
             EventKind::Stick => "stop",
             EventKind::Slip => "release",
         };
+        if self.continuous {
+            return format!(
+                "the slide after the {event} at τ = {:.6} comes to |y' − vb| = {:.1e} at \
+                 τ = {:.6}, where the net force |F − y − 2ζvb| = {:.4}",
+                self.after_tau, self.velocity, self.tau, self.net_force
+            );
+        }
         format!(
             "the slide after the {event} at τ = {:.6} comes to |y'| = {:.1e} at τ = {:.6}, \
              where the net force |F − y| = {:.4}",
@@ -93,14 +128,20 @@ impl SlideMinimum {
 /// The slide minimum of `orbit` at `params` closest to rest (relative to the orbit's largest
 /// speed), or `None` when no slide has a minimum of |y'| away from its ends. The minima are
 /// found on 32 samples of each slide and refined by golden sections on the exact dense
-/// output (to about 1e-10 of the slide's length).
+/// output (to about 1e-10 of the slide's length). With a smooth law of `dynamics`
+/// ([`Dynamics::is_exact`] false), as [`smooth_slide_minimum`].
 pub(crate) fn slide_minimum(
+    dynamics: &dyn Dynamics,
     params: &Params,
     orbit: &PeriodicOrbit,
 ) -> Result<Option<SlideMinimum>> {
+    if !dynamics.is_exact() {
+        return smooth_slide_minimum(dynamics, params, orbit);
+    }
     const SAMPLES: usize = 32;
     let end = orbit.period as f64 * orbit.drive_period;
-    let mut solver = ExactSolver::new(*params, orbit.state);
+    // (One advance of the exact solver covers a whole slide.)
+    let mut solver = ExactDynamics.solver(params, orbit.state)?;
     let mut fastest = 0f64;
     let mut best: Option<(f64, f64, f64)> = None;
     while solver.time() < end {
@@ -149,25 +190,133 @@ pub(crate) fn slide_minimum(
     let Some((tau, velocity, y)) = best else {
         return Ok(None);
     };
-    // The event before the minimum, cyclically over the orbit's period.
-    let previous = orbit
+    Ok(
+        after_event(orbit, tau).map(|(after, after_tau)| SlideMinimum {
+            tau,
+            speed: velocity / fastest.max(f64::MIN_POSITIVE),
+            velocity,
+            net_force: (params.drive(tau) - y).abs(),
+            after,
+            after_tau,
+            continuous: false,
+        }),
+    )
+}
+
+/// The event of `orbit` before τ, cyclically over the orbit's period: its kind and time
+/// (negative when it lies in the previous period).
+fn after_event(orbit: &PeriodicOrbit, tau: f64) -> Option<(EventKind, f64)> {
+    let end = orbit.period as f64 * orbit.drive_period;
+    orbit
         .events
         .iter()
         .rev()
         .find(|e| e.tau < tau)
         .map(|e| (e.kind, e.tau))
-        .or_else(|| orbit.events.last().map(|e| (e.kind, e.tau - end)));
-    let Some((after, after_tau)) = previous else {
-        return Ok(None);
-    };
-    Ok(Some(SlideMinimum {
-        tau,
-        speed: velocity / fastest.max(f64::MIN_POSITIVE),
-        velocity,
-        net_force: (params.drive(tau) - y).abs(),
-        after,
-        after_tau,
-    }))
+        .or_else(|| orbit.events.last().map(|e| (e.kind, e.tau - end)))
+}
+
+/// d|s|/dτ = σ·y'' at `x` on a slip of direction `sign` = σ (s = y' − vb of that sign) under
+/// the smooth law of `params`: y'' = F − y − 2ζ y' − σ μ(|s|).
+fn slip_rate(params: &Params, x: &Sample, sign: f64) -> f64 {
+    let s = (x.v - params.vb).abs();
+    let friction = sign * params.law.value(params.mu_s, s);
+    sign * (params.drive(x.tau) - x.y - 2.0 * params.zeta * x.v - friction)
+}
+
+/// The slide minimum of a smooth law's orbit: the model's solver run over the orbit's
+/// period, each slip step sampled at 32 points; where d|s|/dτ = σ y'' (with the law's
+/// μ(|s|)) turns from negative to non-negative between two samples, |s| = |y' − vb| has a
+/// minimum, located by bisection of σ y'' on the step's dense output (60 halvings: to
+/// rounding). A slide spans many steps of the stiff integrator, and such a sign change
+/// always lies between two samples of one step. The net force reported is F − y − 2ζ·vb.
+fn smooth_slide_minimum(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    orbit: &PeriodicOrbit,
+) -> Result<Option<SlideMinimum>> {
+    Ok(smooth_run(dynamics, params, orbit)?.0)
+}
+
+/// An event of a smooth law's orbit with the slip direction before it (0 after a stop).
+struct SmoothEvent {
+    event: crate::solver::Event,
+    sign_before: f64,
+}
+
+/// The orbit run once on the model's solver: its slide minimum closest to rest and its
+/// events with the slip direction before each.
+fn smooth_run(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    orbit: &PeriodicOrbit,
+) -> Result<(Option<SlideMinimum>, Vec<SmoothEvent>)> {
+    const SAMPLES: usize = 32;
+    let end = orbit.period as f64 * orbit.drive_period;
+    let mut solver = dynamics.solver(params, orbit.state)?;
+    let mut events = Vec::new();
+    let mut fastest = 0f64;
+    let mut best: Option<(f64, f64, f64)> = None;
+    while solver.time() < end {
+        let before = solver.phase();
+        if let Some(event) = solver.advance(end)? {
+            events.push(SmoothEvent {
+                event,
+                sign_before: before.sign(),
+            });
+        }
+        let (a, b) = solver.interval();
+        if !(b > a) || before == Phase::Stick {
+            continue;
+        }
+        let sign = before.sign();
+        let h = (b - a) / SAMPLES as f64;
+        let samples: Vec<Sample> = (0..=SAMPLES)
+            .map(|k| solver.dense(if k == SAMPLES { b } else { a + k as f64 * h }))
+            .collect();
+        fastest = samples
+            .iter()
+            .fold(fastest, |m, x| m.max((x.v - params.vb).abs()));
+        for pair in samples.windows(2) {
+            if !(slip_rate(params, &pair[0], sign) < 0.0
+                && slip_rate(params, &pair[1], sign) >= 0.0)
+            {
+                continue;
+            }
+            let (mut lo, mut hi) = (pair[0].tau, pair[1].tau);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if slip_rate(params, &solver.dense(mid), sign) < 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let x = solver.dense(0.5 * (lo + hi));
+            let slip = (x.v - params.vb).abs();
+            // (A slip that starts at the belt's speed with y'' = 0, as after a release, is
+            // no minimum inside the slide: |s| did not come down to it.)
+            let before = (pair[0].v - params.vb).abs();
+            if slip < before && best.is_none_or(|(_, v, _)| slip < v) {
+                best = Some((x.tau, slip, x.y));
+            }
+        }
+    }
+    let slide = best.and_then(|(tau, velocity, y)| {
+        after_event(orbit, tau).map(|(after, after_tau)| SlideMinimum {
+            tau,
+            speed: velocity / fastest.max(f64::MIN_POSITIVE),
+            velocity,
+            net_force: params.net_force(tau, y).abs(),
+            after,
+            after_tau,
+            continuous: true,
+        })
+    });
+    Ok((slide, events))
 }
 
 impl std::fmt::Display for Obstacle {
@@ -191,13 +340,33 @@ impl std::fmt::Display for Obstacle {
                 "; a release happens where the drive's force hardly changes \
                  (|F'|/βw = {rate:.1e}): it is becoming tangential"
             ),
+            Obstacle::Grazing(slide) if slide.continuous => write!(
+                f,
+                "; a slide nearly touches the belt's speed: {}; past it a stop appears there, \
+                 of zero length at first (the law's friction at zero slip is its static limit), \
+                 so the strobe map stays continuous and its derivative jumps",
+                slide.describe()
+            ),
             Obstacle::Grazing(slide) => write!(
                 f,
                 "; a grazing: {}, within the static limit, so a stop of finite length \
                  appears mid-swing and the strobe map jumps",
                 slide.describe()
             ),
-            Obstacle::TangentialStick { tau, acceleration } => write!(
+            Obstacle::TangentialStick {
+                tau,
+                acceleration,
+                continuous: true,
+            } => write!(
+                f,
+                "; the stop at τ = {tau:.6} begins where the slide reaches the belt's speed \
+                 almost tangentially (|y''|/μs = {acceleration:.1e} on arrival): past it the \
+                 slide misses the belt's speed there, or the slip before the stop vanishes, \
+                 without a jump (the strobe map stays continuous and its derivative jumps)"
+            ),
+            Obstacle::TangentialStick {
+                tau, acceleration, ..
+            } => write!(
                 f,
                 "; the stop at τ = {tau:.6} begins where the slide reaches the belt's speed \
                  almost tangentially (|y''|/μs = {acceleration:.1e} on arrival): past it the \
@@ -215,7 +384,7 @@ impl std::fmt::Display for Obstacle {
 pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacle> {
     let mut best = (1e-2, Obstacle::None);
     if params.mu_s > 1.0 {
-        if let Some(slide) = slide_minimum(params, orbit)? {
+        if let Some(slide) = slide_minimum(&ExactDynamics, params, orbit)? {
             if slide.speed < best.0 && slide.net_force < params.mu_s {
                 best = (slide.speed, Obstacle::Grazing(slide));
             }
@@ -254,6 +423,7 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
                         Obstacle::TangentialStick {
                             tau: e.tau,
                             acceleration,
+                            continuous: false,
                         },
                     );
                 }
@@ -272,6 +442,101 @@ pub(super) fn obstacle(params: &Params, orbit: &PeriodicOrbit) -> Result<Obstacl
                 }
             }
             _ => {}
+        }
+    }
+    Ok(best.1)
+}
+
+/// The [`Obstacle`] of `orbit` at `params` for the model `dynamics`. The exact model's is
+/// Coulomb's search on the exact solver; a model that does not stick (a smooth diode law) has
+/// none; a smooth friction law's ([`crate::stability::FrictionDynamics`]) is found as the
+/// exact model's, on its own solver and with its own forces (see the module documentation):
+///
+/// - a slide minimum of |s| = |y' − vb| within 10⁻² of the orbit's largest |s|
+///   ([`Obstacle::Grazing`]; at such a minimum σ y'' = 0 puts the net force
+///   F − y − 2ζvb at σ μ(|s|) + 2ζ s, next to the static limit, so no condition on it);
+/// - a turning point whose net force is within 10⁻² (relative) of ±μs, or a stop that begins
+///   within 10⁻² of the limit opposite to its slip, σ f = −μs (past it the slip reverses
+///   there instead: [`Obstacle::TurnAtStaticLimit`]);
+/// - a stop whose arrival acceleration σ y'' = σ f − μs is within 10⁻² μs of zero
+///   ([`Obstacle::TangentialStick`]: the slide touches the belt's speed; the stop side of a
+///   grazing);
+/// - a release where the net force's rate |F' − vb| is within 10⁻² of βw + |vb|
+///   ([`Obstacle::TangentialRelease`]);
+///
+/// the closest of them, measured relatively, when one is below 10⁻². The grazing and the
+/// tangential stick are marked [`SlideMinimum::continuous`]: for these laws the strobe map
+/// does not jump there.
+///
+/// # Errors
+/// What the model's solver reports.
+pub fn obstacle_of(
+    dynamics: &dyn Dynamics,
+    params: &Params,
+    orbit: &PeriodicOrbit,
+) -> Result<Obstacle> {
+    if dynamics.is_exact() {
+        return obstacle(params, orbit);
+    }
+    if !dynamics.sticks() {
+        return Ok(Obstacle::None);
+    }
+    let (slide, events) = smooth_run(dynamics, params, orbit)?;
+    let mu_s = params.mu_s;
+    let mut best = (1e-2, Obstacle::None);
+    if let Some(slide) = slide {
+        if slide.speed < best.0 {
+            best = (slide.speed, Obstacle::Grazing(slide));
+        }
+    }
+    for SmoothEvent {
+        event: e,
+        sign_before,
+    } in &events
+    {
+        let net = params.net_force(e.tau, e.y);
+        match e.kind {
+            EventKind::Turn => {
+                let margin = (net.abs() - mu_s) / mu_s;
+                if margin.abs() < best.0 {
+                    best = (
+                        margin.abs(),
+                        Obstacle::TurnAtStaticLimit { tau: e.tau, margin },
+                    );
+                }
+            }
+            EventKind::Stick => {
+                // The limit on the side the slip came from, σ f = μs, is where the slide only
+                // touches the belt's speed (a tangential arrival); the opposite one,
+                // σ f = −μs, where it would reverse instead.
+                let along = sign_before * net;
+                let acceleration = (along - mu_s).abs() / mu_s;
+                if acceleration < best.0 {
+                    best = (
+                        acceleration,
+                        Obstacle::TangentialStick {
+                            tau: e.tau,
+                            acceleration,
+                            continuous: true,
+                        },
+                    );
+                }
+                let margin = (-along - mu_s) / mu_s;
+                if along < 0.0 && margin.abs() < best.0 {
+                    best = (
+                        margin.abs(),
+                        Obstacle::TurnAtStaticLimit { tau: e.tau, margin },
+                    );
+                }
+            }
+            EventKind::Slip => {
+                let phase = params.w * e.tau + params.phi;
+                let rate = (params.beta * params.w * phase.sin() + params.vb).abs()
+                    / (params.beta * params.w + params.vb.abs());
+                if rate < best.0 {
+                    best = (rate, Obstacle::TangentialRelease { tau: e.tau, rate });
+                }
+            }
         }
     }
     Ok(best.1)
