@@ -195,7 +195,7 @@ pub(crate) fn slide_minimum(
             tau,
             speed: velocity / fastest.max(f64::MIN_POSITIVE),
             velocity,
-            net_force: (params.drive(tau) - y).abs(),
+            net_force: params.net_force(tau, y).abs(),
             after,
             after_tau,
             continuous: false,
@@ -540,4 +540,69 @@ pub fn obstacle_of(
         }
     }
     Ok(best.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::NewtonOptions;
+    use crate::params::State;
+    use crate::solver::Solver;
+    use crate::ExactSolver;
+
+    /// On a Coulomb belt a slide's lowest slip is measured from the belt's speed and the net
+    /// force there carries the belt's viscous load, |F − y − 2ζ·vb| (the force a stop would
+    /// begin with): checked against the exact solver's own state at the minimum, on forced
+    /// belts whose period-1 orbits have a slide with a minimum of |y' − vb| inside it.
+    #[test]
+    fn a_coulomb_belts_slide_minimum_carries_the_belts_load() {
+        let mut checked = 0;
+        let (mut orbits, mut tried) = (0, 0);
+        for (w, beta) in [0.3, 0.5, 0.8, 1.2]
+            .into_iter()
+            .flat_map(|w| [0.8, 1.5, 2.5, 4.0].map(|beta| (w, beta)))
+        {
+            tried += 1;
+            let params = Params::new(0.1, w, beta)
+                .and_then(|p| p.with_mu_s(1.5))
+                .and_then(|p| p.with_vb(0.3))
+                .unwrap();
+            let mut solver = ExactSolver::new(params, State::new(0.0, 0.3).unwrap());
+            crate::solver::run_until(
+                &mut solver,
+                200.0 * 2.0 * std::f64::consts::PI / params.w,
+                |_| {},
+            )
+            .unwrap();
+            let guess = solver.state();
+            let Ok(orbit) =
+                crate::stability::find_periodic_orbit(&params, guess, 1, &NewtonOptions::default())
+            else {
+                continue;
+            };
+            orbits += 1;
+            let Some(min) = slide_minimum(&ExactDynamics, &params, &orbit).unwrap() else {
+                continue;
+            };
+            let mut exact = ExactSolver::new(params, orbit.state);
+            crate::solver::run_until(&mut exact, min.tau, |_| {}).unwrap();
+            let at = exact.state();
+            let net = params.beta * (params.w * min.tau + params.phi).cos()
+                - at.y
+                - 2.0 * params.zeta * params.vb;
+            assert!(
+                (min.velocity - (at.v - params.vb).abs()).abs() < 1e-9,
+                "w = {w}, β = {beta}: {min:?}"
+            );
+            assert!(
+                (min.net_force - net.abs()).abs() < 1e-9,
+                "w = {w}, β = {beta}: {min:?} against {net}"
+            );
+            checked += 1;
+        }
+        assert!(
+            checked >= 2,
+            "{checked} of {orbits} orbits ({tried} belts) had a slide minimum"
+        );
+    }
 }
