@@ -89,12 +89,12 @@ pub(crate) fn column(parameter: Parameter) -> Result<usize> {
 }
 
 /// `Ok` when a curve of `dynamics` at `params` can be followed in or over `parameter`: with
-/// the exact model one of the paper's four or vb ([`column`]); with a smooth friction law any
+/// the exact model one of the paper's four or vb ([`column()`]); with a smooth friction law any
 /// parameter of the model at `params` (ζ, w, β, μs, the belt's speed vb, the law's own), whose
 /// derivatives the model's sensitivities give ([`Dynamics::parameter_derivative`]).
 ///
 /// # Errors
-/// As [`column`] for the exact model; [`Error::InvalidParameter`] for a parameter of another
+/// As [`column()`] for the exact model; [`Error::InvalidParameter`] for a parameter of another
 /// friction law.
 pub(crate) fn check_parameter(
     dynamics: &dyn Dynamics,
