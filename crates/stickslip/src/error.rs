@@ -366,8 +366,8 @@ pub enum Unsupported {
     /// Grazing curves follow events of the exact solver, with Coulomb's law: a Stribeck or
     /// cubic law (`law`) has curves of folds, period doublings and Neimark–Sacker points.
     GrazingCurveNeedsCoulomb {
-        /// The law asked for.
-        law: crate::friction::FrictionLawKind,
+        /// The law asked for, as users type it (`stribeck`, `cubic`).
+        law: &'static str,
     },
     /// Curves of special points in two parameters are followed with the exact
     /// piecewise-linear model (its grazings are events of the exact solver).
@@ -427,7 +427,7 @@ impl std::fmt::Display for Unsupported {
                      law: with the {} law a curve follows a fold, a period doubling or a \
                      Neimark–Sacker point (follow fold, period-doubling or neimark-sacker; or \
                      grazing with the coulomb law)",
-                    law.label()
+                    law
                 )
             }
             Unsupported::CurveNeedsPwl => {

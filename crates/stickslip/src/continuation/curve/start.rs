@@ -113,7 +113,7 @@ fn possible(
             Err(Error::Unsupported(crate::Unsupported::NoNeimarkSacker))
         }
         Follow::Grazing if !dynamics.is_exact() => Err(Error::Unsupported(
-            crate::Unsupported::GrazingCurveNeedsCoulomb { law },
+            crate::Unsupported::GrazingCurveNeedsCoulomb { law: law.label() },
         )),
         _ => Ok(()),
     }
