@@ -190,17 +190,28 @@ pub(crate) fn slide_minimum(
     let Some((tau, velocity, y)) = best else {
         return Ok(None);
     };
-    Ok(
-        after_event(orbit, tau).map(|(after, after_tau)| SlideMinimum {
-            tau,
-            speed: velocity / fastest.max(f64::MIN_POSITIVE),
-            velocity,
-            net_force: params.net_force(tau, y).abs(),
-            after,
-            after_tau,
-            continuous: false,
-        }),
-    )
+    Ok(slide_at(params, orbit, (tau, velocity, y), fastest, false))
+}
+
+/// The slide minimum of `orbit` at `tau`, where the slip |y' − vb| is `velocity` and the
+/// position `y`, with the orbit's largest slip `fastest` and the map's continuity there;
+/// `None` when no event of the orbit precedes it.
+fn slide_at(
+    params: &Params,
+    orbit: &PeriodicOrbit,
+    (tau, velocity, y): (f64, f64, f64),
+    fastest: f64,
+    continuous: bool,
+) -> Option<SlideMinimum> {
+    after_event(orbit, tau).map(|(after, after_tau)| SlideMinimum {
+        tau,
+        speed: velocity / fastest.max(f64::MIN_POSITIVE),
+        velocity,
+        net_force: params.net_force(tau, y).abs(),
+        after,
+        after_tau,
+        continuous,
+    })
 }
 
 /// The event of `orbit` before τ, cyclically over the orbit's period: its kind and time
@@ -305,17 +316,7 @@ fn smooth_run(
             }
         }
     }
-    let slide = best.and_then(|(tau, velocity, y)| {
-        after_event(orbit, tau).map(|(after, after_tau)| SlideMinimum {
-            tau,
-            speed: velocity / fastest.max(f64::MIN_POSITIVE),
-            velocity,
-            net_force: params.net_force(tau, y).abs(),
-            after,
-            after_tau,
-            continuous: true,
-        })
-    });
+    let slide = best.and_then(|minimum| slide_at(params, orbit, minimum, fastest, true));
     Ok((slide, events))
 }
 
